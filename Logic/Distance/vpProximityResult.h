@@ -1,0 +1,54 @@
+#ifndef vpProximityResult_h
+#define vpProximityResult_h
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace vp
+{
+/// The answer for one vessel class at one tip position.
+struct ClassProximity
+{
+  std::string ClassName;
+  /// False when the class has no surface within the engine's range of the tip; the distance and
+  /// the point are then meaningless and reported as null.
+  bool InRange = false;
+  /// Unsigned distance from the tip to the nearest surface point of the class; with Inside true
+  /// it is the penetration depth.
+  double DistanceMm = 0.0;
+  double ClosestPoint[3] = { 0.0, 0.0, 0.0 };
+  /// Triangle holding ClosestPoint, -1 when out of range.
+  long long TriangleId = -1;
+  /// Empty when the surface is open (inside is undefined there).
+  std::optional<bool> Inside;
+  /// Distance from the tip along the axis to the first surface of the class; empty when no axis
+  /// was given or nothing is hit within range.
+  std::optional<double> DirectionalMm;
+};
+
+/// The answer for all vessel classes at one tip position.
+struct ProximityResult
+{
+  double Tip[3] = { 0.0, 0.0, 0.0 };
+  /// The engine's bound on |reported - exact| for every distance below; 0 for exact engines.
+  double ErrorBoundMm = 0.0;
+  std::vector<ClassProximity> Classes;
+
+  /// Index into Classes of the nearest in-range class, -1 when none is in range.
+  int NearestIndex() const
+  {
+    int best = -1;
+    for (int i = 0; i < static_cast<int>(this->Classes.size()); ++i)
+    {
+      if (this->Classes[i].InRange && (best < 0 || this->Classes[i].DistanceMm < this->Classes[best].DistanceMm))
+      {
+        best = i;
+      }
+    }
+    return best;
+  }
+};
+} // namespace vp
+
+#endif

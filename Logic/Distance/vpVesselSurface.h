@@ -1,0 +1,61 @@
+#ifndef vpVesselSurface_h
+#define vpVesselSurface_h
+
+#include "vpTriangleGeometry.h"
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+class vtkPolyData;
+
+namespace vp
+{
+/// One vessel class's surface, prepared once for distance queries: indexed triangles in double
+/// precision, and, for closed surfaces, what the sign test needs: outward face normals,
+/// neighbour triangles across each edge and angle-weighted vertex pseudonormals.
+///
+/// "Closed" means every edge is shared by exactly two triangles that traverse it in opposite
+/// directions (watertight, manifold, consistently wound). Each connected piece is turned to face
+/// outward by the sign of its enclosed volume, so meshes that wind inward (IRCADb's, VMTK's) get
+/// a correct inside test too. Open meshes answer "unknown" rather than guess.
+class VesselSurface
+{
+public:
+  /// Takes the triangles of mesh (other cells are ignored). Throws InputError(name, ...) when it
+  /// has no triangles or non-finite points.
+  VesselSurface(const std::string& name, vtkPolyData* mesh);
+
+  const std::string& Name() const { return this->ClassName; }
+  std::size_t NumberOfTriangles() const { return this->Triangles.size(); }
+  std::size_t NumberOfPoints() const { return this->Points.size(); }
+  bool IsClosed() const { return this->Closed; }
+  const double* Point(std::int32_t id) const { return this->Points[id].data(); }
+  const std::array<std::int32_t, 3>& Triangle(std::size_t t) const { return this->Triangles[t]; }
+  const std::vector<std::array<double, 3>>& PointArray() const { return this->Points; }
+  const std::vector<std::array<std::int32_t, 3>>& TriangleArray() const { return this->Triangles; }
+  const double* Bounds() const { return this->BoundsMm.data(); }
+
+  /// Whether point p lies inside the closed surface, given its closest point on triangle t and
+  /// the feature holding it. Empty for open surfaces; false on the surface itself.
+  std::optional<bool> IsInside(const double p[3], std::size_t t, const double closest[3],
+    TriangleFeature feature) const;
+
+private:
+  std::string ClassName;
+  std::vector<std::array<double, 3>> Points;
+  std::vector<std::array<std::int32_t, 3>> Triangles;
+  std::array<double, 6> BoundsMm{};
+  bool Closed = false;
+  // Only filled for closed surfaces.
+  std::vector<std::array<double, 3>> FaceNormals;     // unit, outward
+  std::vector<std::array<std::int32_t, 3>> Neighbours; // across edge ab, bc, ca
+  std::vector<std::array<double, 3>> VertexNormals;   // angle-weighted, outward
+
+  void BuildTopology();
+};
+} // namespace vp
+
+#endif

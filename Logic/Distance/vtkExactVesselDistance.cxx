@@ -1,0 +1,248 @@
+#include "vtkExactVesselDistance.h"
+
+#include "vpInputError.h"
+
+#include <vtkObjectFactory.h>
+
+#include <embree3/rtcore.h>
+
+#include <cfloat>
+#include <cmath>
+#include <limits>
+#include <string>
+
+vtkStandardNewMacro(vtkExactVesselDistance);
+
+namespace
+{
+struct DeviceDeleter
+{
+  void operator()(RTCDeviceTy* d) const { rtcReleaseDevice(d); }
+};
+struct SceneDeleter
+{
+  void operator()(RTCSceneTy* s) const { rtcReleaseScene(s); }
+};
+using DevicePtr = std::unique_ptr<RTCDeviceTy, DeviceDeleter>;
+using ScenePtr = std::unique_ptr<RTCSceneTy, SceneDeleter>;
+
+/// One class's tree. Vertices are stored relative to Origin to keep float rounding small.
+struct ClassTree
+{
+  ScenePtr Scene;
+  double Origin[3] = { 0, 0, 0 };
+  /// How far the float tree may be from the double surface, plus the query point's rounding.
+  double SlackMm = 0;
+};
+
+struct QueryState
+{
+  const vp::VesselSurface* Surface;
+  double Point[3];
+  double Best2;
+  long long Triangle;
+  double Closest[3];
+  vp::TriangleFeature Feature;
+  double SlackMm;
+};
+
+bool VisitTriangle(RTCPointQueryFunctionArguments* args)
+{
+  auto* state = static_cast<QueryState*>(args->userPtr);
+  const auto& tri = state->Surface->Triangle(args->primID);
+  double q[3];
+  vp::TriangleFeature feature;
+  const double d2 = vp::ClosestPointOnTriangle(state->Point, state->Surface->Point(tri[0]),
+    state->Surface->Point(tri[1]), state->Surface->Point(tri[2]), q, feature);
+  if (d2 >= state->Best2)
+  {
+    return false;
+  }
+  state->Best2 = d2;
+  state->Triangle = args->primID;
+  state->Closest[0] = q[0];
+  state->Closest[1] = q[1];
+  state->Closest[2] = q[2];
+  state->Feature = feature;
+  args->query->radius = static_cast<float>(std::sqrt(d2) + state->SlackMm);
+  return true;
+}
+
+void OnEmbreeError(void* userPtr, RTCError code, const char* message)
+{
+  auto* last = static_cast<std::string*>(userPtr);
+  *last = "Embree error " + std::to_string(static_cast<int>(code)) + (message ? std::string(": ") + message : "");
+}
+} // namespace
+
+struct vtkExactVesselDistance::Internals
+{
+  std::string LastError;
+  DevicePtr Device;
+  std::vector<ClassTree> Trees;
+};
+
+vtkExactVesselDistance::vtkExactVesselDistance()
+  : Impl(new Internals)
+{
+}
+
+vtkExactVesselDistance::~vtkExactVesselDistance()
+{
+  // Scenes hold references to the device: release them first.
+  this->Impl->Trees.clear();
+}
+
+void vtkExactVesselDistance::BuildInternal()
+{
+  Internals& impl = *this->Impl;
+  impl.Trees.clear();
+  if (!impl.Device)
+  {
+    impl.Device.reset(rtcNewDevice("verbose=0"));
+    if (!impl.Device)
+    {
+      throw std::runtime_error("cannot create an Embree device (CPU without SSE2?)");
+    }
+    rtcSetDeviceErrorFunction(impl.Device.get(), &OnEmbreeError, &impl.LastError);
+  }
+  for (const auto& surface : this->Surfaces)
+  {
+    ClassTree tree;
+    const double* b = surface->Bounds();
+    double extent = 0;
+    for (int a = 0; a < 3; ++a)
+    {
+      tree.Origin[a] = 0.5 * (b[2 * a] + b[2 * a + 1]);
+      extent = std::max(extent, 0.5 * (b[2 * a + 1] - b[2 * a]));
+    }
+    // Each float coordinate is within half an ulp of the double one; points, bounds and the
+    // query's centre all round, so widen by a few ulps of the largest coordinate.
+    tree.SlackMm = 8.0 * FLT_EPSILON * (extent + this->RangeMm + 1.0);
+    tree.Scene.reset(rtcNewScene(impl.Device.get()));
+    rtcSetSceneBuildQuality(tree.Scene.get(), RTC_BUILD_QUALITY_HIGH);
+    RTCGeometry geometry = rtcNewGeometry(impl.Device.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0,
+      RTC_FORMAT_FLOAT3, 3 * sizeof(float), surface->NumberOfPoints()));
+    auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0,
+      RTC_FORMAT_UINT3, 3 * sizeof(unsigned), surface->NumberOfTriangles()));
+    if (!vertices || !indices)
+    {
+      rtcReleaseGeometry(geometry);
+      throw vp::InputError(surface->Name(), "out of memory building the distance tree (" + impl.LastError + ")");
+    }
+    for (std::size_t i = 0; i < surface->NumberOfPoints(); ++i)
+    {
+      for (int a = 0; a < 3; ++a)
+      {
+        vertices[3 * i + a] = static_cast<float>(surface->Point(static_cast<std::int32_t>(i))[a] - tree.Origin[a]);
+      }
+    }
+    for (std::size_t t = 0; t < surface->NumberOfTriangles(); ++t)
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        indices[3 * t + k] = static_cast<unsigned>(surface->Triangle(t)[k]);
+      }
+    }
+    rtcCommitGeometry(geometry);
+    rtcAttachGeometry(tree.Scene.get(), geometry);
+    rtcReleaseGeometry(geometry);
+    rtcCommitScene(tree.Scene.get());
+    if (rtcGetDeviceError(impl.Device.get()) != RTC_ERROR_NONE)
+    {
+      throw vp::InputError(surface->Name(), "cannot build the distance tree (" + impl.LastError + ")");
+    }
+    impl.Trees.push_back(std::move(tree));
+  }
+}
+
+void vtkExactVesselDistance::ComputeProximity(const double tip[3], const double* axis,
+  vp::ProximityResult& result, const vp::ProximityResult* previous) const
+{
+  this->EnsureBuilt();
+  result.Tip[0] = tip[0];
+  result.Tip[1] = tip[1];
+  result.Tip[2] = tip[2];
+  result.ErrorBoundMm = 0.0;
+  result.Classes.assign(this->Surfaces.size(), vp::ClassProximity());
+  const double displacement = previous ? std::sqrt(vp::Distance2(tip, previous->Tip)) : 0.0;
+  for (std::size_t c = 0; c < this->Surfaces.size(); ++c)
+  {
+    const vp::VesselSurface& surface = *this->Surfaces[c];
+    const ClassTree& tree = this->Impl->Trees[c];
+    vp::ClassProximity& out = result.Classes[c];
+    out.ClassName = surface.Name();
+
+    double radius = this->RangeMm;
+    if (previous && c < previous->Classes.size() && previous->Classes[c].InRange &&
+      previous->Classes[c].ClassName == out.ClassName)
+    {
+      // The triangle inequality bounds the new distance by the old one plus the step.
+      radius = std::min(radius, previous->Classes[c].DistanceMm + displacement);
+    }
+    QueryState state{ &surface, { tip[0], tip[1], tip[2] },
+      std::numeric_limits<double>::infinity(), -1, { 0, 0, 0 }, vp::TriangleFeature::Face, tree.SlackMm };
+    RTCPointQueryContext context;
+    rtcInitPointQueryContext(&context);
+    RTC_ALIGN(16) RTCPointQuery query;
+    query.x = static_cast<float>(tip[0] - tree.Origin[0]);
+    query.y = static_cast<float>(tip[1] - tree.Origin[1]);
+    query.z = static_cast<float>(tip[2] - tree.Origin[2]);
+    query.time = 0.0f;
+    query.radius = static_cast<float>(radius + tree.SlackMm);
+    rtcPointQuery(tree.Scene.get(), &query, &context, &VisitTriangle, &state);
+
+    const double distance = std::sqrt(state.Best2);
+    if (state.Triangle < 0 || distance > this->RangeMm)
+    {
+      continue; // out of range: no distance is invented
+    }
+    out.InRange = true;
+    out.DistanceMm = distance;
+    out.TriangleId = state.Triangle;
+    out.ClosestPoint[0] = state.Closest[0];
+    out.ClosestPoint[1] = state.Closest[1];
+    out.ClosestPoint[2] = state.Closest[2];
+    out.Inside = surface.IsInside(tip, static_cast<std::size_t>(state.Triangle), state.Closest, state.Feature);
+
+    if (axis)
+    {
+      RTCIntersectContext intersect;
+      rtcInitIntersectContext(&intersect);
+      RTCRayHit hit;
+      hit.ray.org_x = static_cast<float>(tip[0] - tree.Origin[0]);
+      hit.ray.org_y = static_cast<float>(tip[1] - tree.Origin[1]);
+      hit.ray.org_z = static_cast<float>(tip[2] - tree.Origin[2]);
+      hit.ray.dir_x = static_cast<float>(axis[0]);
+      hit.ray.dir_y = static_cast<float>(axis[1]);
+      hit.ray.dir_z = static_cast<float>(axis[2]);
+      hit.ray.tnear = 0.0f;
+      hit.ray.tfar = static_cast<float>(this->RangeMm + tree.SlackMm);
+      hit.ray.time = 0.0f;
+      hit.ray.mask = 0xFFFFFFFFu;
+      hit.ray.id = 0;
+      hit.ray.flags = 0;
+      hit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+      hit.hit.primID = RTC_INVALID_GEOMETRY_ID;
+      rtcIntersect1(tree.Scene.get(), &intersect, &hit);
+      if (hit.hit.geomID != RTC_INVALID_GEOMETRY_ID)
+      {
+        // Re-intersect the hit triangle in double; keep the float answer on a grazing miss.
+        const auto& tri = surface.Triangle(hit.hit.primID);
+        const double t = vp::RayTriangle(tip, axis, surface.Point(tri[0]), surface.Point(tri[1]), surface.Point(tri[2]));
+        const double along = t >= 0.0 ? t : static_cast<double>(hit.ray.tfar);
+        if (along <= this->RangeMm)
+        {
+          out.DirectionalMm = along;
+        }
+      }
+    }
+  }
+}
+
+void vtkExactVesselDistance::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Trees: " << this->Impl->Trees.size() << " (Embree BVH, point queries)\n";
+}

@@ -1,0 +1,96 @@
+#include "vtkVesselDistanceEngine.h"
+
+#include "vpInputError.h"
+
+#include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
+
+#include <chrono>
+#include <cmath>
+
+vtkVesselDistanceEngine::vtkVesselDistanceEngine() = default;
+vtkVesselDistanceEngine::~vtkVesselDistanceEngine() = default;
+
+void vtkVesselDistanceEngine::AddVessel(const std::string& className, vtkPolyData* mesh)
+{
+  if (className.empty())
+  {
+    throw vp::InputError("(vessel)", "a vessel class needs a name");
+  }
+  for (auto& entry : this->Meshes)
+  {
+    if (entry.first == className)
+    {
+      entry.second = mesh;
+      this->Built = false;
+      this->Modified();
+      return;
+    }
+  }
+  this->Meshes.emplace_back(className, mesh);
+  this->Built = false;
+  this->Modified();
+}
+
+void vtkVesselDistanceEngine::RemoveAllVessels()
+{
+  this->Meshes.clear();
+  this->Surfaces.clear();
+  this->Built = false;
+  this->Modified();
+}
+
+void vtkVesselDistanceEngine::SetRangeMm(double range)
+{
+  if (!(range > 0.0) || !std::isfinite(range))
+  {
+    throw vp::InputError("--range", "must be a positive number of millimetres");
+  }
+  if (range != this->RangeMm)
+  {
+    this->RangeMm = range;
+    this->Modified();
+  }
+}
+
+void vtkVesselDistanceEngine::Build()
+{
+  if (this->Built)
+  {
+    return;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  this->Surfaces.clear();
+  for (const auto& entry : this->Meshes)
+  {
+    this->Surfaces.push_back(std::make_shared<vp::VesselSurface>(entry.first, entry.second));
+  }
+  this->BuildInternal();
+  this->Built = true;
+  this->BuildTimeMs =
+    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+void vtkVesselDistanceEngine::EnsureBuilt() const
+{
+  if (!this->Built)
+  {
+    // Lazy build keeps the first query correct; concurrent callers must Build() beforehand.
+    const_cast<vtkVesselDistanceEngine*>(this)->Build();
+  }
+}
+
+void vtkVesselDistanceEngine::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Method: " << this->GetMethodName() << "\n";
+  os << indent << "RangeMm: " << this->RangeMm << "\n";
+  os << indent << "Built: " << (this->Built ? "yes" : "no") << "\n";
+  os << indent << "BuildTimeMs: " << this->BuildTimeMs << "\n";
+  for (std::size_t i = 0; i < this->Meshes.size(); ++i)
+  {
+    os << indent << "Vessel " << this->Meshes[i].first << ": "
+       << (this->Meshes[i].second ? this->Meshes[i].second->GetNumberOfPolys() : 0) << " cells"
+       << (i < this->Surfaces.size() && this->Surfaces[i]->IsClosed() ? ", closed" : "") << "\n";
+  }
+}

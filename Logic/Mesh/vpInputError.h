@@ -1,0 +1,25 @@
+#ifndef vpInputError_h
+#define vpInputError_h
+
+#include <stdexcept>
+#include <string>
+
+namespace vp
+{
+/// An input the user gave us is not what it claims to be. The message is one line that names the
+/// file (or the argument) and the problem, ready to be printed as it is.
+class InputError : public std::runtime_error
+{
+public:
+  explicit InputError(const std::string& message)
+    : std::runtime_error(message)
+  {
+  }
+  InputError(const std::string& source, const std::string& problem)
+    : std::runtime_error(source + ": " + problem)
+  {
+  }
+};
+} // namespace vp
+
+#endif

@@ -1,0 +1,117 @@
+#include "vpArguments.h"
+
+#include "vpInputError.h"
+
+#include <cmath>
+#include <cstdlib>
+
+namespace vp
+{
+Arguments::Arguments(const std::vector<std::string>& args, const std::set<std::string>& valueOptions,
+  const std::set<std::string>& flagOptions)
+{
+  for (std::size_t i = 0; i < args.size(); ++i)
+  {
+    std::string arg = args[i];
+    if (arg.size() < 2 || arg[0] != '-')
+    {
+      this->Positionals.push_back(arg);
+      continue;
+    }
+    std::string value;
+    bool inlineValue = false;
+    const std::size_t eq = arg.find('=');
+    if (arg.rfind("--", 0) == 0 && eq != std::string::npos)
+    {
+      value = arg.substr(eq + 1);
+      arg = arg.substr(0, eq);
+      inlineValue = true;
+    }
+    if (flagOptions.count(arg))
+    {
+      if (inlineValue)
+      {
+        throw InputError(arg, "takes no value");
+      }
+      this->Values[arg] = "1";
+    }
+    else if (valueOptions.count(arg))
+    {
+      if (!inlineValue)
+      {
+        if (i + 1 >= args.size())
+        {
+          throw InputError(arg, "needs a value");
+        }
+        value = args[++i];
+      }
+      this->Values[arg] = value;
+    }
+    else
+    {
+      throw InputError(arg, "unknown option (see --help)");
+    }
+  }
+}
+
+std::string Arguments::Get(const std::string& name, const std::string& fallback) const
+{
+  const auto it = this->Values.find(name);
+  return it == this->Values.end() ? fallback : it->second;
+}
+
+double Arguments::GetNumber(const std::string& name, double fallback) const
+{
+  if (!this->Has(name))
+  {
+    return fallback;
+  }
+  const std::string text = this->Get(name);
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (text.empty() || *end != '\0' || !std::isfinite(v))
+  {
+    throw InputError(name, "expected a number, got '" + text + "'");
+  }
+  return v;
+}
+
+int GetIntegerChecked(const std::string& name, const std::string& text)
+{
+  char* end = nullptr;
+  const long v = std::strtol(text.c_str(), &end, 10);
+  if (text.empty() || *end != '\0' || v <= 0 || v > 1000000000L)
+  {
+    throw InputError(name, "expected a positive whole number, got '" + text + "'");
+  }
+  return static_cast<int>(v);
+}
+
+int Arguments::GetInteger(const std::string& name, int fallback) const
+{
+  return this->Has(name) ? GetIntegerChecked(name, this->Get(name)) : fallback;
+}
+
+std::vector<std::pair<std::string, std::string>> ParsePairs(const std::string& text, const std::string& option)
+{
+  std::vector<std::pair<std::string, std::string>> pairs;
+  std::size_t start = 0;
+  while (start <= text.size())
+  {
+    const std::size_t comma = text.find(',', start);
+    const std::string entry = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    const std::size_t eq = entry.find('=');
+    if (eq == std::string::npos || eq == 0 || eq + 1 == entry.size())
+    {
+      throw InputError(option, "expected CLASS=FILE, got '" + entry + "'");
+    }
+    pairs.emplace_back(entry.substr(0, eq), entry.substr(eq + 1));
+    if (comma == std::string::npos)
+    {
+      break;
+    }
+    start = comma + 1;
+  }
+  return pairs;
+}
+} // namespace vp

@@ -1,0 +1,49 @@
+#include "vpCommandSupport.h"
+
+#include "vpInputError.h"
+#include "vtkVesselMeshReader.h"
+
+#include <vtkNew.h>
+#include <vtkPolyData.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <set>
+
+namespace vp
+{
+std::vector<NamedMesh> LoadVesselMeshes(const std::vector<std::pair<std::string, std::string>>& pairs)
+{
+  std::vector<NamedMesh> meshes;
+  std::set<std::string> seen;
+  for (const auto& pair : pairs)
+  {
+    if (!seen.insert(pair.first).second)
+    {
+      throw InputError("--vessels", "class '" + pair.first + "' is given twice");
+    }
+    vtkNew<vtkVesselMeshReader> reader;
+    reader->SetFileName(pair.second);
+    reader->Read();
+    meshes.push_back({ pair.first, pair.second, reader->GetOutput() });
+  }
+  return meshes;
+}
+
+double Quantile(std::vector<double> samples, double q)
+{
+  if (samples.empty())
+  {
+    return 0.0;
+  }
+  std::sort(samples.begin(), samples.end());
+  const std::size_t rank = static_cast<std::size_t>(std::ceil(q * samples.size()));
+  return samples[std::min(samples.size() - 1, rank == 0 ? 0 : rank - 1)];
+}
+
+double NowMs()
+{
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+} // namespace vp

@@ -1,0 +1,233 @@
+// vesselproximity distance: the distance from one or more tips to each vessel class.
+#include "vpArguments.h"
+#include "vpCommandSupport.h"
+#include "vpCommands.h"
+#include "vpInputError.h"
+#include "vpPointCsv.h"
+#include "vtkBruteForceVesselDistance.h"
+#include "vtkExactVesselDistance.h"
+
+#include <vtkSmartPointer.h>
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+
+namespace vp
+{
+namespace
+{
+using Json = nlohmann::ordered_json;
+
+const char* Usage =
+  "usage: vesselproximity distance --vessels CLASS=FILE[,CLASS=FILE...] (--tip X,Y,Z | --tips FILE.csv)\n"
+  "         [--axis X,Y,Z] [--method exact|zbuffer|both|brute|auto] [--range MM]\n"
+  "         [--resolution PX] [--bins N] [--space LPS|RAS] [--json]\n"
+  "  Distance from each tip to the nearest surface point of every vessel class.\n"
+  "  --space RAS: tips are given and points reported in RAS (Slicer's view); default LPS.\n"
+  "  --axis: scalpel axis (unit or not), for the directional distance along it.\n"
+  "  --range: classes further than this are reported as null (default 50 mm).\n"
+  "  --resolution, --bins: settings of the z-buffer engine.\n";
+
+/// LPS <-> RAS is its own inverse: negate x and y.
+std::array<double, 3> ConvertSpace(const std::array<double, 3>& p, bool ras)
+{
+  return ras ? std::array<double, 3>{ -p[0], -p[1], p[2] } : p;
+}
+
+Json PointJson(const double p[3], bool ras)
+{
+  const auto q = ConvertSpace({ p[0], p[1], p[2] }, ras);
+  return Json::array({ q[0], q[1], q[2] });
+}
+
+vtkSmartPointer<vtkVesselDistanceEngine> MakeEngine(const std::string& method)
+{
+  if (method == "exact" || method == "auto")
+  {
+    if (method == "auto")
+    {
+      std::cerr << "vesselproximity: --method auto: the z-buffer engine is not available yet, using the exact engine\n";
+    }
+    return vtkSmartPointer<vtkExactVesselDistance>::New();
+  }
+  if (method == "brute")
+  {
+    return vtkSmartPointer<vtkBruteForceVesselDistance>::New();
+  }
+  if (method == "zbuffer" || method == "both")
+  {
+    throw InputError("--method " + method,
+      "the Vulkan z-buffer engine is not available yet in this build; use --method exact or auto");
+  }
+  throw InputError("--method", "unknown method '" + method + "' (exact, zbuffer, both, brute or auto)");
+}
+} // namespace
+
+int RunDistanceCommand(const std::vector<std::string>& argv)
+{
+  for (const auto& a : argv)
+  {
+    if (a == "--help" || a == "-h")
+    {
+      std::cout << Usage;
+      return 0;
+    }
+  }
+  const Arguments args(argv, { "--vessels", "--tip", "--tips", "--axis", "--method", "--range", "--resolution", "--bins", "--space" },
+    { "--json" });
+  if (!args.Positional().empty())
+  {
+    throw InputError(args.Positional()[0], "unexpected argument (see vesselproximity distance --help)");
+  }
+  if (!args.Has("--vessels"))
+  {
+    throw InputError("--vessels", "is required (CLASS=FILE[,CLASS=FILE...])");
+  }
+  if (args.Has("--tip") == args.Has("--tips"))
+  {
+    throw InputError("--tip/--tips", "give exactly one of --tip X,Y,Z or --tips FILE.csv");
+  }
+  const std::string space = args.Get("--space", "LPS");
+  if (space != "LPS" && space != "RAS")
+  {
+    throw InputError("--space", "expected LPS or RAS, got '" + space + "'");
+  }
+  const bool ras = space == "RAS";
+  const std::string method = args.Get("--method", "exact");
+  // Validated now so a typo fails before any work; they steer the z-buffer engine only.
+  args.GetInteger("--resolution", 512);
+  args.GetInteger("--bins", 16);
+
+  auto engine = MakeEngine(method);
+  engine->SetRangeMm(args.GetNumber("--range", engine->GetRangeMm()));
+
+  std::vector<std::array<double, 3>> tips;
+  if (args.Has("--tip"))
+  {
+    tips.push_back(ParsePoint(args.Get("--tip"), "--tip"));
+  }
+  else
+  {
+    tips = ReadPointCsv(args.Get("--tips"));
+  }
+  for (auto& t : tips)
+  {
+    t = ConvertSpace(t, ras);
+  }
+  std::array<double, 3> axis{};
+  const bool hasAxis = args.Has("--axis");
+  if (hasAxis)
+  {
+    axis = ConvertSpace(ParsePoint(args.Get("--axis"), "--axis"), ras);
+    const double n = std::sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
+    if (!(n > 0))
+    {
+      throw InputError("--axis", "must not be the zero vector");
+    }
+    for (double& c : axis)
+    {
+      c /= n;
+    }
+  }
+
+  const double loadStart = NowMs();
+  const auto meshes = LoadVesselMeshes(ParsePairs(args.Get("--vessels"), "--vessels"));
+  const double loadMs = NowMs() - loadStart;
+  for (const auto& m : meshes)
+  {
+    engine->AddVessel(m.ClassName, m.Mesh);
+  }
+  engine->Build();
+
+  std::vector<ProximityResult> results(tips.size());
+  std::vector<double> queryMs;
+  queryMs.reserve(tips.size());
+  for (std::size_t i = 0; i < tips.size(); ++i)
+  {
+    const double start = NowMs();
+    engine->ComputeProximity(tips[i].data(), hasAxis ? axis.data() : nullptr, results[i], i > 0 ? &results[i - 1] : nullptr);
+    queryMs.push_back(NowMs() - start);
+  }
+
+  // Everything is computed before anything is printed: a failure leaves no partial output.
+  if (args.Has("--json"))
+  {
+    Json out;
+    out["method"] = engine->GetMethodName();
+    out["device"] = method == "brute" ? "cpu (every triangle, one thread)" : "cpu (Embree BVH)";
+    out["space"] = space;
+    out["range_mm"] = engine->GetRangeMm();
+    out["error_bound_mm"] = 0.0;
+    Json list = Json::array();
+    for (const ProximityResult& r : results)
+    {
+      Json item;
+      item["tip"] = PointJson(r.Tip, ras);
+      item["error_bound_mm"] = r.ErrorBoundMm;
+      const int nearest = r.NearestIndex();
+      if (nearest >= 0)
+      {
+        const ClassProximity& n = r.Classes[nearest];
+        item["nearest"] = { { "class", n.ClassName }, { "distance_mm", n.DistanceMm }, { "point", PointJson(n.ClosestPoint, ras) } };
+      }
+      else
+      {
+        item["nearest"] = nullptr;
+      }
+      Json classes = Json::object();
+      for (const ClassProximity& c : r.Classes)
+      {
+        Json entry;
+        entry["distance_mm"] = c.InRange ? Json(c.DistanceMm) : Json(nullptr);
+        entry["point"] = c.InRange ? PointJson(c.ClosestPoint, ras) : Json(nullptr);
+        entry["inside"] = c.Inside ? Json(*c.Inside) : Json(nullptr);
+        entry["in_range"] = c.InRange;
+        entry["directional_mm"] = c.DirectionalMm ? Json(*c.DirectionalMm) : Json(nullptr);
+        classes[c.ClassName] = entry;
+      }
+      item["classes"] = classes;
+      list.push_back(item);
+    }
+    out["results"] = list;
+    out["timing_ms"] = { { "load", loadMs }, { "build", engine->GetBuildTimeMs() },
+      { "query_median", Quantile(queryMs, 0.5) }, { "query_p95", Quantile(queryMs, 0.95) } };
+    std::cout << out.dump(2) << "\n";
+    return 0;
+  }
+
+  std::printf("method %s, range %.1f mm, space %s, %zu tip(s)\n", engine->GetMethodName(), engine->GetRangeMm(),
+    space.c_str(), tips.size());
+  for (const ProximityResult& r : results)
+  {
+    const auto tip = ConvertSpace({ r.Tip[0], r.Tip[1], r.Tip[2] }, ras);
+    const int nearest = r.NearestIndex();
+    std::printf("tip (%.2f, %.2f, %.2f)  nearest: %s\n", tip[0], tip[1], tip[2],
+      nearest >= 0 ? r.Classes[nearest].ClassName.c_str() : "none in range");
+    std::printf("  %-16s %12s  %-28s %-7s %s\n", "class", "distance mm", "closest point", "inside", "directional mm");
+    for (const ClassProximity& c : r.Classes)
+    {
+      if (!c.InRange)
+      {
+        std::printf("  %-16s %12s\n", c.ClassName.c_str(), "out of range");
+        continue;
+      }
+      const auto q = ConvertSpace({ c.ClosestPoint[0], c.ClosestPoint[1], c.ClosestPoint[2] }, ras);
+      char point[64];
+      std::snprintf(point, sizeof(point), "(%.2f, %.2f, %.2f)", q[0], q[1], q[2]);
+      char directional[32] = "-";
+      if (c.DirectionalMm)
+      {
+        std::snprintf(directional, sizeof(directional), "%.3f", *c.DirectionalMm);
+      }
+      std::printf("  %-16s %12.3f  %-28s %-7s %s\n", c.ClassName.c_str(), c.DistanceMm, point,
+        c.Inside ? (*c.Inside ? "yes" : "no") : "open", directional);
+    }
+  }
+  std::printf("load %.1f ms, build %.1f ms, query median %.4f ms, p95 %.4f ms\n", loadMs, engine->GetBuildTimeMs(),
+    Quantile(queryMs, 0.5), Quantile(queryMs, 0.95));
+  return 0;
+}
+} // namespace vp

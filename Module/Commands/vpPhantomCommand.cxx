@@ -1,0 +1,62 @@
+// vesselproximity phantom: writes the built-in analytic vessels as STL, for a first run without data.
+#include "vpAnalyticShapes.h"
+#include "vpArguments.h"
+#include "vpCommands.h"
+#include "vpInputError.h"
+#include "vtkVesselMeshWriter.h"
+
+#include <vtkNew.h>
+#include <vtkPolyData.h>
+
+#include <cerrno>
+#include <cstring>
+#include <iostream>
+#include <sys/stat.h>
+
+namespace vp
+{
+int RunPhantomCommand(const std::vector<std::string>& argv)
+{
+  for (const auto& a : argv)
+  {
+    if (a == "--help" || a == "-h")
+    {
+      std::cout << "usage: vesselproximity phantom -o OUTDIR\n"
+                   "  Writes three closed analytic vessels in LPS mm, named for the vessel classes:\n"
+                   "  portal_vein.stl (a torus: ring 30 mm, tube 6 mm, centre 0,0,0, axis S),\n"
+                   "  hepatic_artery.stl (a capped cylinder: radius 2.5 mm, length 80 mm, centre 0,0,25, axis L),\n"
+                   "  hepatic_vein.stl (a sphere: radius 10 mm, centre 45,30,-10).\n";
+      return 0;
+    }
+  }
+  const Arguments args(argv, { "-o", "--output" }, {});
+  const std::string out = args.Has("-o") ? args.Get("-o") : args.Get("--output");
+  if (out.empty())
+  {
+    throw InputError("-o", "an output folder is required");
+  }
+  if (mkdir(out.c_str(), 0755) != 0 && errno != EEXIST)
+  {
+    throw InputError(out, std::string("cannot create folder: ") + std::strerror(errno));
+  }
+  const double origin[3] = { 0, 0, 0 };
+  const double superior[3] = { 0, 0, 1 };
+  const double arteryCenter[3] = { 0, 0, 25 };
+  const double left[3] = { 1, 0, 0 };
+  const double veinCenter[3] = { 45, 30, -10 };
+  const std::pair<const char*, vtkSmartPointer<vtkPolyData>> shapes[] = {
+    { "portal_vein", MakeTorus(origin, superior, 30.0, 6.0, 96, 32) },
+    { "hepatic_artery", MakeCappedCylinder(arteryCenter, left, 2.5, 80.0, 48) },
+    { "hepatic_vein", MakeSphere(veinCenter, 10.0, 32, 64) },
+  };
+  for (const auto& shape : shapes)
+  {
+    vtkNew<vtkVesselMeshWriter> writer;
+    writer->SetFileName(out + "/" + shape.first + ".stl");
+    writer->SetInputData(shape.second);
+    writer->Write();
+    std::cout << writer->GetFileName() << "  " << shape.second->GetNumberOfPolys() << " triangles\n";
+  }
+  return 0;
+}
+} // namespace vp

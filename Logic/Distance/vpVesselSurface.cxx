@@ -212,9 +212,11 @@ std::optional<bool> VesselSurface::IsInside(
   }
   double direction[3];
   Sub3(p, closest, direction);
-  if (Dot3(direction, direction) == 0.0)
+  // Within a picometre the point is on the surface (rounding decides the side beyond that):
+  // touching is reported as distance 0, not as a breach.
+  if (Dot3(direction, direction) <= 1e-18)
   {
-    return false; // on the surface
+    return false;
   }
   const auto& tri = this->Triangles[t];
   std::array<double, 3> normal{};

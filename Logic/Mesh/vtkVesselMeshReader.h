@@ -8,7 +8,7 @@
 
 #include <string>
 
-class vtkPolyData;
+#include <vtkPolyData.h>
 
 /// Reads a vessel or instrument surface into world (LPS, millimetre) coordinates.
 ///

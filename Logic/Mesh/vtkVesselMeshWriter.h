@@ -8,7 +8,7 @@
 
 #include <string>
 
-class vtkPolyData;
+#include <vtkPolyData.h>
 
 /// Writes a surface held in LPS millimetres as binary STL, with "SPACE=LPS" (default) or
 /// "SPACE=RAS" in the 80-byte header as 3D Slicer writes it; with RAS the coordinates are

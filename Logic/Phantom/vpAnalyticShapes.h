@@ -3,7 +3,7 @@
 
 #include <vtkSmartPointer.h>
 
-class vtkPolyData;
+#include <vtkPolyData.h>
 
 namespace vp
 {

@@ -5,7 +5,7 @@
 
 #include <cstddef>
 
-class vtkPolyData;
+#include <vtkPolyData.h>
 
 namespace vp
 {

@@ -98,9 +98,11 @@ std::vector<std::array<double, 3>> ReadPointCsv(const std::string& fileName)
     std::string problem;
     if (!ParseNumbers(line, values, problem))
     {
-      if (points.empty() && number == 1)
+      char* end = nullptr;
+      std::strtod(line.c_str() + first, &end);
+      if (points.empty() && end == line.c_str() + first)
       {
-        continue; // header
+        continue; // a header: its first field is no number at all
       }
       throw InputError(fileName, "line " + std::to_string(number) + ": " + problem);
     }

@@ -1,0 +1,186 @@
+// `vesselproximity distance` end to end: the JSON it prints, and the one-line error, non-zero
+// exit and empty stdout for each bad input.
+#include "vpAnalyticShapes.h"
+#include "vpStlFormat.h"
+#include "vpTestSupport.h"
+#include "vtkVesselMeshWriter.h"
+
+#include <vtkNew.h>
+
+#include <nlohmann/json.hpp>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <fstream>
+#include <sstream>
+#include <sys/wait.h>
+
+namespace
+{
+struct ToolRun
+{
+  int ExitCode;
+  std::string Out;
+  std::string Err;
+};
+
+std::string Slurp(const std::string& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+ToolRun RunTool(const std::string& dir, const std::string& arguments)
+{
+  const std::string out = dir + "/stdout.txt", err = dir + "/stderr.txt";
+  const std::string command = std::string(VP_EXECUTABLE) + " " + arguments + " >" + out + " 2>" + err;
+  const int status = std::system(command.c_str());
+  return { WIFEXITED(status) ? WEXITSTATUS(status) : -1, Slurp(out), Slurp(err) };
+}
+
+std::string WriteBytes(const std::string& dir, const std::string& name, const std::string& bytes)
+{
+  const std::string path = dir + "/" + name;
+  std::ofstream(path, std::ios::binary).write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  return path;
+}
+
+class DistanceCommand : public ::testing::Test
+{
+protected:
+  void SetUp() override
+  {
+    this->Dir = vp::test::MakeTempDir("cli");
+    const double c[3] = { 0, 0, 0 };
+    const double far[3] = { 100, 0, 0 };
+    this->Sphere = this->Write("sphere.stl", vp::MakeSphere(c, 10.0, 16, 32));
+    this->Far = this->Write("far.stl", vp::MakeSphere(far, 5.0, 16, 32));
+  }
+  std::string Write(const std::string& name, vtkPolyData* mesh)
+  {
+    vtkNew<vtkVesselMeshWriter> w;
+    w->SetFileName(this->Dir + "/" + name);
+    w->SetInputData(mesh);
+    w->Write();
+    return w->GetFileName();
+  }
+  std::string Dir, Sphere, Far;
+};
+} // namespace
+
+TEST_F(DistanceCommand, JsonHasTheDocumentedShape)
+{
+  const ToolRun r = RunTool(this->Dir,
+    "distance --vessels portal_vein=" + this->Sphere + ",hepatic_vein=" + this->Far + " --tip 0,0,15 --axis 0,0,-1 --json");
+  ASSERT_EQ(r.ExitCode, 0) << r.Err;
+  const auto j = nlohmann::json::parse(r.Out);
+  EXPECT_EQ(j["method"], "exact");
+  EXPECT_EQ(j["range_mm"], 50.0);
+  EXPECT_EQ(j["error_bound_mm"], 0.0);
+  ASSERT_EQ(j["results"].size(), 1u);
+  const auto& res = j["results"][0];
+  EXPECT_EQ(res["tip"], nlohmann::json::array({ 0.0, 0.0, 15.0 }));
+  EXPECT_EQ(res["nearest"]["class"], "portal_vein");
+  EXPECT_NEAR(res["nearest"]["distance_mm"].get<double>(), 5.0, 1e-5); // the pole is a vertex
+  const auto& pv = res["classes"]["portal_vein"];
+  EXPECT_EQ(pv["inside"], false);
+  EXPECT_EQ(pv["in_range"], true);
+  EXPECT_NEAR(pv["directional_mm"].get<double>(), 5.0, 1e-5);
+  const auto& hv = res["classes"]["hepatic_vein"];
+  EXPECT_TRUE(hv["distance_mm"].is_null()) << "about 96 mm away, beyond the 50 mm range";
+  EXPECT_EQ(hv["in_range"], false);
+  for (const char* key : { "load", "build", "query_median", "query_p95" })
+  {
+    EXPECT_TRUE(j["timing_ms"][key].is_number()) << key;
+  }
+}
+
+TEST_F(DistanceCommand, TipsFileRasSpaceAndBruteAgree)
+{
+  const std::string tips = WriteBytes(this->Dir, "tips.csv", "x,y,z\n0,0,15\n# a comment\n\n3,4,-20\n");
+  const ToolRun exact = RunTool(this->Dir, "distance --vessels portal_vein=" + this->Sphere + " --tips " + tips + " --json");
+  const ToolRun brute = RunTool(this->Dir, "distance --vessels portal_vein=" + this->Sphere + " --tips " + tips + " --json --method brute");
+  ASSERT_EQ(exact.ExitCode, 0) << exact.Err;
+  ASSERT_EQ(brute.ExitCode, 0) << brute.Err;
+  const auto e = nlohmann::json::parse(exact.Out), b = nlohmann::json::parse(brute.Out);
+  ASSERT_EQ(e["results"].size(), 2u);
+  for (int i = 0; i < 2; ++i)
+  {
+    EXPECT_NEAR(e["results"][i]["nearest"]["distance_mm"].get<double>(), b["results"][i]["nearest"]["distance_mm"].get<double>(), 1e-9);
+  }
+  // RAS in, RAS out: the same physical point, x and y negated.
+  const ToolRun ras = RunTool(this->Dir, "distance --vessels portal_vein=" + this->Sphere + " --tip 3,4,-20 --space RAS --json");
+  ASSERT_EQ(ras.ExitCode, 0) << ras.Err;
+  const auto r = nlohmann::json::parse(ras.Out);
+  EXPECT_EQ(r["results"][0]["tip"], nlohmann::json::array({ 3.0, 4.0, -20.0 }));
+  const auto lpsPoint = e["results"][1]["nearest"]["point"];
+  const auto rasPoint = r["results"][0]["nearest"]["point"];
+  // tip (3,4,-20) RAS is (-3,-4,-20) LPS; by symmetry its closest point is the LPS one mirrored.
+  EXPECT_NEAR(rasPoint[2].get<double>(), lpsPoint[2].get<double>(), 1e-9);
+}
+
+TEST_F(DistanceCommand, EachBadInputGivesOneLineAndNoOutput)
+{
+  std::string truncated = vp::EncodeBinaryStl({ 0, 0, 0, 1, 0, 0, 0, 1, 0 }, vp::MeshSpace::LPS);
+  truncated[80] = 9;
+  const std::string bad = WriteBytes(this->Dir, "truncated.stl", truncated);
+  const std::string empty = WriteBytes(this->Dir, "empty.stl", "");
+  const std::string badTips = WriteBytes(this->Dir, "badtips.csv", "x,y,z\n1,2,3\n4,5\n");
+  const std::string nanTips = WriteBytes(this->Dir, "nantips.csv", "1,2,nan\n");
+  const std::string v = " --vessels portal_vein=" + this->Sphere;
+  struct Case
+  {
+    std::string Args;
+    std::string Expect;
+  };
+  const std::vector<Case> cases = {
+    { "distance --vessels portal_vein=" + this->Dir + "/nope.stl --tip 0,0,0", this->Dir + "/nope.stl: no such file" },
+    { "distance --vessels portal_vein=" + bad + " --tip 0,0,0", bad + ": binary STL declares 9 triangles but the file holds only 1" },
+    { "distance --vessels portal_vein=" + empty + " --tip 0,0,0", empty + ": file is empty" },
+    { "distance" + v + " --tips " + badTips, badTips + ": line 3: expected x,y,z (3 numbers), got 2" },
+    { "distance" + v + " --tips " + nanTips, nanTips + ": line 1:" },
+    { "distance" + v + " --tips " + this->Dir + "/none.csv", this->Dir + "/none.csv: no such file" },
+    { "distance" + v + " --tip 1,2", "--tip: expected X,Y,Z (3 numbers), got 2" },
+    { "distance" + v + " --tip 0,0,0 --method zbuffer", "--method zbuffer: the Vulkan z-buffer engine is not available yet" },
+    { "distance" + v + " --tip 0,0,0 --method magic", "--method: unknown method 'magic'" },
+    { "distance" + v + " --tip 0,0,0 --range -3", "--range: must be a positive number" },
+    { "distance" + v + " --tip 0,0,0 --bogus", "--bogus: unknown option" },
+    { "distance --tip 0,0,0", "--vessels: is required" },
+    { "distance --vessels portal_vein" + std::string(" --tip 0,0,0"), "--vessels: expected CLASS=FILE" },
+    { "distance --vessels a=" + this->Sphere + ",a=" + this->Sphere + " --tip 0,0,0", "class 'a' is given twice" },
+  };
+  for (const Case& c : cases)
+  {
+    const ToolRun r = RunTool(this->Dir, c.Args);
+    EXPECT_NE(r.ExitCode, 0) << c.Args;
+    EXPECT_TRUE(r.Out.empty()) << "no partial output for: " << c.Args << "\n" << r.Out;
+    EXPECT_NE(r.Err.find(c.Expect), std::string::npos) << c.Args << "\n  stderr: " << r.Err;
+    EXPECT_EQ(std::count(r.Err.begin(), r.Err.end(), '\n'), 1) << "one line: " << r.Err;
+  }
+}
+
+TEST_F(DistanceCommand, AutoFallsBackToExactAndSaysSo)
+{
+  const ToolRun r = RunTool(this->Dir, "distance --vessels portal_vein=" + this->Sphere + " --tip 0,0,15 --method auto --json");
+  ASSERT_EQ(r.ExitCode, 0) << r.Err;
+  EXPECT_EQ(nlohmann::json::parse(r.Out)["method"], "exact");
+  EXPECT_NE(r.Err.find("using the exact engine"), std::string::npos);
+}
+
+TEST_F(DistanceCommand, PhantomWritesClosedVesselsThatAreFound)
+{
+  const ToolRun p = RunTool(this->Dir, "phantom -o " + this->Dir + "/phantom");
+  ASSERT_EQ(p.ExitCode, 0) << p.Err;
+  const std::string d = this->Dir + "/phantom/";
+  const ToolRun r = RunTool(this->Dir, "distance --vessels portal_vein=" + d + "portal_vein.stl,hepatic_artery=" + d +
+      "hepatic_artery.stl,hepatic_vein=" + d + "hepatic_vein.stl --tip 30,0,10 --json");
+  ASSERT_EQ(r.ExitCode, 0) << r.Err;
+  const auto j = nlohmann::json::parse(r.Out);
+  // Above the torus tube's top vertex ring (z = 6 at rho = 30): 4 mm, the torus formula.
+  EXPECT_EQ(j["results"][0]["nearest"]["class"], "portal_vein");
+  EXPECT_NEAR(j["results"][0]["nearest"]["distance_mm"].get<double>(), 4.0, 1e-5);
+  EXPECT_EQ(j["results"][0]["classes"]["hepatic_artery"]["inside"], false);
+}

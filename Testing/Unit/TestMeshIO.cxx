@@ -1,0 +1,252 @@
+// Mesh I/O: STL parsing (binary, ASCII, SPACE tag), writing, and the one-line errors.
+#include "vpAnalyticShapes.h"
+#include "vpIndexedMesh.h"
+#include "vpStlFormat.h"
+#include "vpTestSupport.h"
+#include "vtkVesselMeshReader.h"
+#include "vtkVesselMeshWriter.h"
+
+#include <vtkNew.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <limits>
+
+namespace
+{
+std::string WriteBytes(const std::string& dir, const std::string& name, const std::string& bytes)
+{
+  const std::string path = dir + "/" + name;
+  std::ofstream(path, std::ios::binary).write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  return path;
+}
+
+std::string ReadError(const std::string& path)
+{
+  vtkNew<vtkVesselMeshReader> reader;
+  reader->SetFileName(path);
+  try
+  {
+    reader->Read();
+  }
+  catch (const vp::InputError& e)
+  {
+    return e.what();
+  }
+  return std::string();
+}
+
+const std::vector<float> TwoTriangles = { 0, 0, 0, 1, 0, 0, 0, 1, 0, /**/ 0, 0, 0, 0, 1, 0, 0, 0, 1 };
+} // namespace
+
+TEST(StlFormat, BinaryRoundTripKeepsEveryCoordinateAndTheSpaceTag)
+{
+  for (vp::MeshSpace space : { vp::MeshSpace::LPS, vp::MeshSpace::RAS })
+  {
+    std::vector<float> coords = { 1.25f, -3.5f, 100.125f, 7.0f, 8.0f, 9.0f, -0.001f, 2.0f, 1e6f };
+    const std::string bytes = vp::EncodeBinaryStl(coords, space);
+    ASSERT_EQ(bytes.size(), 84u + 50u);
+    EXPECT_EQ(bytes.substr(0, 9), std::string("SPACE=") + vp::MeshSpaceName(space));
+    const vp::StlSoup soup = vp::ParseStl(bytes.data(), bytes.size(), "mem");
+    EXPECT_EQ(soup.Space, space);
+    EXPECT_TRUE(soup.Binary);
+    ASSERT_EQ(soup.Coordinates, coords);
+  }
+}
+
+TEST(StlFormat, WriterAndReaderRoundTripInLpsAndRas)
+{
+  const std::string dir = vp::test::MakeTempDir("roundtrip");
+  const double center[3] = { 12.5, -40.25, 130.0 };
+  auto sphere = vp::MakeSphere(center, 7.0, 8, 12);
+  for (vp::MeshSpace space : { vp::MeshSpace::LPS, vp::MeshSpace::RAS })
+  {
+    const std::string path = dir + "/sphere_" + vp::MeshSpaceName(space) + ".stl";
+    vtkNew<vtkVesselMeshWriter> writer;
+    writer->SetFileName(path);
+    writer->SetFileSpace(space);
+    writer->SetInputData(sphere);
+    writer->Write();
+    vtkNew<vtkVesselMeshReader> reader;
+    reader->SetFileName(path);
+    reader->Read();
+    EXPECT_EQ(reader->GetFileSpace(), space);
+    vtkPolyData* out = reader->GetOutput();
+    ASSERT_EQ(out->GetNumberOfPolys(), sphere->GetNumberOfPolys());
+    // Coincident corners are merged again: the point count is the original's.
+    ASSERT_EQ(out->GetNumberOfPoints(), sphere->GetNumberOfPoints());
+    // Every corner of every triangle comes back in LPS as the float the file holds.
+    for (vtkIdType t = 0; t < out->GetNumberOfCells(); ++t)
+    {
+      vtkIdType n1, n2;
+      const vtkIdType *ids1, *ids2;
+      sphere->GetCellPoints(t, n1, ids1);
+      out->GetCellPoints(t, n2, ids2);
+      ASSERT_EQ(n2, 3);
+      for (int k = 0; k < 3; ++k)
+      {
+        double a[3], b[3];
+        sphere->GetPoint(ids1[k], a);
+        out->GetPoint(ids2[k], b);
+        for (int axis = 0; axis < 3; ++axis)
+        {
+          ASSERT_EQ(b[axis], static_cast<double>(static_cast<float>(a[axis]))) << "triangle " << t << " corner " << k;
+        }
+      }
+    }
+    // The RAS file really holds RAS coordinates (x and y negated).
+    std::ifstream in(path, std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const vp::StlSoup soup = vp::ParseStl(bytes.data(), bytes.size(), path);
+    double first[3];
+    sphere->GetPoint(0, first);
+    const double sign = space == vp::MeshSpace::RAS ? -1.0 : 1.0;
+    EXPECT_EQ(soup.Coordinates[0], static_cast<float>(sign * first[0]));
+    EXPECT_EQ(soup.Coordinates[2], static_cast<float>(first[2]));
+  }
+}
+
+TEST(StlFormat, AsciiStlWithSpaceTagIsRead)
+{
+  const std::string text = "solid SPACE=RAS made by hand\n"
+                           "facet normal 0 0 1\n outer loop\n  vertex 1 2 3\n  vertex 4.5 5 6\n  vertex 7 8 9.25e0\n endloop\nendfacet\n"
+                           "endsolid\n";
+  const vp::StlSoup soup = vp::ParseStl(text.data(), text.size(), "ascii.stl");
+  EXPECT_FALSE(soup.Binary);
+  EXPECT_EQ(soup.Space, vp::MeshSpace::RAS);
+  const std::vector<float> expected = { 1, 2, 3, 4.5f, 5, 6, 7, 8, 9.25f };
+  EXPECT_EQ(soup.Coordinates, expected);
+}
+
+TEST(StlFormat, BinaryHeaderStartingWithSolidIsStillBinary)
+{
+  std::string bytes = vp::EncodeBinaryStl(TwoTriangles, vp::MeshSpace::LPS);
+  std::memcpy(&bytes[0], "solid exported by a CAD tool", 28);
+  const vp::StlSoup soup = vp::ParseStl(bytes.data(), bytes.size(), "cad.stl");
+  EXPECT_TRUE(soup.Binary);
+  EXPECT_EQ(soup.Coordinates, TwoTriangles);
+}
+
+TEST(MeshReader, DegenerateTrianglesAreDroppedAndCounted)
+{
+  std::vector<float> coords = TwoTriangles;
+  const std::vector<float> repeated = { 0, 0, 0, 0, 0, 0, 1, 1, 1 };      // two equal corners
+  const std::vector<float> collinear = { 0, 0, 0, 1, 1, 1, 2, 2, 2 };     // zero area
+  coords.insert(coords.end(), repeated.begin(), repeated.end());
+  coords.insert(coords.end(), collinear.begin(), collinear.end());
+  const std::string dir = vp::test::MakeTempDir("degenerate");
+  const std::string path = WriteBytes(dir, "d.stl", vp::EncodeBinaryStl(coords, vp::MeshSpace::LPS));
+  vtkNew<vtkVesselMeshReader> reader;
+  reader->SetFileName(path);
+  reader->Read();
+  EXPECT_EQ(reader->GetOutput()->GetNumberOfPolys(), 2);
+  EXPECT_EQ(reader->GetNumberOfDegenerateTrianglesDropped(), 2);
+}
+
+TEST(MeshReader, EachBadInputGivesOneLineNamingTheFileAndTheProblem)
+{
+  const std::string dir = vp::test::MakeTempDir("bad");
+  const std::string good = vp::EncodeBinaryStl(TwoTriangles, vp::MeshSpace::LPS);
+  std::string overrun = good;
+  overrun[80] = 3; // declares 3 triangles, holds 2
+  std::vector<float> withNan = TwoTriangles;
+  withNan[4] = std::numeric_limits<float>::quiet_NaN();
+  std::vector<float> withInf = TwoTriangles;
+  withInf[10] = std::numeric_limits<float>::infinity();
+  std::string noTriangles = good.substr(0, 84);
+  noTriangles[80] = noTriangles[81] = noTriangles[82] = noTriangles[83] = 0;
+
+  struct Case
+  {
+    std::string Path;
+    std::string Problem;
+  };
+  const std::vector<Case> cases = {
+    { dir + "/missing.stl", "no such file" },
+    { WriteBytes(dir, "empty.stl", ""), "file is empty" },
+    { WriteBytes(dir, "overrun.stl", overrun), "declares 3 triangles but the file holds only 2" },
+    { WriteBytes(dir, "short.stl", good.substr(0, 50)), "too short for a binary STL" },
+    { WriteBytes(dir, "nan.stl", vp::EncodeBinaryStl(withNan, vp::MeshSpace::LPS)), "triangle 1 has a NaN or infinite coordinate" },
+    { WriteBytes(dir, "inf.stl", vp::EncodeBinaryStl(withInf, vp::MeshSpace::LPS)), "triangle 2 has a NaN or infinite coordinate" },
+    { WriteBytes(dir, "none.stl", noTriangles), "no triangles" },
+    { WriteBytes(dir, "ascii_none.stl", "solid empty\nendsolid empty\n"), "no triangles" },
+    { WriteBytes(dir, "ascii_bad.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 1 2 banana\n"), "line 4: expected three numbers after 'vertex'" },
+    { WriteBytes(dir, "ascii_cut.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 1 2 3\nvertex 1 2 4\n"), "ends inside a facet" },
+    { WriteBytes(dir, "mesh.ply", "ply\nformat ascii 1.0\n"), "unknown mesh format '.ply'" },
+    { WriteBytes(dir, "noext", good), "unknown mesh format '(no extension)'" },
+    { WriteBytes(dir, "image.vtk", "# vtk DataFile Version 3.0\nimage\nASCII\nDATASET STRUCTURED_POINTS\nDIMENSIONS 1 1 1\n"), "not a legacy VTK polydata file" },
+    { WriteBytes(dir, "garbage.vtp", "<VTKFile type=\"PolyData\"> not really"), "not a readable VTP file" },
+    { WriteBytes(dir, "lines.vtk", "# vtk DataFile Version 3.0\nl\nASCII\nDATASET POLYDATA\nPOINTS 2 float\n0 0 0 1 1 1\nLINES 1 3\n2 0 1\n"), "no triangles" },
+    { WriteBytes(dir, "empty.obj", "# nothing\n"), "not a readable OBJ file" },
+  };
+  for (const Case& c : cases)
+  {
+    const std::string message = ReadError(c.Path);
+    EXPECT_EQ(message.rfind(c.Path + ": ", 0), 0u) << "names the file: " << message;
+    EXPECT_NE(message.find(c.Problem), std::string::npos) << c.Path << " -> " << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << "one line: " << message;
+  }
+}
+
+TEST(MeshReader, VtkVtpAndObjAreReadAsTheSameTriangles)
+{
+  const std::string dir = vp::test::MakeTempDir("formats");
+  const std::string vtk = WriteBytes(dir, "t.vtk",
+    "# vtk DataFile Version 3.0\nSPACE=RAS two triangles\nASCII\nDATASET POLYDATA\nPOINTS 4 float\n"
+    "0 0 0 1 0 0 0 1 0 0 0 1\nPOLYGONS 2 8\n3 0 1 2\n3 0 2 3\n");
+  const std::string obj = WriteBytes(dir, "t.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 3 4\n");
+  const std::string vtp = WriteBytes(dir, "t.vtp",
+    "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n<PolyData>\n"
+    "<Piece NumberOfPoints=\"4\" NumberOfPolys=\"1\">\n<Points><DataArray type=\"Float32\" NumberOfComponents=\"3\" format=\"ascii\">"
+    "0 0 0 1 0 0 0 1 0 0 0 1</DataArray></Points>\n<Polys><DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">0 1 2 3</DataArray>"
+    "<DataArray type=\"Int32\" Name=\"offsets\" format=\"ascii\">4</DataArray></Polys>\n</Piece>\n</PolyData>\n</VTKFile>\n");
+  for (const std::string& path : { vtk, obj, vtp })
+  {
+    vtkNew<vtkVesselMeshReader> reader;
+    reader->SetFileName(path);
+    reader->Read();
+    EXPECT_EQ(reader->GetOutput()->GetNumberOfPolys(), 2) << path; // the VTP quad is triangulated
+    EXPECT_EQ(reader->GetOutput()->GetNumberOfPoints(), 4) << path;
+  }
+  // The legacy VTK header's SPACE=RAS is honoured: x and y come back negated (LPS).
+  vtkNew<vtkVesselMeshReader> reader;
+  reader->SetFileName(vtk);
+  reader->Read();
+  EXPECT_EQ(reader->GetFileSpace(), vp::MeshSpace::RAS);
+  double p[3];
+  reader->GetOutput()->GetPoint(1, p);
+  EXPECT_EQ(p[0], -1.0);
+}
+
+TEST(MeshReader, IrcadbReferenceMeshesAreRead)
+{
+  const std::string extracted = vp::test::ExtractedDataDir();
+  if (extracted.empty())
+  {
+    GTEST_SKIP() << "VP_TEST_DATA not set or IRCADb archives not extracted: IRCADb mesh reading not tested";
+  }
+  vtkNew<vtkVesselMeshReader> reader;
+  reader->SetFileName(extracted + "/ircadb/3Dircadb1.1/MESHES_VTK/portalvein.vtk");
+  reader->Read();
+  // The data README counts 19,737 triangles in patient 1's portal vein.
+  EXPECT_EQ(reader->GetOutput()->GetNumberOfPolys() + reader->GetNumberOfDegenerateTrianglesDropped(), 19737);
+  EXPECT_EQ(reader->GetFileSpace(), vp::MeshSpace::Unspecified);
+}
+
+TEST(MeshReader, RealInstrumentStlIsRead)
+{
+  const std::string data = vp::test::TestDataDir();
+  if (data.empty())
+  {
+    GTEST_SKIP() << "VP_TEST_DATA not set: real STL reading not tested";
+  }
+  vtkNew<vtkVesselMeshReader> reader;
+  reader->SetFileName(data + "/plusmodelcatalog/Scalpel.stl");
+  reader->Read();
+  EXPECT_EQ(reader->GetOutput()->GetNumberOfPolys() + reader->GetNumberOfDegenerateTrianglesDropped(), 27190);
+}

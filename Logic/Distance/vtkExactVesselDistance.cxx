@@ -26,6 +26,9 @@ struct SceneDeleter
 using DevicePtr = std::unique_ptr<RTCDeviceTy, DeviceDeleter>;
 using ScenePtr = std::unique_ptr<RTCSceneTy, SceneDeleter>;
 
+/// First search radius; doubled until a triangle is found or the range is reached.
+constexpr double InitialSearchRadiusMm = 1.0;
+
 /// One class's tree. Vertices are stored relative to Origin to keep float rounding small.
 struct ClassTree
 {
@@ -120,7 +123,7 @@ void vtkExactVesselDistance::BuildInternal()
     // query's centre all round, so widen by a few ulps of the largest coordinate.
     tree.SlackMm = 8.0 * FLT_EPSILON * (extent + this->RangeMm + 1.0);
     tree.Scene.reset(rtcNewScene(impl.Device.get()));
-    rtcSetSceneBuildQuality(tree.Scene.get(), RTC_BUILD_QUALITY_HIGH);
+    rtcSetSceneBuildQuality(tree.Scene.get(), RTC_BUILD_QUALITY_MEDIUM);
     RTCGeometry geometry = rtcNewGeometry(impl.Device.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
     auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0,
       RTC_FORMAT_FLOAT3, 3 * sizeof(float), surface->NumberOfPoints()));
@@ -183,15 +186,24 @@ void vtkExactVesselDistance::ComputeProximity(const double tip[3], const double*
     }
     QueryState state{ &surface, { tip[0], tip[1], tip[2] },
       std::numeric_limits<double>::infinity(), -1, { 0, 0, 0 }, vp::TriangleFeature::Face, tree.SlackMm };
-    RTCPointQueryContext context;
-    rtcInitPointQueryContext(&context);
-    RTC_ALIGN(16) RTCPointQuery query;
-    query.x = static_cast<float>(tip[0] - tree.Origin[0]);
-    query.y = static_cast<float>(tip[1] - tree.Origin[1]);
-    query.z = static_cast<float>(tip[2] - tree.Origin[2]);
-    query.time = 0.0f;
-    query.radius = static_cast<float>(radius + tree.SlackMm);
-    rtcPointQuery(tree.Scene.get(), &query, &context, &VisitTriangle, &state);
+    // Grow the search sphere from a few millimetres: a small sphere touches few tree nodes, and
+    // most tips that matter clinically are near a vessel. Each failed round costs little.
+    for (double r = std::min(radius, InitialSearchRadiusMm);; r = std::min(radius, 2.0 * r))
+    {
+      RTCPointQueryContext context;
+      rtcInitPointQueryContext(&context);
+      RTC_ALIGN(16) RTCPointQuery query;
+      query.x = static_cast<float>(tip[0] - tree.Origin[0]);
+      query.y = static_cast<float>(tip[1] - tree.Origin[1]);
+      query.z = static_cast<float>(tip[2] - tree.Origin[2]);
+      query.time = 0.0f;
+      query.radius = static_cast<float>(r + tree.SlackMm);
+      rtcPointQuery(tree.Scene.get(), &query, &context, &VisitTriangle, &state);
+      if (state.Triangle >= 0 || r >= radius)
+      {
+        break;
+      }
+    }
 
     const double distance = std::sqrt(state.Best2);
     if (state.Triangle < 0 || distance > this->RangeMm)

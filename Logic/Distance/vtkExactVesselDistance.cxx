@@ -6,6 +6,7 @@
 
 #include <embree3/rtcore.h>
 
+#include <algorithm>
 #include <cfloat>
 #include <cmath>
 #include <limits>
@@ -67,7 +68,13 @@ bool VisitTriangle(RTCPointQueryFunctionArguments* args)
   state->Closest[1] = q[1];
   state->Closest[2] = q[2];
   state->Feature = feature;
-  args->query->radius = static_cast<float>(std::sqrt(d2) + state->SlackMm);
+  // Only ever shrink the sphere: a candidate found just outside it must not widen the search.
+  const float shrunk = static_cast<float>(std::sqrt(d2) + state->SlackMm);
+  if (shrunk >= args->query->radius)
+  {
+    return false;
+  }
+  args->query->radius = shrunk;
   return true;
 }
 
@@ -163,19 +170,13 @@ void vtkExactVesselDistance::BuildInternal()
 void vtkExactVesselDistance::ComputeProximity(const double tip[3], const double* axis,
   vp::ProximityResult& result, const vp::ProximityResult* previous) const
 {
-  this->EnsureBuilt();
-  result.Tip[0] = tip[0];
-  result.Tip[1] = tip[1];
-  result.Tip[2] = tip[2];
-  result.ErrorBoundMm = 0.0;
-  result.Classes.assign(this->Surfaces.size(), vp::ClassProximity());
+  this->BeginResult(tip, result);
   const double displacement = previous ? std::sqrt(vp::Distance2(tip, previous->Tip)) : 0.0;
   for (std::size_t c = 0; c < this->Surfaces.size(); ++c)
   {
     const vp::VesselSurface& surface = *this->Surfaces[c];
     const ClassTree& tree = this->Impl->Trees[c];
     vp::ClassProximity& out = result.Classes[c];
-    out.ClassName = surface.Name();
 
     double radius = this->RangeMm;
     if (previous && c < previous->Classes.size() && previous->Classes[c].InRange &&
@@ -186,10 +187,7 @@ void vtkExactVesselDistance::ComputeProximity(const double tip[3], const double*
     }
     QueryState state{ &surface, { tip[0], tip[1], tip[2] },
       std::numeric_limits<double>::infinity(), -1, { 0, 0, 0 }, vp::TriangleFeature::Face, tree.SlackMm };
-    // Grow the search sphere from a few millimetres: a small sphere touches few tree nodes, and
-    // most tips that matter clinically are near a vessel. Each failed round costs little.
-    for (double r = std::min(radius, InitialSearchRadiusMm);; r = std::min(radius, 2.0 * r))
-    {
+    auto search = [&](double r) {
       RTCPointQueryContext context;
       rtcInitPointQueryContext(&context);
       RTC_ALIGN(16) RTCPointQuery query;
@@ -199,10 +197,20 @@ void vtkExactVesselDistance::ComputeProximity(const double tip[3], const double*
       query.time = 0.0f;
       query.radius = static_cast<float>(r + tree.SlackMm);
       rtcPointQuery(tree.Scene.get(), &query, &context, &VisitTriangle, &state);
-      if (state.Triangle >= 0 || r >= radius)
+    };
+    // Grow a search sphere from 1 mm: a small sphere touches few tree nodes. Embree also shows
+    // triangles just outside the sphere (their leaf's box reaches in), so a triangle found is the
+    // nearest only once it lies within the sphere searched; until then the next sphere is the
+    // smaller of twice the last and the best distance found.
+    for (double r = std::min(radius, InitialSearchRadiusMm);;)
+    {
+      search(r);
+      const double best = std::sqrt(state.Best2);
+      if (best <= r || r >= radius)
       {
         break;
       }
+      r = std::min({ radius, 2.0 * r, best });
     }
 
     const double distance = std::sqrt(state.Best2);

@@ -85,17 +85,11 @@ vtkBruteForceVesselDistance::~vtkBruteForceVesselDistance() = default;
 void vtkBruteForceVesselDistance::ComputeProximity(const double tip[3], const double* axis,
   vp::ProximityResult& result, const vp::ProximityResult* /*previous*/) const
 {
-  this->EnsureBuilt();
-  result.Tip[0] = tip[0];
-  result.Tip[1] = tip[1];
-  result.Tip[2] = tip[2];
-  result.ErrorBoundMm = 0.0;
-  result.Classes.assign(this->Surfaces.size(), vp::ClassProximity());
+  this->BeginResult(tip, result);
   for (std::size_t c = 0; c < this->Surfaces.size(); ++c)
   {
     const vp::VesselSurface& surface = *this->Surfaces[c];
     vp::ClassProximity& out = result.Classes[c];
-    out.ClassName = surface.Name();
     double best = std::numeric_limits<double>::infinity();
     TriangleFeature bestFeature = TriangleFeature::Face;
     for (std::size_t t = 0; t < surface.NumberOfTriangles(); ++t)

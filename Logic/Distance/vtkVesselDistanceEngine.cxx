@@ -80,6 +80,20 @@ void vtkVesselDistanceEngine::EnsureBuilt() const
   }
 }
 
+void vtkVesselDistanceEngine::BeginResult(const double tip[3], vp::ProximityResult& result) const
+{
+  this->EnsureBuilt();
+  result.Tip[0] = tip[0];
+  result.Tip[1] = tip[1];
+  result.Tip[2] = tip[2];
+  result.ErrorBoundMm = 0.0;
+  result.Classes.assign(this->Surfaces.size(), vp::ClassProximity());
+  for (std::size_t c = 0; c < this->Surfaces.size(); ++c)
+  {
+    result.Classes[c].ClassName = this->Surfaces[c]->Name();
+  }
+}
+
 void vtkVesselDistanceEngine::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);

@@ -63,6 +63,8 @@ protected:
   /// Builds the engine's own structures over this->Surfaces.
   virtual void BuildInternal() = 0;
   void EnsureBuilt() const;
+  /// Builds if needed, then resets result for tip: one unfilled entry per class, named.
+  void BeginResult(const double tip[3], vp::ProximityResult& result) const;
 
   std::vector<std::pair<std::string, vtkSmartPointer<vtkPolyData>>> Meshes;
   std::vector<std::shared_ptr<const vp::VesselSurface>> Surfaces;

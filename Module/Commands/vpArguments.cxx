@@ -92,6 +92,18 @@ int Arguments::GetInteger(const std::string& name, int fallback) const
   return this->Has(name) ? GetIntegerChecked(name, this->Get(name)) : fallback;
 }
 
+bool WantsHelp(const std::vector<std::string>& args)
+{
+  for (const auto& a : args)
+  {
+    if (a == "--help" || a == "-h")
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
 std::vector<std::pair<std::string, std::string>> ParsePairs(const std::string& text, const std::string& option)
 {
   std::vector<std::pair<std::string, std::string>> pairs;

@@ -27,6 +27,9 @@ private:
   std::vector<std::string> Positionals;
 };
 
+/// True when args ask for help (--help or -h anywhere).
+bool WantsHelp(const std::vector<std::string>& args);
+
 /// Splits "a=b,c=d" into pairs; throws InputError(option, ...) on a malformed entry.
 std::vector<std::pair<std::string, std::string>> ParsePairs(const std::string& text, const std::string& option);
 } // namespace vp

@@ -1,6 +1,6 @@
 // vesselproximity bench: the distance engines side by side with the brute-force reference, on
 // vessel meshes grown to fixed triangle counts, in one run.
-#include "vpAnalyticShapes.h"
+#include "vpBuiltInPhantom.h"
 #include "vpArguments.h"
 #include "vpCommandSupport.h"
 #include "vpCommands.h"
@@ -72,26 +72,21 @@ Json Timing(const std::vector<double>& ms)
 
 std::vector<NamedMesh> BuiltInVessels()
 {
-  const double origin[3] = { 0, 0, 0 };
-  const double superior[3] = { 0, 0, 1 };
-  const double arteryCenter[3] = { 0, 0, 25 };
-  const double left[3] = { 1, 0, 0 };
-  const double veinCenter[3] = { 45, 30, -10 };
-  return { { "portal_vein", "built-in torus", MakeTorus(origin, superior, 30.0, 6.0, 96, 32) },
-    { "hepatic_artery", "built-in cylinder", MakeCappedCylinder(arteryCenter, left, 2.5, 80.0, 48) },
-    { "hepatic_vein", "built-in sphere", MakeSphere(veinCenter, 10.0, 32, 64) } };
+  std::vector<NamedMesh> vessels;
+  for (const auto& v : MakeBuiltInVessels())
+  {
+    vessels.push_back({ v.first, "built-in", v.second });
+  }
+  return vessels;
 }
 } // namespace
 
 int RunBenchCommand(const std::vector<std::string>& argv)
 {
-  for (const auto& a : argv)
+  if (WantsHelp(argv))
   {
-    if (a == "--help" || a == "-h")
-    {
-      std::cout << Usage;
-      return 0;
-    }
+    std::cout << Usage;
+    return 0;
   }
   const Arguments args(argv, { "--vessels", "--sizes", "--queries", "--brute-queries", "--seed", "-o" }, { "--json" });
   const std::vector<std::size_t> sizes = ParseSizes(args.Get("--sizes", "50000,400000,1500000"));

@@ -68,13 +68,10 @@ vtkSmartPointer<vtkVesselDistanceEngine> MakeEngine(const std::string& method)
 
 int RunDistanceCommand(const std::vector<std::string>& argv)
 {
-  for (const auto& a : argv)
+  if (WantsHelp(argv))
   {
-    if (a == "--help" || a == "-h")
-    {
-      std::cout << Usage;
-      return 0;
-    }
+    std::cout << Usage;
+    return 0;
   }
   const Arguments args(argv, { "--vessels", "--tip", "--tips", "--axis", "--method", "--range", "--resolution", "--bins", "--space" },
     { "--json" });

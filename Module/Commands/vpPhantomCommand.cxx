@@ -1,5 +1,5 @@
 // vesselproximity phantom: writes the built-in analytic vessels as STL, for a first run without data.
-#include "vpAnalyticShapes.h"
+#include "vpBuiltInPhantom.h"
 #include "vpArguments.h"
 #include "vpCommands.h"
 #include "vpInputError.h"
@@ -17,17 +17,14 @@ namespace vp
 {
 int RunPhantomCommand(const std::vector<std::string>& argv)
 {
-  for (const auto& a : argv)
+  if (WantsHelp(argv))
   {
-    if (a == "--help" || a == "-h")
-    {
-      std::cout << "usage: vesselproximity phantom -o OUTDIR\n"
-                   "  Writes three closed analytic vessels in LPS mm, named for the vessel classes:\n"
-                   "  portal_vein.stl (a torus: ring 30 mm, tube 6 mm, centre 0,0,0, axis S),\n"
-                   "  hepatic_artery.stl (a capped cylinder: radius 2.5 mm, length 80 mm, centre 0,0,25, axis L),\n"
-                   "  hepatic_vein.stl (a sphere: radius 10 mm, centre 45,30,-10).\n";
-      return 0;
-    }
+    std::cout << "usage: vesselproximity phantom -o OUTDIR\n"
+                 "  Writes three closed analytic vessels in LPS mm, named for the vessel classes:\n"
+                 "  portal_vein.stl (a torus: ring 30 mm, tube 6 mm, centre 0,0,0, axis S),\n"
+                 "  hepatic_artery.stl (a capped cylinder: radius 2.5 mm, length 80 mm, centre 0,0,25, axis L),\n"
+                 "  hepatic_vein.stl (a sphere: radius 10 mm, centre 45,30,-10).\n";
+    return 0;
   }
   const Arguments args(argv, { "-o", "--output" }, {});
   const std::string out = args.Has("-o") ? args.Get("-o") : args.Get("--output");
@@ -39,17 +36,7 @@ int RunPhantomCommand(const std::vector<std::string>& argv)
   {
     throw InputError(out, std::string("cannot create folder: ") + std::strerror(errno));
   }
-  const double origin[3] = { 0, 0, 0 };
-  const double superior[3] = { 0, 0, 1 };
-  const double arteryCenter[3] = { 0, 0, 25 };
-  const double left[3] = { 1, 0, 0 };
-  const double veinCenter[3] = { 45, 30, -10 };
-  const std::pair<const char*, vtkSmartPointer<vtkPolyData>> shapes[] = {
-    { "portal_vein", MakeTorus(origin, superior, 30.0, 6.0, 96, 32) },
-    { "hepatic_artery", MakeCappedCylinder(arteryCenter, left, 2.5, 80.0, 48) },
-    { "hepatic_vein", MakeSphere(veinCenter, 10.0, 32, 64) },
-  };
-  for (const auto& shape : shapes)
+  for (const auto& shape : MakeBuiltInVessels())
   {
     vtkNew<vtkVesselMeshWriter> writer;
     writer->SetFileName(out + "/" + shape.first + ".stl");

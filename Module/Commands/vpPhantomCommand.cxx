@@ -32,9 +32,18 @@ int RunPhantomCommand(const std::vector<std::string>& argv)
   {
     throw InputError("-o", "an output folder is required");
   }
-  if (mkdir(out.c_str(), 0755) != 0 && errno != EEXIST)
+  // Like mkdir -p: every missing parent too.
+  for (std::size_t slash = out.find('/', 1);; slash = out.find('/', slash + 1))
   {
-    throw InputError(out, std::string("cannot create folder: ") + std::strerror(errno));
+    const std::string part = out.substr(0, slash);
+    if (mkdir(part.c_str(), 0755) != 0 && errno != EEXIST)
+    {
+      throw InputError(part, std::string("cannot create folder: ") + std::strerror(errno));
+    }
+    if (slash == std::string::npos)
+    {
+      break;
+    }
   }
   for (const auto& shape : MakeBuiltInVessels())
   {

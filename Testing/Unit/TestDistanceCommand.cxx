@@ -172,9 +172,9 @@ TEST_F(DistanceCommand, AutoFallsBackToExactAndSaysSo)
 
 TEST_F(DistanceCommand, PhantomWritesClosedVesselsThatAreFound)
 {
-  const ToolRun p = RunTool(this->Dir, "phantom -o " + this->Dir + "/phantom");
+  const ToolRun p = RunTool(this->Dir, "phantom -o " + this->Dir + "/out/phantom"); // parents made too
   ASSERT_EQ(p.ExitCode, 0) << p.Err;
-  const std::string d = this->Dir + "/phantom/";
+  const std::string d = this->Dir + "/out/phantom/";
   const ToolRun r = RunTool(this->Dir, "distance --vessels portal_vein=" + d + "portal_vein.stl,hepatic_artery=" + d +
       "hepatic_artery.stl,hepatic_vein=" + d + "hepatic_vein.stl --tip 30,0,10 --json");
   ASSERT_EQ(r.ExitCode, 0) << r.Err;

@@ -27,7 +27,7 @@ struct SceneDeleter
 using DevicePtr = std::unique_ptr<RTCDeviceTy, DeviceDeleter>;
 using ScenePtr = std::unique_ptr<RTCSceneTy, SceneDeleter>;
 
-/// First search radius; doubled until a triangle is found or the range is reached.
+/// First search radius; grown until the best triangle found lies within it (or the range is hit).
 constexpr double InitialSearchRadiusMm = 1.0;
 
 /// One class's tree. Vertices are stored relative to Origin to keep float rounding small.

@@ -33,22 +33,25 @@ vp::ClassProximity Query(vtkVesselDistanceEngine* engine, const double p[3])
   return r.Classes.at(0);
 }
 
-vtkSmartPointer<vtkExactVesselDistance> ExactFor(vtkPolyData* mesh)
+/// An engine over one shape, with no range cut-off.
+template <typename Engine>
+vtkSmartPointer<Engine> EngineFor(vtkPolyData* mesh)
 {
-  auto e = vtkSmartPointer<vtkExactVesselDistance>::New();
+  auto e = vtkSmartPointer<Engine>::New();
   e->SetRangeMm(1e6);
   e->AddVessel("shape", mesh);
   e->Build();
   return e;
 }
 
+vtkSmartPointer<vtkExactVesselDistance> ExactFor(vtkPolyData* mesh)
+{
+  return EngineFor<vtkExactVesselDistance>(mesh);
+}
+
 vtkSmartPointer<vtkBruteForceVesselDistance> BruteFor(vtkPolyData* mesh)
 {
-  auto e = vtkSmartPointer<vtkBruteForceVesselDistance>::New();
-  e->SetRangeMm(1e6);
-  e->AddVessel("shape", mesh);
-  e->Build();
-  return e;
+  return EngineFor<vtkBruteForceVesselDistance>(mesh);
 }
 
 /// The closest point reported lies on the mesh: its own distance to the mesh is zero.

@@ -1,0 +1,637 @@
+#include "vtkZBufferVesselDistance.h"
+
+#include "vpComputeKernel.h"
+#include "vpEdgeSplitting.h"
+#include "vpGpuBuffer.h"
+#include "vpInputError.h"
+#include "vpVulkanContext.h"
+
+#include "QueryProximity_comp_spv.h"
+#include "RasterizeLayers_comp_spv.h"
+#include "SummarizeTiles_comp_spv.h"
+
+#include <vtkObjectFactory.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <mutex>
+#include <vector>
+
+vtkStandardNewMacro(vtkZBufferVesselDistance);
+
+namespace
+{
+constexpr std::uint32_t StateStride = 32; // words per class in the query state, as in the shader
+constexpr std::uint32_t FloatInfBits = 0x7F800000u;
+// Triangles are split until no edge is longer than this many cells, which bounds the pixels one
+// rasteriser invocation visits (and so the longest invocation).
+constexpr double MaxEdgeCells = 4.0;
+
+// Push constant blocks, laid out as the shaders declare them.
+struct RasterParameters
+{
+  float Origin[3];
+  float InvPixelMm;
+  float InvSliceMm;
+  std::int32_t Nx, Ny, Nz, Words;
+  std::uint32_t Class, FirstTriangle, TriangleCount, RangeStride;
+};
+static_assert(sizeof(RasterParameters) == 52, "push constant layout of RasterizeLayers.comp");
+
+struct TileParameters
+{
+  std::int32_t Nx, Ny, TilesX, TilesY;
+  std::uint32_t Classes, RangeStride;
+};
+
+struct QueryParameters
+{
+  float Tip[3];
+  float PixelMm;
+  float AxisMm[3];
+  float SliceMm;
+  float RangeMm;
+  float HalfDiagonalMm;
+  float BinWidthMm;
+  std::int32_t Bins, Nx, Ny, Nz, Words, TilesX, TilesY, OrderCount, PaperMode;
+  std::uint32_t RangeStride;
+};
+static_assert(sizeof(QueryParameters) == 84, "push constant layout of QueryProximity.comp");
+
+float Bits(std::uint32_t u)
+{
+  float f;
+  std::memcpy(&f, &u, sizeof f);
+  return f;
+}
+
+std::uint32_t Bits(float f)
+{
+  std::uint32_t u;
+  std::memcpy(&u, &f, sizeof u);
+  return u;
+}
+
+double Clamp(double x, double lo, double hi)
+{
+  return std::min(std::max(x, lo), hi);
+}
+} // namespace
+
+struct vtkZBufferVesselDistance::Internals
+{
+  std::mutex Lock;
+  std::unique_ptr<vp::VulkanContext> Context;
+  std::string ContextSelector;
+
+  // Geometry, uploaded once per Build().
+  double AnchorMm[3] = { 0, 0, 0 };
+  std::vector<std::uint32_t> FirstTriangle, TriangleCount;
+  std::size_t RasterTriangles = 0;
+  double VesselBounds[6] = { 0, 0, 0, 0, 0, 0 };
+  std::unique_ptr<vp::GpuBuffer> Positions, Indices;
+
+  // Layers.
+  vp::DepthLayerGrid Grid;
+  bool Rendered = false;
+  int Renders = 0;
+  double LastRenderMs = 0.0;
+  std::unique_ptr<vp::GpuBuffer> Occupancy, Crossings, DepthRanges, TileRanges;
+
+  // Query.
+  double OrderRangeMm = -1.0;
+  std::uint32_t OrderCount = 0;
+  std::unique_ptr<vp::GpuBuffer> Order, State, Records, HostState, HostRecords;
+
+  std::unique_ptr<vp::ComputeKernel> Raster, Tiles, Query;
+
+  vp::VulkanContext& Device(const std::string& selector)
+  {
+    if (!this->Context || this->ContextSelector != selector)
+    {
+      this->Release();
+      this->Context.reset();
+      this->Context = std::make_unique<vp::VulkanContext>(selector);
+      this->ContextSelector = selector;
+    }
+    return *this->Context;
+  }
+
+  void Release()
+  {
+    this->Raster.reset();
+    this->Tiles.reset();
+    this->Query.reset();
+    this->Positions.reset();
+    this->Indices.reset();
+    this->Occupancy.reset();
+    this->Crossings.reset();
+    this->DepthRanges.reset();
+    this->TileRanges.reset();
+    this->Order.reset();
+    this->State.reset();
+    this->Records.reset();
+    this->HostState.reset();
+    this->HostRecords.reset();
+    this->Rendered = false;
+    this->OrderRangeMm = -1.0;
+  }
+
+  std::uint32_t Classes() const { return static_cast<std::uint32_t>(this->FirstTriangle.size()); }
+
+  void Render()
+  {
+    const auto start = std::chrono::steady_clock::now();
+    const vp::DepthLayerGrid& g = this->Grid;
+    const std::uint32_t classes = this->Classes();
+    const std::uint32_t rangeStride = static_cast<std::uint32_t>(g.Pixels()) * classes;
+    RasterParameters raster{};
+    for (int k = 0; k < 3; ++k)
+    {
+      raster.Origin[k] = static_cast<float>(g.OriginMm[k] - this->AnchorMm[k]);
+    }
+    raster.InvPixelMm = static_cast<float>(1.0 / g.PixelMm);
+    raster.InvSliceMm = static_cast<float>(1.0 / g.SliceMm);
+    raster.Nx = g.Nx;
+    raster.Ny = g.Ny;
+    raster.Nz = g.Nz;
+    raster.Words = g.Words();
+    raster.RangeStride = rangeStride;
+    TileParameters tiles{ g.Nx, g.Ny, g.TilesX(), g.TilesY(), classes, rangeStride };
+    const std::uint32_t tileCount = static_cast<std::uint32_t>(g.TilesX() * g.TilesY()) * classes;
+
+    this->Context->Submit([&](VkCommandBuffer cmd) {
+      vkCmdFillBuffer(cmd, this->Occupancy->Handle(), 0, VK_WHOLE_SIZE, 0u);
+      vkCmdFillBuffer(cmd, this->Crossings->Handle(), 0, VK_WHOLE_SIZE, 0u);
+      vkCmdFillBuffer(cmd, this->DepthRanges->Handle(), 0, rangeStride * 4ull, FloatInfBits);
+      vkCmdFillBuffer(cmd, this->DepthRanges->Handle(), rangeStride * 4ull, rangeStride * 4ull, 0u);
+      vp::ComputeKernel::Barrier(cmd);
+      for (std::uint32_t c = 0; c < classes; ++c)
+      {
+        raster.Class = c;
+        raster.FirstTriangle = this->FirstTriangle[c];
+        raster.TriangleCount = this->TriangleCount[c];
+        this->Raster->Record(cmd, &raster, (raster.TriangleCount + 63) / 64);
+      }
+      vp::ComputeKernel::Barrier(cmd);
+      this->Tiles->Record(cmd, &tiles, (tileCount + 63) / 64);
+      vp::ComputeKernel::Barrier(cmd);
+    });
+    this->Rendered = true;
+    ++this->Renders;
+    this->LastRenderMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  }
+
+  // The tiles within rangeMm of the tip's tile, nearest first: the query visits them in this
+  // order so that the running best shrinks early and far tiles skip their work.
+  void PrepareOrder(double rangeMm)
+  {
+    if (this->OrderRangeMm == rangeMm)
+    {
+      return;
+    }
+    const int reach = static_cast<int>(std::ceil(rangeMm / (8.0 * this->Grid.PixelMm))) + 1;
+    std::vector<std::array<std::int32_t, 2>> order;
+    for (int dy = -reach; dy <= reach; ++dy)
+    {
+      for (int dx = -reach; dx <= reach; ++dx)
+      {
+        order.push_back({ dx, dy });
+      }
+    }
+    auto gap = [](const std::array<std::int32_t, 2>& o) {
+      const int gx = std::max(0, std::abs(o[0]) - 1), gy = std::max(0, std::abs(o[1]) - 1);
+      return std::make_pair(gx * gx + gy * gy, o[0] * o[0] + o[1] * o[1]);
+    };
+    std::stable_sort(order.begin(), order.end(), [&](const auto& a, const auto& b) { return gap(a) < gap(b); });
+    this->OrderCount = static_cast<std::uint32_t>(order.size());
+    this->Order = std::make_unique<vp::GpuBuffer>(*this->Context, order.size() * 8, vp::GpuBuffer::Placement::Device);
+    this->Order->Upload(order.data(), order.size() * 8);
+    const VkDeviceSize recordBytes = static_cast<VkDeviceSize>(this->OrderCount) * this->Classes() * 16;
+    this->Records = std::make_unique<vp::GpuBuffer>(*this->Context, recordBytes, vp::GpuBuffer::Placement::Device);
+    this->HostRecords = std::make_unique<vp::GpuBuffer>(*this->Context, recordBytes, vp::GpuBuffer::Placement::Host);
+    this->Query->BindBuffers({ this->Occupancy->Handle(), this->Crossings->Handle(), this->DepthRanges->Handle(),
+      this->TileRanges->Handle(), this->Order->Handle(), this->State->Handle(), this->Records->Handle() });
+    this->OrderRangeMm = rangeMm;
+  }
+};
+
+vtkZBufferVesselDistance::vtkZBufferVesselDistance()
+  : Impl(std::make_unique<Internals>())
+{
+}
+
+vtkZBufferVesselDistance::~vtkZBufferVesselDistance()
+{
+  this->Impl->Release();
+}
+
+void vtkZBufferVesselDistance::Invalidate()
+{
+  this->Built = false;
+  this->Modified();
+}
+
+void vtkZBufferVesselDistance::SetLayerMode(int mode)
+{
+  if (mode != ExactIntervals && mode != PaperNearFar)
+  {
+    throw vp::InputError("--layers", "must be exact or paper");
+  }
+  // The layers hold both; only the query changes.
+  this->LayerMode = mode;
+  this->Modified();
+}
+
+void vtkZBufferVesselDistance::SetBoxMode(int mode)
+{
+  if (mode != FixedAroundVessels && mode != MovingWithTip)
+  {
+    throw vp::InputError("--box", "must be fixed or moving");
+  }
+  if (mode != this->BoxMode)
+  {
+    this->BoxMode = mode;
+    this->Invalidate();
+  }
+}
+
+void vtkZBufferVesselDistance::SetCellSizeMm(double cellMm)
+{
+  if (!(cellMm > 0.0) || !std::isfinite(cellMm))
+  {
+    throw vp::InputError("--cell", "must be a positive number of millimetres");
+  }
+  if (cellMm != this->CellSizeMm)
+  {
+    this->CellSizeMm = cellMm;
+    this->Invalidate();
+  }
+}
+
+void vtkZBufferVesselDistance::SetResolutionPx(int pixels)
+{
+  if (pixels < 0 || pixels > 16384)
+  {
+    throw vp::InputError("--resolution", "must be between 1 and 16384 pixels (0 for the default cell size)");
+  }
+  if (pixels != this->ResolutionPx)
+  {
+    this->ResolutionPx = pixels;
+    this->Invalidate();
+  }
+}
+
+void vtkZBufferVesselDistance::SetMovingBoxSizeMm(double x, double y, double z)
+{
+  for (double v : { x, y, z })
+  {
+    if (!(v > 0.0) || !std::isfinite(v))
+    {
+      throw vp::InputError("--box-size", "must be three positive numbers of millimetres");
+    }
+  }
+  this->MovingBoxSizeMm[0] = x;
+  this->MovingBoxSizeMm[1] = y;
+  this->MovingBoxSizeMm[2] = z;
+  this->Invalidate();
+}
+
+void vtkZBufferVesselDistance::SetDistanceBins(int bins)
+{
+  if (bins < 0 || bins % 16 != 0 || bins > 768)
+  {
+    throw vp::InputError("--bins", "must be 0 (off) or a multiple of 16 up to 768");
+  }
+  this->DistanceBins = bins;
+  this->Modified();
+}
+
+void vtkZBufferVesselDistance::SetDeviceSelector(const std::string& selector)
+{
+  if (selector != this->DeviceSelector)
+  {
+    this->DeviceSelector = selector;
+    this->Invalidate();
+  }
+}
+
+std::string vtkZBufferVesselDistance::GetDeviceName()
+{
+  std::lock_guard<std::mutex> lock(this->Impl->Lock);
+  return this->Impl->Device(this->DeviceSelector).Device().Name;
+}
+
+double vtkZBufferVesselDistance::GetErrorBoundMm() const
+{
+  this->EnsureBuilt();
+  return this->Impl->Grid.ErrorBoundMm(this->DistanceBins ? this->RangeMm / this->DistanceBins : 0.0);
+}
+
+vp::DepthLayerGrid vtkZBufferVesselDistance::GetGrid() const
+{
+  return this->Impl->Grid;
+}
+
+int vtkZBufferVesselDistance::GetNumberOfRenders() const
+{
+  return this->Impl->Renders;
+}
+
+double vtkZBufferVesselDistance::GetLastRenderTimeMs() const
+{
+  return this->Impl->LastRenderMs;
+}
+
+std::size_t vtkZBufferVesselDistance::GetNumberOfRasterTriangles() const
+{
+  return this->Impl->RasterTriangles;
+}
+
+void vtkZBufferVesselDistance::BuildInternal()
+{
+  std::lock_guard<std::mutex> lock(this->Impl->Lock);
+  Internals& s = *this->Impl;
+  vp::VulkanContext& context = s.Device(this->DeviceSelector);
+  s.Release();
+
+  // Cell size, box and anchor.
+  double bounds[6] = { std::numeric_limits<double>::max(), -std::numeric_limits<double>::max(),
+    std::numeric_limits<double>::max(), -std::numeric_limits<double>::max(), std::numeric_limits<double>::max(),
+    -std::numeric_limits<double>::max() };
+  for (const auto& surface : this->Surfaces)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      bounds[2 * k] = std::min(bounds[2 * k], surface->Bounds()[2 * k]);
+      bounds[2 * k + 1] = std::max(bounds[2 * k + 1], surface->Bounds()[2 * k + 1]);
+    }
+  }
+  if (this->Surfaces.empty())
+  {
+    std::fill(bounds, bounds + 6, 0.0);
+  }
+  std::copy(bounds, bounds + 6, s.VesselBounds);
+  for (int k = 0; k < 3; ++k)
+  {
+    s.AnchorMm[k] = 0.5 * (bounds[2 * k] + bounds[2 * k + 1]);
+  }
+  const bool moving = this->BoxMode == MovingWithTip;
+  double cell = this->CellSizeMm;
+  if (this->ResolutionPx > 0)
+  {
+    const double side = moving ? std::max(this->MovingBoxSizeMm[0], this->MovingBoxSizeMm[1])
+                               : std::max(bounds[1] - bounds[0], bounds[3] - bounds[2]);
+    cell = std::max(side, 1e-3) / this->ResolutionPx;
+  }
+  if (moving)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      if (0.5 * this->MovingBoxSizeMm[k] < this->RangeMm + cell)
+      {
+        throw vp::InputError("--box-size", "each half of the moving box must hold the range (" +
+            std::to_string(this->RangeMm) + " mm) plus a cell");
+      }
+    }
+    s.Grid = vp::DepthLayerGrid::Centred(s.AnchorMm, this->MovingBoxSizeMm, cell, cell, s.AnchorMm);
+  }
+  else
+  {
+    s.Grid = vp::DepthLayerGrid::Covering(bounds, cell, cell, 2.0 * cell);
+  }
+  const std::uint32_t classes = static_cast<std::uint32_t>(this->Surfaces.size());
+  const VkDeviceSize layerBytes =
+    static_cast<VkDeviceSize>(s.Grid.Pixels()) * s.Grid.Words() * 4ull * std::max(classes, 1u);
+  if (layerBytes > context.Limits().maxStorageBufferRange)
+  {
+    throw vp::InputError("--resolution", "the depth layers would need " + std::to_string(layerBytes >> 20) +
+        " MiB, more than the Vulkan device allows in one buffer (" +
+        std::to_string(context.Limits().maxStorageBufferRange >> 20) + " MiB); use larger cells");
+  }
+
+  // Geometry: long edges split so that one rasteriser invocation never walks many pixels; float
+  // positions relative to the anchor, so that rounding stays far below a micrometre.
+  std::vector<float> positions;
+  std::vector<std::uint32_t> indices;
+  s.FirstTriangle.clear();
+  s.TriangleCount.clear();
+  for (const auto& surface : this->Surfaces)
+  {
+    auto points = surface->PointArray();
+    auto triangles = surface->TriangleArray();
+    vp::SplitLongEdges(points, triangles, MaxEdgeCells * cell);
+    const std::uint32_t base = static_cast<std::uint32_t>(positions.size() / 3);
+    s.FirstTriangle.push_back(static_cast<std::uint32_t>(indices.size() / 3));
+    s.TriangleCount.push_back(static_cast<std::uint32_t>(triangles.size()));
+    for (const auto& p : points)
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        positions.push_back(static_cast<float>(p[k] - s.AnchorMm[k]));
+      }
+    }
+    for (const auto& t : triangles)
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        indices.push_back(base + static_cast<std::uint32_t>(t[k]));
+      }
+    }
+  }
+  s.RasterTriangles = indices.size() / 3;
+  if (positions.size() * 4 > context.Limits().maxStorageBufferRange ||
+    indices.size() * 4 > context.Limits().maxStorageBufferRange)
+  {
+    throw vp::InputError("(vessels)", "too many triangles for one Vulkan buffer on this device");
+  }
+  using Placement = vp::GpuBuffer::Placement;
+  s.Positions = std::make_unique<vp::GpuBuffer>(context, positions.size() * 4, Placement::Device);
+  s.Positions->Upload(positions.data(), positions.size() * 4);
+  s.Indices = std::make_unique<vp::GpuBuffer>(context, indices.size() * 4, Placement::Device);
+  s.Indices->Upload(indices.data(), indices.size() * 4);
+
+  const VkDeviceSize rangeBytes = 2ull * s.Grid.Pixels() * std::max(classes, 1u) * 4ull;
+  const VkDeviceSize tileBytes =
+    2ull * static_cast<VkDeviceSize>(s.Grid.TilesX() * s.Grid.TilesY()) * std::max(classes, 1u) * 4ull;
+  s.Occupancy = std::make_unique<vp::GpuBuffer>(context, layerBytes, Placement::Device);
+  s.Crossings = std::make_unique<vp::GpuBuffer>(context, layerBytes, Placement::Device);
+  s.DepthRanges = std::make_unique<vp::GpuBuffer>(context, rangeBytes, Placement::Device);
+  s.TileRanges = std::make_unique<vp::GpuBuffer>(context, tileBytes, Placement::Device);
+  const VkDeviceSize stateBytes = StateStride * 4ull * std::max(classes, 1u);
+  s.State = std::make_unique<vp::GpuBuffer>(context, stateBytes, Placement::Device);
+  s.HostState = std::make_unique<vp::GpuBuffer>(context, stateBytes, Placement::Host);
+
+  s.Raster = std::make_unique<vp::ComputeKernel>(
+    context, RasterizeLayers_comp, RasterizeLayers_comp_size, 5, static_cast<std::uint32_t>(sizeof(RasterParameters)));
+  s.Raster->BindBuffers({ s.Positions->Handle(), s.Indices->Handle(), s.Occupancy->Handle(), s.Crossings->Handle(),
+    s.DepthRanges->Handle() });
+  s.Tiles = std::make_unique<vp::ComputeKernel>(
+    context, SummarizeTiles_comp, SummarizeTiles_comp_size, 2, static_cast<std::uint32_t>(sizeof(TileParameters)));
+  s.Tiles->BindBuffers({ s.DepthRanges->Handle(), s.TileRanges->Handle() });
+  s.Query = std::make_unique<vp::ComputeKernel>(
+    context, QueryProximity_comp, QueryProximity_comp_size, 7, static_cast<std::uint32_t>(sizeof(QueryParameters)));
+
+  s.Renders = 0;
+  if (!moving && classes > 0)
+  {
+    s.Render();
+  }
+}
+
+void vtkZBufferVesselDistance::ComputeProximity(
+  const double tip[3], const double* axis, vp::ProximityResult& result, const vp::ProximityResult*) const
+{
+  this->BeginResult(tip, result);
+  std::lock_guard<std::mutex> lock(this->Impl->Lock);
+  Internals& s = *this->Impl;
+  const std::uint32_t classes = s.Classes();
+  const double binWidth = this->DistanceBins ? this->RangeMm / this->DistanceBins : 0.0;
+  result.ErrorBoundMm = s.Grid.ErrorBoundMm(binWidth);
+  if (classes == 0)
+  {
+    return;
+  }
+
+  if (this->BoxMode == MovingWithTip)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      if (0.5 * this->MovingBoxSizeMm[k] < this->RangeMm + s.Grid.PixelMm)
+      {
+        throw vp::InputError("--box-size", "each half of the moving box must hold the range plus a cell");
+      }
+    }
+    if (!s.Rendered || !s.Grid.ContainsBall(tip, this->RangeMm))
+    {
+      s.Grid = vp::DepthLayerGrid::Centred(tip, this->MovingBoxSizeMm, s.Grid.PixelMm, s.Grid.SliceMm, s.AnchorMm);
+      s.Render();
+    }
+  }
+  s.PrepareOrder(this->RangeMm);
+
+  const vp::DepthLayerGrid& g = s.Grid;
+  QueryParameters q{};
+  q.Tip[0] = static_cast<float>((tip[0] - g.OriginMm[0]) / g.PixelMm);
+  q.Tip[1] = static_cast<float>((tip[1] - g.OriginMm[1]) / g.PixelMm);
+  q.Tip[2] = static_cast<float>((tip[2] - g.OriginMm[2]) / g.SliceMm);
+  q.PixelMm = static_cast<float>(g.PixelMm);
+  q.SliceMm = static_cast<float>(g.SliceMm);
+  if (axis)
+  {
+    const double n = std::sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
+    for (int k = 0; k < 3 && n > 0.0; ++k)
+    {
+      q.AxisMm[k] = static_cast<float>(axis[k] / n);
+    }
+  }
+  q.RangeMm = static_cast<float>(this->RangeMm);
+  q.HalfDiagonalMm = static_cast<float>(g.HalfDiagonalMm());
+  q.BinWidthMm = static_cast<float>(binWidth);
+  q.Bins = this->DistanceBins;
+  q.Nx = g.Nx;
+  q.Ny = g.Ny;
+  q.Nz = g.Nz;
+  q.Words = g.Words();
+  q.TilesX = g.TilesX();
+  q.TilesY = g.TilesY();
+  q.OrderCount = static_cast<std::int32_t>(s.OrderCount);
+  q.PaperMode = this->LayerMode == PaperNearFar ? 1 : 0;
+  q.RangeStride = static_cast<std::uint32_t>(g.Pixels()) * classes;
+
+  std::vector<std::uint32_t> state(StateStride * classes, 0u);
+  for (std::uint32_t c = 0; c < classes; ++c)
+  {
+    state[c * StateStride] = Bits(static_cast<float>(this->RangeMm));
+    state[c * StateStride + 2] = FloatInfBits;
+  }
+  const VkDeviceSize stateBytes = state.size() * 4;
+  const VkDeviceSize recordBytes = static_cast<VkDeviceSize>(s.OrderCount) * classes * 16;
+  s.Context->Submit([&](VkCommandBuffer cmd) {
+    vkCmdUpdateBuffer(cmd, s.State->Handle(), 0, stateBytes, state.data());
+    vp::ComputeKernel::Barrier(cmd);
+    s.Query->Record(cmd, &q, s.OrderCount + 1, 1, classes);
+    vp::ComputeKernel::Barrier(cmd);
+    VkBufferCopy stateCopy{ 0, 0, stateBytes };
+    vkCmdCopyBuffer(cmd, s.State->Handle(), s.HostState->Handle(), 1, &stateCopy);
+    VkBufferCopy recordCopy{ 0, 0, recordBytes };
+    vkCmdCopyBuffer(cmd, s.Records->Handle(), s.HostRecords->Handle(), 1, &recordCopy);
+    vp::ComputeKernel::Barrier(cmd);
+  });
+
+  const auto* hostState = static_cast<const std::uint32_t*>(s.HostState->Mapped());
+  const auto* records = static_cast<const std::uint32_t*>(s.HostRecords->Mapped());
+  for (std::uint32_t c = 0; c < classes; ++c)
+  {
+    vp::ClassProximity& out = result.Classes[c];
+    float best = std::numeric_limits<float>::infinity();
+    std::uint32_t bestPixel = 0;
+    float bestDepth = 0.0f;
+    for (std::uint32_t r = 0; r < s.OrderCount; ++r)
+    {
+      const std::uint32_t* rec = records + 4 * (static_cast<std::size_t>(c) * s.OrderCount + r);
+      const float d = Bits(rec[0]);
+      if (d < best)
+      {
+        best = d;
+        bestPixel = rec[1];
+        bestDepth = Bits(rec[2]);
+      }
+    }
+    const std::uint32_t* cs = hostState + c * StateStride;
+    out.Inside = this->Surfaces[c]->IsClosed() ? std::optional<bool>(cs[1] != 0u) : std::nullopt;
+    const float directional = Bits(cs[2]);
+    if (axis && std::isfinite(directional) && directional <= this->RangeMm)
+    {
+      out.DirectionalMm = directional;
+    }
+    if (!(best <= this->RangeMm))
+    {
+      out.InRange = false;
+      continue;
+    }
+    out.InRange = true;
+    // The nearest marked cell is at most a cell diagonal nearer than the surface it holds:
+    // its distance plus half a diagonal is within half a diagonal of the truth.
+    double distance = best + g.HalfDiagonalMm();
+    if (this->DistanceBins > 0)
+    {
+      for (int bin = 0; bin < this->DistanceBins; ++bin)
+      {
+        if (cs[8 + bin / 32] & (1u << (bin % 32)))
+        {
+          distance = (bin + 0.5) * binWidth;
+          break;
+        }
+      }
+    }
+    out.DistanceMm = distance;
+    const int i = static_cast<int>(bestPixel % static_cast<std::uint32_t>(g.Nx));
+    const int j = static_cast<int>(bestPixel / static_cast<std::uint32_t>(g.Nx));
+    out.ClosestPoint[0] = Clamp(tip[0], g.OriginMm[0] + i * g.PixelMm, g.OriginMm[0] + (i + 1) * g.PixelMm);
+    out.ClosestPoint[1] = Clamp(tip[1], g.OriginMm[1] + j * g.PixelMm, g.OriginMm[1] + (j + 1) * g.PixelMm);
+    out.ClosestPoint[2] = g.OriginMm[2] + bestDepth * g.SliceMm;
+    out.TriangleId = -1;
+  }
+}
+
+void vtkZBufferVesselDistance::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "LayerMode: " << (this->LayerMode == PaperNearFar ? "PaperNearFar" : "ExactIntervals") << "\n";
+  os << indent << "BoxMode: " << (this->BoxMode == MovingWithTip ? "MovingWithTip" : "FixedAroundVessels") << "\n";
+  os << indent << "CellSizeMm: " << this->CellSizeMm << "\n";
+  os << indent << "ResolutionPx: " << this->ResolutionPx << "\n";
+  os << indent << "MovingBoxSizeMm: " << this->MovingBoxSizeMm[0] << " x " << this->MovingBoxSizeMm[1] << " x "
+     << this->MovingBoxSizeMm[2] << "\n";
+  os << indent << "DistanceBins: " << this->DistanceBins << "\n";
+  os << indent << "DeviceSelector: " << (this->DeviceSelector.empty() ? "(best)" : this->DeviceSelector) << "\n";
+  const vp::DepthLayerGrid& g = this->Impl->Grid;
+  os << indent << "Grid: " << g.Nx << " x " << g.Ny << " x " << g.Nz << " cells of " << g.PixelMm << " x "
+     << g.PixelMm << " x " << g.SliceMm << " mm\n";
+  os << indent << "Renders: " << this->Impl->Renders << " (last " << this->Impl->LastRenderMs << " ms)\n";
+}

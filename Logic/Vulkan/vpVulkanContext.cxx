@@ -1,0 +1,396 @@
+#include "vpVulkanContext.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdlib>
+#include <cstring>
+#include <sstream>
+
+namespace vp
+{
+namespace
+{
+const char* ResultName(VkResult r)
+{
+  switch (r)
+  {
+    case VK_SUCCESS: return "VK_SUCCESS";
+    case VK_NOT_READY: return "VK_NOT_READY";
+    case VK_TIMEOUT: return "VK_TIMEOUT";
+    case VK_INCOMPLETE: return "VK_INCOMPLETE";
+    case VK_ERROR_OUT_OF_HOST_MEMORY: return "VK_ERROR_OUT_OF_HOST_MEMORY";
+    case VK_ERROR_OUT_OF_DEVICE_MEMORY: return "VK_ERROR_OUT_OF_DEVICE_MEMORY";
+    case VK_ERROR_INITIALIZATION_FAILED: return "VK_ERROR_INITIALIZATION_FAILED";
+    case VK_ERROR_DEVICE_LOST: return "VK_ERROR_DEVICE_LOST";
+    case VK_ERROR_MEMORY_MAP_FAILED: return "VK_ERROR_MEMORY_MAP_FAILED";
+    case VK_ERROR_LAYER_NOT_PRESENT: return "VK_ERROR_LAYER_NOT_PRESENT";
+    case VK_ERROR_EXTENSION_NOT_PRESENT: return "VK_ERROR_EXTENSION_NOT_PRESENT";
+    case VK_ERROR_FEATURE_NOT_PRESENT: return "VK_ERROR_FEATURE_NOT_PRESENT";
+    case VK_ERROR_INCOMPATIBLE_DRIVER: return "VK_ERROR_INCOMPATIBLE_DRIVER";
+    case VK_ERROR_TOO_MANY_OBJECTS: return "VK_ERROR_TOO_MANY_OBJECTS";
+    case VK_ERROR_OUT_OF_POOL_MEMORY: return "VK_ERROR_OUT_OF_POOL_MEMORY";
+    default: return "VkResult error";
+  }
+}
+
+std::string TypeName(VkPhysicalDeviceType t)
+{
+  switch (t)
+  {
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return "discrete";
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return "integrated";
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return "virtual";
+    case VK_PHYSICAL_DEVICE_TYPE_CPU: return "cpu";
+    default: return "other";
+  }
+}
+
+int Preference(VkPhysicalDeviceType t)
+{
+  switch (t)
+  {
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return 0;
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return 1;
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return 2;
+    case VK_PHYSICAL_DEVICE_TYPE_CPU: return 3;
+    default: return 4;
+  }
+}
+
+std::string Lower(std::string s)
+{
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return s;
+}
+
+bool WantsValidation()
+{
+  const char* v = std::getenv("VP_VULKAN_VALIDATION");
+  return v && *v && std::strcmp(v, "0") != 0;
+}
+
+bool LayerAvailable(const char* name)
+{
+  std::uint32_t n = 0;
+  vkEnumerateInstanceLayerProperties(&n, nullptr);
+  std::vector<VkLayerProperties> layers(n);
+  vkEnumerateInstanceLayerProperties(&n, layers.data());
+  for (const auto& l : layers)
+  {
+    if (std::strcmp(l.layerName, name) == 0)
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+// The instance the loader gives us, or a DeviceError that says why there is none. The loader
+// answers VK_ERROR_INCOMPATIBLE_DRIVER when it finds no driver at all (no ICD installed, or
+// VK_ICD_FILENAMES pointing at nothing).
+VkInstance CreateInstance(bool validation)
+{
+  VkApplicationInfo app{};
+  app.sType = VK_STRUCTURE_TYPE_APPLICATION_INFO;
+  app.pApplicationName = "VesselProximity";
+  app.apiVersion = VK_API_VERSION_1_1;
+  VkInstanceCreateInfo info{};
+  info.sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO;
+  info.pApplicationInfo = &app;
+  const char* layer = "VK_LAYER_KHRONOS_validation";
+  const char* extension = VK_EXT_DEBUG_UTILS_EXTENSION_NAME;
+  if (validation)
+  {
+    info.enabledLayerCount = 1;
+    info.ppEnabledLayerNames = &layer;
+    info.enabledExtensionCount = 1;
+    info.ppEnabledExtensionNames = &extension;
+  }
+  VkInstance instance = VK_NULL_HANDLE;
+  const VkResult r = vkCreateInstance(&info, nullptr, &instance);
+  if (r == VK_ERROR_INCOMPATIBLE_DRIVER)
+  {
+    throw DeviceError("no Vulkan device: the Vulkan loader found no driver (VK_ERROR_INCOMPATIBLE_DRIVER); "
+                      "install mesa-vulkan-drivers for lavapipe, or check VK_ICD_FILENAMES");
+  }
+  if (r != VK_SUCCESS)
+  {
+    throw DeviceError(std::string("no Vulkan device: vkCreateInstance failed (") + ResultName(r) + ")");
+  }
+  return instance;
+}
+
+std::vector<VkPhysicalDevice> PhysicalDevices(VkInstance instance)
+{
+  std::uint32_t n = 0;
+  VulkanContext::Check(vkEnumeratePhysicalDevices(instance, &n, nullptr), "vkEnumeratePhysicalDevices");
+  std::vector<VkPhysicalDevice> devices(n);
+  VulkanContext::Check(vkEnumeratePhysicalDevices(instance, &n, devices.data()), "vkEnumeratePhysicalDevices");
+  devices.resize(n);
+  if (devices.empty())
+  {
+    throw DeviceError("no Vulkan device: the Vulkan loader lists no physical device; "
+                      "install mesa-vulkan-drivers for lavapipe, or check VK_ICD_FILENAMES");
+  }
+  return devices;
+}
+
+VulkanDeviceInfo Describe(VkPhysicalDevice d, int index)
+{
+  VkPhysicalDeviceProperties p;
+  vkGetPhysicalDeviceProperties(d, &p);
+  VulkanDeviceInfo info;
+  info.Index = index;
+  info.Name = p.deviceName;
+  info.Type = TypeName(p.deviceType);
+  info.ApiVersion = p.apiVersion;
+  return info;
+}
+} // namespace
+
+void VulkanContext::Check(VkResult result, const char* what)
+{
+  if (result != VK_SUCCESS)
+  {
+    throw DeviceError(std::string("Vulkan: ") + what + " failed (" + ResultName(result) + ")");
+  }
+}
+
+std::vector<VulkanDeviceInfo> VulkanContext::ListDevices()
+{
+  VkInstance instance = CreateInstance(false);
+  std::vector<VulkanDeviceInfo> out;
+  try
+  {
+    const auto devices = PhysicalDevices(instance);
+    for (std::size_t i = 0; i < devices.size(); ++i)
+    {
+      out.push_back(Describe(devices[i], static_cast<int>(i)));
+    }
+  }
+  catch (...)
+  {
+    vkDestroyInstance(instance, nullptr);
+    throw;
+  }
+  vkDestroyInstance(instance, nullptr);
+  return out;
+}
+
+VKAPI_ATTR VkBool32 VKAPI_CALL VulkanContext::OnValidationMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+  VkDebugUtilsMessageTypeFlagsEXT, const VkDebugUtilsMessengerCallbackDataEXT* data, void* self)
+{
+  auto* context = static_cast<VulkanContext*>(self);
+  if ((severity & (VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT)) &&
+    context->ValidationMessage.empty())
+  {
+    context->ValidationMessage = data->pMessage ? data->pMessage : "(no message)";
+  }
+  return VK_FALSE;
+}
+
+VulkanContext::VulkanContext(const std::string& selector)
+{
+  const bool validation = WantsValidation() && LayerAvailable("VK_LAYER_KHRONOS_validation");
+  this->Instance = CreateInstance(validation);
+  try
+  {
+    if (validation)
+    {
+      VkDebugUtilsMessengerCreateInfoEXT info{};
+      info.sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT;
+      info.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+      info.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+        VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+      info.pfnUserCallback = &VulkanContext::OnValidationMessage;
+      info.pUserData = this;
+      auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+        vkGetInstanceProcAddr(this->Instance, "vkCreateDebugUtilsMessengerEXT"));
+      if (create)
+      {
+        Check(create(this->Instance, &info, nullptr, &this->Messenger), "vkCreateDebugUtilsMessengerEXT");
+      }
+    }
+
+    const auto devices = PhysicalDevices(this->Instance);
+    int chosen = -1;
+    if (selector.empty())
+    {
+      int best = 1 << 30;
+      for (std::size_t i = 0; i < devices.size(); ++i)
+      {
+        VkPhysicalDeviceProperties p;
+        vkGetPhysicalDeviceProperties(devices[i], &p);
+        if (Preference(p.deviceType) < best)
+        {
+          best = Preference(p.deviceType);
+          chosen = static_cast<int>(i);
+        }
+      }
+    }
+    else if (std::all_of(selector.begin(), selector.end(), [](unsigned char c) { return std::isdigit(c); }))
+    {
+      chosen = std::atoi(selector.c_str());
+      if (chosen >= static_cast<int>(devices.size()))
+      {
+        chosen = -1;
+      }
+    }
+    else
+    {
+      for (std::size_t i = 0; i < devices.size() && chosen < 0; ++i)
+      {
+        if (Lower(Describe(devices[i], 0).Name).find(Lower(selector)) != std::string::npos)
+        {
+          chosen = static_cast<int>(i);
+        }
+      }
+    }
+    if (chosen < 0)
+    {
+      std::ostringstream available;
+      for (std::size_t i = 0; i < devices.size(); ++i)
+      {
+        available << (i ? ", " : "") << i << ": " << Describe(devices[i], static_cast<int>(i)).Name;
+      }
+      throw DeviceError("no Vulkan device matches --device '" + selector + "' (available: " + available.str() + ")");
+    }
+    this->PhysicalDevice = devices[chosen];
+    this->Info = Describe(this->PhysicalDevice, chosen);
+    vkGetPhysicalDeviceProperties(this->PhysicalDevice, &this->Properties);
+    vkGetPhysicalDeviceMemoryProperties(this->PhysicalDevice, &this->MemoryProperties);
+
+    std::uint32_t nFamilies = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(this->PhysicalDevice, &nFamilies, nullptr);
+    std::vector<VkQueueFamilyProperties> families(nFamilies);
+    vkGetPhysicalDeviceQueueFamilyProperties(this->PhysicalDevice, &nFamilies, families.data());
+    bool found = false;
+    for (std::uint32_t i = 0; i < nFamilies && !found; ++i)
+    {
+      if (families[i].queueFlags & VK_QUEUE_COMPUTE_BIT)
+      {
+        this->QueueFamily = i;
+        found = true;
+      }
+    }
+    if (!found)
+    {
+      throw DeviceError("Vulkan device '" + this->Info.Name + "' has no compute queue");
+    }
+
+    const float priority = 1.0f;
+    VkDeviceQueueCreateInfo queueInfo{};
+    queueInfo.sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO;
+    queueInfo.queueFamilyIndex = this->QueueFamily;
+    queueInfo.queueCount = 1;
+    queueInfo.pQueuePriorities = &priority;
+    VkDeviceCreateInfo deviceInfo{};
+    deviceInfo.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO;
+    deviceInfo.queueCreateInfoCount = 1;
+    deviceInfo.pQueueCreateInfos = &queueInfo;
+    Check(vkCreateDevice(this->PhysicalDevice, &deviceInfo, nullptr, &this->LogicalDevice), "vkCreateDevice");
+    vkGetDeviceQueue(this->LogicalDevice, this->QueueFamily, 0, &this->Queue);
+
+    VkCommandPoolCreateInfo poolInfo{};
+
+    poolInfo.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO;
+    poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+    poolInfo.queueFamilyIndex = this->QueueFamily;
+    Check(vkCreateCommandPool(this->LogicalDevice, &poolInfo, nullptr, &this->CommandPool), "vkCreateCommandPool");
+    VkCommandBufferAllocateInfo allocInfo{};
+    allocInfo.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO;
+    allocInfo.commandPool = this->CommandPool;
+    allocInfo.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    allocInfo.commandBufferCount = 1;
+    Check(vkAllocateCommandBuffers(this->LogicalDevice, &allocInfo, &this->Commands), "vkAllocateCommandBuffers");
+    VkFenceCreateInfo fenceInfo{};
+    fenceInfo.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO;
+    Check(vkCreateFence(this->LogicalDevice, &fenceInfo, nullptr, &this->Fence), "vkCreateFence");
+  }
+  catch (...)
+  {
+    this->Destroy();
+    throw;
+  }
+}
+
+VulkanContext::~VulkanContext()
+{
+  this->Destroy();
+}
+
+void VulkanContext::Destroy()
+{
+  if (this->LogicalDevice)
+  {
+    vkDeviceWaitIdle(this->LogicalDevice);
+    if (this->Fence)
+    {
+      vkDestroyFence(this->LogicalDevice, this->Fence, nullptr);
+    }
+    if (this->CommandPool)
+    {
+      vkDestroyCommandPool(this->LogicalDevice, this->CommandPool, nullptr);
+    }
+    vkDestroyDevice(this->LogicalDevice, nullptr);
+  }
+  if (this->Messenger)
+  {
+    auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
+      vkGetInstanceProcAddr(this->Instance, "vkDestroyDebugUtilsMessengerEXT"));
+    if (destroy)
+    {
+      destroy(this->Instance, this->Messenger, nullptr);
+    }
+  }
+  if (this->Instance)
+  {
+    vkDestroyInstance(this->Instance, nullptr);
+  }
+  this->Fence = VK_NULL_HANDLE;
+  this->CommandPool = VK_NULL_HANDLE;
+  this->LogicalDevice = VK_NULL_HANDLE;
+  this->Messenger = VK_NULL_HANDLE;
+  this->Instance = VK_NULL_HANDLE;
+}
+
+std::uint32_t VulkanContext::FindMemoryType(
+  std::uint32_t typeBits, VkMemoryPropertyFlags required, VkMemoryPropertyFlags preferred) const
+{
+  for (const VkMemoryPropertyFlags want : { required | preferred, required })
+  {
+    for (std::uint32_t i = 0; i < this->MemoryProperties.memoryTypeCount; ++i)
+    {
+      if ((typeBits & (1u << i)) && (this->MemoryProperties.memoryTypes[i].propertyFlags & want) == want)
+      {
+        return i;
+      }
+    }
+  }
+  throw DeviceError("Vulkan device '" + this->Info.Name + "' has no suitable memory type");
+}
+
+void VulkanContext::Submit(const std::function<void(VkCommandBuffer)>& record)
+{
+  Check(vkResetCommandBuffer(this->Commands, 0), "vkResetCommandBuffer");
+  VkCommandBufferBeginInfo begin{};
+  begin.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
+  begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  Check(vkBeginCommandBuffer(this->Commands, &begin), "vkBeginCommandBuffer");
+  record(this->Commands);
+  Check(vkEndCommandBuffer(this->Commands), "vkEndCommandBuffer");
+  VkSubmitInfo submit{};
+  submit.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO;
+  submit.commandBufferCount = 1;
+  submit.pCommandBuffers = &this->Commands;
+  Check(vkResetFences(this->LogicalDevice, 1, &this->Fence), "vkResetFences");
+  Check(vkQueueSubmit(this->Queue, 1, &submit, this->Fence), "vkQueueSubmit");
+  Check(vkWaitForFences(this->LogicalDevice, 1, &this->Fence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+  if (!this->ValidationMessage.empty())
+  {
+    const std::string message = this->ValidationMessage;
+    this->ValidationMessage.clear();
+    throw DeviceError("Vulkan validation: " + message);
+  }
+}
+} // namespace vp

@@ -1,0 +1,91 @@
+#ifndef vpVulkanContext_h
+#define vpVulkanContext_h
+
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+#include <functional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace vp
+{
+/// No usable Vulkan device, or the device failed. The message is one line that says what is
+/// missing, ready to be printed as it is.
+class DeviceError : public std::runtime_error
+{
+public:
+  explicit DeviceError(const std::string& message)
+    : std::runtime_error(message)
+  {
+  }
+};
+
+/// What a Vulkan physical device calls itself.
+struct VulkanDeviceInfo
+{
+  int Index = 0;
+  std::string Name;
+  std::string Type; // "discrete", "integrated", "virtual", "cpu", "other"
+  std::uint32_t ApiVersion = 0;
+};
+
+/// A headless Vulkan instance and logical device with one compute queue: no window, no display,
+/// no surface extension. Mesa's lavapipe (a CPU device) works as well as a GPU.
+///
+/// Device choice: an empty selector takes a discrete GPU when there is one, then an integrated
+/// one, then any other (lavapipe is a "cpu" device); a number picks that index of
+/// ListDevices(); any other text picks the first device whose name contains it
+/// (case-insensitive). Setting VP_VULKAN_VALIDATION=1 in the environment enables the Khronos
+/// validation layer when it is installed and turns every message it prints into a DeviceError
+/// on the next Submit().
+class VulkanContext
+{
+public:
+  explicit VulkanContext(const std::string& deviceSelector = std::string());
+  ~VulkanContext();
+  VulkanContext(const VulkanContext&) = delete;
+  VulkanContext& operator=(const VulkanContext&) = delete;
+
+  /// The devices the loader reports. Throws DeviceError when there is no Vulkan at all.
+  static std::vector<VulkanDeviceInfo> ListDevices();
+
+  const VulkanDeviceInfo& Device() const { return this->Info; }
+  VkDevice Handle() const { return this->LogicalDevice; }
+  VkPhysicalDevice Physical() const { return this->PhysicalDevice; }
+  const VkPhysicalDeviceLimits& Limits() const { return this->Properties.limits; }
+
+  /// A memory type index with all of required (and preferably all of preferred) among those in
+  /// typeBits. Throws DeviceError when none fits.
+  std::uint32_t FindMemoryType(std::uint32_t typeBits, VkMemoryPropertyFlags required,
+    VkMemoryPropertyFlags preferred = 0) const;
+
+  /// Records commands with record(), submits them to the compute queue and waits for them.
+  void Submit(const std::function<void(VkCommandBuffer)>& record);
+
+  /// Throws DeviceError with what, the Vulkan result's name, when result is not VK_SUCCESS.
+  static void Check(VkResult result, const char* what);
+
+private:
+  VkInstance Instance = VK_NULL_HANDLE;
+  VkDebugUtilsMessengerEXT Messenger = VK_NULL_HANDLE;
+  VkPhysicalDevice PhysicalDevice = VK_NULL_HANDLE;
+  VkPhysicalDeviceProperties Properties{};
+  VkPhysicalDeviceMemoryProperties MemoryProperties{};
+  VkDevice LogicalDevice = VK_NULL_HANDLE;
+  VkQueue Queue = VK_NULL_HANDLE;
+  std::uint32_t QueueFamily = 0;
+  VkCommandPool CommandPool = VK_NULL_HANDLE;
+  VkCommandBuffer Commands = VK_NULL_HANDLE;
+  VkFence Fence = VK_NULL_HANDLE;
+  VulkanDeviceInfo Info;
+  std::string ValidationMessage;
+
+  static VKAPI_ATTR VkBool32 VKAPI_CALL OnValidationMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+    VkDebugUtilsMessageTypeFlagsEXT type, const VkDebugUtilsMessengerCallbackDataEXT* data, void* self);
+  void Destroy();
+};
+} // namespace vp
+
+#endif

@@ -1,0 +1,218 @@
+#version 450
+// Conservative orthographic rasterisation of one vessel class into its depth layers: one
+// invocation per triangle. Every pixel whose footprint the triangle touches gets the exact depth
+// range of the triangle over that footprint (the triangle clipped to the pixel square), so a
+// vessel thinner than a pixel, or a triangle between pixel centres, still leaves its mark; this is
+// what hardware conservative rasterisation would give, which lavapipe does not have.
+#extension GL_GOOGLE_include_directive : require
+#include "DepthLayersCommon.glsl"
+
+layout(local_size_x = 64) in;
+
+layout(std430, binding = 0) readonly buffer Positions { float Position[]; };
+layout(std430, binding = 1) readonly buffer Indices { uint Index[]; };
+layout(std430, binding = 2) buffer Occupancy { uint Occupied[]; };
+layout(std430, binding = 3) buffer Crossings { uint Crossing[]; };
+layout(std430, binding = 4) buffer DepthRanges { uint DepthRange[]; };
+
+layout(push_constant) uniform Parameters
+{
+  vec3 Origin;        // box corner, relative to the uploaded positions' anchor (mm)
+  float InvPixelMm;
+  float InvSliceMm;
+  int Nx;
+  int Ny;
+  int Nz;
+  int Words;
+  uint Class;
+  uint FirstTriangle;
+  uint TriangleCount;
+  uint RangeStride;   // classes x pixels: the farthest depths follow the nearest ones
+} P;
+
+// Coverage tolerance in cells: surfaces within it of a cell mark the cell. It absorbs float
+// rounding of the grid coordinates and is part of the engine's error bound.
+const float Eps = 1.0e-3;
+
+vec3 Vertex(uint i)
+{
+  vec3 p = vec3(Position[3 * i], Position[3 * i + 1], Position[3 * i + 2]);
+  return vec3((p.xy - P.Origin.xy) * P.InvPixelMm, (p.z - P.Origin.z) * P.InvSliceMm);
+}
+
+// Keeps the part of the polygon where sign * (p[axis] - bound) >= 0.
+int ClipPlane(inout vec3 poly[8], int n, int axis, float bound, float sign)
+{
+  vec3 kept[8];
+  int m = 0;
+  for (int k = 0; k < n; ++k)
+  {
+    vec3 a = poly[k];
+    vec3 b = poly[(k + 1) % n];
+    float da = sign * (a[axis] - bound);
+    float db = sign * (b[axis] - bound);
+    if (da >= 0.0)
+    {
+      kept[m++] = a;
+    }
+    if ((da >= 0.0) != (db >= 0.0))
+    {
+      kept[m++] = mix(a, b, da / (da - db));
+    }
+  }
+  for (int k = 0; k < m; ++k)
+  {
+    poly[k] = kept[k];
+  }
+  return m;
+}
+
+// Edge function with exact antisymmetry: E(a, b, p) == -E(b, a, p) bit for bit, so a pixel centre
+// on an edge shared by two triangles is claimed by exactly one of them (with the tie rule below).
+float EdgeFunction(vec2 a, vec2 b, vec2 p)
+{
+  bool swapped = a.x > b.x || (a.x == b.x && a.y > b.y);
+  vec2 s = swapped ? b : a;
+  vec2 e = swapped ? a : b;
+  precise float v = (e.x - s.x) * (p.y - s.y) - (e.y - s.y) * (p.x - s.x);
+  return swapped ? -v : v;
+}
+
+// Tie rule for centres exactly on an edge: of the two directions of an edge, exactly one owns it.
+bool OwnsEdge(vec2 a, vec2 b)
+{
+  vec2 d = b - a;
+  return d.y < 0.0 || (d.y == 0.0 && d.x > 0.0);
+}
+
+bool Covers(float e, vec2 a, vec2 b)
+{
+  return e > 0.0 || (e == 0.0 && OwnsEdge(a, b));
+}
+
+void SetBits(uint base, int first, int last)
+{
+  int w0 = first >> 5;
+  int w1 = last >> 5;
+  for (int w = w0; w <= w1; ++w)
+  {
+    uint lo = (w == w0) ? uint(first & 31) : 0u;
+    uint hi = (w == w1) ? uint(last & 31) : 31u;
+    uint mask = (hi == 31u ? 0xFFFFFFFFu : ((1u << (hi + 1u)) - 1u)) & ~((1u << lo) - 1u);
+    // Most cells of a dense mesh are marked many times over; reading first spares the atomics.
+    if ((Occupied[base + uint(w)] & mask) != mask)
+    {
+      atomicOr(Occupied[base + uint(w)], mask);
+    }
+  }
+}
+
+void main()
+{
+  uint t = gl_GlobalInvocationID.x;
+  if (t >= P.TriangleCount)
+  {
+    return;
+  }
+  uint tri = (P.FirstTriangle + t) * 3u;
+  vec3 g0 = Vertex(Index[tri]);
+  vec3 g1 = Vertex(Index[tri + 1u]);
+  vec3 g2 = Vertex(Index[tri + 2u]);
+  vec3 lo = min(min(g0, g1), g2);
+  vec3 hi = max(max(g0, g1), g2);
+  // Triangles below the box are kept: their crossings count for the inside test above them.
+  if (hi.x < -Eps || hi.y < -Eps || lo.x > float(P.Nx) + Eps || lo.y > float(P.Ny) + Eps || lo.z > float(P.Nz) + Eps)
+  {
+    return;
+  }
+  int i0 = max(0, int(floor(lo.x - Eps)));
+  int i1 = min(P.Nx - 1, int(floor(hi.x + Eps)));
+  int j0 = max(0, int(floor(lo.y - Eps)));
+  int j1 = min(P.Ny - 1, int(floor(hi.y + Eps)));
+  uint pixels = uint(P.Nx * P.Ny);
+
+  // Orientation-free centre test: make the triangle counter-clockwise in (u, v).
+  vec2 a = g0.xy;
+  vec2 b = g1.xy;
+  vec2 c = g2.xy;
+  float wa = g0.z;
+  float wb = g1.z;
+  float wc = g2.z;
+  float area = EdgeFunction(a, b, c);
+  if (area < 0.0)
+  {
+    vec2 tv = b; b = c; c = tv;
+    float tw = wb; wb = wc; wc = tw;
+    area = -area;
+  }
+
+  for (int j = j0; j <= j1; ++j)
+  {
+    for (int i = i0; i <= i1; ++i)
+    {
+      uint pixel = uint(j * P.Nx + i);
+      uint base = ColumnBase(P.Class, pixel, uint(P.Words), pixels);
+
+      if (area > 0.0)
+      {
+        vec2 centre = vec2(float(i) + 0.5, float(j) + 0.5);
+        float ea = EdgeFunction(b, c, centre);
+        float eb = EdgeFunction(c, a, centre);
+        float ec = EdgeFunction(a, b, centre);
+        if (Covers(ea, b, c) && Covers(eb, c, a) && Covers(ec, a, b))
+        {
+          float w = (ea * wa + eb * wb + ec * wc) / area;
+          if (w < float(P.Nz))
+          {
+            int s = clamp(int(floor(w)), 0, P.Nz - 1);
+            atomicXor(Crossing[base + uint(s >> 5)], 1u << uint(s & 31));
+          }
+        }
+      }
+
+      float wmin;
+      float wmax;
+      if (i0 == i1 && j0 == j1)
+      {
+        wmin = lo.z;
+        wmax = hi.z;
+      }
+      else
+      {
+        vec3 poly[8];
+        poly[0] = g0;
+        poly[1] = g1;
+        poly[2] = g2;
+        int n = 3;
+        n = ClipPlane(poly, n, 0, float(i) - Eps, 1.0);
+        if (n > 0) n = ClipPlane(poly, n, 0, float(i + 1) + Eps, -1.0);
+        if (n > 0) n = ClipPlane(poly, n, 1, float(j) - Eps, 1.0);
+        if (n > 0) n = ClipPlane(poly, n, 1, float(j + 1) + Eps, -1.0);
+        if (n == 0)
+        {
+          continue;
+        }
+        wmin = poly[0].z;
+        wmax = poly[0].z;
+        for (int k = 1; k < n; ++k)
+        {
+          wmin = min(wmin, poly[k].z);
+          wmax = max(wmax, poly[k].z);
+        }
+      }
+      wmin -= Eps;
+      wmax += Eps;
+      if (wmax < 0.0 || wmin >= float(P.Nz))
+      {
+        continue;
+      }
+      wmin = max(wmin, 0.0);
+      wmax = min(wmax, float(P.Nz) - 0.5);
+      SetBits(base, int(wmin), int(wmax));
+      // Depth in slices is never negative here, so float order is uint order.
+      uint rangeIndex = P.Class * pixels + pixel;
+      atomicMin(DepthRange[rangeIndex], floatBitsToUint(wmin));
+      atomicMax(DepthRange[P.RangeStride + rangeIndex], floatBitsToUint(wmax));
+    }
+  }
+}

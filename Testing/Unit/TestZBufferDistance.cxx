@@ -1,0 +1,413 @@
+// The Vulkan z-buffer engine against the exact engine: on analytic shapes, on thin and stacked
+// vessels that defeat the paper's literal method, and on the IRCADb vessel trees. Every distance
+// must lie within the engine's stated error bound of the exact one.
+#include "vpAnalyticShapes.h"
+#include "vpBuiltInPhantom.h"
+#include "vpTestSupport.h"
+#include "vpVulkanContext.h"
+#include "vtkExactVesselDistance.h"
+#include "vtkVesselMeshReader.h"
+#include "vtkZBufferVesselDistance.h"
+
+#include <vtkAppendPolyData.h>
+#include <vtkNew.h>
+#include <vtkPolyData.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+namespace
+{
+/// Skips the test, saying why, when this machine has no Vulkan device.
+#define VP_REQUIRE_VULKAN()                                                                                            \
+  do                                                                                                                   \
+  {                                                                                                                    \
+    try                                                                                                                \
+    {                                                                                                                  \
+      vp::VulkanContext::ListDevices();                                                                                \
+    }                                                                                                                  \
+    catch (const vp::DeviceError& e)                                                                                   \
+    {                                                                                                                  \
+      GTEST_SKIP() << "z-buffer engine not tested: " << e.what();                                                     \
+    }                                                                                                                  \
+  } while (0)
+
+using Vessels = std::vector<std::pair<std::string, vtkSmartPointer<vtkPolyData>>>;
+
+template <typename Engine>
+vtkSmartPointer<Engine> Make(const Vessels& vessels, double rangeMm)
+{
+  auto e = vtkSmartPointer<Engine>::New();
+  e->SetRangeMm(rangeMm);
+  for (const auto& v : vessels)
+  {
+    e->AddVessel(v.first, v.second);
+  }
+  return e;
+}
+
+struct Agreement
+{
+  int Compared = 0;     // class answers in range of the exact engine
+  int InsideChecked = 0;
+  double MaxDifferenceMm = 0.0;
+};
+
+/// Asserts, for every tip and class, the accuracy contract: in range exactly when the exact
+/// engine is (up to the bound), |zbuffer - exact| <= bound, and the same inside/outside answer
+/// wherever the tip is further than a cell diagonal from the surface.
+Agreement ExpectWithinBound(vtkZBufferVesselDistance* zbuffer, vtkExactVesselDistance* exact,
+  const std::vector<std::array<double, 3>>& tips, const std::string& label)
+{
+  Agreement a;
+  const double range = zbuffer->GetRangeMm();
+  const double bound = zbuffer->GetErrorBoundMm();
+  const double diagonal = 2.0 * zbuffer->GetGrid().HalfDiagonalMm();
+  for (std::size_t i = 0; i < tips.size(); ++i)
+  {
+    vp::ProximityResult z, e;
+    zbuffer->ComputeProximity(tips[i].data(), nullptr, z);
+    exact->ComputeProximity(tips[i].data(), nullptr, e);
+    EXPECT_DOUBLE_EQ(z.ErrorBoundMm, bound);
+    for (std::size_t c = 0; c < e.Classes.size(); ++c)
+    {
+      const auto& zc = z.Classes[c];
+      const auto& ec = e.Classes[c];
+      const std::string where = label + " tip " + std::to_string(i) + " " + ec.ClassName;
+      if (ec.InRange)
+      {
+        EXPECT_TRUE(zc.InRange) << where << ": exact " << ec.DistanceMm;
+        if (!zc.InRange)
+        {
+          continue;
+        }
+        ++a.Compared;
+        const double diff = zc.DistanceMm - ec.DistanceMm;
+        a.MaxDifferenceMm = std::max(a.MaxDifferenceMm, std::abs(diff));
+        EXPECT_LE(std::abs(diff), bound) << where << ": zbuffer " << zc.DistanceMm << " exact " << ec.DistanceMm;
+        // The closest point reported is within reach of the true one.
+        double pd = 0.0;
+        for (int k = 0; k < 3; ++k)
+        {
+          pd += (zc.ClosestPoint[k] - tips[i][k]) * (zc.ClosestPoint[k] - tips[i][k]);
+        }
+        EXPECT_NEAR(std::sqrt(pd), ec.DistanceMm, bound + diagonal) << where;
+        if (ec.Inside.has_value() && ec.DistanceMm > diagonal)
+        {
+          ++a.InsideChecked;
+          EXPECT_EQ(zc.Inside, ec.Inside) << where << " at " << ec.DistanceMm << " mm";
+        }
+      }
+      else if (zc.InRange)
+      {
+        // No invented distance: only a vessel just beyond the range may show, within the bound.
+        EXPECT_LE(zc.DistanceMm, range + bound) << where;
+      }
+    }
+  }
+  return a;
+}
+
+std::vector<std::array<double, 3>> RandomTips(const double bounds[6], double marginMm, int count, unsigned seed)
+{
+  std::mt19937 random(seed);
+  std::vector<std::array<double, 3>> tips(count);
+  for (auto& t : tips)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      t[k] = std::uniform_real_distribution<double>(bounds[2 * k] - marginMm, bounds[2 * k + 1] + marginMm)(random);
+    }
+  }
+  return tips;
+}
+
+void VesselBounds(const Vessels& vessels, double bounds[6])
+{
+  for (int k = 0; k < 3; ++k)
+  {
+    bounds[2 * k] = 1e300;
+    bounds[2 * k + 1] = -1e300;
+  }
+  for (const auto& v : vessels)
+  {
+    const double* b = v.second->GetBounds();
+    for (int k = 0; k < 3; ++k)
+    {
+      bounds[2 * k] = std::min(bounds[2 * k], b[2 * k]);
+      bounds[2 * k + 1] = std::max(bounds[2 * k + 1], b[2 * k + 1]);
+    }
+  }
+}
+
+/// One vessel class with two branches along x, radius 2 mm, one 10 mm above the other along the
+/// view axis (z): the case where the paper's near/far cuboid fills the gap.
+Vessels StackedTubes()
+{
+  const double axis[3] = { 1, 0, 0 };
+  const double low[3] = { 0, 0, 0 }, high[3] = { 0, 0, 10 };
+  vtkNew<vtkAppendPolyData> append;
+  append->AddInputData(vp::MakeCappedCylinder(low, axis, 2.0, 60.0, 48));
+  append->AddInputData(vp::MakeCappedCylinder(high, axis, 2.0, 60.0, 48));
+  append->Update();
+  return { { "portal_vein", vtkSmartPointer<vtkPolyData>(append->GetOutput()) } };
+}
+} // namespace
+
+TEST(ZBufferDistance, ReportsItsDevice)
+{
+  VP_REQUIRE_VULKAN();
+  const auto devices = vp::VulkanContext::ListDevices();
+  ASSERT_FALSE(devices.empty());
+  auto z = vtkSmartPointer<vtkZBufferVesselDistance>::New();
+  EXPECT_FALSE(z->GetDeviceName().empty());
+  z->SetDeviceSelector("no-such-device-anywhere");
+  EXPECT_THROW(z->GetDeviceName(), vp::DeviceError);
+}
+
+TEST(ZBufferDistance, WithinBoundOnTheAnalyticPhantom)
+{
+  VP_REQUIRE_VULKAN();
+  const Vessels vessels = vp::MakeBuiltInVessels();
+  auto z = Make<vtkZBufferVesselDistance>(vessels, 50.0);
+  auto e = Make<vtkExactVesselDistance>(vessels, 50.0);
+  z->Build();
+  EXPECT_LE(z->GetErrorBoundMm(), 0.5);
+  double b[6];
+  VesselBounds(vessels, b);
+  const Agreement a = ExpectWithinBound(z, e, RandomTips(b, 10.0, 1000, 7), "phantom");
+  EXPECT_GT(a.Compared, 2000);
+  EXPECT_GT(a.InsideChecked, 1000);
+  // The answer is not merely inside a loose bound: most of it is much better.
+  EXPECT_GT(a.MaxDifferenceMm, 0.0);
+}
+
+TEST(ZBufferDistance, StackedBranchesStayApartOnlyInTheExactIntervalMode)
+{
+  VP_REQUIRE_VULKAN();
+  const Vessels tubes = StackedTubes();
+  auto exact = Make<vtkExactVesselDistance>(tubes, 50.0);
+  auto z = Make<vtkZBufferVesselDistance>(tubes, 50.0);
+  auto paper = Make<vtkZBufferVesselDistance>(tubes, 50.0);
+  paper->SetLayerMode(vtkZBufferVesselDistance::PaperNearFar);
+  // Tips in the gap, 3 mm from either branch.
+  for (double x : { -20.0, 0.0, 13.7 })
+  {
+    const double tip[3] = { x, 0.1, 5.0 };
+    vp::ProximityResult e, zr, pr;
+    exact->ComputeProximity(tip, nullptr, e);
+    z->ComputeProximity(tip, nullptr, zr);
+    paper->ComputeProximity(tip, nullptr, pr);
+    ASSERT_NEAR(e.Classes[0].DistanceMm, 3.0, 0.01);
+    EXPECT_NEAR(zr.Classes[0].DistanceMm, e.Classes[0].DistanceMm, zr.ErrorBoundMm);
+    EXPECT_EQ(zr.Classes[0].Inside, std::optional<bool>(false));
+    // The paper's cuboid column runs from the lower branch's bottom to the upper one's top and
+    // swallows the tip: it reports contact where there are 3 mm of tissue.
+    EXPECT_LT(pr.Classes[0].DistanceMm, 3.0 - 2.0 * pr.ErrorBoundMm) << "x " << x;
+    EXPECT_LE(pr.Classes[0].DistanceMm, pr.ErrorBoundMm);
+  }
+}
+
+TEST(ZBufferDistance, VesselsThinnerThanAPixelAreFound)
+{
+  VP_REQUIRE_VULKAN();
+  // A vessel 0.1 mm across, a quarter of the default 0.4 mm cell, once lying across the view
+  // (thinner than a slice along z) and once slanted through it.
+  const double across[3] = { 1, 0.3, 0 }, slanted[3] = { 0.2, 1, 0.7 };
+  const double c1[3] = { 0.13, 0.07, 0.11 }, c2[3] = { 20.05, -3.21, 4.02 };
+  const Vessels thin = { { "flat", vp::MakeCappedCylinder(c1, across, 0.05, 30.0, 12) },
+    { "slanted", vp::MakeCappedCylinder(c2, slanted, 0.05, 30.0, 12) } };
+  auto z = Make<vtkZBufferVesselDistance>(thin, 50.0);
+  auto e = Make<vtkExactVesselDistance>(thin, 50.0);
+  z->Build();
+  ASSERT_GT(z->GetGrid().PixelMm, 0.1 * 3);
+  double b[6];
+  VesselBounds(thin, b);
+  const Agreement a = ExpectWithinBound(z, e, RandomTips(b, 3.0, 500, 11), "thin");
+  EXPECT_GT(a.Compared, 900);
+  // Tips right next to each vessel, where a missed vessel would be a gross error.
+  for (const auto& v : thin)
+  {
+    const double* vb = v.second->GetBounds();
+    const double tip[3] = { 0.5 * (vb[0] + vb[1]) + 0.3, 0.5 * (vb[2] + vb[3]), 0.5 * (vb[4] + vb[5]) + 0.2 };
+    vp::ProximityResult zr, er;
+    z->ComputeProximity(tip, nullptr, zr);
+    e->ComputeProximity(tip, nullptr, er);
+    for (std::size_t c = 0; c < 2; ++c)
+    {
+      EXPECT_NEAR(zr.Classes[c].DistanceMm, er.Classes[c].DistanceMm, zr.ErrorBoundMm) << v.first;
+    }
+  }
+}
+
+TEST(ZBufferDistance, OutOfRangeAndInside)
+{
+  VP_REQUIRE_VULKAN();
+  const double centre[3] = { 5, -3, 2 };
+  const Vessels sphere = { { "hepatic_vein", vp::MakeSphere(centre, 10.0, 48, 96) } };
+  auto z = Make<vtkZBufferVesselDistance>(sphere, 20.0);
+  auto e = Make<vtkExactVesselDistance>(sphere, 20.0);
+  // 35 mm from the centre: 25 mm from the surface, beyond the 20 mm range.
+  const double far[3] = { 5 + 35, -3, 2 };
+  vp::ProximityResult r;
+  z->ComputeProximity(far, nullptr, r);
+  EXPECT_FALSE(r.Classes[0].InRange);
+  // Inside: the distance is the penetration depth, to the nearest surface point.
+  for (double depth : { 1.0, 4.0, 9.0 })
+  {
+    const double tip[3] = { 5 + 10 - depth, -3, 2 };
+    vp::ProximityResult zr, er;
+    z->ComputeProximity(tip, nullptr, zr);
+    e->ComputeProximity(tip, nullptr, er);
+    ASSERT_EQ(er.Classes[0].Inside, std::optional<bool>(true));
+    EXPECT_EQ(zr.Classes[0].Inside, std::optional<bool>(true)) << depth;
+    EXPECT_TRUE(zr.Classes[0].InRange);
+    EXPECT_NEAR(zr.Classes[0].DistanceMm, er.Classes[0].DistanceMm, zr.ErrorBoundMm) << depth;
+  }
+}
+
+TEST(ZBufferDistance, DirectionalDistanceAlongTheAxis)
+{
+  VP_REQUIRE_VULKAN();
+  const double centre[3] = { 0, 0, 0 };
+  const Vessels sphere = { { "hepatic_vein", vp::MakeSphere(centre, 10.0, 48, 96) } };
+  auto z = Make<vtkZBufferVesselDistance>(sphere, 50.0);
+  auto e = Make<vtkExactVesselDistance>(sphere, 50.0);
+  const double tip[3] = { 3, -25, 4 };
+  for (auto axis : { std::array<double, 3>{ 0, 1, 0 }, std::array<double, 3>{ -0.1, 1, -0.15 },
+         std::array<double, 3>{ 0.05, 1, -0.1 } })
+  {
+    const double n = std::sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
+    for (double& a : axis)
+    {
+      a /= n;
+    }
+    vp::ProximityResult zr, er;
+    z->ComputeProximity(tip, axis.data(), zr);
+    e->ComputeProximity(tip, axis.data(), er);
+    ASSERT_TRUE(er.Classes[0].DirectionalMm.has_value());
+    ASSERT_TRUE(zr.Classes[0].DirectionalMm.has_value());
+    // Never further than the truth; here, where the axis meets the sphere squarely, close to it.
+    EXPECT_LE(*zr.Classes[0].DirectionalMm, *er.Classes[0].DirectionalMm + zr.ErrorBoundMm);
+    EXPECT_GT(*zr.Classes[0].DirectionalMm, *er.Classes[0].DirectionalMm - 2.0);
+  }
+  const double away[3] = { 0, -1, 0 };
+  vp::ProximityResult zr;
+  z->ComputeProximity(tip, away, zr);
+  EXPECT_FALSE(zr.Classes[0].DirectionalMm.has_value());
+}
+
+TEST(ZBufferDistance, DistanceBinsAddHalfABinToTheBound)
+{
+  VP_REQUIRE_VULKAN();
+  const Vessels vessels = vp::MakeBuiltInVessels();
+  auto z = Make<vtkZBufferVesselDistance>(vessels, 50.0);
+  auto e = Make<vtkExactVesselDistance>(vessels, 50.0);
+  z->SetDistanceBins(64);
+  z->Build();
+  EXPECT_NEAR(z->GetErrorBoundMm(), z->GetGrid().ErrorBoundMm() + 0.5 * 50.0 / 64, 1e-12);
+  double b[6];
+  VesselBounds(vessels, b);
+  const Agreement a = ExpectWithinBound(z, e, RandomTips(b, 5.0, 200, 5), "bins");
+  EXPECT_GT(a.Compared, 400);
+  EXPECT_THROW(z->SetDistanceBins(20), vp::InputError);
+}
+
+TEST(ZBufferDistance, CachedLayersGiveTheReRenderedAnswers)
+{
+  VP_REQUIRE_VULKAN();
+  const Vessels vessels = vp::MakeBuiltInVessels();
+  // The moving box renders again only when the range ball leaves it; a second engine with a box
+  // that barely holds the ball renders at almost every step. Both share one lattice of cells.
+  auto cached = Make<vtkZBufferVesselDistance>(vessels, 20.0);
+  auto fresh = Make<vtkZBufferVesselDistance>(vessels, 20.0);
+  cached->SetBoxMode(vtkZBufferVesselDistance::MovingWithTip);
+  cached->SetMovingBoxSizeMm(106, 106, 213);
+  fresh->SetBoxMode(vtkZBufferVesselDistance::MovingWithTip);
+  fresh->SetMovingBoxSizeMm(41, 41, 41);
+  auto fixed = Make<vtkZBufferVesselDistance>(vessels, 20.0);
+  int compared = 0;
+  for (int step = 0; step < 60; ++step)
+  {
+    const double tip[3] = { -20.0 + step * 0.9, 5.0 + 0.2 * step, 3.0 - 0.1 * step };
+    vp::ProximityResult a, b, c;
+    cached->ComputeProximity(tip, nullptr, a);
+    fresh->ComputeProximity(tip, nullptr, b);
+    fixed->ComputeProximity(tip, nullptr, c);
+    for (std::size_t k = 0; k < a.Classes.size(); ++k)
+    {
+      ASSERT_EQ(a.Classes[k].InRange, b.Classes[k].InRange) << step;
+      if (a.Classes[k].InRange)
+      {
+        ++compared;
+        EXPECT_NEAR(a.Classes[k].DistanceMm, b.Classes[k].DistanceMm, 1e-4) << step;
+        EXPECT_EQ(a.Classes[k].Inside, b.Classes[k].Inside) << step;
+        EXPECT_NEAR(a.Classes[k].DistanceMm, c.Classes[k].DistanceMm, 2 * a.ErrorBoundMm) << step;
+      }
+    }
+  }
+  EXPECT_GT(compared, 60);
+  EXPECT_LT(cached->GetNumberOfRenders(), 10);
+  EXPECT_GT(fresh->GetNumberOfRenders(), 40);
+  EXPECT_EQ(fixed->GetNumberOfRenders(), 1);
+}
+
+namespace
+{
+void CompareOnIrcadbPatient(const std::string& patient)
+{
+  VP_REQUIRE_VULKAN();
+  const std::string extracted = vp::test::ExtractedDataDir();
+  if (extracted.empty())
+  {
+    GTEST_SKIP() << "VP_TEST_DATA not set or IRCADb archives not extracted: z-buffer on IRCADb not tested";
+  }
+  const std::string dir = extracted + "/ircadb/" + patient + "/MESHES_VTK/";
+  Vessels vessels;
+  for (const auto& entry : { std::make_pair("portal_vein", "portalvein.vtk"),
+         std::make_pair("hepatic_vein", "venoussystem.vtk"), std::make_pair("hepatic_artery", "artery.vtk") })
+  {
+    vtkNew<vtkVesselMeshReader> reader;
+    reader->SetFileName(dir + entry.second);
+    reader->Read();
+    vessels.emplace_back(entry.first, reader->GetOutput());
+  }
+  auto z = Make<vtkZBufferVesselDistance>(vessels, 50.0);
+  auto paper = Make<vtkZBufferVesselDistance>(vessels, 50.0);
+  paper->SetLayerMode(vtkZBufferVesselDistance::PaperNearFar);
+  auto e = Make<vtkExactVesselDistance>(vessels, 50.0);
+  z->Build();
+  EXPECT_LE(z->GetErrorBoundMm(), 0.5);
+  double b[6];
+  VesselBounds(vessels, b);
+  const auto tips = RandomTips(b, 10.0, 1000, 2024);
+  const Agreement a = ExpectWithinBound(z, e, tips, patient);
+  EXPECT_GT(a.Compared, 1500);
+  // The paper's mode on the same tips: never above exact + bound, but far below it where
+  // branches overlap along the view.
+  double worst = 0.0;
+  for (const auto& tip : tips)
+  {
+    vp::ProximityResult pr, er;
+    paper->ComputeProximity(tip.data(), nullptr, pr);
+    e->ComputeProximity(tip.data(), nullptr, er);
+    for (std::size_t c = 0; c < er.Classes.size(); ++c)
+    {
+      if (er.Classes[c].InRange && pr.Classes[c].InRange)
+      {
+        EXPECT_LE(pr.Classes[c].DistanceMm, er.Classes[c].DistanceMm + pr.ErrorBoundMm);
+        worst = std::max(worst, er.Classes[c].DistanceMm - pr.Classes[c].DistanceMm);
+      }
+    }
+  }
+  EXPECT_GT(worst, 2.0) << "the paper's near/far mode should overstate proximity on a vessel tree";
+  std::cout << patient << ": " << a.Compared << " answers, largest |zbuffer - exact| " << a.MaxDifferenceMm
+            << " mm (bound " << z->GetErrorBoundMm() << " mm); paper's mode overstates by up to " << worst << " mm\n";
+}
+} // namespace
+
+TEST(ZBufferDistance, WithinBoundOnIrcadbPatient1) { CompareOnIrcadbPatient("3Dircadb1.1"); }
+TEST(ZBufferDistance, WithinBoundOnIrcadbPatient4) { CompareOnIrcadbPatient("3Dircadb1.4"); }

@@ -1,6 +1,7 @@
 // vesselproximity: the host program. Dispatches to the subcommands documented in DESIGN.md.
 #include "vpCommands.h"
 #include "vpInputError.h"
+#include "vpVulkanContext.h"
 
 #include <vtkObject.h>
 
@@ -15,11 +16,11 @@ namespace
 const char* Help =
   "usage: vesselproximity COMMAND [options]   (COMMAND --help for its options)\n"
   "commands:\n"
-  "  distance   distance from scalpel tip(s) to each vessel class (exact, brute)\n"
-  "  bench      exact engine and brute-force reference side by side, JSON with --json\n"
+  "  distance   distance from scalpel tip(s) to each vessel class (exact, zbuffer, both, brute, auto)\n"
+  "  bench      engines side by side with the brute-force reference, JSON with --json\n"
   "  phantom    write the built-in analytic vessels (STL) for a first run\n"
   "exit codes: 0 success, 1 bad input (one line on stderr names the file and the problem),\n"
-  "            2 bad usage, 3 internal error\n";
+  "            2 bad usage, 3 internal error, 4 no usable Vulkan device (z-buffer engine)\n";
 }
 
 int main(int argc, char* argv[])
@@ -59,6 +60,11 @@ int main(int argc, char* argv[])
   {
     std::cerr << "vesselproximity: error: " << e.what() << "\n";
     return 1;
+  }
+  catch (const vp::DeviceError& e)
+  {
+    std::cerr << "vesselproximity: error: " << e.what() << "\n";
+    return 4;
   }
   catch (const std::bad_alloc&)
   {

@@ -1,15 +1,17 @@
 #version 450
-// Per-query pass over the cached depth layers: one workgroup per 8 x 8 tile within range of the
-// tip, visited nearest tile first (the order table), one invocation per pixel. Each pixel gives
+// Per-query pass over the cached depth layers: one invocation per 8 x 8 tile of pixels within
+// range of the tip, tiles taken nearest first (the order table). Each pixel gives
 // the distance from the tip to its nearest occupied cell, a lower bound of the distance to the
 // surface that is off by at most one cell diagonal; the smallest over all pixels, per class, is
 // the answer. A running best per class (atomicMin on the float's bits) lets far tiles and pixels
 // skip their work, which keeps the cost to the pixels near the vessel nearest the tip.
-// The extra workgroup after the tiles answers "is the tip inside" and the directional distance.
+// The invocation after the last tile answers "is the tip inside" and the directional distance.
+// No shared memory and no barriers: lavapipe runs a workgroup with a barrier as coroutines, which
+// cost more than the whole query.
 #extension GL_GOOGLE_include_directive : require
 #include "DepthLayersCommon.glsl"
 
-layout(local_size_x = 8, local_size_y = 8) in;
+layout(local_size_x = 64) in;
 
 layout(std430, binding = 0) readonly buffer Occupancy { uint Occupied[]; };
 layout(std430, binding = 1) readonly buffer Crossings { uint Crossing[]; };
@@ -47,10 +49,6 @@ layout(push_constant) uniform Parameters
 #define Inf uintBitsToFloat(0x7F800000u)
 const uint StateStride = 32u;
 
-shared bool SkipTile;
-shared float BestD[64];
-shared uint BestPixel[64];
-shared float BestDepth[64];
 
 bool Occupied3(uint cls, ivec3 cell)
 {
@@ -197,131 +195,112 @@ float AxisGap(float x, float lo, float hi)
 
 void main()
 {
-  uint cls = gl_WorkGroupID.z;
-  uint lane = gl_LocalInvocationIndex;
+  uint cls = gl_WorkGroupID.y;
+  uint index = gl_GlobalInvocationID.x;
   uint stateBase = cls * StateStride;
-
-  if (int(gl_WorkGroupID.x) == P.OrderCount)
+  if (index > uint(P.OrderCount))
   {
-    if (lane == 0u)
-    {
-      State[stateBase + 1u] = Inside(cls);
-      State[stateBase + 2u] = floatBitsToUint(any(notEqual(P.AxisMm, vec3(0.0))) ? Directional(cls) : Inf);
-    }
+    return;
+  }
+  if (index == uint(P.OrderCount))
+  {
+    State[stateBase + 1u] = Inside(cls);
+    State[stateBase + 2u] = floatBitsToUint(any(notEqual(P.AxisMm, vec3(0.0))) ? Directional(cls) : Inf);
     return;
   }
 
-  ivec2 tile = ivec2(floor(P.Tip.xy / 8.0)) + Order[gl_WorkGroupID.x];
-  uint recordIndex = cls * uint(P.OrderCount) + gl_WorkGroupID.x;
-  if (lane == 0u)
+  uint recordIndex = cls * uint(P.OrderCount) + index;
+  ivec2 tile = ivec2(floor(P.Tip.xy / 8.0)) + Order[index];
+  if (tile.x < 0 || tile.y < 0 || tile.x >= P.TilesX || tile.y >= P.TilesY)
   {
-    bool skip = tile.x < 0 || tile.y < 0 || tile.x >= P.TilesX || tile.y >= P.TilesY;
-    if (!skip)
-    {
-      uint t = 2u * (cls * uint(P.TilesX * P.TilesY) + uint(tile.y * P.TilesX + tile.x));
-      float zlo = uintBitsToFloat(TileRange[t]);
-      float zhi = uintBitsToFloat(TileRange[t + 1u]);
-      if (zlo > zhi)
-      {
-        skip = true; // empty tile
-      }
-      else
-      {
-        vec2 lo = vec2(tile * 8);
-        float dx = AxisGap(P.Tip.x, lo.x, lo.x + 8.0) * P.PixelMm;
-        float dy = AxisGap(P.Tip.y, lo.y, lo.y + 8.0) * P.PixelMm;
-        float dz = AxisGap(P.Tip.z, floor(zlo), floor(zhi) + 1.0) * P.SliceMm;
-        skip = sqrt(dx * dx + dy * dy + dz * dz) > uintBitsToFloat(State[stateBase]);
-      }
-    }
-    SkipTile = skip;
+    Record[recordIndex] = uvec4(floatBitsToUint(Inf), 0u, 0u, 0u);
+    return;
   }
-  barrier();
-  if (SkipTile)
+  uint t = 2u * (cls * uint(P.TilesX * P.TilesY) + uint(tile.y * P.TilesX + tile.x));
+  float tileLo = uintBitsToFloat(TileRange[t]);
+  float tileHi = uintBitsToFloat(TileRange[t + 1u]);
+  if (tileLo > tileHi)
   {
-    if (lane == 0u)
+    Record[recordIndex] = uvec4(floatBitsToUint(Inf), 0u, 0u, 0u); // empty tile
+    return;
+  }
+  {
+    vec2 lo = vec2(tile * 8);
+    float dx = AxisGap(P.Tip.x, lo.x, lo.x + 8.0) * P.PixelMm;
+    float dy = AxisGap(P.Tip.y, lo.y, lo.y + 8.0) * P.PixelMm;
+    float dz = AxisGap(P.Tip.z, floor(tileLo), floor(tileHi) + 1.0) * P.SliceMm;
+    if (sqrt(dx * dx + dy * dy + dz * dz) > uintBitsToFloat(State[stateBase]))
     {
       Record[recordIndex] = uvec4(floatBitsToUint(Inf), 0u, 0u, 0u);
+      return;
     }
-    return;
   }
 
-  ivec2 pix = tile * 8 + ivec2(gl_LocalInvocationID.xy);
-  float d = Inf;
-  float depth = 0.0;
-  uint pixel = 0u;
-  if (pix.x < P.Nx && pix.y < P.Ny)
+  uint pixels = uint(P.Nx * P.Ny);
+  float bestHere = Inf;
+  uint bestPixel = 0u;
+  float bestDepth = 0.0;
+  for (int k = 0; k < 64; ++k)
   {
-    uint pixels = uint(P.Nx * P.Ny);
-    pixel = uint(pix.y * P.Nx + pix.x);
+    ivec2 pix = tile * 8 + ivec2(k & 7, k >> 3);
+    if (pix.x >= P.Nx || pix.y >= P.Ny)
+    {
+      continue;
+    }
+    uint pixel = uint(pix.y * P.Nx + pix.x);
     uint r = cls * pixels + pixel;
     float zlo = uintBitsToFloat(DepthRange[r]);
     float zhi = uintBitsToFloat(DepthRange[P.RangeStride + r]);
-    if (zlo <= zhi)
+    if (zlo > zhi)
     {
-      // The column's occupied slices span [floor(zlo), floor(zhi) + 1).
-      zlo = floor(zlo);
-      zhi = floor(zhi) + 1.0;
-      float dx = AxisGap(P.Tip.x, float(pix.x), float(pix.x + 1)) * P.PixelMm;
-      float dy = AxisGap(P.Tip.y, float(pix.y), float(pix.y + 1)) * P.PixelMm;
-      float dxy2 = dx * dx + dy * dy;
-      float best = uintBitsToFloat(State[stateBase]);
-      float dzColumn = AxisGap(P.Tip.z, zlo, zhi) * P.SliceMm;
-      float lowerBound = sqrt(dxy2 + dzColumn * dzColumn);
-      if (lowerBound <= best)
+      continue; // nothing in this column
+    }
+    // The column's occupied slices span [floor(zlo), floor(zhi) + 1).
+    zlo = floor(zlo);
+    zhi = floor(zhi) + 1.0;
+    float dx = AxisGap(P.Tip.x, float(pix.x), float(pix.x + 1)) * P.PixelMm;
+    float dy = AxisGap(P.Tip.y, float(pix.y), float(pix.y + 1)) * P.PixelMm;
+    float dxy2 = dx * dx + dy * dy;
+    float best = min(bestHere, uintBitsToFloat(State[stateBase]));
+    float dzColumn = AxisGap(P.Tip.z, zlo, zhi) * P.SliceMm;
+    float lowerBound = sqrt(dxy2 + dzColumn * dzColumn);
+    if (lowerBound > best)
+    {
+      continue;
+    }
+    float d = Inf;
+    float depth = 0.0;
+    if (P.PaperMode != 0)
+    {
+      // The paper: one cuboid from the nearest to the farthest depth.
+      d = lowerBound;
+      depth = clamp(P.Tip.z, zlo, zhi);
+    }
+    else
+    {
+      float window = sqrt(max(0.0, best * best - dxy2)) / P.SliceMm;
+      float dz = NearestSlice(ColumnBase(cls, pixel, uint(P.Words), pixels), window, depth);
+      if (dz < Inf)
       {
-        if (P.PaperMode != 0)
+        dz *= P.SliceMm;
+        d = sqrt(dxy2 + dz * dz);
+      }
+    }
+    if (d <= best)
+    {
+      bestHere = d;
+      bestPixel = pixel;
+      bestDepth = depth;
+      atomicMin(State[stateBase], floatBitsToUint(d));
+      if (P.Bins > 0)
+      {
+        int bin = int(floor((d + P.HalfDiagonalMm) / P.BinWidthMm));
+        if (bin < P.Bins)
         {
-          // The paper: one cuboid from the nearest to the farthest depth.
-          d = lowerBound;
-          depth = clamp(P.Tip.z, zlo, zhi);
-        }
-        else
-        {
-          float window = sqrt(max(0.0, best * best - dxy2)) / P.SliceMm;
-          float dz = NearestSlice(ColumnBase(cls, pixel, uint(P.Words), pixels), window, depth);
-          if (dz < Inf)
-          {
-            dz *= P.SliceMm;
-            d = sqrt(dxy2 + dz * dz);
-          }
-        }
-        if (d <= best)
-        {
-          atomicMin(State[stateBase], floatBitsToUint(d));
-          if (P.Bins > 0)
-          {
-            int bin = int(floor((d + P.HalfDiagonalMm) / P.BinWidthMm));
-            if (bin < P.Bins)
-            {
-              atomicOr(State[stateBase + 8u + uint(bin >> 5)], 1u << uint(bin & 31));
-            }
-          }
-        }
-        else
-        {
-          d = Inf;
+          atomicOr(State[stateBase + 8u + uint(bin >> 5)], 1u << uint(bin & 31));
         }
       }
     }
   }
-
-  BestD[lane] = d;
-  BestPixel[lane] = pixel;
-  BestDepth[lane] = depth;
-  barrier();
-  for (uint stride = 32u; stride > 0u; stride >>= 1u)
-  {
-    if (lane < stride && BestD[lane + stride] < BestD[lane])
-    {
-      BestD[lane] = BestD[lane + stride];
-      BestPixel[lane] = BestPixel[lane + stride];
-      BestDepth[lane] = BestDepth[lane + stride];
-    }
-    barrier();
-  }
-  if (lane == 0u)
-  {
-    Record[recordIndex] = uvec4(floatBitsToUint(BestD[0]), BestPixel[0], floatBitsToUint(BestDepth[0]), 0u);
-  }
+  Record[recordIndex] = uvec4(floatBitsToUint(bestHere), bestPixel, floatBitsToUint(bestDepth), 0u);
 }

@@ -40,31 +40,50 @@ vec3 Vertex(uint i)
   return vec3((p.xy - P.Origin.xy) * P.InvPixelMm, (p.z - P.Origin.z) * P.InvSliceMm);
 }
 
-// Keeps the part of the polygon where sign * (p[axis] - bound) >= 0.
-int ClipPlane(inout vec3 poly[8], int n, int axis, float bound, float sign)
+void Extend(inout float wmin, inout float wmax, float w)
 {
-  vec3 kept[8];
-  int m = 0;
-  for (int k = 0; k < n; ++k)
+  wmin = min(wmin, w);
+  wmax = max(wmax, w);
+}
+
+// Clips the edge p-q to the square lo-hi in (u, v) (Liang-Barsky) and extends the depth range by
+// the depths at the clipped ends. The clipped triangle's corners are these ends and the square's
+// corners inside the triangle; the depth, linear over the triangle, is extreme at its corners.
+// (Clipping a polygon through local arrays costs lavapipe thirty times more.)
+bool ClipEdge(vec3 p, vec3 q, vec2 lo, vec2 hi, inout float wmin, inout float wmax)
+{
+  vec3 d = q - p;
+  float t0 = 0.0;
+  float t1 = 1.0;
+  if (d.x == 0.0)
   {
-    vec3 a = poly[k];
-    vec3 b = poly[(k + 1) % n];
-    float da = sign * (a[axis] - bound);
-    float db = sign * (b[axis] - bound);
-    if (da >= 0.0)
-    {
-      kept[m++] = a;
-    }
-    if ((da >= 0.0) != (db >= 0.0))
-    {
-      kept[m++] = mix(a, b, da / (da - db));
-    }
+    if (p.x < lo.x || p.x > hi.x) return false;
   }
-  for (int k = 0; k < m; ++k)
+  else
   {
-    poly[k] = kept[k];
+    float ta = (lo.x - p.x) / d.x;
+    float tb = (hi.x - p.x) / d.x;
+    t0 = max(t0, min(ta, tb));
+    t1 = min(t1, max(ta, tb));
   }
-  return m;
+  if (d.y == 0.0)
+  {
+    if (p.y < lo.y || p.y > hi.y) return false;
+  }
+  else
+  {
+    float ta = (lo.y - p.y) / d.y;
+    float tb = (hi.y - p.y) / d.y;
+    t0 = max(t0, min(ta, tb));
+    t1 = min(t1, max(ta, tb));
+  }
+  if (t0 > t1)
+  {
+    return false;
+  }
+  Extend(wmin, wmax, p.z + t0 * d.z);
+  Extend(wmin, wmax, p.z + t1 * d.z);
+  return true;
 }
 
 // Edge function with exact antisymmetry: E(a, b, p) == -E(b, a, p) bit for bit, so a pixel centre
@@ -179,25 +198,31 @@ void main()
       }
       else
       {
-        vec3 poly[8];
-        poly[0] = g0;
-        poly[1] = g1;
-        poly[2] = g2;
-        int n = 3;
-        n = ClipPlane(poly, n, 0, float(i) - Eps, 1.0);
-        if (n > 0) n = ClipPlane(poly, n, 0, float(i + 1) + Eps, -1.0);
-        if (n > 0) n = ClipPlane(poly, n, 1, float(j) - Eps, 1.0);
-        if (n > 0) n = ClipPlane(poly, n, 1, float(j + 1) + Eps, -1.0);
-        if (n == 0)
+        vec2 sqLo = vec2(float(i), float(j)) - Eps;
+        vec2 sqHi = vec2(float(i + 1), float(j + 1)) + Eps;
+        wmin = uintBitsToFloat(0x7F800000u);
+        wmax = -wmin;
+        bool hit = ClipEdge(g0, g1, sqLo, sqHi, wmin, wmax);
+        hit = ClipEdge(g1, g2, sqLo, sqHi, wmin, wmax) || hit;
+        hit = ClipEdge(g2, g0, sqLo, sqHi, wmin, wmax) || hit;
+        if (area > 0.0)
+        {
+          for (int k = 0; k < 4; ++k)
+          {
+            vec2 corner = vec2((k & 1) != 0 ? sqHi.x : sqLo.x, (k & 2) != 0 ? sqHi.y : sqLo.y);
+            float ea = EdgeFunction(b, c, corner);
+            float eb = EdgeFunction(c, a, corner);
+            float ec = EdgeFunction(a, b, corner);
+            if (ea >= 0.0 && eb >= 0.0 && ec >= 0.0)
+            {
+              Extend(wmin, wmax, clamp((ea * wa + eb * wb + ec * wc) / area, lo.z, hi.z));
+              hit = true;
+            }
+          }
+        }
+        if (!hit)
         {
           continue;
-        }
-        wmin = poly[0].z;
-        wmax = poly[0].z;
-        for (int k = 1; k < n; ++k)
-        {
-          wmin = min(wmin, poly[k].z);
-          wmax = max(wmax, poly[k].z);
         }
       }
       wmin -= Eps;

@@ -320,6 +320,16 @@ void vtkZBufferVesselDistance::SetDeviceSelector(const std::string& selector)
   }
 }
 
+void vtkZBufferVesselDistance::RenderLayers()
+{
+  this->EnsureBuilt();
+  std::lock_guard<std::mutex> lock(this->Impl->Lock);
+  if (this->Impl->Classes() > 0)
+  {
+    this->Impl->Render();
+  }
+}
+
 std::string vtkZBufferVesselDistance::GetDeviceName()
 {
   std::lock_guard<std::mutex> lock(this->Impl->Lock);
@@ -554,7 +564,7 @@ void vtkZBufferVesselDistance::ComputeProximity(
   s.Context->Submit([&](VkCommandBuffer cmd) {
     vkCmdUpdateBuffer(cmd, s.State->Handle(), 0, stateBytes, state.data());
     vp::ComputeKernel::Barrier(cmd);
-    s.Query->Record(cmd, &q, s.OrderCount + 1, 1, classes);
+    s.Query->Record(cmd, &q, (s.OrderCount + 1 + 63) / 64, classes);
     vp::ComputeKernel::Barrier(cmd);
     VkBufferCopy stateCopy{ 0, 0, stateBytes };
     vkCmdCopyBuffer(cmd, s.State->Handle(), s.HostState->Handle(), 1, &stateCopy);
@@ -583,7 +593,6 @@ void vtkZBufferVesselDistance::ComputeProximity(
       }
     }
     const std::uint32_t* cs = hostState + c * StateStride;
-    out.Inside = this->Surfaces[c]->IsClosed() ? std::optional<bool>(cs[1] != 0u) : std::nullopt;
     const float directional = Bits(cs[2]);
     if (axis && std::isfinite(directional) && directional <= this->RangeMm)
     {
@@ -591,10 +600,11 @@ void vtkZBufferVesselDistance::ComputeProximity(
     }
     if (!(best <= this->RangeMm))
     {
-      out.InRange = false;
+      out.InRange = false; // as the exact engine: no distance, no point, no inside answer
       continue;
     }
     out.InRange = true;
+    out.Inside = this->Surfaces[c]->IsClosed() ? std::optional<bool>(cs[1] != 0u) : std::nullopt;
     // The nearest marked cell is at most a cell diagonal nearer than the surface it holds:
     // its distance plus half a diagonal is within half a diagonal of the truth.
     double distance = best + g.HalfDiagonalMm();

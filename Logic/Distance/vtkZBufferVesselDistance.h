@@ -80,6 +80,10 @@ public:
   void SetDeviceSelector(const std::string& selector);
   const std::string& GetDeviceSelector() const { return this->DeviceSelector; }
 
+  /// Renders the layers again now (after Build()). The engine renders by itself whenever the
+  /// vessels or the box change; this is for benchmarks.
+  void RenderLayers();
+
   /// The device in use; opens it when needed. Throws vp::DeviceError when there is none.
   std::string GetDeviceName();
   /// The bound on |reported - exact| of every distance, for the current settings (after Build()).

@@ -4,11 +4,13 @@
 #include "vpArguments.h"
 #include "vpCommandSupport.h"
 #include "vpCommands.h"
+#include "vpEngineOptions.h"
 #include "vpInputError.h"
 #include "vpMeshRefinement.h"
 #include "vtkBruteForceVesselDistance.h"
 #include "vtkExactVesselDistance.h"
 #include "vtkVesselMeshWriter.h"
+#include "vtkZBufferVesselDistance.h"
 
 #include <vtkGenericCell.h>
 #include <vtkNew.h>
@@ -32,14 +34,19 @@ using Json = nlohmann::ordered_json;
 
 const char* Usage =
   "usage: vesselproximity bench [--vessels CLASS=FILE,...] [--sizes N,N,...] [--queries N]\n"
-  "         [--brute-queries N] [--seed N] [--json] [-o FILE.json]\n"
+  "         [--brute-queries N] [--seed N] [--engines exact,zbuffer] [--json] [-o FILE.json]\n"
+  "         [z-buffer settings: --device --cell --resolution --bins --range --box-size]\n"
   "  Grows each vessel mesh to each size (longest-edge bisection: same surface, more triangles)\n"
-  "  and measures, per class, in one run: the exact engine (Embree BVH) on random tips and on a\n"
-  "  tracked tip (0.5 mm steps, the previous answer bounding the search), VTK's\n"
-  "  vtkStaticCellLocator, and the paper's brute-force CPU algorithm; with the speed-up over\n"
-  "  brute force and the largest disagreement between engines.\n"
+  "  and measures in one run:\n"
+  "  exact: per class, the exact engine (Embree BVH) on random tips and on a tracked tip (0.5 mm\n"
+  "    steps, the previous answer bounding the search), VTK's vtkStaticCellLocator, and the\n"
+  "    paper's brute-force CPU algorithm; the speed-up and the largest disagreement.\n"
+  "  zbuffer: all classes at once (range 50 mm), the Vulkan z-buffer engine: rendering the\n"
+  "    layers, per-query time with cached layers (exact-interval and paper's mode), the moving\n"
+  "    box on the tracked tip, beside the exact engine and brute force on the same tips; the\n"
+  "    largest |zbuffer - exact| against the error bound.\n"
   "  Defaults: the built-in analytic vessels, sizes 50000,400000,1500000, 2000 queries,\n"
-  "  30 brute-force queries. Progress goes to stderr.\n";
+  "  30 brute-force queries, both engines. Progress goes to stderr.\n";
 
 std::vector<std::size_t> ParseSizes(const std::string& text)
 {
@@ -79,6 +86,216 @@ std::vector<NamedMesh> BuiltInVessels()
   }
   return vessels;
 }
+
+/// The exact engine, VTK's locator and brute force, class by class, at one mesh size.
+Json BenchExact(const std::vector<NamedMesh>& refined, std::size_t target, const std::vector<std::array<double, 3>>& tips,
+  const std::vector<std::array<double, 3>>& track, int bruteQueries)
+{
+  // The bench measures the full search: no range cut-off, like the brute-force reference.
+  const double rangeMm = 1e6;
+  Json sizeEntry;
+  sizeEntry["target_triangles"] = target;
+  Json classList = Json::array();
+  for (const NamedMesh& vessel : refined)
+  {
+    std::fprintf(stderr, "bench: %s at %zu triangles:", vessel.ClassName.c_str(), target);
+    vtkPolyData* mesh = vessel.Mesh;
+    const std::size_t triangles = static_cast<std::size_t>(mesh->GetNumberOfPolys());
+
+    std::fprintf(stderr, ", exact");
+    auto exact = vtkSmartPointer<vtkExactVesselDistance>::New();
+    exact->SetRangeMm(rangeMm);
+    exact->AddVessel(vessel.ClassName, mesh);
+    exact->Build();
+    std::vector<double> exactMs, trackedMs, exactDistance(tips.size());
+    ProximityResult result, previous;
+    for (std::size_t i = 0; i < tips.size(); ++i)
+    {
+      const double start = NowMs();
+      exact->ComputeProximity(tips[i].data(), nullptr, result);
+      exactMs.push_back(NowMs() - start);
+      exactDistance[i] = result.Classes[0].DistanceMm;
+    }
+    for (std::size_t i = 0; i < track.size(); ++i)
+    {
+      const double start = NowMs();
+      exact->ComputeProximity(track[i].data(), nullptr, result, i ? &previous : nullptr);
+      trackedMs.push_back(NowMs() - start);
+      std::swap(result, previous);
+    }
+
+    std::fprintf(stderr, ", vtkStaticCellLocator");
+    const double locatorStart = NowMs();
+    vtkNew<vtkStaticCellLocator> locator;
+    locator->SetDataSet(mesh);
+    locator->BuildLocator();
+    const double locatorBuildMs = NowMs() - locatorStart;
+    vtkNew<vtkGenericCell> cell;
+    std::vector<double> locatorMs;
+    double locatorDiff = 0;
+    for (std::size_t i = 0; i < tips.size(); ++i)
+    {
+      double closest[3], dist2;
+      vtkIdType cellId;
+      int subId;
+      const double start = NowMs();
+      locator->FindClosestPoint(tips[i].data(), closest, cell, cellId, subId, dist2);
+      locatorMs.push_back(NowMs() - start);
+      locatorDiff = std::max(locatorDiff, std::abs(std::sqrt(dist2) - exactDistance[i]));
+    }
+
+    std::fprintf(stderr, ", brute force");
+    auto brute = vtkSmartPointer<vtkBruteForceVesselDistance>::New();
+    brute->SetRangeMm(rangeMm);
+    brute->AddVessel(vessel.ClassName, mesh);
+    brute->Build();
+    std::vector<double> bruteMs;
+    double bruteDiff = 0;
+    for (int i = 0; i < bruteQueries; ++i)
+    {
+      const double start = NowMs();
+      brute->ComputeProximity(tips[i].data(), nullptr, result);
+      bruteMs.push_back(NowMs() - start);
+      bruteDiff = std::max(bruteDiff, std::abs(result.Classes[0].DistanceMm - exactDistance[i]));
+    }
+    std::fprintf(stderr, "\n");
+
+    Json entry;
+    entry["class"] = vessel.ClassName;
+    entry["triangles"] = triangles;
+    Json exactJson = { { "build_ms", exact->GetBuildTimeMs() } };
+    exactJson["random"] = Timing(exactMs);
+    exactJson["tracked"] = Timing(trackedMs);
+    entry["exact"] = exactJson;
+    Json locatorJson = { { "build_ms", locatorBuildMs } };
+    locatorJson["random"] = Timing(locatorMs);
+    entry["vtk_static_cell_locator"] = locatorJson;
+    entry["brute"] = { { "random", Timing(bruteMs) } };
+    entry["speedup_exact_vs_brute"] = Quantile(bruteMs, 0.5) / std::max(1e-9, Quantile(exactMs, 0.5));
+    entry["speedup_tracked_vs_brute"] = Quantile(bruteMs, 0.5) / std::max(1e-9, Quantile(trackedMs, 0.5));
+    entry["max_abs_diff_mm"] = { { "exact_vs_brute", bruteDiff }, { "exact_vs_vtk_locator", locatorDiff } };
+    classList.push_back(entry);
+  }
+  sizeEntry["classes"] = classList;
+  return sizeEntry;
+}
+
+/// The z-buffer engine on all classes at once at one mesh size, beside the exact engine (same
+/// range, all classes) and brute force on the same tips.
+Json BenchZBuffer(vtkVesselDistanceEngine* engine, const std::vector<NamedMesh>& refined, std::size_t target,
+  const std::vector<std::array<double, 3>>& tips, const std::vector<std::array<double, 3>>& track, int bruteQueries)
+{
+  auto* zbuffer = vtkZBufferVesselDistance::SafeDownCast(engine);
+  std::fprintf(stderr, "bench: z-buffer, %zu classes at %zu triangles: build", refined.size(), target);
+  zbuffer->RemoveAllVessels();
+  zbuffer->SetLayerMode(vtkZBufferVesselDistance::ExactIntervals);
+  zbuffer->SetBoxMode(vtkZBufferVesselDistance::FixedAroundVessels);
+  auto exact = vtkSmartPointer<vtkExactVesselDistance>::New();
+  auto brute = vtkSmartPointer<vtkBruteForceVesselDistance>::New();
+  exact->SetRangeMm(zbuffer->GetRangeMm());
+  brute->SetRangeMm(zbuffer->GetRangeMm());
+  std::size_t triangles = 0;
+  for (const NamedMesh& vessel : refined)
+  {
+    zbuffer->AddVessel(vessel.ClassName, vessel.Mesh);
+    exact->AddVessel(vessel.ClassName, vessel.Mesh);
+    brute->AddVessel(vessel.ClassName, vessel.Mesh);
+    triangles += static_cast<std::size_t>(vessel.Mesh->GetNumberOfPolys());
+  }
+  zbuffer->Build();
+  exact->Build();
+  brute->Build();
+
+  std::fprintf(stderr, ", render");
+  std::vector<double> renderMs;
+  for (int i = 0; i < 5; ++i)
+  {
+    zbuffer->RenderLayers();
+    renderMs.push_back(zbuffer->GetLastRenderTimeMs());
+  }
+
+  std::fprintf(stderr, ", queries");
+  const double bound = zbuffer->GetErrorBoundMm();
+  std::vector<double> cachedMs, paperMs, exactMs, bruteMs, movingMs;
+  double maxDiff = 0.0;
+  int compared = 0, outside = 0;
+  ProximityResult z, e;
+  for (std::size_t i = 0; i < tips.size(); ++i)
+  {
+    double start = NowMs();
+    zbuffer->ComputeProximity(tips[i].data(), nullptr, z);
+    cachedMs.push_back(NowMs() - start);
+    start = NowMs();
+    exact->ComputeProximity(tips[i].data(), nullptr, e);
+    exactMs.push_back(NowMs() - start);
+    for (std::size_t c = 0; c < e.Classes.size(); ++c)
+    {
+      if (e.Classes[c].InRange != z.Classes[c].InRange)
+      {
+        // In range by the bound's width only: allowed at the range's edge.
+        outside += (e.Classes[c].InRange || z.Classes[c].DistanceMm > zbuffer->GetRangeMm() + bound) ? 1 : 0;
+      }
+      else if (e.Classes[c].InRange)
+      {
+        ++compared;
+        const double d = std::abs(z.Classes[c].DistanceMm - e.Classes[c].DistanceMm);
+        maxDiff = std::max(maxDiff, d);
+        outside += d > bound ? 1 : 0;
+      }
+    }
+  }
+  for (int i = 0; i < bruteQueries; ++i)
+  {
+    const double start = NowMs();
+    brute->ComputeProximity(tips[i].data(), nullptr, e);
+    bruteMs.push_back(NowMs() - start);
+  }
+  zbuffer->SetLayerMode(vtkZBufferVesselDistance::PaperNearFar);
+  for (const auto& tip : tips)
+  {
+    const double start = NowMs();
+    zbuffer->ComputeProximity(tip.data(), nullptr, z);
+    paperMs.push_back(NowMs() - start);
+  }
+  zbuffer->SetLayerMode(vtkZBufferVesselDistance::ExactIntervals);
+
+  std::fprintf(stderr, ", moving box");
+  zbuffer->SetBoxMode(vtkZBufferVesselDistance::MovingWithTip);
+  zbuffer->Build();
+  const int rendersBefore = zbuffer->GetNumberOfRenders();
+  const std::size_t movingQueries = std::min<std::size_t>(track.size(), 300);
+  for (std::size_t i = 0; i < movingQueries; ++i)
+  {
+    const double start = NowMs();
+    zbuffer->ComputeProximity(track[i].data(), nullptr, z);
+    movingMs.push_back(NowMs() - start);
+  }
+  const int movingRenders = zbuffer->GetNumberOfRenders() - rendersBefore;
+  const double movingRenderMs = zbuffer->GetLastRenderTimeMs();
+  zbuffer->SetBoxMode(vtkZBufferVesselDistance::FixedAroundVessels);
+  std::fprintf(stderr, "\n");
+
+  Json entry;
+  entry["triangles_per_class"] = target;
+  entry["triangles"] = triangles;
+  entry["raster_triangles"] = zbuffer->GetNumberOfRasterTriangles();
+  const vp::DepthLayerGrid g = zbuffer->GetGrid();
+  entry["grid"] = { g.Nx, g.Ny, g.Nz };
+  entry["build_ms"] = zbuffer->GetBuildTimeMs();
+  entry["render"] = Timing(renderMs);
+  entry["cached"] = Timing(cachedMs);
+  entry["paper_mode"] = Timing(paperMs);
+  entry["moving_box"] = Timing(movingMs);
+  entry["moving_box"]["renders"] = movingRenders;
+  entry["moving_box"]["last_render_ms"] = movingRenderMs;
+  entry["exact_all_classes"] = Timing(exactMs);
+  entry["brute_all_classes"] = Timing(bruteMs);
+  entry["answers_compared"] = compared;
+  entry["max_abs_diff_vs_exact_mm"] = maxDiff;
+  entry["outside_bound"] = outside;
+  entry["error_bound_mm"] = bound;
+  return entry;
+}
 } // namespace
 
 int RunBenchCommand(const std::vector<std::string>& argv)
@@ -88,7 +305,22 @@ int RunBenchCommand(const std::vector<std::string>& argv)
     std::cout << Usage;
     return 0;
   }
-  const Arguments args(argv, { "--vessels", "--sizes", "--queries", "--brute-queries", "--seed", "-o" }, { "--json" });
+  std::set<std::string> options = EngineValueOptions();
+  options.insert({ "--vessels", "--sizes", "--queries", "--brute-queries", "--seed", "--engines", "-o" });
+  const Arguments args(argv, options, { "--json" });
+  const std::string engines = args.Get("--engines", "exact,zbuffer");
+  if (engines != "exact" && engines != "zbuffer" && engines != "exact,zbuffer" && engines != "zbuffer,exact")
+  {
+    throw InputError("--engines", "expected exact, zbuffer or exact,zbuffer, got '" + engines + "'");
+  }
+  const bool benchExact = engines.find("exact") != std::string::npos;
+  const bool benchZBuffer = engines.find("zbuffer") != std::string::npos;
+  // Open the Vulkan device before the long work, so that a missing one fails at once.
+  vtkSmartPointer<vtkVesselDistanceEngine> zbufferEngine;
+  if (benchZBuffer)
+  {
+    zbufferEngine = MakeDistanceEngine("zbuffer", args);
+  }
   const std::vector<std::size_t> sizes = ParseSizes(args.Get("--sizes", "50000,400000,1500000"));
   const int queries = args.GetInteger("--queries", 2000);
   const int bruteQueries = std::min(queries, args.GetInteger("--brute-queries", 30));
@@ -135,105 +367,50 @@ int RunBenchCommand(const std::vector<std::string>& argv)
     }
   }
 
-  // The bench measures the full search: no range cut-off, like the brute-force reference.
-  const double rangeMm = 1e6;
   Json report;
-  report["benchmark"] = "exact distance engines vs the paper's brute-force CPU algorithm";
+  report["benchmark"] = "distance engines vs the paper's brute-force CPU algorithm";
   report["hardware_threads"] = std::thread::hardware_concurrency();
   report["source"] = args.Has("--vessels") ? "files" : "built-in analytic vessels";
   report["queries"] = queries;
   report["brute_queries"] = bruteQueries;
   report["tracked_step_mm"] = 0.5;
   Json sizeList = Json::array();
+  Json zbufferSizes = Json::array();
   for (std::size_t target : sizes)
   {
-    Json sizeEntry;
-    sizeEntry["target_triangles"] = target;
-    Json classList = Json::array();
+    std::vector<NamedMesh> refined;
     for (const NamedMesh& vessel : vessels)
     {
-      std::fprintf(stderr, "bench: %s at %zu triangles: refining", vessel.ClassName.c_str(), target);
-      vtkSmartPointer<vtkPolyData> mesh = RefineToTriangleCount(vessel.Mesh, target);
-      const std::size_t triangles = static_cast<std::size_t>(mesh->GetNumberOfPolys());
-
-      std::fprintf(stderr, ", exact");
-      auto exact = vtkSmartPointer<vtkExactVesselDistance>::New();
-      exact->SetRangeMm(rangeMm);
-      exact->AddVessel(vessel.ClassName, mesh);
-      exact->Build();
-      std::vector<double> exactMs, trackedMs, exactDistance(tips.size());
-      ProximityResult result, previous;
-      for (std::size_t i = 0; i < tips.size(); ++i)
-      {
-        const double start = NowMs();
-        exact->ComputeProximity(tips[i].data(), nullptr, result);
-        exactMs.push_back(NowMs() - start);
-        exactDistance[i] = result.Classes[0].DistanceMm;
-      }
-      for (std::size_t i = 0; i < track.size(); ++i)
-      {
-        const double start = NowMs();
-        exact->ComputeProximity(track[i].data(), nullptr, result, i ? &previous : nullptr);
-        trackedMs.push_back(NowMs() - start);
-        std::swap(result, previous);
-      }
-
-      std::fprintf(stderr, ", vtkStaticCellLocator");
-      const double locatorStart = NowMs();
-      vtkNew<vtkStaticCellLocator> locator;
-      locator->SetDataSet(mesh);
-      locator->BuildLocator();
-      const double locatorBuildMs = NowMs() - locatorStart;
-      vtkNew<vtkGenericCell> cell;
-      std::vector<double> locatorMs;
-      double locatorDiff = 0;
-      for (std::size_t i = 0; i < tips.size(); ++i)
-      {
-        double closest[3], dist2;
-        vtkIdType cellId;
-        int subId;
-        const double start = NowMs();
-        locator->FindClosestPoint(tips[i].data(), closest, cell, cellId, subId, dist2);
-        locatorMs.push_back(NowMs() - start);
-        locatorDiff = std::max(locatorDiff, std::abs(std::sqrt(dist2) - exactDistance[i]));
-      }
-
-      std::fprintf(stderr, ", brute force");
-      auto brute = vtkSmartPointer<vtkBruteForceVesselDistance>::New();
-      brute->SetRangeMm(rangeMm);
-      brute->AddVessel(vessel.ClassName, mesh);
-      brute->Build();
-      std::vector<double> bruteMs;
-      double bruteDiff = 0;
-      for (int i = 0; i < bruteQueries; ++i)
-      {
-        const double start = NowMs();
-        brute->ComputeProximity(tips[i].data(), nullptr, result);
-        bruteMs.push_back(NowMs() - start);
-        bruteDiff = std::max(bruteDiff, std::abs(result.Classes[0].DistanceMm - exactDistance[i]));
-      }
-      std::fprintf(stderr, "\n");
-
-      Json entry;
-      entry["class"] = vessel.ClassName;
-      entry["triangles"] = triangles;
-      Json exactJson = { { "build_ms", exact->GetBuildTimeMs() } };
-      exactJson["random"] = Timing(exactMs);
-      exactJson["tracked"] = Timing(trackedMs);
-      entry["exact"] = exactJson;
-      Json locatorJson = { { "build_ms", locatorBuildMs } };
-      locatorJson["random"] = Timing(locatorMs);
-      entry["vtk_static_cell_locator"] = locatorJson;
-      entry["brute"] = { { "random", Timing(bruteMs) } };
-      entry["speedup_exact_vs_brute"] = Quantile(bruteMs, 0.5) / std::max(1e-9, Quantile(exactMs, 0.5));
-      entry["speedup_tracked_vs_brute"] = Quantile(bruteMs, 0.5) / std::max(1e-9, Quantile(trackedMs, 0.5));
-      entry["max_abs_diff_mm"] = { { "exact_vs_brute", bruteDiff }, { "exact_vs_vtk_locator", locatorDiff } };
-      classList.push_back(entry);
+      std::fprintf(stderr, "bench: refining %s to %zu triangles\n", vessel.ClassName.c_str(), target);
+      refined.push_back({ vessel.ClassName, vessel.FileName, RefineToTriangleCount(vessel.Mesh, target) });
     }
-    sizeEntry["classes"] = classList;
-    sizeList.push_back(sizeEntry);
+    if (benchExact)
+    {
+      sizeList.push_back(BenchExact(refined, target, tips, track, bruteQueries));
+    }
+    if (benchZBuffer)
+    {
+      zbufferSizes.push_back(BenchZBuffer(zbufferEngine, refined, target, tips, track, bruteQueries));
+    }
   }
-  report["sizes"] = sizeList;
+  if (benchExact)
+  {
+    report["sizes"] = sizeList;
+  }
+  if (benchZBuffer)
+  {
+    Json z;
+    auto* engine = vtkZBufferVesselDistance::SafeDownCast(zbufferEngine);
+    z["device"] = engine->GetDeviceName();
+    z["range_mm"] = engine->GetRangeMm();
+    z["cell_mm"] = engine->GetGrid().PixelMm;
+    z["error_bound_mm"] = engine->GetErrorBoundMm();
+    z["sizes"] = zbufferSizes;
+    const double first = zbufferSizes.front()["cached"]["median_ms"].get<double>();
+    const double last = zbufferSizes.back()["cached"]["median_ms"].get<double>();
+    z["cached_query_ratio_largest_to_smallest"] = last / std::max(1e-9, first);
+    report["zbuffer"] = z;
+  }
 
   if (args.Has("-o"))
   {
@@ -244,6 +421,8 @@ int RunBenchCommand(const std::vector<std::string>& argv)
     std::cout << report.dump(2) << "\n";
     return 0;
   }
+  if (benchExact)
+  {
   std::printf("%-15s %9s | %9s %10s %10s %10s | %9s %10s | %10s | %9s %9s\n", "class", "triangles", "build ms",
     "exact med", "exact p95", "tracked", "vtk build", "vtk med", "brute med", "speedup", "diff mm");
   for (const Json& s : report["sizes"])
@@ -258,6 +437,28 @@ int RunBenchCommand(const std::vector<std::string>& argv)
         c["brute"]["random"]["median_ms"].get<double>(), c["speedup_exact_vs_brute"].get<double>(),
         c["max_abs_diff_mm"]["exact_vs_brute"].get<double>());
     }
+  }
+  }
+  if (benchZBuffer)
+  {
+    const Json& z = report["zbuffer"];
+    std::printf("\nz-buffer on %s, cell %.3f mm, error bound %.3f mm, range %.0f mm (times per query, all classes)\n",
+      z["device"].get<std::string>().c_str(), z["cell_mm"].get<double>(), z["error_bound_mm"].get<double>(),
+      z["range_mm"].get<double>());
+    std::printf("%10s %10s | %9s %9s | %10s %10s %10s | %10s %7s | %10s %10s | %9s %8s\n", "tris/class", "total",
+      "build ms", "render ms", "cached med", "cached p95", "paper med", "moving med", "renders", "exact med", "brute med",
+      "max diff", "outside");
+    for (const Json& s : z["sizes"])
+    {
+      std::printf("%10zu %10zu | %9.1f %9.1f | %10.3f %10.3f %10.3f | %10.3f %7d | %10.4f %10.2f | %9.4f %8d\n",
+        s["triangles_per_class"].get<std::size_t>(), s["triangles"].get<std::size_t>(), s["build_ms"].get<double>(),
+        s["render"]["median_ms"].get<double>(), s["cached"]["median_ms"].get<double>(),
+        s["cached"]["p95_ms"].get<double>(), s["paper_mode"]["median_ms"].get<double>(),
+        s["moving_box"]["median_ms"].get<double>(), s["moving_box"]["renders"].get<int>(),
+        s["exact_all_classes"]["median_ms"].get<double>(), s["brute_all_classes"]["median_ms"].get<double>(),
+        s["max_abs_diff_vs_exact_mm"].get<double>(), s["outside_bound"].get<int>());
+    }
+    std::printf("cached query time, largest size / smallest: %.2f\n", z["cached_query_ratio_largest_to_smallest"].get<double>());
   }
   return 0;
 }

@@ -2,9 +2,9 @@
 #include "vpArguments.h"
 #include "vpCommandSupport.h"
 #include "vpCommands.h"
+#include "vpEngineOptions.h"
 #include "vpInputError.h"
 #include "vpPointCsv.h"
-#include "vtkBruteForceVesselDistance.h"
 #include "vtkExactVesselDistance.h"
 
 #include <vtkSmartPointer.h>
@@ -24,12 +24,11 @@ using Json = nlohmann::ordered_json;
 const char* Usage =
   "usage: vesselproximity distance --vessels CLASS=FILE[,CLASS=FILE...] (--tip X,Y,Z | --tips FILE.csv)\n"
   "         [--axis X,Y,Z] [--method exact|zbuffer|both|brute|auto] [--range MM]\n"
-  "         [--resolution PX] [--bins N] [--space LPS|RAS] [--json]\n"
+  "         [--device NAME] [--cell MM | --resolution PX] [--layers exact|paper] [--box fixed|moving]\n"
+  "         [--box-size X,Y,Z] [--bins N] [--space LPS|RAS] [--json]\n"
   "  Distance from each tip to the nearest surface point of every vessel class.\n"
   "  --space RAS: tips are given and points reported in RAS (Slicer's view); default LPS.\n"
-  "  --axis: scalpel axis (unit or not), for the directional distance along it.\n"
-  "  --range: classes further than this are reported as null (default 50 mm).\n"
-  "  --resolution, --bins: settings of the z-buffer engine.\n";
+  "  --axis: scalpel axis (unit or not), for the directional distance along it.\n";
 
 /// LPS <-> RAS is its own inverse: negate x and y.
 std::array<double, 3> ConvertSpace(const std::array<double, 3>& p, bool ras)
@@ -43,38 +42,18 @@ Json PointJson(const double p[3], bool ras)
   return Json::array({ q[0], q[1], q[2] });
 }
 
-vtkSmartPointer<vtkVesselDistanceEngine> MakeEngine(const std::string& method)
-{
-  if (method == "exact" || method == "auto")
-  {
-    if (method == "auto")
-    {
-      std::cerr << "vesselproximity: --method auto: the z-buffer engine is not available yet, using the exact engine\n";
-    }
-    return vtkSmartPointer<vtkExactVesselDistance>::New();
-  }
-  if (method == "brute")
-  {
-    return vtkSmartPointer<vtkBruteForceVesselDistance>::New();
-  }
-  if (method == "zbuffer" || method == "both")
-  {
-    throw InputError("--method " + method,
-      "the Vulkan z-buffer engine is not available yet in this build; use --method exact or auto");
-  }
-  throw InputError("--method", "unknown method '" + method + "' (exact, zbuffer, both, brute or auto)");
-}
 } // namespace
 
 int RunDistanceCommand(const std::vector<std::string>& argv)
 {
   if (WantsHelp(argv))
   {
-    std::cout << Usage;
+    std::cout << Usage << EngineOptionsUsage;
     return 0;
   }
-  const Arguments args(argv, { "--vessels", "--tip", "--tips", "--axis", "--method", "--range", "--resolution", "--bins", "--space" },
-    { "--json" });
+  std::set<std::string> options = EngineValueOptions();
+  options.insert({ "--vessels", "--tip", "--tips", "--axis", "--space" });
+  const Arguments args(argv, options, { "--json" });
   if (!args.Positional().empty())
   {
     throw InputError(args.Positional()[0], "unexpected argument (see vesselproximity distance --help)");
@@ -94,12 +73,14 @@ int RunDistanceCommand(const std::vector<std::string>& argv)
   }
   const bool ras = space == "RAS";
   const std::string method = args.Get("--method", "exact");
-  // Validated now so a typo fails before any work; they steer the z-buffer engine only.
-  args.GetInteger("--resolution", 512);
-  args.GetInteger("--bins", 16);
-
-  auto engine = MakeEngine(method);
-  engine->SetRangeMm(args.GetNumber("--range", engine->GetRangeMm()));
+  auto engine = MakeDistanceEngine(method, args);
+  // --method both: the exact engine beside the z-buffer one, every answer checked against it.
+  vtkSmartPointer<vtkExactVesselDistance> reference;
+  if (method == "both")
+  {
+    reference = vtkSmartPointer<vtkExactVesselDistance>::New();
+    reference->SetRangeMm(engine->GetRangeMm());
+  }
 
   std::vector<std::array<double, 3>> tips;
   if (args.Has("--tip"))
@@ -136,8 +117,16 @@ int RunDistanceCommand(const std::vector<std::string>& argv)
   for (const auto& m : meshes)
   {
     engine->AddVessel(m.ClassName, m.Mesh);
+    if (reference)
+    {
+      reference->AddVessel(m.ClassName, m.Mesh);
+    }
   }
   engine->Build();
+  if (reference)
+  {
+    reference->Build();
+  }
 
   std::vector<ProximityResult> results(tips.size());
   std::vector<double> queryMs;
@@ -148,19 +137,57 @@ int RunDistanceCommand(const std::vector<std::string>& argv)
     engine->ComputeProximity(tips[i].data(), hasAxis ? axis.data() : nullptr, results[i], i > 0 ? &results[i - 1] : nullptr);
     queryMs.push_back(NowMs() - start);
   }
+  std::vector<ProximityResult> exactResults(reference ? tips.size() : 0);
+  for (std::size_t i = 0; i < exactResults.size(); ++i)
+  {
+    reference->ComputeProximity(tips[i].data(), hasAxis ? axis.data() : nullptr, exactResults[i]);
+  }
+  // An answer is outside the bound when it is further from the exact one than error_bound_mm, or
+  // in range where the exact one is beyond range + bound, or out of range where the exact is in.
+  const double bound = ErrorBoundMm(engine);
+  int outsideBound = 0;
+  double maxDifference = 0.0;
+  auto compare = [&](const ClassProximity& z, const ClassProximity& e) {
+    bool ok;
+    if (e.InRange && z.InRange)
+    {
+      maxDifference = std::max(maxDifference, std::abs(z.DistanceMm - e.DistanceMm));
+      ok = std::abs(z.DistanceMm - e.DistanceMm) <= bound;
+    }
+    else
+    {
+      ok = !e.InRange && (!z.InRange || z.DistanceMm <= engine->GetRangeMm() + bound);
+    }
+    outsideBound += ok ? 0 : 1;
+    return ok;
+  };
+  std::vector<std::vector<char>> withinBound(exactResults.size());
+  for (std::size_t i = 0; i < exactResults.size(); ++i)
+  {
+    for (std::size_t k = 0; k < exactResults[i].Classes.size(); ++k)
+    {
+      withinBound[i].push_back(compare(results[i].Classes[k], exactResults[i].Classes[k]) ? 1 : 0);
+    }
+  }
+  if (outsideBound > 0)
+  {
+    std::cerr << "vesselproximity: warning: " << outsideBound << " answer(s) of the z-buffer engine outside its error bound of "
+              << bound << " mm\n";
+  }
 
   // Everything is computed before anything is printed: a failure leaves no partial output.
   if (args.Has("--json"))
   {
     Json out;
     out["method"] = engine->GetMethodName();
-    out["device"] = method == "brute" ? "cpu (every triangle, one thread)" : "cpu (Embree BVH)";
+    out["device"] = DescribeDevice(engine);
     out["space"] = space;
     out["range_mm"] = engine->GetRangeMm();
-    out["error_bound_mm"] = 0.0;
+    out["error_bound_mm"] = bound;
     Json list = Json::array();
-    for (const ProximityResult& r : results)
+    for (std::size_t i = 0; i < results.size(); ++i)
     {
+      const ProximityResult& r = results[i];
       Json item;
       item["tip"] = PointJson(r.Tip, ras);
       item["error_bound_mm"] = r.ErrorBoundMm;
@@ -175,40 +202,70 @@ int RunDistanceCommand(const std::vector<std::string>& argv)
         item["nearest"] = nullptr;
       }
       Json classes = Json::object();
-      for (const ClassProximity& c : r.Classes)
+      for (std::size_t k = 0; k < r.Classes.size(); ++k)
       {
+        const ClassProximity& c = r.Classes[k];
         Json entry;
         entry["distance_mm"] = c.InRange ? Json(c.DistanceMm) : Json(nullptr);
         entry["point"] = c.InRange ? PointJson(c.ClosestPoint, ras) : Json(nullptr);
         entry["inside"] = c.Inside ? Json(*c.Inside) : Json(nullptr);
         entry["in_range"] = c.InRange;
         entry["directional_mm"] = c.DirectionalMm ? Json(*c.DirectionalMm) : Json(nullptr);
+        if (reference)
+        {
+          const ClassProximity& e = exactResults[i].Classes[k];
+          entry["exact_mm"] = e.InRange ? Json(e.DistanceMm) : Json(nullptr);
+          entry["difference_mm"] = e.InRange && c.InRange ? Json(c.DistanceMm - e.DistanceMm) : Json(nullptr);
+          entry["within_bound"] = withinBound[i][k] != 0;
+        }
         classes[c.ClassName] = entry;
       }
       item["classes"] = classes;
       list.push_back(item);
     }
     out["results"] = list;
+    if (reference)
+    {
+      out["comparison"] = { { "reference", "exact" }, { "max_abs_difference_mm", maxDifference },
+        { "outside_bound", outsideBound } };
+    }
     out["timing_ms"] = { { "load", loadMs }, { "build", engine->GetBuildTimeMs() },
       { "query_median", Quantile(queryMs, 0.5) }, { "query_p95", Quantile(queryMs, 0.95) } };
     std::cout << out.dump(2) << "\n";
     return 0;
   }
 
-  std::printf("method %s, range %.1f mm, space %s, %zu tip(s)\n", engine->GetMethodName(), engine->GetRangeMm(),
-    space.c_str(), tips.size());
-  for (const ProximityResult& r : results)
+  std::printf("method %s on %s, range %.1f mm, error bound %.3f mm, space %s, %zu tip(s)\n", engine->GetMethodName(),
+    DescribeDevice(engine).c_str(), engine->GetRangeMm(), bound, space.c_str(), tips.size());
+  for (std::size_t i = 0; i < results.size(); ++i)
   {
+    const ProximityResult& r = results[i];
     const auto tip = ConvertSpace({ r.Tip[0], r.Tip[1], r.Tip[2] }, ras);
     const int nearest = r.NearestIndex();
     std::printf("tip (%.2f, %.2f, %.2f)  nearest: %s\n", tip[0], tip[1], tip[2],
       nearest >= 0 ? r.Classes[nearest].ClassName.c_str() : "none in range");
-    std::printf("  %-16s %12s  %-28s %-7s %s\n", "class", "distance mm", "closest point", "inside", "directional mm");
-    for (const ClassProximity& c : r.Classes)
+    std::printf("  %-16s %12s  %-28s %-7s %-14s%s\n", "class", "distance mm", "closest point", "inside", "directional mm",
+      reference ? "  exact mm  within bound" : "");
+    for (std::size_t k = 0; k < r.Classes.size(); ++k)
     {
+      const ClassProximity& c = r.Classes[k];
+      char check[64] = "";
+      if (reference)
+      {
+        const ClassProximity& e = exactResults[i].Classes[k];
+        const bool ok = withinBound[i][k] != 0;
+        if (e.InRange)
+        {
+          std::snprintf(check, sizeof(check), "  %8.3f  %s", e.DistanceMm, ok ? "yes" : "NO");
+        }
+        else
+        {
+          std::snprintf(check, sizeof(check), "  %8s  %s", "-", ok ? "yes" : "NO");
+        }
+      }
       if (!c.InRange)
       {
-        std::printf("  %-16s %12s\n", c.ClassName.c_str(), "out of range");
+        std::printf("  %-16s %12s  %-28s %-7s %-14s%s\n", c.ClassName.c_str(), "out of range", "", "", "", check);
         continue;
       }
       const auto q = ConvertSpace({ c.ClosestPoint[0], c.ClosestPoint[1], c.ClosestPoint[2] }, ras);
@@ -219,12 +276,17 @@ int RunDistanceCommand(const std::vector<std::string>& argv)
       {
         std::snprintf(directional, sizeof(directional), "%.3f", *c.DirectionalMm);
       }
-      std::printf("  %-16s %12.3f  %-28s %-7s %s\n", c.ClassName.c_str(), c.DistanceMm, point,
-        c.Inside ? (*c.Inside ? "yes" : "no") : "open", directional);
+      std::printf("  %-16s %12.3f  %-28s %-7s %-14s%s\n", c.ClassName.c_str(), c.DistanceMm, point,
+        c.Inside ? (*c.Inside ? "yes" : "no") : "open", directional, check);
     }
   }
   std::printf("load %.1f ms, build %.1f ms, query median %.4f ms, p95 %.4f ms\n", loadMs, engine->GetBuildTimeMs(),
     Quantile(queryMs, 0.5), Quantile(queryMs, 0.95));
+  if (reference)
+  {
+    std::printf("against the exact engine: largest difference %.4f mm, %d answer(s) outside the bound\n", maxDifference,
+      outsideBound);
+  }
   return 0;
 }
 } // namespace vp

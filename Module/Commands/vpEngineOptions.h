@@ -1,0 +1,30 @@
+#ifndef vpEngineOptions_h
+#define vpEngineOptions_h
+
+#include "vpArguments.h"
+#include "vtkVesselDistanceEngine.h"
+
+#include <vtkSmartPointer.h>
+
+#include <set>
+#include <string>
+
+namespace vp
+{
+/// The options every command that computes distances shares, with their help text.
+extern const char* EngineOptionsUsage;
+std::set<std::string> EngineValueOptions();
+
+/// The engine --method names, configured from the z-buffer options. "auto" is the z-buffer
+/// engine when a Vulkan device opens, else the exact engine, with a note on stderr saying why.
+/// "both" returns the z-buffer engine (the caller adds the exact one). Throws InputError for a
+/// bad option and DeviceError when the z-buffer engine was asked for and there is no device.
+vtkSmartPointer<vtkVesselDistanceEngine> MakeDistanceEngine(const std::string& method, const Arguments& args);
+
+/// What computed the answers, for reports: the Vulkan device's name, or the CPU engine.
+std::string DescribeDevice(vtkVesselDistanceEngine* engine);
+/// The engine's bound on |reported - exact| (0 for the exact and brute-force engines).
+double ErrorBoundMm(vtkVesselDistanceEngine* engine);
+} // namespace vp
+
+#endif

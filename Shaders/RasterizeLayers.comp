@@ -235,9 +235,16 @@ void main()
       wmax = min(wmax, float(P.Nz) - 0.5);
       SetBits(base, int(wmin), int(wmax));
       // Depth in slices is never negative here, so float order is uint order.
+      // As for the bits: most updates change nothing, and a plain read is far cheaper.
       uint rangeIndex = P.Class * pixels + pixel;
-      atomicMin(DepthRange[rangeIndex], floatBitsToUint(wmin));
-      atomicMax(DepthRange[P.RangeStride + rangeIndex], floatBitsToUint(wmax));
+      if (floatBitsToUint(wmin) < DepthRange[rangeIndex])
+      {
+        atomicMin(DepthRange[rangeIndex], floatBitsToUint(wmin));
+      }
+      if (floatBitsToUint(wmax) > DepthRange[P.RangeStride + rangeIndex])
+      {
+        atomicMax(DepthRange[P.RangeStride + rangeIndex], floatBitsToUint(wmax));
+      }
     }
   }
 }

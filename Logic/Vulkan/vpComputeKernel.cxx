@@ -1,5 +1,7 @@
 #include "vpComputeKernel.h"
 
+#include <string>
+
 namespace vp
 {
 ComputeKernel::ComputeKernel(VulkanContext& context, const unsigned char* spirv, std::size_t spirvBytes,
@@ -77,6 +79,11 @@ ComputeKernel::~ComputeKernel()
 
 void ComputeKernel::BindBuffers(const std::vector<VkBuffer>& buffers)
 {
+  if (static_cast<int>(buffers.size()) != this->Buffers)
+  {
+    throw DeviceError("ComputeKernel: " + std::to_string(buffers.size()) + " buffers bound where the shader declares " +
+      std::to_string(this->Buffers));
+  }
   std::vector<VkDescriptorBufferInfo> infos(buffers.size());
   std::vector<VkWriteDescriptorSet> writes(buffers.size());
   for (std::size_t i = 0; i < buffers.size(); ++i)

@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <sstream>
 #include <sys/wait.h>
@@ -33,10 +34,12 @@ std::string Slurp(const std::string& path)
   return s.str();
 }
 
-ToolRun RunTool(const std::string& dir, const std::string& arguments)
+/// Runs the tool with arguments; environment ("NAME=value ...") is set for it alone.
+ToolRun RunTool(const std::string& dir, const std::string& arguments, const std::string& environment = std::string())
 {
   const std::string out = dir + "/stdout.txt", err = dir + "/stderr.txt";
-  const std::string command = std::string(VP_EXECUTABLE) + " " + arguments + " >" + out + " 2>" + err;
+  const std::string command =
+    environment + " " + std::string(VP_EXECUTABLE) + " " + arguments + " >" + out + " 2>" + err;
   const int status = std::system(command.c_str());
   return { WIFEXITED(status) ? WEXITSTATUS(status) : -1, Slurp(out), Slurp(err) };
 }
@@ -144,7 +147,12 @@ TEST_F(DistanceCommand, EachBadInputGivesOneLineAndNoOutput)
     { "distance" + v + " --tips " + nanTips, nanTips + ": line 1:" },
     { "distance" + v + " --tips " + this->Dir + "/none.csv", this->Dir + "/none.csv: no such file" },
     { "distance" + v + " --tip 1,2", "--tip: expected X,Y,Z (3 numbers), got 2" },
-    { "distance" + v + " --tip 0,0,0 --method zbuffer", "--method zbuffer: the Vulkan z-buffer engine is not available yet" },
+    { "distance" + v + " --tip 0,0,0 --method zbuffer --layers fancy", "--layers: expected exact or paper, got 'fancy'" },
+    { "distance" + v + " --tip 0,0,0 --method zbuffer --box round", "--box: expected fixed or moving, got 'round'" },
+    { "distance" + v + " --tip 0,0,0 --method zbuffer --bins 20", "--bins: must be 0 (off) or a multiple of 16" },
+    { "distance" + v + " --tip 0,0,0 --method zbuffer --cell 0", "--cell: must be a positive number" },
+    { "distance" + v + " --tip 0,0,0 --method zbuffer --box moving --box-size 50,50,50",
+      "--box-size: each half of the moving box must hold the range" },
     { "distance" + v + " --tip 0,0,0 --method magic", "--method: unknown method 'magic'" },
     { "distance" + v + " --tip 0,0,0 --range -3", "--range: must be a positive number" },
     { "distance" + v + " --tip 0,0,0 --bogus", "--bogus: unknown option" },
@@ -162,12 +170,78 @@ TEST_F(DistanceCommand, EachBadInputGivesOneLineAndNoOutput)
   }
 }
 
-TEST_F(DistanceCommand, AutoFallsBackToExactAndSaysSo)
+TEST_F(DistanceCommand, WithoutVulkanZBufferFailsClearlyAndAutoFallsBack)
 {
-  const ToolRun r = RunTool(this->Dir, "distance --vessels portal_vein=" + this->Sphere + " --tip 0,0,15 --method auto --json");
+  // A loader pointed at a driver file that does not exist finds no device at all.
+  const std::string noVulkan = "VK_ICD_FILENAMES=" + this->Dir + "/no-such-icd.json";
+  const std::string args = "distance --vessels portal_vein=" + this->Sphere + " --tip 0,0,15 --json";
+  const ToolRun z = RunTool(this->Dir, args + " --method zbuffer", noVulkan);
+  EXPECT_EQ(z.ExitCode, 4);
+  EXPECT_TRUE(z.Out.empty());
+  EXPECT_NE(z.Err.find("no Vulkan device"), std::string::npos) << z.Err;
+  EXPECT_EQ(std::count(z.Err.begin(), z.Err.end(), '\n'), 1) << z.Err;
+  const ToolRun a = RunTool(this->Dir, args + " --method auto", noVulkan);
+  ASSERT_EQ(a.ExitCode, 0) << a.Err;
+  const auto j = nlohmann::json::parse(a.Out);
+  EXPECT_EQ(j["method"], "exact");
+  EXPECT_EQ(j["error_bound_mm"], 0.0);
+  EXPECT_NEAR(j["results"][0]["classes"]["portal_vein"]["distance_mm"].get<double>(), 5.0, 1e-9);
+  EXPECT_NE(a.Err.find("--method auto uses the exact engine"), std::string::npos) << a.Err;
+}
+
+TEST_F(DistanceCommand, UnknownDeviceIsNamedWithTheChoices)
+{
+  const ToolRun r = RunTool(this->Dir, "distance --vessels portal_vein=" + this->Sphere + " --tip 0,0,15 --method zbuffer --device no-such-gpu");
+  if (r.Err.find("no Vulkan device: the Vulkan loader") != std::string::npos)
+  {
+    GTEST_SKIP() << "no Vulkan device on this machine: " << r.Err;
+  }
+  EXPECT_EQ(r.ExitCode, 4);
+  EXPECT_TRUE(r.Out.empty());
+  EXPECT_NE(r.Err.find("no Vulkan device matches --device 'no-such-gpu' (available: 0: "), std::string::npos) << r.Err;
+}
+
+TEST_F(DistanceCommand, BothChecksTheZBufferAgainstTheExactEngine)
+{
+  const std::string tips = WriteBytes(this->Dir, "tips.csv", "x,y,z\n0,0,15\n3,-2,1\n40,0,0\n12,0,0\n100,0,9\n");
+  const ToolRun r = RunTool(this->Dir, "distance --vessels portal_vein=" + this->Sphere + ",hepatic_vein=" + this->Far +
+      " --tips " + tips + " --axis 0,0,-1 --method both --json");
+  if (r.ExitCode == 4)
+  {
+    GTEST_SKIP() << "no Vulkan device: " << r.Err;
+  }
   ASSERT_EQ(r.ExitCode, 0) << r.Err;
-  EXPECT_EQ(nlohmann::json::parse(r.Out)["method"], "exact");
-  EXPECT_NE(r.Err.find("using the exact engine"), std::string::npos);
+  const auto j = nlohmann::json::parse(r.Out);
+  EXPECT_EQ(j["method"], "zbuffer");
+  EXPECT_NE(j["device"].get<std::string>().find("(Vulkan)"), std::string::npos);
+  const double bound = j["error_bound_mm"].get<double>();
+  EXPECT_GT(bound, 0.0);
+  EXPECT_LE(bound, 0.5);
+  EXPECT_EQ(j["comparison"]["outside_bound"], 0);
+  EXPECT_LE(j["comparison"]["max_abs_difference_mm"].get<double>(), bound);
+  ASSERT_EQ(j["results"].size(), 5u);
+  for (const auto& item : j["results"])
+  {
+    EXPECT_EQ(item["error_bound_mm"].get<double>(), bound);
+    for (const auto& entry : item["classes"].items())
+    {
+      EXPECT_TRUE(entry.value()["within_bound"].get<bool>()) << entry.key();
+      if (!entry.value()["exact_mm"].is_null())
+      {
+        EXPECT_NEAR(entry.value()["distance_mm"].get<double>(), entry.value()["exact_mm"].get<double>(), bound);
+        EXPECT_NEAR(entry.value()["difference_mm"].get<double>(),
+          entry.value()["distance_mm"].get<double>() - entry.value()["exact_mm"].get<double>(), 1e-12);
+      }
+    }
+  }
+  // Inside the sphere: penetration depth 10 - |(3,-2,1)| and inside true; beyond range: null.
+  const auto& inside = j["results"][1]["classes"]["portal_vein"];
+  EXPECT_EQ(inside["inside"], true);
+  EXPECT_NEAR(inside["distance_mm"].get<double>(), 10.0 - std::sqrt(14.0), bound + 0.05);
+  EXPECT_TRUE(j["results"][4]["classes"]["portal_vein"]["distance_mm"].is_null());
+  EXPECT_EQ(j["results"][4]["classes"]["portal_vein"]["in_range"], false);
+  // Straight down from 15 mm above the centre: the top of the sphere, 5 mm away.
+  EXPECT_NEAR(j["results"][0]["classes"]["portal_vein"]["directional_mm"].get<double>(), 5.0, bound + 0.4);
 }
 
 TEST_F(DistanceCommand, PhantomWritesClosedVesselsThatAreFound)

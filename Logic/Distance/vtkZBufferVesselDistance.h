@@ -31,7 +31,7 @@
 /// point of the nearest marked cell closest to the tip. Directional distance is the entry
 /// distance of the first marked cell along the axis: never more than the exact value plus the
 /// bound, but smaller where the axis passes within a cell of a vessel it does not hit. "Inside" is
-/// decided at the pixel centre and may be true within one cell outside a surface.
+/// decided at the pixel centre and may differ from the exact answer within about a cell of a surface.
 ///
 /// Queries are serialised by a lock: one GPU submission at a time.
 class vtkZBufferVesselDistance : public vtkVesselDistanceEngine

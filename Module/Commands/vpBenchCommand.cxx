@@ -232,18 +232,12 @@ Json BenchZBuffer(vtkVesselDistanceEngine* engine, const std::vector<NamedMesh>&
     exactMs.push_back(NowMs() - start);
     for (std::size_t c = 0; c < e.Classes.size(); ++c)
     {
-      if (e.Classes[c].InRange != z.Classes[c].InRange)
-      {
-        // In range by the bound's width only: allowed at the range's edge.
-        outside += (e.Classes[c].InRange || z.Classes[c].DistanceMm > zbuffer->GetRangeMm() + bound) ? 1 : 0;
-      }
-      else if (e.Classes[c].InRange)
+      if (e.Classes[c].InRange && z.Classes[c].InRange)
       {
         ++compared;
-        const double d = std::abs(z.Classes[c].DistanceMm - e.Classes[c].DistanceMm);
-        maxDiff = std::max(maxDiff, d);
-        outside += d > bound ? 1 : 0;
+        maxDiff = std::max(maxDiff, std::abs(z.Classes[c].DistanceMm - e.Classes[c].DistanceMm));
       }
+      outside += WithinErrorBound(z.Classes[c], e.Classes[c], zbuffer->GetRangeMm(), bound) ? 0 : 1;
     }
   }
   for (int i = 0; i < bruteQueries; ++i)

@@ -142,31 +142,23 @@ int RunDistanceCommand(const std::vector<std::string>& argv)
   {
     reference->ComputeProximity(tips[i].data(), hasAxis ? axis.data() : nullptr, exactResults[i]);
   }
-  // An answer is outside the bound when it is further from the exact one than error_bound_mm, or
-  // in range where the exact one is beyond range + bound, or out of range where the exact is in.
   const double bound = ErrorBoundMm(engine);
   int outsideBound = 0;
   double maxDifference = 0.0;
-  auto compare = [&](const ClassProximity& z, const ClassProximity& e) {
-    bool ok;
-    if (e.InRange && z.InRange)
-    {
-      maxDifference = std::max(maxDifference, std::abs(z.DistanceMm - e.DistanceMm));
-      ok = std::abs(z.DistanceMm - e.DistanceMm) <= bound;
-    }
-    else
-    {
-      ok = !e.InRange && (!z.InRange || z.DistanceMm <= engine->GetRangeMm() + bound);
-    }
-    outsideBound += ok ? 0 : 1;
-    return ok;
-  };
   std::vector<std::vector<char>> withinBound(exactResults.size());
   for (std::size_t i = 0; i < exactResults.size(); ++i)
   {
     for (std::size_t k = 0; k < exactResults[i].Classes.size(); ++k)
     {
-      withinBound[i].push_back(compare(results[i].Classes[k], exactResults[i].Classes[k]) ? 1 : 0);
+      const ClassProximity& z = results[i].Classes[k];
+      const ClassProximity& e = exactResults[i].Classes[k];
+      if (z.InRange && e.InRange)
+      {
+        maxDifference = std::max(maxDifference, std::abs(z.DistanceMm - e.DistanceMm));
+      }
+      const bool ok = WithinErrorBound(z, e, engine->GetRangeMm(), bound);
+      outsideBound += ok ? 0 : 1;
+      withinBound[i].push_back(ok ? 1 : 0);
     }
   }
   if (outsideBound > 0)

@@ -7,6 +7,7 @@
 #include "vtkExactVesselDistance.h"
 #include "vtkZBufferVesselDistance.h"
 
+#include <cmath>
 #include <iostream>
 
 namespace vp
@@ -117,5 +118,14 @@ double ErrorBoundMm(vtkVesselDistanceEngine* engine)
 {
   auto* z = vtkZBufferVesselDistance::SafeDownCast(engine);
   return z ? z->GetErrorBoundMm() : 0.0;
+}
+
+bool WithinErrorBound(const ClassProximity& answer, const ClassProximity& exact, double rangeMm, double boundMm)
+{
+  if (exact.InRange && answer.InRange)
+  {
+    return std::abs(answer.DistanceMm - exact.DistanceMm) <= boundMm;
+  }
+  return !exact.InRange && (!answer.InRange || answer.DistanceMm <= rangeMm + boundMm);
 }
 } // namespace vp

@@ -25,6 +25,10 @@ vtkSmartPointer<vtkVesselDistanceEngine> MakeDistanceEngine(const std::string& m
 std::string DescribeDevice(vtkVesselDistanceEngine* engine);
 /// The engine's bound on |reported - exact| (0 for the exact and brute-force engines).
 double ErrorBoundMm(vtkVesselDistanceEngine* engine);
+
+/// The accuracy contract of one answer against the exact one: within boundMm when both are in
+/// range; out of range when the exact one is, unless it lies within boundMm beyond the range.
+bool WithinErrorBound(const ClassProximity& answer, const ClassProximity& exact, double rangeMm, double boundMm);
 } // namespace vp
 
 #endif

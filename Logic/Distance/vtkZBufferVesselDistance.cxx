@@ -92,7 +92,6 @@ struct vtkZBufferVesselDistance::Internals
   double AnchorMm[3] = { 0, 0, 0 };
   std::vector<std::uint32_t> FirstTriangle, TriangleCount;
   std::size_t RasterTriangles = 0;
-  double VesselBounds[6] = { 0, 0, 0, 0, 0, 0 };
   std::unique_ptr<vp::GpuBuffer> Positions, Indices;
 
   // Layers.
@@ -236,6 +235,23 @@ void vtkZBufferVesselDistance::Invalidate()
   this->Modified();
 }
 
+double vtkZBufferVesselDistance::BinWidthMm() const
+{
+  return this->DistanceBins ? this->RangeMm / this->DistanceBins : 0.0;
+}
+
+void vtkZBufferVesselDistance::CheckMovingBox(double cellMm) const
+{
+  for (int k = 0; k < 3; ++k)
+  {
+    if (0.5 * this->MovingBoxSizeMm[k] < this->RangeMm + cellMm)
+    {
+      throw vp::InputError("--box-size", "each half of the moving box must hold the range (" +
+          std::to_string(this->RangeMm) + " mm) plus a cell");
+    }
+  }
+}
+
 void vtkZBufferVesselDistance::SetLayerMode(int mode)
 {
   if (mode != ExactIntervals && mode != PaperNearFar)
@@ -339,7 +355,7 @@ std::string vtkZBufferVesselDistance::GetDeviceName()
 double vtkZBufferVesselDistance::GetErrorBoundMm() const
 {
   this->EnsureBuilt();
-  return this->Impl->Grid.ErrorBoundMm(this->DistanceBins ? this->RangeMm / this->DistanceBins : 0.0);
+  return this->Impl->Grid.ErrorBoundMm(this->BinWidthMm());
 }
 
 vp::DepthLayerGrid vtkZBufferVesselDistance::GetGrid() const
@@ -385,7 +401,6 @@ void vtkZBufferVesselDistance::BuildInternal()
   {
     std::fill(bounds, bounds + 6, 0.0);
   }
-  std::copy(bounds, bounds + 6, s.VesselBounds);
   for (int k = 0; k < 3; ++k)
   {
     s.AnchorMm[k] = 0.5 * (bounds[2 * k] + bounds[2 * k + 1]);
@@ -400,14 +415,7 @@ void vtkZBufferVesselDistance::BuildInternal()
   }
   if (moving)
   {
-    for (int k = 0; k < 3; ++k)
-    {
-      if (0.5 * this->MovingBoxSizeMm[k] < this->RangeMm + cell)
-      {
-        throw vp::InputError("--box-size", "each half of the moving box must hold the range (" +
-            std::to_string(this->RangeMm) + " mm) plus a cell");
-      }
-    }
+    this->CheckMovingBox(cell);
     s.Grid = vp::DepthLayerGrid::Centred(s.AnchorMm, this->MovingBoxSizeMm, cell, cell, s.AnchorMm);
   }
   else
@@ -500,7 +508,7 @@ void vtkZBufferVesselDistance::ComputeProximity(
   std::lock_guard<std::mutex> lock(this->Impl->Lock);
   Internals& s = *this->Impl;
   const std::uint32_t classes = s.Classes();
-  const double binWidth = this->DistanceBins ? this->RangeMm / this->DistanceBins : 0.0;
+  const double binWidth = this->BinWidthMm();
   result.ErrorBoundMm = s.Grid.ErrorBoundMm(binWidth);
   if (classes == 0)
   {
@@ -509,13 +517,7 @@ void vtkZBufferVesselDistance::ComputeProximity(
 
   if (this->BoxMode == MovingWithTip)
   {
-    for (int k = 0; k < 3; ++k)
-    {
-      if (0.5 * this->MovingBoxSizeMm[k] < this->RangeMm + s.Grid.PixelMm)
-      {
-        throw vp::InputError("--box-size", "each half of the moving box must hold the range plus a cell");
-      }
-    }
+    this->CheckMovingBox(s.Grid.PixelMm); // the range may have changed since Build()
     if (!s.Rendered || !s.Grid.ContainsBall(tip, this->RangeMm))
     {
       s.Grid = vp::DepthLayerGrid::Centred(tip, this->MovingBoxSizeMm, s.Grid.PixelMm, s.Grid.SliceMm, s.AnchorMm);

@@ -109,6 +109,10 @@ private:
   vtkZBufferVesselDistance(const vtkZBufferVesselDistance&) = delete;
   void operator=(const vtkZBufferVesselDistance&) = delete;
   void Invalidate();
+  /// Width of one of the paper's distance bins; 0 when they are off.
+  double BinWidthMm() const;
+  /// Throws InputError unless each half of the moving box holds the range plus a cell.
+  void CheckMovingBox(double cellMm) const;
 
   int LayerMode = ExactIntervals;
   int BoxMode = FixedAroundVessels;

@@ -38,9 +38,7 @@ GpuBuffer::GpuBuffer(VulkanContext& context, VkDeviceSize bytes, Placement place
     VulkanContext::Check(r, "vkAllocateMemory");
   }
   vkBindBufferMemory(context.Handle(), this->Buffer, this->Memory, 0);
-  VkPhysicalDeviceMemoryProperties props;
-  vkGetPhysicalDeviceMemoryProperties(context.Physical(), &props);
-  const VkMemoryPropertyFlags flags = props.memoryTypes[type].propertyFlags;
+  const VkMemoryPropertyFlags flags = context.MemoryFlags(type);
   if ((flags & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT) && (flags & VK_MEMORY_PROPERTY_HOST_COHERENT_BIT))
   {
     VulkanContext::Check(vkMapMemory(context.Handle(), this->Memory, 0, VK_WHOLE_SIZE, 0, &this->Mapping), "vkMapMemory");

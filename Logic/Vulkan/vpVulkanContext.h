@@ -61,6 +61,12 @@ public:
   std::uint32_t FindMemoryType(std::uint32_t typeBits, VkMemoryPropertyFlags required,
     VkMemoryPropertyFlags preferred = 0) const;
 
+  /// The property flags of memory type `type`.
+  VkMemoryPropertyFlags MemoryFlags(std::uint32_t type) const
+  {
+    return this->MemoryProperties.memoryTypes[type].propertyFlags;
+  }
+
   /// Records commands with record(), submits them to the compute queue and waits for them.
   void Submit(const std::function<void(VkCommandBuffer)>& record);
 

@@ -427,7 +427,7 @@ void vtkZBufferVesselDistance::BuildInternal()
     static_cast<VkDeviceSize>(s.Grid.Pixels()) * s.Grid.Words() * 4ull * std::max(classes, 1u);
   if (layerBytes > context.Limits().maxStorageBufferRange)
   {
-    throw vp::InputError("--resolution", "the depth layers would need " + std::to_string(layerBytes >> 20) +
+    throw vp::InputError("--cell/--resolution", "the depth layers would need " + std::to_string(layerBytes >> 20) +
         " MiB, more than the Vulkan device allows in one buffer (" +
         std::to_string(context.Limits().maxStorageBufferRange >> 20) + " MiB); use larger cells");
   }

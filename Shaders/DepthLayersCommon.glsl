@@ -4,7 +4,7 @@
 //              (pixel footprint x slice); every cell holding surface is set, and no other.
 //   crossings: one bit per slice, toggled for every surface crossing of the pixel-centre ray;
 //              the parity of the bits below a point says whether it is inside the vessel.
-//   depth range: the lowest and highest occupied depth of the pixel, in slices (the paper's
+//   depth range: the lowest and highest occupied slice of the pixel (the paper's
 //              nearest and farthest depth, a cuboid column per pixel).
 // Buffers hold all classes one after another: [class][pixel][word].
 

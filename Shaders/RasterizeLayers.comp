@@ -13,7 +13,6 @@ layout(std430, binding = 0) readonly buffer Positions { float Position[]; };
 layout(std430, binding = 1) readonly buffer Indices { uint Index[]; };
 layout(std430, binding = 2) buffer Occupancy { uint Occupied[]; };
 layout(std430, binding = 3) buffer Crossings { uint Crossing[]; };
-layout(std430, binding = 4) buffer DepthRanges { uint DepthRange[]; };
 
 layout(push_constant) uniform Parameters
 {
@@ -27,7 +26,6 @@ layout(push_constant) uniform Parameters
   uint Class;
   uint FirstTriangle;
   uint TriangleCount;
-  uint RangeStride;   // classes x pixels: the farthest depths follow the nearest ones
 } P;
 
 // Coverage tolerance in cells: surfaces within it of a cell mark the cell. It absorbs float
@@ -243,17 +241,6 @@ void main()
       wmin = max(wmin, 0.0);
       wmax = min(wmax, float(P.Nz) - 0.5);
       SetBits(base, int(wmin), int(wmax));
-      // Depth in slices is never negative here, so float order is uint order.
-      // As for the bits: most updates change nothing, and a plain read is far cheaper.
-      uint rangeIndex = P.Class * pixels + pixel;
-      if (floatBitsToUint(wmin) < DepthRange[rangeIndex])
-      {
-        atomicMin(DepthRange[rangeIndex], floatBitsToUint(wmin));
-      }
-      if (floatBitsToUint(wmax) > DepthRange[P.RangeStride + rangeIndex])
-      {
-        atomicMax(DepthRange[P.RangeStride + rangeIndex], floatBitsToUint(wmax));
-      }
     }
   }
 }

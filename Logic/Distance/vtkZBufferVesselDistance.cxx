@@ -8,6 +8,7 @@
 
 #include "QueryProximity_comp_spv.h"
 #include "RasterizeLayers_comp_spv.h"
+#include "SummarizeColumns_comp_spv.h"
 #include "SummarizeTiles_comp_spv.h"
 
 #include <vtkObjectFactory.h>
@@ -38,9 +39,14 @@ struct RasterParameters
   float InvPixelMm;
   float InvSliceMm;
   std::int32_t Nx, Ny, Nz, Words;
-  std::uint32_t Class, FirstTriangle, TriangleCount, RangeStride;
+  std::uint32_t Class, FirstTriangle, TriangleCount;
 };
-static_assert(sizeof(RasterParameters) == 52, "push constant layout of RasterizeLayers.comp");
+static_assert(sizeof(RasterParameters) == 48, "push constant layout of RasterizeLayers.comp");
+
+struct ColumnParameters
+{
+  std::uint32_t Pixels, Classes, Words, RangeStride;
+};
 
 struct TileParameters
 {
@@ -106,7 +112,7 @@ struct vtkZBufferVesselDistance::Internals
   std::uint32_t OrderCount = 0;
   std::unique_ptr<vp::GpuBuffer> Order, State, Records, HostState, HostRecords;
 
-  std::unique_ptr<vp::ComputeKernel> Raster, Tiles, Query;
+  std::unique_ptr<vp::ComputeKernel> Raster, Columns, Tiles, Query;
 
   vp::VulkanContext& Device(const std::string& selector)
   {
@@ -123,6 +129,7 @@ struct vtkZBufferVesselDistance::Internals
   void Release()
   {
     this->Raster.reset();
+    this->Columns.reset();
     this->Tiles.reset();
     this->Query.reset();
     this->Positions.reset();
@@ -159,15 +166,14 @@ struct vtkZBufferVesselDistance::Internals
     raster.Ny = g.Ny;
     raster.Nz = g.Nz;
     raster.Words = g.Words();
-    raster.RangeStride = rangeStride;
+    const std::uint32_t pixels = static_cast<std::uint32_t>(g.Pixels());
+    ColumnParameters columns{ pixels, classes, static_cast<std::uint32_t>(g.Words()), rangeStride };
     TileParameters tiles{ g.Nx, g.Ny, g.TilesX(), g.TilesY(), classes, rangeStride };
     const std::uint32_t tileCount = static_cast<std::uint32_t>(g.TilesX() * g.TilesY()) * classes;
 
     this->Context->Submit([&](VkCommandBuffer cmd) {
       vkCmdFillBuffer(cmd, this->Occupancy->Handle(), 0, VK_WHOLE_SIZE, 0u);
       vkCmdFillBuffer(cmd, this->Crossings->Handle(), 0, VK_WHOLE_SIZE, 0u);
-      vkCmdFillBuffer(cmd, this->DepthRanges->Handle(), 0, rangeStride * 4ull, FloatInfBits);
-      vkCmdFillBuffer(cmd, this->DepthRanges->Handle(), rangeStride * 4ull, rangeStride * 4ull, 0u);
       vp::ComputeKernel::Barrier(cmd);
       for (std::uint32_t c = 0; c < classes; ++c)
       {
@@ -176,6 +182,8 @@ struct vtkZBufferVesselDistance::Internals
         raster.TriangleCount = this->TriangleCount[c];
         this->Raster->Record(cmd, &raster, (raster.TriangleCount + 63) / 64);
       }
+      vp::ComputeKernel::Barrier(cmd);
+      this->Columns->Record(cmd, &columns, (pixels * classes + 63) / 64);
       vp::ComputeKernel::Barrier(cmd);
       this->Tiles->Record(cmd, &tiles, (tileCount + 63) / 64);
       vp::ComputeKernel::Barrier(cmd);
@@ -485,9 +493,11 @@ void vtkZBufferVesselDistance::BuildInternal()
   s.HostState = std::make_unique<vp::GpuBuffer>(context, stateBytes, Placement::Host);
 
   s.Raster = std::make_unique<vp::ComputeKernel>(
-    context, RasterizeLayers_comp, RasterizeLayers_comp_size, 5, static_cast<std::uint32_t>(sizeof(RasterParameters)));
-  s.Raster->BindBuffers({ s.Positions->Handle(), s.Indices->Handle(), s.Occupancy->Handle(), s.Crossings->Handle(),
-    s.DepthRanges->Handle() });
+    context, RasterizeLayers_comp, RasterizeLayers_comp_size, 4, static_cast<std::uint32_t>(sizeof(RasterParameters)));
+  s.Raster->BindBuffers({ s.Positions->Handle(), s.Indices->Handle(), s.Occupancy->Handle(), s.Crossings->Handle() });
+  s.Columns = std::make_unique<vp::ComputeKernel>(
+    context, SummarizeColumns_comp, SummarizeColumns_comp_size, 2, static_cast<std::uint32_t>(sizeof(ColumnParameters)));
+  s.Columns->BindBuffers({ s.Occupancy->Handle(), s.DepthRanges->Handle() });
   s.Tiles = std::make_unique<vp::ComputeKernel>(
     context, SummarizeTiles_comp, SummarizeTiles_comp_size, 2, static_cast<std::uint32_t>(sizeof(TileParameters)));
   s.Tiles->BindBuffers({ s.DepthRanges->Handle(), s.TileRanges->Handle() });

@@ -16,6 +16,7 @@ namespace
 const char* Help =
   "usage: vesselproximity COMMAND [options]   (COMMAND --help for its options)\n"
   "commands:\n"
+  "  models     segmented labelmaps (DICOM series, NRRD, .seg.nrrd, NIfTI) to vessel surface models\n"
   "  distance   distance from scalpel tip(s) to each vessel class (exact, zbuffer, both, brute, auto)\n"
   "  bench      engines side by side with the brute-force reference, JSON with --json\n"
   "  phantom    write the built-in analytic vessels (STL) for a first run\n"
@@ -41,6 +42,10 @@ int main(int argc, char* argv[])
   const std::vector<std::string> args(argv + 2, argv + argc);
   try
   {
+    if (command == "models")
+    {
+      return vp::RunModelsCommand(args);
+    }
     if (command == "distance")
     {
       return vp::RunDistanceCommand(args);

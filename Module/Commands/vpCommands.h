@@ -11,6 +11,7 @@ namespace vp
 int RunDistanceCommand(const std::vector<std::string>& args);
 int RunBenchCommand(const std::vector<std::string>& args);
 int RunPhantomCommand(const std::vector<std::string>& args);
+int RunModelsCommand(const std::vector<std::string>& args);
 } // namespace vp
 
 #endif

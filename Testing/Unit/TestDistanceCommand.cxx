@@ -19,30 +19,9 @@
 
 namespace
 {
-struct ToolRun
-{
-  int ExitCode;
-  std::string Out;
-  std::string Err;
-};
-
-std::string Slurp(const std::string& path)
-{
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-/// Runs the tool with arguments; environment ("NAME=value ...") is set for it alone.
-ToolRun RunTool(const std::string& dir, const std::string& arguments, const std::string& environment = std::string())
-{
-  const std::string out = dir + "/stdout.txt", err = dir + "/stderr.txt";
-  const std::string command =
-    environment + " " + std::string(VP_EXECUTABLE) + " " + arguments + " >" + out + " 2>" + err;
-  const int status = std::system(command.c_str());
-  return { WIFEXITED(status) ? WEXITSTATUS(status) : -1, Slurp(out), Slurp(err) };
-}
+using vp::test::RunTool;
+using vp::test::ToolRun;
+using vp::test::Slurp;
 
 std::string WriteBytes(const std::string& dir, const std::string& name, const std::string& bytes)
 {

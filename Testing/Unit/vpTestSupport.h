@@ -2,6 +2,9 @@
 #define vpTestSupport_h
 
 #include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <sys/wait.h>
 #include <string>
 #include <sys/stat.h>
 
@@ -68,6 +71,33 @@ inline std::string MakeTempDir(const std::string& name)
   }
   return dir;
 }
+
+struct ToolRun
+{
+  int ExitCode;
+  std::string Out;
+  std::string Err;
+};
+
+inline std::string Slurp(const std::string& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+#ifdef VP_EXECUTABLE
+/// Runs the tool with arguments; environment ("NAME=value ...") is set for it alone.
+inline ToolRun RunTool(const std::string& dir, const std::string& arguments, const std::string& environment = std::string())
+{
+  const std::string out = dir + "/stdout.txt", err = dir + "/stderr.txt";
+  const std::string command =
+    environment + " " + std::string(VP_EXECUTABLE) + " " + arguments + " >" + out + " 2>" + err;
+  const int status = std::system(command.c_str());
+  return { WIFEXITED(status) ? WEXITSTATUS(status) : -1, Slurp(out), Slurp(err) };
+}
+#endif
 } // namespace test
 } // namespace vp
 

@@ -1,0 +1,132 @@
+#include "vpLabelStructure.h"
+
+#include "vpInputError.h"
+
+#include <vtkDataArray.h>
+#include <vtkPointData.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace vp
+{
+double LabelGrid::SpacingMm(int k) const
+{
+  const auto& m = this->IjkToLps;
+  return std::sqrt(m[k] * m[k] + m[4 + k] * m[4 + k] + m[8 + k] * m[8 + k]);
+}
+
+double LabelGrid::VoxelVolumeMm3() const
+{
+  // |det| of the 3x3 part: also right for sheared (gantry-tilted) grids.
+  const auto& m = this->IjkToLps;
+  const double det = m[0] * (m[5] * m[10] - m[6] * m[9]) - m[1] * (m[4] * m[10] - m[6] * m[8]) +
+    m[2] * (m[4] * m[9] - m[5] * m[8]);
+  return std::abs(det);
+}
+} // namespace vp
+
+namespace vp
+{
+LabelGrid MakeLabelGrid(const std::string& source, const int dimensions[3], const std::vector<std::int32_t>& values,
+  const std::array<double, 16>& ijkToLps)
+{
+  std::int32_t lo = 0, hi = 0;
+  for (std::int32_t v : values)
+  {
+    lo = std::min(lo, v);
+    hi = std::max(hi, v);
+  }
+  if (lo < 0)
+  {
+    throw InputError(source, "an image, not a labelmap: negative voxel values (down to " + std::to_string(lo) +
+        "), as in CT; give the segmentation, not the scan");
+  }
+  if (hi > 65535)
+  {
+    throw InputError(source, "label values up to " + std::to_string(hi) + "; labels here fit in 16 bits");
+  }
+  std::vector<bool> seen(static_cast<std::size_t>(hi) + 1, false);
+  std::size_t distinct = 0;
+  for (std::int32_t v : values)
+  {
+    if (!seen[static_cast<std::size_t>(v)])
+    {
+      seen[static_cast<std::size_t>(v)] = true;
+      ++distinct;
+    }
+  }
+  if (distinct > 256)
+  {
+    throw InputError(source, "an image, not a labelmap: " + std::to_string(distinct) +
+        " distinct voxel values, as in CT or MR; give the segmentation, not the scan");
+  }
+  LabelGrid grid;
+  grid.IjkToLps = ijkToLps;
+  grid.Labels = vtkSmartPointer<vtkImageData>::New();
+  grid.Labels->SetDimensions(dimensions[0], dimensions[1], dimensions[2]);
+  grid.Labels->AllocateScalars(hi <= 255 ? VTK_UNSIGNED_CHAR : VTK_UNSIGNED_SHORT, 1);
+  if (hi <= 255)
+  {
+    std::transform(values.begin(), values.end(), static_cast<std::uint8_t*>(grid.Labels->GetScalarPointer()),
+      [](std::int32_t v) { return static_cast<std::uint8_t>(v); });
+  }
+  else
+  {
+    std::transform(values.begin(), values.end(), static_cast<std::uint16_t*>(grid.Labels->GetScalarPointer()),
+      [](std::int32_t v) { return static_cast<std::uint16_t>(v); });
+  }
+  return grid;
+}
+
+std::vector<int> LabelValuesIn(const LabelGrid& grid)
+{
+  std::vector<bool> present(65536, false);
+  vtkDataArray* scalars = grid.Labels->GetPointData()->GetScalars();
+  const vtkIdType n = scalars->GetNumberOfTuples();
+  if (scalars->GetDataType() == VTK_UNSIGNED_CHAR)
+  {
+    const auto* v = static_cast<const std::uint8_t*>(scalars->GetVoidPointer(0));
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      present[v[i]] = true;
+    }
+  }
+  else
+  {
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      present[static_cast<std::size_t>(scalars->GetTuple1(i))] = true;
+    }
+  }
+  std::vector<int> values;
+  for (int v = 1; v < 65536; ++v)
+  {
+    if (present[static_cast<std::size_t>(v)])
+    {
+      values.push_back(v);
+    }
+  }
+  return values;
+}
+
+LabelStructures StructuresOf(const LabelGrid& grid, const std::string& source, const std::string& singleName)
+{
+  const std::vector<int> values = LabelValuesIn(grid);
+  if (values.empty())
+  {
+    throw InputError(source, "the labelmap is empty: every voxel is 0");
+  }
+  LabelStructures structures;
+  for (int v : values)
+  {
+    LabelStructure s;
+    s.Name = values.size() == 1 ? singleName : "label " + std::to_string(v);
+    s.Source = source;
+    s.LabelValue = v;
+    s.Grid = grid;
+    structures.push_back(std::move(s));
+  }
+  return structures;
+}
+} // namespace vp

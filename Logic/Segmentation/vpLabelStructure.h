@@ -1,0 +1,73 @@
+#ifndef vpLabelStructure_h
+#define vpLabelStructure_h
+
+#include <vtkImageData.h>
+#include <vtkSmartPointer.h>
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace vp
+{
+/// A coded concept as DICOM carries it: coding scheme designator, code value, code meaning
+/// (e.g. SCT 32764006 "Portal vein").
+struct CodedConcept
+{
+  std::string Scheme;
+  std::string Value;
+  std::string Meaning;
+
+  bool Empty() const { return this->Value.empty(); }
+  /// "SCT:32764006" — the key the label table matches on.
+  std::string Key() const { return this->Scheme + ":" + this->Value; }
+};
+
+/// The voxel grid of an imported labelmap: integer labels on an index grid (vtkImageData with
+/// origin 0 and spacing 1, so VTK filters work in index space as Slicer's do), and the 4x4
+/// index-to-LPS matrix that places it in DICOM patient coordinates (millimetres).
+struct LabelGrid
+{
+  vtkSmartPointer<vtkImageData> Labels;
+  std::array<double, 16> IjkToLps{}; ///< row-major; column k is the step of index k in mm
+
+  /// Spacing along index axis k (mm): the length of column k.
+  double SpacingMm(int k) const;
+  /// Volume of one voxel (mm^3).
+  double VoxelVolumeMm3() const;
+};
+
+/// One labelled structure of an imported segmentation: the voxels of Grid equal to LabelValue
+/// (or, with LabelValue 0, every non-zero voxel: IRCADb's one-mask-per-structure layout, whose
+/// foreground is 255 in most files and 1 in some). Structures of one multi-label volume share
+/// their Grid.
+struct LabelStructure
+{
+  std::string Name;   ///< as the source names it: folder, SEG segment label, Segment<N>_Name, or "label N"
+  std::string Source; ///< the file or folder it came from
+  int LabelValue = 0;
+  CodedConcept Category; ///< DICOM SEG coded anatomy; empty for other formats
+  CodedConcept Type;
+  LabelGrid Grid; ///< Grid.Labels is null for a structure listed but not read (not wanted)
+};
+
+/// Everything one import produced, in the order the source lists it.
+using LabelStructures = std::vector<LabelStructure>;
+
+/// Stores voxel values (x fastest, then y, then z) as a LabelGrid in the narrowest unsigned type
+/// that holds them, after checking that they are labels: no negative value and at most 256
+/// distinct ones; otherwise throws vp::InputError naming source ("an image, not a labelmap").
+LabelGrid MakeLabelGrid(const std::string& source, const int dimensions[3], const std::vector<std::int32_t>& values,
+  const std::array<double, 16>& ijkToLps);
+
+/// The distinct non-zero values of a grid, ascending.
+std::vector<int> LabelValuesIn(const LabelGrid& grid);
+
+/// One structure per non-zero value of an unnamed labelmap: "label N", or singleName when the map
+/// holds a single value (a one-structure mask named after its file or folder). Throws
+/// vp::InputError naming source when every voxel is 0.
+LabelStructures StructuresOf(const LabelGrid& grid, const std::string& source, const std::string& singleName);
+} // namespace vp
+
+#endif

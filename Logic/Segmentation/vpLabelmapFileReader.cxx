@@ -1,0 +1,238 @@
+// The only translation unit that includes ITK headers: they are heavy to compile.
+#include "vpLabelmapFileReader.h"
+
+#include "vpInputError.h"
+
+#include <itkImageFileReader.h>
+#include <itkMetaDataObject.h>
+#include <itkNiftiImageIO.h>
+#include <itkNrrdImageIO.h>
+#include <itkVectorImage.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <sstream>
+
+namespace vp
+{
+namespace
+{
+bool EndsWith(const std::string& text, const std::string& suffix)
+{
+  if (text.size() < suffix.size())
+  {
+    return false;
+  }
+  std::string tail = text.substr(text.size() - suffix.size());
+  std::transform(tail.begin(), tail.end(), tail.begin(), [](unsigned char c) { return std::tolower(c); });
+  return tail == suffix;
+}
+
+bool IsNifti(const std::string& fileName)
+{
+  return EndsWith(fileName, ".nii") || EndsWith(fileName, ".nii.gz");
+}
+
+// The file's name without folder and without its labelmap ending.
+std::string Stem(const std::string& fileName)
+{
+  std::string name = fileName.substr(fileName.find_last_of('/') + 1);
+  for (const char* suffix : { ".seg.nrrd", ".nii.gz", ".nrrd", ".nhdr", ".nii" })
+  {
+    if (EndsWith(name, suffix))
+    {
+      return name.substr(0, name.size() - std::string(suffix).size());
+    }
+  }
+  return name;
+}
+
+// "scheme^value^meaning" of Slicer's terminology strings.
+CodedConcept ParseCode(const std::string& text)
+{
+  CodedConcept code;
+  std::istringstream in(text);
+  std::getline(in, code.Scheme, '^');
+  std::getline(in, code.Value, '^');
+  std::getline(in, code.Meaning, '^');
+  return code;
+}
+
+// The Segment<N>_* keys of a Slicer segmentation file, by segment index.
+struct SegmentKeys
+{
+  std::string Name;
+  int LabelValue = 1;
+  int Layer = 0;
+  std::string Terminology;
+};
+
+std::map<int, SegmentKeys> ReadSegmentKeys(const itk::MetaDataDictionary& dictionary, const std::string& fileName)
+{
+  std::map<int, SegmentKeys> segments;
+  for (const std::string& key : dictionary.GetKeys())
+  {
+    if (key.rfind("Segment", 0) != 0 || key.find('_') == std::string::npos)
+    {
+      continue;
+    }
+    const std::string index = key.substr(7, key.find('_') - 7);
+    if (index.empty() || !std::all_of(index.begin(), index.end(), ::isdigit))
+    {
+      continue;
+    }
+    std::string value;
+    if (!itk::ExposeMetaData<std::string>(dictionary, key, value))
+    {
+      continue;
+    }
+    SegmentKeys& s = segments[std::stoi(index)];
+    const std::string field = key.substr(key.find('_') + 1);
+    try
+    {
+      if (field == "Name")
+      {
+        s.Name = value;
+      }
+      else if (field == "LabelValue")
+      {
+        s.LabelValue = std::stoi(value);
+      }
+      else if (field == "Layer")
+      {
+        s.Layer = std::stoi(value);
+      }
+      else if (field == "Terminology")
+      {
+        s.Terminology = value;
+      }
+    }
+    catch (const std::exception&)
+    {
+      throw InputError(fileName, "header key " + key + " is not a number: '" + value + "'");
+    }
+  }
+  return segments;
+}
+} // namespace
+
+bool LabelmapFileReader::Handles(const std::string& fileName)
+{
+  return IsNifti(fileName) || EndsWith(fileName, ".nrrd") || EndsWith(fileName, ".nhdr");
+}
+
+LabelStructures LabelmapFileReader::Read(const std::string& fileName)
+{
+  using Image = itk::VectorImage<double, 3>;
+  itk::ImageIOBase::Pointer io;
+  if (IsNifti(fileName))
+  {
+    io = itk::NiftiImageIO::New();
+  }
+  else
+  {
+    io = itk::NrrdImageIO::New();
+  }
+  if (!io->CanReadFile(fileName.c_str()))
+  {
+    throw InputError(fileName, std::string("not a readable ") + (IsNifti(fileName) ? "NIfTI" : "NRRD") + " file");
+  }
+  Image::Pointer image;
+  try
+  {
+    io->SetFileName(fileName);
+    io->ReadImageInformation();
+    if (io->GetNumberOfDimensions() != 3)
+    {
+      throw InputError(fileName, std::to_string(io->GetNumberOfDimensions()) + "-dimensional image; a labelmap is 3D");
+    }
+    auto reader = itk::ImageFileReader<Image>::New();
+    reader->SetImageIO(io);
+    reader->SetFileName(fileName);
+    reader->Update();
+    image = reader->GetOutput();
+  }
+  catch (const itk::ExceptionObject& e)
+  {
+    std::string what = e.GetDescription();
+    what = what.substr(0, what.find('\n'));
+    throw InputError(fileName, "cannot be read: " + what);
+  }
+
+  const auto size = image->GetLargestPossibleRegion().GetSize();
+  const int dimensions[3] = { static_cast<int>(size[0]), static_cast<int>(size[1]), static_cast<int>(size[2]) };
+  std::array<double, 16> ijkToLps{};
+  for (int r = 0; r < 3; ++r)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      ijkToLps[4 * r + c] = image->GetDirection()[r][c] * image->GetSpacing()[c];
+    }
+    ijkToLps[4 * r + 3] = image->GetOrigin()[r];
+  }
+  ijkToLps[15] = 1.0;
+
+  // One grid per layer (vector component); values must be whole numbers.
+  const unsigned layers = image->GetNumberOfComponentsPerPixel();
+  const std::size_t voxels = static_cast<std::size_t>(size[0]) * size[1] * size[2];
+  const double* buffer = image->GetBufferPointer();
+  std::vector<LabelGrid> grids;
+  for (unsigned layer = 0; layer < layers; ++layer)
+  {
+    std::vector<std::int32_t> values(voxels);
+    for (std::size_t i = 0; i < voxels; ++i)
+    {
+      const double v = buffer[i * layers + layer];
+      if (v != std::floor(v) || std::abs(v) > 1e9)
+      {
+        std::ostringstream example;
+        example << v;
+        throw InputError(fileName, "an image, not a labelmap: non-integer voxel values (" + example.str() +
+            "), as in CT or a probability map");
+      }
+      values[i] = static_cast<std::int32_t>(v);
+    }
+    grids.push_back(MakeLabelGrid(layers > 1 ? fileName + " (layer " + std::to_string(layer) + ")" : fileName,
+      dimensions, values, ijkToLps));
+  }
+
+  const std::map<int, SegmentKeys> segments = ReadSegmentKeys(io->GetMetaDataDictionary(), fileName);
+  if (segments.empty())
+  {
+    if (layers > 1)
+    {
+      throw InputError(fileName, std::to_string(layers) + " components per voxel and no Segment<N>_ keys naming them");
+    }
+    return StructuresOf(grids.front(), fileName, Stem(fileName));
+  }
+  LabelStructures structures;
+  for (const auto& [index, keys] : segments)
+  {
+    if (keys.Layer < 0 || keys.Layer >= static_cast<int>(layers))
+    {
+      throw InputError(fileName, "Segment" + std::to_string(index) + "_Layer is " + std::to_string(keys.Layer) +
+          " but the file has " + std::to_string(layers) + " layer(s)");
+    }
+    LabelStructure s;
+    s.Name = keys.Name.empty() ? "Segment" + std::to_string(index) : keys.Name;
+    s.Source = fileName;
+    s.LabelValue = keys.LabelValue;
+    // Slicer: "context~category scheme^value^meaning~type scheme^value^meaning~..."
+    std::vector<std::string> fields;
+    std::istringstream in(keys.Terminology);
+    for (std::string field; std::getline(in, field, '~');)
+    {
+      fields.push_back(field);
+    }
+    if (fields.size() >= 3)
+    {
+      s.Category = ParseCode(fields[1]);
+      s.Type = ParseCode(fields[2]);
+    }
+    s.Grid = grids[static_cast<std::size_t>(keys.Layer)];
+    structures.push_back(std::move(s));
+  }
+  return structures;
+}
+} // namespace vp

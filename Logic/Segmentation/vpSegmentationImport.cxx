@@ -1,0 +1,41 @@
+#include "vpSegmentationImport.h"
+
+#include "vpInputError.h"
+#include "vpLabelmapFileReader.h"
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+namespace fs = std::filesystem;
+
+namespace vp
+{
+LabelStructures ImportSegmentation(const std::string& input, const StructureFilter& wanted)
+{
+  std::error_code ec;
+  if (!fs::exists(input, ec))
+  {
+    throw InputError(input, "no such file or folder");
+  }
+  if (fs::is_directory(input, ec))
+  {
+    if (!DicomLabelSeriesReader::HoldsDicom(input))
+    {
+      throw InputError(input, "no DICOM files here or in its sub-folders");
+    }
+    return DicomLabelSeriesReader::ReadFolder(input, wanted);
+  }
+  if (LabelmapFileReader::Handles(input))
+  {
+    return LabelmapFileReader::Read(input);
+  }
+  std::ifstream in(input, std::ios::binary);
+  char head[132] = {};
+  if (in.read(head, sizeof head) && std::memcmp(head + 128, "DICM", 4) == 0)
+  {
+    throw InputError(input, "a single DICOM file; give the folder that holds its series");
+  }
+  throw InputError(input, "not a labelmap this program reads (a DICOM series folder, .nrrd, .seg.nrrd, .nii or .nii.gz)");
+}
+} // namespace vp

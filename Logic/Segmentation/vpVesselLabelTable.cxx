@@ -1,0 +1,146 @@
+#include "vpVesselLabelTable.h"
+
+#include "vpInputError.h"
+
+#include "VesselLabels_json.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cctype>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+namespace vp
+{
+namespace
+{
+// "Portal_Vein", "portal-vein" and "portal  vein" are one name.
+std::string Normalized(const std::string& name)
+{
+  std::string out;
+  for (unsigned char c : name)
+  {
+    const char k = (c == '_' || c == '-') ? ' ' : static_cast<char>(std::tolower(c));
+    if (k == ' ' && (out.empty() || out.back() == ' '))
+    {
+      continue;
+    }
+    out.push_back(k);
+  }
+  while (!out.empty() && out.back() == ' ')
+  {
+    out.pop_back();
+  }
+  return out;
+}
+} // namespace
+
+VesselLabelTable VesselLabelTable::Default()
+{
+  return Parse(std::string(reinterpret_cast<const char*>(VesselLabels_json), VesselLabels_json_size),
+    "Resources/VesselLabels.json");
+}
+
+VesselLabelTable VesselLabelTable::Load(const std::string& fileName)
+{
+  std::ifstream in(fileName, std::ios::binary);
+  if (!in)
+  {
+    throw InputError(fileName, "cannot be opened");
+  }
+  std::ostringstream text;
+  text << in.rdbuf();
+  return Parse(text.str(), fileName);
+}
+
+VesselLabelTable VesselLabelTable::Parse(const std::string& json, const std::string& source)
+{
+  VesselLabelTable table;
+  try
+  {
+    const nlohmann::json doc = nlohmann::json::parse(json);
+    const auto& classes = doc.at("classes");
+    if (!classes.is_array() || classes.empty())
+    {
+      throw InputError(source, "\"classes\" must be a non-empty array");
+    }
+    for (const auto& entry : classes)
+    {
+      const std::string name = entry.at("class").get<std::string>();
+      if (name.empty() || std::count(table.ClassNames.begin(), table.ClassNames.end(), name))
+      {
+        throw InputError(source, "class \"" + name + "\" is empty or listed twice");
+      }
+      table.ClassNames.push_back(name);
+      table.Colors[name] = entry.value("color", std::array<double, 3>{ 0.8, 0.8, 0.8 });
+      auto claim = [&](auto& map, const auto& key, const std::string& what) {
+        if (map.count(key) && map.at(key) != name)
+        {
+          std::ostringstream k;
+          k << key;
+          throw InputError(source, what + " \"" + k.str() + "\" maps to both " + map.at(key) + " and " + name);
+        }
+        map[key] = name;
+      };
+      for (const auto& n : entry.value("names", std::vector<std::string>{}))
+      {
+        claim(table.ByName, Normalized(n), "name");
+      }
+      for (const auto& c : entry.value("codes", std::vector<std::string>{}))
+      {
+        claim(table.ByCode, c, "code");
+      }
+      for (int v : entry.value("values", std::vector<int>{}))
+      {
+        claim(table.ByValue, v, "value");
+      }
+    }
+  }
+  catch (const nlohmann::json::exception& e)
+  {
+    std::string what = e.what();
+    throw InputError(source, "not a label table: " + what.substr(what.find(']') + 2));
+  }
+  return table;
+}
+
+std::string VesselLabelTable::ClassOfName(const std::string& name) const
+{
+  const auto it = this->ByName.find(Normalized(name));
+  return it == this->ByName.end() ? std::string() : it->second;
+}
+
+std::string VesselLabelTable::ClassOf(const LabelStructure& structure) const
+{
+  if (!structure.Type.Empty())
+  {
+    const auto it = this->ByCode.find(structure.Type.Key());
+    if (it != this->ByCode.end())
+    {
+      return it->second;
+    }
+  }
+  const std::string byName = this->ClassOfName(structure.Name);
+  if (!byName.empty())
+  {
+    return byName;
+  }
+  if (structure.Name == "label " + std::to_string(structure.LabelValue))
+  {
+    const auto it = this->ByValue.find(structure.LabelValue);
+    if (it != this->ByValue.end())
+    {
+      return it->second;
+    }
+  }
+  return std::string();
+}
+
+std::array<double, 3> VesselLabelTable::Color(const std::string& className) const
+{
+  const auto it = this->Colors.find(className);
+  return it == this->Colors.end() ? std::array<double, 3>{ 0.8, 0.8, 0.8 } : it->second;
+}
+} // namespace vp

@@ -1,0 +1,46 @@
+#ifndef vpVesselLabelTable_h
+#define vpVesselLabelTable_h
+
+#include "vpLabelStructure.h"
+
+#include <array>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace vp
+{
+/// Maps imported structures to the vessel classes (portal_vein, hepatic_vein, hepatic_artery)
+/// and to liver. The default table is Resources/VesselLabels.json, compiled into the library; it
+/// knows the names found in our data (IRCADb's portalvein, portalvein1, venoussystem, venacava,
+/// artery, liver), SNOMED codes as DICOM SEG and Slicer carry them, and TotalSegmentator's label
+/// ids. A structure matches by coded type first, then by name (case, '_' and '-' ignored), then,
+/// only when the labelmap had no names ("label N"), by value.
+class VesselLabelTable
+{
+public:
+  /// The compiled-in Resources/VesselLabels.json.
+  static VesselLabelTable Default();
+  /// A table in the same format; throws vp::InputError naming the file on any problem.
+  static VesselLabelTable Load(const std::string& fileName);
+  static VesselLabelTable Parse(const std::string& json, const std::string& source);
+
+  /// The class of a structure, or "" when the table does not know it.
+  std::string ClassOf(const LabelStructure& structure) const;
+  /// The class a name maps to, or "": decides which structures are worth reading.
+  std::string ClassOfName(const std::string& name) const;
+
+  /// Classes in table order.
+  const std::vector<std::string>& Classes() const { return this->ClassNames; }
+  /// Display colour (RGB, 0..1) of a class; grey for an unknown one.
+  std::array<double, 3> Color(const std::string& className) const;
+
+private:
+  std::vector<std::string> ClassNames;
+  std::map<std::string, std::string> ByName, ByCode;
+  std::map<int, std::string> ByValue;
+  std::map<std::string, std::array<double, 3>> Colors;
+};
+} // namespace vp
+
+#endif

@@ -1,0 +1,180 @@
+// `vesselproximity models` end to end: the files it writes, and for each bad input the one-line
+// error that names it, a non-zero exit and nothing written.
+#include "vpDicomLabelSeriesWriter.h"
+#include "vpModelTestSupport.h"
+#include "vpStlFormat.h"
+#include "vpTestSupport.h"
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include <dcmtk/config/osconfig.h>
+#include <dcmtk/dcmdata/dcdeftag.h>
+#include <dcmtk/dcmdata/dcfilefo.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+namespace
+{
+using vp::test::RunTool;
+using vp::test::ToolRun;
+namespace fs = std::filesystem;
+
+// Structure folders as IRCADb lays them out: a tube "portalvein", a ball "venacava", a "bone".
+class ModelsCommand : public ::testing::Test
+{
+protected:
+  void SetUp() override
+  {
+    this->Dir = vp::test::MakeTempDir("models");
+    this->Masks = this->Dir + "/MASKS_DICOM";
+    this->Geometry = { 0.8, 0, 0, -50, 0, 0.8, 0, 20, 0, 0, 1.25, -100, 0, 0, 0, 1 };
+    this->WriteMask("portalvein", [](const double p[3]) { return std::hypot(p[0] + 30, p[1] - 40) < 5 ? 255 : 0; });
+    this->WriteMask("venacava", [](const double p[3]) {
+      return std::pow(p[0] + 25, 2) + std::pow(p[1] - 30, 2) + std::pow(p[2] + 85, 2) < 36 ? 1 : 0; });
+    this->WriteMask("bone", [](const double p[3]) { return p[0] > -12 && p[1] > 40 ? 255 : 0; });
+  }
+
+  void WriteMask(const std::string& name, const std::function<int(const double p[3])>& label)
+  {
+    vp::DicomLabelSeriesWriter::Write(vp::test::MakeGrid(this->Dims, this->Geometry, label), this->Masks + "/" + name, name);
+  }
+
+  // The run failed cleanly: exit 1, one line naming what, nothing written.
+  void ExpectRefused(const std::string& input, const std::string& names, const std::string& problem)
+  {
+    const std::string out = this->Dir + "/out_refused";
+    const ToolRun r = RunTool(this->Dir, "models " + input + " -o " + out);
+    EXPECT_EQ(r.ExitCode, 1) << r.Err;
+    const std::string line = r.Err.substr(r.Err.find("error:"));
+    EXPECT_EQ(std::count(line.begin(), line.end(), '\n'), 1) << r.Err;
+    EXPECT_NE(line.find(names), std::string::npos) << r.Err;
+    EXPECT_NE(line.find(problem), std::string::npos) << r.Err;
+    EXPECT_FALSE(fs::exists(out)) << "nothing written for " << input;
+  }
+
+  std::string Dir, Masks;
+  int Dims[3] = { 40, 50, 30 };
+  std::array<double, 16> Geometry{};
+};
+
+TEST_F(ModelsCommand, WritesOneClosedStlPerClassAndListsTheRest)
+{
+  const std::string out = this->Dir + "/models";
+  const ToolRun r = RunTool(this->Dir, "models " + this->Masks + " -o " + out);
+  ASSERT_EQ(r.ExitCode, 0) << r.Err;
+  EXPECT_NE(r.Err.find("models: reading"), std::string::npos) << "progress on stderr";
+  EXPECT_NE(r.Err.find("bone"), std::string::npos) << "unknown structures are named";
+  const auto doc = nlohmann::json::parse(vp::test::Slurp(out + "/models.json"));
+  EXPECT_EQ(doc["space"], "LPS");
+  ASSERT_EQ(doc["structures"].size(), 2u);
+  EXPECT_EQ(doc["structures"][0]["class"], "portal_vein");
+  EXPECT_EQ(doc["structures"][1]["class"], "hepatic_vein"); // the vena cava belongs there
+  EXPECT_EQ(doc["structures"][1]["name"], "venacava");
+  ASSERT_EQ(doc["unmapped"].size(), 1u);
+  EXPECT_EQ(doc["unmapped"][0]["name"], "bone");
+  for (const auto& s : doc["structures"])
+  {
+    const std::string stl = vp::test::Slurp(out + "/" + s["file"].get<std::string>());
+    ASSERT_GT(stl.size(), 84u);
+    EXPECT_EQ(vp::ParseSpaceTag(stl.substr(0, 80)), vp::MeshSpace::LPS);
+    EXPECT_GT(s["triangles"].get<int>(), 100);
+    EXPECT_NEAR(s["volume_mm3"].get<double>(), s["voxel_volume_mm3"].get<double>(), 0.15 * s["voxel_volume_mm3"].get<double>());
+  }
+  // The ball: centre (-25, 30, -85), radius 6 mm -> its volume.
+  EXPECT_NEAR(doc["structures"][1]["volume_mm3"].get<double>(), 4.0 / 3.0 * M_PI * 216, 0.1 * 4.0 / 3.0 * M_PI * 216);
+
+  const std::string ras = this->Dir + "/ras";
+  ASSERT_EQ(RunTool(this->Dir, "models " + this->Masks + " -o " + ras + " --space RAS").ExitCode, 0);
+  EXPECT_EQ(vp::ParseSpaceTag(vp::test::Slurp(ras + "/portal_vein.stl").substr(0, 80)), vp::MeshSpace::RAS);
+  EXPECT_EQ(nlohmann::json::parse(vp::test::Slurp(ras + "/models.json"))["space"], "RAS");
+}
+
+TEST_F(ModelsCommand, EachBadSeriesGetsItsOneLineAndWritesNothing)
+{
+  // A CT series: negative Hounsfield values.
+  const std::string ct = this->Dir + "/ct";
+  vp::LabelGrid image = vp::test::MakeGrid(this->Dims, this->Geometry, [](const double p[3]) { return int(p[0] + 60); });
+  vp::DicomLabelSeriesWriter::Write(image, ct, "ct");
+  for (int k = 0; k < this->Dims[2]; ++k)
+  {
+    // Stored values as a CT keeps them: signed, with air at -1000.
+    DcmFileFormat file;
+    const std::string path = ct + "/image_" + std::to_string(k);
+    ASSERT_TRUE(file.loadFile(path.c_str()).good());
+    std::vector<Uint16> hu(static_cast<std::size_t>(this->Dims[0] * this->Dims[1]));
+    for (std::size_t i = 0; i < hu.size(); ++i)
+      hu[i] = static_cast<Uint16>(static_cast<Sint16>(-1000 + static_cast<int>(i % 1500)));
+    auto* d = file.getDataset();
+    d->putAndInsertUint16(DCM_BitsAllocated, 16);
+    d->putAndInsertUint16(DCM_BitsStored, 16);
+    d->putAndInsertUint16(DCM_HighBit, 15);
+    d->putAndInsertUint16(DCM_PixelRepresentation, 1);
+    d->putAndInsertUint16Array(DCM_PixelData, hu.data(), static_cast<unsigned long>(hu.size()));
+    ASSERT_TRUE(file.saveFile(path.c_str(), EXS_LittleEndianExplicit).good());
+  }
+  this->ExpectRefused(ct, ct, "an image, not a labelmap");
+
+  // Slice problems, each in a copy of the portal vein series.
+  auto copy = [&](const std::string& name) {
+    const std::string to = this->Dir + "/" + name;
+    fs::copy(this->Masks + "/portalvein", to);
+    return to;
+  };
+  auto edit = [&](const std::string& file, const DcmTagKey& tag, const std::string& value) {
+    DcmFileFormat f;
+    ASSERT_TRUE(f.loadFile(file.c_str()).good());
+    f.getDataset()->putAndInsertString(tag, value.c_str());
+    ASSERT_TRUE(f.saveFile(file.c_str(), EXS_LittleEndianExplicit).good());
+  };
+  const std::string missing = copy("missing");
+  fs::remove(missing + "/image_12");
+  this->ExpectRefused(missing, missing, "missing slice");
+  const std::string uneven = copy("uneven");
+  edit(uneven + "/image_12", DCM_ImagePositionPatient, "-50\\20\\-84.5");
+  this->ExpectRefused(uneven, uneven, "uneven slice spacing");
+  const std::string turned = copy("turned");
+  edit(turned + "/image_3", DCM_ImageOrientationPatient, "0\\1\\0\\1\\0\\0");
+  this->ExpectRefused(turned, turned, "different orientations");
+  const std::string spaced = copy("spaced");
+  edit(spaced + "/image_3", DCM_PixelSpacing, "0.9\\0.9");
+  this->ExpectRefused(spaced, spaced, "different pixel spacings");
+
+  // An empty structure among good ones.
+  this->WriteMask("portalvein1", [](const double*) { return 0; });
+  this->ExpectRefused(this->Masks, this->Masks + "/portalvein1", "empty");
+  fs::remove_all(this->Masks + "/portalvein1");
+
+  // Not a labelmap at all; a single DICOM file; no DICOM in a folder.
+  const std::string text = this->Dir + "/notes.txt";
+  std::ofstream(text) << "hello\n";
+  this->ExpectRefused(text, text, "not a labelmap");
+  this->ExpectRefused(this->Masks + "/portalvein/image_0", "image_0", "a single DICOM file");
+  fs::create_directories(this->Dir + "/nothing");
+  this->ExpectRefused(this->Dir + "/nothing", this->Dir + "/nothing", "no DICOM files");
+}
+
+TEST_F(ModelsCommand, RealImagesAreRefusedAsLabelmaps)
+{
+  const std::string data = vp::test::TestDataDir();
+  if (data.empty())
+    GTEST_SKIP() << "VP_TEST_DATA not set: no real CT files";
+  const std::string jpeg2000 = data + "/totalsegmentator/example_ct_dicom";
+  this->ExpectRefused(jpeg2000, jpeg2000, "JPEG 2000");
+  const std::string ct = data + "/totalsegmentator/example_ct_sm.nii.gz";
+  this->ExpectRefused(ct, ct, "not a labelmap");
+}
+
+TEST_F(ModelsCommand, BadOptionsAreRefused)
+{
+  this->ExpectRefused(this->Masks + " --smoothing 2", "--smoothing", "between 0 and 1");
+  this->ExpectRefused(this->Masks + " --space XYZ", "--space", "LPS or RAS");
+  this->ExpectRefused(this->Masks + " --labels " + this->Dir + "/none.json", "none.json", "cannot be opened");
+  const std::string table = this->Dir + "/table.json";
+  std::ofstream(table) << "{\"classes\": [{\"class\": \"liver\", \"names\": [\"liver\"]}]}";
+  this->ExpectRefused(this->Masks + " --labels " + table, this->Masks, "no vessel or liver structure");
+}
+} // namespace

@@ -122,7 +122,7 @@ bool LabelmapFileReader::Handles(const std::string& fileName)
   return IsNifti(fileName) || EndsWith(fileName, ".nrrd") || EndsWith(fileName, ".nhdr");
 }
 
-LabelStructures LabelmapFileReader::Read(const std::string& fileName)
+LabelStructures LabelmapFileReader::Read(const std::string& fileName, std::size_t maximumVoxels)
 {
   using Image = itk::VectorImage<double, 3>;
   itk::ImageIOBase::Pointer io;
@@ -146,6 +146,16 @@ LabelStructures LabelmapFileReader::Read(const std::string& fileName)
     if (io->GetNumberOfDimensions() != 3)
     {
       throw InputError(fileName, std::to_string(io->GetNumberOfDimensions()) + "-dimensional image; a labelmap is 3D");
+    }
+    double claimed = io->GetNumberOfComponents();
+    for (unsigned d = 0; d < 3; ++d)
+    {
+      claimed *= static_cast<double>(io->GetDimensions(d));
+    }
+    if (claimed > static_cast<double>(maximumVoxels))
+    {
+      throw InputError(fileName, "the header claims " + std::to_string(static_cast<long long>(claimed)) +
+          " voxels, more than the " + std::to_string(maximumVoxels) + " this reader takes");
     }
     auto reader = itk::ImageFileReader<Image>::New();
     reader->SetImageIO(io);

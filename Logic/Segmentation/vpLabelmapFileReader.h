@@ -3,6 +3,7 @@
 
 #include "vpLabelStructure.h"
 
+#include <cstddef>
 #include <string>
 
 namespace vp
@@ -19,7 +20,10 @@ class LabelmapFileReader
 public:
   /// True for the file name endings this reader takes.
   static bool Handles(const std::string& fileName);
-  static LabelStructures Read(const std::string& fileName);
+  /// maximumVoxels (voxels x layers) guards against a header that claims more than memory holds:
+  /// larger files are refused before anything is allocated. The default, 2^28, is a 512 x 512 x
+  /// 1024 volume.
+  static LabelStructures Read(const std::string& fileName, std::size_t maximumVoxels = std::size_t(1) << 28);
 };
 } // namespace vp
 

@@ -6,6 +6,7 @@
 #include <dcmtk/dcmdata/dcdeftag.h>
 #include <dcmtk/dcmdata/dcfilefo.h>
 #include <dcmtk/dcmdata/dcxfer.h>
+#include <dcmtk/oflog/oflog.h>
 
 
 #include <algorithm>
@@ -65,8 +66,40 @@ struct Slice
   std::vector<std::int32_t> Values;
 };
 
+OFCondition GetPixels(DcmDataset* data, const Uint8*& pixels, unsigned long* count)
+{
+  return data->findAndGetUint8Array(DCM_PixelData, pixels, count);
+}
+
+OFCondition GetPixels(DcmDataset* data, const Uint16*& pixels, unsigned long* count)
+{
+  return data->findAndGetUint16Array(DCM_PixelData, pixels, count);
+}
+
+// Stored values, widened; signed ones (PixelRepresentation 1) keep their sign.
+template <typename Stored, typename Signed>
+void CopyPixels(DcmDataset* data, bool isSigned, std::vector<std::int32_t>& values, const std::string& where)
+{
+  const Stored* pixels = nullptr;
+  unsigned long length = 0;
+  if (GetPixels(data, pixels, &length).bad() || !pixels || length < values.size())
+  {
+    throw InputError(where, "pixel data missing or shorter than Rows x Columns");
+  }
+  for (std::size_t i = 0; i < values.size(); ++i)
+  {
+    values[i] = isSigned ? static_cast<Signed>(pixels[i]) : pixels[i];
+  }
+}
+
 Slice ReadSlice(const std::string& folder, const fs::path& path)
 {
+  // DCMTK logs parse problems to stderr; ours is the one line that names the file.
+  static const bool quiet = [] {
+    OFLog::configure(OFLogger::OFF_LOG_LEVEL);
+    return true;
+  }();
+  (void)quiet;
   Slice s;
   s.File = path.filename().string();
   const std::string where = folder + " (" + s.File + ")";
@@ -130,29 +163,11 @@ Slice ReadSlice(const std::string& folder, const fs::path& path)
   s.Values.resize(count);
   if (bitsAllocated == 8)
   {
-    const Uint8* pixels = nullptr;
-    unsigned long length = 0;
-    if (data->findAndGetUint8Array(DCM_PixelData, pixels, &length).bad() || !pixels || length < count)
-    {
-      throw InputError(where, "pixel data missing or shorter than Rows x Columns");
-    }
-    for (std::size_t i = 0; i < count; ++i)
-    {
-      s.Values[i] = representation ? static_cast<std::int8_t>(pixels[i]) : pixels[i];
-    }
+    CopyPixels<Uint8, std::int8_t>(data, representation != 0, s.Values, where);
   }
   else if (bitsAllocated == 16)
   {
-    const Uint16* pixels = nullptr;
-    unsigned long length = 0;
-    if (data->findAndGetUint16Array(DCM_PixelData, pixels, &length).bad() || !pixels || length < count)
-    {
-      throw InputError(where, "pixel data missing or shorter than Rows x Columns");
-    }
-    for (std::size_t i = 0; i < count; ++i)
-    {
-      s.Values[i] = representation ? static_cast<std::int16_t>(pixels[i]) : pixels[i];
-    }
+    CopyPixels<Uint16, std::int16_t>(data, representation != 0, s.Values, where);
   }
   else
   {

@@ -3,6 +3,9 @@
 
 #include "vpInputError.h"
 
+#if defined(__clang__)
+#include "vpItkClangCompat.h" // before any ITK header
+#endif
 #include <itkImageFileReader.h>
 #include <itkMetaDataObject.h>
 #include <itkNiftiImageIO.h>

@@ -24,11 +24,10 @@ namespace vp
 {
 namespace
 {
-bool IsDicomFile(const fs::path& path)
+bool IsVisibleDicomFile(const fs::directory_entry& entry)
 {
-  std::ifstream in(path, std::ios::binary);
-  char head[132];
-  return in.read(head, sizeof head) && std::memcmp(head + 128, "DICM", 4) == 0;
+  return entry.is_regular_file() && entry.path().filename().string()[0] != '.' &&
+    DicomLabelSeriesReader::IsDicomFile(entry.path().string());
 }
 
 std::vector<fs::path> DicomFilesIn(const fs::path& folder)
@@ -37,13 +36,27 @@ std::vector<fs::path> DicomFilesIn(const fs::path& folder)
   std::error_code ec;
   for (const auto& entry : fs::directory_iterator(folder, ec))
   {
-    if (entry.is_regular_file() && entry.path().filename().string()[0] != '.' && IsDicomFile(entry.path()))
+    if (IsVisibleDicomFile(entry))
     {
       files.push_back(entry.path());
     }
   }
   std::sort(files.begin(), files.end());
   return files;
+}
+
+// Stops at the first DICOM file: deciding a folder's layout needs one, not the whole listing.
+bool ContainsDicomFile(const fs::path& folder)
+{
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(folder, ec))
+  {
+    if (IsVisibleDicomFile(entry))
+    {
+      return true;
+    }
+  }
+  return false;
 }
 
 std::string Number(double value)
@@ -182,25 +195,11 @@ double Dot(const std::array<double, 3>& a, const std::array<double, 3>& b)
 }
 } // namespace
 
-bool DicomLabelSeriesReader::HoldsDicom(const std::string& folder)
+bool DicomLabelSeriesReader::IsDicomFile(const std::string& path)
 {
-  std::error_code ec;
-  if (!fs::is_directory(folder, ec))
-  {
-    return false;
-  }
-  if (!DicomFilesIn(folder).empty())
-  {
-    return true;
-  }
-  for (const auto& entry : fs::directory_iterator(folder, ec))
-  {
-    if (entry.is_directory() && !DicomFilesIn(entry.path()).empty())
-    {
-      return true;
-    }
-  }
-  return false;
+  std::ifstream in(path, std::ios::binary);
+  char head[132];
+  return in.read(head, sizeof head) && std::memcmp(head + 128, "DICM", 4) == 0;
 }
 
 LabelGrid DicomLabelSeriesReader::ReadSeries(const std::string& folder)
@@ -327,8 +326,7 @@ LabelStructures DicomLabelSeriesReader::ReadFolder(const std::string& folder, co
   {
     throw InputError(folder, "not a folder");
   }
-  LabelStructures structures;
-  if (!DicomFilesIn(folder).empty())
+  if (ContainsDicomFile(folder))
   {
     // One series of label values.
     const std::string name = fs::path(folder).lexically_normal().filename().string();
@@ -340,7 +338,7 @@ LabelStructures DicomLabelSeriesReader::ReadFolder(const std::string& folder, co
   std::vector<fs::path> folders;
   for (const auto& entry : fs::directory_iterator(folder, ec))
   {
-    if (entry.is_directory() && !DicomFilesIn(entry.path()).empty())
+    if (entry.is_directory() && ContainsDicomFile(entry.path()))
     {
       folders.push_back(entry.path());
     }
@@ -350,6 +348,7 @@ LabelStructures DicomLabelSeriesReader::ReadFolder(const std::string& folder, co
     throw InputError(folder, "no DICOM files here or in its sub-folders");
   }
   std::sort(folders.begin(), folders.end());
+  LabelStructures structures;
   for (const auto& sub : folders)
   {
     LabelStructure s;

@@ -33,11 +33,12 @@ using StructureFilter = std::function<bool(const std::string& name)>;
 class DicomLabelSeriesReader
 {
 public:
-  /// True when the folder or one of its direct sub-folders holds a DICOM file.
-  static bool HoldsDicom(const std::string& folder);
+  /// True for a DICOM Part 10 file (the "DICM" marker after the 128-byte preamble).
+  static bool IsDicomFile(const std::string& path);
 
   /// Reads a folder in either layout; wanted decides which structures are read, the others are
-  /// listed with a null Grid.Labels (not wanted structures are not even opened).
+  /// listed with a null Grid.Labels (not wanted structures are not even opened). A folder with
+  /// no DICOM file in it or in its sub-folders is refused.
   static LabelStructures ReadFolder(const std::string& folder, const StructureFilter& wanted);
 
   /// Reads one series: the DICOM files directly inside folder.

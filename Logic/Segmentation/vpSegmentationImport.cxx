@@ -3,9 +3,7 @@
 #include "vpInputError.h"
 #include "vpLabelmapFileReader.h"
 
-#include <cstring>
 #include <filesystem>
-#include <fstream>
 
 namespace fs = std::filesystem;
 
@@ -20,19 +18,13 @@ LabelStructures ImportSegmentation(const std::string& input, const StructureFilt
   }
   if (fs::is_directory(input, ec))
   {
-    if (!DicomLabelSeriesReader::HoldsDicom(input))
-    {
-      throw InputError(input, "no DICOM files here or in its sub-folders");
-    }
     return DicomLabelSeriesReader::ReadFolder(input, wanted);
   }
   if (LabelmapFileReader::Handles(input))
   {
     return LabelmapFileReader::Read(input);
   }
-  std::ifstream in(input, std::ios::binary);
-  char head[132] = {};
-  if (in.read(head, sizeof head) && std::memcmp(head + 128, "DICM", 4) == 0)
+  if (DicomLabelSeriesReader::IsDicomFile(input))
   {
     throw InputError(input, "a single DICOM file; give the folder that holds its series");
   }

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <set>
 
 namespace vp
@@ -40,6 +41,18 @@ double Quantile(std::vector<double> samples, double q)
   std::sort(samples.begin(), samples.end());
   const std::size_t rank = static_cast<std::size_t>(std::ceil(q * samples.size()));
   return samples[std::min(samples.size() - 1, rank == 0 ? 0 : rank - 1)];
+}
+
+bool CreateOutputFolder(const std::string& folder)
+{
+  std::error_code ec;
+  const bool created = !std::filesystem::exists(folder, ec);
+  std::filesystem::create_directories(folder, ec);
+  if (ec || !std::filesystem::is_directory(folder, ec))
+  {
+    throw InputError(folder, "cannot create folder: " + (ec ? ec.message() : std::string("a file has that name")));
+  }
+  return created;
 }
 
 double NowMs()

@@ -26,6 +26,10 @@ std::vector<NamedMesh> LoadVesselMeshes(const std::vector<std::pair<std::string,
 /// Value at quantile q (0..1) of the samples, by nearest rank; 0 for none.
 double Quantile(std::vector<double> samples, double q);
 
+/// Creates an output folder and its missing parents, like mkdir -p; returns whether it was new.
+/// Throws InputError naming the folder when it cannot be made.
+bool CreateOutputFolder(const std::string& folder);
+
 /// Milliseconds since an arbitrary origin (steady clock).
 double NowMs();
 } // namespace vp

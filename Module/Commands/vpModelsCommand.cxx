@@ -195,13 +195,7 @@ int RunModelsCommand(const std::vector<std::string>& argv)
   doc["timing_ms"] = { { "read", readMs }, { "total", NowMs() - start } };
 
   // Write. A failure part-way removes what this run wrote.
-  std::error_code ec;
-  const bool created = !fs::exists(outDir, ec);
-  fs::create_directories(outDir, ec);
-  if (ec || !fs::is_directory(outDir))
-  {
-    throw InputError(outDir, "cannot create folder: " + ec.message());
-  }
+  const bool created = CreateOutputFolder(outDir);
   std::vector<std::string> written;
   try
   {
@@ -224,6 +218,7 @@ int RunModelsCommand(const std::vector<std::string>& argv)
     }
     if (created)
     {
+      std::error_code ec;
       fs::remove(outDir, ec);
     }
     throw;

@@ -1,6 +1,7 @@
 // vesselproximity phantom: writes the built-in analytic vessels as STL, for a first run without data.
 #include "vpBuiltInPhantom.h"
 #include "vpArguments.h"
+#include "vpCommandSupport.h"
 #include "vpCommands.h"
 #include "vpInputError.h"
 #include "vtkVesselMeshWriter.h"
@@ -8,10 +9,7 @@
 #include <vtkNew.h>
 #include <vtkPolyData.h>
 
-#include <cerrno>
-#include <cstring>
 #include <iostream>
-#include <sys/stat.h>
 
 namespace vp
 {
@@ -32,19 +30,7 @@ int RunPhantomCommand(const std::vector<std::string>& argv)
   {
     throw InputError("-o", "an output folder is required");
   }
-  // Like mkdir -p: every missing parent too.
-  for (std::size_t slash = out.find('/', 1);; slash = out.find('/', slash + 1))
-  {
-    const std::string part = out.substr(0, slash);
-    if (mkdir(part.c_str(), 0755) != 0 && errno != EEXIST)
-    {
-      throw InputError(part, std::string("cannot create folder: ") + std::strerror(errno));
-    }
-    if (slash == std::string::npos)
-    {
-      break;
-    }
-  }
+  CreateOutputFolder(out);
   for (const auto& shape : MakeBuiltInVessels())
   {
     vtkNew<vtkVesselMeshWriter> writer;

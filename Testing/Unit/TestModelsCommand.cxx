@@ -185,5 +185,13 @@ TEST_F(ModelsCommand, BadOptionsAreRefused)
   const std::string table = this->Dir + "/table.json";
   std::ofstream(table) << "{\"classes\": [{\"class\": \"liver\", \"names\": [\"liver\"]}]}";
   this->ExpectRefused(this->Masks + " --labels " + table, this->Masks, "no vessel or liver structure");
+
+  // An output "folder" that is a file: refused after building, before any model is written.
+  const std::string file = this->Dir + "/taken";
+  std::ofstream(file) << "x";
+  const ToolRun r = RunTool(this->Dir, "models " + this->Masks + " -o " + file);
+  EXPECT_EQ(r.ExitCode, 1);
+  EXPECT_NE(r.Err.find(file + ": cannot create folder"), std::string::npos) << r.Err;
+  EXPECT_EQ(vp::test::Slurp(file), "x");
 }
 } // namespace

@@ -13,6 +13,7 @@
 #include <itkVectorImage.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <map>
 #include <sstream>
@@ -71,6 +72,15 @@ struct SegmentKeys
   std::string Terminology;
 };
 
+// The whole text must be one integer that fits an int: std::stoi would take "3abc" as 3 and
+// throw std::out_of_range (not an InputError) on a 70-digit segment index.
+bool ParseInt(const std::string& text, int& value)
+{
+  const char* end = text.data() + text.size();
+  const auto [stop, error] = std::from_chars(text.data(), end, value);
+  return error == std::errc() && stop == end;
+}
+
 std::map<int, SegmentKeys> ReadSegmentKeys(const itk::MetaDataDictionary& dictionary, const std::string& fileName)
 {
   std::map<int, SegmentKeys> segments;
@@ -90,30 +100,24 @@ std::map<int, SegmentKeys> ReadSegmentKeys(const itk::MetaDataDictionary& dictio
     {
       continue;
     }
-    SegmentKeys& s = segments[std::stoi(index)];
-    const std::string field = key.substr(key.find('_') + 1);
-    try
+    int number = 0;
+    if (!ParseInt(index, number))
     {
-      if (field == "Name")
-      {
-        s.Name = value;
-      }
-      else if (field == "LabelValue")
-      {
-        s.LabelValue = std::stoi(value);
-      }
-      else if (field == "Layer")
-      {
-        s.Layer = std::stoi(value);
-      }
-      else if (field == "Terminology")
-      {
-        s.Terminology = value;
-      }
+      throw InputError(fileName, "header key " + key + " has a segment number out of range");
     }
-    catch (const std::exception&)
+    SegmentKeys& s = segments[number];
+    const std::string field = key.substr(key.find('_') + 1);
+    if (field == "Name")
     {
-      throw InputError(fileName, "header key " + key + " is not a number: '" + value + "'");
+      s.Name = value;
+    }
+    else if (field == "Terminology")
+    {
+      s.Terminology = value;
+    }
+    else if ((field == "LabelValue" && !ParseInt(value, s.LabelValue)) || (field == "Layer" && !ParseInt(value, s.Layer)))
+    {
+      throw InputError(fileName, "header key " + key + " is not a whole number: '" + value + "'");
     }
   }
   return segments;

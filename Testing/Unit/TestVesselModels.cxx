@@ -1,6 +1,7 @@
 // Segmentation import and vessel model building: synthetic shapes with a known answer, the
 // IRCADb patients against the data set's own meshes, and the real NRRD and NIfTI files.
 #include "vpDicomLabelSeriesWriter.h"
+#include "vpInputError.h"
 #include "vpModelTestSupport.h"
 #include "vpSegmentationImport.h"
 #include "vpTestSupport.h"
@@ -335,5 +336,36 @@ TEST(VesselModels, SlicerSegNrrdKeepsNamesLayersAndTerminology)
   EXPECT_NEAR(structures[0].Grid.IjkToLps[3], 10.0, 1e-9);
   EXPECT_NEAR(structures[0].Grid.IjkToLps[10], 2.0, 1e-9);
   EXPECT_EQ(vp::VesselLabelTable::Default().ClassOf(structures[0]), "portal_vein");
+}
+
+// Segment keys whose numbers do not parse are refused as bad input; found by the NRRD fuzz
+// target, where a 70-digit segment index once escaped as std::out_of_range.
+TEST(VesselModels, SlicerSegNrrdWithBadSegmentNumbersIsRefused)
+{
+  const std::string dir = vp::test::MakeTempDir("segnrrdbad");
+  auto refusal = [&](const std::string& key) -> std::string {
+    const std::string file = dir + "/bad.seg.nrrd";
+    {
+      std::ofstream out(file, std::ios::binary);
+      out << "NRRD0004\ntype: unsigned char\ndimension: 3\nspace: left-posterior-superior\n"
+             "sizes: 2 2 2\nspace directions: (1,0,0) (0,1,0) (0,0,1)\nencoding: raw\n"
+          << key << "\n\n";
+      out << std::string(8, '\1');
+    }
+    try
+    {
+      vp::ImportSegmentation(file, nullptr);
+    }
+    catch (const vp::InputError& e)
+    {
+      return e.what();
+    }
+    return "imported";
+  };
+  EXPECT_NE(refusal("Segment0_Name:=a\nSegment" + std::string(70, '1') + "_Layer:=0").find("out of range"),
+    std::string::npos);
+  EXPECT_NE(refusal("Segment0_LabelValue:=3abc").find("not a whole number: '3abc'"), std::string::npos);
+  EXPECT_NE(refusal("Segment0_Layer:=99999999999").find("not a whole number"), std::string::npos);
+  EXPECT_EQ(refusal("Segment0_LabelValue:=1"), "imported");
 }
 } // namespace

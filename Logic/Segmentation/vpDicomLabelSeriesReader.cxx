@@ -1,6 +1,7 @@
 #include "vpDicomLabelSeriesReader.h"
 
 #include "vpInputError.h"
+#include "vpSliceStack.h"
 
 #include <dcmtk/config/osconfig.h>
 #include <dcmtk/dcmdata/dcdeftag.h>
@@ -59,13 +60,6 @@ bool ContainsDicomFile(const fs::path& folder)
   return false;
 }
 
-std::string Number(double value)
-{
-  std::ostringstream out;
-  out << value;
-  return out.str();
-}
-
 // One slice as read: its geometry and its stored values, widened to 32 bits.
 struct Slice
 {
@@ -75,7 +69,6 @@ struct Slice
   std::array<double, 6> Orientation{};
   std::array<double, 2> Spacing{}; // row spacing (between rows), column spacing
   unsigned Rows = 0, Columns = 0;
-  double Along = 0.0; // position along the slice normal
   std::vector<std::int32_t> Values;
 };
 
@@ -189,10 +182,6 @@ Slice ReadSlice(const std::string& folder, const fs::path& path)
   return s;
 }
 
-double Dot(const std::array<double, 3>& a, const std::array<double, 3>& b)
-{
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
 } // namespace
 
 bool DicomLabelSeriesReader::IsDicomFile(const std::string& path)
@@ -221,102 +210,26 @@ LabelGrid DicomLabelSeriesReader::ReadSeries(const std::string& folder)
     }
   }
 
-  // One orientation, size and pixel spacing for all; the normal orders the slices.
-  const Slice& first = slices.front();
-  const std::array<double, 3> row{ first.Orientation[0], first.Orientation[1], first.Orientation[2] };
-  const std::array<double, 3> column{ first.Orientation[3], first.Orientation[4], first.Orientation[5] };
-  const std::array<double, 3> normal{ row[1] * column[2] - row[2] * column[1], row[2] * column[0] - row[0] * column[2],
-    row[0] * column[1] - row[1] * column[0] };
-  if (std::abs(std::sqrt(Dot(normal, normal)) - 1.0) > 1e-3 || std::abs(Dot(row, column)) > 1e-3)
-  {
-    throw InputError(folder + " (" + first.File + ")", "ImageOrientationPatient is not two orthogonal unit vectors");
-  }
-  for (Slice& s : slices)
-  {
-    for (int k = 0; k < 6; ++k)
-    {
-      if (std::abs(s.Orientation[k] - first.Orientation[k]) > 1e-4)
-      {
-        throw InputError(folder, "slices with different orientations (" + first.File + " and " + s.File + ")");
-      }
-    }
-    if (s.Rows != first.Rows || s.Columns != first.Columns)
-    {
-      throw InputError(folder, "slices of different sizes (" + first.File + " and " + s.File + ")");
-    }
-    if (std::abs(s.Spacing[0] - first.Spacing[0]) > 1e-4 * first.Spacing[0] ||
-      std::abs(s.Spacing[1] - first.Spacing[1]) > 1e-4 * first.Spacing[1])
-    {
-      throw InputError(folder, "slices with different pixel spacings (" + first.File + " and " + s.File + ")");
-    }
-    s.Along = Dot(s.Position, normal);
-  }
-  std::stable_sort(slices.begin(), slices.end(), [](const Slice& a, const Slice& b) { return a.Along < b.Along; });
-
-  // Stacked along the normal at one spacing: no shear, no duplicate, no gap.
-  std::vector<double> gaps;
-  for (std::size_t i = 1; i < slices.size(); ++i)
-  {
-    std::array<double, 3> d{};
-    for (int k = 0; k < 3; ++k)
-    {
-      d[k] = slices[i].Position[k] - slices[0].Position[k];
-    }
-    const double along = Dot(d, normal);
-    const double across = std::sqrt(std::max(0.0, Dot(d, d) - along * along));
-    if (across > 0.01)
-    {
-      throw InputError(folder, "slices are not stacked along their normal (" + slices[i].File + " is offset by " +
-          Number(across) + " mm sideways): a tilted-gantry series, which this reader does not resample");
-    }
-    gaps.push_back(slices[i].Along - slices[i - 1].Along);
-    if (gaps.back() < 1e-3)
-    {
-      throw InputError(folder, "two slices at the same position (" + slices[i - 1].File + " and " + slices[i].File + ")");
-    }
-  }
-  double spacing = 1.0;
-  if (!gaps.empty())
-  {
-    std::vector<double> sorted = gaps;
-    std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
-    spacing = sorted[sorted.size() / 2];
-    for (std::size_t i = 0; i < gaps.size(); ++i)
-    {
-      if (std::abs(gaps[i] - spacing) <= std::max(0.01, 0.01 * spacing))
-      {
-        continue;
-      }
-      const double ratio = gaps[i] / spacing;
-      const std::string between = " between " + slices[i].File + " and " + slices[i + 1].File + " (" +
-        Number(gaps[i]) + " mm where the spacing is " + Number(spacing) + " mm)";
-      if (ratio > 1.5 && std::abs(ratio - std::round(ratio)) < 0.05)
-      {
-        throw InputError(folder, "missing slice" + std::string(std::round(ratio) > 2.0 ? "s" : "") + between);
-      }
-      throw InputError(folder, "uneven slice spacing" + between);
-    }
-  }
-
-  std::vector<std::int32_t> values;
-  values.reserve(static_cast<std::size_t>(first.Rows) * first.Columns * slices.size());
+  std::vector<PlanePlacement> planes;
   for (const Slice& s : slices)
   {
-    values.insert(values.end(), s.Values.begin(), s.Values.end());
+    if (s.Rows != slices.front().Rows || s.Columns != slices.front().Columns)
+    {
+      throw InputError(folder, "slices of different sizes (" + slices.front().File + " and " + s.File + ")");
+    }
+    planes.push_back({ s.File, s.Position, s.Orientation, s.Spacing });
   }
-  std::array<double, 16> m{};
-  // Index (i column, j row, k slice) to LPS: i steps along the row direction by the column
-  // spacing (PixelSpacing[1]), j along the column direction by the row spacing (PixelSpacing[0]).
-  for (int r = 0; r < 3; ++r)
+  const SliceStack stack = StackPlanes(folder, planes, StackRule::Contiguous);
+  const std::size_t sliceSize = static_cast<std::size_t>(slices.front().Rows) * slices.front().Columns;
+  std::vector<std::int32_t> values(sliceSize * slices.size());
+  for (std::size_t p = 0; p < slices.size(); ++p)
   {
-    m[4 * r + 0] = row[r] * first.Spacing[1];
-    m[4 * r + 1] = column[r] * first.Spacing[0];
-    m[4 * r + 2] = normal[r] * spacing;
-    m[4 * r + 3] = slices.front().Position[r];
+    std::copy(slices[p].Values.begin(), slices[p].Values.end(),
+      values.begin() + static_cast<std::ptrdiff_t>(sliceSize * static_cast<std::size_t>(stack.SliceOfPlane[p])));
   }
-  m[15] = 1.0;
-  const int dimensions[3] = { static_cast<int>(first.Columns), static_cast<int>(first.Rows), static_cast<int>(slices.size()) };
-  return MakeLabelGrid(folder, dimensions, values, m);
+  const int dimensions[3] = { static_cast<int>(slices.front().Columns), static_cast<int>(slices.front().Rows),
+    stack.NumberOfSlices };
+  return MakeLabelGrid(folder, dimensions, values, stack.IjkToLps);
 }
 
 LabelStructures DicomLabelSeriesReader::ReadFolder(const std::string& folder, const StructureFilter& wanted)

@@ -1,14 +1,11 @@
 #include "vpDicomLabelSeriesReader.h"
 
+#include "vpDcmtkFile.h"
 #include "vpInputError.h"
 #include "vpSliceStack.h"
 
 #include <dcmtk/config/osconfig.h>
 #include <dcmtk/dcmdata/dcdeftag.h>
-#include <dcmtk/dcmdata/dcfilefo.h>
-#include <dcmtk/dcmdata/dcxfer.h>
-#include <dcmtk/oflog/oflog.h>
-
 
 #include <algorithm>
 #include <array>
@@ -100,27 +97,12 @@ void CopyPixels(DcmDataset* data, bool isSigned, std::vector<std::int32_t>& valu
 
 Slice ReadSlice(const std::string& folder, const fs::path& path)
 {
-  // DCMTK logs parse problems to stderr; ours is the one line that names the file.
-  static const bool quiet = [] {
-    OFLog::configure(OFLogger::OFF_LOG_LEVEL);
-    return true;
-  }();
-  (void)quiet;
   Slice s;
   s.File = path.filename().string();
   const std::string where = folder + " (" + s.File + ")";
   DcmFileFormat file;
-  if (file.loadFile(path.c_str()).bad())
-  {
-    throw InputError(where, "not a readable DICOM file");
-  }
+  LoadDicomFile(file, path.string(), where);
   DcmDataset* data = file.getDataset();
-  const DcmXfer xfer(data->getOriginalXfer());
-  if (xfer.isEncapsulated())
-  {
-    throw InputError(where, std::string("compressed pixel data (") + xfer.getXferName() + ", " + xfer.getXferID() +
-        ") that this reader cannot decode; export the labelmap uncompressed");
-  }
   OFString text;
   data->findAndGetOFString(DCM_SeriesInstanceUID, text);
   s.SeriesUid = text.c_str();

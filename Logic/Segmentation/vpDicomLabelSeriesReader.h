@@ -3,15 +3,11 @@
 
 #include "vpLabelStructure.h"
 
-#include <functional>
 #include <string>
 #include <vector>
 
 namespace vp
 {
-/// Decides, from a structure's name, whether its voxels are read (the others are only listed).
-using StructureFilter = std::function<bool(const std::string& name)>;
-
 /// Reads labelmaps stored as DICOM image series (through DCMTK), in the two layouts hospitals and
 /// data sets use:
 ///  - a root folder with one sub-folder per structure, each a series whose non-zero voxels are

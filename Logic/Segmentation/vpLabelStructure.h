@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -54,6 +55,9 @@ struct LabelStructure
 
 /// Everything one import produced, in the order the source lists it.
 using LabelStructures = std::vector<LabelStructure>;
+
+/// Decides, from a structure's name, whether its voxels are read (the others are only listed).
+using StructureFilter = std::function<bool(const std::string& name)>;
 
 /// Stores voxel values (x fastest, then y, then z) as a LabelGrid in the narrowest unsigned type
 /// that holds them, after checking that they are labels: no negative value and at most 256

@@ -1,5 +1,6 @@
 #include "vpSegmentationImport.h"
 
+#include "vpDicomSegReader.h"
 #include "vpInputError.h"
 #include "vpLabelmapFileReader.h"
 
@@ -26,8 +27,9 @@ LabelStructures ImportSegmentation(const std::string& input, const StructureFilt
   }
   if (DicomLabelSeriesReader::IsDicomFile(input))
   {
-    throw InputError(input, "a single DICOM file; give the folder that holds its series");
+    return DicomSegReader::Read(input, wanted);
   }
-  throw InputError(input, "not a labelmap this program reads (a DICOM series folder, .nrrd, .seg.nrrd, .nii or .nii.gz)");
+  throw InputError(input,
+    "not a labelmap this program reads (a DICOM series folder, DICOM SEG, .nrrd, .seg.nrrd, .nii or .nii.gz)");
 }
 } // namespace vp

@@ -9,7 +9,8 @@
 namespace vp
 {
 /// Imports the labelled structures of one input, whatever its form: a folder of DICOM label
-/// series (one per structure, or one of several values), a NRRD, Slicer .seg.nrrd or NIfTI file.
+/// series (one per structure, or one of several values), a DICOM SEG file, a NRRD, Slicer
+/// .seg.nrrd or NIfTI file.
 /// wanted decides, by name, which structures' voxels are read where the format allows skipping
 /// (the others are listed with null voxels). Throws vp::InputError with one line naming the input.
 LabelStructures ImportSegmentation(const std::string& input, const StructureFilter& wanted);

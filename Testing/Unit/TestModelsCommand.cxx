@@ -2,6 +2,7 @@
 // error that names it, a non-zero exit and nothing written.
 #include "vpDicomLabelSeriesWriter.h"
 #include "vpModelTestSupport.h"
+#include "vpSegmentationImport.h"
 #include "vpStlFormat.h"
 #include "vpTestSupport.h"
 
@@ -15,6 +16,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <filesystem>
 #include <sstream>
 
@@ -161,7 +163,7 @@ TEST_F(ModelsCommand, EachBadSeriesGetsItsOneLineAndWritesNothing)
   const std::string text = this->Dir + "/notes.txt";
   std::ofstream(text) << "hello\n";
   this->ExpectRefused(text, text, "not a labelmap");
-  this->ExpectRefused(this->Masks + "/portalvein/image_0", "image_0", "a single DICOM file");
+  this->ExpectRefused(this->Masks + "/portalvein/image_0", "image_0", "not a segmentation");
   fs::create_directories(this->Dir + "/nothing");
   this->ExpectRefused(this->Dir + "/nothing", this->Dir + "/nothing", "no DICOM files");
 }
@@ -175,6 +177,123 @@ TEST_F(ModelsCommand, RealImagesAreRefusedAsLabelmaps)
   this->ExpectRefused(jpeg2000, jpeg2000, "JPEG 2000");
   const std::string ct = data + "/totalsegmentator/example_ct_sm.nii.gz";
   this->ExpectRefused(ct, ct, "not a labelmap");
+}
+
+// A DICOM SEG in, a model of each segment the table knows out.
+TEST_F(ModelsCommand, BuildsTheLiverOfADicomSeg)
+{
+  const std::string data = vp::test::TestDataDir();
+  if (data.empty())
+    GTEST_SKIP() << "VP_TEST_DATA not set: the DICOM SEG files are in ../shared/data";
+  const std::string out = this->Dir + "/seg_models";
+  const ToolRun r = RunTool(this->Dir, "models " + data + "/dcmqi/liver.dcm -o " + out);
+  ASSERT_EQ(r.ExitCode, 0) << r.Err;
+  const auto json = nlohmann::json::parse(vp::test::Slurp(out + "/models.json"));
+  ASSERT_EQ(json["structures"].size(), 1u);
+  EXPECT_EQ(json["structures"][0]["name"], "Liver");
+  EXPECT_EQ(json["structures"][0]["class"], "liver");
+  EXPECT_TRUE(fs::exists(out + "/liver.stl"));
+  // Three 1 mm slices of liver: the closed slab encloses the voxels' volume (within 5%: the
+  // smoothing moves the surface by a fraction of a voxel, and a 3-slice slab is mostly surface).
+  const auto& liver = json["structures"][0];
+  EXPECT_EQ(liver["voxels"], 107098);
+  EXPECT_NEAR(liver["volume_mm3"].get<double>() / liver["voxel_volume_mm3"].get<double>(), 1.0, 0.05);
+}
+
+// Each broken copy of a small real SEG (highdicom's, 16 x 16 x 3 binary) is refused in one line.
+TEST_F(ModelsCommand, EachBadSegmentationGetsItsOneLineAndWritesNothing)
+{
+  const std::string data = vp::test::TestDataDir();
+  if (data.empty())
+    GTEST_SKIP() << "VP_TEST_DATA not set: the DICOM SEG files are in ../shared/data";
+  const std::string original = data + "/highdicom/seg_image_ct_binary.dcm";
+  // Its one segment ("first segment", coded as bone) must be wanted for its voxels to be read.
+  const std::string table = this->Dir + "/table.json";
+  std::ofstream(table) << "{\"classes\": [{\"class\": \"liver\", \"names\": [\"first segment\"]}]}";
+  const std::string withTable = " --labels " + table;
+  // A copy of the SEG, changed by edit, saved as name.
+  auto broken = [&](const std::string& name, const std::function<void(DcmDataset&)>& edit) {
+    DcmFileFormat f;
+    EXPECT_TRUE(f.loadFile(original.c_str()).good());
+    edit(*f.getDataset());
+    const std::string path = this->Dir + "/" + name;
+    EXPECT_TRUE(f.saveFile(path.c_str(), EXS_LittleEndianExplicit).good());
+    return path + withTable;
+  };
+  auto frameItem = [](DcmDataset& d, long frame, const DcmTagKey& sequence) {
+    DcmItem* perFrame = nullptr;
+    DcmItem* item = nullptr;
+    d.findAndGetSequenceItem(DCM_PerFrameFunctionalGroupsSequence, perFrame, frame);
+    if (perFrame)
+      perFrame->findAndGetSequenceItem(sequence, item, 0);
+    return item;
+  };
+  ASSERT_NE([&] { DcmFileFormat f; f.loadFile(original.c_str()); return frameItem(*f.getDataset(), 1, DCM_PlanePositionSequence); }(), nullptr)
+    << "the plane positions are per frame in this file";
+
+  this->ExpectRefused(broken("offgrid.dcm", [&](DcmDataset& d) {
+    frameItem(d, 1, DCM_PlanePositionSequence)->putAndInsertString(DCM_ImagePositionPatient, "-125\\-128.1\\103.8");
+  }), "offgrid.dcm", "do not lie on one grid of slices");
+  this->ExpectRefused(broken("sheared.dcm", [&](DcmDataset& d) {
+    frameItem(d, 2, DCM_PlanePositionSequence)->putAndInsertString(DCM_ImagePositionPatient, "-120\\-128.1\\105.52");
+  }), "sheared.dcm", "not stacked along their normal");
+  this->ExpectRefused(broken("unplaced.dcm", [&](DcmDataset& d) {
+    DcmItem* perFrame = nullptr;
+    d.findAndGetSequenceItem(DCM_PerFrameFunctionalGroupsSequence, perFrame, 2);
+    delete perFrame->remove(DCM_PlanePositionSequence);
+  }), "unplaced.dcm", "frame 3 has no plane position");
+  this->ExpectRefused(broken("empty.dcm", [&](DcmDataset& d) {
+    const Uint8* bits = nullptr;
+    unsigned long n = 0;
+    d.findAndGetUint8Array(DCM_PixelData, bits, &n);
+    const std::vector<Uint8> zeros(n, 0);
+    d.putAndInsertUint8Array(DCM_PixelData, zeros.data(), n);
+  }), "empty.dcm", "segment 'first segment' is empty");
+  this->ExpectRefused(broken("short.dcm", [&](DcmDataset& d) {
+    const Uint8* bits = nullptr;
+    unsigned long n = 0;
+    d.findAndGetUint8Array(DCM_PixelData, bits, &n);
+    const std::vector<Uint8> half(bits, bits + n / 2);
+    d.putAndInsertUint8Array(DCM_PixelData, half.data(), n / 2);
+  }), "short.dcm", "Invalid Pixel Data");
+  const std::string truncated = this->Dir + "/truncated.dcm";
+  fs::copy_file(original, truncated);
+  fs::resize_file(truncated, fs::file_size(truncated) / 2);
+  this->ExpectRefused(truncated + withTable, "truncated.dcm", "not a readable DICOM file");
+}
+
+// FRACTIONAL: inside from half of MaximumFractionalValue up, on the real file with its values
+// replaced by a ramp, so voxels sit on both sides of the threshold.
+TEST(DicomSegFractional, InsideFromHalfTheMaximumUp)
+{
+  const std::string data = vp::test::TestDataDir();
+  if (data.empty())
+    GTEST_SKIP() << "VP_TEST_DATA not set: the DICOM SEG files are in ../shared/data";
+  DcmFileFormat f;
+  ASSERT_TRUE(f.loadFile((data + "/highdicom/seg_image_ct_binary_fractional.dcm").c_str()).good());
+  DcmDataset& d = *f.getDataset();
+  const Uint8* stored = nullptr;
+  unsigned long n = 0;
+  ASSERT_TRUE(d.findAndGetUint8Array(DCM_PixelData, stored, &n).good());
+  ASSERT_EQ(n, 3u * 16u * 16u);
+  std::vector<Uint8> ramp(n);
+  for (unsigned long i = 0; i < n; ++i)
+    ramp[i] = static_cast<Uint8>(i % 256); // each 16 x 16 frame: 0, 1, ..., 255
+  d.putAndInsertUint8Array(DCM_PixelData, ramp.data(), n);
+  for (const auto& [maximum, inside] : std::vector<std::pair<Uint16, std::size_t>>{ { 255, 128 }, { 100, 206 } })
+  {
+    d.putAndInsertUint16(DCM_MaximumFractionalValue, maximum);
+    const std::string path = vp::test::MakeTempDir("fractional") + "/ramp.dcm";
+    ASSERT_TRUE(f.saveFile(path.c_str(), EXS_LittleEndianExplicit).good());
+    const auto seg = vp::ImportSegmentation(path, nullptr);
+    ASSERT_EQ(seg.size(), 1u);
+    vtkImageData* labels = seg[0].Grid.Labels;
+    std::size_t count = 0;
+    for (vtkIdType i = 0; i < labels->GetNumberOfPoints(); ++i)
+      count += static_cast<const unsigned char*>(labels->GetScalarPointer())[i] != 0;
+    // Values v with 2v >= maximum, per frame: 255 -> 128..255; 100 -> 50..255.
+    EXPECT_EQ(count, 3 * inside) << "maximum " << maximum;
+  }
 }
 
 TEST_F(ModelsCommand, BadOptionsAreRefused)

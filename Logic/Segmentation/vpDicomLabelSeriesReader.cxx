@@ -1,6 +1,7 @@
 #include "vpDicomLabelSeriesReader.h"
 
 #include "vpDcmtkFile.h"
+#include "vpDicomSegReader.h"
 #include "vpInputError.h"
 #include "vpSliceStack.h"
 
@@ -104,6 +105,11 @@ Slice ReadSlice(const std::string& folder, const fs::path& path)
   LoadDicomFile(file, path.string(), where);
   DcmDataset* data = file.getDataset();
   OFString text;
+  data->findAndGetOFString(DCM_SOPClassUID, text);
+  if (DicomSegReader::IsSegmentationClass(text.c_str()))
+  {
+    throw InputError(where, "a DICOM SEG file: give the file itself, not the folder that holds it");
+  }
   data->findAndGetOFString(DCM_SeriesInstanceUID, text);
   s.SeriesUid = text.c_str();
   Sint32 frames = 1;

@@ -353,6 +353,11 @@ LabelStructures ReadLabelMap(DcmDataset& data, const std::string& path, const St
 }
 } // namespace
 
+bool DicomSegReader::IsSegmentationClass(const std::string& sopClassUid)
+{
+  return sopClassUid == UID_SegmentationStorage || sopClassUid == LabelMapSegmentationStorage;
+}
+
 LabelStructures DicomSegReader::Read(const std::string& path, const StructureFilter& wanted, std::size_t maximumVoxels)
 {
   DcmFileFormat file;

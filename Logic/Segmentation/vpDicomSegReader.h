@@ -29,6 +29,9 @@ namespace vp
 class DicomSegReader
 {
 public:
+  /// True for the SOP class UIDs of the two segmentation classes read here.
+  static bool IsSegmentationClass(const std::string& sopClassUid);
+
   static LabelStructures Read(const std::string& path, const StructureFilter& wanted,
     std::size_t maximumVoxels = std::size_t(1) << 28);
 };

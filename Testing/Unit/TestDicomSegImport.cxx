@@ -18,7 +18,9 @@
 
 #include <algorithm>
 #include <array>
+#include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace
@@ -218,19 +220,40 @@ TEST_F(DicomSegImport, HighdicomOverlapKeepsBothSegmentsAcrossAGapOfEmptySlices)
   EXPECT_EQ(CountBoth(seg[0], seg[1]), 16u) << "the second segment lies inside the first";
 }
 
-TEST_F(DicomSegImport, ACtSliceIsNotASegmentation)
+TEST_F(DicomSegImport, AFolderHoldingASegAsksForTheFile)
 {
-  const std::string ct = this->Data + "/highdicom/ct_image.dcm";
+  const std::string folder = vp::test::MakeTempDir("segfolder");
+  std::filesystem::copy_file(this->Data + "/dcmqi/liver.dcm", folder + "/liver.dcm");
   try
   {
-    vp::ImportSegmentation(ct, nullptr);
-    ADD_FAILURE() << "a CT slice was imported";
+    vp::ImportSegmentation(folder, nullptr);
+    ADD_FAILURE() << "a folder holding a SEG was read as a series";
   }
   catch (const vp::InputError& e)
   {
-    EXPECT_NE(std::string(e.what()).find(ct + ": a single DICOM CTImageStorage object, not a segmentation"),
-      std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("liver.dcm): a DICOM SEG file: give the file itself"), std::string::npos)
       << e.what();
+  }
+}
+
+TEST_F(DicomSegImport, ImagesAreNotSegmentations)
+{
+  for (const auto& [file, sopClass] : std::vector<std::pair<std::string, std::string>>{
+         { "highdicom/ct_image.dcm", "CTImageStorage" },
+         { "dcmqi/23x38x3_multiframe_mf.dcm", "LegacyConvertedEnhancedCTImageStorage" } })
+  {
+    const std::string path = this->Data + "/" + file;
+    try
+    {
+      vp::ImportSegmentation(path, nullptr);
+      ADD_FAILURE() << path << " was imported";
+    }
+    catch (const vp::InputError& e)
+    {
+      EXPECT_NE(std::string(e.what()).find(path + ": a single DICOM " + sopClass + " object, not a segmentation"),
+        std::string::npos)
+        << e.what();
+    }
   }
 }
 } // namespace

@@ -23,7 +23,7 @@ TEST(PointCsv, ErrorsNameTheLine)
   const std::pair<std::string, std::string> cases[] = {
     { "1,2,3\nx,y,z\n", "line 2:" },
     { "1,2,3,4\n", "line 1: expected x,y,z (3 numbers), got 4" },
-    { "x,y,z\n", "no points" },
+    { "x,y,z\n", "nothing in it: expected a point list" },
     { "1,2,inf\n", "line 1: NaN or infinite value" },
   };
   int i = 0;

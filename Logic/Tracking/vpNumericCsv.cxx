@@ -1,0 +1,99 @@
+#include "vpNumericCsv.h"
+
+#include "vpInputError.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <sys/stat.h>
+
+namespace vp
+{
+bool ParseNumbers(const std::string& text, std::vector<double>& values, std::string& problem)
+{
+  values.clear();
+  const char* p = text.c_str();
+  while (true)
+  {
+    while (*p == ' ' || *p == '\t' || *p == '\r')
+    {
+      ++p;
+    }
+    char* end = nullptr;
+    const double v = std::strtod(p, &end);
+    if (end == p)
+    {
+      problem = "'" + text.substr(0, 40) + "' is not a list of numbers";
+      return false;
+    }
+    if (!std::isfinite(v))
+    {
+      problem = "NaN or infinite value";
+      return false;
+    }
+    values.push_back(v);
+    p = end;
+    while (*p == ' ' || *p == '\t' || *p == '\r')
+    {
+      ++p;
+    }
+    if (*p == '\0')
+    {
+      return true;
+    }
+    if (*p != ',')
+    {
+      problem = "'" + text.substr(0, 40) + "' is not a list of numbers";
+      return false;
+    }
+    ++p;
+  }
+}
+
+std::vector<NumericRow> ReadNumericCsv(const std::string& fileName, const std::string& what)
+{
+  struct stat info;
+  if (stat(fileName.c_str(), &info) != 0)
+  {
+    throw InputError(fileName, errno == ENOENT ? "no such file" : std::strerror(errno));
+  }
+  std::ifstream in(fileName);
+  if (!in || S_ISDIR(info.st_mode))
+  {
+    throw InputError(fileName, "cannot open as " + what);
+  }
+  std::vector<NumericRow> rows;
+  std::string line;
+  std::size_t number = 0;
+  while (std::getline(in, line))
+  {
+    ++number;
+    const std::size_t first = line.find_first_not_of(" \t\r");
+    if (first == std::string::npos || line[first] == '#')
+    {
+      continue;
+    }
+    NumericRow row;
+    row.Line = number;
+    std::string problem;
+    if (!ParseNumbers(line, row.Values, problem))
+    {
+      char* end = nullptr;
+      std::strtod(line.c_str() + first, &end);
+      if (rows.empty() && end == line.c_str() + first)
+      {
+        continue; // a header: its first field is no number at all
+      }
+      throw InputError(fileName, "line " + std::to_string(number) + ": " + problem);
+    }
+    rows.push_back(std::move(row));
+  }
+  if (rows.empty())
+  {
+    throw InputError(fileName, "nothing in it: expected " + what);
+  }
+  return rows;
+}
+} // namespace vp

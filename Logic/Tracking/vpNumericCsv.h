@@ -1,0 +1,28 @@
+#ifndef vpNumericCsv_h
+#define vpNumericCsv_h
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace vp
+{
+/// One line of numbers from a CSV file, with its line number (from 1) for messages.
+struct NumericRow
+{
+  std::size_t Line = 0;
+  std::vector<double> Values;
+};
+
+/// Splits "a,b,c" (blanks around commas allowed) into finite numbers. Returns false with a short
+/// problem ("NaN or infinite value", "'...' is not a list of numbers") otherwise.
+bool ParseNumbers(const std::string& text, std::vector<double>& values, std::string& problem);
+
+/// Reads the numeric lines of a CSV file: a first line whose first field is not a number is a
+/// header, blank lines and lines starting with '#' are skipped. Throws vp::InputError naming the
+/// file and the line for anything else, naming what the file should hold (e.g. "a point list")
+/// when it cannot be opened or holds no row.
+std::vector<NumericRow> ReadNumericCsv(const std::string& fileName, const std::string& what);
+} // namespace vp
+
+#endif

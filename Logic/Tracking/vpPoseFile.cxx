@@ -1,0 +1,221 @@
+#include "vpPoseFile.h"
+
+#include "vpInputError.h"
+#include "vpNumericCsv.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace vp
+{
+namespace
+{
+std::string Number(double value)
+{
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
+bool EndsWith(const std::string& text, const std::string& suffix)
+{
+  return text.size() >= suffix.size() && text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+// The problem with a model-to-world matrix, or "" when it is a rigid pose.
+std::string RigidProblem(const std::array<double, 16>& m)
+{
+  if (std::abs(m[12]) > 1e-6 || std::abs(m[13]) > 1e-6 || std::abs(m[14]) > 1e-6 || std::abs(m[15] - 1.0) > 1e-6)
+  {
+    return "the last matrix row is not 0 0 0 1";
+  }
+  double worst = 0.0;
+  for (int a = 0; a < 3; ++a)
+  {
+    for (int b = 0; b < 3; ++b)
+    {
+      // (R^T R)_ab: columns a and b of R.
+      const double dot = m[a] * m[b] + m[4 + a] * m[4 + b] + m[8 + a] * m[8 + b];
+      worst = std::max(worst, std::abs(dot - (a == b ? 1.0 : 0.0)));
+    }
+  }
+  if (worst > 1e-3)
+  {
+    return "the rotation is not orthonormal (|R^T R - I| = " + Number(worst) + ")";
+  }
+  const double det = m[0] * (m[5] * m[10] - m[6] * m[9]) - m[1] * (m[4] * m[10] - m[6] * m[8]) +
+    m[2] * (m[4] * m[9] - m[5] * m[8]);
+  if (det < 0.0)
+  {
+    return "the rotation is a reflection (determinant -1)";
+  }
+  return "";
+}
+
+// A pose from the numbers after the time: 16 (matrix) or 7 (position, quaternion); "" or the problem.
+std::string MakePose(const double* values, std::size_t count, TrackedPose& pose)
+{
+  if (count == 16)
+  {
+    std::copy(values, values + 16, pose.ModelToWorld.begin());
+  }
+  else
+  {
+    const double norm = std::sqrt(values[3] * values[3] + values[4] * values[4] + values[5] * values[5] + values[6] * values[6]);
+    if (!(std::abs(norm - 1.0) <= 1e-3))
+    {
+      return "the quaternion is not of unit length (|q| = " + Number(norm) + ")";
+    }
+    // Normalised, so that a quaternion written to 4 decimals still gives an orthonormal rotation.
+    pose.ModelToWorld = PoseFromQuaternion(
+      { values[0], values[1], values[2] }, { values[3] / norm, values[4] / norm, values[5] / norm, values[6] / norm });
+  }
+  return RigidProblem(pose.ModelToWorld);
+}
+
+std::vector<TrackedPose> ReadCsv(const std::string& fileName)
+{
+  std::vector<TrackedPose> poses;
+  const auto rows =
+    ReadNumericCsv(fileName, "a pose list (time,m00..m33 or time,x,y,z,qw,qx,qy,qz per line)");
+  const std::size_t columns = rows.front().Values.size();
+  for (const NumericRow& row : rows)
+  {
+    const std::string where = "line " + std::to_string(row.Line) + ": ";
+    if (row.Values.size() != 17 && row.Values.size() != 8)
+    {
+      throw InputError(fileName, where + "expected 17 numbers (time and a 4x4 matrix) or 8 (time, x,y,z, qw,qx,qy,qz), got " +
+          std::to_string(row.Values.size()));
+    }
+    if (row.Values.size() != columns)
+    {
+      throw InputError(fileName, where + std::to_string(row.Values.size()) + " numbers where the first pose has " +
+          std::to_string(columns));
+    }
+    TrackedPose pose;
+    pose.TimeS = row.Values[0];
+    const std::string problem = MakePose(row.Values.data() + 1, row.Values.size() - 1, pose);
+    if (!problem.empty())
+    {
+      throw InputError(fileName, where + problem);
+    }
+    if (!poses.empty() && !(pose.TimeS > poses.back().TimeS))
+    {
+      throw InputError(fileName, where + "time " + Number(pose.TimeS) + " is not after the previous " +
+          Number(poses.back().TimeS));
+    }
+    poses.push_back(pose);
+  }
+  return poses;
+}
+
+std::vector<double> Numbers(const nlohmann::json& value, std::size_t count, const std::string& what)
+{
+  if (!value.is_array() || value.size() != count)
+  {
+    throw std::runtime_error("\"" + what + "\" is not an array of " + std::to_string(count) + " numbers");
+  }
+  std::vector<double> out;
+  for (const auto& v : value)
+  {
+    if (!v.is_number() || !std::isfinite(v.get<double>()))
+    {
+      throw std::runtime_error("\"" + what + "\" holds something other than a finite number");
+    }
+    out.push_back(v.get<double>());
+  }
+  return out;
+}
+
+std::vector<TrackedPose> ReadJson(const std::string& fileName)
+{
+  std::ifstream in(fileName);
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(fileName, ec) || !in)
+  {
+    throw InputError(fileName, std::filesystem::exists(fileName, ec) ? "cannot open as a pose list" : "no such file");
+  }
+  nlohmann::json document;
+  try
+  {
+    document = nlohmann::json::parse(in);
+  }
+  catch (const nlohmann::json::exception& e)
+  {
+    std::string what = e.what();
+    what = what.substr(what.find(']') == std::string::npos ? 0 : what.find(']') + 2);
+    throw InputError(fileName, "not valid JSON: " + what);
+  }
+  const nlohmann::json* list = document.is_object() && document.contains("poses") ? &document["poses"] : nullptr;
+  if (!list || !list->is_array() || list->empty())
+  {
+    throw InputError(fileName, "no poses: expected {\"poses\": [{\"time\": ..., \"matrix\": [...]}, ...]}");
+  }
+  std::vector<TrackedPose> poses;
+  for (std::size_t i = 0; i < list->size(); ++i)
+  {
+    const nlohmann::json& item = (*list)[i];
+    const std::string where = "pose " + std::to_string(i + 1) + ": ";
+    TrackedPose pose;
+    std::string problem;
+    try
+    {
+      if (!item.is_object() || !item.contains("time"))
+      {
+        throw std::runtime_error("no \"time\"");
+      }
+      pose.TimeS = Numbers(nlohmann::json::array({ item["time"] }), 1, "time")[0];
+      std::vector<double> values;
+      if (item.contains("matrix"))
+      {
+        values = Numbers(item["matrix"], 16, "matrix");
+      }
+      else if (item.contains("position") && item.contains("quaternion"))
+      {
+        values = Numbers(item["position"], 3, "position");
+        const auto q = Numbers(item["quaternion"], 4, "quaternion");
+        values.insert(values.end(), q.begin(), q.end());
+      }
+      else
+      {
+        throw std::runtime_error("neither \"matrix\" nor \"position\" and \"quaternion\"");
+      }
+      problem = MakePose(values.data(), values.size(), pose);
+    }
+    catch (const std::runtime_error& e)
+    {
+      problem = e.what();
+    }
+    if (problem.empty() && !poses.empty() && !(pose.TimeS > poses.back().TimeS))
+    {
+      problem = "time " + Number(pose.TimeS) + " is not after the previous " + Number(poses.back().TimeS);
+    }
+    if (!problem.empty())
+    {
+      throw InputError(fileName, where + problem);
+    }
+    poses.push_back(pose);
+  }
+  return poses;
+}
+} // namespace
+
+std::array<double, 16> PoseFromQuaternion(const std::array<double, 3>& p, const std::array<double, 4>& q)
+{
+  const double w = q[0], x = q[1], y = q[2], z = q[3];
+  return { 1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y), p[0], //
+    2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x), p[1],         //
+    2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y), p[2],         //
+    0, 0, 0, 1 };
+}
+
+std::vector<TrackedPose> ReadPoseFile(const std::string& fileName)
+{
+  return EndsWith(fileName, ".json") ? ReadJson(fileName) : ReadCsv(fileName);
+}
+} // namespace vp

@@ -11,12 +11,6 @@
 
 namespace vp
 {
-Point3 TransformPoint(const std::array<double, 16>& m, const Point3& p)
-{
-  return { m[0] * p[0] + m[1] * p[1] + m[2] * p[2] + m[3], m[4] * p[0] + m[5] * p[1] + m[6] * p[2] + m[7],
-    m[8] * p[0] + m[9] * p[1] + m[10] * p[2] + m[11] };
-}
-
 namespace
 {
 // The largest distance of any point from the line through the two points farthest apart: zero

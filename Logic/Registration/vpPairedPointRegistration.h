@@ -1,13 +1,13 @@
 #ifndef vpPairedPointRegistration_h
 #define vpPairedPointRegistration_h
 
+#include "vpRigidTransform.h"
+
 #include <array>
 #include <vector>
 
 namespace vp
 {
-using Point3 = std::array<double, 3>;
-
 /// A rigid model-to-world transform found from data, with its error as IGT tools report it.
 struct RigidRegistration
 {
@@ -20,9 +20,6 @@ struct RigidRegistration
 /// in world coordinates (Horn's closed form, through vtkLandmarkTransform). Needs at least three
 /// pairs that do not lie on one line; throws vp::InputError("landmarks", ...) otherwise.
 RigidRegistration RegisterPairedPoints(const std::vector<Point3>& modelPoints, const std::vector<Point3>& worldPoints);
-
-/// Applies a row-major 4x4 rigid transform to a point.
-Point3 TransformPoint(const std::array<double, 16>& m, const Point3& p);
 } // namespace vp
 
 #endif

@@ -20,21 +20,6 @@ std::string Number(double value)
   out << value;
   return out.str();
 }
-
-// The angle of the rotation that takes pose a's orientation to pose b's (degrees).
-double RotationBetweenDeg(const std::array<double, 16>& a, const std::array<double, 16>& b)
-{
-  // trace(Ra^T Rb) = 1 + 2 cos(angle)
-  double trace = 0.0;
-  for (int r = 0; r < 3; ++r)
-  {
-    for (int c = 0; c < 3; ++c)
-    {
-      trace += a[4 * r + c] * b[4 * r + c];
-    }
-  }
-  return vtkMath::DegreesFromRadians(std::acos(std::clamp((trace - 1.0) / 2.0, -1.0, 1.0)));
-}
 } // namespace
 
 PivotCalibration CalibratePivot(const std::vector<std::array<double, 16>>& poses, std::size_t minimumPoses,

@@ -3,9 +3,7 @@
 #include "vpInputError.h"
 
 #include <vtkMath.h>
-#include <vtkMatrix4x4.h>
 #include <vtkNew.h>
-#include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkStaticCellLocator.h>
 
@@ -15,48 +13,12 @@ namespace vp
 {
 namespace
 {
-using Matrix = std::array<double, 16>;
-
-Matrix Multiply(const Matrix& a, const Matrix& b)
-{
-  Matrix m{};
-  for (int r = 0; r < 4; ++r)
-  {
-    for (int c = 0; c < 4; ++c)
-    {
-      for (int k = 0; k < 4; ++k)
-      {
-        m[4 * r + c] += a[4 * r + k] * b[4 * k + c];
-      }
-    }
-  }
-  return m;
-}
-
-Matrix Inverse(const Matrix& m)
-{
-  Matrix inverse{};
-  vtkMatrix4x4::Invert(m.data(), inverse.data());
-  return inverse;
-}
-
 // The rigid motion of a small rotation vector (Rodrigues) and a translation.
-Matrix Motion(const double omega[3], const double tau[3])
+Matrix4 Motion(const double omega[3], const double tau[3])
 {
   const double angle = std::sqrt(omega[0] * omega[0] + omega[1] * omega[1] + omega[2] * omega[2]);
-  double axis[3] = { 1.0, 0.0, 0.0 };
-  if (angle > 0.0)
-  {
-    axis[0] = omega[0] / angle;
-    axis[1] = omega[1] / angle;
-    axis[2] = omega[2] / angle;
-  }
-  const double c = std::cos(angle), s = std::sin(angle), t = 1.0 - c;
-  const double x = axis[0], y = axis[1], z = axis[2];
-  return { t * x * x + c, t * x * y - s * z, t * x * z + s * y, tau[0], //
-    t * x * y + s * z, t * y * y + c, t * y * z - s * x, tau[1],         //
-    t * x * z - s * y, t * y * z + s * x, t * z * z + c, tau[2],         //
-    0, 0, 0, 1 };
+  return angle > 0.0 ? RotationAboutAxis({ omega[0], omega[1], omega[2] }, angle, { tau[0], tau[1], tau[2] })
+                     : RotationAboutAxis({ 1.0, 0.0, 0.0 }, 0.0, { tau[0], tau[1], tau[2] });
 }
 
 // The unit normal of a triangle of the surface.
@@ -99,7 +61,7 @@ SurfaceRegistration RegisterSurfaceIcp(vtkPolyData* modelSurface, const std::vec
   // surface; it needs far fewer iterations than point-to-point ICP (VTK's
   // vtkIterativeClosestPointTransform) once close. Both stop in the same local minima when the
   // guess is too far off.
-  Matrix worldToModel = Inverse(initialModelToWorld);
+  Matrix4 worldToModel = InvertTransform(initialModelToWorld);
   SurfaceRegistration result;
   double meanResidual = 0.0;
   for (int iteration = 0; iteration <= maximumIterations; ++iteration)
@@ -152,7 +114,7 @@ SurfaceRegistration RegisterSurfaceIcp(vtkPolyData* modelSurface, const std::vec
     {
       break;
     }
-    worldToModel = Multiply(Motion(rhs, rhs + 3), worldToModel);
+    worldToModel = MultiplyTransforms(Motion(rhs, rhs + 3), worldToModel);
     const double step = std::sqrt(rhs[0] * rhs[0] + rhs[1] * rhs[1] + rhs[2] * rhs[2]) * 100.0 +
       std::sqrt(rhs[3] * rhs[3] + rhs[4] * rhs[4] + rhs[5] * rhs[5]);
     if (step < 1e-7) // a movement of 0.1 micrometre at 100 mm
@@ -160,7 +122,7 @@ SurfaceRegistration RegisterSurfaceIcp(vtkPolyData* modelSurface, const std::vec
       break;
     }
   }
-  result.ModelToWorld = Inverse(worldToModel);
+  result.ModelToWorld = InvertTransform(worldToModel);
   result.MeanResidualMm = meanResidual;
   return result;
 }

@@ -23,26 +23,9 @@ namespace
 using vp::Point3;
 using Matrix = std::array<double, 16>;
 
-// Rotation by angleDeg about a (not necessarily unit) axis, then translation.
 Matrix Rigid(Point3 axis, double angleDeg, Point3 translation)
 {
-  vtkMath::Normalize(axis.data());
-  const double a = vtkMath::RadiansFromDegrees(angleDeg), c = std::cos(a), s = std::sin(a), t = 1 - c;
-  const double x = axis[0], y = axis[1], z = axis[2];
-  return { t * x * x + c, t * x * y - s * z, t * x * z + s * y, translation[0], //
-    t * x * y + s * z, t * y * y + c, t * y * z - s * x, translation[1],         //
-    t * x * z - s * y, t * y * z + s * x, t * z * z + c, translation[2],         //
-    0, 0, 0, 1 };
-}
-
-Matrix Multiply(const Matrix& a, const Matrix& b)
-{
-  Matrix m{};
-  for (int r = 0; r < 4; ++r)
-    for (int c = 0; c < 4; ++c)
-      for (int k = 0; k < 4; ++k)
-        m[4 * r + c] += a[4 * r + k] * b[4 * k + c];
-  return m;
+  return vp::RotationAboutAxis(axis, vtkMath::RadiansFromDegrees(angleDeg), translation);
 }
 
 double Distance(const Point3& a, const Point3& b)
@@ -50,14 +33,9 @@ double Distance(const Point3& a, const Point3& b)
   return std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
 }
 
-// Angle of the rotation between two poses (degrees) and distance between their translations.
 double RotationErrorDeg(const Matrix& a, const Matrix& b)
 {
-  double trace = 0;
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c)
-      trace += a[4 * r + c] * b[4 * r + c];
-  return vtkMath::DegreesFromRadians(std::acos(std::min(1.0, std::max(-1.0, (trace - 1) / 2))));
+  return vp::RotationBetweenDeg(a, b);
 }
 
 double TranslationErrorMm(const Matrix& a, const Matrix& b)
@@ -206,7 +184,7 @@ TEST(SurfaceIcpRegistration, ConvergesOnARealInstrumentFromAFewMillimetresAndDeg
     measured.push_back({ w[0] + noise(random), w[1] + noise(random), w[2] + noise(random) });
   }
   // The guess: 3 degrees and 3 mm off.
-  const Matrix guess = Multiply(Rigid({ 1, 1, 0 }, 3.0, { 2.0, -2.0, 1.0 }), truth);
+  const Matrix guess = vp::MultiplyTransforms(Rigid({ 1, 1, 0 }, 3.0, { 2.0, -2.0, 1.0 }), truth);
   const auto fit = vp::RegisterSurfaceIcp(scalpel, measured, guess);
   EXPECT_LT(RotationErrorDeg(fit.ModelToWorld, truth), 0.3);
   // The tip (the model origin for the PLUS catalogue's instruments) lands within 0.3 mm.

@@ -1,6 +1,7 @@
 #ifndef vpInputError_h
 #define vpInputError_h
 
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -20,6 +21,16 @@ public:
   {
   }
 };
+
+/// A number as a message shows it: the shortest form to the given significant digits ("0.9",
+/// "1.41421"), not std::to_string's fixed six decimals.
+inline std::string NumberText(double value, int significantDigits = 6)
+{
+  std::ostringstream out;
+  out.precision(significantDigits);
+  out << value;
+  return out.str();
+}
 } // namespace vp
 
 #endif

@@ -6,22 +6,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 #include <string>
 
 namespace vp
 {
-namespace
-{
-std::string Number(double value)
-{
-  std::ostringstream out;
-  out.precision(3);
-  out << value;
-  return out.str();
-}
-} // namespace
-
 PivotCalibration CalibratePivot(const std::vector<std::array<double, 16>>& poses, std::size_t minimumPoses,
   double minimumRotationDeg)
 {
@@ -37,8 +25,8 @@ PivotCalibration CalibratePivot(const std::vector<std::array<double, 16>>& poses
   }
   if (result.RotationSpreadDeg < minimumRotationDeg)
   {
-    throw InputError("pivot poses", "too little rotation: the tool turns at most " + Number(result.RotationSpreadDeg) +
-        " degrees; swing it about its tip through at least " + Number(minimumRotationDeg));
+    throw InputError("pivot poses", "too little rotation: the tool turns at most " + NumberText(result.RotationSpreadDeg, 3) +
+        " degrees; swing it about its tip through at least " + NumberText(minimumRotationDeg, 3));
   }
 
   // Each pose gives three rows of [R_i  -I] [tip; pivot] = -t_i; solve the normal equations.

@@ -1,7 +1,7 @@
 #ifndef vpPivotCalibration_h
 #define vpPivotCalibration_h
 
-#include "vpPairedPointRegistration.h"
+#include "vpRigidTransform.h"
 
 #include <array>
 #include <vector>

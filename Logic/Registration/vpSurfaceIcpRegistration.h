@@ -1,7 +1,7 @@
 #ifndef vpSurfaceIcpRegistration_h
 #define vpSurfaceIcpRegistration_h
 
-#include "vpPairedPointRegistration.h"
+#include "vpRigidTransform.h"
 
 #include <array>
 #include <vector>

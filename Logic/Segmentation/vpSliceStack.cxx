@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
-#include <sstream>
 
 namespace vp
 {
@@ -16,13 +15,6 @@ using Vector = std::array<double, 3>;
 double Dot(const Vector& a, const Vector& b)
 {
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-std::string Number(double value)
-{
-  std::ostringstream out;
-  out << value;
-  return out.str();
 }
 
 // Positions read from text (DS, often 6 significant digits) agree only to about this much.
@@ -64,7 +56,7 @@ double ContiguousSpacing(const std::string& where, const std::vector<PlanePlacem
     }
     const double ratio = gaps[i] / spacing;
     const std::string between = " between " + planes[order[i]].Name + " and " + planes[order[i + 1]].Name + " (" +
-      Number(gaps[i]) + " mm where the spacing is " + Number(spacing) + " mm)";
+      NumberText(gaps[i]) + " mm where the spacing is " + NumberText(spacing) + " mm)";
     if (ratio > 1.5 && std::abs(ratio - std::round(ratio)) < 0.05)
     {
       throw InputError(where, "missing slice" + std::string(std::round(ratio) > 2.0 ? "s" : "") + between);
@@ -100,8 +92,8 @@ double SparseSpacing(const std::string& where, const std::vector<std::size_t>& o
   }
   if (!fits(smallest))
   {
-    throw InputError(where, "frames that do not lie on one grid of slices (gaps of " + Number(smallest) + " and " +
-        Number(*std::max_element(gaps.begin(), gaps.end())) + " mm along the normal)");
+    throw InputError(where, "frames that do not lie on one grid of slices (gaps of " + NumberText(smallest) + " and " +
+        NumberText(*std::max_element(gaps.begin(), gaps.end())) + " mm along the normal)");
   }
   return smallest;
 }
@@ -152,7 +144,7 @@ SliceStack StackPlanes(const std::string& where, const std::vector<PlanePlacemen
     if (!(across <= 0.01))
     {
       throw InputError(where, "slices are not stacked along their normal (" + s.Name + " is offset by " +
-          Number(across) + " mm sideways): a tilted-gantry series, which this reader does not resample");
+          NumberText(across) + " mm sideways): a tilted-gantry series, which this reader does not resample");
     }
   }
   std::vector<std::size_t> order(planes.size());

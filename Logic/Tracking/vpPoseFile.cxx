@@ -9,19 +9,11 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 
 namespace vp
 {
 namespace
 {
-std::string Number(double value)
-{
-  std::ostringstream out;
-  out << value;
-  return out.str();
-}
-
 bool EndsWith(const std::string& text, const std::string& suffix)
 {
   return text.size() >= suffix.size() && text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
@@ -46,7 +38,7 @@ std::string RigidProblem(const std::array<double, 16>& m)
   }
   if (worst > 1e-3)
   {
-    return "the rotation is not orthonormal (|R^T R - I| = " + Number(worst) + ")";
+    return "the rotation is not orthonormal (|R^T R - I| = " + NumberText(worst) + ")";
   }
   const double det = m[0] * (m[5] * m[10] - m[6] * m[9]) - m[1] * (m[4] * m[10] - m[6] * m[8]) +
     m[2] * (m[4] * m[9] - m[5] * m[8]);
@@ -69,13 +61,32 @@ std::string MakePose(const double* values, std::size_t count, TrackedPose& pose)
     const double norm = std::sqrt(values[3] * values[3] + values[4] * values[4] + values[5] * values[5] + values[6] * values[6]);
     if (!(std::abs(norm - 1.0) <= 1e-3))
     {
-      return "the quaternion is not of unit length (|q| = " + Number(norm) + ")";
+      return "the quaternion is not of unit length (|q| = " + NumberText(norm) + ")";
     }
     // Normalised, so that a quaternion written to 4 decimals still gives an orthonormal rotation.
     pose.ModelToWorld = PoseFromQuaternion(
       { values[0], values[1], values[2] }, { values[3] / norm, values[4] / norm, values[5] / norm, values[6] / norm });
   }
   return RigidProblem(pose.ModelToWorld);
+}
+
+// Makes the pose at time from the numbers after the time (16: matrix; 7: position and
+// quaternion) and appends it, or throws naming fileName and where (the line or pose).
+void AppendPose(std::vector<TrackedPose>& poses, double time, const double* values, std::size_t count,
+  const std::string& fileName, const std::string& where)
+{
+  TrackedPose pose;
+  pose.TimeS = time;
+  std::string problem = MakePose(values, count, pose);
+  if (problem.empty() && !poses.empty() && !(pose.TimeS > poses.back().TimeS))
+  {
+    problem = "time " + NumberText(pose.TimeS) + " is not after the previous " + NumberText(poses.back().TimeS);
+  }
+  if (!problem.empty())
+  {
+    throw InputError(fileName, where + problem);
+  }
+  poses.push_back(pose);
 }
 
 std::vector<TrackedPose> ReadCsv(const std::string& fileName)
@@ -97,19 +108,7 @@ std::vector<TrackedPose> ReadCsv(const std::string& fileName)
       throw InputError(fileName, where + std::to_string(row.Values.size()) + " numbers where the first pose has " +
           std::to_string(columns));
     }
-    TrackedPose pose;
-    pose.TimeS = row.Values[0];
-    const std::string problem = MakePose(row.Values.data() + 1, row.Values.size() - 1, pose);
-    if (!problem.empty())
-    {
-      throw InputError(fileName, where + problem);
-    }
-    if (!poses.empty() && !(pose.TimeS > poses.back().TimeS))
-    {
-      throw InputError(fileName, where + "time " + Number(pose.TimeS) + " is not after the previous " +
-          Number(poses.back().TimeS));
-    }
-    poses.push_back(pose);
+    AppendPose(poses, row.Values[0], row.Values.data() + 1, row.Values.size() - 1, fileName, where);
   }
   return poses;
 }
@@ -161,16 +160,15 @@ std::vector<TrackedPose> ReadJson(const std::string& fileName)
   {
     const nlohmann::json& item = (*list)[i];
     const std::string where = "pose " + std::to_string(i + 1) + ": ";
-    TrackedPose pose;
-    std::string problem;
+    double time = 0.0;
+    std::vector<double> values;
     try
     {
       if (!item.is_object() || !item.contains("time"))
       {
         throw std::runtime_error("no \"time\"");
       }
-      pose.TimeS = Numbers(nlohmann::json::array({ item["time"] }), 1, "time")[0];
-      std::vector<double> values;
+      time = Numbers(nlohmann::json::array({ item["time"] }), 1, "time")[0];
       if (item.contains("matrix"))
       {
         values = Numbers(item["matrix"], 16, "matrix");
@@ -185,21 +183,12 @@ std::vector<TrackedPose> ReadJson(const std::string& fileName)
       {
         throw std::runtime_error("neither \"matrix\" nor \"position\" and \"quaternion\"");
       }
-      problem = MakePose(values.data(), values.size(), pose);
     }
     catch (const std::runtime_error& e)
     {
-      problem = e.what();
+      throw InputError(fileName, where + e.what());
     }
-    if (problem.empty() && !poses.empty() && !(pose.TimeS > poses.back().TimeS))
-    {
-      problem = "time " + Number(pose.TimeS) + " is not after the previous " + Number(poses.back().TimeS);
-    }
-    if (!problem.empty())
-    {
-      throw InputError(fileName, where + problem);
-    }
-    poses.push_back(pose);
+    AppendPose(poses, time, values.data(), values.size(), fileName, where);
   }
   return poses;
 }

@@ -33,11 +33,6 @@ double Distance(const Point3& a, const Point3& b)
   return std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
 }
 
-double RotationErrorDeg(const Matrix& a, const Matrix& b)
-{
-  return vp::RotationBetweenDeg(a, b);
-}
-
 double TranslationErrorMm(const Matrix& a, const Matrix& b)
 {
   return Distance({ a[3], a[7], a[11] }, { b[3], b[7], b[11] });
@@ -57,7 +52,7 @@ TEST(PairedPointRegistration, RecoversAKnownTransformExactlyAndUnderNoise)
     noisy.push_back({ world.back()[0] + noise(random), world.back()[1] + noise(random), world.back()[2] + noise(random) });
   }
   const auto exact = vp::RegisterPairedPoints(model, world);
-  EXPECT_LT(RotationErrorDeg(exact.ModelToWorld, truth), 1e-6);
+  EXPECT_LT(vp::RotationBetweenDeg(exact.ModelToWorld, truth), 1e-6);
   EXPECT_LT(TranslationErrorMm(exact.ModelToWorld, truth), 1e-6);
   EXPECT_LT(exact.RmsErrorMm, 1e-6);
   ASSERT_EQ(exact.PointErrorsMm.size(), 20u);
@@ -65,7 +60,7 @@ TEST(PairedPointRegistration, RecoversAKnownTransformExactlyAndUnderNoise)
   // 0.5 mm noise, 20 landmarks over 120 mm: rotation within 0.5 degrees, translation within 1 mm;
   // the FRE is about the noise (sigma * sqrt(3 (1 - 2/N)) for a 3D fit: about 0.82 mm).
   const auto fit = vp::RegisterPairedPoints(model, noisy);
-  EXPECT_LT(RotationErrorDeg(fit.ModelToWorld, truth), 0.5);
+  EXPECT_LT(vp::RotationBetweenDeg(fit.ModelToWorld, truth), 0.5);
   EXPECT_LT(TranslationErrorMm(fit.ModelToWorld, truth), 1.0);
   EXPECT_GT(fit.RmsErrorMm, 0.5);
   EXPECT_LT(fit.RmsErrorMm, 1.1);
@@ -186,9 +181,9 @@ TEST(SurfaceIcpRegistration, ConvergesOnARealInstrumentFromAFewMillimetresAndDeg
   // The guess: 3 degrees and 3 mm off.
   const Matrix guess = vp::MultiplyTransforms(Rigid({ 1, 1, 0 }, 3.0, { 2.0, -2.0, 1.0 }), truth);
   const auto fit = vp::RegisterSurfaceIcp(scalpel, measured, guess);
-  EXPECT_LT(RotationErrorDeg(fit.ModelToWorld, truth), 0.3);
+  EXPECT_LT(vp::RotationBetweenDeg(fit.ModelToWorld, truth), 0.3);
   // The tip (the model origin for the PLUS catalogue's instruments) lands within 0.3 mm.
-  std::printf("icp: rotation error %g deg, tip error %g mm, residual %g mm, %d iterations\n", RotationErrorDeg(fit.ModelToWorld, truth),
+  std::printf("icp: rotation error %g deg, tip error %g mm, residual %g mm, %d iterations\n", vp::RotationBetweenDeg(fit.ModelToWorld, truth),
     Distance(vp::TransformPoint(fit.ModelToWorld, { 0, 0, 0 }), vp::TransformPoint(truth, { 0, 0, 0 })), fit.MeanResidualMm, fit.Iterations);
   EXPECT_LT(Distance(vp::TransformPoint(fit.ModelToWorld, { 0, 0, 0 }), vp::TransformPoint(truth, { 0, 0, 0 })), 0.3);
   EXPECT_LT(fit.MeanResidualMm, 0.15);

@@ -1,0 +1,88 @@
+#ifndef vpDistancePlot_h
+#define vpDistancePlot_h
+
+#include <vtkImageData.h>
+#include <vtkSmartPointer.h>
+
+#include <array>
+#include <string>
+#include <vector>
+
+/// Distance over time per vessel class, over the danger bands, as a PNG. Rasterised here (FreeType
+/// for the text) rather than through a vtkRenderWindow, because the command-line tool that writes
+/// these reports runs on machines without a display or an OpenGL context.
+namespace vp
+{
+using Rgb = std::array<unsigned char, 3>;
+
+struct PlotSeries
+{
+  std::string Name;
+  Rgb Colour;
+  /// One value per time. NaN (any non-finite value) means "no value" (vessel out of range, tool
+  /// not tracked) and leaves a gap rather than a line through it.
+  std::vector<double> ValuesMm;
+};
+
+/// A horizontal background band (a danger level), drawn under the lines. ToMm may be +infinity
+/// for the open-ended "safe" band; the legend then shows "> FromMm".
+struct PlotBand
+{
+  double FromMm;
+  double ToMm;
+  Rgb Colour;
+  std::string Label;
+};
+
+struct DistancePlotOptions
+{
+  int WidthPx = 1200;
+  int HeightPx = 600;
+  std::string Title;
+  std::string XLabel = "time (s)";
+  std::string YLabel = "distance (mm)";
+  /// Top of the y axis. 0: from the data, and at least the highest finite band edge, so every
+  /// band shows even when the tool never came near it.
+  double YMaxMm = 0;
+};
+
+/// Where the data went in the image: the plot area in vtkImageData pixel indices (row 0 at the
+/// bottom), inclusive, and the ranges it spans. A viewer needs it to map the mouse back to a
+/// time; the tests need it to find what was drawn where.
+struct DistancePlotFrame
+{
+  int LeftPx = 0;
+  int RightPx = 0;
+  int BottomPx = 0;
+  int TopPx = 0;
+  double TimeMinS = 0;
+  double TimeMaxS = 1;
+  double YMaxMm = 1;
+
+  /// Pixel coordinates as doubles; pixel i has its centre at i.
+  double XOf(double timeS) const;
+  double YOf(double distanceMm) const;
+};
+
+/// Renders the plot into unsigned char RGB pixels of options.WidthPx x options.HeightPx.
+/// Text is ASCII only (the embedded font has no other glyphs). Times that are not finite are
+/// skipped like missing values; an empty or zero time span gets a 1 s span around it.
+/// Throws std::invalid_argument when a series has not one value per time or the size is not
+/// positive.
+vtkSmartPointer<vtkImageData> RenderDistancePlot(const std::vector<double>& timesS,
+  const std::vector<PlotSeries>& series, const std::vector<PlotBand>& bands,
+  const DistancePlotOptions& options, DistancePlotFrame* frame = nullptr);
+
+/// Renders as above and writes a PNG. The file appears whole or not at all (temporary name beside
+/// it, then rename); throws vp::InputError(fileName, "cannot write: ...") when it cannot.
+void WriteDistancePlotPng(const std::string& fileName, const std::vector<double>& timesS,
+  const std::vector<PlotSeries>& series, const std::vector<PlotBand>& bands,
+  const DistancePlotOptions& options);
+
+/// The tick spacing for an axis of this span with at most maxTicks intervals: the smallest
+/// 1, 2 or 5 x 10^k that is large enough, so tick labels are round numbers. 1 for a span that
+/// is not positive and finite.
+double NiceTickStep(double span, int maxTicks);
+} // namespace vp
+
+#endif

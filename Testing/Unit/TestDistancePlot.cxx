@@ -1,0 +1,335 @@
+// Distance-over-time plot: numbers read off the rendered pixels (bands where their millimetres
+// are, lines where their values are, nothing in a NaN gap), headless text, and the PNG file.
+#include "vpDistancePlot.h"
+#include "vpInputError.h"
+#include "vpTestSupport.h"
+
+#include <gtest/gtest.h>
+
+#include <vtkNew.h>
+#include <vtkPNGReader.h>
+#include <vtkPointData.h>
+#include <vtkUnsignedCharArray.h>
+
+#include <dirent.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <functional>
+
+namespace
+{
+const vp::Rgb Red = { 220, 20, 20 };
+const vp::Rgb DangerBlue = { 150, 180, 255 };
+const vp::Rgb WarningGray = { 120, 120, 120 };
+const vp::Rgb CautionGray = { 225, 225, 225 };
+const vp::Rgb SafeCream = { 250, 250, 235 }; // not white, so it is told apart from the background
+
+std::vector<vp::PlotBand> DangerBands()
+{
+  return { { 10, INFINITY, SafeCream, "safe" }, { 5, 10, CautionGray, "caution" }, { 2, 5, WarningGray, "warning" },
+    { 0, 2, DangerBlue, "danger" } };
+}
+
+/// 30 frames, 1 s apart; the vessel at 4 mm except frames 10..19, where it is out of range.
+struct GappedSeries
+{
+  std::vector<double> Times;
+  vp::PlotSeries Series{ "portal_vein", Red, {} };
+  GappedSeries()
+  {
+    for (int i = 0; i < 30; ++i)
+    {
+      this->Times.push_back(i);
+      this->Series.ValuesMm.push_back(i >= 10 && i < 20 ? NAN : 4.0);
+    }
+  }
+};
+
+vp::DistancePlotOptions Options(int width = 800, int height = 400, double yMax = 20)
+{
+  vp::DistancePlotOptions options;
+  options.WidthPx = width;
+  options.HeightPx = height;
+  options.Title = "tip to vessel";
+  options.YMaxMm = yMax;
+  return options;
+}
+
+// Outside the image: a colour no test looks for, so a wrong position fails instead of crashing.
+vp::Rgb Pixel(vtkImageData* image, int x, int y)
+{
+  const int* dims = image->GetDimensions();
+  if (x < 0 || y < 0 || x >= dims[0] || y >= dims[1])
+  {
+    return { 1, 2, 3 };
+  }
+  const auto* p = static_cast<const unsigned char*>(image->GetScalarPointer(x, y, 0));
+  return { p[0], p[1], p[2] };
+}
+
+int Count(vtkImageData* image, int x0, int y0, int x1, int y1, const std::function<bool(const vp::Rgb&)>& match)
+{
+  int count = 0;
+  for (int y = y0; y <= y1; ++y)
+  {
+    for (int x = x0; x <= x1; ++x)
+    {
+      count += match(Pixel(image, x, y)) ? 1 : 0;
+    }
+  }
+  return count;
+}
+
+bool IsRed(const vp::Rgb& c)
+{
+  return c == Red;
+}
+
+// Also the antialiased edge pixels, a blend of the red with whatever is under it.
+bool IsReddish(const vp::Rgb& c)
+{
+  return c[0] > c[1] + 40 && c[0] > c[2] + 40;
+}
+
+bool IsDark(const vp::Rgb& c)
+{
+  return c[0] < 100 && c[1] < 100 && c[2] < 100;
+}
+
+int Round(double pixel)
+{
+  return static_cast<int>(std::lround(pixel));
+}
+
+std::vector<std::string> FolderEntries(const std::string& dir)
+{
+  std::vector<std::string> names;
+  if (DIR* d = opendir(dir.c_str()))
+  {
+    while (dirent* entry = readdir(d))
+    {
+      if (std::strcmp(entry->d_name, ".") != 0 && std::strcmp(entry->d_name, "..") != 0)
+      {
+        names.push_back(entry->d_name);
+      }
+    }
+    closedir(d);
+  }
+  return names;
+}
+} // namespace
+
+TEST(DistancePlot, ImageHasTheRequestedSizeAndRgbPixels)
+{
+  const GappedSeries data;
+  for (const auto& size : { std::make_pair(1200, 600), std::make_pair(333, 217) })
+  {
+    vp::DistancePlotFrame frame;
+    const auto image =
+      vp::RenderDistancePlot(data.Times, { data.Series }, DangerBands(), Options(size.first, size.second), &frame);
+    int dims[3];
+    image->GetDimensions(dims);
+    EXPECT_EQ(dims[0], size.first);
+    EXPECT_EQ(dims[1], size.second);
+    EXPECT_EQ(dims[2], 1);
+    EXPECT_EQ(image->GetScalarType(), VTK_UNSIGNED_CHAR);
+    EXPECT_EQ(image->GetNumberOfScalarComponents(), 3);
+    EXPECT_GT(frame.LeftPx, 0);
+    EXPECT_LT(frame.LeftPx, frame.RightPx);
+    EXPECT_LT(frame.RightPx, size.first - 1);
+    EXPECT_GT(frame.BottomPx, 0);
+    EXPECT_LT(frame.BottomPx, frame.TopPx);
+    EXPECT_LT(frame.TopPx, size.second - 1);
+  }
+}
+
+TEST(DistancePlot, BandsFillTheirRangeInsideThePlotAreaOnly)
+{
+  const GappedSeries data;
+  vp::DistancePlotFrame frame;
+  const auto image = vp::RenderDistancePlot(data.Times, { data.Series }, DangerBands(), Options(), &frame);
+  const int x = Round(frame.XOf(15)); // in the NaN gap: no line there
+  EXPECT_EQ(Pixel(image, x, Round(frame.YOf(1))), DangerBlue);
+  EXPECT_EQ(Pixel(image, x, Round(frame.YOf(3.5))), WarningGray);
+  EXPECT_EQ(Pixel(image, x, Round(frame.YOf(7.5))), CautionGray);
+  EXPECT_EQ(Pixel(image, x, Round(frame.YOf(15))), SafeCream);
+  // Row 0 is the bottom row: the danger band lies in the lower half of the image.
+  EXPECT_LT(Round(frame.YOf(1)), image->GetDimensions()[1] / 2);
+  EXPECT_GT(Round(frame.YOf(15)), image->GetDimensions()[1] / 2);
+  // Clipped: nothing of the bands left of, below or above the plot area (the safe band is open-ended).
+  EXPECT_NE(Pixel(image, frame.LeftPx - 3, Round(frame.YOf(1))), DangerBlue);
+  EXPECT_EQ(Count(image, x, 0, x, frame.BottomPx - 1, [](const vp::Rgb& c) { return c == DangerBlue; }), 0);
+  EXPECT_EQ(Count(image, x, frame.TopPx + 1, x, image->GetDimensions()[1] - 1,
+              [](const vp::Rgb& c) { return c == SafeCream; }),
+    0);
+}
+
+TEST(DistancePlot, SeriesIsDrawnAtItsValuesAndInTheLegend)
+{
+  const GappedSeries data;
+  vp::DistancePlotFrame frame;
+  const auto image = vp::RenderDistancePlot(data.Times, { data.Series }, DangerBands(), Options(), &frame);
+  const int x = Round(frame.XOf(5)), y = Round(frame.YOf(4));
+  EXPECT_GT(Count(image, x, y - 1, x, y + 1, IsRed), 0);
+  // 2 px wide: a pixel centre 2 px from the nearest one is at least 1.5 px from the line's axis.
+  EXPECT_EQ(Count(image, x, frame.BottomPx, x, y - 2, IsReddish), 0);
+  EXPECT_EQ(Count(image, x, y + 2, x, frame.TopPx, IsReddish), 0);
+  EXPECT_EQ(Pixel(image, x, Round(frame.YOf(3))), WarningGray);
+  // The legend, right of the plot area, shows the series' colour.
+  EXPECT_GT(Count(image, frame.RightPx + 2, 0, image->GetDimensions()[0] - 1, image->GetDimensions()[1] - 1, IsRed), 0);
+}
+
+TEST(DistancePlot, ValuesBeyondTheAxisAreCutAtThePlotArea)
+{
+  vp::DistancePlotFrame frame;
+  const auto image =
+    vp::RenderDistancePlot({ 0, 1, 2 }, { { "vein", Red, { 30, 30, 30 } } }, DangerBands(), Options(800, 400, 20), &frame);
+  EXPECT_EQ(Count(image, frame.LeftPx, frame.TopPx + 1, frame.RightPx, image->GetDimensions()[1] - 1, IsReddish), 0);
+  // A line from 40 mm down to 0 mm enters the plot area at its top edge.
+  const auto falling =
+    vp::RenderDistancePlot({ 0, 1 }, { { "vein", Red, { 40, 0 } } }, DangerBands(), Options(800, 400, 20), &frame);
+  EXPECT_EQ(Count(falling, frame.LeftPx, frame.TopPx + 1, frame.RightPx, falling->GetDimensions()[1] - 1, IsReddish), 0);
+  const int x = Round(frame.XOf(0.5)); // the line is at 20 mm there, the top of the axis
+  EXPECT_GT(Count(falling, x - 2, frame.TopPx - 3, x + 2, frame.TopPx, IsRed), 0);
+}
+
+TEST(DistancePlot, NaNValuesLeaveAGap)
+{
+  const GappedSeries data;
+  vp::DistancePlotFrame frame;
+  const auto image = vp::RenderDistancePlot(data.Times, { data.Series }, DangerBands(), Options(), &frame);
+  // Last value at t = 9, next at t = 20; the line's half width and antialiasing reach 2 px.
+  const int gapFrom = Round(frame.XOf(9)) + 3, gapTo = Round(frame.XOf(20)) - 3;
+  ASSERT_LT(gapFrom, gapTo);
+  EXPECT_EQ(Count(image, gapFrom, frame.BottomPx, gapTo, frame.TopPx, IsReddish), 0);
+  EXPECT_GT(Count(image, Round(frame.XOf(2)), frame.BottomPx, Round(frame.XOf(7)), frame.TopPx, IsRed), 0);
+  EXPECT_GT(Count(image, Round(frame.XOf(22)), frame.BottomPx, Round(frame.XOf(27)), frame.TopPx, IsRed), 0);
+}
+
+TEST(DistancePlot, LoneSampleIsDrawnAsADot)
+{
+  vp::DistancePlotFrame frame;
+  const auto between = vp::RenderDistancePlot(
+    { 0, 1, 2 }, { { "artery", Red, { NAN, 4, NAN } } }, DangerBands(), Options(), &frame);
+  int x = Round(frame.XOf(1)), y = Round(frame.YOf(4));
+  EXPECT_GT(Count(between, x - 1, y - 1, x + 1, y + 1, IsRed), 0);
+  EXPECT_EQ(Count(between, frame.LeftPx, frame.BottomPx, frame.RightPx, frame.TopPx, IsReddish),
+    Count(between, x - 4, y - 4, x + 4, y + 4, IsReddish));
+
+  const auto single = vp::RenderDistancePlot({ 5 }, { { "artery", Red, { 4 } } }, DangerBands(), Options(), &frame);
+  EXPECT_LT(frame.TimeMinS, 5);
+  EXPECT_GT(frame.TimeMaxS, 5);
+  x = Round(frame.XOf(5));
+  y = Round(frame.YOf(4));
+  EXPECT_GT(x, frame.LeftPx);
+  EXPECT_LT(x, frame.RightPx);
+  EXPECT_GT(Count(single, x - 1, y - 1, x + 1, y + 1, IsRed), 0);
+}
+
+TEST(DistancePlot, DegenerateInputsStillRender)
+{
+  vp::DistancePlotFrame frame;
+  const auto empty = vp::RenderDistancePlot({}, {}, {}, Options(300, 200, 0), &frame);
+  EXPECT_EQ(empty->GetDimensions()[0], 300);
+  EXPECT_GT(frame.TimeMaxS, frame.TimeMinS);
+  EXPECT_GT(frame.YMaxMm, 0);
+
+  const auto allNaN =
+    vp::RenderDistancePlot({ 0, 1, 2 }, { { "vein", Red, { NAN, NAN, NAN } } }, DangerBands(), Options(), &frame);
+  EXPECT_EQ(Count(allNaN, frame.LeftPx, frame.BottomPx, frame.RightPx, frame.TopPx, IsReddish), 0);
+
+  const auto zeroSpan =
+    vp::RenderDistancePlot({ 2, 2 }, { { "vein", Red, { 3, 3 } } }, DangerBands(), Options(), &frame);
+  EXPECT_DOUBLE_EQ(frame.TimeMaxS - frame.TimeMinS, 1.0);
+  EXPECT_GT(Count(zeroSpan, Round(frame.XOf(2)) - 2, Round(frame.YOf(3)) - 2, Round(frame.XOf(2)) + 2,
+              Round(frame.YOf(3)) + 2, IsRed),
+    0);
+}
+
+TEST(DistancePlot, MismatchedSeriesLengthIsRefused)
+{
+  EXPECT_THROW(vp::RenderDistancePlot({ 0, 1, 2 }, { { "vein", Red, { 3, 3 } } }, {}, Options()), std::invalid_argument);
+  EXPECT_THROW(vp::RenderDistancePlot({}, {}, {}, Options(0, 100)), std::invalid_argument);
+}
+
+TEST(DistancePlot, AutomaticYAxisCoversTheDataAndEveryBand)
+{
+  vp::DistancePlotFrame frame;
+  vp::RenderDistancePlot({ 0, 1 }, { { "vein", Red, { 3, 37 } } }, DangerBands(), Options(800, 400, 0), &frame);
+  EXPECT_GE(frame.YMaxMm, 37);
+  EXPECT_LE(frame.YMaxMm, 50);
+  vp::RenderDistancePlot({ 0, 1 }, { { "vein", Red, { 3, 1 } } }, DangerBands(), Options(800, 400, 0), &frame);
+  EXPECT_GT(frame.YMaxMm, 10); // above the safe band's lower edge, so the band shows
+  vp::RenderDistancePlot({ 0, 1 }, { { "vein", Red, { 3, 37 } } }, DangerBands(), Options(800, 400, 25), &frame);
+  EXPECT_EQ(frame.YMaxMm, 25);
+}
+
+TEST(DistancePlot, NiceTickStepIsOneTwoOrFiveTimesAPowerOfTen)
+{
+  EXPECT_DOUBLE_EQ(vp::NiceTickStep(10, 5), 2);
+  EXPECT_DOUBLE_EQ(vp::NiceTickStep(7.3, 5), 2);
+  EXPECT_DOUBLE_EQ(vp::NiceTickStep(60, 14), 5);
+  EXPECT_DOUBLE_EQ(vp::NiceTickStep(1234, 6), 500);
+  EXPECT_DOUBLE_EQ(vp::NiceTickStep(0.37, 4), 0.1);
+  EXPECT_DOUBLE_EQ(vp::NiceTickStep(0.9, 1), 1);
+  EXPECT_DOUBLE_EQ(vp::NiceTickStep(0, 5), 1);
+  EXPECT_DOUBLE_EQ(vp::NiceTickStep(NAN, 5), 1);
+}
+
+TEST(DistancePlot, TextIsRenderedWithoutADisplay)
+{
+  unsetenv("DISPLAY"); // the command-line tool runs headless; FreeType must not need X
+  const GappedSeries data;
+  vp::DistancePlotFrame frame;
+  vp::DistancePlotOptions options = Options();
+  const auto titled = vp::RenderDistancePlot(data.Times, { data.Series }, DangerBands(), options, &frame);
+  const int width = options.WidthPx, height = options.HeightPx;
+  // Above the plot area, between its sides: only the title (the top y tick label is left of it).
+  EXPECT_GT(Count(titled, frame.LeftPx, frame.TopPx + 2, frame.RightPx, height - 1, IsDark), 20);
+  EXPECT_GT(Count(titled, 0, 0, width - 1, frame.BottomPx - 8, IsDark), 20);              // x ticks, x label
+  EXPECT_GT(Count(titled, 0, frame.BottomPx, frame.LeftPx - 8, frame.TopPx, IsDark), 20); // y ticks, y label
+  options.Title.clear();
+  const auto untitled = vp::RenderDistancePlot(data.Times, { data.Series }, DangerBands(), options, &frame);
+  EXPECT_EQ(Count(untitled, frame.LeftPx, frame.TopPx + 2, frame.RightPx, height - 1, IsDark), 0);
+}
+
+TEST(DistancePlot, WrittenPngReadsBackUnchanged)
+{
+  const GappedSeries data;
+  const std::string dir = vp::test::MakeTempDir("plot");
+  const std::string path = dir + "/distance.png";
+  vp::WriteDistancePlotPng(path, data.Times, { data.Series }, DangerBands(), Options(640, 360));
+  EXPECT_EQ(FolderEntries(dir), std::vector<std::string>{ "distance.png" }); // no temporary left behind
+
+  vtkNew<vtkPNGReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  vtkImageData* read = reader->GetOutput();
+  ASSERT_EQ(read->GetDimensions()[0], 640);
+  ASSERT_EQ(read->GetDimensions()[1], 360);
+  ASSERT_EQ(read->GetNumberOfScalarComponents(), 3);
+  const auto rendered = vp::RenderDistancePlot(data.Times, { data.Series }, DangerBands(), Options(640, 360));
+  auto* readPixels = vtkUnsignedCharArray::SafeDownCast(read->GetPointData()->GetScalars());
+  ASSERT_NE(readPixels, nullptr);
+  EXPECT_EQ(std::memcmp(readPixels->GetPointer(0), rendered->GetScalarPointer(), 640 * 360 * 3), 0);
+}
+
+TEST(DistancePlot, UnwritableFolderThrowsAndLeavesNoFile)
+{
+  const GappedSeries data;
+  const std::string dir = vp::test::MakeTempDir("plotbad");
+  const std::string path = dir + "/missing/distance.png";
+  try
+  {
+    vp::WriteDistancePlotPng(path, data.Times, { data.Series }, DangerBands(), Options());
+    ADD_FAILURE() << "no error for " << path;
+  }
+  catch (const vp::InputError& e)
+  {
+    EXPECT_EQ(std::string(e.what()).rfind(path + ": cannot write:", 0), 0u) << e.what();
+  }
+  EXPECT_FALSE(vp::test::FileExists(path));
+  EXPECT_TRUE(FolderEntries(dir).empty());
+}

@@ -18,6 +18,8 @@ const char* Help =
   "commands:\n"
   "  models     segmented labelmaps (DICOM series, NRRD, .seg.nrrd, NIfTI) to vessel surface models\n"
   "  distance   distance from scalpel tip(s) to each vessel class (exact, zbuffer, both, brute, auto)\n"
+  "  track      replay tracked scalpel poses: frames.csv, summary.json, distance.png, danger levels\n"
+  "  register   scalpel registration: landmarks, surface ICP, pivot calibration (JSON result)\n"
   "  bench      engines side by side with the brute-force reference, JSON with --json\n"
   "  phantom    write the built-in analytic vessels (STL) for a first run\n"
   "exit codes: 0 success, 1 bad input (one line on stderr names the file and the problem),\n"
@@ -49,6 +51,14 @@ int main(int argc, char* argv[])
     if (command == "distance")
     {
       return vp::RunDistanceCommand(args);
+    }
+    if (command == "track")
+    {
+      return vp::RunTrackCommand(args);
+    }
+    if (command == "register")
+    {
+      return vp::RunRegisterCommand(args);
     }
     if (command == "bench")
     {

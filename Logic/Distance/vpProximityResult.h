@@ -49,6 +49,15 @@ struct ProximityResult
     return best;
   }
 };
+
+/// The closest approach of the whole instrument surface (not only its tip) to one vessel class.
+struct SurfaceProximity
+{
+  bool InRange = false;
+  double DistanceMm = 0.0; ///< 0 when the surfaces touch or cross
+  double PointOnToolMm[3] = { 0, 0, 0 };
+  double PointOnVesselMm[3] = { 0, 0, 0 };
+};
 } // namespace vp
 
 #endif

@@ -1,6 +1,7 @@
 #ifndef vpTriangleGeometry_h
 #define vpTriangleGeometry_h
 
+#include <algorithm>
 #include <cmath>
 
 namespace vp
@@ -43,6 +44,21 @@ inline double Distance2(const double a[3], const double b[3])
   return Dot3(d, d);
 }
 
+/// Closest point to p on segment ab (a point when a == b). Returns the squared distance.
+inline double ClosestPointOnSegment(const double p[3], const double a[3], const double b[3], double closest[3])
+{
+  double ab[3], ap[3];
+  Sub3(b, a, ab);
+  Sub3(p, a, ap);
+  const double length2 = Dot3(ab, ab);
+  const double t = length2 > 0.0 ? std::min(1.0, std::max(0.0, Dot3(ap, ab) / length2)) : 0.0;
+  for (int i = 0; i < 3; ++i)
+  {
+    closest[i] = a[i] + t * ab[i];
+  }
+  return Distance2(p, closest);
+}
+
 /// Closest point to p on triangle abc by Voronoi regions (Ericson, Real-Time Collision
 /// Detection, 5.1.5). Returns the squared distance; writes the point and the feature.
 inline double ClosestPointOnTriangle(const double p[3], const double a[3], const double b[3],
@@ -52,6 +68,30 @@ inline double ClosestPointOnTriangle(const double p[3], const double a[3], const
   Sub3(b, a, ab);
   Sub3(c, a, ac);
   Sub3(p, a, ap);
+  double normal[3];
+  Cross3(ab, ac, normal);
+  if (normal[0] == 0.0 && normal[1] == 0.0 && normal[2] == 0.0)
+  {
+    // Zero area (repeated or collinear corners): the Voronoi regions below divide by zero or
+    // follow rounding, so take the nearest of the three edges.
+    const double* ends[3][2] = { { a, b }, { b, c }, { c, a } };
+    const TriangleFeature features[3] = { TriangleFeature::EdgeAB, TriangleFeature::EdgeBC, TriangleFeature::EdgeCA };
+    double best = -1.0;
+    for (int e = 0; e < 3; ++e)
+    {
+      double q[3];
+      const double d2 = ClosestPointOnSegment(p, ends[e][0], ends[e][1], q);
+      if (best < 0.0 || d2 < best)
+      {
+        best = d2;
+        closest[0] = q[0];
+        closest[1] = q[1];
+        closest[2] = q[2];
+        feature = features[e];
+      }
+    }
+    return best;
+  }
   const double d1 = Dot3(ab, ap);
   const double d2 = Dot3(ac, ap);
   auto set = [&](const double q[3], TriangleFeature f) {

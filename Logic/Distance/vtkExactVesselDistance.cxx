@@ -78,6 +78,25 @@ bool VisitTriangle(RTCPointQueryFunctionArguments* args)
   return true;
 }
 
+struct VisitorState
+{
+  const vtkExactVesselDistance::TriangleVisitor* Visit;
+  double SlackMm;
+};
+
+bool VisitForCaller(RTCPointQueryFunctionArguments* args)
+{
+  auto* state = static_cast<VisitorState*>(args->userPtr);
+  const double radius = (*state->Visit)(args->primID);
+  const float shrunk = static_cast<float>(radius + state->SlackMm);
+  if (shrunk >= args->query->radius)
+  {
+    return false;
+  }
+  args->query->radius = shrunk;
+  return true;
+}
+
 void OnEmbreeError(void* userPtr, RTCError code, const char* message)
 {
   auto* last = static_cast<std::string*>(userPtr);
@@ -259,6 +278,52 @@ void vtkExactVesselDistance::ComputeProximity(const double tip[3], const double*
       }
     }
   }
+}
+
+void vtkExactVesselDistance::VisitTrianglesNear(
+  int classIndex, const double centre[3], double radiusMm, const TriangleVisitor& visit) const
+{
+  this->EnsureBuilt();
+  const ClassTree& tree = this->Impl->Trees.at(static_cast<std::size_t>(classIndex));
+  VisitorState state{ &visit, tree.SlackMm };
+  RTCPointQueryContext context;
+  rtcInitPointQueryContext(&context);
+  RTC_ALIGN(16) RTCPointQuery query;
+  query.x = static_cast<float>(centre[0] - tree.Origin[0]);
+  query.y = static_cast<float>(centre[1] - tree.Origin[1]);
+  query.z = static_cast<float>(centre[2] - tree.Origin[2]);
+  query.time = 0.0f;
+  query.radius = static_cast<float>(radiusMm + tree.SlackMm);
+  rtcPointQuery(tree.Scene.get(), &query, &context, &VisitForCaller, &state);
+}
+
+double vtkExactVesselDistance::NearestDistanceWithin(int classIndex, const double point[3], double radiusMm) const
+{
+  this->EnsureBuilt();
+  const vp::VesselSurface& surface = *this->Surfaces.at(static_cast<std::size_t>(classIndex));
+  double best2 = std::numeric_limits<double>::infinity();
+  auto visit = [&](long long t) {
+    const auto& tri = surface.Triangle(static_cast<std::size_t>(t));
+    double q[3];
+    vp::TriangleFeature feature;
+    const double d2 = vp::ClosestPointOnTriangle(point, surface.Point(tri[0]), surface.Point(tri[1]), surface.Point(tri[2]), q, feature);
+    best2 = std::min(best2, d2);
+    return std::min(radiusMm, std::sqrt(best2));
+  };
+  // Growing spheres, as for the tip: Embree's traversal is not nearest first, so a large first
+  // sphere would visit many triangles before it shrinks.
+  for (double r = std::min(radiusMm, InitialSearchRadiusMm);;)
+  {
+    this->VisitTrianglesNear(classIndex, point, r, visit);
+    const double best = std::sqrt(best2);
+    if (best <= r || r >= radiusMm)
+    {
+      break;
+    }
+    r = std::min({ radiusMm, 2.0 * r, best });
+  }
+  const double best = std::sqrt(best2);
+  return best <= radiusMm ? best : std::numeric_limits<double>::infinity();
 }
 
 void vtkExactVesselDistance::PrintSelf(ostream& os, vtkIndent indent)

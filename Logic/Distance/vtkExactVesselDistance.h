@@ -3,6 +3,7 @@
 
 #include "vtkVesselDistanceEngine.h"
 
+#include <functional>
 #include <memory>
 
 /// Exact distance from a point to each vessel class, answered from a bounding volume hierarchy
@@ -27,6 +28,18 @@ public:
   void ComputeProximity(const double tip[3], const double* axis, vp::ProximityResult& result,
     const vp::ProximityResult* previous = nullptr) const override;
   const char* GetMethodName() const override { return "exact"; }
+
+  /// Receives a triangle of the class (its index in GetSurface()) that may lie within the search
+  /// sphere, and returns the radius still worth searching: never more than before, so each
+  /// closer find prunes the rest of the tree.
+  using TriangleVisitor = std::function<double(long long triangle)>;
+  /// Calls visit for every triangle of class classIndex whose tree node meets the sphere of
+  /// radiusMm about centre (after Build()). Candidates only: the visitor computes the distance.
+  /// For queries other than the tip's, such as the whole instrument surface.
+  void VisitTrianglesNear(int classIndex, const double centre[3], double radiusMm, const TriangleVisitor& visit) const;
+  /// Distance from point to the nearest triangle of class classIndex, or +infinity when none lies
+  /// within radiusMm.
+  double NearestDistanceWithin(int classIndex, const double point[3], double radiusMm) const;
 
 protected:
   vtkExactVesselDistance();

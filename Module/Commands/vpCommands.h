@@ -12,6 +12,8 @@ int RunDistanceCommand(const std::vector<std::string>& args);
 int RunBenchCommand(const std::vector<std::string>& args);
 int RunPhantomCommand(const std::vector<std::string>& args);
 int RunModelsCommand(const std::vector<std::string>& args);
+int RunTrackCommand(const std::vector<std::string>& args);
+int RunRegisterCommand(const std::vector<std::string>& args);
 } // namespace vp
 
 #endif

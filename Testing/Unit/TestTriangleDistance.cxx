@@ -558,3 +558,26 @@ TEST(TriangleDistance, AgreesWithDenseSamplingOnRandomPairs)
   EXPECT_GT(touching, 200);
   EXPECT_GT(near, 150);
 }
+
+// A triangle with two equal corners once gave NaN (0/0 on its zero-length edge), and the exact
+// engine's "d2 >= best" test let the NaN through as the answer.
+TEST(PointTriangleDistance, RepeatedCornerGivesTheSegmentDistance)
+{
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> coordinate(-2.0, 2.0);
+  const double a[3] = { 0, 0, 0 };
+  const double c[3] = { 1, 0, 0 };
+  for (int i = 0; i < 2000; ++i)
+  {
+    const double p[3] = { coordinate(random), coordinate(random), coordinate(random) };
+    double closest[3], onSegment[3], self[3];
+    vp::TriangleFeature feature;
+    const double d2 = vp::ClosestPointOnTriangle(p, a, a, c, closest, feature);
+    const double expected = vp::ClosestPointsOfSegments(p, p, a, c, self, onSegment);
+    ASSERT_TRUE(std::isfinite(d2)) << "point " << p[0] << ", " << p[1] << ", " << p[2];
+    EXPECT_NEAR(d2, expected, 1e-12);
+    const double d2b = vp::ClosestPointOnTriangle(p, a, c, c, closest, feature);
+    ASSERT_TRUE(std::isfinite(d2b));
+    EXPECT_NEAR(d2b, expected, 1e-12);
+  }
+}

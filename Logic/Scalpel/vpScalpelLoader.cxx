@@ -1,0 +1,140 @@
+#include "vpScalpelLoader.h"
+
+#include "vpInputError.h"
+#include "vpScalpelTipFinder.h"
+#include "vtkVesselMeshReader.h"
+
+#include <vtkNew.h>
+#include <vtkPolyData.h>
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+namespace vp
+{
+namespace
+{
+std::array<double, 3> ReadVector(const nlohmann::json& value, const std::string& file, const char* key)
+{
+  if (!value.is_array() || value.size() != 3)
+  {
+    throw InputError(file, std::string(key) + ": expected an array of 3 numbers");
+  }
+  std::array<double, 3> v{};
+  for (int i = 0; i < 3; ++i)
+  {
+    if (!value[i].is_number() || !std::isfinite(value[i].get<double>()))
+    {
+      throw InputError(file, std::string(key) + ": expected an array of 3 finite numbers");
+    }
+    v[i] = value[i].get<double>();
+  }
+  return v;
+}
+
+std::string PointText(const std::array<double, 3>& p)
+{
+  char text[96];
+  std::snprintf(text, sizeof(text), "(%.2f, %.2f, %.2f)", p[0], p[1], p[2]);
+  return text;
+}
+} // namespace
+
+std::string ScalpelDefinitionFileFor(const std::string& modelFile)
+{
+  return std::filesystem::path(modelFile).replace_extension(".json").string();
+}
+
+ScalpelTipDefinition ReadScalpelDefinition(const std::string& jsonFile)
+{
+  std::ifstream in(jsonFile);
+  if (!in)
+  {
+    throw InputError(jsonFile, "cannot open the scalpel tip definition");
+  }
+  nlohmann::json root;
+  try
+  {
+    in >> root;
+  }
+  catch (const nlohmann::json::exception&)
+  {
+    throw InputError(jsonFile, "not valid JSON (expected {\"tip_mm\": [x, y, z], \"axis\": [x, y, z]})");
+  }
+  if (!root.is_object() || !root.contains("tip_mm"))
+  {
+    throw InputError(jsonFile, "no \"tip_mm\" in it (expected {\"tip_mm\": [x, y, z], \"axis\": [x, y, z]})");
+  }
+  ScalpelTipDefinition definition;
+  definition.TipMm = ReadVector(root["tip_mm"], jsonFile, "tip_mm");
+  if (root.contains("axis"))
+  {
+    definition.Axis = ReadVector(root["axis"], jsonFile, "axis");
+    const auto& a = *definition.Axis;
+    if (!(a[0] * a[0] + a[1] * a[1] + a[2] * a[2] > 0))
+    {
+      throw InputError(jsonFile, "axis: must not be the zero vector");
+    }
+  }
+  return definition;
+}
+
+vtkSmartPointer<vtkScalpelModel> LoadScalpel(const std::string& modelFile, const ScalpelTipDefinition& given)
+{
+  vtkNew<vtkVesselMeshReader> reader;
+  reader->SetFileName(modelFile);
+  reader->Read();
+  auto scalpel = vtkSmartPointer<vtkScalpelModel>::New();
+  scalpel->SetModel(reader->GetOutput());
+
+  ScalpelTipDefinition definition = given;
+  std::string source = "--tip";
+  const std::string besideFile = ScalpelDefinitionFileFor(modelFile);
+  std::error_code ec;
+  if (!definition.TipMm && std::filesystem::is_regular_file(besideFile, ec))
+  {
+    definition = ReadScalpelDefinition(besideFile);
+    if (given.Axis)
+    {
+      definition.Axis = given.Axis;
+    }
+    source = std::filesystem::path(besideFile).filename().string();
+  }
+  // The finder also gives the principal axis, which a tip given without an axis needs.
+  const ScalpelTipEstimate estimate = FindScalpelTip(scalpel->GetModel(), modelFile);
+  if (!definition.TipMm)
+  {
+    scalpel->SetTipMm(estimate.TipMm.data());
+    const auto& a = definition.Axis ? *definition.Axis : estimate.Axis;
+    scalpel->SetAxis(a[0], a[1], a[2]);
+    scalpel->SetTipSource(estimate.Description);
+    return scalpel;
+  }
+  const auto& tip = *definition.TipMm;
+  scalpel->SetTipMm(tip.data());
+  if (definition.Axis)
+  {
+    const auto& a = *definition.Axis;
+    scalpel->SetAxis(a[0], a[1], a[2]);
+    scalpel->SetTipSource("tip " + PointText(tip) + " and axis from " + source);
+    return scalpel;
+  }
+  // Principal axis, oriented from the centre of the model towards the given tip.
+  double along = 0.0;
+  for (int i = 0; i < 3; ++i)
+  {
+    along += (tip[i] - estimate.CentroidMm[i]) * estimate.Axis[i];
+  }
+  const double sign = along < 0 ? -1.0 : 1.0;
+  scalpel->SetAxis(sign * estimate.Axis[0], sign * estimate.Axis[1], sign * estimate.Axis[2]);
+  std::array<double, 3> axis{};
+  scalpel->GetAxis(axis.data());
+  scalpel->SetTipSource("tip " + PointText(tip) + " from " + source + ", axis " + PointText(axis) +
+    " along the model's principal axis towards the tip");
+  return scalpel;
+}
+} // namespace vp

@@ -1,0 +1,36 @@
+#ifndef vpScalpelLoader_h
+#define vpScalpelLoader_h
+
+#include "vtkScalpelModel.h"
+
+#include <array>
+#include <optional>
+#include <string>
+
+namespace vp
+{
+/// A tip and axis given by the user, in model coordinates; either may be missing.
+struct ScalpelTipDefinition
+{
+  std::optional<std::array<double, 3>> TipMm;
+  std::optional<std::array<double, 3>> Axis;
+};
+
+/// The tip definition file that belongs to a model: the model's name with .json in place of its
+/// extension (Scalpel.stl -> Scalpel.json), in the same folder.
+std::string ScalpelDefinitionFileFor(const std::string& modelFile);
+
+/// Reads {"tip_mm": [x, y, z], "axis": [x, y, z]} ("axis" optional; other keys, such as the
+/// calibration report `vesselproximity register pivot` writes around them, are ignored). Throws
+/// vp::InputError naming the file for anything else.
+ScalpelTipDefinition ReadScalpelDefinition(const std::string& jsonFile);
+
+/// Reads an instrument model (STL, VTK, VTP, PLY, OBJ) and defines its tip, in this order: the
+/// given tip; else the definition file beside the model; else the automatic finder (the narrow
+/// end of the principal axis). A missing axis is the principal axis, pointing from the model's
+/// centre towards the tip. The choice is recorded in the scalpel's TipSource. Throws
+/// vp::InputError naming the file on any problem.
+vtkSmartPointer<vtkScalpelModel> LoadScalpel(const std::string& modelFile, const ScalpelTipDefinition& given);
+} // namespace vp
+
+#endif

@@ -1,0 +1,84 @@
+#include "vpDangerLevels.h"
+
+#include "vpInputError.h"
+
+#include <cmath>
+
+namespace vp
+{
+void DangerThresholds::Validate(const std::string& source) const
+{
+  const bool finite = std::isfinite(this->CautionMm) && std::isfinite(this->WarningMm) && std::isfinite(this->DangerMm);
+  if (!finite || !(this->CautionMm > this->WarningMm && this->WarningMm > this->DangerMm && this->DangerMm > 0))
+  {
+    throw InputError(source, "danger thresholds must fall: caution > warning > danger > 0 mm (got " +
+        NumberText(this->CautionMm) + ", " + NumberText(this->WarningMm) + ", " + NumberText(this->DangerMm) + ")");
+  }
+}
+
+const char* DangerLevelName(DangerLevel level)
+{
+  switch (level)
+  {
+    case DangerLevel::Safe:
+      return "safe";
+    case DangerLevel::Caution:
+      return "caution";
+    case DangerLevel::Warning:
+      return "warning";
+    case DangerLevel::Danger:
+      return "danger";
+    case DangerLevel::Breach:
+      return "breach";
+  }
+  return "unknown";
+}
+
+std::array<unsigned char, 3> DangerLevelColour(DangerLevel level)
+{
+  switch (level)
+  {
+    case DangerLevel::Safe:
+      return { 255, 255, 255 };
+    case DangerLevel::Caution:
+      return { 200, 200, 200 };
+    case DangerLevel::Warning:
+      return { 120, 120, 120 };
+    case DangerLevel::Danger:
+      return { 40, 90, 230 };
+    case DangerLevel::Breach:
+      return { 220, 30, 30 };
+  }
+  return { 0, 0, 0 };
+}
+
+DangerLevel ClassifyDistance(double distanceMm, const DangerThresholds& thresholds)
+{
+  if (distanceMm <= thresholds.DangerMm)
+  {
+    return DangerLevel::Danger;
+  }
+  if (distanceMm <= thresholds.WarningMm)
+  {
+    return DangerLevel::Warning;
+  }
+  if (distanceMm <= thresholds.CautionMm)
+  {
+    return DangerLevel::Caution;
+  }
+  return DangerLevel::Safe;
+}
+
+DangerLevel ClassifyDanger(const ClassProximity& proximity, double errorBoundMm, const DangerThresholds& thresholds)
+{
+  if (!proximity.InRange)
+  {
+    return DangerLevel::Safe;
+  }
+  if (proximity.Inside.value_or(false))
+  {
+    return DangerLevel::Breach;
+  }
+  return ClassifyDistance(proximity.DistanceMm - errorBoundMm, thresholds);
+}
+} // namespace vp

@@ -1,0 +1,46 @@
+#ifndef vpDangerLevels_h
+#define vpDangerLevels_h
+
+#include "vpProximityResult.h"
+
+#include <array>
+#include <string>
+
+namespace vp
+{
+/// How close the instrument is to a vessel, in the order of rising danger.
+enum class DangerLevel
+{
+  Safe = 0, ///< beyond CautionMm, or out of range
+  Caution,  ///< within CautionMm
+  Warning,  ///< within WarningMm
+  Danger,   ///< within DangerMm
+  Breach    ///< inside the vessel
+};
+constexpr int NumberOfDangerLevels = 5;
+
+/// Distance thresholds of the levels, in mm. The defaults bracket the ~5 mm accuracy surgeons
+/// asked of the paper's method: caution at 10 mm, warning at 5, danger at 2.
+struct DangerThresholds
+{
+  double CautionMm = 10.0;
+  double WarningMm = 5.0;
+  double DangerMm = 2.0;
+
+  /// Throws vp::InputError(source, ...) unless CautionMm > WarningMm > DangerMm > 0, all finite.
+  void Validate(const std::string& source) const;
+};
+
+/// "safe", "caution", "warning", "danger", "breach": the names files and events use.
+const char* DangerLevelName(DangerLevel level);
+/// The paper's display colours, white -> light gray -> dark gray -> blue, and red for a breach.
+std::array<unsigned char, 3> DangerLevelColour(DangerLevel level);
+
+/// The level of one class's answer. Conservative for approximate engines: the distance less the
+/// engine's error bound decides, so the level may overstate the danger but never understate it.
+DangerLevel ClassifyDanger(const ClassProximity& proximity, double errorBoundMm, const DangerThresholds& thresholds);
+/// The level of a distance alone (no inside/outside knowledge): Breach is never returned.
+DangerLevel ClassifyDistance(double distanceMm, const DangerThresholds& thresholds);
+} // namespace vp
+
+#endif

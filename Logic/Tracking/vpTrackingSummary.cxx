@@ -1,0 +1,56 @@
+#include "vpTrackingSummary.h"
+
+#include <algorithm>
+
+namespace vp
+{
+namespace
+{
+void Lower(ClassMinimum& minimum, double distanceMm, const double point[3], const TrackedFrame& frame)
+{
+  if (!minimum.Seen || distanceMm < minimum.DistanceMm)
+  {
+    minimum.Seen = true;
+    minimum.DistanceMm = distanceMm;
+    minimum.Frame = frame.Frame;
+    minimum.TimeS = frame.TimeS;
+    std::copy(point, point + 3, minimum.PointMm);
+  }
+}
+} // namespace
+
+void TrackingSummary::Add(const TrackedFrame& frame)
+{
+  const auto& classes = frame.Proximity.Classes;
+  if (this->Frames == 0)
+  {
+    this->FirstTimeS = frame.TimeS;
+    for (const auto& c : classes)
+    {
+      this->ClassNames.push_back(c.ClassName);
+    }
+    this->TipMinimum.resize(classes.size());
+    this->SurfaceMinimum.resize(classes.size());
+  }
+  else
+  {
+    this->TimeInLevelS[static_cast<int>(this->LastLevel)] += frame.TimeS - this->LastTimeS;
+  }
+  for (std::size_t c = 0; c < classes.size() && c < this->TipMinimum.size(); ++c)
+  {
+    if (classes[c].InRange)
+    {
+      Lower(this->TipMinimum[c], classes[c].DistanceMm, classes[c].ClosestPoint, frame);
+    }
+    if (c < frame.Surface.size() && frame.Surface[c].InRange)
+    {
+      Lower(this->SurfaceMinimum[c], frame.Surface[c].DistanceMm, frame.Surface[c].PointOnVesselMm, frame);
+    }
+  }
+  ++this->FramesInLevel[static_cast<int>(frame.Level)];
+  this->Worst = std::max(this->Worst, frame.Level);
+  this->LastLevel = frame.Level;
+  this->LastTimeS = frame.TimeS;
+  ++this->Frames;
+}
+} // namespace vp

@@ -1,0 +1,59 @@
+#ifndef vpTrackingSummary_h
+#define vpTrackingSummary_h
+
+#include "vtkScalpelTrackingLogic.h"
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace vp
+{
+/// The closest a class came during a run, and when.
+struct ClassMinimum
+{
+  bool Seen = false; ///< false when the class was never in range
+  double DistanceMm = 0.0;
+  int Frame = 0;
+  double TimeS = 0.0;
+  double PointMm[3] = { 0, 0, 0 }; ///< closest vessel point at that frame
+};
+
+/// What a surgeon or researcher reads after a run: per class the closest approach of the tip
+/// (and of the whole surface when computed), the time spent at each danger level, and the
+/// level changes. Frames are added in order.
+class TrackingSummary
+{
+public:
+  void Add(const TrackedFrame& frame);
+  void AddChange(const DangerLevelChange& change) { this->Changes.push_back(change); }
+
+  int GetNumberOfFrames() const { return this->Frames; }
+  double GetDurationS() const { return this->Frames > 0 ? this->LastTimeS - this->FirstTimeS : 0.0; }
+  const std::vector<std::string>& GetClassNames() const { return this->ClassNames; }
+  const std::vector<ClassMinimum>& GetTipMinimum() const { return this->TipMinimum; }
+  const std::vector<ClassMinimum>& GetSurfaceMinimum() const { return this->SurfaceMinimum; }
+  /// Seconds at each level (index: DangerLevel). A frame's level holds until the next frame's
+  /// time, so the last frame adds nothing and the times sum to the duration.
+  const std::array<double, NumberOfDangerLevels>& GetTimeInLevelS() const { return this->TimeInLevelS; }
+  /// Frames at each level.
+  const std::array<int, NumberOfDangerLevels>& GetFramesInLevel() const { return this->FramesInLevel; }
+  const std::vector<DangerLevelChange>& GetChanges() const { return this->Changes; }
+  DangerLevel GetWorstLevel() const { return this->Worst; }
+
+private:
+  int Frames = 0;
+  double FirstTimeS = 0.0;
+  double LastTimeS = 0.0;
+  DangerLevel LastLevel = DangerLevel::Safe;
+  DangerLevel Worst = DangerLevel::Safe;
+  std::vector<std::string> ClassNames;
+  std::vector<ClassMinimum> TipMinimum;
+  std::vector<ClassMinimum> SurfaceMinimum;
+  std::array<double, NumberOfDangerLevels> TimeInLevelS{};
+  std::array<int, NumberOfDangerLevels> FramesInLevel{};
+  std::vector<DangerLevelChange> Changes;
+};
+} // namespace vp
+
+#endif

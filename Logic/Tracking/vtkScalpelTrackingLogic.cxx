@@ -1,0 +1,130 @@
+#include "vtkScalpelTrackingLogic.h"
+
+#include "vpInputError.h"
+#include "vtkScalpelModel.h"
+#include "vtkScalpelSurfaceDistance.h"
+#include "vtkVesselDistanceEngine.h"
+
+#include <vtkObjectFactory.h>
+
+#include <chrono>
+
+vtkStandardNewMacro(vtkScalpelTrackingLogic);
+
+vtkScalpelTrackingLogic::vtkScalpelTrackingLogic() = default;
+vtkScalpelTrackingLogic::~vtkScalpelTrackingLogic() = default;
+
+void vtkScalpelTrackingLogic::SetDistanceEngine(vtkVesselDistanceEngine* engine)
+{
+  if (this->Engine != engine)
+  {
+    this->Engine = engine;
+    this->Reset(); // the previous answer came from another engine
+    this->Modified();
+  }
+}
+
+void vtkScalpelTrackingLogic::SetScalpel(vtkScalpelModel* scalpel)
+{
+  if (this->Scalpel != scalpel)
+  {
+    this->Scalpel = scalpel;
+    this->Modified();
+  }
+}
+
+void vtkScalpelTrackingLogic::SetSurfaceDistance(vtkScalpelSurfaceDistance* surface)
+{
+  if (this->SurfaceDistance != surface)
+  {
+    this->SurfaceDistance = surface;
+    this->Modified();
+  }
+}
+
+void vtkScalpelTrackingLogic::Reset()
+{
+  this->Last = vp::TrackedFrame();
+  this->FramesProcessed = 0;
+}
+
+const vp::TrackedFrame& vtkScalpelTrackingLogic::ProcessPose(const vp::TrackedPose& pose)
+{
+  if (!this->Engine || !this->Scalpel)
+  {
+    throw std::logic_error("vtkScalpelTrackingLogic: set the distance engine and the scalpel first");
+  }
+  if (this->FramesProcessed == 0)
+  {
+    this->Thresholds.Validate("danger thresholds");
+    if (this->Engine->GetRangeMm() < this->Thresholds.CautionMm)
+    {
+      throw vp::InputError("--range", "the range (" + vp::NumberText(this->Engine->GetRangeMm()) +
+          " mm) must reach the caution threshold (" + vp::NumberText(this->Thresholds.CautionMm) +
+          " mm), or a class beyond it would look safe");
+    }
+  }
+  const bool hasPrevious = this->FramesProcessed > 0;
+  const vp::DangerLevel previousLevel = this->Last.Level;
+  // The previous answer narrows the engine's search; keep it while the new one is computed.
+  vp::TrackedFrame frame;
+  frame.Frame = this->FramesProcessed;
+  frame.TimeS = pose.TimeS;
+  this->Scalpel->SetModelToWorld(pose.ModelToWorld);
+  this->Scalpel->GetTipInWorld(frame.TipMm);
+  this->Scalpel->GetAxisInWorld(frame.AxisWorld);
+
+  const auto start = std::chrono::steady_clock::now();
+  this->Engine->ComputeProximity(frame.TipMm, frame.AxisWorld, frame.Proximity, hasPrevious ? &this->Last.Proximity : nullptr);
+  if (this->SurfaceDistance)
+  {
+    this->SurfaceDistance->ComputeSurfaceProximity(pose.ModelToWorld, frame.Surface);
+  }
+  frame.FrameMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+
+  const auto& classes = frame.Proximity.Classes;
+  frame.ClassLevels.resize(classes.size());
+  for (std::size_t c = 0; c < classes.size(); ++c)
+  {
+    frame.ClassLevels[c] = vp::ClassifyDanger(classes[c], frame.Proximity.ErrorBoundMm, this->Thresholds);
+    // The worst level wins; among equals, the nearer class names it.
+    const bool worse = frame.LevelClass < 0 || frame.ClassLevels[c] > frame.Level ||
+      (frame.ClassLevels[c] == frame.Level && classes[c].DistanceMm < classes[frame.LevelClass].DistanceMm);
+    if (frame.ClassLevels[c] != vp::DangerLevel::Safe && worse)
+    {
+      frame.Level = frame.ClassLevels[c];
+      frame.LevelClass = static_cast<int>(c);
+    }
+  }
+  this->Last = std::move(frame);
+  ++this->FramesProcessed;
+
+  // The first frame reports its level only when it is not safe: a tracking session starts safe.
+  if (this->Last.Level != previousLevel)
+  {
+    vp::DangerLevelChange change;
+    change.Frame = this->Last.Frame;
+    change.TimeS = this->Last.TimeS;
+    change.From = previousLevel;
+    change.To = this->Last.Level;
+    if (this->Last.LevelClass >= 0)
+    {
+      const vp::ClassProximity& cause = this->Last.Proximity.Classes[this->Last.LevelClass];
+      change.ClassName = cause.ClassName;
+      change.DistanceMm = cause.DistanceMm;
+    }
+    this->InvokeEvent(DangerLevelChangedEvent, &change);
+  }
+  return this->Last;
+}
+
+void vtkScalpelTrackingLogic::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "DistanceEngine: " << (this->Engine ? this->Engine->GetMethodName() : "(none)") << "\n";
+  os << indent << "Scalpel: " << (this->Scalpel ? "set" : "(none)") << "\n";
+  os << indent << "SurfaceDistance: " << (this->SurfaceDistance ? "on" : "off") << "\n";
+  os << indent << "DangerThresholds (caution, warning, danger): " << this->Thresholds.CautionMm << ", "
+     << this->Thresholds.WarningMm << ", " << this->Thresholds.DangerMm << " mm\n";
+  os << indent << "FramesProcessed: " << this->FramesProcessed << "\n";
+}

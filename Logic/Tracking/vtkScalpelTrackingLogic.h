@@ -1,0 +1,107 @@
+#ifndef vtkScalpelTrackingLogic_h
+#define vtkScalpelTrackingLogic_h
+
+#include "vpDangerLevels.h"
+#include "vpPoseFile.h"
+#include "vpProximityResult.h"
+#include "vtkScalpelModel.h"
+#include "vtkScalpelSurfaceDistance.h"
+#include "vtkVesselDistanceEngine.h"
+
+#include <vtkCommand.h>
+#include <vtkObject.h>
+#include <vtkSmartPointer.h>
+
+#include <optional>
+#include <vector>
+
+
+namespace vp
+{
+/// Everything known about one tracked frame.
+struct TrackedFrame
+{
+  int Frame = 0;
+  double TimeS = 0.0;
+  double TipMm[3] = { 0, 0, 0 };   ///< world
+  double AxisWorld[3] = { 0, 0, 1 };
+  ProximityResult Proximity;       ///< per class: distance, closest point, inside, directional
+  std::vector<DangerLevel> ClassLevels;
+  DangerLevel Level = DangerLevel::Safe; ///< the worst over the classes
+  int LevelClass = -1;             ///< the class that set Level, -1 when all are safe
+  std::vector<SurfaceProximity> Surface; ///< per class; empty when not computed
+  double FrameMs = 0.0;            ///< wall time of the distance queries of this frame
+};
+
+/// A change of the overall danger level between two frames.
+struct DangerLevelChange
+{
+  int Frame = 0;
+  double TimeS = 0.0;
+  DangerLevel From = DangerLevel::Safe;
+  DangerLevel To = DangerLevel::Safe;
+  std::string ClassName; ///< the class that sets the new level (empty when it is safe)
+  double DistanceMm = 0.0; ///< that class's distance, 0 when none
+};
+} // namespace vp
+
+/// Turns tracked poses of a scalpel into per-frame proximity records and danger-level events.
+///
+/// For each pose: the scalpel's tip and axis go to world coordinates, the distance engine answers
+/// for every vessel class (passing the previous frame's answer, so a moving tip costs little),
+/// each class gets a danger level and the frame the worst of them. DangerLevelChangedEvent is
+/// invoked with a vp::DangerLevelChange as call data only when the overall level differs from
+/// the previous frame's, never on every frame. With a surface-distance calculator set, the
+/// closest approach of the whole instrument surface is computed as well.
+///
+/// The logic owns no UI: a widget observes the event and reads GetLastFrame().
+class vtkScalpelTrackingLogic : public vtkObject
+{
+public:
+  static vtkScalpelTrackingLogic* New();
+  vtkTypeMacro(vtkScalpelTrackingLogic, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  enum
+  {
+    DangerLevelChangedEvent = vtkCommand::UserEvent + 1201
+  };
+
+  void SetDistanceEngine(vtkVesselDistanceEngine* engine);
+  vtkVesselDistanceEngine* GetDistanceEngine() const { return this->Engine; }
+  void SetScalpel(vtkScalpelModel* scalpel);
+  vtkScalpelModel* GetScalpel() const { return this->Scalpel; }
+  /// Optional: whole-surface distance (costs more than the tip; null switches it off, the default).
+  void SetSurfaceDistance(vtkScalpelSurfaceDistance* surface);
+  vtkScalpelSurfaceDistance* GetSurfaceDistance() const { return this->SurfaceDistance; }
+
+  /// Danger thresholds (defaults 10, 5, 2 mm). Validated when the first pose is processed.
+  void SetDangerThresholds(const vp::DangerThresholds& thresholds) { this->Thresholds = thresholds; }
+  const vp::DangerThresholds& GetDangerThresholds() const { return this->Thresholds; }
+
+  /// Places the scalpel at pose, computes the frame, fires the event on a change of level, and
+  /// returns the frame (valid until the next call). Throws vp::InputError when the engine's range
+  /// is shorter than the caution threshold (a far class would look safe when it is not).
+  const vp::TrackedFrame& ProcessPose(const vp::TrackedPose& pose);
+  const vp::TrackedFrame& GetLastFrame() const { return this->Last; }
+  int GetNumberOfFrames() const { return this->FramesProcessed; }
+  /// Forgets the previous frame: the next pose is frame 0 and starts from the safe level.
+  void Reset();
+
+protected:
+  vtkScalpelTrackingLogic();
+  ~vtkScalpelTrackingLogic() override;
+
+  vtkSmartPointer<vtkVesselDistanceEngine> Engine;
+  vtkSmartPointer<vtkScalpelModel> Scalpel;
+  vtkSmartPointer<vtkScalpelSurfaceDistance> SurfaceDistance;
+  vp::DangerThresholds Thresholds;
+  vp::TrackedFrame Last;
+  int FramesProcessed = 0;
+
+private:
+  vtkScalpelTrackingLogic(const vtkScalpelTrackingLogic&) = delete;
+  void operator=(const vtkScalpelTrackingLogic&) = delete;
+};
+
+#endif

@@ -1,0 +1,397 @@
+// vesselproximity track: a recorded stream of scalpel poses replayed against the vessels, with the
+// per-frame record (frames.csv), the run's summary (summary.json) and its plot (distance.png).
+#include "vpArguments.h"
+#include "vpCommandSupport.h"
+#include "vpCommands.h"
+#include "vpDangerLevels.h"
+#include "vpDistancePlot.h"
+#include "vpEngineOptions.h"
+#include "vpInputError.h"
+#include "vpPointCsv.h"
+#include "vpPoseFile.h"
+#include "vpScalpelLoader.h"
+#include "vpTrackingSummary.h"
+#include "vtkExactVesselDistance.h"
+#include "vtkScalpelSurfaceDistance.h"
+#include "vtkScalpelTrackingLogic.h"
+#include "vtkVesselMeshWriter.h"
+
+#include <vtkCallbackCommand.h>
+#include <vtkNew.h>
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <limits>
+
+namespace vp
+{
+namespace
+{
+using Json = nlohmann::ordered_json;
+
+const char* Usage =
+  "usage: vesselproximity track --vessels CLASS=FILE[,CLASS=FILE...] --scalpel FILE.stl --poses FILE\n"
+  "         [--tip X,Y,Z] [--axis X,Y,Z] [--method exact|zbuffer|both] [--danger-mm C,W,D]\n"
+  "         [--no-surface] [engine options] -o OUTDIR\n"
+  "  Replays tracked scalpel poses (model-to-world; CSV `time,m00..m33` or `time,x,y,z,qw,qx,qy,qz`,\n"
+  "  or JSON) and writes OUTDIR/frames.csv (one row per pose), summary.json and distance.png.\n"
+  "  The tip and axis (model coordinates): --tip/--axis, else FILE.json beside the model\n"
+  "  ({\"tip_mm\": [x,y,z], \"axis\": [x,y,z]}), else found automatically (reported).\n"
+  "  --danger-mm: caution, warning and danger thresholds (default 10,5,2 mm); a tip inside a\n"
+  "    vessel is a breach. The level uses distance minus the engine's error bound.\n"
+  "  --no-surface: skip the whole-instrument distance (the closest approach of any point of the\n"
+  "    scalpel surface, computed exactly beside the tip's).\n";
+
+std::string Number(double value, const char* format = "%.4f")
+{
+  char text[64];
+  std::snprintf(text, sizeof(text), format, value);
+  return text;
+}
+
+std::string FramesCsv(const std::vector<TrackedFrame>& frames, const std::vector<std::string>& classes, bool surface)
+{
+  std::string csv = "frame,time,tip_x,tip_y,tip_z,nearest_class,nearest_mm";
+  for (const auto& c : classes)
+  {
+    csv += "," + c + "_mm";
+  }
+  csv += ",danger_level,error_bound_mm,frame_ms,axis_x,axis_y,axis_z";
+  for (const auto& c : classes)
+  {
+    csv += "," + c + "_point_x," + c + "_point_y," + c + "_point_z," + c + "_directional_mm," + c + "_inside," + c +
+      "_level";
+    if (surface)
+    {
+      csv += "," + c + "_surface_mm";
+    }
+  }
+  csv += "\n";
+  for (const TrackedFrame& f : frames)
+  {
+    const auto& r = f.Proximity;
+    const int nearest = r.NearestIndex();
+    csv += std::to_string(f.Frame) + "," + Number(f.TimeS, "%.6f") + "," + Number(f.TipMm[0]) + "," + Number(f.TipMm[1]) +
+      "," + Number(f.TipMm[2]) + "," + (nearest >= 0 ? r.Classes[nearest].ClassName : "") + "," +
+      (nearest >= 0 ? Number(r.Classes[nearest].DistanceMm) : "");
+    for (const auto& c : r.Classes)
+    {
+      csv += "," + (c.InRange ? Number(c.DistanceMm) : "");
+    }
+    csv += std::string(",") + DangerLevelName(f.Level) + "," + Number(r.ErrorBoundMm) + "," + Number(f.FrameMs, "%.5f") +
+      "," + Number(f.AxisWorld[0], "%.6f") + "," + Number(f.AxisWorld[1], "%.6f") + "," + Number(f.AxisWorld[2], "%.6f");
+    for (std::size_t k = 0; k < r.Classes.size(); ++k)
+    {
+      const ClassProximity& c = r.Classes[k];
+      for (int a = 0; a < 3; ++a)
+      {
+        csv += "," + (c.InRange ? Number(c.ClosestPoint[a]) : "");
+      }
+      csv += "," + (c.DirectionalMm ? Number(*c.DirectionalMm) : "");
+      csv += "," + (c.InRange && c.Inside ? std::string(*c.Inside ? "1" : "0") : "");
+      csv += std::string(",") + DangerLevelName(f.ClassLevels[k]);
+      if (surface)
+      {
+        csv += "," + (f.Surface[k].InRange ? Number(f.Surface[k].DistanceMm) : "");
+      }
+    }
+    csv += "\n";
+  }
+  return csv;
+}
+
+Json MinimumJson(const ClassMinimum& m)
+{
+  if (!m.Seen)
+  {
+    return nullptr;
+  }
+  return { { "distance_mm", m.DistanceMm }, { "frame", m.Frame }, { "time", m.TimeS },
+    { "point", { m.PointMm[0], m.PointMm[1], m.PointMm[2] } } };
+}
+
+Json SummaryJson(const TrackingSummary& s, vtkScalpelTrackingLogic* logic, vtkVesselDistanceEngine* engine,
+  const std::string& posesFile, bool surface, const std::vector<double>& frameMs, const Json& comparison)
+{
+  Json out;
+  out["poses"] = posesFile;
+  out["frames"] = s.GetNumberOfFrames();
+  out["duration_s"] = s.GetDurationS();
+  out["method"] = engine->GetMethodName();
+  out["device"] = DescribeDevice(engine);
+  out["range_mm"] = engine->GetRangeMm();
+  out["error_bound_mm"] = ErrorBoundMm(engine);
+  vtkScalpelModel* scalpel = logic->GetScalpel();
+  out["scalpel"] = { { "tip_mm", { scalpel->GetTipMm()[0], scalpel->GetTipMm()[1], scalpel->GetTipMm()[2] } },
+    { "axis", { scalpel->GetAxis()[0], scalpel->GetAxis()[1], scalpel->GetAxis()[2] } },
+    { "tip_source", scalpel->GetTipSource() } };
+  const DangerThresholds& t = logic->GetDangerThresholds();
+  out["danger_thresholds_mm"] = { { "caution", t.CautionMm }, { "warning", t.WarningMm }, { "danger", t.DangerMm } };
+  Json classes = Json::object();
+  for (std::size_t c = 0; c < s.GetClassNames().size(); ++c)
+  {
+    Json entry;
+    entry["tip_minimum"] = MinimumJson(s.GetTipMinimum()[c]);
+    if (surface)
+    {
+      entry["surface_minimum"] = MinimumJson(s.GetSurfaceMinimum()[c]);
+    }
+    classes[s.GetClassNames()[c]] = entry;
+  }
+  out["classes"] = classes;
+  Json levels = Json::object();
+  for (int l = 0; l < NumberOfDangerLevels; ++l)
+  {
+    levels[DangerLevelName(static_cast<DangerLevel>(l))] = { { "time_s", s.GetTimeInLevelS()[l] },
+      { "frames", s.GetFramesInLevel()[l] } };
+  }
+  out["time_in_level"] = levels;
+  out["worst_level"] = DangerLevelName(s.GetWorstLevel());
+  Json events = Json::array();
+  for (const DangerLevelChange& e : s.GetChanges())
+  {
+    events.push_back({ { "frame", e.Frame }, { "time", e.TimeS }, { "from", DangerLevelName(e.From) },
+      { "to", DangerLevelName(e.To) }, { "class", e.ClassName.empty() ? Json(nullptr) : Json(e.ClassName) },
+      { "distance_mm", e.ClassName.empty() ? Json(nullptr) : Json(e.DistanceMm) } });
+  }
+  out["level_changes"] = events;
+  out["timing_ms"] = { { "frame_median", Quantile(frameMs, 0.5) }, { "frame_p95", Quantile(frameMs, 0.95) },
+    { "frame_max", Quantile(frameMs, 1.0) } };
+  if (!comparison.is_null())
+  {
+    out["comparison"] = comparison;
+  }
+  return out;
+}
+
+void WritePlot(const std::string& file, const std::vector<TrackedFrame>& frames, const std::vector<std::string>& classes,
+  const DangerThresholds& t, double rangeMm)
+{
+  std::vector<double> times;
+  std::vector<PlotSeries> series(classes.size());
+  const std::array<std::array<unsigned char, 3>, 6> palette{ { { 0, 150, 200 }, { 90, 40, 170 }, { 215, 60, 50 },
+    { 40, 160, 60 }, { 230, 140, 20 }, { 120, 120, 0 } } };
+  for (std::size_t c = 0; c < classes.size(); ++c)
+  {
+    series[c].Name = classes[c] + " (tip)";
+    series[c].Colour = palette[c % palette.size()];
+  }
+  for (const TrackedFrame& f : frames)
+  {
+    times.push_back(f.TimeS);
+    for (std::size_t c = 0; c < classes.size(); ++c)
+    {
+      const ClassProximity& p = f.Proximity.Classes[c];
+      series[c].ValuesMm.push_back(p.InRange ? p.DistanceMm : std::numeric_limits<double>::quiet_NaN());
+    }
+  }
+  std::vector<PlotBand> bands;
+  const double top = std::max(rangeMm, t.CautionMm);
+  const double edges[5] = { 0.0, t.DangerMm, t.WarningMm, t.CautionMm, top };
+  for (int l = 0; l < 4; ++l)
+  {
+    const auto level = static_cast<DangerLevel>(3 - l);
+    bands.push_back({ edges[l], edges[l + 1], DangerLevelColour(level), DangerLevelName(level) });
+  }
+  DistancePlotOptions options;
+  options.Title = "Tip distance to each vessel class over time";
+  WriteDistancePlotPng(file, times, series, bands, options);
+}
+} // namespace
+
+int RunTrackCommand(const std::vector<std::string>& argv)
+{
+  if (WantsHelp(argv))
+  {
+    std::cout << Usage << EngineOptionsUsage;
+    return 0;
+  }
+  std::set<std::string> options = EngineValueOptions();
+  options.insert({ "--vessels", "--scalpel", "--poses", "--tip", "--axis", "--danger-mm", "-o" });
+  const Arguments args(argv, options, { "--no-surface" });
+  if (!args.Positional().empty())
+  {
+    throw InputError(args.Positional()[0], "unexpected argument (see vesselproximity track --help)");
+  }
+  for (const char* required : { "--vessels", "--scalpel", "--poses", "-o" })
+  {
+    if (!args.Has(required))
+    {
+      throw InputError(required, "is required (see vesselproximity track --help)");
+    }
+  }
+  const std::string method = args.Get("--method", "exact");
+  if (method != "exact" && method != "zbuffer" && method != "both")
+  {
+    throw InputError("--method", "expected exact, zbuffer or both for tracking, got '" + method + "'");
+  }
+  DangerThresholds thresholds;
+  if (args.Has("--danger-mm"))
+  {
+    const auto d = ParsePoint(args.Get("--danger-mm"), "--danger-mm");
+    thresholds = { d[0], d[1], d[2] };
+  }
+  thresholds.Validate("--danger-mm");
+  ScalpelTipDefinition tip;
+  if (args.Has("--tip"))
+  {
+    tip.TipMm = ParsePoint(args.Get("--tip"), "--tip");
+  }
+  if (args.Has("--axis"))
+  {
+    tip.Axis = ParsePoint(args.Get("--axis"), "--axis");
+  }
+  const bool surface = !args.Has("--no-surface");
+  const std::string outDir = args.Get("-o");
+
+  // Everything that can be refused is read before any computing: poses first, they are cheap.
+  const double start = NowMs();
+  const std::vector<TrackedPose> poses = ReadPoseFile(args.Get("--poses"));
+  auto engine = MakeDistanceEngine(method, args);
+  const auto meshes = LoadVesselMeshes(ParsePairs(args.Get("--vessels"), "--vessels"));
+  auto scalpel = LoadScalpel(args.Get("--scalpel"), tip);
+  std::cerr << "track: " << scalpel->GetTipSource() << "\n";
+  // The exact engine serves --method exact, the check of --method both, and the whole surface.
+  vtkSmartPointer<vtkExactVesselDistance> exact = vtkExactVesselDistance::SafeDownCast(engine);
+  if (!exact && (method == "both" || surface))
+  {
+    exact = vtkSmartPointer<vtkExactVesselDistance>::New();
+    exact->SetRangeMm(engine->GetRangeMm());
+  }
+  for (const auto& m : meshes)
+  {
+    engine->AddVessel(m.ClassName, m.Mesh);
+    if (exact && exact != engine)
+    {
+      exact->AddVessel(m.ClassName, m.Mesh);
+    }
+  }
+  engine->Build();
+  if (exact)
+  {
+    exact->Build();
+  }
+  const double buildMs = NowMs() - start;
+
+  vtkNew<vtkScalpelTrackingLogic> logic;
+  logic->SetDistanceEngine(engine);
+  logic->SetScalpel(scalpel);
+  logic->SetDangerThresholds(thresholds);
+  vtkNew<vtkScalpelSurfaceDistance> surfaceDistance;
+  if (surface)
+  {
+    surfaceDistance->SetVesselDistance(exact);
+    surfaceDistance->SetToolSurface(scalpel->GetModel());
+    logic->SetSurfaceDistance(surfaceDistance);
+  }
+  TrackingSummary summary;
+  vtkNew<vtkCallbackCommand> onChange;
+  onChange->SetClientData(&summary);
+  onChange->SetCallback([](vtkObject*, unsigned long, void* client, void* call) {
+    static_cast<TrackingSummary*>(client)->AddChange(*static_cast<DangerLevelChange*>(call));
+  });
+  logic->AddObserver(vtkScalpelTrackingLogic::DangerLevelChangedEvent, onChange);
+
+  std::vector<TrackedFrame> frames;
+  frames.reserve(poses.size());
+  std::vector<double> frameMs;
+  int outsideBound = 0;
+  double maxDifference = 0.0;
+  ProximityResult exactResult;
+  double lastReport = NowMs();
+  for (std::size_t i = 0; i < poses.size(); ++i)
+  {
+    frames.push_back(logic->ProcessPose(poses[i]));
+    summary.Add(frames.back());
+    frameMs.push_back(frames.back().FrameMs);
+    if (method == "both")
+    {
+      exact->ComputeProximity(frames.back().TipMm, frames.back().AxisWorld, exactResult);
+      for (std::size_t k = 0; k < exactResult.Classes.size(); ++k)
+      {
+        const ClassProximity& z = frames.back().Proximity.Classes[k];
+        const ClassProximity& e = exactResult.Classes[k];
+        if (z.InRange && e.InRange)
+        {
+          maxDifference = std::max(maxDifference, std::abs(z.DistanceMm - e.DistanceMm));
+        }
+        outsideBound += WithinErrorBound(z, e, engine->GetRangeMm(), ErrorBoundMm(engine)) ? 0 : 1;
+      }
+    }
+    if (NowMs() - lastReport > 1000.0)
+    {
+      lastReport = NowMs();
+      std::fprintf(stderr, "track: frame %zu of %zu (%.0f%%)\n", i + 1, poses.size(), 100.0 * (i + 1) / poses.size());
+    }
+  }
+  Json comparison;
+  if (method == "both")
+  {
+    comparison = { { "reference", "exact" }, { "max_abs_difference_mm", maxDifference }, { "outside_bound", outsideBound } };
+    if (outsideBound > 0)
+    {
+      std::cerr << "vesselproximity: warning: " << outsideBound << " answer(s) of the z-buffer engine outside its error bound of "
+                << ErrorBoundMm(engine) << " mm\n";
+    }
+  }
+
+  std::vector<std::string> classes = summary.GetClassNames();
+  const std::string csv = FramesCsv(frames, classes, surface);
+  Json doc = SummaryJson(summary, logic, engine, args.Get("--poses"), surface, frameMs, comparison);
+  doc["timing_ms"]["load_and_build"] = buildMs;
+
+  // Write. A failure part-way removes what this run wrote.
+  const bool created = CreateOutputFolder(outDir);
+  std::vector<std::string> written;
+  try
+  {
+    WriteFileAtomically(outDir + "/frames.csv", csv);
+    written.push_back(outDir + "/frames.csv");
+    WriteFileAtomically(outDir + "/summary.json", doc.dump(2) + "\n");
+    written.push_back(outDir + "/summary.json");
+    WritePlot(outDir + "/distance.png", frames, classes, thresholds, engine->GetRangeMm());
+  }
+  catch (...)
+  {
+    for (const auto& file : written)
+    {
+      std::remove(file.c_str());
+    }
+    if (created)
+    {
+      std::error_code ec;
+      std::filesystem::remove(outDir, ec);
+    }
+    throw;
+  }
+
+  std::printf("%zu frames over %.2f s, method %s on %s, error bound %.3f mm\n", frames.size(), summary.GetDurationS(),
+    engine->GetMethodName(), DescribeDevice(engine).c_str(), ErrorBoundMm(engine));
+  std::printf("  %-16s %16s %10s %20s\n", "class", "tip minimum mm", "at time", surface ? "whole surface mm" : "");
+  for (std::size_t c = 0; c < classes.size(); ++c)
+  {
+    const ClassMinimum& m = summary.GetTipMinimum()[c];
+    const ClassMinimum& s = summary.GetSurfaceMinimum()[c];
+    std::printf("  %-16s %16s %10s %20s\n", classes[c].c_str(), m.Seen ? Number(m.DistanceMm, "%.3f").c_str() : "out of range",
+      m.Seen ? Number(m.TimeS, "%.3f").c_str() : "", surface ? (s.Seen ? Number(s.DistanceMm, "%.3f").c_str() : "out of range") : "");
+  }
+  std::printf("  time at each level:");
+  for (int l = 0; l < NumberOfDangerLevels; ++l)
+  {
+    std::printf(" %s %.2f s", DangerLevelName(static_cast<DangerLevel>(l)), summary.GetTimeInLevelS()[l]);
+  }
+  std::printf("\n  %zu level change(s), worst level %s; frame median %.4f ms, p95 %.4f ms\n", summary.GetChanges().size(),
+    DangerLevelName(summary.GetWorstLevel()), Quantile(frameMs, 0.5), Quantile(frameMs, 0.95));
+  if (method == "both")
+  {
+    std::printf("  against the exact engine: largest difference %.4f mm, %d answer(s) outside the bound\n", maxDifference,
+      outsideBound);
+  }
+  std::printf("wrote %s/frames.csv, summary.json, distance.png\n", outDir.c_str());
+  return 0;
+}
+} // namespace vp

@@ -1,0 +1,349 @@
+// Tracking: per-frame proximity equals a direct query at the pose's tip, danger levels change
+// once per change, the whole-instrument distance equals brute force over every triangle pair,
+// and the summary adds up. Synthetic poses with known answers, as SlicerIGT's pivot test does.
+#include "vpAnalyticShapes.h"
+#include "vpDangerLevels.h"
+#include "vpInputError.h"
+#include "vpRigidTransform.h"
+#include "vpTrackingSummary.h"
+#include "vpTriangleGeometry.h"
+#include "vtkExactVesselDistance.h"
+#include "vtkScalpelModel.h"
+#include "vtkScalpelSurfaceDistance.h"
+#include "vtkScalpelTrackingLogic.h"
+
+#include <gtest/gtest.h>
+
+#include <vtkCallbackCommand.h>
+#include <vtkCellArrayIterator.h>
+#include <vtkNew.h>
+#include <vtkPolyData.h>
+
+#include <cmath>
+#include <random>
+
+namespace
+{
+const double Origin[3] = { 0, 0, 0 };
+
+/// A tool pose whose model +z (the axis) points along world -x, tip (model origin) at tipX on
+/// the x axis, shifted by offset.
+vp::TrackedPose PoseTowardsMinusX(double timeS, double tipX, const double offset[3] = Origin)
+{
+  // Columns: model x -> world z, model y -> world y, model z -> world -x (a proper rotation).
+  return { timeS, { 0, 0, -1, tipX + offset[0], 0, 1, 0, offset[1], 1, 0, 0, offset[2], 0, 0, 0, 1 } };
+}
+
+vtkSmartPointer<vtkPolyData> ToolShaft()
+{
+  const double z[3] = { 0, 0, 1 };
+  const double centre[3] = { 0, 0, -40 };
+  return vp::MakeCappedCylinder(centre, z, 1.5, 80.0, 16); // tip face at z = 0
+}
+
+struct Recorder
+{
+  std::vector<vp::DangerLevelChange> Changes;
+  static void Callback(vtkObject*, unsigned long, void* client, void* call)
+  {
+    static_cast<Recorder*>(client)->Changes.push_back(*static_cast<vp::DangerLevelChange*>(call));
+  }
+};
+
+class Tracking : public ::testing::Test
+{
+protected:
+  void SetUp() override
+  {
+    this->Engine->AddVessel("portal_vein", vp::MakeSphere(Origin, 10.0, 90, 180));
+    const double far[3] = { 0, 60, 0 };
+    this->Engine->AddVessel("hepatic_vein", vp::MakeSphere(far, 5.0, 30, 60));
+    this->Engine->Build();
+    this->Scalpel->SetModel(ToolShaft());
+    this->Logic->SetDistanceEngine(this->Engine);
+    this->Logic->SetScalpel(this->Scalpel);
+    this->Observer->SetClientData(&this->Events);
+    this->Observer->SetCallback(&Recorder::Callback);
+    this->Logic->AddObserver(vtkScalpelTrackingLogic::DangerLevelChangedEvent, this->Observer);
+  }
+  vtkNew<vtkExactVesselDistance> Engine;
+  vtkNew<vtkScalpelModel> Scalpel;
+  vtkNew<vtkScalpelTrackingLogic> Logic;
+  vtkNew<vtkCallbackCommand> Observer;
+  Recorder Events;
+};
+
+/// Approach to 0.5 mm from the sphere and back, in 0.25 mm steps.
+std::vector<vp::TrackedPose> ApproachAndRetreat(double jitterMm, unsigned seed)
+{
+  std::mt19937 random(seed);
+  std::normal_distribution<double> noise(0.0, jitterMm);
+  std::vector<vp::TrackedPose> poses;
+  double t = 0.0;
+  auto add = [&](double x) {
+    const double offset[3] = { jitterMm > 0 ? noise(random) : 0.0, jitterMm > 0 ? noise(random) : 0.0,
+      jitterMm > 0 ? noise(random) : 0.0 };
+    poses.push_back(PoseTowardsMinusX(t, x, offset));
+    t += 0.05;
+  };
+  for (double x = 30.0; x > 10.5; x -= 0.25)
+  {
+    add(x);
+  }
+  for (double x = 10.5; x <= 30.0; x += 0.25)
+  {
+    add(x);
+  }
+  return poses;
+}
+} // namespace
+
+TEST(DangerLevels, ThresholdsNamesAndTheErrorBound)
+{
+  const vp::DangerThresholds t; // 10, 5, 2
+  vp::ClassProximity p;
+  p.InRange = true;
+  p.Inside = false;
+  const std::pair<double, vp::DangerLevel> cases[] = { { 10.01, vp::DangerLevel::Safe }, { 10.0, vp::DangerLevel::Caution },
+    { 5.0, vp::DangerLevel::Warning }, { 2.0, vp::DangerLevel::Danger }, { 0.0, vp::DangerLevel::Danger } };
+  for (const auto& c : cases)
+  {
+    p.DistanceMm = c.first;
+    EXPECT_EQ(vp::ClassifyDanger(p, 0.0, t), c.second) << c.first;
+  }
+  // An approximate engine's 5.2 mm may be 4.85: the level says warning, never less.
+  p.DistanceMm = 5.2;
+  EXPECT_EQ(vp::ClassifyDanger(p, 0.0, t), vp::DangerLevel::Caution);
+  EXPECT_EQ(vp::ClassifyDanger(p, 0.35, t), vp::DangerLevel::Warning);
+  p.Inside = true;
+  EXPECT_EQ(vp::ClassifyDanger(p, 0.0, t), vp::DangerLevel::Breach);
+  p.InRange = false;
+  EXPECT_EQ(vp::ClassifyDanger(p, 0.0, t), vp::DangerLevel::Safe);
+  EXPECT_STREQ(vp::DangerLevelName(vp::DangerLevel::Warning), "warning");
+  EXPECT_EQ(vp::DangerLevelColour(vp::DangerLevel::Safe)[0], 255);
+  EXPECT_THROW((vp::DangerThresholds{ 5, 5, 2 }.Validate("t")), vp::InputError);
+  EXPECT_THROW((vp::DangerThresholds{ 10, 5, 0 }.Validate("t")), vp::InputError);
+  EXPECT_NO_THROW((vp::DangerThresholds{ 20, 8, 1 }.Validate("t")));
+}
+
+TEST_F(Tracking, EachFrameEqualsADirectQueryAtItsTip)
+{
+  this->Scalpel->SetTipMm(0, 0, 0);
+  this->Scalpel->SetAxis(0, 0, 1);
+  vtkNew<vtkExactVesselDistance> direct; // a second engine, no previous-frame hints
+  direct->AddVessel("portal_vein", vp::MakeSphere(Origin, 10.0, 90, 180));
+  const double far[3] = { 0, 60, 0 };
+  direct->AddVessel("hepatic_vein", vp::MakeSphere(far, 5.0, 30, 60));
+  const auto poses = ApproachAndRetreat(0.3, 11);
+  for (const auto& pose : poses)
+  {
+    const vp::TrackedFrame& f = this->Logic->ProcessPose(pose);
+    const double tip[3] = { pose.ModelToWorld[3], pose.ModelToWorld[7], pose.ModelToWorld[11] };
+    EXPECT_DOUBLE_EQ(f.TipMm[0], tip[0]);
+    EXPECT_DOUBLE_EQ(f.AxisWorld[0], -1.0);
+    const double axis[3] = { -1, 0, 0 };
+    vp::ProximityResult expected;
+    direct->ComputeProximity(tip, axis, expected);
+    ASSERT_EQ(f.Proximity.Classes.size(), 2u);
+    for (int c = 0; c < 2; ++c)
+    {
+      const auto& got = f.Proximity.Classes[c];
+      const auto& want = expected.Classes[c];
+      ASSERT_EQ(got.InRange, want.InRange);
+      if (got.InRange)
+      {
+        EXPECT_NEAR(got.DistanceMm, want.DistanceMm, 1e-12);
+        EXPECT_NEAR(got.ClosestPoint[1], want.ClosestPoint[1], 1e-9);
+        ASSERT_EQ(got.DirectionalMm.has_value(), want.DirectionalMm.has_value());
+        if (got.DirectionalMm)
+        {
+          EXPECT_NEAR(*got.DirectionalMm, *want.DirectionalMm, 1e-9);
+        }
+      }
+    }
+    // The sphere's analytic distance, within the mesh's chord error (90 x 180 facets: < 0.02 mm).
+    const double r = std::sqrt(tip[0] * tip[0] + tip[1] * tip[1] + tip[2] * tip[2]);
+    EXPECT_NEAR(f.Proximity.Classes[0].DistanceMm, r - 10.0, 0.02);
+  }
+  EXPECT_EQ(this->Logic->GetNumberOfFrames(), static_cast<int>(poses.size()));
+}
+
+TEST_F(Tracking, DangerLevelChangesAreReportedOncePerChange)
+{
+  for (double jitter : { 0.0, 0.3 })
+  {
+    this->Logic->Reset();
+    this->Events.Changes.clear();
+    std::vector<vp::DangerLevel> levels;
+    std::vector<double> distances;
+    for (const auto& pose : ApproachAndRetreat(jitter, 5))
+    {
+      const vp::TrackedFrame& f = this->Logic->ProcessPose(pose);
+      levels.push_back(f.Level);
+      distances.push_back(f.Proximity.Classes[0].DistanceMm);
+      // The level is the frame's own distance classified, nothing remembered.
+      EXPECT_EQ(f.Level, vp::ClassifyDistance(distances.back(), vp::DangerThresholds())) << "frame " << f.Frame;
+    }
+    std::vector<int> changedAt;
+    for (std::size_t i = 0; i < levels.size(); ++i)
+    {
+      if (levels[i] != (i == 0 ? vp::DangerLevel::Safe : levels[i - 1]))
+      {
+        changedAt.push_back(static_cast<int>(i));
+      }
+    }
+    ASSERT_EQ(this->Events.Changes.size(), changedAt.size()) << "jitter " << jitter;
+    for (std::size_t k = 0; k < changedAt.size(); ++k)
+    {
+      const vp::DangerLevelChange& e = this->Events.Changes[k];
+      EXPECT_EQ(e.Frame, changedAt[k]);
+      EXPECT_EQ(e.To, levels[changedAt[k]]);
+      EXPECT_EQ(e.From, changedAt[k] == 0 ? vp::DangerLevel::Safe : levels[changedAt[k] - 1]);
+      EXPECT_EQ(e.ClassName, e.To == vp::DangerLevel::Safe ? "" : "portal_vein");
+    }
+    if (jitter == 0.0)
+    {
+      // Smooth approach to 0.5 mm and back: up through caution, warning, danger and down again.
+      ASSERT_EQ(changedAt.size(), 6u);
+      const vp::DangerLevel expected[6] = { vp::DangerLevel::Caution, vp::DangerLevel::Warning, vp::DangerLevel::Danger,
+        vp::DangerLevel::Warning, vp::DangerLevel::Caution, vp::DangerLevel::Safe };
+      for (int k = 0; k < 6; ++k)
+      {
+        EXPECT_EQ(this->Events.Changes[k].To, expected[k]) << k;
+      }
+      EXPECT_NEAR(this->Events.Changes[0].DistanceMm, 10.0, 0.25); // first frame within 10 mm
+    }
+  }
+}
+
+TEST_F(Tracking, RangeShorterThanTheCautionThresholdIsRefused)
+{
+  this->Engine->SetRangeMm(8.0);
+  EXPECT_THROW(this->Logic->ProcessPose(PoseTowardsMinusX(0.0, 20.0)), vp::InputError);
+}
+
+TEST_F(Tracking, SummaryAddsUp)
+{
+  vp::TrackingSummary summary;
+  const auto poses = ApproachAndRetreat(0.0, 1);
+  std::array<int, vp::NumberOfDangerLevels> frames{};
+  std::array<double, vp::NumberOfDangerLevels> seconds{};
+  for (std::size_t i = 0; i < poses.size(); ++i)
+  {
+    const vp::TrackedFrame& f = this->Logic->ProcessPose(poses[i]);
+    summary.Add(f);
+    ++frames[static_cast<int>(f.Level)];
+    if (i + 1 < poses.size())
+    {
+      seconds[static_cast<int>(f.Level)] += poses[i + 1].TimeS - poses[i].TimeS;
+    }
+  }
+  EXPECT_EQ(summary.GetNumberOfFrames(), static_cast<int>(poses.size()));
+  EXPECT_NEAR(summary.GetDurationS(), poses.back().TimeS - poses.front().TimeS, 1e-12);
+  double total = 0.0;
+  for (int l = 0; l < vp::NumberOfDangerLevels; ++l)
+  {
+    EXPECT_EQ(summary.GetFramesInLevel()[l], frames[l]) << l;
+    EXPECT_NEAR(summary.GetTimeInLevelS()[l], seconds[l], 1e-9) << l;
+    total += summary.GetTimeInLevelS()[l];
+  }
+  EXPECT_NEAR(total, summary.GetDurationS(), 1e-9);
+  EXPECT_GT(frames[static_cast<int>(vp::DangerLevel::Danger)], 10); // the run spends time in danger
+  const vp::ClassMinimum& m = summary.GetTipMinimum()[0];
+  ASSERT_TRUE(m.Seen);
+  EXPECT_NEAR(m.DistanceMm, 0.5, 0.02);
+  EXPECT_NEAR(poses[m.Frame].ModelToWorld[3], 10.5, 1e-9);
+  EXPECT_NEAR(m.PointMm[0], 10.0, 0.02);
+  EXPECT_EQ(summary.GetWorstLevel(), vp::DangerLevel::Danger);
+  // The far sphere (60 mm away, radius 5) never comes within the 50 mm range.
+  EXPECT_FALSE(summary.GetTipMinimum()[1].Seen);
+}
+
+namespace
+{
+/// Every tool triangle against every vessel triangle: the reference for the whole-surface distance.
+double BruteForceSurfaceDistance(vtkPolyData* tool, const std::array<double, 16>& m, vtkPolyData* vessel)
+{
+  auto corners = [](vtkPolyData* mesh, const std::array<double, 16>* place) {
+    std::vector<std::array<double, 9>> out;
+    auto it = vtk::TakeSmartPointer(mesh->GetPolys()->NewIterator());
+    for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
+    {
+      vtkIdType n;
+      const vtkIdType* ids;
+      it->GetCurrentCell(n, ids);
+      for (vtkIdType k = 1; k + 1 < n; ++k)
+      {
+        std::array<double, 9> t{};
+        const vtkIdType corner[3] = { ids[0], ids[k], ids[k + 1] };
+        for (int c = 0; c < 3; ++c)
+        {
+          double p[3];
+          mesh->GetPoint(corner[c], p);
+          for (int r = 0; r < 3; ++r)
+          {
+            t[3 * c + r] = place ? (*place)[4 * r] * p[0] + (*place)[4 * r + 1] * p[1] + (*place)[4 * r + 2] * p[2] + (*place)[4 * r + 3] : p[r];
+          }
+        }
+        out.push_back(t);
+      }
+    }
+    return out;
+  };
+  const auto a = corners(tool, &m);
+  const auto b = corners(vessel, nullptr);
+  double best = std::numeric_limits<double>::infinity();
+  for (const auto& s : a)
+  {
+    for (const auto& t : b)
+    {
+      double p[3], q[3];
+      best = std::min(best, vp::ClosestPointsOfTriangles(&s[0], &s[3], &s[6], &t[0], &t[3], &t[6], p, q));
+    }
+  }
+  return std::sqrt(best);
+}
+} // namespace
+
+TEST(ScalpelSurfaceDistance, EqualsBruteForceAndSeesTheShaftBeforeTheTip)
+{
+  auto vessel = vp::MakeSphere(Origin, 10.0, 24, 48);
+  vtkNew<vtkExactVesselDistance> engine;
+  engine->AddVessel("portal_vein", vessel);
+  engine->Build();
+  auto tool = ToolShaft();
+  vtkNew<vtkScalpelSurfaceDistance> surface;
+  surface->SetVesselDistance(engine);
+  surface->SetToolSurface(tool);
+  std::mt19937 random(3);
+  std::uniform_real_distribution<double> angle(0.0, 2 * M_PI), offset(-25.0, 25.0);
+  int touching = 0;
+  for (int i = 0; i < 40; ++i)
+  {
+    const double axis[3] = { offset(random), offset(random), offset(random) };
+    const vp::Matrix4 rotation = vp::RotationAboutAxis({ axis[0], axis[1], axis[2] }, angle(random), { offset(random), offset(random), offset(random) });
+    std::vector<vp::SurfaceProximity> result;
+    surface->ComputeSurfaceProximity(rotation, result);
+    ASSERT_EQ(result.size(), 1u);
+    const double reference = BruteForceSurfaceDistance(tool, rotation, vessel);
+    if (reference > engine->GetRangeMm())
+    {
+      EXPECT_FALSE(result[0].InRange);
+      continue;
+    }
+    ASSERT_TRUE(result[0].InRange) << "pose " << i;
+    EXPECT_NEAR(result[0].DistanceMm, reference, 1e-9) << "pose " << i;
+    EXPECT_NEAR(std::sqrt(vp::Distance2(result[0].PointOnToolMm, result[0].PointOnVesselMm)), result[0].DistanceMm, 1e-9);
+    touching += reference == 0.0 ? 1 : 0;
+  }
+  EXPECT_GT(touching, 0) << "no pose crossed the vessel: the draw no longer tests the crossing case";
+
+  // The shaft passes 2 mm beside the sphere (tool axis along +y at x = 13.5, tip at y = -40):
+  // the tip is 32 mm away, the surface 2 mm (less the facets' chord error).
+  const vp::Matrix4 beside{ 1, 0, 0, 13.5, 0, 0, -1, -40, 0, 1, 0, 0, 0, 0, 0, 1 };
+  std::vector<vp::SurfaceProximity> result;
+  surface->ComputeSurfaceProximity(beside, result);
+  ASSERT_TRUE(result[0].InRange);
+  EXPECT_NEAR(result[0].DistanceMm, BruteForceSurfaceDistance(tool, beside, vessel), 1e-9);
+  EXPECT_NEAR(result[0].DistanceMm, 2.0, 0.1);
+}

@@ -1,0 +1,262 @@
+// `vesselproximity track` and `register` end to end: the files they write, their numbers, and the
+// one-line error with nothing written for every bad pose file.
+#include "vpAnalyticShapes.h"
+#include "vpTestSupport.h"
+#include "vtkVesselMeshWriter.h"
+
+#include <gtest/gtest.h>
+
+#include <vtkNew.h>
+#include <vtkPolyData.h>
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+namespace
+{
+using vp::test::RunTool;
+using vp::test::Slurp;
+using vp::test::ToolRun;
+
+std::vector<std::vector<std::string>> ReadCsvCells(const std::string& path)
+{
+  std::vector<std::vector<std::string>> rows;
+  std::istringstream in(Slurp(path));
+  std::string line;
+  while (std::getline(in, line))
+  {
+    std::vector<std::string> cells;
+    std::string cell;
+    std::istringstream fields(line);
+    while (std::getline(fields, cell, ','))
+    {
+      cells.push_back(cell);
+    }
+    if (!line.empty() && line.back() == ',')
+    {
+      cells.emplace_back();
+    }
+    rows.push_back(cells);
+  }
+  return rows;
+}
+
+class TrackCommand : public ::testing::Test
+{
+protected:
+  void SetUp() override
+  {
+    this->Dir = vp::test::MakeTempDir("track");
+    const double centre[3] = { 0, 0, 0 };
+    const double far[3] = { 100, 0, 0 };
+    this->Vessels = "portal_vein=" + this->Write("portal_vein.stl", vp::MakeSphere(centre, 10.0, 48, 96)) +
+      ",hepatic_vein=" + this->Write("hepatic_vein.stl", vp::MakeSphere(far, 5.0, 16, 32));
+    const double z[3] = { 0, 0, 1 };
+    const double shaft[3] = { 0, 0, -40 };
+    this->Tool = this->Write("Tool.stl", vp::MakeCappedCylinder(shaft, z, 1.5, 80.0, 16));
+    std::ofstream(this->Dir + "/Tool.json") << R"({"tip_mm": [0, 0, 0], "axis": [0, 0, 1]})";
+  }
+  std::string Write(const std::string& name, vtkPolyData* mesh)
+  {
+    vtkNew<vtkVesselMeshWriter> w;
+    w->SetFileName(this->Dir + "/" + name);
+    w->SetInputData(mesh);
+    w->Write();
+    return w->GetFileName();
+  }
+  std::string WriteText(const std::string& name, const std::string& text)
+  {
+    std::ofstream(this->Dir + "/" + name) << text;
+    return this->Dir + "/" + name;
+  }
+  /// The tool pointing along -x (quaternion: -90 degrees about y), tip at (x, 0, 0), x from 30
+  /// down to 10.5 mm in 0.5 mm steps and back to 30, 20 frames a second.
+  std::string ApproachPoses()
+  {
+    std::ostringstream csv;
+    csv << "time,x,y,z,qw,qx,qy,qz\n";
+    const double h = std::sqrt(0.5);
+    int frame = 0;
+    auto add = [&](double x) { csv << frame++ * 0.05 << "," << x << ",0,0," << h << ",0," << -h << ",0\n"; };
+    for (double x = 30.0; x > 10.5; x -= 0.5)
+    {
+      add(x);
+    }
+    for (double x = 10.5; x <= 30.0; x += 0.5)
+    {
+      add(x);
+    }
+    this->Frames = frame;
+    return this->WriteText("poses.csv", csv.str());
+  }
+  std::string Dir, Vessels, Tool;
+  int Frames = 0;
+};
+} // namespace
+
+TEST_F(TrackCommand, WritesTheDocumentedRecord)
+{
+  const std::string out = this->Dir + "/run";
+  const ToolRun r = RunTool(this->Dir, "track --vessels " + this->Vessels + " --scalpel " + this->Tool + " --poses " +
+      this->ApproachPoses() + " -o " + out);
+  ASSERT_EQ(r.ExitCode, 0) << r.Err;
+  EXPECT_NE(r.Err.find("Tool.json"), std::string::npos) << "the tip's source is reported: " << r.Err;
+
+  const auto rows = ReadCsvCells(out + "/frames.csv");
+  ASSERT_EQ(rows.size(), static_cast<std::size_t>(this->Frames + 1));
+  const std::vector<std::string> documented = { "frame", "time", "tip_x", "tip_y", "tip_z", "nearest_class", "nearest_mm",
+    "portal_vein_mm", "hepatic_vein_mm", "danger_level", "error_bound_mm", "frame_ms" };
+  ASSERT_GE(rows[0].size(), documented.size());
+  EXPECT_TRUE(std::equal(documented.begin(), documented.end(), rows[0].begin())) << "DESIGN.md's columns come first";
+  auto column = [&](const std::string& name) {
+    return static_cast<std::size_t>(std::find(rows[0].begin(), rows[0].end(), name) - rows[0].begin());
+  };
+  double minimum = 1e9;
+  for (std::size_t i = 1; i < rows.size(); ++i)
+  {
+    ASSERT_EQ(rows[i].size(), rows[0].size()) << "row " << i;
+    const double x = std::stod(rows[i][column("tip_x")]);
+    const double d = std::stod(rows[i][column("portal_vein_mm")]);
+    EXPECT_NEAR(d, x - 10.0, 0.03) << "row " << i; // sphere of 48 x 96 facets
+    EXPECT_NEAR(std::stod(rows[i][column("portal_vein_directional_mm")]), x - 10.0, 0.03); // the axis points at it
+    EXPECT_EQ(rows[i][column("hepatic_vein_mm")], "") << "out of range is empty";
+    EXPECT_EQ(rows[i][column("nearest_class")], "portal_vein");
+    // The shaft trails behind the tip: the whole surface is no nearer than the tip here.
+    EXPECT_NEAR(std::stod(rows[i][column("portal_vein_surface_mm")]), d, 1e-3);
+    const std::string level = rows[i][column("danger_level")];
+    EXPECT_EQ(level, d <= 2 ? "danger" : d <= 5 ? "warning" : d <= 10 ? "caution" : "safe") << "row " << i;
+    minimum = std::min(minimum, d);
+  }
+
+  std::ifstream in(out + "/summary.json");
+  const nlohmann::json s = nlohmann::json::parse(in);
+  EXPECT_EQ(s["frames"], this->Frames);
+  EXPECT_EQ(s["method"], "exact");
+  EXPECT_NEAR(s["classes"]["portal_vein"]["tip_minimum"]["distance_mm"].get<double>(), minimum, 1e-4);
+  EXPECT_NEAR(s["classes"]["portal_vein"]["tip_minimum"]["time"].get<double>(), 39 * 0.05, 1e-9);
+  EXPECT_TRUE(s["classes"]["hepatic_vein"]["tip_minimum"].is_null());
+  double total = 0.0;
+  for (const auto& level : s["time_in_level"])
+  {
+    total += level["time_s"].get<double>();
+  }
+  EXPECT_NEAR(total, s["duration_s"].get<double>(), 1e-9);
+  ASSERT_EQ(s["level_changes"].size(), 6u); // in through caution, warning, danger; out again
+  EXPECT_EQ(s["level_changes"][0]["to"], "caution");
+  EXPECT_EQ(s["level_changes"][2]["to"], "danger");
+  EXPECT_EQ(s["level_changes"][5]["to"], "safe");
+  EXPECT_EQ(s["worst_level"], "danger");
+  EXPECT_EQ(Slurp(out + "/distance.png").substr(0, 4), "\x89PNG");
+}
+
+TEST_F(TrackCommand, EachBadPoseFileGivesItsLineAndWritesNothing)
+{
+  const std::string header = "time,m00,m01,m02,m03,m10,m11,m12,m13,m20,m21,m22,m23,m30,m31,m32,m33\n";
+  const std::string identity = ",1,0,0,20,0,1,0,0,0,0,1,0,0,0,0,1\n";
+  struct Case
+  {
+    std::string Text;
+    std::string Expect;
+  };
+  const std::vector<Case> cases = {
+    { header + "0" + identity + "0.1,1,0,0,20,0,1,0,0,0,0,1,0,0,0,0\n", "line 3: expected 17 numbers (time and a 4x4 matrix) or 8" },
+    { header + "0" + identity + "0.1,1,0,0,nan,0,1,0,0,0,0,1,0,0,0,0,1\n", "line 3:" },
+    { header + "0" + identity + "0" + identity, "line 3: time 0 is not after the previous 0" },
+    { header + "0,1,0,0,20,0,2,0,0,0,0,1,0,0,0,0,1\n", "line 2: the rotation is not orthonormal" },
+    { header + "0,-1,0,0,20,0,1,0,0,0,0,1,0,0,0,0,1\n", "line 2: the rotation is a reflection" },
+    { "0,20,0,0,1,0,0,0\n0.1,20,0,0,0.9,0,0,0\n", "line 2: the quaternion is not of unit length" },
+    { "0,1,2\n", "line 1: expected 17 numbers" },
+    { "", "nothing in it" },
+  };
+  int n = 0;
+  for (const Case& c : cases)
+  {
+    const std::string poses = this->WriteText("bad" + std::to_string(n++) + ".csv", c.Text);
+    const std::string out = this->Dir + "/out" + std::to_string(n);
+    const ToolRun r =
+      RunTool(this->Dir, "track --vessels " + this->Vessels + " --scalpel " + this->Tool + " --poses " + poses + " -o " + out);
+    EXPECT_EQ(r.ExitCode, 1) << c.Text;
+    EXPECT_NE(r.Err.find(poses + ": "), std::string::npos) << r.Err;
+    EXPECT_NE(r.Err.find(c.Expect), std::string::npos) << c.Text << "\n  stderr: " << r.Err;
+    EXPECT_EQ(std::count(r.Err.begin(), r.Err.end(), '\n'), 1) << "one line: " << r.Err;
+    EXPECT_TRUE(r.Out.empty()) << r.Out;
+    EXPECT_FALSE(vp::test::FileExists(out)) << "nothing written for: " << c.Text;
+  }
+  const std::string good = this->ApproachPoses();
+  const std::string out = this->Dir + "/never";
+  const std::vector<std::pair<std::string, std::string>> options = {
+    { " --danger-mm 5,10,2", "--danger-mm: danger thresholds must fall" },
+    { " --method brute", "--method: expected exact, zbuffer or both" },
+    { " --range 5", "--range: the range (5 mm) must reach the caution threshold" },
+    { " --tip 0,0", "--tip: expected X,Y,Z" },
+  };
+  for (const auto& o : options)
+  {
+    const ToolRun r =
+      RunTool(this->Dir, "track --vessels " + this->Vessels + " --scalpel " + this->Tool + " --poses " + good + " -o " + out + o.first);
+    EXPECT_EQ(r.ExitCode, 1) << o.first;
+    EXPECT_NE(r.Err.find(o.second), std::string::npos) << o.first << "\n  stderr: " << r.Err;
+    EXPECT_FALSE(vp::test::FileExists(out)) << o.first;
+  }
+}
+
+TEST_F(TrackCommand, RegisterWritesTheTransformAndTheError)
+{
+  // Landmarks: model points moved by 90 degrees about z and (5, -3, 2).
+  const std::string model = this->WriteText("model.csv", "x,y,z\n0,0,0\n10,0,0\n0,20,0\n0,0,30\n");
+  const std::string world = this->WriteText("world.csv", "5,-3,2\n5,7,2\n-15,-3,2\n5,-3,32\n");
+  const ToolRun r = RunTool(this->Dir, "register landmarks --model-points " + model + " --world-points " + world + " -o " +
+      this->Dir + "/landmarks.json");
+  ASSERT_EQ(r.ExitCode, 0) << r.Err;
+  std::ifstream in(this->Dir + "/landmarks.json");
+  const nlohmann::json j = nlohmann::json::parse(in);
+  const std::vector<double> expected = { 0, -1, 0, 5, 1, 0, 0, -3, 0, 0, 1, 2, 0, 0, 0, 1 };
+  for (int i = 0; i < 16; ++i)
+  {
+    EXPECT_NEAR(j["model_to_world"][i].get<double>(), expected[i], 1e-9) << i;
+  }
+  EXPECT_LT(j["fre_mm"].get<double>(), 1e-9);
+  EXPECT_EQ(j["point_errors_mm"].size(), 4u);
+
+  // Pivot: the tool swings about a tip at (0, 0, -120) in tool coordinates resting on (10, 20, 30).
+  std::ostringstream poses;
+  poses.precision(17);
+  int frame = 0;
+  for (double a : { -30.0, -15.0, 0.0, 15.0, 30.0 })
+  {
+    for (double b : { -20.0, 20.0 })
+    {
+      const double ax = a * M_PI / 180, bx = b * M_PI / 180;
+      // R = Rx(a) * Ry(b); t = pivot - R * tip
+      const double R[3][3] = { { std::cos(bx), 0, std::sin(bx) },
+        { std::sin(ax) * std::sin(bx), std::cos(ax), -std::sin(ax) * std::cos(bx) },
+        { -std::cos(ax) * std::sin(bx), std::sin(ax), std::cos(ax) * std::cos(bx) } };
+      const double tip[3] = { 0, 0, -120 }, pivot[3] = { 10, 20, 30 };
+      poses << frame++;
+      for (int row = 0; row < 3; ++row)
+      {
+        const double t = pivot[row] - (R[row][0] * tip[0] + R[row][1] * tip[1] + R[row][2] * tip[2]);
+        poses << "," << R[row][0] << "," << R[row][1] << "," << R[row][2] << "," << t;
+      }
+      poses << ",0,0,0,1\n";
+    }
+  }
+  const std::string posesFile = this->WriteText("pivot.csv", poses.str());
+  const ToolRun p = RunTool(this->Dir, "register pivot --poses " + posesFile + " -o " + this->Dir + "/pivot.json");
+  ASSERT_EQ(p.ExitCode, 0) << p.Err;
+  std::ifstream pin(this->Dir + "/pivot.json");
+  const nlohmann::json pj = nlohmann::json::parse(pin);
+  EXPECT_NEAR(pj["tip_mm"][2].get<double>(), -120.0, 0.01);
+  EXPECT_NEAR(pj["pivot_mm"][0].get<double>(), 10.0, 0.01);
+  EXPECT_LT(pj["rmse_mm"].get<double>(), 0.01);
+
+  const ToolRun bad = RunTool(this->Dir, "register landmarks --model-points " + model + " --world-points " +
+      this->WriteText("three.csv", "0,0,0\n1,0,0\n2,0,0\n") + " -o " + this->Dir + "/x.json");
+  EXPECT_EQ(bad.ExitCode, 1);
+  EXPECT_NE(bad.Err.find("the lists must pair up"), std::string::npos) << bad.Err;
+  EXPECT_FALSE(vp::test::FileExists(this->Dir + "/x.json"));
+}

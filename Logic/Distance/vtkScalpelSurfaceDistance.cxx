@@ -192,7 +192,7 @@ void vtkScalpelSurfaceDistance::ComputeSurfaceProximity(
   }
 
   const int classes = this->Vessels->GetNumberOfVessels();
-  const double range = this->Vessels->GetRangeMm();
+  const double range = this->RangeMm > 0 ? std::min(this->RangeMm, this->Vessels->GetRangeMm()) : this->Vessels->GetRangeMm();
   out.assign(static_cast<std::size_t>(classes), vp::SurfaceProximity());
   for (int c = 0; c < classes; ++c)
   {
@@ -217,9 +217,9 @@ void vtkScalpelSurfaceDistance::ComputeSurfaceProximity(
     {
       const auto [lowerBound, index] = open.top();
       open.pop();
-      if (lowerBound > best)
+      if (lowerBound > best || (result.InRange && best == 0.0))
       {
-        break;
+        break; // nothing left can be nearer (and nothing is nearer than touching)
       }
       const Node& node = tree.Nodes[static_cast<std::size_t>(index)];
       if (node.Children[0] >= 0)
@@ -235,6 +235,14 @@ void vtkScalpelSurfaceDistance::ComputeSurfaceProximity(
         const double* b0 = vessel.Point(vt[0]);
         const double* b1 = vessel.Point(vt[1]);
         const double* b2 = vessel.Point(vt[2]);
+        // One point-triangle distance bounds the leaf's eight triangle pairs from below.
+        double foot[3];
+        vp::TriangleFeature feature;
+        const double fromCentre = std::sqrt(vp::ClosestPointOnTriangle(centre, b0, b1, b2, foot, feature));
+        if (fromCentre - node.RadiusMm > best)
+        {
+          return best + node.RadiusMm;
+        }
         for (std::size_t t = node.Begin; t < node.End; ++t)
         {
           const auto& tt = tree.Triangles[t];
@@ -260,6 +268,7 @@ void vtkScalpelSurfaceDistance::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "VesselDistance: " << (this->Vessels ? "set" : "(none)") << "\n";
+  os << indent << "RangeMm: " << this->RangeMm << (this->RangeMm > 0 ? "" : " (the vessel engine's)") << "\n";
   os << indent << "ToolTriangles: " << this->GetNumberOfToolTriangles() << "\n";
   os << indent << "ToolTreeNodes: " << (this->Tree ? this->Tree->Nodes.size() : 0) << "\n";
 }

@@ -31,6 +31,12 @@ public:
 
   void SetVesselDistance(vtkExactVesselDistance* engine);
   vtkExactVesselDistance* GetVesselDistance() const { return this->Vessels; }
+  /// Surfaces further apart than this are reported out of range. Default 0: the vessel engine's
+  /// range. A shorter one (the caution threshold, say) makes each pose much cheaper: a long
+  /// instrument among many vessels has many candidates within 50 mm.
+  vtkSetMacro(RangeMm, double);
+  vtkGetMacro(RangeMm, double);
+
   /// The instrument surface in model coordinates (polygons; triangulated here).
   void SetToolSurface(vtkPolyData* model);
 
@@ -46,6 +52,7 @@ protected:
 
   vtkSmartPointer<vtkExactVesselDistance> Vessels;
   vtkSmartPointer<vtkPolyData> ToolSurface;
+  double RangeMm = 0.0;
 
 private:
   vtkScalpelSurfaceDistance(const vtkScalpelSurfaceDistance&) = delete;

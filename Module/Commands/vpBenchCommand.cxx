@@ -2,6 +2,11 @@
 // vessel meshes grown to fixed triangle counts, in one run.
 #include "vpBuiltInPhantom.h"
 #include "vpArguments.h"
+#include "vpBenchReplay.h"
+#include "vpAnalyticShapes.h"
+#include "vpScalpelLoader.h"
+#include "vpPointCsv.h"
+#include "vtkScalpelModel.h"
 #include "vpCommandSupport.h"
 #include "vpCommands.h"
 #include "vpEngineOptions.h"
@@ -24,6 +29,7 @@
 #include <cstdio>
 #include <iostream>
 #include <random>
+#include <sstream>
 #include <thread>
 
 namespace vp
@@ -34,7 +40,8 @@ using Json = nlohmann::ordered_json;
 
 const char* Usage =
   "usage: vesselproximity bench [--vessels CLASS=FILE,...] [--sizes N,N,...] [--queries N]\n"
-  "         [--brute-queries N] [--seed N] [--engines exact,zbuffer] [--json] [-o FILE.json]\n"
+  "         [--brute-queries N] [--seed N] [--engines exact,zbuffer,replay] [--json] [-o FILE.json]\n"
+  "         [--scalpel FILE.stl [--tip X,Y,Z]]\n"
   "         [z-buffer settings: --device --cell --resolution --bins --range --box-size]\n"
   "  Grows each vessel mesh to each size (longest-edge bisection: same surface, more triangles)\n"
   "  and measures in one run:\n"
@@ -45,6 +52,10 @@ const char* Usage =
   "    layers, per-query time with cached layers (exact-interval and paper's mode), the moving\n"
   "    box on the tracked tip, beside the exact engine and brute force on the same tips; the\n"
   "    largest |zbuffer - exact| against the error bound.\n"
+  "  replay: the tracking pipeline (vtkScalpelTrackingLogic) on the vessels as given, all classes,\n"
+  "    a scalpel (--scalpel, default a 120 mm shaft of 1.5 mm radius) following the tracked tip:\n"
+  "    frames per second, exact (tip; tip and whole surface), z-buffer on cached layers (with\n"
+  "    zbuffer among the engines), brute force on the first brute-queries frames.\n"
   "  Defaults: the built-in analytic vessels, sizes 50000,400000,1500000, 2000 queries,\n"
   "  30 brute-force queries, both engines. Progress goes to stderr.\n";
 
@@ -301,20 +312,51 @@ int RunBenchCommand(const std::vector<std::string>& argv)
     return 0;
   }
   std::set<std::string> options = EngineValueOptions();
-  options.insert({ "--vessels", "--sizes", "--queries", "--brute-queries", "--seed", "--engines", "-o" });
+  options.insert({ "--vessels", "--sizes", "--queries", "--brute-queries", "--seed", "--engines", "-o", "--scalpel", "--tip" });
   const Arguments args(argv, options, { "--json" });
-  const std::string engines = args.Get("--engines", "exact,zbuffer");
-  if (engines != "exact" && engines != "zbuffer" && engines != "exact,zbuffer" && engines != "zbuffer,exact")
+  std::set<std::string> engineNames;
+  std::istringstream engineList(args.Get("--engines", "exact,zbuffer"));
+  for (std::string name; std::getline(engineList, name, ',');)
   {
-    throw InputError("--engines", "expected exact, zbuffer or exact,zbuffer, got '" + engines + "'");
+    if (name != "exact" && name != "zbuffer" && name != "replay")
+    {
+      throw InputError("--engines", "expected a list of exact, zbuffer and replay, got '" + name + "'");
+    }
+    engineNames.insert(name);
   }
-  const bool benchExact = engines.find("exact") != std::string::npos;
-  const bool benchZBuffer = engines.find("zbuffer") != std::string::npos;
+  if (engineNames.empty())
+  {
+    throw InputError("--engines", "expected a list of exact, zbuffer and replay");
+  }
+  const bool benchExact = engineNames.count("exact") > 0;
+  const bool benchZBuffer = engineNames.count("zbuffer") > 0;
+  const bool benchReplay = engineNames.count("replay") > 0;
   // Open the Vulkan device before the long work, so that a missing one fails at once.
   vtkSmartPointer<vtkVesselDistanceEngine> zbufferEngine;
   if (benchZBuffer)
   {
     zbufferEngine = MakeDistanceEngine("zbuffer", args);
+  }
+  vtkSmartPointer<vtkScalpelModel> scalpel;
+  if (benchReplay)
+  {
+    ScalpelTipDefinition tip;
+    if (args.Has("--tip"))
+    {
+      tip.TipMm = ParsePoint(args.Get("--tip"), "--tip");
+    }
+    if (args.Has("--scalpel"))
+    {
+      scalpel = LoadScalpel(args.Get("--scalpel"), tip);
+    }
+    else
+    {
+      scalpel = vtkSmartPointer<vtkScalpelModel>::New();
+      const double z[3] = { 0, 0, 1 };
+      const double centre[3] = { 0, 0, -60 };
+      scalpel->SetModel(MakeCappedCylinder(centre, z, 1.5, 120.0, 24));
+      scalpel->SetTipSource("built-in shaft: tip (0, 0, 0), axis +z");
+    }
   }
   const std::vector<std::size_t> sizes = ParseSizes(args.Get("--sizes", "50000,400000,1500000"));
   const int queries = args.GetInteger("--queries", 2000);
@@ -371,7 +413,7 @@ int RunBenchCommand(const std::vector<std::string>& argv)
   report["tracked_step_mm"] = 0.5;
   Json sizeList = Json::array();
   Json zbufferSizes = Json::array();
-  for (std::size_t target : sizes)
+  for (std::size_t target : benchExact || benchZBuffer ? sizes : std::vector<std::size_t>())
   {
     std::vector<NamedMesh> refined;
     for (const NamedMesh& vessel : vessels)
@@ -405,6 +447,17 @@ int RunBenchCommand(const std::vector<std::string>& argv)
     const double last = zbufferSizes.back()["cached"]["median_ms"].get<double>();
     z["cached_query_ratio_largest_to_smallest"] = last / std::max(1e-9, first);
     report["zbuffer"] = z;
+  }
+
+  if (benchReplay)
+  {
+    vtkSmartPointer<vtkVesselDistanceEngine> replayZBuffer;
+    if (benchZBuffer)
+    {
+      replayZBuffer = MakeDistanceEngine("zbuffer", args);
+    }
+    report["replay"] = BenchReplay(vessels, static_cast<std::size_t>(queries), seed, scalpel, replayZBuffer, bruteQueries);
+    report["replay"]["scalpel"] = scalpel->GetTipSource();
   }
 
   if (args.Has("-o"))
@@ -454,6 +507,29 @@ int RunBenchCommand(const std::vector<std::string>& argv)
         s["max_abs_diff_vs_exact_mm"].get<double>(), s["outside_bound"].get<int>());
     }
     std::printf("cached query time, largest size / smallest: %.2f\n", z["cached_query_ratio_largest_to_smallest"].get<double>());
+  }
+  if (benchReplay)
+  {
+    const Json& r = report["replay"];
+    std::printf("\nreplay: %zu poses, %zu classes, %zu triangles, scalpel of %lld triangles (after edge splitting)\n",
+      r["poses"].get<std::size_t>(), r["classes"].get<std::size_t>(), r["triangles"].get<std::size_t>(),
+      r["tool_triangles"].get<long long>());
+    std::printf("  %-36s %8s %14s %12s %12s\n", "engine", "frames", "frames/s", "median ms", "p95 ms");
+    for (const char* key : { "exact_tip", "exact_tip_and_surface", "exact_tip_and_surface_within_caution", "zbuffer_cached", "brute_tip" })
+    {
+      if (r.contains(key))
+      {
+        std::printf("  %-36s %8zu %14.0f %12.4f %12.4f\n", key, r[key]["frames"].get<std::size_t>(),
+          r[key]["frames_per_second"].get<double>(), r[key]["frame_median_ms"].get<double>(), r[key]["frame_p95_ms"].get<double>());
+      }
+    }
+    if (r.contains("zbuffer_cached"))
+    {
+      std::printf("  z-buffer on %s: layers %.0f ms once; largest |zbuffer - exact| %.4f mm, bound %.3f mm, %d outside\n",
+        r["zbuffer_cached"]["device"].get<std::string>().c_str(), r["zbuffer_cached"]["build_and_render_ms"].get<double>(),
+        r["zbuffer_cached"]["max_abs_diff_vs_exact_mm"].get<double>(), r["zbuffer_cached"]["error_bound_mm"].get<double>(),
+        r["zbuffer_cached"]["outside_bound"].get<int>());
+    }
   }
   return 0;
 }

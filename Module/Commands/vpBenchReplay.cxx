@@ -1,0 +1,214 @@
+#include "vpBenchReplay.h"
+
+#include "vpEngineOptions.h"
+#include "vpRigidTransform.h"
+#include "vtkBruteForceVesselDistance.h"
+#include "vtkExactVesselDistance.h"
+#include "vtkScalpelModel.h"
+#include "vtkScalpelSurfaceDistance.h"
+#include "vtkScalpelTrackingLogic.h"
+
+#include <vtkNew.h>
+
+#include <cmath>
+#include <cstdio>
+#include <random>
+
+namespace vp
+{
+namespace
+{
+using Json = nlohmann::ordered_json;
+
+/// A surgeon's path: straight 0.5 mm steps between waypoints that lie 1 to 15 mm off random
+/// vessel surface points, so the tip keeps approaching and leaving vessels, as in a resection.
+std::vector<std::array<double, 3>> PathNearVessels(const std::vector<NamedMesh>& vessels, std::size_t frames, unsigned seed)
+{
+  std::mt19937 random(seed);
+  std::normal_distribution<double> normal;
+  std::uniform_real_distribution<double> offset(1.0, 15.0);
+  auto waypoint = [&]() {
+    const NamedMesh& v = vessels[std::uniform_int_distribution<std::size_t>(0, vessels.size() - 1)(random)];
+    double p[3];
+    v.Mesh->GetPoint(std::uniform_int_distribution<vtkIdType>(0, v.Mesh->GetNumberOfPoints() - 1)(random), p);
+    double d[3] = { normal(random), normal(random), normal(random) };
+    const double n = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    const double r = offset(random);
+    return std::array<double, 3>{ p[0] + r * d[0] / n, p[1] + r * d[1] / n, p[2] + r * d[2] / n };
+  };
+  std::vector<std::array<double, 3>> path{ waypoint() };
+  while (path.size() < frames)
+  {
+    const auto from = path.back();
+    const auto to = waypoint();
+    const double length = std::sqrt((to[0] - from[0]) * (to[0] - from[0]) + (to[1] - from[1]) * (to[1] - from[1]) +
+      (to[2] - from[2]) * (to[2] - from[2]));
+    const int steps = std::max(1, static_cast<int>(length / 0.5));
+    for (int k = 1; k <= steps && path.size() < frames; ++k)
+    {
+      const double t = static_cast<double>(k) / steps;
+      path.push_back({ from[0] + t * (to[0] - from[0]), from[1] + t * (to[1] - from[1]), from[2] + t * (to[2] - from[2]) });
+    }
+  }
+  return path;
+}
+
+std::vector<TrackedPose> PosesAlong(const std::vector<std::array<double, 3>>& path, vtkScalpelModel* scalpel)
+{
+  std::vector<TrackedPose> poses;
+  const double* tip = scalpel->GetTipMm();
+  for (std::size_t i = 0; i < path.size(); ++i)
+  {
+    Matrix4 m = RotationAboutAxis({ 1.0, 1.0, 0.3 }, 0.2 * M_PI / 180.0 * static_cast<double>(i), { 0, 0, 0 });
+    const Point3 turned = TransformPoint(m, { tip[0], tip[1], tip[2] });
+    for (int a = 0; a < 3; ++a)
+    {
+      m[4 * a + 3] = path[i][a] - turned[a];
+    }
+    poses.push_back({ 0.02 * static_cast<double>(i), m }); // 50 Hz, a tracker's rate
+  }
+  return poses;
+}
+
+struct Replay
+{
+  double FramesPerSecond = 0.0;
+  std::vector<double> FrameMs;
+  std::vector<TrackedFrame> Frames;
+};
+
+Replay Run(vtkScalpelTrackingLogic* logic, const std::vector<TrackedPose>& poses, std::size_t count)
+{
+  Replay replay;
+  logic->Reset();
+  count = std::min(count, poses.size());
+  const double start = NowMs();
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    replay.Frames.push_back(logic->ProcessPose(poses[i]));
+  }
+  const double elapsedMs = NowMs() - start;
+  replay.FramesPerSecond = 1000.0 * static_cast<double>(count) / std::max(1e-9, elapsedMs);
+  for (const auto& f : replay.Frames)
+  {
+    replay.FrameMs.push_back(f.FrameMs);
+  }
+  return replay;
+}
+
+Json Entry(const Replay& r)
+{
+  int inRange = 0;
+  for (const auto& f : r.Frames)
+  {
+    inRange += f.Proximity.NearestIndex() >= 0 ? 1 : 0;
+  }
+  return { { "frames", r.Frames.size() }, { "frames_with_a_class_in_range", inRange }, { "frames_per_second", r.FramesPerSecond },
+    { "frame_median_ms", Quantile(r.FrameMs, 0.5) }, { "frame_p95_ms", Quantile(r.FrameMs, 0.95) } };
+}
+} // namespace
+
+Json BenchReplay(const std::vector<NamedMesh>& vessels, std::size_t frames, unsigned seed, vtkScalpelModel* scalpel,
+  vtkVesselDistanceEngine* zbuffer, int bruteFrames)
+{
+  const std::vector<std::array<double, 3>> path = PathNearVessels(vessels, frames, seed);
+  const std::vector<TrackedPose> poses = PosesAlong(path, scalpel);
+  std::size_t triangles = 0;
+  vtkNew<vtkExactVesselDistance> exact;
+  vtkNew<vtkBruteForceVesselDistance> brute;
+  for (const auto& v : vessels)
+  {
+    exact->AddVessel(v.ClassName, v.Mesh);
+    brute->AddVessel(v.ClassName, v.Mesh);
+    if (zbuffer)
+    {
+      zbuffer->AddVessel(v.ClassName, v.Mesh);
+    }
+    triangles += static_cast<std::size_t>(v.Mesh->GetNumberOfPolys());
+  }
+  std::fprintf(stderr, "bench: replay of %zu poses, %zu classes, %zu triangles: exact", poses.size(), vessels.size(), triangles);
+  exact->Build();
+  vtkNew<vtkScalpelTrackingLogic> logic;
+  logic->SetScalpel(scalpel);
+  logic->SetDistanceEngine(exact);
+  const Replay tip = Run(logic, poses, poses.size());
+
+  std::fprintf(stderr, ", whole surface");
+  vtkNew<vtkScalpelSurfaceDistance> surface;
+  surface->SetVesselDistance(exact);
+  surface->SetToolSurface(scalpel->GetModel());
+  logic->SetSurfaceDistance(surface);
+  const Replay whole = Run(logic, poses, poses.size());
+  std::fprintf(stderr, ", whole surface within the caution distance");
+  surface->SetRangeMm(logic->GetDangerThresholds().CautionMm);
+  const Replay near = Run(logic, poses, poses.size());
+  logic->SetSurfaceDistance(nullptr);
+
+  std::fprintf(stderr, ", brute force");
+  brute->Build();
+  logic->SetDistanceEngine(brute);
+  const Replay slow = Run(logic, poses, static_cast<std::size_t>(bruteFrames));
+
+  Json out;
+  out["poses"] = poses.size();
+  out["classes"] = vessels.size();
+  out["triangles"] = triangles;
+  out["tool_triangles"] = surface->GetNumberOfToolTriangles();
+  out["exact_tip"] = Entry(tip);
+  out["exact_tip_and_surface"] = Entry(whole);
+  out["exact_tip_and_surface_within_caution"] = Entry(near);
+  out["surface_within_caution_mm"] = surface->GetRangeMm();
+  out["brute_tip"] = Entry(slow);
+  double maxDiff = 0.0;
+  for (std::size_t i = 0; i < slow.Frames.size(); ++i)
+  {
+    for (std::size_t c = 0; c < vessels.size(); ++c)
+    {
+      const auto& a = slow.Frames[i].Proximity.Classes[c];
+      const auto& b = tip.Frames[i].Proximity.Classes[c];
+      if (a.InRange && b.InRange)
+      {
+        maxDiff = std::max(maxDiff, std::abs(a.DistanceMm - b.DistanceMm));
+      }
+    }
+  }
+  out["max_abs_diff_exact_vs_brute_mm"] = maxDiff;
+  if (zbuffer)
+  {
+    std::fprintf(stderr, ", z-buffer (render");
+    const double renderStart = NowMs();
+    zbuffer->Build();
+    vp::ProximityResult warm;
+    const double origin[3] = { path[0][0], path[0][1], path[0][2] };
+    zbuffer->ComputeProximity(origin, nullptr, warm); // renders the layers
+    const double renderMs = NowMs() - renderStart;
+    std::fprintf(stderr, ", frames)");
+    logic->SetDistanceEngine(zbuffer);
+    const Replay cached = Run(logic, poses, poses.size());
+    int outside = 0;
+    double diff = 0.0;
+    for (std::size_t i = 0; i < cached.Frames.size(); ++i)
+    {
+      for (std::size_t c = 0; c < vessels.size(); ++c)
+      {
+        const auto& z = cached.Frames[i].Proximity.Classes[c];
+        const auto& e = tip.Frames[i].Proximity.Classes[c];
+        if (z.InRange && e.InRange)
+        {
+          diff = std::max(diff, std::abs(z.DistanceMm - e.DistanceMm));
+        }
+        outside += WithinErrorBound(z, e, zbuffer->GetRangeMm(), ErrorBoundMm(zbuffer)) ? 0 : 1;
+      }
+    }
+    Json z = Entry(cached);
+    z["device"] = DescribeDevice(zbuffer);
+    z["build_and_render_ms"] = renderMs;
+    z["error_bound_mm"] = ErrorBoundMm(zbuffer);
+    z["max_abs_diff_vs_exact_mm"] = diff;
+    z["outside_bound"] = outside;
+    out["zbuffer_cached"] = z;
+  }
+  std::fprintf(stderr, "\n");
+  return out;
+}
+} // namespace vp

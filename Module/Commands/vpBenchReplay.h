@@ -1,0 +1,26 @@
+#ifndef vpBenchReplay_h
+#define vpBenchReplay_h
+
+#include "vpCommandSupport.h"
+#include "vtkVesselDistanceEngine.h"
+
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <vector>
+
+class vtkScalpelModel;
+
+namespace vp
+{
+/// Replay throughput: a scalpel tracked for `frames` poses at 50 Hz, its tip stepping 0.5 mm
+/// between points a few millimetres off random vessel surface points (seeded), turning 0.2
+/// degrees a frame, through vtkScalpelTrackingLogic, all vessel classes at full size, frames per second for
+/// the exact engine (tip; tip and whole surface), the z-buffer engine on cached layers (when
+/// zbuffer is given, its layers rendered once first) and brute force (the first bruteFrames).
+/// Every z-buffer frame is checked against the exact one.
+nlohmann::ordered_json BenchReplay(const std::vector<NamedMesh>& vessels, std::size_t frames, unsigned seed,
+  vtkScalpelModel* scalpel, vtkVesselDistanceEngine* zbuffer, int bruteFrames);
+} // namespace vp
+
+#endif

@@ -6,11 +6,13 @@ namespace vp
 {
 namespace
 {
-void Lower(ClassMinimum& minimum, double distanceMm, const double point[3], const TrackedFrame& frame)
+void Lower(ClassMinimum& minimum, double distanceMm, bool inside, const double point[3], const TrackedFrame& frame)
 {
-  if (!minimum.Seen || distanceMm < minimum.DistanceMm)
+  const double signedMm = inside ? -distanceMm : distanceMm;
+  if (!minimum.Seen || signedMm < (minimum.Inside ? -minimum.DistanceMm : minimum.DistanceMm))
   {
     minimum.Seen = true;
+    minimum.Inside = inside;
     minimum.DistanceMm = distanceMm;
     minimum.Frame = frame.Frame;
     minimum.TimeS = frame.TimeS;
@@ -40,11 +42,11 @@ void TrackingSummary::Add(const TrackedFrame& frame)
   {
     if (classes[c].InRange)
     {
-      Lower(this->TipMinimum[c], classes[c].DistanceMm, classes[c].ClosestPoint, frame);
+      Lower(this->TipMinimum[c], classes[c].DistanceMm, classes[c].Inside.value_or(false), classes[c].ClosestPoint, frame);
     }
     if (c < frame.Surface.size() && frame.Surface[c].InRange)
     {
-      Lower(this->SurfaceMinimum[c], frame.Surface[c].DistanceMm, frame.Surface[c].PointOnVesselMm, frame);
+      Lower(this->SurfaceMinimum[c], frame.Surface[c].DistanceMm, false, frame.Surface[c].PointOnVesselMm, frame);
     }
   }
   ++this->FramesInLevel[static_cast<int>(frame.Level)];

@@ -9,10 +9,12 @@
 
 namespace vp
 {
-/// The closest a class came during a run, and when.
+/// The closest a class came during a run, and when. Inside counts as closer than any distance
+/// outside, and a deeper penetration as closer still: the minimum of the signed distance.
 struct ClassMinimum
 {
   bool Seen = false; ///< false when the class was never in range
+  bool Inside = false; ///< then DistanceMm is the penetration depth
   double DistanceMm = 0.0;
   int Frame = 0;
   double TimeS = 0.0;

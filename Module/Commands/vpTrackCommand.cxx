@@ -110,7 +110,7 @@ Json MinimumJson(const ClassMinimum& m)
   {
     return nullptr;
   }
-  return { { "distance_mm", m.DistanceMm }, { "frame", m.Frame }, { "time", m.TimeS },
+  return { { "distance_mm", m.DistanceMm }, { "inside", m.Inside }, { "frame", m.Frame }, { "time", m.TimeS },
     { "point", { m.PointMm[0], m.PointMm[1], m.PointMm[2] } } };
 }
 
@@ -376,7 +376,8 @@ int RunTrackCommand(const std::vector<std::string>& argv)
   {
     const ClassMinimum& m = summary.GetTipMinimum()[c];
     const ClassMinimum& s = summary.GetSurfaceMinimum()[c];
-    std::printf("  %-16s %16s %10s %20s\n", classes[c].c_str(), m.Seen ? Number(m.DistanceMm, "%.3f").c_str() : "out of range",
+    std::printf("  %-16s %16s %10s %20s\n", classes[c].c_str(),
+      m.Seen ? (Number(m.DistanceMm, "%.3f") + (m.Inside ? " inside" : "")).c_str() : "out of range",
       m.Seen ? Number(m.TimeS, "%.3f").c_str() : "", surface ? (s.Seen ? Number(s.DistanceMm, "%.3f").c_str() : "out of range") : "");
   }
   std::printf("  time at each level:");

@@ -347,3 +347,23 @@ TEST(ScalpelSurfaceDistance, EqualsBruteForceAndSeesTheShaftBeforeTheTip)
   EXPECT_NEAR(result[0].DistanceMm, BruteForceSurfaceDistance(tool, beside, vessel), 1e-9);
   EXPECT_NEAR(result[0].DistanceMm, 2.0, 0.1);
 }
+
+// A tip that enters a vessel came closer than any tip outside: the summary keeps the deepest
+// penetration, not the small distance on the way through the wall.
+TEST_F(Tracking, SummaryMinimumIsTheDeepestPenetration)
+{
+  vp::TrackingSummary summary;
+  double t = 0.0;
+  for (double x : { 14.0, 12.0, 10.1, 9.0, 8.0, 9.5, 10.05, 13.0 })
+  {
+    summary.Add(this->Logic->ProcessPose(PoseTowardsMinusX(t, x)));
+    t += 0.1;
+  }
+  const vp::ClassMinimum& m = summary.GetTipMinimum()[0];
+  ASSERT_TRUE(m.Seen);
+  EXPECT_TRUE(m.Inside);
+  EXPECT_NEAR(m.DistanceMm, 2.0, 0.02);
+  EXPECT_EQ(m.Frame, 4);
+  EXPECT_EQ(summary.GetWorstLevel(), vp::DangerLevel::Breach);
+  EXPECT_EQ(summary.GetFramesInLevel()[static_cast<int>(vp::DangerLevel::Breach)], 3);
+}

@@ -39,6 +39,25 @@ struct ClassTree
   double SlackMm = 0;
 };
 
+/// Searches spheres growing from 1 mm up to radius: a small sphere touches few tree nodes, and
+/// Embree's traversal is not nearest first. Embree also shows triangles just outside a sphere
+/// (their leaf's box reaches in), so the best found is the nearest only once it lies within the
+/// sphere searched; until then the next sphere is the smaller of twice the last and the best.
+template <typename Search, typename Best>
+void GrowingSearch(double radius, Search search, Best best)
+{
+  for (double r = std::min(radius, InitialSearchRadiusMm);;)
+  {
+    search(r);
+    const double found = best();
+    if (found <= r || r >= radius)
+    {
+      return;
+    }
+    r = std::min({ radius, 2.0 * r, found });
+  }
+}
+
 struct QueryState
 {
   const vp::VesselSurface* Surface;
@@ -217,20 +236,7 @@ void vtkExactVesselDistance::ComputeProximity(const double tip[3], const double*
       query.radius = static_cast<float>(r + tree.SlackMm);
       rtcPointQuery(tree.Scene.get(), &query, &context, &VisitTriangle, &state);
     };
-    // Grow a search sphere from 1 mm: a small sphere touches few tree nodes. Embree also shows
-    // triangles just outside the sphere (their leaf's box reaches in), so a triangle found is the
-    // nearest only once it lies within the sphere searched; until then the next sphere is the
-    // smaller of twice the last and the best distance found.
-    for (double r = std::min(radius, InitialSearchRadiusMm);;)
-    {
-      search(r);
-      const double best = std::sqrt(state.Best2);
-      if (best <= r || r >= radius)
-      {
-        break;
-      }
-      r = std::min({ radius, 2.0 * r, best });
-    }
+    GrowingSearch(radius, search, [&] { return std::sqrt(state.Best2); });
 
     const double distance = std::sqrt(state.Best2);
     if (state.Triangle < 0 || distance > this->RangeMm)
@@ -310,18 +316,8 @@ double vtkExactVesselDistance::NearestDistanceWithin(int classIndex, const doubl
     best2 = std::min(best2, d2);
     return std::min(radiusMm, std::sqrt(best2));
   };
-  // Growing spheres, as for the tip: Embree's traversal is not nearest first, so a large first
-  // sphere would visit many triangles before it shrinks.
-  for (double r = std::min(radiusMm, InitialSearchRadiusMm);;)
-  {
-    this->VisitTrianglesNear(classIndex, point, r, visit);
-    const double best = std::sqrt(best2);
-    if (best <= r || r >= radiusMm)
-    {
-      break;
-    }
-    r = std::min({ radiusMm, 2.0 * r, best });
-  }
+  GrowingSearch(
+    radiusMm, [&](double r) { this->VisitTrianglesNear(classIndex, point, r, visit); }, [&] { return std::sqrt(best2); });
   const double best = std::sqrt(best2);
   return best <= radiusMm ? best : std::numeric_limits<double>::infinity();
 }

@@ -22,13 +22,10 @@ constexpr double EndFraction = 0.10;
 /// Surface this close to the extreme counts as the tip point.
 constexpr double TipSlabMm = 0.25;
 
-/// Area-weighted centroid and principal axis of the surface: the triangles' areas, not the vertex
-/// count, so a finely meshed handle does not outweigh a coarse blade.
-void PrincipalAxis(vtkPolyData* mesh, double centroid[3], double axis[3])
+/// Calls visit(area, centre) for each triangle of a triangulated mesh.
+template <typename Visit>
+void ForEachTriangle(vtkPolyData* mesh, Visit visit)
 {
-  double total = 0.0;
-  double sum[3] = { 0, 0, 0 };
-  double second[3][3] = { { 0, 0, 0 }, { 0, 0, 0 }, { 0, 0, 0 } };
   vtkPoints* points = mesh->GetPoints();
   const vtkIdType* ids = nullptr;
   vtkIdType n = 0;
@@ -49,9 +46,20 @@ void PrincipalAxis(vtkPolyData* mesh, double centroid[3], double axis[3])
     vtkMath::Subtract(p[1], p[0], e1);
     vtkMath::Subtract(p[2], p[0], e2);
     vtkMath::Cross(e1, e2, c);
-    const double area = 0.5 * vtkMath::Norm(c);
-    const double m[3] = { (p[0][0] + p[1][0] + p[2][0]) / 3, (p[0][1] + p[1][1] + p[2][1]) / 3,
+    const double centre[3] = { (p[0][0] + p[1][0] + p[2][0]) / 3, (p[0][1] + p[1][1] + p[2][1]) / 3,
       (p[0][2] + p[1][2] + p[2][2]) / 3 };
+    visit(0.5 * vtkMath::Norm(c), centre);
+  }
+}
+
+/// Area-weighted centroid and principal axis of the surface: the triangles' areas, not the vertex
+/// count, so a finely meshed handle does not outweigh a coarse blade.
+void PrincipalAxis(vtkPolyData* mesh, double centroid[3], double axis[3])
+{
+  double total = 0.0;
+  double sum[3] = { 0, 0, 0 };
+  double second[3][3] = { { 0, 0, 0 }, { 0, 0, 0 }, { 0, 0, 0 } };
+  ForEachTriangle(mesh, [&](double area, const double m[3]) {
     total += area;
     for (int i = 0; i < 3; ++i)
     {
@@ -61,7 +69,7 @@ void PrincipalAxis(vtkPolyData* mesh, double centroid[3], double axis[3])
         second[i][j] += area * m[i] * m[j];
       }
     }
-  }
+  });
   if (!(total > 0))
   {
     throw std::domain_error("no area");
@@ -132,44 +140,21 @@ ScalpelTipEstimate FindScalpelTip(vtkPolyData* model, const std::string& source)
   // length: a working end tapers, so it holds little surface; a handle ends in a cap or a grip.
   double area[2] = { 0, 0 };
   double spread[2] = { 0, 0 };
-  {
-    const vtkIdType* ids = nullptr;
-    vtkIdType n = 0;
-    auto polys = vtk::TakeSmartPointer(mesh->GetPolys()->NewIterator());
-    for (polys->GoToFirstCell(); !polys->IsDoneWithTraversal(); polys->GoToNextCell())
+  ForEachTriangle(mesh, [&](double a, const double m[3]) {
+    double d[3];
+    vtkMath::Subtract(m, centroid, d);
+    const double s = vtkMath::Dot(d, axis);
+    const double r2 = std::max(0.0, vtkMath::Dot(d, d) - s * s);
+    const double fromEnd[2] = { s - low, high - s };
+    for (int e = 0; e < 2; ++e)
     {
-      polys->GetCurrentCell(n, ids);
-      if (n != 3)
+      if (fromEnd[e] <= EndFraction * length)
       {
-        continue;
-      }
-      double p[3][3];
-      for (int k = 0; k < 3; ++k)
-      {
-        points->GetPoint(ids[k], p[k]);
-      }
-      double e1[3], e2[3], c[3], d[3];
-      vtkMath::Subtract(p[1], p[0], e1);
-      vtkMath::Subtract(p[2], p[0], e2);
-      vtkMath::Cross(e1, e2, c);
-      const double a = 0.5 * vtkMath::Norm(c);
-      for (int i = 0; i < 3; ++i)
-      {
-        d[i] = (p[0][i] + p[1][i] + p[2][i]) / 3 - centroid[i];
-      }
-      const double s = vtkMath::Dot(d, axis);
-      const double r2 = std::max(0.0, vtkMath::Dot(d, d) - s * s);
-      const double fromEnd[2] = { s - low, high - s };
-      for (int e = 0; e < 2; ++e)
-      {
-        if (fromEnd[e] <= EndFraction * length)
-        {
-          area[e] += a;
-          spread[e] += a * r2;
-        }
+        area[e] += a;
+        spread[e] += a * r2;
       }
     }
-  }
+  });
   // The tip point: the centre of the surface points at the very extreme of the chosen end.
   double tipSum[2][3] = { { 0, 0, 0 }, { 0, 0, 0 } };
   int inTip[2] = { 0, 0 };

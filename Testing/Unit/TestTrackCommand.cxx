@@ -260,3 +260,38 @@ TEST_F(TrackCommand, RegisterWritesTheTransformAndTheError)
   EXPECT_NE(bad.Err.find("the lists must pair up"), std::string::npos) << bad.Err;
   EXPECT_FALSE(vp::test::FileExists(this->Dir + "/x.json"));
 }
+
+// The z-buffer engine tracks within its bound of the exact engine, and its levels are never
+// milder than the exact engine's on the same frame (the bound is taken off the distance).
+TEST_F(TrackCommand, ZBufferLevelsNeverUnderstateTheExactOnes)
+{
+  const std::string poses = this->ApproachPoses();
+  const std::string common = "track --vessels " + this->Vessels + " --scalpel " + this->Tool + " --poses " + poses + " --no-surface" +
+    " --danger-mm 10.2,5.2,2.2"; // 0.3 mm inside the 0.5 mm steps: within the bound of a threshold
+  const ToolRun z = RunTool(this->Dir, common + " --method both -o " + this->Dir + "/z");
+  if (z.ExitCode == 4)
+  {
+    GTEST_SKIP() << "no Vulkan device: " << z.Err;
+  }
+  ASSERT_EQ(z.ExitCode, 0) << z.Err;
+  const ToolRun e = RunTool(this->Dir, common + " -o " + this->Dir + "/e");
+  ASSERT_EQ(e.ExitCode, 0) << e.Err;
+  std::ifstream in(this->Dir + "/z/summary.json");
+  const nlohmann::json s = nlohmann::json::parse(in);
+  EXPECT_EQ(s["comparison"]["outside_bound"], 0);
+  EXPECT_GT(s["error_bound_mm"].get<double>(), 0.0);
+  const auto zRows = ReadCsvCells(this->Dir + "/z/frames.csv");
+  const auto eRows = ReadCsvCells(this->Dir + "/e/frames.csv");
+  ASSERT_EQ(zRows.size(), eRows.size());
+  const std::vector<std::string> order = { "safe", "caution", "warning", "danger", "breach" };
+  auto rank = [&](const std::string& level) { return std::find(order.begin(), order.end(), level) - order.begin(); };
+  const std::size_t level = std::find(zRows[0].begin(), zRows[0].end(), "danger_level") - zRows[0].begin();
+  ASSERT_EQ(level, 9u);
+  int stricter = 0;
+  for (std::size_t i = 1; i < zRows.size(); ++i)
+  {
+    EXPECT_GE(rank(zRows[i][level]), rank(eRows[i][level])) << "frame " << i - 1;
+    stricter += rank(zRows[i][level]) > rank(eRows[i][level]) ? 1 : 0;
+  }
+  EXPECT_GT(stricter, 0) << "the bound should make some frames near a threshold one level stricter";
+}

@@ -267,7 +267,7 @@ TEST_F(TrackCommand, ZBufferLevelsNeverUnderstateTheExactOnes)
 {
   const std::string poses = this->ApproachPoses();
   const std::string common = "track --vessels " + this->Vessels + " --scalpel " + this->Tool + " --poses " + poses + " --no-surface" +
-    " --danger-mm 10.2,5.2,2.2"; // 0.3 mm inside the 0.5 mm steps: within the bound of a threshold
+    " --danger-mm 10.4,5.4,2.4"; // 0.1 mm below a step: within the bound of a threshold
   const ToolRun z = RunTool(this->Dir, common + " --method both -o " + this->Dir + "/z");
   if (z.ExitCode == 4)
   {

@@ -39,25 +39,6 @@ struct ClassTree
   double SlackMm = 0;
 };
 
-/// Searches spheres growing from 1 mm up to radius: a small sphere touches few tree nodes, and
-/// Embree's traversal is not nearest first. Embree also shows triangles just outside a sphere
-/// (their leaf's box reaches in), so the best found is the nearest only once it lies within the
-/// sphere searched; until then the next sphere is the smaller of twice the last and the best.
-template <typename Search, typename Best>
-void GrowingSearch(double radius, Search search, Best best)
-{
-  for (double r = std::min(radius, InitialSearchRadiusMm);;)
-  {
-    search(r);
-    const double found = best();
-    if (found <= r || r >= radius)
-    {
-      return;
-    }
-    r = std::min({ radius, 2.0 * r, found });
-  }
-}
-
 struct QueryState
 {
   const vp::VesselSurface* Surface;
@@ -68,6 +49,19 @@ struct QueryState
   vp::TriangleFeature Feature;
   double SlackMm;
 };
+
+/// Narrows Embree's search sphere to radiusMm (plus the tree's float slack), never widening it:
+/// a candidate found just outside the sphere must not grow the search. Returns whether it shrank.
+bool ShrinkQueryRadius(RTCPointQueryFunctionArguments* args, double radiusMm, double slackMm)
+{
+  const float shrunk = static_cast<float>(radiusMm + slackMm);
+  if (shrunk >= args->query->radius)
+  {
+    return false;
+  }
+  args->query->radius = shrunk;
+  return true;
+}
 
 bool VisitTriangle(RTCPointQueryFunctionArguments* args)
 {
@@ -87,14 +81,7 @@ bool VisitTriangle(RTCPointQueryFunctionArguments* args)
   state->Closest[1] = q[1];
   state->Closest[2] = q[2];
   state->Feature = feature;
-  // Only ever shrink the sphere: a candidate found just outside it must not widen the search.
-  const float shrunk = static_cast<float>(std::sqrt(d2) + state->SlackMm);
-  if (shrunk >= args->query->radius)
-  {
-    return false;
-  }
-  args->query->radius = shrunk;
-  return true;
+  return ShrinkQueryRadius(args, std::sqrt(d2), state->SlackMm);
 }
 
 struct VisitorState
@@ -106,14 +93,42 @@ struct VisitorState
 bool VisitForCaller(RTCPointQueryFunctionArguments* args)
 {
   auto* state = static_cast<VisitorState*>(args->userPtr);
-  const double radius = (*state->Visit)(args->primID);
-  const float shrunk = static_cast<float>(radius + state->SlackMm);
-  if (shrunk >= args->query->radius)
+  return ShrinkQueryRadius(args, (*state->Visit)(args->primID), state->SlackMm);
+}
+
+/// One Embree point query of a class tree: the sphere of radiusMm about centre (world mm).
+void RunPointQuery(const ClassTree& tree, const double centre[3], double radiusMm, RTCPointQueryFunction visit, void* user)
+{
+  RTCPointQueryContext context;
+  rtcInitPointQueryContext(&context);
+  RTC_ALIGN(16) RTCPointQuery query;
+  query.x = static_cast<float>(centre[0] - tree.Origin[0]);
+  query.y = static_cast<float>(centre[1] - tree.Origin[1]);
+  query.z = static_cast<float>(centre[2] - tree.Origin[2]);
+  query.time = 0.0f;
+  query.radius = static_cast<float>(radiusMm + tree.SlackMm);
+  rtcPointQuery(tree.Scene.get(), &query, &context, visit, user);
+}
+
+/// The triangle of the class nearest to point within radiusMm (Triangle -1 when none). Spheres
+/// grow from 1 mm: a small sphere touches few tree nodes, and Embree's traversal is not nearest
+/// first. Embree also shows triangles just outside a sphere (their leaf's box reaches in), so
+/// the best found is the nearest only once it lies within the sphere searched; until then the
+/// next sphere is the smaller of twice the last and the best.
+QueryState FindNearestTriangle(const ClassTree& tree, const vp::VesselSurface& surface, const double point[3], double radiusMm)
+{
+  QueryState state{ &surface, { point[0], point[1], point[2] }, std::numeric_limits<double>::infinity(), -1, { 0, 0, 0 },
+    vp::TriangleFeature::Face, tree.SlackMm };
+  for (double r = std::min(radiusMm, InitialSearchRadiusMm);;)
   {
-    return false;
+    RunPointQuery(tree, point, r, &VisitTriangle, &state);
+    const double best = std::sqrt(state.Best2);
+    if (best <= r || r >= radiusMm)
+    {
+      return state;
+    }
+    r = std::min({ radiusMm, 2.0 * r, best });
   }
-  args->query->radius = shrunk;
-  return true;
 }
 
 void OnEmbreeError(void* userPtr, RTCError code, const char* message)
@@ -223,20 +238,7 @@ void vtkExactVesselDistance::ComputeProximity(const double tip[3], const double*
       // The triangle inequality bounds the new distance by the old one plus the step.
       radius = std::min(radius, previous->Classes[c].DistanceMm + displacement);
     }
-    QueryState state{ &surface, { tip[0], tip[1], tip[2] },
-      std::numeric_limits<double>::infinity(), -1, { 0, 0, 0 }, vp::TriangleFeature::Face, tree.SlackMm };
-    auto search = [&](double r) {
-      RTCPointQueryContext context;
-      rtcInitPointQueryContext(&context);
-      RTC_ALIGN(16) RTCPointQuery query;
-      query.x = static_cast<float>(tip[0] - tree.Origin[0]);
-      query.y = static_cast<float>(tip[1] - tree.Origin[1]);
-      query.z = static_cast<float>(tip[2] - tree.Origin[2]);
-      query.time = 0.0f;
-      query.radius = static_cast<float>(r + tree.SlackMm);
-      rtcPointQuery(tree.Scene.get(), &query, &context, &VisitTriangle, &state);
-    };
-    GrowingSearch(radius, search, [&] { return std::sqrt(state.Best2); });
+    const QueryState state = FindNearestTriangle(tree, surface, tip, radius);
 
     const double distance = std::sqrt(state.Best2);
     if (state.Triangle < 0 || distance > this->RangeMm)
@@ -292,34 +294,16 @@ void vtkExactVesselDistance::VisitTrianglesNear(
   this->EnsureBuilt();
   const ClassTree& tree = this->Impl->Trees.at(static_cast<std::size_t>(classIndex));
   VisitorState state{ &visit, tree.SlackMm };
-  RTCPointQueryContext context;
-  rtcInitPointQueryContext(&context);
-  RTC_ALIGN(16) RTCPointQuery query;
-  query.x = static_cast<float>(centre[0] - tree.Origin[0]);
-  query.y = static_cast<float>(centre[1] - tree.Origin[1]);
-  query.z = static_cast<float>(centre[2] - tree.Origin[2]);
-  query.time = 0.0f;
-  query.radius = static_cast<float>(radiusMm + tree.SlackMm);
-  rtcPointQuery(tree.Scene.get(), &query, &context, &VisitForCaller, &state);
+  RunPointQuery(tree, centre, radiusMm, &VisitForCaller, &state);
 }
 
 double vtkExactVesselDistance::NearestDistanceWithin(int classIndex, const double point[3], double radiusMm) const
 {
   this->EnsureBuilt();
-  const vp::VesselSurface& surface = *this->Surfaces.at(static_cast<std::size_t>(classIndex));
-  double best2 = std::numeric_limits<double>::infinity();
-  auto visit = [&](long long t) {
-    const auto& tri = surface.Triangle(static_cast<std::size_t>(t));
-    double q[3];
-    vp::TriangleFeature feature;
-    const double d2 = vp::ClosestPointOnTriangle(point, surface.Point(tri[0]), surface.Point(tri[1]), surface.Point(tri[2]), q, feature);
-    best2 = std::min(best2, d2);
-    return std::min(radiusMm, std::sqrt(best2));
-  };
-  GrowingSearch(
-    radiusMm, [&](double r) { this->VisitTrianglesNear(classIndex, point, r, visit); }, [&] { return std::sqrt(best2); });
-  const double best = std::sqrt(best2);
-  return best <= radiusMm ? best : std::numeric_limits<double>::infinity();
+  const auto c = static_cast<std::size_t>(classIndex);
+  const QueryState state = FindNearestTriangle(this->Impl->Trees.at(c), *this->Surfaces.at(c), point, radiusMm);
+  const double best = std::sqrt(state.Best2);
+  return state.Triangle >= 0 && best <= radiusMm ? best : std::numeric_limits<double>::infinity();
 }
 
 void vtkExactVesselDistance::PrintSelf(ostream& os, vtkIndent indent)

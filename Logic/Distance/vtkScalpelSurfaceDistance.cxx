@@ -185,11 +185,6 @@ void vtkScalpelSurfaceDistance::ComputeSurfaceProximity(
       w[r] = m[4 * r] * p[0] + m[4 * r + 1] * p[1] + m[4 * r + 2] * p[2] + m[4 * r + 3];
     }
   };
-  std::vector<std::array<double, 3>> world(tree.Points.size());
-  for (std::size_t i = 0; i < world.size(); ++i)
-  {
-    place(tree.Points[i].data(), world[i].data());
-  }
 
   const int classes = this->Vessels->GetNumberOfVessels();
   const double range = this->RangeMm > 0 ? std::min(this->RangeMm, this->Vessels->GetRangeMm()) : this->Vessels->GetRangeMm();
@@ -230,6 +225,16 @@ void vtkScalpelSurfaceDistance::ComputeSurfaceProximity(
       }
       double centre[3];
       place(node.Centre, centre);
+      // Only the leaves searched are placed in the world, not the whole tool every pose.
+      std::array<std::array<double, 9>, LeafTriangles> corners;
+      const std::size_t count = node.End - node.Begin;
+      for (std::size_t t = 0; t < count; ++t)
+      {
+        for (int k = 0; k < 3; ++k)
+        {
+          place(tree.Points[static_cast<std::size_t>(tree.Triangles[node.Begin + t][k])].data(), &corners[t][3 * k]);
+        }
+      }
       this->Vessels->VisitTrianglesNear(c, centre, best + node.RadiusMm, [&](long long v) {
         const auto& vt = vessel.Triangle(static_cast<std::size_t>(v));
         const double* b0 = vessel.Point(vt[0]);
@@ -243,12 +248,11 @@ void vtkScalpelSurfaceDistance::ComputeSurfaceProximity(
         {
           return best + node.RadiusMm;
         }
-        for (std::size_t t = node.Begin; t < node.End; ++t)
+        for (std::size_t t = 0; t < count; ++t)
         {
-          const auto& tt = tree.Triangles[t];
           double onTool[3], onVessel[3];
-          const double d2 = vp::ClosestPointsOfTriangles(world[tt[0]].data(), world[tt[1]].data(), world[tt[2]].data(),
-            b0, b1, b2, onTool, onVessel);
+          const double d2 =
+            vp::ClosestPointsOfTriangles(&corners[t][0], &corners[t][3], &corners[t][6], b0, b1, b2, onTool, onVessel);
           if (d2 <= best * best && (!result.InRange || d2 < result.DistanceMm * result.DistanceMm))
           {
             best = std::sqrt(d2);

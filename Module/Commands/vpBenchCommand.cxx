@@ -230,8 +230,7 @@ Json BenchZBuffer(vtkVesselDistanceEngine* engine, const std::vector<NamedMesh>&
   std::fprintf(stderr, ", queries");
   const double bound = zbuffer->GetErrorBoundMm();
   std::vector<double> cachedMs, paperMs, exactMs, bruteMs, movingMs;
-  double maxDiff = 0.0;
-  int compared = 0, outside = 0;
+  ExactComparison check;
   ProximityResult z, e;
   for (std::size_t i = 0; i < tips.size(); ++i)
   {
@@ -241,15 +240,7 @@ Json BenchZBuffer(vtkVesselDistanceEngine* engine, const std::vector<NamedMesh>&
     start = NowMs();
     exact->ComputeProximity(tips[i].data(), nullptr, e);
     exactMs.push_back(NowMs() - start);
-    for (std::size_t c = 0; c < e.Classes.size(); ++c)
-    {
-      if (e.Classes[c].InRange && z.Classes[c].InRange)
-      {
-        ++compared;
-        maxDiff = std::max(maxDiff, std::abs(z.Classes[c].DistanceMm - e.Classes[c].DistanceMm));
-      }
-      outside += WithinErrorBound(z.Classes[c], e.Classes[c], zbuffer->GetRangeMm(), bound) ? 0 : 1;
-    }
+    check.Add(z, e, zbuffer->GetRangeMm(), bound);
   }
   for (int i = 0; i < bruteQueries; ++i)
   {
@@ -296,9 +287,9 @@ Json BenchZBuffer(vtkVesselDistanceEngine* engine, const std::vector<NamedMesh>&
   entry["moving_box"]["last_render_ms"] = movingRenderMs;
   entry["exact_all_classes"] = Timing(exactMs);
   entry["brute_all_classes"] = Timing(bruteMs);
-  entry["answers_compared"] = compared;
-  entry["max_abs_diff_vs_exact_mm"] = maxDiff;
-  entry["outside_bound"] = outside;
+  entry["answers_compared"] = check.Compared;
+  entry["max_abs_diff_vs_exact_mm"] = check.MaxAbsDifferenceMm;
+  entry["outside_bound"] = check.OutsideBound;
   entry["error_bound_mm"] = bound;
   return entry;
 }

@@ -159,20 +159,12 @@ Json BenchReplay(const std::vector<NamedMesh>& vessels, std::size_t frames, unsi
   out["exact_tip_and_surface_within_caution"] = Entry(near);
   out["surface_within_caution_mm"] = surface->GetRangeMm();
   out["brute_tip"] = Entry(slow);
-  double maxDiff = 0.0;
+  ExactComparison bruteCheck;
   for (std::size_t i = 0; i < slow.Frames.size(); ++i)
   {
-    for (std::size_t c = 0; c < vessels.size(); ++c)
-    {
-      const auto& a = slow.Frames[i].Proximity.Classes[c];
-      const auto& b = tip.Frames[i].Proximity.Classes[c];
-      if (a.InRange && b.InRange)
-      {
-        maxDiff = std::max(maxDiff, std::abs(a.DistanceMm - b.DistanceMm));
-      }
-    }
+    bruteCheck.Add(slow.Frames[i].Proximity, tip.Frames[i].Proximity, exact->GetRangeMm(), 0.0);
   }
-  out["max_abs_diff_exact_vs_brute_mm"] = maxDiff;
+  out["max_abs_diff_exact_vs_brute_mm"] = bruteCheck.MaxAbsDifferenceMm;
   if (zbuffer)
   {
     std::fprintf(stderr, ", z-buffer (render");
@@ -185,27 +177,17 @@ Json BenchReplay(const std::vector<NamedMesh>& vessels, std::size_t frames, unsi
     std::fprintf(stderr, ", frames)");
     logic->SetDistanceEngine(zbuffer);
     const Replay cached = Run(logic, poses, poses.size());
-    int outside = 0;
-    double diff = 0.0;
+    ExactComparison check;
     for (std::size_t i = 0; i < cached.Frames.size(); ++i)
     {
-      for (std::size_t c = 0; c < vessels.size(); ++c)
-      {
-        const auto& z = cached.Frames[i].Proximity.Classes[c];
-        const auto& e = tip.Frames[i].Proximity.Classes[c];
-        if (z.InRange && e.InRange)
-        {
-          diff = std::max(diff, std::abs(z.DistanceMm - e.DistanceMm));
-        }
-        outside += WithinErrorBound(z, e, zbuffer->GetRangeMm(), ErrorBoundMm(zbuffer)) ? 0 : 1;
-      }
+      check.Add(cached.Frames[i].Proximity, tip.Frames[i].Proximity, zbuffer->GetRangeMm(), ErrorBoundMm(zbuffer));
     }
     Json z = Entry(cached);
     z["device"] = DescribeDevice(zbuffer);
     z["build_and_render_ms"] = renderMs;
     z["error_bound_mm"] = ErrorBoundMm(zbuffer);
-    z["max_abs_diff_vs_exact_mm"] = diff;
-    z["outside_bound"] = outside;
+    z["max_abs_diff_vs_exact_mm"] = check.MaxAbsDifferenceMm;
+    z["outside_bound"] = check.OutsideBound;
     out["zbuffer_cached"] = z;
   }
   std::fprintf(stderr, "\n");

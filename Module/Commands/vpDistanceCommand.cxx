@@ -143,24 +143,14 @@ int RunDistanceCommand(const std::vector<std::string>& argv)
     reference->ComputeProximity(tips[i].data(), hasAxis ? axis.data() : nullptr, exactResults[i]);
   }
   const double bound = ErrorBoundMm(engine);
-  int outsideBound = 0;
-  double maxDifference = 0.0;
+  ExactComparison comparison;
   std::vector<std::vector<char>> withinBound(exactResults.size());
   for (std::size_t i = 0; i < exactResults.size(); ++i)
   {
-    for (std::size_t k = 0; k < exactResults[i].Classes.size(); ++k)
-    {
-      const ClassProximity& z = results[i].Classes[k];
-      const ClassProximity& e = exactResults[i].Classes[k];
-      if (z.InRange && e.InRange)
-      {
-        maxDifference = std::max(maxDifference, std::abs(z.DistanceMm - e.DistanceMm));
-      }
-      const bool ok = WithinErrorBound(z, e, engine->GetRangeMm(), bound);
-      outsideBound += ok ? 0 : 1;
-      withinBound[i].push_back(ok ? 1 : 0);
-    }
+    comparison.Add(results[i], exactResults[i], engine->GetRangeMm(), bound, &withinBound[i]);
   }
+  const int outsideBound = comparison.OutsideBound;
+  const double maxDifference = comparison.MaxAbsDifferenceMm;
   if (outsideBound > 0)
   {
     std::cerr << "vesselproximity: warning: " << outsideBound << " answer(s) of the z-buffer engine outside its error bound of "

@@ -7,6 +7,7 @@
 #include "vtkExactVesselDistance.h"
 #include "vtkZBufferVesselDistance.h"
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 
@@ -127,5 +128,26 @@ bool WithinErrorBound(const ClassProximity& answer, const ClassProximity& exact,
     return std::abs(answer.DistanceMm - exact.DistanceMm) <= boundMm;
   }
   return !exact.InRange && (!answer.InRange || answer.DistanceMm <= rangeMm + boundMm);
+}
+
+void ExactComparison::Add(const ProximityResult& answer, const ProximityResult& exact, double rangeMm, double boundMm,
+  std::vector<char>* within)
+{
+  for (std::size_t c = 0; c < exact.Classes.size(); ++c)
+  {
+    const ClassProximity& a = answer.Classes[c];
+    const ClassProximity& e = exact.Classes[c];
+    if (a.InRange && e.InRange)
+    {
+      ++this->Compared;
+      this->MaxAbsDifferenceMm = std::max(this->MaxAbsDifferenceMm, std::abs(a.DistanceMm - e.DistanceMm));
+    }
+    const bool ok = WithinErrorBound(a, e, rangeMm, boundMm);
+    this->OutsideBound += ok ? 0 : 1;
+    if (within)
+    {
+      within->push_back(ok ? 1 : 0);
+    }
+  }
 }
 } // namespace vp

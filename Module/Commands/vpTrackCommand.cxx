@@ -299,8 +299,7 @@ int RunTrackCommand(const std::vector<std::string>& argv)
   std::vector<TrackedFrame> frames;
   frames.reserve(poses.size());
   std::vector<double> frameMs;
-  int outsideBound = 0;
-  double maxDifference = 0.0;
+  ExactComparison check;
   ProximityResult exactResult;
   double lastReport = NowMs();
   for (std::size_t i = 0; i < poses.size(); ++i)
@@ -311,16 +310,7 @@ int RunTrackCommand(const std::vector<std::string>& argv)
     if (method == "both")
     {
       exact->ComputeProximity(frames.back().TipMm, frames.back().AxisWorld, exactResult);
-      for (std::size_t k = 0; k < exactResult.Classes.size(); ++k)
-      {
-        const ClassProximity& z = frames.back().Proximity.Classes[k];
-        const ClassProximity& e = exactResult.Classes[k];
-        if (z.InRange && e.InRange)
-        {
-          maxDifference = std::max(maxDifference, std::abs(z.DistanceMm - e.DistanceMm));
-        }
-        outsideBound += WithinErrorBound(z, e, engine->GetRangeMm(), ErrorBoundMm(engine)) ? 0 : 1;
-      }
+      check.Add(frames.back().Proximity, exactResult, engine->GetRangeMm(), ErrorBoundMm(engine));
     }
     if (NowMs() - lastReport > 1000.0)
     {
@@ -331,10 +321,11 @@ int RunTrackCommand(const std::vector<std::string>& argv)
   Json comparison;
   if (method == "both")
   {
-    comparison = { { "reference", "exact" }, { "max_abs_difference_mm", maxDifference }, { "outside_bound", outsideBound } };
-    if (outsideBound > 0)
+    comparison = { { "reference", "exact" }, { "max_abs_difference_mm", check.MaxAbsDifferenceMm },
+      { "outside_bound", check.OutsideBound } };
+    if (check.OutsideBound > 0)
     {
-      std::cerr << "vesselproximity: warning: " << outsideBound << " answer(s) of the z-buffer engine outside its error bound of "
+      std::cerr << "vesselproximity: warning: " << check.OutsideBound << " answer(s) of the z-buffer engine outside its error bound of "
                 << ErrorBoundMm(engine) << " mm\n";
     }
   }
@@ -389,8 +380,8 @@ int RunTrackCommand(const std::vector<std::string>& argv)
     DangerLevelName(summary.GetWorstLevel()), Quantile(frameMs, 0.5), Quantile(frameMs, 0.95));
   if (method == "both")
   {
-    std::printf("  against the exact engine: largest difference %.4f mm, %d answer(s) outside the bound\n", maxDifference,
-      outsideBound);
+    std::printf("  against the exact engine: largest difference %.4f mm, %d answer(s) outside the bound\n",
+      check.MaxAbsDifferenceMm, check.OutsideBound);
   }
   std::printf("wrote %s/frames.csv, summary.json, distance.png\n", outDir.c_str());
   return 0;

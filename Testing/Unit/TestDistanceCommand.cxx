@@ -2,8 +2,8 @@
 // exit and empty stdout for each bad input.
 #include "vpAnalyticShapes.h"
 #include "vpStlFormat.h"
+#include "vpModelTestSupport.h"
 #include "vpTestSupport.h"
-#include "vtkVesselMeshWriter.h"
 
 #include <vtkNew.h>
 
@@ -41,14 +41,7 @@ protected:
     this->Sphere = this->Write("sphere.stl", vp::MakeSphere(c, 10.0, 16, 32));
     this->Far = this->Write("far.stl", vp::MakeSphere(far, 5.0, 16, 32));
   }
-  std::string Write(const std::string& name, vtkPolyData* mesh)
-  {
-    vtkNew<vtkVesselMeshWriter> w;
-    w->SetFileName(this->Dir + "/" + name);
-    w->SetInputData(mesh);
-    w->Write();
-    return w->GetFileName();
-  }
+  std::string Write(const std::string& name, vtkPolyData* mesh) { return vp::test::WriteMeshFile(this->Dir, name, mesh); }
   std::string Dir, Sphere, Far;
 };
 } // namespace

@@ -4,10 +4,10 @@
 #include "vpInputError.h"
 #include "vpScalpelLoader.h"
 #include "vpScalpelTipFinder.h"
+#include "vpModelTestSupport.h"
 #include "vpTestSupport.h"
 #include "vtkScalpelModel.h"
 #include "vtkVesselMeshReader.h"
-#include "vtkVesselMeshWriter.h"
 
 #include <gtest/gtest.h>
 
@@ -111,11 +111,7 @@ protected:
   void SetUp() override
   {
     this->Dir = vp::test::MakeTempDir("scalpel");
-    this->Model = this->Dir + "/Toy.stl";
-    vtkNew<vtkVesselMeshWriter> writer;
-    writer->SetFileName(this->Model);
-    writer->SetInputData(MakeToyInstrument());
-    writer->Write();
+    this->Model = vp::test::WriteMeshFile(this->Dir, "Toy.stl", MakeToyInstrument());
   }
   void WriteDefinition(const std::string& text)
   {

@@ -1,8 +1,8 @@
 // `vesselproximity track` and `register` end to end: the files they write, their numbers, and the
 // one-line error with nothing written for every bad pose file.
 #include "vpAnalyticShapes.h"
+#include "vpModelTestSupport.h"
 #include "vpTestSupport.h"
-#include "vtkVesselMeshWriter.h"
 
 #include <gtest/gtest.h>
 
@@ -60,14 +60,7 @@ protected:
     this->Tool = this->Write("Tool.stl", vp::MakeCappedCylinder(shaft, z, 1.5, 80.0, 16));
     std::ofstream(this->Dir + "/Tool.json") << R"({"tip_mm": [0, 0, 0], "axis": [0, 0, 1]})";
   }
-  std::string Write(const std::string& name, vtkPolyData* mesh)
-  {
-    vtkNew<vtkVesselMeshWriter> w;
-    w->SetFileName(this->Dir + "/" + name);
-    w->SetInputData(mesh);
-    w->Write();
-    return w->GetFileName();
-  }
+  std::string Write(const std::string& name, vtkPolyData* mesh) { return vp::test::WriteMeshFile(this->Dir, name, mesh); }
   std::string WriteText(const std::string& name, const std::string& text)
   {
     std::ofstream(this->Dir + "/" + name) << text;

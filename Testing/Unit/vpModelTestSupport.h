@@ -1,8 +1,10 @@
 #ifndef vpModelTestSupport_h
 #define vpModelTestSupport_h
 
-// Shared by the segmentation and model tests: synthetic label grids and surface measures.
+// Shared by the segmentation, model and command tests: synthetic label grids, surface measures,
+// mesh files.
 #include "vpLabelStructure.h"
+#include "vtkVesselMeshWriter.h"
 
 #include <vtkCellArray.h>
 #include <vtkFeatureEdges.h>
@@ -20,6 +22,16 @@ namespace vp
 {
 namespace test
 {
+/// Writes mesh as dir/name (STL, LPS) and returns the path.
+inline std::string WriteMeshFile(const std::string& dir, const std::string& name, vtkPolyData* mesh)
+{
+  vtkNew<vtkVesselMeshWriter> writer;
+  writer->SetFileName(dir + "/" + name);
+  writer->SetInputData(mesh);
+  writer->Write();
+  return writer->GetFileName();
+}
+
 /// A grid of the given size whose voxel centres p (LPS) get label(p).
 inline LabelGrid MakeGrid(const int dims[3], const std::array<double, 16>& ijkToLps,
   const std::function<int(const double p[3])>& label)

@@ -1,6 +1,7 @@
 #include "vpScalpelLoader.h"
 
 #include "vpInputError.h"
+#include "vpJsonFile.h"
 #include "vpScalpelTipFinder.h"
 #include "vtkVesselMeshReader.h"
 
@@ -12,7 +13,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 
 namespace vp
 {
@@ -51,29 +51,16 @@ std::string ScalpelDefinitionFileFor(const std::string& modelFile)
 
 ScalpelTipDefinition ReadScalpelDefinition(const std::string& jsonFile)
 {
-  std::ifstream in(jsonFile);
-  if (!in)
-  {
-    throw InputError(jsonFile, "cannot open the scalpel tip definition");
-  }
-  nlohmann::json root;
-  try
-  {
-    in >> root;
-  }
-  catch (const nlohmann::json::exception&)
-  {
-    throw InputError(jsonFile, "not valid JSON (expected {\"tip_mm\": [x, y, z], \"axis\": [x, y, z]})");
-  }
+  const nlohmann::json root = ReadJsonFile(jsonFile, "a scalpel tip definition");
   if (!root.is_object() || !root.contains("tip_mm"))
   {
     throw InputError(jsonFile, "no \"tip_mm\" in it (expected {\"tip_mm\": [x, y, z], \"axis\": [x, y, z]})");
   }
   ScalpelTipDefinition definition;
-  definition.TipMm = ReadVector(root["tip_mm"], jsonFile, "tip_mm");
+  definition.TipMm = ReadVector(root.at("tip_mm"), jsonFile, "tip_mm");
   if (root.contains("axis"))
   {
-    definition.Axis = ReadVector(root["axis"], jsonFile, "axis");
+    definition.Axis = ReadVector(root.at("axis"), jsonFile, "axis");
     const auto& a = *definition.Axis;
     if (!(a[0] * a[0] + a[1] * a[1] + a[2] * a[2] > 0))
     {

@@ -1,14 +1,13 @@
 #include "vpPoseFile.h"
 
 #include "vpInputError.h"
+#include "vpJsonFile.h"
 #include "vpNumericCsv.h"
 
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 
 namespace vp
 {
@@ -133,23 +132,7 @@ std::vector<double> Numbers(const nlohmann::json& value, std::size_t count, cons
 
 std::vector<TrackedPose> ReadJson(const std::string& fileName)
 {
-  std::ifstream in(fileName);
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(fileName, ec) || !in)
-  {
-    throw InputError(fileName, std::filesystem::exists(fileName, ec) ? "cannot open as a pose list" : "no such file");
-  }
-  nlohmann::json document;
-  try
-  {
-    document = nlohmann::json::parse(in);
-  }
-  catch (const nlohmann::json::exception& e)
-  {
-    std::string what = e.what();
-    what = what.substr(what.find(']') == std::string::npos ? 0 : what.find(']') + 2);
-    throw InputError(fileName, "not valid JSON: " + what);
-  }
+  nlohmann::json document = ReadJsonFile(fileName, "a pose list");
   const nlohmann::json* list = document.is_object() && document.contains("poses") ? &document["poses"] : nullptr;
   if (!list || !list->is_array() || list->empty())
   {

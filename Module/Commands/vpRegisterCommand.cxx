@@ -3,6 +3,7 @@
 #include "vpArguments.h"
 #include "vpCommands.h"
 #include "vpInputError.h"
+#include "vpJsonFile.h"
 #include "vpPairedPointRegistration.h"
 #include "vpPivotCalibration.h"
 #include "vpPointCsv.h"
@@ -18,7 +19,6 @@
 
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <iostream>
 
 namespace vp
@@ -53,29 +53,16 @@ Json PointJson(const std::array<double, 3>& p)
 
 std::array<double, 16> ReadInitialTransform(const std::string& file)
 {
-  std::ifstream in(file);
-  if (!in)
-  {
-    throw InputError(file, "cannot open the initial transform");
-  }
-  nlohmann::json root;
-  try
-  {
-    in >> root;
-  }
-  catch (const nlohmann::json::exception&)
-  {
-    throw InputError(file, "not valid JSON (expected {\"model_to_world\": [16 numbers]})");
-  }
-  if (!root.is_object() || !root.contains("model_to_world") || !root["model_to_world"].is_array() ||
-    root["model_to_world"].size() != 16)
+  const nlohmann::json root = ReadJsonFile(file, "an initial transform");
+  if (!root.is_object() || !root.contains("model_to_world") || !root.at("model_to_world").is_array() ||
+    root.at("model_to_world").size() != 16)
   {
     throw InputError(file, "expected \"model_to_world\": an array of 16 numbers (row-major 4x4)");
   }
   std::array<double, 16> m{};
   for (int i = 0; i < 16; ++i)
   {
-    const auto& v = root["model_to_world"][i];
+    const auto& v = root.at("model_to_world")[i];
     if (!v.is_number() || !std::isfinite(v.get<double>()))
     {
       throw InputError(file, "model_to_world: element " + std::to_string(i) + " is not a finite number");

@@ -1,0 +1,30 @@
+#include "vpJsonFile.h"
+
+#include "vpInputError.h"
+
+#include <filesystem>
+#include <fstream>
+
+namespace vp
+{
+nlohmann::json ReadJsonFile(const std::string& fileName, const std::string& what)
+{
+  std::ifstream in(fileName);
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(fileName, ec) || !in)
+  {
+    throw InputError(fileName, std::filesystem::exists(fileName, ec) ? "cannot open as " + what : "no such file");
+  }
+  try
+  {
+    return nlohmann::json::parse(in);
+  }
+  catch (const nlohmann::json::exception& e)
+  {
+    // nlohmann's message starts "[json.exception.parse_error.101] "; keep what follows.
+    std::string reason = e.what();
+    reason = reason.substr(reason.find(']') == std::string::npos ? 0 : reason.find(']') + 2);
+    throw InputError(fileName, "not valid JSON: " + reason);
+  }
+}
+} // namespace vp

@@ -288,3 +288,32 @@ TEST_F(TrackCommand, ZBufferLevelsNeverUnderstateTheExactOnes)
   }
   EXPECT_GT(stricter, 0) << "the bound should make some frames near a threshold one level stricter";
 }
+
+TEST_F(TrackCommand, RegisterRefusesBadInputInOneLineAndWritesNothing)
+{
+  const std::string points = this->WriteText("points.csv", "0,0,0\n1,0,0\n0,1,0\n0,0,-5\n1,1,-10\n2,0,-20\n");
+  const std::string broken = this->WriteText("broken.json", "{\"model_to_world\": [1, 2");
+  const std::string noKey = this->WriteText("nokey.json", "{\"tip_mm\": [0, 0, 0]}");
+  const std::string shortMatrix = this->WriteText("short.json", "{\"model_to_world\": [1, 0, 0]}");
+  const std::string twoPoses = this->WriteText("two.csv", "0,0,0,0,1,0,0,0\n1,0,0,0,1,0,0,0\n");
+  const std::string icp = "register icp --model " + this->Tool + " --points " + points + " --initial ";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+    { icp + broken, broken + ": not valid JSON: " },
+    { icp + noKey, noKey + ": expected \"model_to_world\"" },
+    { icp + shortMatrix, shortMatrix + ": expected \"model_to_world\"" },
+    { icp + this->Dir + "/none.json", this->Dir + "/none.json: no such file" },
+    { "register pivot --poses " + twoPoses, "pivot poses" },
+    { "register wobble", "wobble: unknown registration" },
+    { "register landmarks --model-points " + points, "--world-points: is required" },
+  };
+  const std::string out = this->Dir + "/result.json";
+  for (const auto& c : cases)
+  {
+    const ToolRun r = RunTool(this->Dir, c.first + " -o " + out);
+    EXPECT_EQ(r.ExitCode, 1) << c.first;
+    EXPECT_NE(r.Err.find(c.second), std::string::npos) << c.first << "\n  stderr: " << r.Err;
+    EXPECT_EQ(std::count(r.Err.begin(), r.Err.end(), '\n'), 1) << "one line: " << r.Err;
+    EXPECT_TRUE(r.Out.empty()) << r.Out;
+    EXPECT_FALSE(vp::test::FileExists(out)) << c.first;
+  }
+}

@@ -91,7 +91,15 @@ vtkSmartPointer<vtkScalpelModel> LoadScalpel(const std::string& modelFile, const
     }
     source = std::filesystem::path(besideFile).filename().string();
   }
-  // The finder also gives the principal axis, which a tip given without an axis needs.
+  if (definition.TipMm && definition.Axis)
+  {
+    const auto& a = *definition.Axis;
+    scalpel->SetTipMm(definition.TipMm->data());
+    scalpel->SetAxis(a[0], a[1], a[2]);
+    scalpel->SetTipSource("tip " + PointText(*definition.TipMm) + " and axis from " + source);
+    return scalpel;
+  }
+  // The finder gives the tip, or the principal axis that a tip given without an axis needs.
   const ScalpelTipEstimate estimate = FindScalpelTip(scalpel->GetModel(), modelFile);
   if (!definition.TipMm)
   {
@@ -103,13 +111,6 @@ vtkSmartPointer<vtkScalpelModel> LoadScalpel(const std::string& modelFile, const
   }
   const auto& tip = *definition.TipMm;
   scalpel->SetTipMm(tip.data());
-  if (definition.Axis)
-  {
-    const auto& a = *definition.Axis;
-    scalpel->SetAxis(a[0], a[1], a[2]);
-    scalpel->SetTipSource("tip " + PointText(tip) + " and axis from " + source);
-    return scalpel;
-  }
   // Principal axis, oriented from the centre of the model towards the given tip.
   double along = 0.0;
   for (int i = 0; i < 3; ++i)

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace vp
 {
@@ -189,5 +190,31 @@ std::array<double, 16> PoseFromQuaternion(const std::array<double, 3>& p, const 
 std::vector<TrackedPose> ReadPoseFile(const std::string& fileName)
 {
   return EndsWith(fileName, ".json") ? ReadJson(fileName) : ReadCsv(fileName);
+}
+
+std::string FormatPoseCsv(const std::vector<TrackedPose>& poses)
+{
+  std::string csv = "time";
+  for (int r = 0; r < 4; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      csv += ",m" + std::to_string(r) + std::to_string(c);
+    }
+  }
+  csv += "\n";
+  char number[32];
+  for (const TrackedPose& pose : poses)
+  {
+    std::snprintf(number, sizeof(number), "%.17g", pose.TimeS);
+    csv += number;
+    for (double v : pose.ModelToWorld)
+    {
+      std::snprintf(number, sizeof(number), ",%.17g", v);
+      csv += number;
+    }
+    csv += "\n";
+  }
+  return csv;
 }
 } // namespace vp

@@ -27,6 +27,10 @@ struct TrackedPose
 /// 1e-3), a matrix whose last row is not 0 0 0 1, and a file without poses. Throws vp::InputError.
 std::vector<TrackedPose> ReadPoseFile(const std::string& fileName);
 
+/// The CSV form ReadPoseFile reads, `time,m00,...,m33` with a header line, each number to 17
+/// significant digits so a pose read back is the pose written.
+std::string FormatPoseCsv(const std::vector<TrackedPose>& poses);
+
 /// The rotation matrix of a unit quaternion (w, x, y, z), as a model-to-world matrix with the
 /// given translation.
 std::array<double, 16> PoseFromQuaternion(const std::array<double, 3>& positionMm, const std::array<double, 4>& wxyz);

@@ -115,6 +115,7 @@ const vp::TrackedFrame& vtkScalpelTrackingLogic::ProcessPose(const vp::TrackedPo
     }
     this->InvokeEvent(DangerLevelChangedEvent, &change);
   }
+  this->InvokeEvent(FrameProcessedEvent, &this->Last);
   return this->Last;
 }
 

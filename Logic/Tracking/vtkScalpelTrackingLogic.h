@@ -64,7 +64,10 @@ public:
 
   enum
   {
-    DangerLevelChangedEvent = vtkCommand::UserEvent + 1201
+    DangerLevelChangedEvent = vtkCommand::UserEvent + 1201,
+    /// Invoked after every processed pose with the vp::TrackedFrame as call data: overlays move
+    /// on it, and recolour only on DangerLevelChangedEvent.
+    FrameProcessedEvent = vtkCommand::UserEvent + 1202
   };
 
   void SetDistanceEngine(vtkVesselDistanceEngine* engine);

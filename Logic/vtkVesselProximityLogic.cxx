@@ -1,0 +1,184 @@
+#include "vtkVesselProximityLogic.h"
+
+#include "vtkExactVesselDistance.h"
+#include "vtkScalpelModel.h"
+#include "vtkScalpelSurfaceDistance.h"
+#include "vtkVesselDistanceEngine.h"
+
+#include <vtkObjectFactory.h>
+#include <vtkPolyData.h>
+
+#include <stdexcept>
+
+vtkStandardNewMacro(vtkVesselProximityLogic);
+
+vtkVesselProximityLogic::vtkVesselProximityLogic()
+  : Engine(vtkSmartPointer<vtkExactVesselDistance>::New())
+  , Tracking(vtkSmartPointer<vtkScalpelTrackingLogic>::New())
+{
+}
+
+vtkVesselProximityLogic::~vtkVesselProximityLogic() = default;
+
+void vtkVesselProximityLogic::AddVessel(const std::string& className, vtkPolyData* surface)
+{
+  for (auto& vessel : this->Vessels)
+  {
+    if (vessel.first == className)
+    {
+      vessel.second = surface;
+      this->SceneChanged = true;
+      this->Modified();
+      return;
+    }
+  }
+  this->Vessels.emplace_back(className, surface);
+  this->SceneChanged = true;
+  this->Modified();
+}
+
+void vtkVesselProximityLogic::RemoveAllVessels()
+{
+  this->Vessels.clear();
+  this->SceneChanged = true;
+  this->Modified();
+}
+
+void vtkVesselProximityLogic::SetScalpel(vtkScalpelModel* scalpel)
+{
+  if (scalpel != this->Tracking->GetScalpel())
+  {
+    this->Tracking->SetScalpel(scalpel);
+    this->SceneChanged = true; // the surface-distance tree is built from its model
+    this->Modified();
+  }
+}
+
+vtkScalpelModel* vtkVesselProximityLogic::GetScalpel() const
+{
+  return this->Tracking->GetScalpel();
+}
+
+void vtkVesselProximityLogic::SetDistanceEngine(vtkVesselDistanceEngine* engine)
+{
+  if (!engine)
+  {
+    throw std::invalid_argument("vtkVesselProximityLogic: the distance engine cannot be null");
+  }
+  if (engine != this->Engine)
+  {
+    this->Engine = engine;
+    this->SceneChanged = true;
+    this->Modified();
+  }
+}
+
+void vtkVesselProximityLogic::SetDangerThresholds(const vp::DangerThresholds& thresholds)
+{
+  this->Tracking->SetDangerThresholds(thresholds);
+  this->Modified();
+}
+
+const vp::DangerThresholds& vtkVesselProximityLogic::GetDangerThresholds() const
+{
+  return this->Tracking->GetDangerThresholds();
+}
+
+void vtkVesselProximityLogic::Build()
+{
+  if (!this->SceneChanged)
+  {
+    return;
+  }
+  if (this->Vessels.empty())
+  {
+    throw std::logic_error("vtkVesselProximityLogic: add at least one vessel before building");
+  }
+  this->Exact = vtkExactVesselDistance::SafeDownCast(this->Engine);
+  if (!this->Exact)
+  {
+    this->Exact = vtkSmartPointer<vtkExactVesselDistance>::New();
+    this->Exact->SetRangeMm(this->Engine->GetRangeMm());
+  }
+  std::vector<vtkVesselDistanceEngine*> engines{ this->Engine };
+  if (this->Exact != this->Engine)
+  {
+    engines.push_back(this->Exact);
+  }
+  for (vtkVesselDistanceEngine* engine : engines)
+  {
+    engine->RemoveAllVessels();
+    for (const auto& vessel : this->Vessels)
+    {
+      engine->AddVessel(vessel.first, vessel.second);
+    }
+    engine->Build();
+  }
+  this->Tracking->SetDistanceEngine(this->Engine);
+  vtkScalpelModel* scalpel = this->Tracking->GetScalpel();
+  if (this->ComputeSurfaceDistance && scalpel && scalpel->GetModel())
+  {
+    this->Surface = vtkSmartPointer<vtkScalpelSurfaceDistance>::New();
+    this->Surface->SetVesselDistance(this->Exact);
+    this->Surface->SetToolSurface(scalpel->GetModel());
+    this->Tracking->SetSurfaceDistance(this->Surface);
+  }
+  else
+  {
+    this->Surface = nullptr;
+    this->Tracking->SetSurfaceDistance(nullptr);
+  }
+  this->SceneChanged = false;
+  ++this->NumberOfBuilds;
+}
+
+const vp::TrackedFrame& vtkVesselProximityLogic::ProcessPose(const vp::TrackedPose& pose)
+{
+  if (!this->Tracking->GetScalpel())
+  {
+    throw std::logic_error("vtkVesselProximityLogic: set the scalpel before processing poses");
+  }
+  // The surface tree follows the switch: turning it on or off is a scene change.
+  if ((this->Surface != nullptr) != (this->ComputeSurfaceDistance && this->GetScalpel()->GetModel()))
+  {
+    this->SceneChanged = true;
+  }
+  this->Build();
+  const vp::TrackedFrame& frame = this->Tracking->ProcessPose(pose);
+  if (this->CompareWithExact && this->Exact != this->Engine)
+  {
+    this->Exact->ComputeProximity(frame.TipMm, frame.AxisWorld, this->LastExact);
+  }
+  return frame;
+}
+
+const vp::TrackedFrame& vtkVesselProximityLogic::GetLastFrame() const
+{
+  return this->Tracking->GetLastFrame();
+}
+
+const vp::ProximityResult& vtkVesselProximityLogic::GetLastExactProximity() const
+{
+  return this->Exact == this->Engine || !this->CompareWithExact ? this->Tracking->GetLastFrame().Proximity : this->LastExact;
+}
+
+void vtkVesselProximityLogic::ResetTracking()
+{
+  this->Tracking->Reset();
+}
+
+void vtkVesselProximityLogic::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Vessels:";
+  for (const auto& vessel : this->Vessels)
+  {
+    os << " " << vessel.first;
+  }
+  os << "\n" << indent << "DistanceEngine: " << this->Engine->GetMethodName() << "\n";
+  os << indent << "CompareWithExact: " << this->CompareWithExact << "\n";
+  os << indent << "ComputeSurfaceDistance: " << this->ComputeSurfaceDistance << "\n";
+  os << indent << "NumberOfBuilds: " << this->NumberOfBuilds << "\n";
+  os << indent << "TrackingLogic:\n";
+  this->Tracking->PrintSelf(os, indent.GetNextIndent());
+}

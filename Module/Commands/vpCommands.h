@@ -14,6 +14,9 @@ int RunPhantomCommand(const std::vector<std::string>& args);
 int RunModelsCommand(const std::vector<std::string>& args);
 int RunTrackCommand(const std::vector<std::string>& args);
 int RunRegisterCommand(const std::vector<std::string>& args);
+int RunDemoCommand(const std::vector<std::string>& args);
+int RunViewCommand(const std::vector<std::string>& args);
+int RunSelfTestCommand(const std::vector<std::string>& args);
 } // namespace vp
 
 #endif

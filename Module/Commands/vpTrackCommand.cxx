@@ -3,6 +3,7 @@
 #include "vpArguments.h"
 #include "vpCommandSupport.h"
 #include "vpCommands.h"
+#include "vpDangerBands.h"
 #include "vpDangerLevels.h"
 #include "vpDistancePlot.h"
 #include "vpEngineOptions.h"
@@ -173,12 +174,10 @@ void WritePlot(const std::string& file, const std::vector<TrackedFrame>& frames,
 {
   std::vector<double> times;
   std::vector<PlotSeries> series(classes.size());
-  const std::array<std::array<unsigned char, 3>, 6> palette{ { { 0, 150, 200 }, { 90, 40, 170 }, { 215, 60, 50 },
-    { 40, 160, 60 }, { 230, 140, 20 }, { 120, 120, 0 } } };
   for (std::size_t c = 0; c < classes.size(); ++c)
   {
     series[c].Name = classes[c] + " (tip)";
-    series[c].Colour = palette[c % palette.size()];
+    series[c].Colour = PlotSeriesColour(classes[c], static_cast<int>(c));
   }
   for (const TrackedFrame& f : frames)
   {
@@ -189,14 +188,7 @@ void WritePlot(const std::string& file, const std::vector<TrackedFrame>& frames,
       series[c].ValuesMm.push_back(p.InRange ? p.DistanceMm : std::numeric_limits<double>::quiet_NaN());
     }
   }
-  std::vector<PlotBand> bands;
-  const double top = std::max(rangeMm, t.CautionMm);
-  const double edges[5] = { 0.0, t.DangerMm, t.WarningMm, t.CautionMm, top };
-  for (int l = 0; l < 4; ++l)
-  {
-    const auto level = static_cast<DangerLevel>(3 - l);
-    bands.push_back({ edges[l], edges[l + 1], DangerLevelColour(level), DangerLevelName(level) });
-  }
+  const std::vector<PlotBand> bands = DangerBands(t, rangeMm);
   DistancePlotOptions options;
   options.Title = "Tip distance to each vessel class over time";
   WriteDistancePlotPng(file, times, series, bands, options);

@@ -1,94 +1,162 @@
-// vesselproximity: the host program. Dispatches to the subcommands documented in DESIGN.md.
-#include "vpCommands.h"
-#include "vpInputError.h"
-#include "vpVulkanContext.h"
-
-#include <vtkObject.h>
+// vesselproximity: the host program. Like Slicer's launcher it knows no computation itself: it
+// loads the modules on its module path and hands each command to the module that declares it.
+#include "vpLoadableModuleApi.h"
+#include "vpModuleLoader.h"
 
 #include <cstring>
-#include <exception>
 #include <iostream>
 #include <string>
 #include <vector>
 
 namespace
 {
-const char* Help =
-  "usage: vesselproximity COMMAND [options]   (COMMAND --help for its options)\n"
-  "commands:\n"
-  "  models     segmented labelmaps (DICOM series, NRRD, .seg.nrrd, NIfTI) to vessel surface models\n"
-  "  distance   distance from scalpel tip(s) to each vessel class (exact, zbuffer, both, brute, auto)\n"
-  "  track      replay tracked scalpel poses: frames.csv, summary.json, distance.png, danger levels\n"
-  "  register   scalpel registration: landmarks, surface ICP, pivot calibration (JSON result)\n"
-  "  bench      engines side by side with the brute-force reference, JSON with --json\n"
-  "  phantom    write the built-in analytic vessels (STL) for a first run\n"
+const char* Usage = "usage: vesselproximity [--module-path DIR[:DIR...]] COMMAND [options]   (COMMAND --help for its options)\n";
+const char* ExitCodes =
+  "module path: --module-path, else VP_MODULE_PATH, else lib/vesselproximity-modules beside the program\n"
   "exit codes: 0 success, 1 bad input (one line on stderr names the file and the problem),\n"
-  "            2 bad usage, 3 internal error, 4 no usable Vulkan device (z-buffer engine)\n";
+  "            2 bad usage, 3 internal error, 4 no usable Vulkan device (z-buffer engine),\n"
+  "            5 no usable module on the module path\n";
+
+/// Slicer writes several values in one field separated by ';'; listed here one per ", ".
+std::string Listed(const char* text)
+{
+  std::string out = text ? text : "";
+  for (std::size_t at = out.find(';'); at != std::string::npos; at = out.find(';', at))
+  {
+    out.replace(at, 1, ", ");
+  }
+  return out;
 }
+
+/// Text wrapped at 96 columns, each line indented.
+void PrintWrapped(const char* text, const char* indent)
+{
+  std::string line;
+  std::string word;
+  auto flush = [&] {
+    std::cout << indent << line << "\n";
+    line.clear();
+  };
+  for (const char* c = text ? text : "";; ++c)
+  {
+    if (*c == ' ' || *c == '\n' || *c == '\0')
+    {
+      if (!word.empty())
+      {
+        if (!line.empty() && line.size() + 1 + word.size() > 92)
+        {
+          flush();
+        }
+        line += (line.empty() ? "" : " ") + word;
+        word.clear();
+      }
+      if ((*c == '\n' || *c == '\0') && !line.empty())
+      {
+        flush();
+      }
+      if (*c == '\0')
+      {
+        break;
+      }
+    }
+    else
+    {
+      word += *c;
+    }
+  }
+}
+
+void PrintHelp(const std::vector<vp::LoadedModule>& modules)
+{
+  std::cout << Usage << "\nloaded modules:\n";
+  for (const vp::LoadedModule& m : modules)
+  {
+    const vpModuleDescriptor& d = *m.Descriptor;
+    std::cout << "  " << d.Title << " " << d.Version << "  (module " << d.Name << ", category " << Listed(d.Categories)
+              << ")\n    library: " << m.Library << "\n    contributors: " << Listed(d.Contributors) << "\n";
+    PrintWrapped(d.HelpText, "    ");
+    std::cout << "    acknowledgement:\n";
+    PrintWrapped(d.Acknowledgement, "      ");
+  }
+  std::cout << "\ncommands:\n";
+  for (const vp::LoadedModule& m : modules)
+  {
+    for (int c = 0; c < m.Descriptor->NumberOfCommands; ++c)
+    {
+      const vpModuleCommand& command = m.Descriptor->Commands[c];
+      std::cout << "  " << command.Name << std::string(command.Name && std::strlen(command.Name) < 10 ? 10 - std::strlen(command.Name) : 1, ' ')
+                << " " << command.Summary << "\n";
+    }
+  }
+  std::cout << ExitCodes;
+}
+} // namespace
 
 int main(int argc, char* argv[])
 {
-  // Our errors are reported as one line each; VTK's console chatter would break that.
-  vtkObject::GlobalWarningDisplayOff();
-  if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h") || !std::strcmp(argv[1], "help"))
+  std::vector<std::string> args(argv + 1, argv + argc);
+  std::string modulePath;
+  if (!args.empty() && (args[0] == "--module-path" || args[0].rfind("--module-path=", 0) == 0))
   {
-    std::cout << Help;
-    return argc < 2 ? 2 : 0;
+    if (args[0] == "--module-path")
+    {
+      if (args.size() < 2)
+      {
+        std::cerr << "vesselproximity: error: --module-path: a folder is required\n";
+        return 2;
+      }
+      modulePath = args[1];
+      args.erase(args.begin(), args.begin() + 2);
+    }
+    else
+    {
+      modulePath = args[0].substr(std::strlen("--module-path="));
+      args.erase(args.begin());
+    }
+    if (modulePath.empty())
+    {
+      std::cerr << "vesselproximity: error: --module-path: a folder is required\n";
+      return 2;
+    }
   }
-  if (!std::strcmp(argv[1], "--version"))
+  if (!args.empty() && args[0] == "--version")
   {
     std::cout << "vesselproximity " VP_VERSION "\n";
     return 0;
   }
-  const std::string command = argv[1];
-  const std::vector<std::string> args(argv + 2, argv + argc);
+
+  std::vector<vp::LoadedModule> modules;
   try
   {
-    if (command == "models")
-    {
-      return vp::RunModelsCommand(args);
-    }
-    if (command == "distance")
-    {
-      return vp::RunDistanceCommand(args);
-    }
-    if (command == "track")
-    {
-      return vp::RunTrackCommand(args);
-    }
-    if (command == "register")
-    {
-      return vp::RunRegisterCommand(args);
-    }
-    if (command == "bench")
-    {
-      return vp::RunBenchCommand(args);
-    }
-    if (command == "phantom")
-    {
-      return vp::RunPhantomCommand(args);
-    }
-    std::cerr << "vesselproximity: error: unknown command '" << command << "' (see vesselproximity --help)\n";
-    return 2;
+    modules = vp::ModuleLoader::Load(vp::ModuleLoader::SearchPath(modulePath));
   }
-  catch (const vp::InputError& e)
+  catch (const vp::ModuleLoadError& e)
   {
     std::cerr << "vesselproximity: error: " << e.what() << "\n";
-    return 1;
+    return 5;
   }
-  catch (const vp::DeviceError& e)
+
+  if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help")
   {
-    std::cerr << "vesselproximity: error: " << e.what() << "\n";
-    return 4;
+    PrintHelp(modules);
+    return args.empty() ? 2 : 0;
   }
-  catch (const std::bad_alloc&)
+  for (const vp::LoadedModule& m : modules)
   {
-    std::cerr << "vesselproximity: error: out of memory\n";
-    return 3;
+    for (int c = 0; c < m.Descriptor->NumberOfCommands; ++c)
+    {
+      const vpModuleCommand& command = m.Descriptor->Commands[c];
+      if (args[0] == command.Name)
+      {
+        std::vector<const char*> commandArgv;
+        for (const std::string& a : args)
+        {
+          commandArgv.push_back(a.c_str());
+        }
+        return command.Run(static_cast<int>(commandArgv.size()), commandArgv.data());
+      }
+    }
   }
-  catch (const std::exception& e)
-  {
-    std::cerr << "vesselproximity: internal error: " << e.what() << "\n";
-    return 3;
-  }
+  std::cerr << "vesselproximity: error: unknown command '" << args[0] << "' (see vesselproximity --help)\n";
+  return 2;
 }

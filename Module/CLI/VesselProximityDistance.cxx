@@ -1,0 +1,280 @@
+// VesselProximityDistance: `vesselproximity distance` as a 3D Slicer CLI module. Slicer hands
+// over the vessel models (temporary files) and the scalpel tip (a markups point, in LPS); the
+// program returns the distance to each vessel class through the return-parameter file and,
+// when asked, writes the distance command's JSON report.
+#include "vpCliDescription.h"
+#include "vpCommands.h"
+#include "vpInputError.h"
+#include "vpVulkanContext.h"
+#include "vtkVesselMeshWriter.h"
+
+#include <vtkObject.h>
+
+#include <nlohmann/json.hpp>
+
+#include <iostream>
+#include <limits>
+#include <sstream>
+
+#ifndef VP_VERSION
+#define VP_VERSION "0.1.0"
+#endif
+
+namespace
+{
+using vp::cli::Channel;
+using vp::cli::Parameter;
+using vp::cli::ParameterType;
+
+/// The vessel classes, each with the parameter that brings its model and the one that returns
+/// its distance.
+struct VesselClass
+{
+  const char* Parameter;
+  const char* ClassName;
+  const char* DistanceResult;
+  const char* Label;
+};
+const VesselClass Vessels[] = {
+  { "portalVein", "portal_vein", "portalVeinDistanceMm", "Portal vein" },
+  { "hepaticArtery", "hepatic_artery", "hepaticArteryDistanceMm", "Hepatic artery" },
+  { "hepaticVein", "hepatic_vein", "hepaticVeinDistanceMm", "Hepatic vein" },
+};
+
+/// -1 marks "no answer" in the distance results: distances are never negative, and Slicer's
+/// number fields show -1 where NaN would show as garbage or be clamped.
+const char* NoDistance = "-1";
+
+/// The one table: the XML, --help and the parser all come from it.
+vp::cli::ModuleDescription Describe()
+{
+  vp::cli::ModuleDescription d;
+  d.Program = "VesselProximityDistance";
+  d.Category = "IGT";
+  d.Title = "Vessel Proximity Distance";
+  d.Description =
+    "Distance from a scalpel tip to the nearest surface point of each vessel system (portal vein, "
+    "hepatic artery, hepatic vein), for liver surgery navigation. The exact engine answers from a "
+    "BVH in double precision; the z-buffer engine (the GPU method of Noborio et al., on Vulkan) "
+    "answers within a stated error bound. Coordinates are LPS millimetres. A class whose model is not "
+    "given, or that lies beyond the range, returns -1. Exit codes: 0 success, 1 bad input, 2 bad usage, "
+    "3 internal error, 4 no usable Vulkan device (zbuffer, both). Same as `vesselproximity distance`.";
+  d.Version = VP_VERSION;
+  d.Contributor = "VesselProximity developers";
+  d.Acknowledgements =
+    "Implements and extends Noborio et al., \"Comparison of GPU-based and CPU-based Algorithms for "
+    "Determining the Minimum Distance between a CUSA Scalpel and Blood Vessels\".";
+
+  vp::cli::ParameterGroup models{ "Vessel models", "Surface models of the vessel systems; give at least one", {} };
+  for (const VesselClass& v : Vessels)
+  {
+    models.Parameters.push_back(Parameter(ParameterType::Geometry, v.Parameter)
+                                  .SetTypeAttribute("model")
+                                  .SetFileExtensions(".stl,.vtk,.vtp,.obj")
+                                  .SetLongFlag(v.Parameter)
+                                  .SetChannel(Channel::Input)
+                                  .SetLabel(v.Label)
+                                  .SetDescription(std::string(v.Label) + " surface model (class " + v.ClassName +
+                                    "): STL, VTK, VTP or OBJ; a SPACE=RAS/LPS header tag is honoured, untagged "
+                                    "files are LPS. A file name must not contain a comma."));
+  }
+  d.Groups.push_back(models);
+
+  vp::cli::ParameterGroup scalpel{ "Scalpel", "Tip position and direction of the scalpel", {} };
+  scalpel.Parameters.push_back(Parameter(ParameterType::Point, "tip")
+                                 .SetCoordinateSystem("lps")
+                                 .SetLongFlag("tip")
+                                 .SetRequired()
+                                 .SetLabel("Scalpel tip")
+                                 .SetDescription("The scalpel tip, one point (Slicer passes it in LPS). Required."));
+  scalpel.Parameters.push_back(Parameter(ParameterType::DoubleVector, "axis")
+                                 .SetLongFlag("axis")
+                                 .SetLabel("Scalpel axis")
+                                 .SetDescription("Direction the scalpel points, x,y,z in LPS (need not be unit "
+                                                 "length), for the directional distance along it. Optional."));
+  d.Groups.push_back(scalpel);
+
+  vp::cli::ParameterGroup engine{ "Distance engine", "Which engine answers, and how far it looks", {} };
+  engine.Parameters.push_back(Parameter(ParameterType::StringEnumeration, "method")
+                                .SetLongFlag("method")
+                                .SetLabel("Method")
+                                .SetDescription("exact: BVH, exact. zbuffer: Vulkan depth layers, within the error "
+                                                "bound. both: z-buffer checked against exact. auto: z-buffer when a "
+                                                "Vulkan device opens, else exact.")
+                                .SetDefault("exact")
+                                .SetElements({ "exact", "zbuffer", "both", "auto" }));
+  engine.Parameters.push_back(Parameter(ParameterType::Float, "rangeMm")
+                                .SetLongFlag("rangeMm")
+                                .SetLabel("Range (mm)")
+                                .SetDescription("Classes further from the tip than this return -1.")
+                                .SetDefault("50")
+                                .SetRange(1.0, 1000.0, 1.0));
+  engine.Parameters.push_back(Parameter(ParameterType::File, "report")
+                                .SetFileExtensions(".json")
+                                .SetLongFlag("report")
+                                .SetChannel(Channel::Output)
+                                .SetLabel("JSON report")
+                                .SetDescription("Writes the distance command's JSON (per class: distance, closest "
+                                                "point, inside, in range, directional distance; timing). Optional."));
+  d.Groups.push_back(engine);
+
+  vp::cli::ParameterGroup out{ "Results", "Distances from the tip (-1: model not given, or beyond the range)", {} };
+  auto result = [&](ParameterType type, const char* name, const char* label, const std::string& text,
+                  const char* value) {
+    out.Parameters.push_back(
+      Parameter(type, name).SetChannel(Channel::Output).SetLabel(label).SetDescription(text).SetDefault(value));
+  };
+  result(ParameterType::String, "nearestClass", "Nearest class",
+    "The vessel class nearest to the tip: portal_vein, hepatic_artery, hepatic_vein, or none within range.", "none");
+  result(ParameterType::Float, "nearestDistanceMm", "Nearest distance (mm)",
+    "Distance to the nearest class (penetration depth when the tip is inside it); -1 when none is within range.",
+    NoDistance);
+  result(ParameterType::Boolean, "nearestInside", "Tip inside",
+    "True when the tip is inside the nearest vessel (closed models only).", "false");
+  result(ParameterType::DoubleVector, "nearestPoint", "Nearest point (LPS)",
+    "Closest point on the nearest class, x,y,z in LPS; empty when none is within range.", "");
+  for (const VesselClass& v : Vessels)
+  {
+    result(ParameterType::Float, v.DistanceResult, (std::string(v.Label) + " distance (mm)").c_str(),
+      std::string("Distance to the ") + v.ClassName + " model; -1 when not given or beyond the range.", NoDistance);
+  }
+  result(ParameterType::Float, "directionalDistanceMm", "Directional distance (mm)",
+    "Distance along the axis to the first vessel surface; -1 without an axis or when none is hit within range.",
+    NoDistance);
+  result(ParameterType::Float, "errorBoundMm", "Error bound (mm)",
+    "Bound on |reported - exact| (0 for the exact engine); a z-buffer answer may overstate danger by this much, "
+    "never understate it.",
+    "0");
+  result(ParameterType::String, "methodUsed", "Engine used",
+    "The engine that answered (auto resolves to zbuffer or exact).", "");
+  d.Groups.push_back(out);
+  return d;
+}
+
+/// Routes std::cout into a string for a scope: the distance command prints its JSON there.
+class CaptureStdout
+{
+public:
+  CaptureStdout()
+    : Saved(std::cout.rdbuf(this->Buffer.rdbuf()))
+  {
+  }
+  ~CaptureStdout() { std::cout.rdbuf(this->Saved); }
+  CaptureStdout(const CaptureStdout&) = delete;
+  CaptureStdout& operator=(const CaptureStdout&) = delete;
+  std::string Text() const { return this->Buffer.str(); }
+
+private:
+  std::ostringstream Buffer;
+  std::streambuf* Saved;
+};
+
+std::string JoinNumbers(const std::vector<double>& numbers)
+{
+  std::string text;
+  for (double v : numbers)
+  {
+    text += (text.empty() ? "" : ",") + vp::cli::FormatNumber(v);
+  }
+  return text;
+}
+
+void Run(const vp::cli::ParsedArguments& args, vp::cli::ReturnValues& results)
+{
+  std::string vessels;
+  for (const VesselClass& v : Vessels)
+  {
+    if (!args.IsSet(v.Parameter))
+    {
+      continue;
+    }
+    const std::string file = args.GetString(v.Parameter);
+    if (file.find(',') != std::string::npos)
+    {
+      // The distance command's CLASS=FILE list is comma separated.
+      throw vp::InputError("--" + std::string(v.Parameter), "a file name with a comma cannot be used: " + file);
+    }
+    vessels += (vessels.empty() ? "" : ",") + std::string(v.ClassName) + "=" + file;
+  }
+  if (vessels.empty())
+  {
+    throw vp::cli::UsageError("--portalVein/--hepaticArtery/--hepaticVein", "give at least one vessel model");
+  }
+  std::vector<std::string> command = { "--vessels", vessels, "--tip", JoinNumbers(args.GetNumbers("tip")), "--method",
+    args.GetString("method"), "--range", args.GetString("rangeMm"), "--json" };
+  if (args.IsSet("axis"))
+  {
+    const std::vector<double> axis = args.GetNumbers("axis");
+    if (axis.size() != 3)
+    {
+      throw vp::InputError("--axis", "expected three numbers x,y,z, got " + std::to_string(axis.size()));
+    }
+    command.insert(command.end(), { "--axis", JoinNumbers(axis) });
+  }
+
+  std::string reportText;
+  try
+  {
+    CaptureStdout capture;
+    const int code = vp::RunDistanceCommand(command);
+    if (code != 0)
+    {
+      throw vp::cli::ExitError(code, "distance: failed (exit code " + std::to_string(code) + ")");
+    }
+    reportText = capture.Text();
+  }
+  catch (const vp::DeviceError& e)
+  {
+    throw vp::cli::ExitError(4, e.what());
+  }
+  const auto report = nlohmann::json::parse(reportText);
+  const auto& answer = report.at("results").at(0);
+
+  if (args.IsSet("report"))
+  {
+    vp::WriteFileAtomically(args.GetString("report"), reportText);
+  }
+
+  const auto& nearest = answer.at("nearest");
+  if (!nearest.is_null())
+  {
+    const std::string cls = nearest.at("class").get<std::string>();
+    results.Set("nearestClass", cls);
+    results.Set("nearestDistanceMm", nearest.at("distance_mm").get<double>());
+    results.Set("nearestPoint", nearest.at("point").get<std::vector<double>>());
+    const auto& inside = answer.at("classes").at(cls).at("inside");
+    results.Set("nearestInside", inside.is_boolean() && inside.get<bool>());
+  }
+  double directional = std::numeric_limits<double>::infinity();
+  for (const VesselClass& v : Vessels)
+  {
+    const auto& classes = answer.at("classes");
+    if (!classes.contains(v.ClassName))
+    {
+      continue;
+    }
+    const auto& c = classes.at(v.ClassName);
+    if (!c.at("distance_mm").is_null())
+    {
+      results.Set(v.DistanceResult, c.at("distance_mm").get<double>());
+    }
+    if (c.contains("directional_mm") && c.at("directional_mm").is_number())
+    {
+      directional = std::min(directional, c.at("directional_mm").get<double>());
+    }
+  }
+  if (directional <= report.at("range_mm").get<double>())
+  {
+    results.Set("directionalDistanceMm", directional);
+  }
+  results.Set("errorBoundMm", answer.at("error_bound_mm").get<double>());
+  results.Set("methodUsed", report.at("method").get<std::string>());
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  // Errors are reported as one line each; VTK's console chatter would break that.
+  vtkObject::GlobalWarningDisplayOff();
+  return vp::cli::RunProgram(Describe(), argc, argv, Run);
+}

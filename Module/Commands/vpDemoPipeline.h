@@ -1,0 +1,46 @@
+#ifndef vpDemoPipeline_h
+#define vpDemoPipeline_h
+
+#include "vpDemoTrajectory.h"
+
+#include <nlohmann/json.hpp>
+
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace vp
+{
+/// What the demo produced, for its terminal table and for the self-test's assertions.
+struct DemoReport
+{
+  std::string OutDir;
+  std::vector<std::pair<std::string, double>> StageSeconds; ///< in the order they ran
+  std::string DicomFolder;                                  ///< one series per structure
+  std::map<std::string, std::string> ModelFiles;            ///< class -> STL (liver included)
+  std::string ScalpelFile;
+  std::string PosesFile;
+  LiverPhantom Phantom;     ///< as generated (its analytic centrelines included)
+  DemoTrajectory Trajectory; ///< the designed path and its key points
+  std::string Method; ///< "both" (z-buffer checked by exact) or "exact" without a Vulkan device
+  std::string MethodNote;
+  int Frames = 0;
+  std::vector<std::string> Screenshots;
+  std::string ScreenshotProblem; ///< why there are none, when there are none
+};
+
+/// The demo's pipeline, end to end, into outDir: the procedural liver phantom written as DICOM
+/// series; vessel models built from those series by the `models` command; the built-in CUSA
+/// handpiece; the demo trajectory as a pose file; the `track` command with both engines on every
+/// frame (frames.csv, summary.json, distance.png); screenshots of the key frames rendered
+/// off-screen (a virtual display is started when there is none). Progress goes to stderr and the
+/// commands' own reports to stdout. Throws vp::InputError when something cannot be written.
+DemoReport RunDemoPipeline(const std::string& outDir, bool screenshots);
+
+/// The demo's terminal table: stage times, each class's closest approach, the level changes,
+/// the engines' agreement and where the outputs are.
+void PrintDemoTable(const DemoReport& report, const nlohmann::json& summary);
+} // namespace vp
+
+#endif

@@ -1,0 +1,289 @@
+// vesselproximity selftest: the module self-test, as Slicer modules carry one. Runs the demo's
+// pipeline end to end and asserts what must hold of its results.
+#include "vpArguments.h"
+#include "vpCommands.h"
+#include "vpDangerLevels.h"
+#include "vpDemoPipeline.h"
+#include "vpDemoTrajectory.h"
+#include "vpInputError.h"
+#include "vpJsonFile.h"
+#include "vpNumericCsv.h"
+#include "vpPoseFile.h"
+#include "vpScalpelLoader.h"
+#include "vtkScalpelModel.h"
+#include "vtkVesselMeshReader.h"
+#include "vtkVesselProximityLogic.h"
+
+#include <vtkCallbackCommand.h>
+#include <vtkCellArray.h>
+#include <vtkNew.h>
+#include <vtkPNGReader.h>
+#include <vtkImageData.h>
+#include <vtkPolyData.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <sstream>
+#include <unistd.h>
+
+namespace vp
+{
+namespace
+{
+const char* Usage = "usage: vesselproximity selftest [-o OUTDIR] [--no-screenshots]\n"
+                    "  Runs the demo's pipeline into OUTDIR (default: a temporary folder, removed on success) and\n"
+                    "  checks it: models exist and are closed, both engines agree within the error bound, the\n"
+                    "  z-buffer never understates the danger, the danger levels change in the expected order,\n"
+                    "  the reports and screenshots are there. Prints PASS or FAIL per check; exit 0 when all pass.\n";
+
+class Checks
+{
+public:
+  void Check(const std::string& name, bool ok, const std::string& detail)
+  {
+    std::printf("%s  %s: %s\n", ok ? "PASS" : "FAIL", name.c_str(), detail.c_str());
+    std::fflush(stdout);
+    this->Failed += ok ? 0 : 1;
+  }
+  void Skip(const std::string& name, const std::string& why) { std::printf("SKIP  %s: %s\n", name.c_str(), why.c_str()); }
+  int Failed = 0;
+};
+
+/// Edges used by other than exactly two triangles: 0 for a closed, manifold surface.
+long long OpenEdges(vtkPolyData* mesh)
+{
+  std::map<std::pair<vtkIdType, vtkIdType>, int> uses;
+  vtkIdType n = 0;
+  const vtkIdType* ids = nullptr;
+  vtkCellArray* polys = mesh->GetPolys();
+  for (polys->InitTraversal(); polys->GetNextCell(n, ids);)
+  {
+    for (vtkIdType k = 0; k < n; ++k)
+    {
+      vtkIdType a = ids[k], b = ids[(k + 1) % n];
+      ++uses[{ std::min(a, b), std::max(a, b) }];
+    }
+  }
+  long long open = 0;
+  for (const auto& [edge, count] : uses)
+  {
+    open += count != 2 ? 1 : 0;
+  }
+  return open;
+}
+
+std::string Text(double value)
+{
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.3f", value);
+  return text;
+}
+
+/// The exact engine's level at every frame and its changes, computed here, independently of the
+/// track command's run.
+std::vector<DangerLevel> ExactLevels(const DemoReport& report, std::vector<DangerLevel>& changes)
+{
+  vtkNew<vtkVesselProximityLogic> logic;
+  for (const char* c : { "portal_vein", "hepatic_artery", "hepatic_vein" })
+  {
+    vtkNew<vtkVesselMeshReader> reader;
+    reader->SetFileName(report.ModelFiles.at(c));
+    reader->Read();
+    logic->AddVessel(c, reader->GetOutput());
+  }
+  logic->SetScalpel(LoadScalpel(report.ScalpelFile, {}));
+  logic->SetComputeSurfaceDistance(false);
+  vtkNew<vtkCallbackCommand> onChange;
+  onChange->SetClientData(&changes);
+  onChange->SetCallback([](vtkObject*, unsigned long, void* list, void* change) {
+    static_cast<std::vector<DangerLevel>*>(list)->push_back(static_cast<DangerLevelChange*>(change)->To);
+  });
+  logic->GetTrackingLogic()->AddObserver(vtkScalpelTrackingLogic::DangerLevelChangedEvent, onChange);
+  std::vector<DangerLevel> levels;
+  for (const TrackedPose& pose : ReadPoseFile(report.PosesFile))
+  {
+    levels.push_back(logic->ProcessPose(pose).Level);
+  }
+  return levels;
+}
+
+std::string Names(const std::vector<DangerLevel>& levels)
+{
+  std::string out;
+  for (DangerLevel l : levels)
+  {
+    out += (out.empty() ? "" : " ") + std::string(DangerLevelName(l));
+  }
+  return out;
+}
+
+/// The danger_level column of frames.csv.
+std::vector<std::string> CsvLevels(const std::string& file)
+{
+  std::ifstream in(file);
+  std::string line;
+  std::getline(in, line);
+  std::vector<std::string> header;
+  std::stringstream h(line);
+  for (std::string cell; std::getline(h, cell, ',');)
+  {
+    header.push_back(cell);
+  }
+  const auto column = std::find(header.begin(), header.end(), "danger_level") - header.begin();
+  std::vector<std::string> levels;
+  while (std::getline(in, line))
+  {
+    std::stringstream row(line);
+    std::string cell;
+    for (long k = 0; k <= column && std::getline(row, cell, ','); ++k)
+    {
+    }
+    levels.push_back(cell);
+  }
+  return levels;
+}
+
+int LevelOfName(const std::string& name)
+{
+  for (int l = 0; l < NumberOfDangerLevels; ++l)
+  {
+    if (name == DangerLevelName(static_cast<DangerLevel>(l)))
+    {
+      return l;
+    }
+  }
+  return -1;
+}
+} // namespace
+
+int RunSelfTestCommand(const std::vector<std::string>& argv)
+{
+  if (WantsHelp(argv))
+  {
+    std::cout << Usage;
+    return 0;
+  }
+  const Arguments args(argv, { "-o" }, { "--no-screenshots" });
+  if (!args.Positional().empty())
+  {
+    throw InputError(args.Positional()[0], "unexpected argument (see vesselproximity selftest --help)");
+  }
+  const bool temporary = !args.Has("-o");
+  const std::string outDir = temporary
+    ? (std::filesystem::temp_directory_path() / ("vesselproximity-selftest-" + std::to_string(getpid()))).string()
+    : args.Get("-o");
+  const DemoReport report = RunDemoPipeline(outDir, !args.Has("--no-screenshots"));
+  const nlohmann::json summary = ReadJsonFile(outDir + "/summary.json", "the track summary");
+  PrintDemoTable(report, summary);
+  std::printf("\nself-test:\n");
+  Checks checks;
+
+  for (const auto& [name, file] : report.ModelFiles)
+  {
+    vtkNew<vtkVesselMeshReader> reader;
+    reader->SetFileName(file);
+    reader->Read();
+    const long long open = OpenEdges(reader->GetOutput());
+    checks.Check("model " + name, open == 0 && reader->GetOutput()->GetNumberOfPolys() > 100,
+      std::to_string(reader->GetOutput()->GetNumberOfPolys()) + " triangles, " + std::to_string(open) + " open edges");
+  }
+  const int frames = summary.at("frames").get<int>();
+  checks.Check("frames", frames == report.Frames && CsvLevels(outDir + "/frames.csv").size() == static_cast<std::size_t>(frames),
+    std::to_string(frames) + " in summary.json and frames.csv, " + std::to_string(report.Frames) + " poses");
+
+  // The exact engine's levels, recomputed here, must follow the trajectory's design.
+  std::vector<DangerLevel> changes;
+  const std::vector<DangerLevel> exactLevels = ExactLevels(report, changes);
+  // The design's levels, from the analytic vessels the phantom was drawn from: the engine on the
+  // surfaces built from its voxels must tell the same story.
+  std::vector<DangerLevel> expected;
+  DangerLevel previous = DangerLevel::Safe;
+  for (const TrackedPose& pose : report.Trajectory.Poses)
+  {
+    const auto& m = pose.ModelToWorld; // the tip is the model's origin
+    const DangerLevel level = AnalyticProximityAt(report.Phantom, { m[3], m[7], m[11] }).Level;
+    if (level != previous)
+    {
+      expected.push_back(level);
+      previous = level;
+    }
+  }
+  checks.Check("level order", changes == expected && expected.size() >= 8,
+    "exact engine on the built models [" + Names(changes) + "], analytic design [" + Names(expected) + "]");
+
+  if (report.Method == "both")
+  {
+    const auto& comparison = summary.at("comparison");
+    const double bound = summary.at("error_bound_mm").get<double>();
+    const double worst = comparison.at("max_abs_difference_mm").get<double>();
+    checks.Check("engines agree", comparison.at("outside_bound").get<int>() == 0 && worst <= bound + 1e-9,
+      "largest |z-buffer - exact| " + Text(worst) + " mm within the bound " + Text(bound) + " mm, " +
+        std::to_string(comparison.at("outside_bound").get<int>()) + " answers outside it");
+    // The contract's consequence for the surgeon: the z-buffer's level is never below the exact one.
+    const std::vector<std::string> zLevels = CsvLevels(outDir + "/frames.csv");
+    int understated = 0, overstated = 0;
+    for (std::size_t i = 0; i < zLevels.size() && i < exactLevels.size(); ++i)
+    {
+      const int z = LevelOfName(zLevels[i]), e = static_cast<int>(exactLevels[i]);
+      understated += z < e ? 1 : 0;
+      overstated += z > e ? 1 : 0;
+    }
+    checks.Check("danger never understated", understated == 0,
+      std::to_string(understated) + " frames below the exact level, " + std::to_string(overstated) +
+        " above it (allowed: the bound is subtracted)");
+  }
+  else
+  {
+    checks.Skip("engines agree", report.MethodNote);
+  }
+
+  const auto& time = summary.at("time_in_level");
+  std::string times;
+  bool everyLevel = true;
+  for (int l = 0; l < NumberOfDangerLevels; ++l)
+  {
+    const double s = time.at(DangerLevelName(static_cast<DangerLevel>(l))).at("time_s").get<double>();
+    everyLevel = everyLevel && s > 0;
+    times += std::string(times.empty() ? "" : ", ") + DangerLevelName(static_cast<DangerLevel>(l)) + " " + Text(s) + " s";
+  }
+  checks.Check("time at every level", everyLevel, times);
+
+  std::error_code ec;
+  const auto plotBytes = std::filesystem::file_size(outDir + "/distance.png", ec);
+  checks.Check("distance.png", !ec && plotBytes > 10000, ec ? ec.message() : std::to_string(plotBytes) + " bytes");
+
+  if (!args.Has("--no-screenshots") && report.Screenshots.empty())
+  {
+    checks.Check("screenshots", false, report.ScreenshotProblem);
+  }
+  else if (!report.Screenshots.empty())
+  {
+    int blank = 0;
+    for (const std::string& file : report.Screenshots)
+    {
+      vtkNew<vtkPNGReader> png;
+      png->SetFileName(file.c_str());
+      png->Update();
+      double range[2];
+      png->GetOutput()->GetScalarRange(range);
+      blank += range[1] - range[0] < 50 ? 1 : 0;
+    }
+    checks.Check("screenshots", blank == 0,
+      std::to_string(report.Screenshots.size()) + " key frames, " + std::to_string(blank) + " blank");
+  }
+
+  std::printf("%s: %d check(s) failed\n", checks.Failed ? "SELF-TEST FAILED" : "self-test passed", checks.Failed);
+  if (temporary && !checks.Failed)
+  {
+    std::filesystem::remove_all(outDir, ec);
+  }
+  else
+  {
+    std::printf("outputs kept in %s\n", outDir.c_str());
+  }
+  return checks.Failed ? 1 : 0;
+}
+} // namespace vp

@@ -1,0 +1,229 @@
+// vesselproximity view: the module's 3D view in a window. The scalpel moves with the mouse and
+// the keyboard, or replays recorded poses; the overlays follow every move.
+#include "vpArguments.h"
+#include "vpCommandSupport.h"
+#include "vpCommands.h"
+#include "vpDangerLevels.h"
+#include "vpDefaultScalpel.h"
+#include "vpEngineOptions.h"
+#include "vpInputError.h"
+#include "vpPointCsv.h"
+#include "vpPoseFile.h"
+#include "vpScalpelLoader.h"
+#include "vpVirtualDisplay.h"
+#include "vtkScalpelModel.h"
+#include "vtkVesselMeshReader.h"
+#include "vtkVesselProximityLogic.h"
+#include "vtkVesselProximityView.h"
+
+#include <vtkNew.h>
+#include <vtkPolyData.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <unistd.h>
+
+namespace vp
+{
+namespace
+{
+const char* Usage =
+  "usage: vesselproximity view --vessels CLASS=FILE[,CLASS=FILE...] [--scalpel FILE.stl [--tip X,Y,Z] [--axis X,Y,Z]]\n"
+  "         [--poses FILE] [--pose N] [--liver FILE] [--method exact|zbuffer] [--danger-mm C,W,D] [--no-surface]\n"
+  "         [--size WxH] [--keys K,K,...] [--screenshot FILE.png] [engine options]\n"
+  "  Opens the 3D view: vessels coloured by class, the scalpel coloured by danger level, a line to\n"
+  "  the closest vessel point, a readout per class and the distance over time.\n"
+  "  --scalpel: default the built-in CUSA handpiece. Without --poses it starts 30 mm anterior of\n"
+  "    the vessels' centre, pointing posterior (into the patient).\n"
+  "  --poses: recorded poses to replay (space plays, n/b step); --pose N shows pose N first.\n"
+  "  --keys: keys pressed before the window opens (VTK key names: Left, Up, Prior, i, n, ...).\n"
+  "  --screenshot: render off-screen, save the PNG and exit (no window; Xvfb is started when\n"
+  "    there is no display).\n";
+
+std::pair<int, int> ParseSize(const std::string& text)
+{
+  int w = 0, h = 0;
+  char x = 0, extra = 0;
+  if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x' || w < 64 || h < 64 || w > 8192 || h > 8192)
+  {
+    throw InputError("--size", "expected WIDTHxHEIGHT in pixels (64..8192), got '" + text + "'");
+  }
+  return { w, h };
+}
+
+std::vector<std::string> SplitKeys(const std::string& text)
+{
+  std::vector<std::string> keys;
+  std::size_t start = 0;
+  while (start <= text.size())
+  {
+    const std::size_t end = std::min(text.find(',', start), text.size());
+    if (end > start)
+    {
+      keys.push_back(text.substr(start, end - start));
+    }
+    start = end + 1;
+  }
+  return keys;
+}
+
+/// Tip 30 mm anterior (-y in LPS) of the vessels' centre, the model's +z axis turned to +y: the
+/// scalpel points into the patient from the front.
+std::array<double, 16> StartingPose(vtkVesselProximityLogic* logic)
+{
+  double bounds[6] = { 0, 0, 0, 0, 0, 0 };
+  for (int i = 0; i < logic->GetNumberOfVessels(); ++i)
+  {
+    double b[6];
+    logic->GetVesselSurface(i)->GetBounds(b);
+    for (int a = 0; a < 3; ++a)
+    {
+      bounds[2 * a] = i == 0 ? b[2 * a] : std::min(bounds[2 * a], b[2 * a]);
+      bounds[2 * a + 1] = i == 0 ? b[2 * a + 1] : std::max(bounds[2 * a + 1], b[2 * a + 1]);
+    }
+  }
+  const double cx = 0.5 * (bounds[0] + bounds[1]), cy = bounds[2] - 30.0, cz = 0.5 * (bounds[4] + bounds[5]);
+  return { 1, 0, 0, cx, 0, 0, 1, cy, 0, -1, 0, cz, 0, 0, 0, 1 };
+}
+} // namespace
+
+int RunViewCommand(const std::vector<std::string>& argv)
+{
+  if (WantsHelp(argv))
+  {
+    std::cout << Usage << EngineOptionsUsage << vtkVesselProximityView::KeyHelp();
+    return 0;
+  }
+  std::set<std::string> options = EngineValueOptions();
+  options.insert({ "--vessels", "--scalpel", "--tip", "--axis", "--poses", "--pose", "--liver", "--danger-mm", "--size",
+    "--keys", "--screenshot" });
+  const Arguments args(argv, options, { "--no-surface" });
+  if (!args.Positional().empty())
+  {
+    throw InputError(args.Positional()[0], "unexpected argument (see vesselproximity view --help)");
+  }
+  if (!args.Has("--vessels"))
+  {
+    throw InputError("--vessels", "is required (see vesselproximity view --help)");
+  }
+  const std::string method = args.Get("--method", "exact");
+  if (method != "exact" && method != "zbuffer")
+  {
+    throw InputError("--method", "expected exact or zbuffer for the view, got '" + method + "'");
+  }
+  DangerThresholds thresholds;
+  if (args.Has("--danger-mm"))
+  {
+    const auto d = ParsePoint(args.Get("--danger-mm"), "--danger-mm");
+    thresholds = { d[0], d[1], d[2] };
+  }
+  thresholds.Validate("--danger-mm");
+  ScalpelTipDefinition tip;
+  if (args.Has("--tip"))
+  {
+    tip.TipMm = ParsePoint(args.Get("--tip"), "--tip");
+  }
+  if (args.Has("--axis"))
+  {
+    tip.Axis = ParsePoint(args.Get("--axis"), "--axis");
+  }
+  const auto size = ParseSize(args.Get("--size", "1280x800"));
+  const std::vector<std::string> keys = SplitKeys(args.Get("--keys"));
+  const std::string screenshot = args.Get("--screenshot");
+
+  // Everything that can be refused is read before a window opens.
+  std::vector<TrackedPose> poses;
+  if (args.Has("--poses"))
+  {
+    poses = ReadPoseFile(args.Get("--poses"));
+  }
+  const int first = args.GetInteger("--pose", 0);
+  if (args.Has("--pose") && (first < 0 || first >= static_cast<int>(poses.size())))
+  {
+    throw InputError("--pose", "no pose " + std::to_string(first) + " (the pose file has " + std::to_string(poses.size()) + ")");
+  }
+  auto engine = MakeDistanceEngine(method, args);
+  const auto meshes = LoadVesselMeshes(ParsePairs(args.Get("--vessels"), "--vessels"));
+  vtkSmartPointer<vtkPolyData> liver;
+  if (args.Has("--liver"))
+  {
+    vtkNew<vtkVesselMeshReader> reader;
+    reader->SetFileName(args.Get("--liver"));
+    reader->Read();
+    liver = reader->GetOutput();
+  }
+  vtkSmartPointer<vtkScalpelModel> scalpel;
+  if (args.Has("--scalpel"))
+  {
+    scalpel = LoadScalpel(args.Get("--scalpel"), tip);
+  }
+  else
+  {
+    const std::filesystem::path folder = std::filesystem::temp_directory_path() / ("vesselproximity-view-" + std::to_string(getpid()));
+    scalpel = LoadScalpel(WriteDefaultScalpel(folder.string()), tip);
+    std::error_code ec;
+    std::filesystem::remove_all(folder, ec);
+  }
+
+  vtkNew<vtkVesselProximityLogic> logic;
+  logic->SetDistanceEngine(engine);
+  logic->SetScalpel(scalpel);
+  logic->SetDangerThresholds(thresholds);
+  logic->SetComputeSurfaceDistance(!args.Has("--no-surface"));
+  for (const auto& m : meshes)
+  {
+    logic->AddVessel(m.ClassName, m.Mesh);
+  }
+  logic->Build();
+
+  const char* displayName = std::getenv("DISPLAY");
+  if (screenshot.empty() && !(displayName && *displayName))
+  {
+    throw InputError("view", "no display to open a window on (DISPLAY is unset); use --screenshot for an image");
+  }
+  VirtualDisplay display;
+  if (!screenshot.empty() && !display.Ensure())
+  {
+    throw InputError("--screenshot", display.GetProblem());
+  }
+  vtkNew<vtkVesselProximityView> view;
+  view->SetOffScreen(!screenshot.empty());
+  view->SetSizePx(size.first, size.second);
+  view->SetLogic(logic);
+  if (liver)
+  {
+    view->SetLiverSurface(liver);
+  }
+  if (!poses.empty())
+  {
+    view->SetPoses(poses);
+    for (int i = 0; i <= first; ++i)
+    {
+      view->ShowPose(i); // the plot shows the way there
+    }
+  }
+  else
+  {
+    view->SetScalpelPose(StartingPose(logic));
+  }
+  view->PressKeys(keys);
+  if (!screenshot.empty())
+  {
+    view->SaveScreenshot(screenshot);
+    const vp::TrackedFrame& f = logic->GetLastFrame();
+    const int nearest = f.Proximity.NearestIndex();
+    std::cout << "wrote " << screenshot << ": tip " << f.TipMm[0] << ", " << f.TipMm[1] << ", " << f.TipMm[2] << " mm, level "
+              << DangerLevelName(f.Level);
+    if (nearest >= 0)
+    {
+      std::cout << ", nearest " << f.Proximity.Classes[nearest].ClassName << " " << f.Proximity.Classes[nearest].DistanceMm << " mm";
+    }
+    std::cout << "\n";
+    return 0;
+  }
+  std::cout << vtkVesselProximityView::KeyHelp();
+  view->Start();
+  return 0;
+}
+} // namespace vp

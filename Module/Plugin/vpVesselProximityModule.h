@@ -1,0 +1,32 @@
+#ifndef vpVesselProximityModule_h
+#define vpVesselProximityModule_h
+
+#include <vtkSmartPointer.h>
+
+#include <string>
+#include <vector>
+
+class vtkVesselProximityLogic;
+class vtkVesselProximityOverlays;
+
+/// The VesselProximity loadable module, as qSlicerVesselProximityModule would be in Slicer: it
+/// declares the module's metadata and creates its logic and its widget representation, nothing
+/// more. The computation lives in the logic (Logic/), the drawing in the overlays (Widgets/),
+/// the commands in Module/Commands; the C entry point (vpVesselProximityModulePlugin.cxx) hands
+/// all of it to the host.
+class vpVesselProximityModule
+{
+public:
+  std::string Name() const { return "VesselProximity"; }
+  std::string Title() const { return "Vessel Proximity"; }
+  std::vector<std::string> Categories() const { return { "IGT" }; }
+  std::vector<std::string> Contributors() const;
+  std::string HelpText() const;
+  std::string AcknowledgementText() const;
+  std::string Version() const;
+
+  vtkSmartPointer<vtkVesselProximityLogic> CreateLogic() const;
+  vtkSmartPointer<vtkVesselProximityOverlays> CreateWidgetRepresentation() const;
+};
+
+#endif

@@ -1,0 +1,303 @@
+// The overlays driven by the logic, and their pictures: the module's widget representation on
+// the built-in phantom (torus portal vein, cylinder artery, sphere hepatic vein) with the
+// built-in CUSA handpiece, at poses whose answers are known analytically.
+#include "vpBuiltInPhantom.h"
+#include "vpDangerLevels.h"
+#include "vpDefaultScalpel.h"
+#include "vpImageComparison.h"
+#include "vpScalpelLoader.h"
+#include "vpTestSupport.h"
+#include "vpVirtualDisplay.h"
+#include "vtkClosestPointLineRepresentation.h"
+#include "vtkDistancePlotRepresentation.h"
+#include "vtkProximityReadoutRepresentation.h"
+#include "vtkScalpelDangerRepresentation.h"
+#include "vtkScalpelModel.h"
+#include "vtkVesselModelsRepresentation.h"
+#include "vtkVesselProximityLogic.h"
+#include "vtkVesselProximityOverlays.h"
+#include "vtkVesselProximityView.h"
+#include "vtkZBufferVesselDistance.h"
+#include "vpVulkanContext.h"
+#include "vpVesselLabelTable.h"
+
+#include <vtkActor.h>
+#include <vtkCamera.h>
+#include <vtkLineSource.h>
+#include <vtkNew.h>
+#include <vtkPolyData.h>
+#include <vtkProperty.h>
+#include <vtkRenderer.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+
+namespace
+{
+/// The scalpel pointing down (model +z turned onto world -z) with its tip at (0, -30, z), above
+/// the front of the torus's tube (ring 30, tube 6): the distance to the portal vein is |z| - 6,
+/// inside below z = 6. The artery (along x at y = 0, z = 25) and the hepatic vein (at 45, 30,
+/// -10) stay more than 27 mm away.
+std::array<double, 16> TipDownAt(double z)
+{
+  return { 1, 0, 0, 0, 0, -1, 0, -30, 0, 0, -1, z, 0, 0, 0, 1 };
+}
+
+vtkSmartPointer<vtkVesselProximityLogic> MakePhantomLogic(const std::string& tmp)
+{
+  auto logic = vtkSmartPointer<vtkVesselProximityLogic>::New();
+  for (const auto& vessel : vp::MakeBuiltInVessels())
+  {
+    logic->AddVessel(vessel.first, vessel.second);
+  }
+  logic->SetScalpel(vp::LoadScalpel(vp::WriteDefaultScalpel(tmp), {}));
+  logic->SetComputeSurfaceDistance(false);
+  return logic;
+}
+
+vp::TrackedPose Pose(double timeS, const std::array<double, 16>& m)
+{
+  vp::TrackedPose pose;
+  pose.TimeS = timeS;
+  pose.ModelToWorld = m;
+  return pose;
+}
+
+int ClassIndex(vtkVesselProximityLogic* logic, const std::string& name)
+{
+  for (int i = 0; i < logic->GetNumberOfVessels(); ++i)
+  {
+    if (logic->GetVesselClassName(i) == name)
+    {
+      return i;
+    }
+  }
+  return -1;
+}
+} // namespace
+
+TEST(Overlays, FollowTheLogicAndRecolourOnlyOnLevelChanges)
+{
+  const std::string tmp = vp::test::MakeTempDir("overlays");
+  auto logic = MakePhantomLogic(tmp);
+  vtkNew<vtkRenderer> renderer;
+  vtkNew<vtkVesselProximityOverlays> overlays;
+  overlays->SetRenderer(renderer);
+  overlays->SetLogic(logic);
+
+  // Vessel actors in the label table's colours.
+  const vp::VesselLabelTable table = vp::VesselLabelTable::Default();
+  for (const char* c : { "portal_vein", "hepatic_artery", "hepatic_vein" })
+  {
+    vtkActor* actor = overlays->GetVessels()->GetActor(c);
+    ASSERT_NE(actor, nullptr) << c;
+    const double* rgb = actor->GetProperty()->GetColor();
+    for (int k = 0; k < 3; ++k)
+    {
+      EXPECT_NEAR(rgb[k], table.Color(c)[k], 1e-12) << c;
+    }
+  }
+
+  // Straight down onto the torus tube, from 21 mm above its centre line to 1 mm above it.
+  const int portal = ClassIndex(logic, "portal_vein");
+  int changes = 0;
+  vp::DangerLevel previous = vp::DangerLevel::Safe;
+  const int colourChangesBefore = overlays->GetScalpel()->GetNumberOfColourChanges();
+  for (int i = 0; i <= 40; ++i)
+  {
+    const double z = 21.0 - 0.5 * i; // 21 mm down to 1 mm: inside the tube below z = 6
+    const vp::TrackedFrame& f = logic->ProcessPose(Pose(0.02 * i, TipDownAt(z)));
+    changes += f.Level != previous ? 1 : 0;
+    previous = f.Level;
+    // The scalpel wears the colour of the frame's level.
+    const auto expected = vp::DangerLevelColour(f.Level);
+    const double* rgb = overlays->GetScalpel()->GetActor()->GetProperty()->GetColor();
+    for (int k = 0; k < 3; ++k)
+    {
+      EXPECT_NEAR(rgb[k], expected[k] / 255.0, 1e-12) << "frame " << i;
+    }
+    // Its pose is the actor's user matrix; the surface is untouched.
+    const double* tipPoint = f.TipMm;
+    EXPECT_NEAR(tipPoint[2], z, 1e-9);
+    // The line runs from the tip to the portal vein's closest point, labelled with the distance.
+    const vp::ClassProximity& p = f.Proximity.Classes[portal];
+    ASSERT_TRUE(p.InRange);
+    EXPECT_NEAR(p.DistanceMm, std::abs(z - 6.0), 0.05) << "frame " << i;
+    ASSERT_TRUE(overlays->GetClosestPointLine()->IsShown());
+    char label[64];
+    std::snprintf(label, sizeof(label), z < 6.0 ? "%.1f mm inside" : "%.1f mm", p.DistanceMm);
+    EXPECT_EQ(overlays->GetClosestPointLine()->GetLabelText(), label);
+    // The readout's portal line carries the same number.
+    char number[32];
+    std::snprintf(number, sizeof(number), "%.1f mm", p.DistanceMm);
+    EXPECT_NE(overlays->GetReadout()->GetLineText(portal + 1).find(number), std::string::npos)
+      << overlays->GetReadout()->GetLineText(portal + 1);
+  }
+  // Safe (21 -> 15 mm away), caution, warning, danger, breach: four changes, four recolours.
+  EXPECT_EQ(changes, 4);
+  EXPECT_EQ(previous, vp::DangerLevel::Breach);
+  EXPECT_EQ(overlays->GetScalpel()->GetNumberOfColourChanges() - colourChangesBefore, 4);
+  EXPECT_EQ(overlays->GetReadout()->GetLineText(0), "BREACH");
+  EXPECT_EQ(overlays->GetPlot()->GetNumberOfSamples(), 41);
+  // 41 poses, one build: nothing is rebuilt because the scalpel moved.
+  EXPECT_EQ(logic->GetNumberOfBuilds(), 1);
+  std::filesystem::remove_all(tmp);
+}
+
+TEST(Overlays, ConfigurableColoursAndThresholds)
+{
+  const std::string tmp = vp::test::MakeTempDir("overlays_config");
+  auto logic = MakePhantomLogic(tmp);
+  logic->SetDangerThresholds({ 20.0, 12.0, 8.0 });
+  vtkNew<vtkVesselProximityOverlays> overlays;
+  overlays->SetLogic(logic);
+  overlays->GetScalpel()->SetLevelColour(vp::DangerLevel::Warning, { 255, 200, 0 });
+  // 10 mm from the tube: a warning with these thresholds (caution with the defaults), drawn in
+  // the colour set for it.
+  const vp::TrackedFrame& f = logic->ProcessPose(Pose(0.0, TipDownAt(16.0)));
+  EXPECT_EQ(f.Level, vp::DangerLevel::Warning);
+  const double* rgb = overlays->GetScalpel()->GetActor()->GetProperty()->GetColor();
+  EXPECT_NEAR(rgb[0], 1.0, 1e-12);
+  EXPECT_NEAR(rgb[1], 200 / 255.0, 1e-12);
+  EXPECT_NEAR(rgb[2], 0.0, 1e-12);
+  std::filesystem::remove_all(tmp);
+}
+
+TEST(Overlays, ZBufferLayersAreNotRebuiltWhenTheScalpelMoves)
+{
+  try
+  {
+    vp::VulkanContext probe;
+  }
+  catch (const vp::DeviceError& e)
+  {
+    GTEST_SKIP() << "no Vulkan device: " << e.what();
+  }
+  const std::string tmp = vp::test::MakeTempDir("overlays_zbuffer");
+  auto logic = MakePhantomLogic(tmp);
+  vtkNew<vtkZBufferVesselDistance> zbuffer;
+  zbuffer->SetBoxMode(vtkZBufferVesselDistance::FixedAroundVessels);
+  logic->SetDistanceEngine(zbuffer);
+  vtkNew<vtkVesselProximityOverlays> overlays;
+  overlays->SetLogic(logic);
+  logic->ProcessPose(Pose(0.0, TipDownAt(20.0)));
+  const int renders = zbuffer->GetNumberOfRenders();
+  for (int i = 1; i <= 20; ++i)
+  {
+    logic->ProcessPose(Pose(0.02 * i, TipDownAt(20.0 - 0.5 * i)));
+  }
+  EXPECT_EQ(zbuffer->GetNumberOfRenders(), renders);
+  EXPECT_EQ(logic->GetNumberOfBuilds(), 1);
+  EXPECT_EQ(overlays->GetPlot()->GetNumberOfSamples(), 21);
+  std::filesystem::remove_all(tmp);
+}
+
+// ---- image regression ------------------------------------------------------------------------
+
+namespace
+{
+struct Shot
+{
+  const char* Name;
+  double Z; // tip height (see TipDownAt)
+};
+
+// Names the parameter in test listings (ctest shows it) instead of its bytes.
+void PrintTo(const Shot& shot, std::ostream* os)
+{
+  *os << shot.Name;
+}
+
+/// Renders the overlays at a fixed pose, after the same approach, in a fixed small window.
+std::string RenderShot(const std::string& tmp, const Shot& shot)
+{
+  auto logic = MakePhantomLogic(tmp);
+  vtkNew<vtkVesselProximityView> view;
+  view->SetOffScreen(true);
+  view->SetSizePx(960, 600);
+  view->SetLogic(logic);
+  // From anterior and 40 degrees above: the torus shows as a ring, the scalpel comes down on it.
+  view->GetRenderer()->GetActiveCamera()->Elevation(40);
+  view->GetRenderer()->GetActiveCamera()->OrthogonalizeViewUp();
+  view->GetRenderer()->ResetCameraClippingRange();
+  // The approach from 20 mm above, 0.5 mm per frame, so the plot has a history.
+  std::vector<vp::TrackedPose> poses;
+  for (int i = 0; 20.0 - 0.5 * i >= shot.Z - 1e-9; ++i)
+  {
+    poses.push_back(Pose(0.02 * i, TipDownAt(20.0 - 0.5 * i)));
+  }
+  view->SetPoses(poses);
+  for (int i = 0; i < view->GetNumberOfPoses(); ++i)
+  {
+    view->ShowPose(i);
+  }
+  const std::string file = tmp + "/" + shot.Name + ".png";
+  view->SaveScreenshot(file);
+  return file;
+}
+
+std::string BaselineDir()
+{
+  return std::string(VP_SOURCE_DIR) + "/Testing/Data/Baseline";
+}
+} // namespace
+
+class OverlayImages : public ::testing::TestWithParam<Shot>
+{
+protected:
+  void SetUp() override
+  {
+    if (!this->Display.Ensure())
+    {
+      GTEST_SKIP() << "no display for rendering: " << this->Display.GetProblem();
+    }
+  }
+  vp::VirtualDisplay Display;
+};
+
+TEST_P(OverlayImages, MatchTheBaseline)
+{
+  const Shot shot = GetParam();
+  const std::string tmp = vp::test::MakeTempDir(std::string("image_") + shot.Name);
+  const std::string actual = RenderShot(tmp, shot);
+  const std::string baseline = BaselineDir() + "/overlays_" + shot.Name + ".png";
+  if (std::getenv("VP_UPDATE_BASELINES"))
+  {
+    std::filesystem::copy_file(actual, baseline, std::filesystem::copy_options::overwrite_existing);
+    GTEST_SKIP() << "baseline written: " << baseline;
+  }
+  const vp::ImageDifference d = vp::CompareImages(actual, baseline, tmp + "/" + shot.Name + "_difference.png");
+  EXPECT_TRUE(d.SameSize) << actual << " vs " << baseline;
+  // Tolerance: antialiased edges and text may move by a pixel between GL drivers; a changed
+  // colour, a missing actor or a moved overlay changes far more than 0.5% of the pixels.
+  EXPECT_LT(d.FractionDifferent, 0.005) << "actual " << actual << ", difference image beside it";
+  EXPECT_LT(d.MeanAbsDifference, 1.0) << actual;
+  if (!HasFailure())
+  {
+    std::filesystem::remove_all(tmp);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Poses, OverlayImages,
+  ::testing::Values(Shot{ "safe", 17.0 }, Shot{ "warning", 10.0 }, Shot{ "danger", 7.5 }, Shot{ "breach", 5.0 }),
+  [](const ::testing::TestParamInfo<Shot>& info) { return std::string(info.param.Name); });
+
+TEST(OverlayImagesComparison, TellsDifferentLevelsApart)
+{
+  vp::VirtualDisplay display;
+  if (!display.Ensure())
+  {
+    GTEST_SKIP() << "no display for rendering: " << display.GetProblem();
+  }
+  // The tolerance above must not let one level's picture pass for another's: the safe scene
+  // against the breach baseline differs in the scalpel's colour, the line and the readouts.
+  const std::string tmp = vp::test::MakeTempDir("image_mismatch");
+  const std::string actual = RenderShot(tmp, Shot{ "safe", 17.0 });
+  const vp::ImageDifference d = vp::CompareImages(actual, BaselineDir() + "/overlays_breach.png", "");
+  ASSERT_TRUE(d.SameSize) << "the breach baseline is missing or of another size";
+  EXPECT_GT(d.FractionDifferent, 0.01);
+  std::filesystem::remove_all(tmp);
+}

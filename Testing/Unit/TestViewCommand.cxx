@@ -1,0 +1,65 @@
+// vesselproximity view, scripted: keys move the scalpel, --screenshot renders off-screen.
+#include "vpTestSupport.h"
+
+#include <vtkImageData.h>
+#include <vtkNew.h>
+#include <vtkPNGReader.h>
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+namespace
+{
+std::string PhantomVessels(const std::string& dir)
+{
+  return "--vessels portal_vein=" + dir + "/portal_vein.stl,hepatic_artery=" + dir + "/hepatic_artery.stl,hepatic_vein=" + dir +
+    "/hepatic_vein.stl";
+}
+} // namespace
+
+TEST(ViewCommand, KeysMoveTheScalpelAndAScreenshotIsWritten)
+{
+  const std::string tmp = vp::test::MakeTempDir("view");
+  ASSERT_EQ(vp::test::RunTool(tmp, "phantom -o " + tmp).ExitCode, 0);
+  // The default start: 30 mm anterior of the vessels' centre, pointing posterior. Five presses
+  // of 'i' advance the tip 5 mm along its axis (+y); Shift is not pressed, so 1 mm each.
+  auto still = vp::test::RunTool(tmp, "view " + PhantomVessels(tmp) + " --size 320x240 --screenshot " + tmp + "/a.png");
+  ASSERT_EQ(still.ExitCode, 0) << still.Err;
+  auto moved = vp::test::RunTool(
+    tmp, "view " + PhantomVessels(tmp) + " --size 320x240 --keys i,i,i,i,i --screenshot " + tmp + "/b.png");
+  ASSERT_EQ(moved.ExitCode, 0) << moved.Err;
+  double a[3], b[3];
+  ASSERT_EQ(std::sscanf(still.Out.c_str(), "wrote %*s tip %lf, %lf, %lf", &a[0], &a[1], &a[2]), 3) << still.Out;
+  ASSERT_EQ(std::sscanf(moved.Out.c_str(), "wrote %*s tip %lf, %lf, %lf", &b[0], &b[1], &b[2]), 3) << moved.Out;
+  EXPECT_NEAR(b[0] - a[0], 0.0, 1e-6);
+  EXPECT_NEAR(b[1] - a[1], 5.0, 1e-6);
+  EXPECT_NEAR(b[2] - a[2], 0.0, 1e-6);
+  vtkNew<vtkPNGReader> png;
+  png->SetFileName((tmp + "/b.png").c_str());
+  png->Update();
+  int dims[3];
+  png->GetOutput()->GetDimensions(dims);
+  EXPECT_EQ(dims[0], 320);
+  EXPECT_EQ(dims[1], 240);
+  std::filesystem::remove_all(tmp);
+}
+
+TEST(ViewCommand, BadInputGivesOneLineAndNoScreenshot)
+{
+  const std::string tmp = vp::test::MakeTempDir("view_bad");
+  ASSERT_EQ(vp::test::RunTool(tmp, "phantom -o " + tmp).ExitCode, 0);
+  for (const std::string& bad : { std::string("--size 10x10"), std::string("--poses ") + tmp + "/missing.csv",
+         std::string("--method brute"), std::string("--danger-mm 2,5,10") })
+  {
+    auto run = vp::test::RunTool(tmp, "view " + PhantomVessels(tmp) + " " + bad + " --screenshot " + tmp + "/x.png");
+    EXPECT_EQ(run.ExitCode, 1) << bad;
+    EXPECT_EQ(std::count(run.Err.begin(), run.Err.end(), '\n'), 1) << bad << ": " << run.Err;
+    EXPECT_FALSE(vp::test::FileExists(tmp + "/x.png")) << bad;
+  }
+  // No display and no --screenshot: the window cannot open, and the message says so.
+  auto run = vp::test::RunTool(tmp, "view " + PhantomVessels(tmp), "env -u DISPLAY");
+  EXPECT_EQ(run.ExitCode, 1);
+  EXPECT_NE(run.Err.find("no display"), std::string::npos) << run.Err;
+  std::filesystem::remove_all(tmp);
+}

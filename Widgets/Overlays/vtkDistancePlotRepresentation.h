@@ -1,0 +1,69 @@
+#ifndef vtkDistancePlotRepresentation_h
+#define vtkDistancePlotRepresentation_h
+
+#include "vpDangerLevels.h"
+#include "vpProximityResult.h"
+
+#include <vtkObject.h>
+#include <vtkSmartPointer.h>
+
+#include <deque>
+#include <string>
+#include <vector>
+
+class vtkActor2D;
+class vtkImageData;
+class vtkImageMapper;
+class vtkRenderer;
+
+/// The distance-over-time plot in the lower right corner of the view: the tip's distance to each
+/// vessel class over the last TimeWindowS seconds, on the danger bands, drawn by the same
+/// rasteriser as the report's distance.png (vp::RenderDistancePlot) so the two look alike.
+/// Redrawn when a frame is added, never when only the camera moves.
+class vtkDistancePlotRepresentation : public vtkObject
+{
+public:
+  static vtkDistancePlotRepresentation* New();
+  vtkTypeMacro(vtkDistancePlotRepresentation, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  void SetClasses(const std::vector<std::string>& names);
+  void SetDangerThresholds(const vp::DangerThresholds& thresholds);
+  /// Seconds of history shown (default 20).
+  vtkSetClampMacro(TimeWindowS, double, 0.1, 1e6);
+  vtkGetMacro(TimeWindowS, double);
+  /// Plot size in pixels (default 480 x 240).
+  void SetSizePx(int width, int height);
+
+  /// Appends a frame's tip distances (out-of-range classes leave a gap) and redraws.
+  void AddFrame(double timeS, const vp::ProximityResult& proximity);
+  void ClearHistory();
+  int GetNumberOfSamples() const { return static_cast<int>(this->Times.size()); }
+  int GetNumberOfRedraws() const { return this->Redraws; }
+  vtkImageData* GetImage() const;
+
+  void AddToRenderer(vtkRenderer* renderer);
+  void RemoveFromRenderer(vtkRenderer* renderer);
+
+protected:
+  vtkDistancePlotRepresentation();
+  ~vtkDistancePlotRepresentation() override;
+
+  std::vector<std::string> ClassNames;
+  std::deque<double> Times;
+  std::vector<std::deque<double>> ValuesMm;
+  vp::DangerThresholds Thresholds;
+  double TimeWindowS = 20.0;
+  int WidthPx = 480;
+  int HeightPx = 240;
+  int Redraws = 0;
+  vtkSmartPointer<vtkImageMapper> Mapper;
+  vtkSmartPointer<vtkActor2D> Actor;
+
+private:
+  vtkDistancePlotRepresentation(const vtkDistancePlotRepresentation&) = delete;
+  void operator=(const vtkDistancePlotRepresentation&) = delete;
+  void Redraw();
+};
+
+#endif

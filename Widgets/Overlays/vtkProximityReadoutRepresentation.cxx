@@ -1,0 +1,168 @@
+#include "vtkProximityReadoutRepresentation.h"
+
+#include <vtkCoordinate.h>
+#include <vtkNew.h>
+#include <vtkObjectFactory.h>
+#include <vtkRenderer.h>
+#include <vtkTextActor.h>
+#include <vtkTextProperty.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+
+vtkStandardNewMacro(vtkProximityReadoutRepresentation);
+
+namespace
+{
+/// "portal_vein" -> "portal vein": the class names are identifiers, the readout is for people.
+std::string Readable(std::string name)
+{
+  std::replace(name.begin(), name.end(), '_', ' ');
+  return name;
+}
+
+std::string Upper(std::string text)
+{
+  for (char& c : text)
+  {
+    c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  }
+  return text;
+}
+} // namespace
+
+vtkProximityReadoutRepresentation::vtkProximityReadoutRepresentation()
+{
+  this->SetClasses({}, {});
+}
+
+vtkProximityReadoutRepresentation::~vtkProximityReadoutRepresentation() = default;
+
+void vtkProximityReadoutRepresentation::SetClasses(
+  const std::vector<std::string>& names, const std::vector<std::array<double, 3>>& colours)
+{
+  for (vtkRenderer* r : this->Renderers)
+  {
+    for (auto& line : this->Lines)
+    {
+      r->RemoveActor2D(line);
+    }
+  }
+  this->ClassNames = names;
+  this->Lines.clear();
+  for (std::size_t i = 0; i <= names.size(); ++i)
+  {
+    auto line = vtkSmartPointer<vtkTextActor>::New();
+    vtkTextProperty* text = line->GetTextProperty();
+    text->SetFontFamilyToCourier(); // columns line up
+    text->SetBold(i == 0);
+    text->SetShadow(true);
+    // Class colours are for surfaces; lifted halfway to white they stay readable on the dark view.
+    const std::array<double, 3> c = i == 0 || i - 1 >= colours.size() ? std::array<double, 3>{ 1, 1, 1 } : colours[i - 1];
+    text->SetColor(0.5 + 0.5 * c[0], 0.5 + 0.5 * c[1], 0.5 + 0.5 * c[2]);
+    line->SetInput(i == 0 ? "no pose yet" : (Readable(names[i - 1]) + ": -").c_str());
+    this->Lines.push_back(line);
+    for (vtkRenderer* r : this->Renderers)
+    {
+      r->AddActor2D(line);
+    }
+  }
+  this->Place();
+  this->Modified();
+}
+
+void vtkProximityReadoutRepresentation::SetFontSize(int points)
+{
+  this->FontSize = points;
+  this->Place();
+  this->Modified();
+}
+
+void vtkProximityReadoutRepresentation::Place()
+{
+  // Each line sits a fixed number of pixels below the viewport's top left corner, whatever the
+  // window size: a display-pixel offset from a normalised-viewport reference point.
+  int downPx = 10 + this->FontSize + 4;
+  for (std::size_t i = 0; i < this->Lines.size(); ++i)
+  {
+    vtkTextActor* line = this->Lines[i];
+    line->GetTextProperty()->SetFontSize(i == 0 ? this->FontSize + 4 : this->FontSize);
+    line->GetTextProperty()->SetJustificationToLeft();
+    line->GetTextProperty()->SetVerticalJustificationToBottom();
+    vtkNew<vtkCoordinate> corner;
+    corner->SetCoordinateSystemToNormalizedViewport();
+    corner->SetValue(0.0, 1.0);
+    line->GetPositionCoordinate()->SetReferenceCoordinate(corner);
+    line->GetPositionCoordinate()->SetCoordinateSystemToDisplay();
+    line->GetPositionCoordinate()->SetValue(12, -downPx);
+    downPx += (i == 0 ? 12 : 6) + this->FontSize;
+  }
+}
+
+void vtkProximityReadoutRepresentation::SetLine(int i, const std::string& text)
+{
+  const char* current = this->Lines[i]->GetInput();
+  if (!current || text != current)
+  {
+    this->Lines[i]->SetInput(text.c_str());
+    ++this->TextUpdates;
+  }
+}
+
+void vtkProximityReadoutRepresentation::ShowFrame(
+  const vp::ProximityResult& proximity, const std::vector<vp::DangerLevel>& classLevels, vp::DangerLevel overall)
+{
+  this->SetLine(0, Upper(vp::DangerLevelName(overall)));
+  for (std::size_t c = 0; c < this->ClassNames.size() && c < proximity.Classes.size(); ++c)
+  {
+    const vp::ClassProximity& p = proximity.Classes[c];
+    char text[160];
+    const std::string name = Readable(this->ClassNames[c]);
+    if (!p.InRange)
+    {
+      std::snprintf(text, sizeof(text), "%-15s    out of range", name.c_str());
+    }
+    else
+    {
+      const bool inside = p.Inside && *p.Inside;
+      std::snprintf(text, sizeof(text), "%-15s %6.1f mm%s  %s", name.c_str(), p.DistanceMm, inside ? " inside" : "",
+        c < classLevels.size() ? vp::DangerLevelName(classLevels[c]) : "");
+    }
+    this->SetLine(static_cast<int>(c) + 1, text);
+  }
+}
+
+std::string vtkProximityReadoutRepresentation::GetLineText(int i) const
+{
+  const char* text = this->Lines[i]->GetInput();
+  return text ? text : "";
+}
+
+void vtkProximityReadoutRepresentation::AddToRenderer(vtkRenderer* renderer)
+{
+  this->Renderers.push_back(renderer);
+  for (auto& line : this->Lines)
+  {
+    renderer->AddActor2D(line);
+  }
+}
+
+void vtkProximityReadoutRepresentation::RemoveFromRenderer(vtkRenderer* renderer)
+{
+  for (auto& line : this->Lines)
+  {
+    renderer->RemoveActor2D(line);
+  }
+  this->Renderers.erase(std::remove(this->Renderers.begin(), this->Renderers.end(), renderer), this->Renderers.end());
+}
+
+void vtkProximityReadoutRepresentation::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  for (int i = 0; i < this->GetNumberOfLines(); ++i)
+  {
+    os << indent << "Line " << i << ": " << this->GetLineText(i) << "\n";
+  }
+  os << indent << "FontSize: " << this->FontSize << "\n" << indent << "NumberOfTextUpdates: " << this->TextUpdates << "\n";
+}

@@ -1,0 +1,60 @@
+#ifndef vtkProximityReadoutRepresentation_h
+#define vtkProximityReadoutRepresentation_h
+
+#include "vpDangerLevels.h"
+#include "vpProximityResult.h"
+
+#include <vtkObject.h>
+#include <vtkSmartPointer.h>
+
+#include <array>
+#include <string>
+#include <vector>
+
+class vtkRenderer;
+class vtkTextActor;
+
+/// The numbers a surgeon reads: one line per vessel class in the upper left corner ("portal vein
+/// 4.2 mm  warning"), in the class's colour, under a headline with the overall level. A line is
+/// re-typeset only when its text changes (GetNumberOfTextUpdates() counts), so a tool resting
+/// still costs nothing.
+class vtkProximityReadoutRepresentation : public vtkObject
+{
+public:
+  static vtkProximityReadoutRepresentation* New();
+  vtkTypeMacro(vtkProximityReadoutRepresentation, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// Declares the classes (in the engine's order) with their display colours (RGB 0..1).
+  void SetClasses(const std::vector<std::string>& names, const std::vector<std::array<double, 3>>& colours);
+  /// Shows a frame's answers: per class distance, inside and level; the overall level heads it.
+  void ShowFrame(const vp::ProximityResult& proximity, const std::vector<vp::DangerLevel>& classLevels,
+    vp::DangerLevel overall);
+  /// The text of line i (0: the headline, then one per class).
+  std::string GetLineText(int i) const;
+  int GetNumberOfLines() const { return static_cast<int>(this->Lines.size()); }
+  int GetNumberOfTextUpdates() const { return this->TextUpdates; }
+  /// Font size in points (default 18).
+  void SetFontSize(int points);
+
+  void AddToRenderer(vtkRenderer* renderer);
+  void RemoveFromRenderer(vtkRenderer* renderer);
+
+protected:
+  vtkProximityReadoutRepresentation();
+  ~vtkProximityReadoutRepresentation() override;
+
+  std::vector<vtkSmartPointer<vtkTextActor>> Lines;
+  std::vector<std::string> ClassNames;
+  std::vector<vtkRenderer*> Renderers;
+  int FontSize = 18;
+  int TextUpdates = 0;
+
+private:
+  vtkProximityReadoutRepresentation(const vtkProximityReadoutRepresentation&) = delete;
+  void operator=(const vtkProximityReadoutRepresentation&) = delete;
+  void SetLine(int i, const std::string& text);
+  void Place();
+};
+
+#endif

@@ -1,0 +1,119 @@
+#include "vtkVesselModelsRepresentation.h"
+
+#include "vpVesselLabelTable.h"
+
+#include <vtkActor.h>
+#include <vtkNew.h>
+#include <vtkObjectFactory.h>
+#include <vtkPolyData.h>
+#include <vtkPolyDataMapper.h>
+#include <vtkProperty.h>
+#include <vtkRenderer.h>
+
+#include <algorithm>
+
+vtkStandardNewMacro(vtkVesselModelsRepresentation);
+
+vtkVesselModelsRepresentation::vtkVesselModelsRepresentation() = default;
+vtkVesselModelsRepresentation::~vtkVesselModelsRepresentation() = default;
+
+void vtkVesselModelsRepresentation::Style(Entry& entry, const std::array<double, 3>& rgb) const
+{
+  vtkProperty* property = entry.Actor->GetProperty();
+  property->SetColor(rgb[0], rgb[1], rgb[2]);
+  property->SetSpecular(0.3);
+  property->SetSpecularPower(20);
+  const bool liver = entry.ClassName == "liver";
+  property->SetOpacity(liver ? this->LiverOpacity : 1.0);
+  // A translucent liver must not hide what is behind it in the depth buffer either.
+  entry.Actor->SetPickable(!liver);
+}
+
+void vtkVesselModelsRepresentation::SetVessel(const std::string& className, vtkPolyData* surface)
+{
+  auto it = std::find_if(this->Entries.begin(), this->Entries.end(), [&](const Entry& e) { return e.ClassName == className; });
+  if (it == this->Entries.end())
+  {
+    Entry entry{ className, vtkSmartPointer<vtkActor>::New() };
+    vtkNew<vtkPolyDataMapper> mapper;
+    entry.Actor->SetMapper(mapper);
+    this->Style(entry, vp::VesselLabelTable::Default().Color(className));
+    for (vtkRenderer* renderer : this->Renderers)
+    {
+      renderer->AddActor(entry.Actor);
+    }
+    this->Entries.push_back(entry);
+    it = this->Entries.end() - 1;
+  }
+  vtkPolyDataMapper::SafeDownCast(it->Actor->GetMapper())->SetInputData(surface);
+  // Normals come with the surface (the model builder writes consistent outward triangles);
+  // without point normals the shading is flat, which reads fine on smoothed vessels.
+  this->Modified();
+}
+
+void vtkVesselModelsRepresentation::SetClassColour(const std::string& className, const std::array<double, 3>& rgb)
+{
+  for (Entry& e : this->Entries)
+  {
+    if (e.ClassName == className)
+    {
+      this->Style(e, rgb);
+      this->Modified();
+      return;
+    }
+  }
+}
+
+std::array<double, 3> vtkVesselModelsRepresentation::GetClassColour(const std::string& className) const
+{
+  for (const Entry& e : this->Entries)
+  {
+    if (e.ClassName == className)
+    {
+      const double* c = e.Actor->GetProperty()->GetColor();
+      return { c[0], c[1], c[2] };
+    }
+  }
+  return vp::VesselLabelTable::Default().Color(className);
+}
+
+void vtkVesselModelsRepresentation::AddToRenderer(vtkRenderer* renderer)
+{
+  this->Renderers.push_back(renderer);
+  for (const Entry& e : this->Entries)
+  {
+    renderer->AddActor(e.Actor);
+  }
+}
+
+void vtkVesselModelsRepresentation::RemoveFromRenderer(vtkRenderer* renderer)
+{
+  for (const Entry& e : this->Entries)
+  {
+    renderer->RemoveActor(e.Actor);
+  }
+  this->Renderers.erase(std::remove(this->Renderers.begin(), this->Renderers.end(), renderer), this->Renderers.end());
+}
+
+vtkActor* vtkVesselModelsRepresentation::GetActor(const std::string& className) const
+{
+  for (const Entry& e : this->Entries)
+  {
+    if (e.ClassName == className)
+    {
+      return e.Actor;
+    }
+  }
+  return nullptr;
+}
+
+void vtkVesselModelsRepresentation::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Classes:";
+  for (const Entry& e : this->Entries)
+  {
+    os << " " << e.ClassName;
+  }
+  os << "\n" << indent << "LiverOpacity: " << this->LiverOpacity << "\n";
+}

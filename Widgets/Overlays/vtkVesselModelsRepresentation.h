@@ -1,0 +1,58 @@
+#ifndef vtkVesselModelsRepresentation_h
+#define vtkVesselModelsRepresentation_h
+
+#include <vtkObject.h>
+#include <vtkSmartPointer.h>
+
+#include <array>
+#include <string>
+#include <vector>
+
+class vtkActor;
+class vtkPolyData;
+class vtkRenderer;
+
+/// One actor per vessel class, coloured by the label table (Resources/VesselLabels.json unless
+/// SetClassColour() says otherwise). The surfaces are shown as given; nothing here changes when
+/// the scalpel moves. The liver, when added, is drawn translucent so the vessels inside show.
+class vtkVesselModelsRepresentation : public vtkObject
+{
+public:
+  static vtkVesselModelsRepresentation* New();
+  vtkTypeMacro(vtkVesselModelsRepresentation, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// Adds (or replaces) the surface of a class; its colour comes from the label table.
+  void SetVessel(const std::string& className, vtkPolyData* surface);
+  /// RGB 0..1; overrides the label table for this class.
+  void SetClassColour(const std::string& className, const std::array<double, 3>& rgb);
+  std::array<double, 3> GetClassColour(const std::string& className) const;
+  /// Opacity of the liver parenchyma (default 0.15); vessels are opaque.
+  vtkSetClampMacro(LiverOpacity, double, 0.0, 1.0);
+  vtkGetMacro(LiverOpacity, double);
+
+  void AddToRenderer(vtkRenderer* renderer);
+  void RemoveFromRenderer(vtkRenderer* renderer);
+  vtkActor* GetActor(const std::string& className) const;
+  int GetNumberOfClasses() const { return static_cast<int>(this->Entries.size()); }
+
+protected:
+  vtkVesselModelsRepresentation();
+  ~vtkVesselModelsRepresentation() override;
+
+  struct Entry
+  {
+    std::string ClassName;
+    vtkSmartPointer<vtkActor> Actor;
+  };
+  std::vector<Entry> Entries;
+  std::vector<vtkRenderer*> Renderers; // not owned: the renderers own us in spirit
+  double LiverOpacity = 0.15;
+
+private:
+  vtkVesselModelsRepresentation(const vtkVesselModelsRepresentation&) = delete;
+  void operator=(const vtkVesselModelsRepresentation&) = delete;
+  void Style(Entry& entry, const std::array<double, 3>& rgb) const;
+};
+
+#endif

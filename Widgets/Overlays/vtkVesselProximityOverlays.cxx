@@ -1,0 +1,185 @@
+#include "vtkVesselProximityOverlays.h"
+
+#include "vtkClosestPointLineRepresentation.h"
+#include "vtkDistancePlotRepresentation.h"
+#include "vtkProximityReadoutRepresentation.h"
+#include "vtkScalpelDangerRepresentation.h"
+#include "vtkScalpelModel.h"
+#include "vtkVesselModelsRepresentation.h"
+#include "vtkVesselProximityLogic.h"
+
+#include <vtkCallbackCommand.h>
+#include <vtkObjectFactory.h>
+#include <vtkRenderer.h>
+
+vtkStandardNewMacro(vtkVesselProximityOverlays);
+
+vtkVesselProximityOverlays::vtkVesselProximityOverlays()
+  : Vessels(vtkSmartPointer<vtkVesselModelsRepresentation>::New())
+  , Scalpel(vtkSmartPointer<vtkScalpelDangerRepresentation>::New())
+  , ClosestLine(vtkSmartPointer<vtkClosestPointLineRepresentation>::New())
+  , Readout(vtkSmartPointer<vtkProximityReadoutRepresentation>::New())
+  , Plot(vtkSmartPointer<vtkDistancePlotRepresentation>::New())
+  , FrameObserver(vtkSmartPointer<vtkCallbackCommand>::New())
+  , LevelObserver(vtkSmartPointer<vtkCallbackCommand>::New())
+{
+  this->FrameObserver->SetClientData(this);
+  this->FrameObserver->SetCallback([](vtkObject*, unsigned long, void* self, void* frame) {
+    static_cast<vtkVesselProximityOverlays*>(self)->ShowFrame(*static_cast<const vp::TrackedFrame*>(frame));
+  });
+  this->LevelObserver->SetClientData(this);
+  this->LevelObserver->SetCallback([](vtkObject*, unsigned long, void* self, void* change) {
+    static_cast<vtkVesselProximityOverlays*>(self)->Scalpel->SetDangerLevel(static_cast<const vp::DangerLevelChange*>(change)->To);
+  });
+}
+
+vtkVesselProximityOverlays::~vtkVesselProximityOverlays()
+{
+  this->StopObserving();
+}
+
+void vtkVesselProximityOverlays::StopObserving()
+{
+  if (this->Logic)
+  {
+    this->Logic->GetTrackingLogic()->RemoveObserver(this->FrameTag);
+    this->Logic->GetTrackingLogic()->RemoveObserver(this->LevelTag);
+  }
+}
+
+void vtkVesselProximityOverlays::SetLogic(vtkVesselProximityLogic* logic)
+{
+  if (logic == this->Logic)
+  {
+    return;
+  }
+  this->StopObserving();
+  this->Logic = logic;
+  if (logic)
+  {
+    vtkScalpelTrackingLogic* tracking = logic->GetTrackingLogic();
+    this->LevelTag = tracking->AddObserver(vtkScalpelTrackingLogic::DangerLevelChangedEvent, this->LevelObserver);
+    this->FrameTag = tracking->AddObserver(vtkScalpelTrackingLogic::FrameProcessedEvent, this->FrameObserver);
+    this->UpdateFromScene();
+  }
+  this->Modified();
+}
+
+void vtkVesselProximityOverlays::UpdateFromScene()
+{
+  if (!this->Logic)
+  {
+    return;
+  }
+  std::vector<std::string> names;
+  std::vector<std::array<double, 3>> colours;
+  for (int i = 0; i < this->Logic->GetNumberOfVessels(); ++i)
+  {
+    names.push_back(this->Logic->GetVesselClassName(i));
+    this->Vessels->SetVessel(names.back(), this->Logic->GetVesselSurface(i));
+    colours.push_back(this->Vessels->GetClassColour(names.back()));
+  }
+  this->Readout->SetClasses(names, colours);
+  this->Plot->SetClasses(names);
+  this->Plot->SetDangerThresholds(this->Logic->GetDangerThresholds());
+  if (vtkScalpelModel* scalpel = this->Logic->GetScalpel())
+  {
+    this->Scalpel->SetScalpelSurface(scalpel->GetModel());
+    this->Scalpel->SetModelToWorld(scalpel->GetModelToWorld());
+  }
+  // Joining a session already running: take its current level once.
+  if (this->Logic->GetTrackingLogic()->GetNumberOfFrames() > 0)
+  {
+    this->Scalpel->SetDangerLevel(this->Logic->GetLastFrame().Level);
+  }
+}
+
+void vtkVesselProximityOverlays::SetLiverSurface(vtkPolyData* liver)
+{
+  this->Vessels->SetVessel("liver", liver);
+}
+
+void vtkVesselProximityOverlays::SetRenderer(vtkRenderer* renderer)
+{
+  if (renderer == this->Renderer)
+  {
+    return;
+  }
+  if (this->Renderer)
+  {
+    this->Vessels->RemoveFromRenderer(this->Renderer);
+    this->Scalpel->RemoveFromRenderer(this->Renderer);
+    this->ClosestLine->RemoveFromRenderer(this->Renderer);
+    this->Readout->RemoveFromRenderer(this->Renderer);
+    this->Plot->RemoveFromRenderer(this->Renderer);
+  }
+  this->Renderer = renderer;
+  if (renderer)
+  {
+    this->Vessels->AddToRenderer(renderer);
+    this->Scalpel->AddToRenderer(renderer);
+    this->ClosestLine->AddToRenderer(renderer);
+    this->Readout->AddToRenderer(renderer);
+    this->Plot->AddToRenderer(renderer);
+  }
+  this->Modified();
+}
+
+void vtkVesselProximityOverlays::ShowFrame(const vp::TrackedFrame& frame)
+{
+  if (this->Logic && this->Logic->GetScalpel())
+  {
+    this->Scalpel->SetModelToWorld(this->Logic->GetScalpel()->GetModelToWorld());
+  }
+  const int nearest = frame.Proximity.NearestIndex();
+  if (nearest >= 0)
+  {
+    const vp::ClassProximity& p = frame.Proximity.Classes[nearest];
+    this->ClosestLine->SetLine(frame.TipMm, p.ClosestPoint, p.DistanceMm, p.Inside && *p.Inside);
+  }
+  else
+  {
+    this->ClosestLine->Hide();
+  }
+  this->Readout->ShowFrame(frame.Proximity, frame.ClassLevels, frame.Level);
+  this->Plot->AddFrame(frame.TimeS, frame.Proximity);
+}
+
+void vtkVesselProximityOverlays::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Logic: " << (this->Logic ? "set" : "(none)") << "\n";
+  os << indent << "Renderer: " << (this->Renderer ? "set" : "(none)") << "\n";
+  this->Scalpel->PrintSelf(os, indent.GetNextIndent());
+  this->Readout->PrintSelf(os, indent.GetNextIndent());
+}
+
+vtkVesselProximityLogic* vtkVesselProximityOverlays::GetLogic() const
+{
+  return this->Logic;
+}
+
+vtkVesselModelsRepresentation* vtkVesselProximityOverlays::GetVessels() const
+{
+  return this->Vessels;
+}
+
+vtkScalpelDangerRepresentation* vtkVesselProximityOverlays::GetScalpel() const
+{
+  return this->Scalpel;
+}
+
+vtkClosestPointLineRepresentation* vtkVesselProximityOverlays::GetClosestPointLine() const
+{
+  return this->ClosestLine;
+}
+
+vtkProximityReadoutRepresentation* vtkVesselProximityOverlays::GetReadout() const
+{
+  return this->Readout;
+}
+
+vtkDistancePlotRepresentation* vtkVesselProximityOverlays::GetPlot() const
+{
+  return this->Plot;
+}

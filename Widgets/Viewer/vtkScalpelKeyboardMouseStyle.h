@@ -1,0 +1,55 @@
+#ifndef vtkScalpelKeyboardMouseStyle_h
+#define vtkScalpelKeyboardMouseStyle_h
+
+#include <vtkInteractorStyleTrackballCamera.h>
+
+#include <string>
+
+class vtkVesselProximityView;
+
+/// Trackball camera, plus the scalpel under the user's hands:
+/// - arrow keys move the scalpel 1 mm in the view plane (with Shift 5 mm), PageUp/PageDown
+///   towards/away from the viewer; i / o advance and retract it along its own axis;
+/// - Ctrl + left drag moves it in the view plane, following the mouse;
+/// - space plays or pauses the recorded poses, n / b step forward and back;
+/// - x saves a screenshot, c frames the vessels again, h prints the keys.
+/// VTK's own keys (r, w, s, 3, f, q, e) keep their meaning; p (pick) is switched off.
+class vtkScalpelKeyboardMouseStyle : public vtkInteractorStyleTrackballCamera
+{
+public:
+  static vtkScalpelKeyboardMouseStyle* New();
+  vtkTypeMacro(vtkScalpelKeyboardMouseStyle, vtkInteractorStyleTrackballCamera);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  void SetView(vtkVesselProximityView* view) { this->View = view; }
+  /// Step of one key press, mm (default 1; Shift multiplies by 5).
+  vtkSetClampMacro(StepMm, double, 0.01, 100.0);
+  vtkGetMacro(StepMm, double);
+
+  /// Acts on one key (a VTK key sym); returns whether it was ours. The keyboard and
+  /// vtkVesselProximityView::PressKeys both come here.
+  bool HandleKey(const std::string& keySym, bool shift);
+
+  void OnKeyPress() override;
+  void OnChar() override;
+  void OnLeftButtonDown() override;
+  void OnLeftButtonUp() override;
+  void OnMouseMove() override;
+
+protected:
+  vtkScalpelKeyboardMouseStyle();
+  ~vtkScalpelKeyboardMouseStyle() override;
+
+  vtkVesselProximityView* View = nullptr; // not owned: the view owns this style
+  double StepMm = 1.0;
+  bool Dragging = false;
+  int LastPositionPx[2] = { 0, 0 };
+
+private:
+  vtkScalpelKeyboardMouseStyle(const vtkScalpelKeyboardMouseStyle&) = delete;
+  void operator=(const vtkScalpelKeyboardMouseStyle&) = delete;
+  /// The camera's right, up and towards-the-viewer directions (unit, world).
+  void CameraAxes(double right[3], double up[3], double towardViewer[3]) const;
+};
+
+#endif

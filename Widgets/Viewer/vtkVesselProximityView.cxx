@@ -1,0 +1,311 @@
+#include "vtkVesselProximityView.h"
+
+#include "vpInputError.h"
+#include "vtkScalpelKeyboardMouseStyle.h"
+#include "vtkScalpelModel.h"
+#include "vtkVesselProximityLogic.h"
+#include "vtkDistancePlotRepresentation.h"
+#include "vtkScalpelDangerRepresentation.h"
+#include "vtkVesselProximityOverlays.h"
+
+#include <vtkCallbackCommand.h>
+#include <vtkCamera.h>
+#include <vtkNew.h>
+#include <vtkObjectFactory.h>
+#include <vtkPNGWriter.h>
+#include <vtkPolyData.h>
+#include <vtkRenderWindow.h>
+#include <vtkRenderWindowInteractor.h>
+#include <vtkRenderer.h>
+#include <vtkWindowToImageFilter.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+vtkStandardNewMacro(vtkVesselProximityView);
+
+vtkVesselProximityView::vtkVesselProximityView()
+  : Overlays(vtkSmartPointer<vtkVesselProximityOverlays>::New())
+  , Renderer(vtkSmartPointer<vtkRenderer>::New())
+  , Window(vtkSmartPointer<vtkRenderWindow>::New())
+  , Interactor(vtkSmartPointer<vtkRenderWindowInteractor>::New())
+  , Style(vtkSmartPointer<vtkScalpelKeyboardMouseStyle>::New())
+{
+  // Slicer's 3D view background: a vertical gradient, here darker so the white and gray levels
+  // of the scalpel stand out.
+  this->Renderer->GradientBackgroundOn();
+  this->Renderer->SetBackground(0.05, 0.06, 0.10);
+  this->Renderer->SetBackground2(0.25, 0.27, 0.36);
+  this->Window->AddRenderer(this->Renderer);
+  this->Window->SetWindowName("VesselProximity");
+  // Smooth edges without multisampling, whose result differs between GL drivers.
+  this->Window->SetMultiSamples(0);
+  this->Interactor->SetRenderWindow(this->Window);
+  this->Style->SetView(this);
+  this->Interactor->SetInteractorStyle(this->Style);
+  this->Overlays->SetRenderer(this->Renderer);
+  this->SetSizePx(1280, 800);
+}
+
+vtkVesselProximityView::~vtkVesselProximityView()
+{
+  this->Style->SetView(nullptr);
+}
+
+void vtkVesselProximityView::SetLogic(vtkVesselProximityLogic* logic)
+{
+  this->Overlays->SetLogic(logic);
+  this->ResetCamera();
+  this->Modified();
+}
+
+vtkVesselProximityLogic* vtkVesselProximityView::GetLogic() const
+{
+  return this->Overlays->GetLogic();
+}
+
+void vtkVesselProximityView::SetLiverSurface(vtkPolyData* liver)
+{
+  this->Overlays->SetLiverSurface(liver);
+}
+
+void vtkVesselProximityView::SetSizePx(int width, int height)
+{
+  this->Window->SetSize(width, height);
+  // The plot takes about a third of the width and of the height, so it never hides the scene.
+  this->Overlays->GetPlot()->SetSizePx(std::max(380, width * 9 / 25), std::max(180, height * 3 / 10));
+}
+
+void vtkVesselProximityView::SetOffScreen(bool offScreen)
+{
+  this->Window->SetOffScreenRendering(offScreen);
+}
+
+void vtkVesselProximityView::SetPoses(const std::vector<vp::TrackedPose>& poses)
+{
+  this->Poses = poses;
+  this->CurrentPose = -1;
+}
+
+void vtkVesselProximityView::Process(const std::array<double, 16>& modelToWorld, double timeS)
+{
+  vtkVesselProximityLogic* logic = this->GetLogic();
+  if (!logic || !logic->GetScalpel())
+  {
+    return;
+  }
+  // Poses must move forward in time; a jump back (replay restarted) starts a new session.
+  if (logic->GetTrackingLogic()->GetNumberOfFrames() > 0 && timeS <= logic->GetLastFrame().TimeS)
+  {
+    logic->ResetTracking();
+    this->Overlays->GetPlot()->ClearHistory();
+    this->Overlays->GetScalpel()->SetDangerLevel(vp::DangerLevel::Safe); // a session starts safe
+  }
+  this->TimeS = timeS;
+  vp::TrackedPose pose;
+  pose.TimeS = timeS;
+  pose.ModelToWorld = modelToWorld;
+  logic->ProcessPose(pose);
+}
+
+void vtkVesselProximityView::ShowPose(int i)
+{
+  if (i < 0 || i >= static_cast<int>(this->Poses.size()))
+  {
+    return;
+  }
+  this->CurrentPose = i;
+  this->Process(this->Poses[i].ModelToWorld, this->Poses[i].TimeS);
+}
+
+void vtkVesselProximityView::SetScalpelPose(const std::array<double, 16>& modelToWorld)
+{
+  this->Process(modelToWorld, this->TimeS + 0.02);
+}
+
+void vtkVesselProximityView::MoveScalpelBy(const double delta[3])
+{
+  vtkVesselProximityLogic* logic = this->GetLogic();
+  if (!logic || !logic->GetScalpel())
+  {
+    return;
+  }
+  std::array<double, 16> m = logic->GetScalpel()->GetModelToWorld();
+  m[3] += delta[0];
+  m[7] += delta[1];
+  m[11] += delta[2];
+  this->SetScalpelPose(m);
+}
+
+void vtkVesselProximityView::AdvanceScalpelBy(double mm)
+{
+  vtkVesselProximityLogic* logic = this->GetLogic();
+  if (!logic || !logic->GetScalpel())
+  {
+    return;
+  }
+  double axis[3];
+  logic->GetScalpel()->GetAxisInWorld(axis);
+  const double delta[3] = { mm * axis[0], mm * axis[1], mm * axis[2] };
+  this->MoveScalpelBy(delta);
+}
+
+void vtkVesselProximityView::SetPlaying(bool playing)
+{
+  if (playing == this->Playing || this->Poses.empty())
+  {
+    return;
+  }
+  this->Playing = playing;
+  if (!this->Interactor->GetInitialized())
+  {
+    return; // scripted or off-screen: nothing ticks
+  }
+  if (playing)
+  {
+    // The poses' own rate, at most 50 per second: replay at the speed it was recorded.
+    const double dt = this->Poses.size() > 1 ? (this->Poses.back().TimeS - this->Poses.front().TimeS) / (this->Poses.size() - 1) : 0.02;
+    this->TimerId = this->Interactor->CreateRepeatingTimer(static_cast<unsigned long>(std::max(20.0, 1000.0 * dt)));
+  }
+  else if (this->TimerId >= 0)
+  {
+    this->Interactor->DestroyTimer(this->TimerId);
+    this->TimerId = -1;
+  }
+}
+
+void vtkVesselProximityView::OnTimer()
+{
+  if (!this->Playing)
+  {
+    return;
+  }
+  if (this->CurrentPose + 1 >= static_cast<int>(this->Poses.size()))
+  {
+    this->SetPlaying(false);
+    return;
+  }
+  this->ShowPose(this->CurrentPose + 1);
+  this->Render();
+}
+
+void vtkVesselProximityView::ResetCamera()
+{
+  // Frame the vessels only: the scalpel's handle is long and would push them into a corner.
+  double bounds[6] = { 1, -1, 1, -1, 1, -1 };
+  vtkVesselProximityLogic* logic = this->GetLogic();
+  for (int i = 0; logic && i < logic->GetNumberOfVessels(); ++i)
+  {
+    double b[6];
+    logic->GetVesselSurface(i)->GetBounds(b);
+    for (int a = 0; a < 3; ++a)
+    {
+      bounds[2 * a] = bounds[2 * a] > bounds[2 * a + 1] ? b[2 * a] : std::min(bounds[2 * a], b[2 * a]);
+      bounds[2 * a + 1] = bounds[2 * a] > bounds[2 * a + 1] ? b[2 * a + 1] : std::max(bounds[2 * a + 1], b[2 * a + 1]);
+    }
+  }
+  vtkCamera* camera = this->Renderer->GetActiveCamera();
+  // LPS: anterior is -y, superior +z; the patient's right appears on the left, as in Slicer.
+  camera->SetFocalPoint(0, 0, 0);
+  camera->SetPosition(0, -1, 0);
+  camera->SetViewUp(0, 0, 1);
+  if (bounds[0] <= bounds[1])
+  {
+    this->Renderer->ResetCamera(bounds);
+  }
+  else
+  {
+    this->Renderer->ResetCamera();
+  }
+}
+
+void vtkVesselProximityView::Render()
+{
+  this->Window->Render();
+}
+
+std::string vtkVesselProximityView::SaveScreenshot(const std::string& requested)
+{
+  std::string file = requested;
+  if (file.empty())
+  {
+    char number[16];
+    std::snprintf(number, sizeof(number), "%03d", ++this->ScreenshotCount);
+    file = this->ScreenshotPrefix + number + ".png";
+  }
+  this->Render();
+  vtkNew<vtkWindowToImageFilter> grab;
+  grab->SetInput(this->Window);
+  grab->SetInputBufferTypeToRGB();
+  grab->ReadFrontBufferOff();
+  grab->Update();
+  const std::string temporary = file + ".partial";
+  vtkNew<vtkPNGWriter> writer;
+  writer->SetFileName(temporary.c_str());
+  writer->SetInputConnection(grab->GetOutputPort());
+  writer->Write();
+  std::error_code ec;
+  if (writer->GetErrorCode() != 0 || !std::filesystem::exists(temporary, ec))
+  {
+    std::filesystem::remove(temporary, ec);
+    throw vp::InputError(file, "cannot write the screenshot");
+  }
+  std::filesystem::rename(temporary, file, ec);
+  if (ec)
+  {
+    std::filesystem::remove(temporary, ec);
+    throw vp::InputError(file, "cannot write the screenshot: " + ec.message());
+  }
+  return file;
+}
+
+void vtkVesselProximityView::Start()
+{
+  vtkNew<vtkCallbackCommand> onTimer;
+  onTimer->SetClientData(this);
+  onTimer->SetCallback([](vtkObject*, unsigned long, void* self, void*) { static_cast<vtkVesselProximityView*>(self)->OnTimer(); });
+  this->Interactor->Initialize();
+  this->Interactor->AddObserver(vtkCommand::TimerEvent, onTimer);
+  this->Render();
+  this->Interactor->Start();
+}
+
+void vtkVesselProximityView::PressKeys(const std::vector<std::string>& keys)
+{
+  for (const std::string& key : keys)
+  {
+    this->Style->HandleKey(key, false);
+  }
+}
+
+const char* vtkVesselProximityView::KeyHelp()
+{
+  return "keys: arrows move the scalpel 1 mm in the view plane (Shift: 5 mm), PageUp/PageDown towards/away\n"
+         "      from you, i/o advance/retract along its axis; Ctrl+left drag moves it with the mouse;\n"
+         "      space plays/pauses the poses, n/b step; x saves a screenshot; c frames the vessels;\n"
+         "      r resets the camera, w/s wireframe/surface, q quits; h shows this\n";
+}
+
+void vtkVesselProximityView::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Poses: " << this->Poses.size() << " (current " << this->CurrentPose << ")\n";
+  os << indent << "Playing: " << this->Playing << "\n" << indent << "ScreenshotPrefix: " << this->ScreenshotPrefix << "\n";
+}
+
+vtkVesselProximityOverlays* vtkVesselProximityView::GetOverlays() const
+{
+  return this->Overlays;
+}
+
+vtkRenderer* vtkVesselProximityView::GetRenderer() const
+{
+  return this->Renderer;
+}
+
+vtkRenderWindow* vtkVesselProximityView::GetRenderWindow() const
+{
+  return this->Window;
+}

@@ -1,0 +1,104 @@
+#ifndef vtkVesselProximityView_h
+#define vtkVesselProximityView_h
+
+#include "vpPoseFile.h"
+
+#include <vtkObject.h>
+#include <vtkSmartPointer.h>
+
+#include <array>
+#include <string>
+#include <vector>
+
+class vtkPolyData;
+class vtkRenderer;
+class vtkRenderWindow;
+class vtkRenderWindowInteractor;
+class vtkScalpelKeyboardMouseStyle;
+class vtkVesselProximityLogic;
+class vtkVesselProximityOverlays;
+
+/// A 3D view of the module: the overlays of a vtkVesselProximityLogic in a render window, with
+/// the scalpel moved by keys and mouse (vtkScalpelKeyboardMouseStyle) or replayed from poses.
+///
+/// Every move becomes a pose given to the logic; the overlays follow through the logic's events.
+/// The camera starts looking from anterior with superior up, as Slicer's 3D view does, framed on
+/// the vessels. Off-screen rendering (SetOffScreen) serves screenshots and tests; it still needs
+/// an X display on Debian's VTK (Xvfb will do).
+class vtkVesselProximityView : public vtkObject
+{
+public:
+  static vtkVesselProximityView* New();
+  vtkTypeMacro(vtkVesselProximityView, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// The logic to show and drive; its scene must be set (vessels, scalpel).
+  void SetLogic(vtkVesselProximityLogic* logic);
+  vtkVesselProximityLogic* GetLogic() const;
+  void SetLiverSurface(vtkPolyData* liver);
+  vtkVesselProximityOverlays* GetOverlays() const;
+  vtkRenderer* GetRenderer() const;
+  vtkRenderWindow* GetRenderWindow() const;
+
+  /// Window size in pixels (default 1280 x 800).
+  void SetSizePx(int width, int height);
+  void SetOffScreen(bool offScreen);
+
+  /// Recorded poses for replay (n, b, space); the first is shown by ShowPose(0).
+  void SetPoses(const std::vector<vp::TrackedPose>& poses);
+  int GetNumberOfPoses() const { return static_cast<int>(this->Poses.size()); }
+  /// Shows recorded pose i: the logic computes its frame, the overlays follow.
+  void ShowPose(int i);
+  int GetCurrentPose() const { return this->CurrentPose; }
+  /// Moves the scalpel from where it is by a world displacement (mm) and computes the frame.
+  void MoveScalpelBy(const double deltaMm[3]);
+  /// Moves the scalpel along its own axis (positive: the tip advances).
+  void AdvanceScalpelBy(double mm);
+  /// Sets the scalpel's pose directly (model-to-world, row-major).
+  void SetScalpelPose(const std::array<double, 16>& modelToWorld);
+  /// Replay: steps to the next pose on every timer tick while playing.
+  void SetPlaying(bool playing);
+  bool GetPlaying() const { return this->Playing; }
+
+  /// Frames the vessels from anterior, superior up.
+  void ResetCamera();
+  void Render();
+  /// Renders and writes the window as a PNG (whole or not at all). Throws vp::InputError
+  /// naming the file when it cannot be written. Screenshots are numbered when file is empty:
+  /// <ScreenshotPrefix>NNN.png.
+  std::string SaveScreenshot(const std::string& file = std::string());
+  void SetScreenshotPrefix(const std::string& prefix) { this->ScreenshotPrefix = prefix; }
+
+  /// Hands the window to the user until it is closed.
+  void Start();
+  /// Sends key presses through the same handler as the keyboard (names as VTK's key syms:
+  /// "Left", "Up", "Prior", "i", "x", "space", ...): scripted sessions and tests.
+  void PressKeys(const std::vector<std::string>& keys);
+  /// The key help the viewer prints.
+  static const char* KeyHelp();
+
+protected:
+  vtkVesselProximityView();
+  ~vtkVesselProximityView() override;
+
+  vtkSmartPointer<vtkVesselProximityOverlays> Overlays;
+  vtkSmartPointer<vtkRenderer> Renderer;
+  vtkSmartPointer<vtkRenderWindow> Window;
+  vtkSmartPointer<vtkRenderWindowInteractor> Interactor;
+  vtkSmartPointer<vtkScalpelKeyboardMouseStyle> Style;
+  std::vector<vp::TrackedPose> Poses;
+  int CurrentPose = -1;
+  double TimeS = 0.0; ///< time stamped on poses made by moving the scalpel by hand
+  bool Playing = false;
+  int TimerId = -1;
+  int ScreenshotCount = 0;
+  std::string ScreenshotPrefix = "vesselproximity-screenshot-";
+
+private:
+  vtkVesselProximityView(const vtkVesselProximityView&) = delete;
+  void operator=(const vtkVesselProximityView&) = delete;
+  void Process(const std::array<double, 16>& modelToWorld, double timeS);
+  void OnTimer();
+};
+
+#endif

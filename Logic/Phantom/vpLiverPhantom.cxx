@@ -1,4 +1,5 @@
 #include "vpLiverPhantom.h"
+#include "vpVec3.h"
 
 #include "vpDicomLabelSeriesWriter.h"
 #include "vpInputError.h"
@@ -16,56 +17,7 @@ namespace vp
 {
 namespace
 {
-using Vec3 = std::array<double, 3>;
-
-constexpr double Pi = 3.14159265358979323846;
-
-Vec3 operator+(const Vec3& a, const Vec3& b)
-{
-  return { a[0] + b[0], a[1] + b[1], a[2] + b[2] };
-}
-Vec3 operator-(const Vec3& a, const Vec3& b)
-{
-  return { a[0] - b[0], a[1] - b[1], a[2] - b[2] };
-}
-Vec3 operator*(double s, const Vec3& a)
-{
-  return { s * a[0], s * a[1], s * a[2] };
-}
-double Dot(const Vec3& a, const Vec3& b)
-{
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-Vec3 Cross(const Vec3& a, const Vec3& b)
-{
-  return { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0] };
-}
-double Norm(const Vec3& a)
-{
-  return std::sqrt(Dot(a, a));
-}
-Vec3 Normalized(const Vec3& a)
-{
-  return (1.0 / Norm(a)) * a;
-}
-/// A unit vector perpendicular to unit u, as close to hint as possible (any one if hint is
-/// parallel to u).
-Vec3 PerpendicularTo(const Vec3& u, const Vec3& hint)
-{
-  Vec3 p = hint - Dot(hint, u) * u;
-  if (Norm(p) < 1e-6)
-  {
-    const Vec3 axis = std::abs(u[0]) < 0.9 ? Vec3{ 1, 0, 0 } : Vec3{ 0, 1, 0 };
-    p = axis - Dot(axis, u) * u;
-  }
-  return Normalized(p);
-}
-/// v turned by angle about unit axis u (Rodrigues).
-Vec3 Rotate(const Vec3& v, const Vec3& u, double angle)
-{
-  const double c = std::cos(angle), s = std::sin(angle);
-  return c * v + s * Cross(u, v) + (Dot(u, v) * (1 - c)) * u;
-}
+using namespace vec3;
 
 /// splitmix64: a few lines, fully specified, so every platform draws the same numbers (the
 /// standard distributions are implementation-defined and would change the phantom).

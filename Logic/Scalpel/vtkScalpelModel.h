@@ -7,7 +7,7 @@
 #include <array>
 #include <string>
 
-class vtkPolyData;
+#include <vtkPolyData.h> // GetModel() converts the smart pointer inline
 
 /// A tracked instrument: its surface, its tip and axis in model coordinates, and where it is.
 ///

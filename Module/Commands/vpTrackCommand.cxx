@@ -11,6 +11,7 @@
 #include "vpPointCsv.h"
 #include "vpPoseFile.h"
 #include "vpScalpelLoader.h"
+#include "vpTrackingOptions.h"
 #include "vpTrackingSummary.h"
 #include "vtkExactVesselDistance.h"
 #include "vtkScalpelSurfaceDistance.h"
@@ -221,22 +222,8 @@ int RunTrackCommand(const std::vector<std::string>& argv)
   {
     throw InputError("--method", "expected exact, zbuffer or both for tracking, got '" + method + "'");
   }
-  DangerThresholds thresholds;
-  if (args.Has("--danger-mm"))
-  {
-    const auto d = ParsePoint(args.Get("--danger-mm"), "--danger-mm");
-    thresholds = { d[0], d[1], d[2] };
-  }
-  thresholds.Validate("--danger-mm");
-  ScalpelTipDefinition tip;
-  if (args.Has("--tip"))
-  {
-    tip.TipMm = ParsePoint(args.Get("--tip"), "--tip");
-  }
-  if (args.Has("--axis"))
-  {
-    tip.Axis = ParsePoint(args.Get("--axis"), "--axis");
-  }
+  const DangerThresholds thresholds = ParseDangerThresholds(args);
+  const ScalpelTipDefinition tip = ParseTipDefinition(args);
   const bool surface = !args.Has("--no-surface");
   const std::string outDir = args.Get("-o");
 

@@ -10,6 +10,7 @@
 #include "vpPointCsv.h"
 #include "vpPoseFile.h"
 #include "vpScalpelLoader.h"
+#include "vpTrackingOptions.h"
 #include "vpVirtualDisplay.h"
 #include "vtkScalpelModel.h"
 #include "vtkVesselMeshReader.h"
@@ -112,22 +113,8 @@ int RunViewCommand(const std::vector<std::string>& argv)
   {
     throw InputError("--method", "expected exact or zbuffer for the view, got '" + method + "'");
   }
-  DangerThresholds thresholds;
-  if (args.Has("--danger-mm"))
-  {
-    const auto d = ParsePoint(args.Get("--danger-mm"), "--danger-mm");
-    thresholds = { d[0], d[1], d[2] };
-  }
-  thresholds.Validate("--danger-mm");
-  ScalpelTipDefinition tip;
-  if (args.Has("--tip"))
-  {
-    tip.TipMm = ParsePoint(args.Get("--tip"), "--tip");
-  }
-  if (args.Has("--axis"))
-  {
-    tip.Axis = ParsePoint(args.Get("--axis"), "--axis");
-  }
+  const DangerThresholds thresholds = ParseDangerThresholds(args);
+  const ScalpelTipDefinition tip = ParseTipDefinition(args);
   const auto size = ParseSize(args.Get("--size", "1280x800"));
   const std::vector<std::string> keys = SplitKeys(args.Get("--keys"));
   const std::string screenshot = args.Get("--screenshot");

@@ -8,6 +8,7 @@
 #include <vtkObjectFactory.h>
 #include <vtkPolyData.h>
 
+#include <algorithm>
 #include <stdexcept>
 
 vtkStandardNewMacro(vtkVesselProximityLogic);
@@ -94,14 +95,17 @@ void vtkVesselProximityLogic::Build()
   {
     throw std::logic_error("vtkVesselProximityLogic: add at least one vessel before building");
   }
+  // The exact engine serves the comparison and the whole surface; a second one, beside an
+  // approximate engine, is built only when one of them is wanted.
+  const bool surface = this->WantsSurfaceDistance();
   this->Exact = vtkExactVesselDistance::SafeDownCast(this->Engine);
-  if (!this->Exact)
+  if (!this->Exact && (this->CompareWithExact || surface))
   {
     this->Exact = vtkSmartPointer<vtkExactVesselDistance>::New();
     this->Exact->SetRangeMm(this->Engine->GetRangeMm());
   }
   std::vector<vtkVesselDistanceEngine*> engines{ this->Engine };
-  if (this->Exact != this->Engine)
+  if (this->Exact && this->Exact != this->Engine)
   {
     engines.push_back(this->Exact);
   }
@@ -115,12 +119,11 @@ void vtkVesselProximityLogic::Build()
     engine->Build();
   }
   this->Tracking->SetDistanceEngine(this->Engine);
-  vtkScalpelModel* scalpel = this->Tracking->GetScalpel();
-  if (this->ComputeSurfaceDistance && scalpel && scalpel->GetModel())
+  if (surface)
   {
     this->Surface = vtkSmartPointer<vtkScalpelSurfaceDistance>::New();
     this->Surface->SetVesselDistance(this->Exact);
-    this->Surface->SetToolSurface(scalpel->GetModel());
+    this->Surface->SetToolSurface(this->GetScalpel()->GetModel());
     this->Tracking->SetSurfaceDistance(this->Surface);
   }
   else
@@ -138,8 +141,9 @@ const vp::TrackedFrame& vtkVesselProximityLogic::ProcessPose(const vp::TrackedPo
   {
     throw std::logic_error("vtkVesselProximityLogic: set the scalpel before processing poses");
   }
-  // The surface tree follows the switch: turning it on or off is a scene change.
-  if ((this->Surface != nullptr) != (this->ComputeSurfaceDistance && this->GetScalpel()->GetModel()))
+  // The surface tree and the exact engine follow their switches: turning one on or off is a
+  // scene change.
+  if ((this->Surface != nullptr) != this->WantsSurfaceDistance() || (this->CompareWithExact && !this->Exact))
   {
     this->SceneChanged = true;
   }
@@ -150,6 +154,27 @@ const vp::TrackedFrame& vtkVesselProximityLogic::ProcessPose(const vp::TrackedPo
     this->Exact->ComputeProximity(frame.TipMm, frame.AxisWorld, this->LastExact);
   }
   return frame;
+}
+
+bool vtkVesselProximityLogic::WantsSurfaceDistance() const
+{
+  vtkScalpelModel* scalpel = this->Tracking->GetScalpel();
+  return this->ComputeSurfaceDistance && scalpel && scalpel->GetModel();
+}
+
+bool vtkVesselProximityLogic::GetVesselBounds(double bounds[6]) const
+{
+  for (std::size_t i = 0; i < this->Vessels.size(); ++i)
+  {
+    double b[6];
+    this->Vessels[i].second->GetBounds(b);
+    for (int a = 0; a < 3; ++a)
+    {
+      bounds[2 * a] = i == 0 ? b[2 * a] : std::min(bounds[2 * a], b[2 * a]);
+      bounds[2 * a + 1] = i == 0 ? b[2 * a + 1] : std::max(bounds[2 * a + 1], b[2 * a + 1]);
+    }
+  }
+  return !this->Vessels.empty();
 }
 
 const vp::TrackedFrame& vtkVesselProximityLogic::GetLastFrame() const

@@ -41,6 +41,9 @@ public:
   int GetNumberOfVessels() const { return static_cast<int>(this->Vessels.size()); }
   const std::string& GetVesselClassName(int i) const { return this->Vessels[i].first; }
   vtkPolyData* GetVesselSurface(int i) const { return this->Vessels[i].second; }
+  /// The box around every vessel surface (xmin, xmax, ymin, ymax, zmin, zmax; LPS mm); false,
+  /// with bounds untouched, when there is no vessel.
+  bool GetVesselBounds(double bounds[6]) const;
 
   void SetScalpel(vtkScalpelModel* scalpel);
   vtkScalpelModel* GetScalpel() const;
@@ -79,7 +82,8 @@ public:
 
   /// Observe this for FrameProcessedEvent and DangerLevelChangedEvent.
   vtkScalpelTrackingLogic* GetTrackingLogic() const { return this->Tracking; }
-  /// The exact engine serving the comparison and the surface distance (null until built).
+  /// The exact engine serving the comparison and the surface distance: the distance engine
+  /// itself when it is exact; null before Build() and when neither is wanted.
   vtkExactVesselDistance* GetExactDistance() const { return this->Exact; }
 
 protected:
@@ -99,6 +103,7 @@ protected:
 
 private:
   vtkVesselProximityLogic(const vtkVesselProximityLogic&) = delete;
+  bool WantsSurfaceDistance() const;
   void operator=(const vtkVesselProximityLogic&) = delete;
 };
 

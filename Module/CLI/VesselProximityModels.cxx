@@ -4,13 +4,12 @@
 #include "vpCliDescription.h"
 #include "vpCommands.h"
 #include "vpInputError.h"
+#include "vpJsonFile.h"
 
 #include <vtkObject.h>
 
 #include <nlohmann/json.hpp>
 
-#include <fstream>
-#include <sstream>
 
 #ifndef VP_VERSION
 #define VP_VERSION "0.1.0"
@@ -139,11 +138,10 @@ void Run(const vp::cli::ParsedArguments& args, vp::cli::ReturnValues& results)
 
   // The command's own record of what it wrote, rather than a second guess at file names.
   const std::string record = outDir + "/models.json";
-  std::ifstream in(record);
-  const auto doc = nlohmann::json::parse(in, nullptr, false);
-  if (doc.is_discarded() || !doc.contains("structures"))
+  const nlohmann::json doc = vp::ReadJsonFile(record, "the models list");
+  if (!doc.contains("structures"))
   {
-    throw vp::InputError(record, "missing or unreadable after the run");
+    throw vp::InputError(record, "no \"structures\" after the run");
   }
   std::string classes;
   for (const auto& s : doc["structures"])

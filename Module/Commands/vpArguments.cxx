@@ -104,25 +104,30 @@ bool WantsHelp(const std::vector<std::string>& args)
   return false;
 }
 
+std::vector<std::string> SplitList(const std::string& text, char separator)
+{
+  std::vector<std::string> items;
+  std::size_t start = 0;
+  for (std::size_t at = text.find(separator); at != std::string::npos; at = text.find(separator, start))
+  {
+    items.push_back(text.substr(start, at - start));
+    start = at + 1;
+  }
+  items.push_back(text.substr(start));
+  return items;
+}
+
 std::vector<std::pair<std::string, std::string>> ParsePairs(const std::string& text, const std::string& option)
 {
   std::vector<std::pair<std::string, std::string>> pairs;
-  std::size_t start = 0;
-  while (start <= text.size())
+  for (const std::string& entry : SplitList(text, ','))
   {
-    const std::size_t comma = text.find(',', start);
-    const std::string entry = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
     const std::size_t eq = entry.find('=');
     if (eq == std::string::npos || eq == 0 || eq + 1 == entry.size())
     {
       throw InputError(option, "expected CLASS=FILE, got '" + entry + "'");
     }
     pairs.emplace_back(entry.substr(0, eq), entry.substr(eq + 1));
-    if (comma == std::string::npos)
-    {
-      break;
-    }
-    start = comma + 1;
   }
   return pairs;
 }

@@ -30,6 +30,9 @@ private:
 /// True when args ask for help (--help or -h anywhere).
 bool WantsHelp(const std::vector<std::string>& args);
 
+/// Splits text at every separator, empty items kept ("a,,b" -> "a", "", "b"; "" -> "").
+std::vector<std::string> SplitList(const std::string& text, char separator);
+
 /// Splits "a=b,c=d" into pairs; throws InputError(option, ...) on a malformed entry.
 std::vector<std::pair<std::string, std::string>> ParsePairs(const std::string& text, const std::string& option);
 } // namespace vp

@@ -95,16 +95,7 @@ void RenderKeyFrames(DemoReport& report, const std::vector<TrackedPose>& poses)
     std::cerr << "demo: no screenshots: " << report.ScreenshotProblem << "\n";
     return;
   }
-  vtkNew<vtkVesselProximityLogic> logic;
-  for (const char* c : VesselClasses)
-  {
-    vtkNew<vtkVesselMeshReader> reader;
-    reader->SetFileName(report.ModelFiles.at(c));
-    reader->Read();
-    logic->AddVessel(c, reader->GetOutput());
-  }
-  logic->SetScalpel(LoadScalpel(report.ScalpelFile, {}));
-  logic->SetComputeSurfaceDistance(false); // the pictures show the tip's answers
+  vtkSmartPointer<vtkVesselProximityLogic> logic = MakeDemoTipLogic(report);
   vtkNew<vtkVesselProximityView> view;
   view->SetOffScreen(true);
   view->SetSizePx(1280, 800);
@@ -116,7 +107,6 @@ void RenderKeyFrames(DemoReport& report, const std::vector<TrackedPose>& poses)
     reader->Read();
     view->SetLiverSurface(reader->GetOutput());
   }
-  view->ResetCamera();
   // From anterior, turned a little to the patient's right and down from above: the scalpel
   // comes in at an angle, not end-on.
   vtkCamera* camera = view->GetRenderer()->GetActiveCamera();
@@ -147,6 +137,21 @@ void RenderKeyFrames(DemoReport& report, const std::vector<TrackedPose>& poses)
   }
 }
 } // namespace
+
+vtkSmartPointer<vtkVesselProximityLogic> MakeDemoTipLogic(const DemoReport& report)
+{
+  auto logic = vtkSmartPointer<vtkVesselProximityLogic>::New();
+  for (const char* c : VesselClasses)
+  {
+    vtkNew<vtkVesselMeshReader> reader;
+    reader->SetFileName(report.ModelFiles.at(c));
+    reader->Read();
+    logic->AddVessel(c, reader->GetOutput());
+  }
+  logic->SetScalpel(LoadScalpel(report.ScalpelFile, {}));
+  logic->SetComputeSurfaceDistance(false);
+  return logic;
+}
 
 DemoReport RunDemoPipeline(const std::string& outDir, bool screenshots)
 {

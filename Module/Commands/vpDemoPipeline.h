@@ -3,6 +3,10 @@
 
 #include "vpDemoTrajectory.h"
 
+#include "vtkVesselProximityLogic.h"
+
+#include <vtkSmartPointer.h>
+
 #include <nlohmann/json.hpp>
 
 #include <map>
@@ -37,6 +41,10 @@ struct DemoReport
 /// off-screen (a virtual display is started when there is none). Progress goes to stderr and the
 /// commands' own reports to stdout. Throws vp::InputError when something cannot be written.
 DemoReport RunDemoPipeline(const std::string& outDir, bool screenshots);
+
+/// The module logic over the demo's built vessel models and scalpel, with the exact engine and
+/// the tip only (the whole surface off): what the screenshots show and the self-test checks.
+vtkSmartPointer<vtkVesselProximityLogic> MakeDemoTipLogic(const DemoReport& report);
 
 /// The demo's terminal table: stage times, each class's closest approach, the level changes,
 /// the engines' agreement and where the outputs are.

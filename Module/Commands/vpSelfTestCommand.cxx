@@ -7,10 +7,7 @@
 #include "vpDemoTrajectory.h"
 #include "vpInputError.h"
 #include "vpJsonFile.h"
-#include "vpNumericCsv.h"
 #include "vpPoseFile.h"
-#include "vpScalpelLoader.h"
-#include "vtkScalpelModel.h"
 #include "vtkVesselMeshReader.h"
 #include "vtkVesselProximityLogic.h"
 
@@ -86,16 +83,7 @@ std::string Text(double value)
 /// track command's run.
 std::vector<DangerLevel> ExactLevels(const DemoReport& report, std::vector<DangerLevel>& changes)
 {
-  vtkNew<vtkVesselProximityLogic> logic;
-  for (const char* c : { "portal_vein", "hepatic_artery", "hepatic_vein" })
-  {
-    vtkNew<vtkVesselMeshReader> reader;
-    reader->SetFileName(report.ModelFiles.at(c));
-    reader->Read();
-    logic->AddVessel(c, reader->GetOutput());
-  }
-  logic->SetScalpel(LoadScalpel(report.ScalpelFile, {}));
-  logic->SetComputeSurfaceDistance(false);
+  vtkSmartPointer<vtkVesselProximityLogic> logic = MakeDemoTipLogic(report);
   vtkNew<vtkCallbackCommand> onChange;
   onChange->SetClientData(&changes);
   onChange->SetCallback([](vtkObject*, unsigned long, void* list, void* change) {

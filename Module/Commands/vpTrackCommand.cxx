@@ -13,9 +13,8 @@
 #include "vpScalpelLoader.h"
 #include "vpTrackingOptions.h"
 #include "vpTrackingSummary.h"
-#include "vtkExactVesselDistance.h"
-#include "vtkScalpelSurfaceDistance.h"
 #include "vtkScalpelTrackingLogic.h"
+#include "vtkVesselProximityLogic.h"
 #include "vtkVesselMeshWriter.h"
 
 #include <vtkCallbackCommand.h>
@@ -234,39 +233,22 @@ int RunTrackCommand(const std::vector<std::string>& argv)
   const auto meshes = LoadVesselMeshes(ParsePairs(args.Get("--vessels"), "--vessels"));
   auto scalpel = LoadScalpel(args.Get("--scalpel"), tip);
   std::cerr << "track: " << scalpel->GetTipSource() << "\n";
-  // The exact engine serves --method exact, the check of --method both, and the whole surface.
-  vtkSmartPointer<vtkExactVesselDistance> exact = vtkExactVesselDistance::SafeDownCast(engine);
-  if (!exact && (method == "both" || surface))
-  {
-    exact = vtkSmartPointer<vtkExactVesselDistance>::New();
-    exact->SetRangeMm(engine->GetRangeMm());
-  }
+  // The module logic builds the engine, and beside it the exact engine when the check of
+  // --method both or the whole surface needs one.
+  vtkNew<vtkVesselProximityLogic> proximity;
+  proximity->SetDistanceEngine(engine);
+  proximity->SetScalpel(scalpel);
+  proximity->SetDangerThresholds(thresholds);
+  proximity->SetComputeSurfaceDistance(surface);
+  proximity->SetCompareWithExact(method == "both");
   for (const auto& m : meshes)
   {
-    engine->AddVessel(m.ClassName, m.Mesh);
-    if (exact && exact != engine)
-    {
-      exact->AddVessel(m.ClassName, m.Mesh);
-    }
+    proximity->AddVessel(m.ClassName, m.Mesh);
   }
-  engine->Build();
-  if (exact)
-  {
-    exact->Build();
-  }
+  proximity->Build();
   const double buildMs = NowMs() - start;
 
-  vtkNew<vtkScalpelTrackingLogic> logic;
-  logic->SetDistanceEngine(engine);
-  logic->SetScalpel(scalpel);
-  logic->SetDangerThresholds(thresholds);
-  vtkNew<vtkScalpelSurfaceDistance> surfaceDistance;
-  if (surface)
-  {
-    surfaceDistance->SetVesselDistance(exact);
-    surfaceDistance->SetToolSurface(scalpel->GetModel());
-    logic->SetSurfaceDistance(surfaceDistance);
-  }
+  vtkScalpelTrackingLogic* logic = proximity->GetTrackingLogic();
   TrackingSummary summary;
   vtkNew<vtkCallbackCommand> onChange;
   onChange->SetClientData(&summary);
@@ -279,17 +261,15 @@ int RunTrackCommand(const std::vector<std::string>& argv)
   frames.reserve(poses.size());
   std::vector<double> frameMs;
   ExactComparison check;
-  ProximityResult exactResult;
   double lastReport = NowMs();
   for (std::size_t i = 0; i < poses.size(); ++i)
   {
-    frames.push_back(logic->ProcessPose(poses[i]));
+    frames.push_back(proximity->ProcessPose(poses[i]));
     summary.Add(frames.back());
     frameMs.push_back(frames.back().FrameMs);
     if (method == "both")
     {
-      exact->ComputeProximity(frames.back().TipMm, frames.back().AxisWorld, exactResult);
-      check.Add(frames.back().Proximity, exactResult, engine->GetRangeMm(), ErrorBoundMm(engine));
+      check.Add(frames.back().Proximity, proximity->GetLastExactProximity(), engine->GetRangeMm(), ErrorBoundMm(engine));
     }
     if (NowMs() - lastReport > 1000.0)
     {

@@ -56,15 +56,12 @@ std::pair<int, int> ParseSize(const std::string& text)
 std::vector<std::string> SplitKeys(const std::string& text)
 {
   std::vector<std::string> keys;
-  std::size_t start = 0;
-  while (start <= text.size())
+  for (const std::string& key : SplitList(text, ','))
   {
-    const std::size_t end = std::min(text.find(',', start), text.size());
-    if (end > start)
+    if (!key.empty())
     {
-      keys.push_back(text.substr(start, end - start));
+      keys.push_back(key);
     }
-    start = end + 1;
   }
   return keys;
 }
@@ -74,16 +71,7 @@ std::vector<std::string> SplitKeys(const std::string& text)
 std::array<double, 16> StartingPose(vtkVesselProximityLogic* logic)
 {
   double bounds[6] = { 0, 0, 0, 0, 0, 0 };
-  for (int i = 0; i < logic->GetNumberOfVessels(); ++i)
-  {
-    double b[6];
-    logic->GetVesselSurface(i)->GetBounds(b);
-    for (int a = 0; a < 3; ++a)
-    {
-      bounds[2 * a] = i == 0 ? b[2 * a] : std::min(bounds[2 * a], b[2 * a]);
-      bounds[2 * a + 1] = i == 0 ? b[2 * a + 1] : std::max(bounds[2 * a + 1], b[2 * a + 1]);
-    }
-  }
+  logic->GetVesselBounds(bounds);
   const double cx = 0.5 * (bounds[0] + bounds[1]), cy = bounds[2] - 30.0, cz = 0.5 * (bounds[4] + bounds[5]);
   return { 1, 0, 0, cx, 0, 0, 1, cy, 0, -1, 0, cz, 0, 0, 0, 1 };
 }

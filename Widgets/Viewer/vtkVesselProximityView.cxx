@@ -194,24 +194,15 @@ void vtkVesselProximityView::OnTimer()
 void vtkVesselProximityView::ResetCamera()
 {
   // Frame the vessels only: the scalpel's handle is long and would push them into a corner.
-  double bounds[6] = { 1, -1, 1, -1, 1, -1 };
+  double bounds[6];
   vtkVesselProximityLogic* logic = this->GetLogic();
-  for (int i = 0; logic && i < logic->GetNumberOfVessels(); ++i)
-  {
-    double b[6];
-    logic->GetVesselSurface(i)->GetBounds(b);
-    for (int a = 0; a < 3; ++a)
-    {
-      bounds[2 * a] = bounds[2 * a] > bounds[2 * a + 1] ? b[2 * a] : std::min(bounds[2 * a], b[2 * a]);
-      bounds[2 * a + 1] = bounds[2 * a] > bounds[2 * a + 1] ? b[2 * a + 1] : std::max(bounds[2 * a + 1], b[2 * a + 1]);
-    }
-  }
+  const bool haveVessels = logic && logic->GetVesselBounds(bounds);
   vtkCamera* camera = this->Renderer->GetActiveCamera();
   // LPS: anterior is -y, superior +z; the patient's right appears on the left, as in Slicer.
   camera->SetFocalPoint(0, 0, 0);
   camera->SetPosition(0, -1, 0);
   camera->SetViewUp(0, 0, 1);
-  if (bounds[0] <= bounds[1])
+  if (haveVessels)
   {
     this->Renderer->ResetCamera(bounds);
   }

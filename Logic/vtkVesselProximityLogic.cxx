@@ -2,7 +2,7 @@
 
 #include "vtkExactVesselDistance.h"
 #include "vtkScalpelModel.h"
-#include "vtkScalpelSurfaceDistance.h"
+#include "vtkFclSurfaceDistance.h"
 #include "vtkVesselDistanceEngine.h"
 
 #include <vtkObjectFactory.h>
@@ -121,9 +121,10 @@ void vtkVesselProximityLogic::Build()
   this->Tracking->SetDistanceEngine(this->Engine);
   if (surface)
   {
-    this->Surface = vtkSmartPointer<vtkScalpelSurfaceDistance>::New();
+    this->Surface = vtkSmartPointer<vtkFclSurfaceDistance>::New();
     this->Surface->SetVesselDistance(this->Exact);
     this->Surface->SetToolSurface(this->GetScalpel()->GetModel());
+    this->Surface->Build(); // the trees, once: not in the first frame's time
     this->Tracking->SetSurfaceDistance(this->Surface);
   }
   else

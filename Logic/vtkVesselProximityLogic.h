@@ -14,7 +14,7 @@
 class vtkExactVesselDistance;
 class vtkPolyData;
 class vtkScalpelModel;
-class vtkScalpelSurfaceDistance;
+class vtkFclSurfaceDistance;
 class vtkVesselDistanceEngine;
 
 /// The module's logic: the scene (vessel surfaces per class, the scalpel) and everything computed
@@ -93,7 +93,7 @@ protected:
   std::vector<std::pair<std::string, vtkSmartPointer<vtkPolyData>>> Vessels;
   vtkSmartPointer<vtkVesselDistanceEngine> Engine;
   vtkSmartPointer<vtkExactVesselDistance> Exact;
-  vtkSmartPointer<vtkScalpelSurfaceDistance> Surface;
+  vtkSmartPointer<vtkFclSurfaceDistance> Surface;
   vtkSmartPointer<vtkScalpelTrackingLogic> Tracking;
   bool CompareWithExact = false;
   bool ComputeSurfaceDistance = true;

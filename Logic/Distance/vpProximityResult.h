@@ -57,6 +57,10 @@ struct SurfaceProximity
   double DistanceMm = 0.0; ///< 0 when the surfaces touch or cross
   double PointOnToolMm[3] = { 0, 0, 0 };
   double PointOnVesselMm[3] = { 0, 0, 0 };
+  /// The closest pair's triangles (the calculator's own numbering; -1 when unknown): the next
+  /// pose's search starts from them.
+  long long ToolTriangle = -1;
+  long long VesselTriangle = -1;
 };
 } // namespace vp
 

@@ -171,7 +171,7 @@ void vtkScalpelSurfaceDistance::EnsureTree() const
 }
 
 void vtkScalpelSurfaceDistance::ComputeSurfaceProximity(
-  const std::array<double, 16>& m, std::vector<vp::SurfaceProximity>& out) const
+  const std::array<double, 16>& m, std::vector<vp::SurfaceProximity>& out, const std::vector<vp::SurfaceProximity>*) const
 {
   if (!this->Vessels)
   {

@@ -78,7 +78,8 @@ const vp::TrackedFrame& vtkScalpelTrackingLogic::ProcessPose(const vp::TrackedPo
   this->Engine->ComputeProximity(frame.TipMm, frame.AxisWorld, frame.Proximity, hasPrevious ? &this->Last.Proximity : nullptr);
   if (this->SurfaceDistance)
   {
-    this->SurfaceDistance->ComputeSurfaceProximity(pose.ModelToWorld, frame.Surface);
+    this->SurfaceDistance->ComputeSurfaceProximity(
+      pose.ModelToWorld, frame.Surface, hasPrevious && !this->Last.Surface.empty() ? &this->Last.Surface : nullptr);
   }
   frame.FrameMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 

@@ -6,6 +6,7 @@
 #include "vpAnalyticShapes.h"
 #include "vpScalpelLoader.h"
 #include "vpPointCsv.h"
+#include "vpPoseFile.h"
 #include "vtkScalpelModel.h"
 #include "vpCommandSupport.h"
 #include "vpCommands.h"
@@ -41,7 +42,7 @@ using Json = nlohmann::ordered_json;
 const char* Usage =
   "usage: vesselproximity bench [--vessels CLASS=FILE,...] [--sizes N,N,...] [--queries N]\n"
   "         [--brute-queries N] [--seed N] [--engines exact,zbuffer,replay] [--json] [-o FILE.json]\n"
-  "         [--scalpel FILE.stl [--tip X,Y,Z]]\n"
+  "         [--scalpel FILE.stl [--tip X,Y,Z]] [--poses FILE.csv]\n"
   "         [z-buffer settings: --device --cell --resolution --bins --range --box-size]\n"
   "  Grows each vessel mesh to each size (longest-edge bisection: same surface, more triangles)\n"
   "  and measures in one run:\n"
@@ -54,8 +55,10 @@ const char* Usage =
   "    largest |zbuffer - exact| against the error bound.\n"
   "  replay: the tracking pipeline (vtkScalpelTrackingLogic) on the vessels as given, all classes,\n"
   "    a scalpel (--scalpel, default a 120 mm shaft of 1.5 mm radius) following the tracked tip:\n"
-  "    frames per second, exact (tip; tip and whole surface), z-buffer on cached layers (with\n"
-  "    zbuffer among the engines), brute force on the first brute-queries frames.\n"
+  "    frames per second, exact (tip; tip and whole surface), FCL's whole surface on the same\n"
+  "    poses (its answers compared with ours), z-buffer on cached layers (with zbuffer among the\n"
+  "    engines), brute force on the first brute-queries frames. --poses replays a pose file (the\n"
+  "    demo's poses.csv, say) instead of the generated path.\n"
   "  Defaults: the built-in analytic vessels, sizes 50000,400000,1500000, 2000 queries,\n"
   "  30 brute-force queries, both engines. Progress goes to stderr.\n";
 
@@ -303,7 +306,7 @@ int RunBenchCommand(const std::vector<std::string>& argv)
     return 0;
   }
   std::set<std::string> options = EngineValueOptions();
-  options.insert({ "--vessels", "--sizes", "--queries", "--brute-queries", "--seed", "--engines", "-o", "--scalpel", "--tip" });
+  options.insert({ "--vessels", "--sizes", "--queries", "--brute-queries", "--seed", "--engines", "-o", "--scalpel", "--tip", "--poses" });
   const Arguments args(argv, options, { "--json" });
   std::set<std::string> engineNames;
   std::istringstream engineList(args.Get("--engines", "exact,zbuffer"));
@@ -447,7 +450,8 @@ int RunBenchCommand(const std::vector<std::string>& argv)
     {
       replayZBuffer = MakeDistanceEngine("zbuffer", args);
     }
-    report["replay"] = BenchReplay(vessels, static_cast<std::size_t>(queries), seed, scalpel, replayZBuffer, bruteQueries);
+    const std::vector<TrackedPose> poses = args.Has("--poses") ? ReadPoseFile(args.Get("--poses")) : std::vector<TrackedPose>();
+    report["replay"] = BenchReplay(vessels, static_cast<std::size_t>(queries), seed, scalpel, replayZBuffer, bruteQueries, poses);
     report["replay"]["scalpel"] = scalpel->GetTipSource();
   }
 
@@ -502,17 +506,25 @@ int RunBenchCommand(const std::vector<std::string>& argv)
   if (benchReplay)
   {
     const Json& r = report["replay"];
-    std::printf("\nreplay: %zu poses, %zu classes, %zu triangles, scalpel of %lld triangles (after edge splitting)\n",
+    std::printf("\nreplay: %zu poses, %zu classes, %zu triangles, scalpel of %lld triangles\n",
       r["poses"].get<std::size_t>(), r["classes"].get<std::size_t>(), r["triangles"].get<std::size_t>(),
       r["tool_triangles"].get<long long>());
     std::printf("  %-36s %8s %14s %12s %12s\n", "engine", "frames", "frames/s", "median ms", "p95 ms");
-    for (const char* key : { "exact_tip", "exact_tip_and_surface", "exact_tip_and_surface_within_caution", "zbuffer_cached", "brute_tip" })
+    for (const char* key :
+      { "exact_tip", "exact_tip_and_surface", "fcl_surface", "spheres_tip_and_surface", "exact_tip_and_surface_within_caution",
+        "zbuffer_cached", "brute_tip" })
     {
       if (r.contains(key))
       {
         std::printf("  %-36s %8zu %14.0f %12.4f %12.4f\n", key, r[key]["frames"].get<std::size_t>(),
           r[key]["frames_per_second"].get<double>(), r[key]["frame_median_ms"].get<double>(), r[key]["frame_p95_ms"].get<double>());
       }
+    }
+    for (const char* key : { "fcl_surface", "spheres_tip_and_surface" })
+    {
+      std::printf("  %s against exact_tip_and_surface: largest difference %.2e mm, %d in/out of range disagreements\n", key,
+        r[key]["vs_exact_tip_and_surface"]["max_abs_diff_mm"].get<double>(),
+        r[key]["vs_exact_tip_and_surface"]["in_range_disagreements"].get<int>());
     }
     if (r.contains("zbuffer_cached"))
     {

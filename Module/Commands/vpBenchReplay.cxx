@@ -4,6 +4,7 @@
 #include "vpRigidTransform.h"
 #include "vtkBruteForceVesselDistance.h"
 #include "vtkExactVesselDistance.h"
+#include "vtkFclSurfaceDistance.h"
 #include "vtkScalpelModel.h"
 #include "vtkScalpelSurfaceDistance.h"
 #include "vtkScalpelTrackingLogic.h"
@@ -106,13 +107,63 @@ Json Entry(const Replay& r)
   return { { "frames", r.Frames.size() }, { "frames_with_a_class_in_range", inRange }, { "frames_per_second", r.FramesPerSecond },
     { "frame_median_ms", Quantile(r.FrameMs, 0.5) }, { "frame_p95_ms", Quantile(r.FrameMs, 0.95) } };
 }
+
+
+/// Plain FCL (no warm start: as MoveIt or Drake would call it) on every pose, timed per frame.
+Replay PlainFcl(vtkExactVesselDistance* exact, vtkScalpelModel* scalpel, const std::vector<TrackedPose>& poses)
+{
+  vtkNew<vtkFclSurfaceDistance> fcl;
+  fcl->SetVesselDistance(exact);
+  fcl->SetToolSurface(scalpel->GetModel());
+  fcl->WarmStartOff();
+  fcl->Build();
+  Replay replay;
+  const double start = NowMs();
+  for (const TrackedPose& pose : poses)
+  {
+    const double t0 = NowMs();
+    TrackedFrame frame;
+    fcl->ComputeSurfaceProximity(pose.ModelToWorld, frame.Surface);
+    frame.FrameMs = NowMs() - t0;
+    replay.FrameMs.push_back(frame.FrameMs);
+    replay.Frames.push_back(std::move(frame));
+  }
+  replay.FramesPerSecond = 1000.0 * static_cast<double>(poses.size()) / std::max(1e-9, NowMs() - start);
+  return replay;
+}
+
+/// The largest difference between two replays' whole-surface distances, and the answers where one
+/// is in range and the other not.
+Json CompareSurfaces(const Replay& a, const Replay& b)
+{
+  double largest = 0.0;
+  int disagreements = 0;
+  for (std::size_t i = 0; i < std::min(a.Frames.size(), b.Frames.size()); ++i)
+  {
+    for (std::size_t c = 0; c < std::min(a.Frames[i].Surface.size(), b.Frames[i].Surface.size()); ++c)
+    {
+      const SurfaceProximity& x = a.Frames[i].Surface[c];
+      const SurfaceProximity& y = b.Frames[i].Surface[c];
+      if (x.InRange != y.InRange)
+      {
+        ++disagreements;
+      }
+      else if (x.InRange)
+      {
+        largest = std::max(largest, std::abs(x.DistanceMm - y.DistanceMm));
+      }
+    }
+  }
+  return { { "max_abs_diff_mm", largest }, { "in_range_disagreements", disagreements } };
+}
 } // namespace
 
 Json BenchReplay(const std::vector<NamedMesh>& vessels, std::size_t frames, unsigned seed, vtkScalpelModel* scalpel,
-  vtkVesselDistanceEngine* zbuffer, int bruteFrames)
+  vtkVesselDistanceEngine* zbuffer, int bruteFrames, const std::vector<TrackedPose>& givenPoses)
 {
-  const std::vector<std::array<double, 3>> path = PathNearVessels(vessels, frames, seed);
-  const std::vector<TrackedPose> poses = PosesAlong(path, scalpel);
+  const std::vector<std::array<double, 3>> path =
+    givenPoses.empty() ? PathNearVessels(vessels, frames, seed) : std::vector<std::array<double, 3>>();
+  const std::vector<TrackedPose> poses = givenPoses.empty() ? PosesAlong(path, scalpel) : givenPoses;
   std::size_t triangles = 0;
   vtkNew<vtkExactVesselDistance> exact;
   vtkNew<vtkBruteForceVesselDistance> brute;
@@ -133,13 +184,23 @@ Json BenchReplay(const std::vector<NamedMesh>& vessels, std::size_t frames, unsi
   logic->SetDistanceEngine(exact);
   const Replay tip = Run(logic, poses, poses.size());
 
-  std::fprintf(stderr, ", whole surface");
-  vtkNew<vtkScalpelSurfaceDistance> surface;
+  std::fprintf(stderr, ", whole surface (FCL, warm start)");
+  vtkNew<vtkFclSurfaceDistance> surface;
   surface->SetVesselDistance(exact);
   surface->SetToolSurface(scalpel->GetModel());
+  surface->Build();
   logic->SetSurfaceDistance(surface);
   const Replay whole = Run(logic, poses, poses.size());
+  std::fprintf(stderr, ", plain FCL");
+  const Replay plain = PlainFcl(exact, scalpel, poses);
+  std::fprintf(stderr, ", bounding spheres");
+  vtkNew<vtkScalpelSurfaceDistance> spheres;
+  spheres->SetVesselDistance(exact);
+  spheres->SetToolSurface(scalpel->GetModel());
+  logic->SetSurfaceDistance(spheres);
+  const Replay sphereReplay = Run(logic, poses, poses.size());
   std::fprintf(stderr, ", whole surface within the caution distance");
+  logic->SetSurfaceDistance(surface);
   surface->SetRangeMm(logic->GetDangerThresholds().CautionMm);
   const Replay near = Run(logic, poses, poses.size());
   logic->SetSurfaceDistance(nullptr);
@@ -154,8 +215,14 @@ Json BenchReplay(const std::vector<NamedMesh>& vessels, std::size_t frames, unsi
   out["classes"] = vessels.size();
   out["triangles"] = triangles;
   out["tool_triangles"] = surface->GetNumberOfToolTriangles();
+  out["tool_triangles_split_for_spheres"] = spheres->GetNumberOfToolTriangles();
   out["exact_tip"] = Entry(tip);
   out["exact_tip_and_surface"] = Entry(whole);
+  out["exact_tip_and_surface"]["surface_build_ms"] = surface->GetBuildTimeMs();
+  out["fcl_surface"] = Entry(plain);
+  out["fcl_surface"]["vs_exact_tip_and_surface"] = CompareSurfaces(plain, whole);
+  out["spheres_tip_and_surface"] = Entry(sphereReplay);
+  out["spheres_tip_and_surface"]["vs_exact_tip_and_surface"] = CompareSurfaces(sphereReplay, whole);
   out["exact_tip_and_surface_within_caution"] = Entry(near);
   out["surface_within_caution_mm"] = surface->GetRangeMm();
   out["brute_tip"] = Entry(slow);
@@ -171,7 +238,7 @@ Json BenchReplay(const std::vector<NamedMesh>& vessels, std::size_t frames, unsi
     const double renderStart = NowMs();
     zbuffer->Build();
     vp::ProximityResult warm;
-    const double origin[3] = { path[0][0], path[0][1], path[0][2] };
+    const double origin[3] = { tip.Frames[0].TipMm[0], tip.Frames[0].TipMm[1], tip.Frames[0].TipMm[2] };
     zbuffer->ComputeProximity(origin, nullptr, warm); // renders the layers
     const double renderMs = NowMs() - renderStart;
     std::fprintf(stderr, ", frames)");

@@ -2,6 +2,7 @@
 #define vpBenchReplay_h
 
 #include "vpCommandSupport.h"
+#include "vpPoseFile.h"
 #include "vtkVesselDistanceEngine.h"
 
 #include <nlohmann/json.hpp>
@@ -18,9 +19,11 @@ namespace vp
 /// degrees a frame, through vtkScalpelTrackingLogic, all vessel classes at full size, frames per second for
 /// the exact engine (tip; tip and whole surface), the z-buffer engine on cached layers (when
 /// zbuffer is given, its layers rendered once first) and brute force (the first bruteFrames).
-/// Every z-buffer frame is checked against the exact one.
+/// Every z-buffer frame is checked against the exact one. FCL answers the whole instrument on the
+/// same poses beside our own, its answers compared with ours. givenPoses, when not empty, replace
+/// the generated path (the demo's trajectory, say).
 nlohmann::ordered_json BenchReplay(const std::vector<NamedMesh>& vessels, std::size_t frames, unsigned seed,
-  vtkScalpelModel* scalpel, vtkVesselDistanceEngine* zbuffer, int bruteFrames);
+  vtkScalpelModel* scalpel, vtkVesselDistanceEngine* zbuffer, int bruteFrames, const std::vector<TrackedPose>& givenPoses);
 } // namespace vp
 
 #endif

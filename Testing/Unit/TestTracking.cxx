@@ -6,16 +6,13 @@
 #include "vpInputError.h"
 #include "vpRigidTransform.h"
 #include "vpTrackingSummary.h"
-#include "vpTriangleGeometry.h"
 #include "vtkExactVesselDistance.h"
 #include "vtkScalpelModel.h"
-#include "vtkScalpelSurfaceDistance.h"
 #include "vtkScalpelTrackingLogic.h"
 
 #include <gtest/gtest.h>
 
 #include <vtkCallbackCommand.h>
-#include <vtkCellArrayIterator.h>
 #include <vtkNew.h>
 #include <vtkPolyData.h>
 
@@ -257,95 +254,6 @@ TEST_F(Tracking, SummaryAddsUp)
   EXPECT_EQ(summary.GetWorstLevel(), vp::DangerLevel::Danger);
   // The far sphere (60 mm away, radius 5) never comes within the 50 mm range.
   EXPECT_FALSE(summary.GetTipMinimum()[1].Seen);
-}
-
-namespace
-{
-/// Every tool triangle against every vessel triangle: the reference for the whole-surface distance.
-double BruteForceSurfaceDistance(vtkPolyData* tool, const std::array<double, 16>& m, vtkPolyData* vessel)
-{
-  auto corners = [](vtkPolyData* mesh, const std::array<double, 16>* place) {
-    std::vector<std::array<double, 9>> out;
-    auto it = vtk::TakeSmartPointer(mesh->GetPolys()->NewIterator());
-    for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
-    {
-      vtkIdType n;
-      const vtkIdType* ids;
-      it->GetCurrentCell(n, ids);
-      for (vtkIdType k = 1; k + 1 < n; ++k)
-      {
-        std::array<double, 9> t{};
-        const vtkIdType corner[3] = { ids[0], ids[k], ids[k + 1] };
-        for (int c = 0; c < 3; ++c)
-        {
-          double p[3];
-          mesh->GetPoint(corner[c], p);
-          for (int r = 0; r < 3; ++r)
-          {
-            t[3 * c + r] = place ? (*place)[4 * r] * p[0] + (*place)[4 * r + 1] * p[1] + (*place)[4 * r + 2] * p[2] + (*place)[4 * r + 3] : p[r];
-          }
-        }
-        out.push_back(t);
-      }
-    }
-    return out;
-  };
-  const auto a = corners(tool, &m);
-  const auto b = corners(vessel, nullptr);
-  double best = std::numeric_limits<double>::infinity();
-  for (const auto& s : a)
-  {
-    for (const auto& t : b)
-    {
-      double p[3], q[3];
-      best = std::min(best, vp::ClosestPointsOfTriangles(&s[0], &s[3], &s[6], &t[0], &t[3], &t[6], p, q));
-    }
-  }
-  return std::sqrt(best);
-}
-} // namespace
-
-TEST(ScalpelSurfaceDistance, EqualsBruteForceAndSeesTheShaftBeforeTheTip)
-{
-  auto vessel = vp::MakeSphere(Origin, 10.0, 24, 48);
-  vtkNew<vtkExactVesselDistance> engine;
-  engine->AddVessel("portal_vein", vessel);
-  engine->Build();
-  auto tool = ToolShaft();
-  vtkNew<vtkScalpelSurfaceDistance> surface;
-  surface->SetVesselDistance(engine);
-  surface->SetToolSurface(tool);
-  std::mt19937 random(3);
-  std::uniform_real_distribution<double> angle(0.0, 2 * M_PI), offset(-25.0, 25.0);
-  int touching = 0;
-  for (int i = 0; i < 40; ++i)
-  {
-    const double axis[3] = { offset(random), offset(random), offset(random) };
-    const vp::Matrix4 rotation = vp::RotationAboutAxis({ axis[0], axis[1], axis[2] }, angle(random), { offset(random), offset(random), offset(random) });
-    std::vector<vp::SurfaceProximity> result;
-    surface->ComputeSurfaceProximity(rotation, result);
-    ASSERT_EQ(result.size(), 1u);
-    const double reference = BruteForceSurfaceDistance(tool, rotation, vessel);
-    if (reference > engine->GetRangeMm())
-    {
-      EXPECT_FALSE(result[0].InRange);
-      continue;
-    }
-    ASSERT_TRUE(result[0].InRange) << "pose " << i;
-    EXPECT_NEAR(result[0].DistanceMm, reference, 1e-9) << "pose " << i;
-    EXPECT_NEAR(std::sqrt(vp::Distance2(result[0].PointOnToolMm, result[0].PointOnVesselMm)), result[0].DistanceMm, 1e-9);
-    touching += reference == 0.0 ? 1 : 0;
-  }
-  EXPECT_GT(touching, 0) << "no pose crossed the vessel: the draw no longer tests the crossing case";
-
-  // The shaft passes 2 mm beside the sphere (tool axis along +y at x = 13.5, tip at y = -40):
-  // the tip is 32 mm away, the surface 2 mm (less the facets' chord error).
-  const vp::Matrix4 beside{ 1, 0, 0, 13.5, 0, 0, -1, -40, 0, 1, 0, 0, 0, 0, 0, 1 };
-  std::vector<vp::SurfaceProximity> result;
-  surface->ComputeSurfaceProximity(beside, result);
-  ASSERT_TRUE(result[0].InRange);
-  EXPECT_NEAR(result[0].DistanceMm, BruteForceSurfaceDistance(tool, beside, vessel), 1e-9);
-  EXPECT_NEAR(result[0].DistanceMm, 2.0, 0.1);
 }
 
 // A tip that enters a vessel came closer than any tip outside: the summary keeps the deepest

@@ -1,0 +1,210 @@
+#include "vtkFclSurfaceDistance.h"
+
+#include "vpInputError.h"
+
+#include <vtkCellArray.h>
+#include <vtkCellArrayIterator.h>
+#include <vtkNew.h>
+#include <vtkObjectFactory.h>
+#include <vtkPolyData.h>
+#include <vtkTriangleFilter.h>
+
+#include <fcl/geometry/bvh/BVH_model.h>
+#include <fcl/narrowphase/distance.h>
+#include <fcl/narrowphase/detail/primitive_shape_algorithm/triangle_distance.h>
+
+#include <cmath>
+#include <limits>
+
+#include <chrono>
+
+vtkStandardNewMacro(vtkFclSurfaceDistance);
+
+namespace
+{
+using Model = fcl::BVHModel<fcl::OBBRSSd>;
+
+std::shared_ptr<Model> MakeModel(const std::vector<fcl::Vector3d>& points, const std::vector<fcl::Triangle>& triangles)
+{
+  auto model = std::make_shared<Model>();
+  model->beginModel(static_cast<int>(triangles.size()), static_cast<int>(points.size()));
+  model->addSubModel(points, triangles);
+  model->endModel();
+  return model;
+}
+} // namespace
+
+struct vtkFclSurfaceDistance::Internals
+{
+  const vtkExactVesselDistance* VesselsBuiltFrom = nullptr;
+  vtkMTimeType VesselsBuiltAt = 0;
+  const vtkPolyData* ToolBuiltFrom = nullptr;
+  vtkMTimeType ToolBuiltAt = 0;
+  std::shared_ptr<Model> Tool;
+  std::vector<std::shared_ptr<Model>> Vessels;
+};
+
+vtkFclSurfaceDistance::vtkFclSurfaceDistance()
+  : Impl(std::make_unique<Internals>())
+{
+}
+vtkFclSurfaceDistance::~vtkFclSurfaceDistance() = default;
+
+long long vtkFclSurfaceDistance::GetNumberOfToolTriangles() const
+{
+  return this->Impl->Tool ? this->Impl->Tool->num_tris : 0;
+}
+
+void vtkFclSurfaceDistance::Build()
+{
+  if (!this->Vessels)
+  {
+    throw std::logic_error("vtkFclSurfaceDistance: set the vessel distance engine first");
+  }
+  std::lock_guard<std::mutex> lock(this->BuildLock);
+  Internals& s = *this->Impl;
+  this->Vessels->Build();
+  const bool vesselsCurrent = s.VesselsBuiltFrom == this->Vessels && s.VesselsBuiltAt >= this->Vessels->GetMTime() &&
+    static_cast<int>(s.Vessels.size()) == this->Vessels->GetNumberOfVessels();
+  const bool toolCurrent =
+    s.Tool && s.ToolBuiltFrom == this->ToolSurface && this->ToolSurface && s.ToolBuiltAt >= this->ToolSurface->GetMTime();
+  if (vesselsCurrent && toolCurrent)
+  {
+    return;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  if (!this->ToolSurface || !this->ToolSurface->GetPoints() || this->ToolSurface->GetNumberOfPolys() == 0)
+  {
+    throw vp::InputError("scalpel model", "has no surface for the whole-instrument distance");
+  }
+  vtkNew<vtkTriangleFilter> filter;
+  filter->SetInputData(this->ToolSurface);
+  filter->PassLinesOff();
+  filter->PassVertsOff();
+  filter->Update();
+  vtkPolyData* mesh = filter->GetOutput();
+  std::vector<fcl::Vector3d> points(static_cast<std::size_t>(mesh->GetNumberOfPoints()));
+  for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
+  {
+    mesh->GetPoint(i, points[static_cast<std::size_t>(i)].data());
+  }
+  std::vector<fcl::Triangle> triangles;
+  const vtkIdType* ids = nullptr;
+  vtkIdType n = 0;
+  auto polys = vtk::TakeSmartPointer(mesh->GetPolys()->NewIterator());
+  for (polys->GoToFirstCell(); !polys->IsDoneWithTraversal(); polys->GoToNextCell())
+  {
+    polys->GetCurrentCell(n, ids);
+    if (n == 3)
+    {
+      triangles.emplace_back(static_cast<std::size_t>(ids[0]), static_cast<std::size_t>(ids[1]), static_cast<std::size_t>(ids[2]));
+    }
+  }
+  if (triangles.empty())
+  {
+    throw vp::InputError("scalpel model", "has no triangles for the whole-instrument distance");
+  }
+  s.Tool = MakeModel(points, triangles);
+  s.ToolBuiltFrom = this->ToolSurface;
+  s.ToolBuiltAt = this->ToolSurface->GetMTime();
+  if (vesselsCurrent)
+  {
+    this->BuildTimeMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return;
+  }
+  s.Vessels.clear();
+  for (int c = 0; c < this->Vessels->GetNumberOfVessels(); ++c)
+  {
+    const vp::VesselSurface& surface = this->Vessels->GetSurface(c);
+    std::vector<fcl::Vector3d> vp(surface.NumberOfPoints());
+    for (std::size_t i = 0; i < vp.size(); ++i)
+    {
+      const double* p = surface.Point(static_cast<std::int32_t>(i));
+      vp[i] = fcl::Vector3d(p[0], p[1], p[2]);
+    }
+    std::vector<fcl::Triangle> vt;
+    vt.reserve(surface.NumberOfTriangles());
+    for (const auto& t : surface.TriangleArray())
+    {
+      vt.emplace_back(static_cast<std::size_t>(t[0]), static_cast<std::size_t>(t[1]), static_cast<std::size_t>(t[2]));
+    }
+    s.Vessels.push_back(MakeModel(vp, vt));
+  }
+  s.VesselsBuiltFrom = this->Vessels;
+  s.VesselsBuiltAt = this->Vessels->GetMTime();
+  this->BuildTimeMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+void vtkFclSurfaceDistance::ComputeSurfaceProximity(
+  const std::array<double, 16>& m, std::vector<vp::SurfaceProximity>& out, const std::vector<vp::SurfaceProximity>* previous) const
+{
+  if (!this->Vessels)
+  {
+    throw std::logic_error("vtkFclSurfaceDistance: set the vessel distance engine first");
+  }
+  const_cast<vtkFclSurfaceDistance*>(this)->Build();
+  const Internals& s = *this->Impl;
+  fcl::Transform3d pose = fcl::Transform3d::Identity();
+  for (int r = 0; r < 3; ++r)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      pose.linear()(r, c) = m[4 * r + c];
+    }
+    pose.translation()(r) = m[4 * r + 3];
+  }
+  const fcl::Transform3d worldToTool = pose.inverse();
+  const Model* tool = s.Tool.get();
+  const double range = this->RangeMm > 0 ? std::min(this->RangeMm, this->Vessels->GetRangeMm()) : this->Vessels->GetRangeMm();
+  out.assign(s.Vessels.size(), vp::SurfaceProximity());
+  for (std::size_t c = 0; c < s.Vessels.size(); ++c)
+  {
+    const Model* vessel = s.Vessels[c].get();
+    fcl::DistanceRequestd request;
+    request.enable_nearest_points = true;
+    // Nothing beyond the range is searched: the traversal prunes from its current minimum.
+    fcl::DistanceResultd result(std::nextafter(range, std::numeric_limits<double>::max()));
+    const vp::SurfaceProximity* before =
+      this->WarmStart && previous && previous->size() == s.Vessels.size() ? &(*previous)[c] : nullptr;
+    if (before && before->InRange && before->ToolTriangle >= 0 && before->ToolTriangle < tool->num_tris &&
+      before->VesselTriangle >= 0 && before->VesselTriangle < vessel->num_tris)
+    {
+      // The previous closest pair at this pose, in the tool's frame as FCL's traversal measures.
+      const fcl::Triangle& a = tool->tri_indices[before->ToolTriangle];
+      const fcl::Triangle& b = vessel->tri_indices[before->VesselTriangle];
+      fcl::Vector3d p, q;
+      const double d = fcl::detail::TriangleDistance<double>::triDistance(tool->vertices[a[0]], tool->vertices[a[1]],
+        tool->vertices[a[2]], worldToTool * vessel->vertices[b[0]], worldToTool * vessel->vertices[b[1]],
+        worldToTool * vessel->vertices[b[2]], p, q);
+      result.update(d, tool, vessel, static_cast<int>(before->ToolTriangle), static_cast<int>(before->VesselTriangle), p, q);
+    }
+    // The tool's pose goes in as a transform: the trees are never rebuilt.
+    fcl::distance(tool, pose, vessel, fcl::Transform3d::Identity(), request, result);
+    if (result.o1 != tool || result.o2 != vessel)
+    {
+      continue; // no pair within range
+    }
+    // FCL gives an implementation-defined negative value for crossing meshes: touching is 0.
+    const double d = std::max(0.0, result.min_distance);
+    if (d <= range)
+    {
+      vp::SurfaceProximity& p = out[c];
+      p.InRange = true;
+      p.DistanceMm = d;
+      p.ToolTriangle = result.b1;
+      p.VesselTriangle = result.b2;
+      for (int k = 0; k < 3; ++k)
+      {
+        p.PointOnToolMm[k] = result.nearest_points[0][k];
+        p.PointOnVesselMm[k] = result.nearest_points[1][k];
+      }
+    }
+  }
+}
+
+void vtkFclSurfaceDistance::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "WarmStart: " << (this->WarmStart ? "on" : "off") << "\n";
+  os << indent << "BuildTimeMs: " << this->BuildTimeMs << "\n";
+}

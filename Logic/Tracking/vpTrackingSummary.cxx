@@ -1,5 +1,7 @@
 #include "vpTrackingSummary.h"
 
+#include "vpQuantile.h"
+
 #include <algorithm>
 
 namespace vp
@@ -21,8 +23,15 @@ void Lower(ClassMinimum& minimum, double distanceMm, bool inside, const double p
 }
 } // namespace
 
+double TrackingSummary::GetFrameMsQuantile(double q) const
+{
+  return Quantile(this->FrameMs, q);
+}
+
 void TrackingSummary::Add(const TrackedFrame& frame)
 {
+  this->FrameMs.push_back(frame.FrameMs);
+  this->FramesOverBudget += frame.OverBudget ? 1 : 0;
   const auto& classes = frame.Proximity.Classes;
   if (this->Frames == 0)
   {

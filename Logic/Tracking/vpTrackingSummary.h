@@ -42,6 +42,11 @@ public:
   const std::array<int, NumberOfDangerLevels>& GetFramesInLevel() const { return this->FramesInLevel; }
   const std::vector<DangerLevelChange>& GetChanges() const { return this->Changes; }
   DangerLevel GetWorstLevel() const { return this->Worst; }
+  /// Every frame's computing time, in order (ms), and the q-quantile of them (nearest rank).
+  const std::vector<double>& GetFrameMs() const { return this->FrameMs; }
+  double GetFrameMsQuantile(double q) const;
+  /// Frames the tracking logic marked as over its frame budget.
+  int GetFramesOverBudget() const { return this->FramesOverBudget; }
 
 private:
   int Frames = 0;
@@ -55,6 +60,8 @@ private:
   std::array<double, NumberOfDangerLevels> TimeInLevelS{};
   std::array<int, NumberOfDangerLevels> FramesInLevel{};
   std::vector<DangerLevelChange> Changes;
+  std::vector<double> FrameMs;
+  int FramesOverBudget = 0;
 };
 } // namespace vp
 

@@ -82,6 +82,7 @@ const vp::TrackedFrame& vtkScalpelTrackingLogic::ProcessPose(const vp::TrackedPo
       pose.ModelToWorld, frame.Surface, hasPrevious && !this->Last.Surface.empty() ? &this->Last.Surface : nullptr);
   }
   frame.FrameMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  frame.OverBudget = this->FrameBudgetMs > 0.0 && frame.FrameMs > this->FrameBudgetMs;
 
   const auto& classes = frame.Proximity.Classes;
   frame.ClassLevels.resize(classes.size());
@@ -128,5 +129,6 @@ void vtkScalpelTrackingLogic::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SurfaceDistance: " << (this->SurfaceDistance ? "on" : "off") << "\n";
   os << indent << "DangerThresholds (caution, warning, danger): " << this->Thresholds.CautionMm << ", "
      << this->Thresholds.WarningMm << ", " << this->Thresholds.DangerMm << " mm\n";
+  os << indent << "FrameBudgetMs: " << this->FrameBudgetMs << (this->FrameBudgetMs > 0 ? "" : " (off)") << "\n";
   os << indent << "FramesProcessed: " << this->FramesProcessed << "\n";
 }

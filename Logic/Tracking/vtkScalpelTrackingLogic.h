@@ -31,6 +31,7 @@ struct TrackedFrame
   int LevelClass = -1;             ///< the class that set Level, -1 when all are safe
   std::vector<SurfaceProximity> Surface; ///< per class; empty when not computed
   double FrameMs = 0.0;            ///< wall time of the distance queries of this frame
+  bool OverBudget = false;         ///< FrameMs exceeded the tracking logic's frame budget
 };
 
 /// A change of the overall danger level between two frames.
@@ -78,6 +79,12 @@ public:
   void SetSurfaceDistance(vtkScalpelSurfaceDistance* surface);
   vtkScalpelSurfaceDistance* GetSurfaceDistance() const { return this->SurfaceDistance; }
 
+  /// The time a frame may take, in ms (default 16.7: one refresh at 60 Hz; the paper's 40 ms is
+  /// where a navigator's animation freezes). A frame that takes longer is marked OverBudget; 0
+  /// switches the check off.
+  void SetFrameBudgetMs(double budgetMs) { this->FrameBudgetMs = budgetMs; }
+  double GetFrameBudgetMs() const { return this->FrameBudgetMs; }
+
   /// Danger thresholds (defaults 10, 5, 2 mm). Validated when the first pose is processed.
   void SetDangerThresholds(const vp::DangerThresholds& thresholds) { this->Thresholds = thresholds; }
   const vp::DangerThresholds& GetDangerThresholds() const { return this->Thresholds; }
@@ -99,6 +106,7 @@ protected:
   vtkSmartPointer<vtkScalpelModel> Scalpel;
   vtkSmartPointer<vtkScalpelSurfaceDistance> SurfaceDistance;
   vp::DangerThresholds Thresholds;
+  double FrameBudgetMs = 16.7;
   vp::TrackedFrame Last;
   int FramesProcessed = 0;
 

@@ -32,17 +32,6 @@ std::vector<NamedMesh> LoadVesselMeshes(const std::vector<std::pair<std::string,
   return meshes;
 }
 
-double Quantile(std::vector<double> samples, double q)
-{
-  if (samples.empty())
-  {
-    return 0.0;
-  }
-  std::sort(samples.begin(), samples.end());
-  const std::size_t rank = static_cast<std::size_t>(std::ceil(q * samples.size()));
-  return samples[std::min(samples.size() - 1, rank == 0 ? 0 : rank - 1)];
-}
-
 bool CreateOutputFolder(const std::string& folder)
 {
   std::error_code ec;

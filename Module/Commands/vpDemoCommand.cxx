@@ -2,6 +2,7 @@
 #include "vpArguments.h"
 #include "vpCommands.h"
 #include "vpDemoPipeline.h"
+#include "vpTrackingOptions.h"
 #include "vpInputError.h"
 #include "vpJsonFile.h"
 
@@ -15,13 +16,14 @@ namespace vp
 namespace
 {
 const char* Usage =
-  "usage: vesselproximity demo [-o OUTDIR] [--no-screenshots]\n"
+  "usage: vesselproximity demo [-o OUTDIR] [--no-screenshots] [--frame-budget-ms MS]\n"
   "  The main job on a built-in phantom, no data needed: a procedural liver labelmap with three\n"
   "  vessel trees written as DICOM series, its vessel models, the built-in CUSA handpiece, a\n"
   "  trajectory that approaches and passes the vessels, both distance engines on every frame,\n"
   "  and the outputs in OUTDIR (default ./vesselproximity-demo): dicom/, models/, scalpel/,\n"
   "  poses.csv, frames.csv, summary.json, distance.png and screenshots/ of the key frames\n"
-  "  (rendered off-screen; Xvfb is started when there is no display).\n";
+  "  (rendered off-screen; Xvfb is started when there is no display). --frame-budget-ms: the\n"
+  "  time one frame may take (default 16.7, 60 Hz; 0: none); frames over it are counted.\n";
 
 std::string Fixed(double value, const char* format)
 {
@@ -63,6 +65,10 @@ void PrintDemoTable(const DemoReport& report, const nlohmann::json& summary)
     std::printf(" %s", change.at("to").get<std::string>().c_str());
   }
   std::printf("\n");
+  const auto& frameMs = summary.at("frame_ms");
+  std::printf("  frame median %.3f ms, p95 %.3f ms, max %.3f ms; %d of %d frames over the %g ms budget\n",
+    frameMs.at("median").get<double>(), frameMs.at("p95").get<double>(), frameMs.at("max").get<double>(),
+    summary.at("frames_over_budget").get<int>(), summary.at("frames").get<int>(), frameMs.at("budget").get<double>());
   if (summary.contains("comparison"))
   {
     std::printf("  z-buffer against exact: largest difference %.3f mm (bound %.3f mm), %d answer(s) outside the bound\n",
@@ -88,12 +94,13 @@ int RunDemoCommand(const std::vector<std::string>& argv)
     std::cout << Usage;
     return 0;
   }
-  const Arguments args(argv, { "-o" }, { "--no-screenshots" });
+  const Arguments args(argv, { "-o", "--frame-budget-ms" }, { "--no-screenshots" });
   if (!args.Positional().empty())
   {
     throw InputError(args.Positional()[0], "unexpected argument (see vesselproximity demo --help)");
   }
-  const DemoReport report = RunDemoPipeline(args.Get("-o", "vesselproximity-demo"), !args.Has("--no-screenshots"));
+  const DemoReport report =
+    RunDemoPipeline(args.Get("-o", "vesselproximity-demo"), !args.Has("--no-screenshots"), ParseFrameBudgetMs(args));
   PrintDemoTable(report, ReadJsonFile(report.OutDir + "/summary.json", "the demo summary"));
   return 0;
 }

@@ -153,7 +153,7 @@ vtkSmartPointer<vtkVesselProximityLogic> MakeDemoTipLogic(const DemoReport& repo
   return logic;
 }
 
-DemoReport RunDemoPipeline(const std::string& outDir, bool screenshots)
+DemoReport RunDemoPipeline(const std::string& outDir, bool screenshots, double frameBudgetMs)
 {
   DemoReport report;
   report.OutDir = outDir;
@@ -200,7 +200,7 @@ DemoReport RunDemoPipeline(const std::string& outDir, bool screenshots)
       vessels += (vessels.empty() ? "" : ",") + std::string(c) + "=" + report.ModelFiles.at(c);
     }
     std::vector<std::string> args{ "--vessels", vessels, "--scalpel", report.ScalpelFile, "--poses", report.PosesFile, "-o",
-      outDir, "--method", "both" };
+      outDir, "--frame-budget-ms", NumberText(frameBudgetMs), "--method", "both" };
     report.Method = "both";
     int status = 0;
     try

@@ -40,7 +40,8 @@ struct DemoReport
 /// frame (frames.csv, summary.json, distance.png); screenshots of the key frames rendered
 /// off-screen (a virtual display is started when there is none). Progress goes to stderr and the
 /// commands' own reports to stdout. Throws vp::InputError when something cannot be written.
-DemoReport RunDemoPipeline(const std::string& outDir, bool screenshots);
+/// frameBudgetMs goes to the track stage (--frame-budget-ms).
+DemoReport RunDemoPipeline(const std::string& outDir, bool screenshots, double frameBudgetMs = 16.7);
 
 /// The module logic over the demo's built vessel models and scalpel, with the exact engine and
 /// the tip only (the whole surface off): what the screenshots show and the self-test checks.

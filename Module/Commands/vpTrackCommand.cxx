@@ -37,7 +37,7 @@ using Json = nlohmann::ordered_json;
 const char* Usage =
   "usage: vesselproximity track --vessels CLASS=FILE[,CLASS=FILE...] --scalpel FILE.stl --poses FILE\n"
   "         [--tip X,Y,Z] [--axis X,Y,Z] [--method exact|zbuffer|both] [--danger-mm C,W,D]\n"
-  "         [--no-surface] [engine options] -o OUTDIR\n"
+  "         [--no-surface] [--frame-budget-ms MS] [engine options] -o OUTDIR\n"
   "  Replays tracked scalpel poses (model-to-world; CSV `time,m00..m33` or `time,x,y,z,qw,qx,qy,qz`,\n"
   "  or JSON) and writes OUTDIR/frames.csv (one row per pose), summary.json and distance.png.\n"
   "  The tip and axis (model coordinates): --tip/--axis, else FILE.json beside the model\n"
@@ -45,7 +45,9 @@ const char* Usage =
   "  --danger-mm: caution, warning and danger thresholds (default 10,5,2 mm); a tip inside a\n"
   "    vessel is a breach. The level uses distance minus the engine's error bound.\n"
   "  --no-surface: skip the whole-instrument distance (the closest approach of any point of the\n"
-  "    scalpel surface, computed exactly beside the tip's).\n";
+  "    scalpel surface, computed exactly beside the tip's).\n"
+  "  --frame-budget-ms: the time one frame may take (default 16.7, 60 Hz; 0: no budget); the\n"
+  "    frames over it are counted in summary.json and on the terminal.\n";
 
 std::string Number(double value, const char* format = "%.4f")
 {
@@ -116,7 +118,7 @@ Json MinimumJson(const ClassMinimum& m)
 }
 
 Json SummaryJson(const TrackingSummary& s, vtkScalpelTrackingLogic* logic, vtkVesselDistanceEngine* engine,
-  const std::string& posesFile, bool surface, const std::vector<double>& frameMs, const Json& comparison)
+  const std::string& posesFile, bool surface, const Json& comparison)
 {
   Json out;
   out["poses"] = posesFile;
@@ -160,8 +162,11 @@ Json SummaryJson(const TrackingSummary& s, vtkScalpelTrackingLogic* logic, vtkVe
       { "distance_mm", e.ClassName.empty() ? Json(nullptr) : Json(e.DistanceMm) } });
   }
   out["level_changes"] = events;
-  out["timing_ms"] = { { "frame_median", Quantile(frameMs, 0.5) }, { "frame_p95", Quantile(frameMs, 0.95) },
-    { "frame_max", Quantile(frameMs, 1.0) } };
+  out["frame_ms"] = { { "median", s.GetFrameMsQuantile(0.5) }, { "p95", s.GetFrameMsQuantile(0.95) },
+    { "max", s.GetFrameMsQuantile(1.0) }, { "budget", logic->GetFrameBudgetMs() } };
+  out["frames_over_budget"] = s.GetFramesOverBudget();
+  out["timing_ms"] = { { "frame_median", s.GetFrameMsQuantile(0.5) }, { "frame_p95", s.GetFrameMsQuantile(0.95) },
+    { "frame_max", s.GetFrameMsQuantile(1.0) } };
   if (!comparison.is_null())
   {
     out["comparison"] = comparison;
@@ -203,7 +208,7 @@ int RunTrackCommand(const std::vector<std::string>& argv)
     return 0;
   }
   std::set<std::string> options = EngineValueOptions();
-  options.insert({ "--vessels", "--scalpel", "--poses", "--tip", "--axis", "--danger-mm", "-o" });
+  options.insert({ "--vessels", "--scalpel", "--poses", "--tip", "--axis", "--danger-mm", "--frame-budget-ms", "-o" });
   const Arguments args(argv, options, { "--no-surface" });
   if (!args.Positional().empty())
   {
@@ -223,6 +228,7 @@ int RunTrackCommand(const std::vector<std::string>& argv)
   }
   const DangerThresholds thresholds = ParseDangerThresholds(args);
   const ScalpelTipDefinition tip = ParseTipDefinition(args);
+  const double budgetMs = ParseFrameBudgetMs(args);
   const bool surface = !args.Has("--no-surface");
   const std::string outDir = args.Get("-o");
 
@@ -249,6 +255,7 @@ int RunTrackCommand(const std::vector<std::string>& argv)
   const double buildMs = NowMs() - start;
 
   vtkScalpelTrackingLogic* logic = proximity->GetTrackingLogic();
+  logic->SetFrameBudgetMs(budgetMs);
   TrackingSummary summary;
   vtkNew<vtkCallbackCommand> onChange;
   onChange->SetClientData(&summary);
@@ -259,14 +266,12 @@ int RunTrackCommand(const std::vector<std::string>& argv)
 
   std::vector<TrackedFrame> frames;
   frames.reserve(poses.size());
-  std::vector<double> frameMs;
   ExactComparison check;
   double lastReport = NowMs();
   for (std::size_t i = 0; i < poses.size(); ++i)
   {
     frames.push_back(proximity->ProcessPose(poses[i]));
     summary.Add(frames.back());
-    frameMs.push_back(frames.back().FrameMs);
     if (method == "both")
     {
       check.Add(frames.back().Proximity, proximity->GetLastExactProximity(), engine->GetRangeMm(), ErrorBoundMm(engine));
@@ -291,7 +296,7 @@ int RunTrackCommand(const std::vector<std::string>& argv)
 
   std::vector<std::string> classes = summary.GetClassNames();
   const std::string csv = FramesCsv(frames, classes, surface);
-  Json doc = SummaryJson(summary, logic, engine, args.Get("--poses"), surface, frameMs, comparison);
+  Json doc = SummaryJson(summary, logic, engine, args.Get("--poses"), surface, comparison);
   doc["timing_ms"]["load_and_build"] = buildMs;
 
   // Write. A failure part-way removes what this run wrote.
@@ -335,8 +340,13 @@ int RunTrackCommand(const std::vector<std::string>& argv)
   {
     std::printf(" %s %.2f s", DangerLevelName(static_cast<DangerLevel>(l)), summary.GetTimeInLevelS()[l]);
   }
-  std::printf("\n  %zu level change(s), worst level %s; frame median %.4f ms, p95 %.4f ms\n", summary.GetChanges().size(),
-    DangerLevelName(summary.GetWorstLevel()), Quantile(frameMs, 0.5), Quantile(frameMs, 0.95));
+  std::printf("\n  %zu level change(s), worst level %s\n", summary.GetChanges().size(), DangerLevelName(summary.GetWorstLevel()));
+  std::printf("  frame median %.4f ms, p95 %.4f ms, max %.4f ms; %s\n", summary.GetFrameMsQuantile(0.5),
+    summary.GetFrameMsQuantile(0.95), summary.GetFrameMsQuantile(1.0),
+    budgetMs > 0 ? (std::to_string(summary.GetFramesOverBudget()) + " of " + std::to_string(frames.size()) +
+                     " frames over the " + Number(budgetMs, "%g") + " ms budget")
+                     .c_str()
+                 : "no frame budget");
   if (method == "both")
   {
     std::printf("  against the exact engine: largest difference %.4f mm, %d answer(s) outside the bound\n",

@@ -1,5 +1,9 @@
 #include "vpTrackingOptions.h"
 
+#include "vpInputError.h"
+
+#include <cmath>
+
 #include "vpPointCsv.h"
 
 namespace vp
@@ -28,5 +32,14 @@ ScalpelTipDefinition ParseTipDefinition(const Arguments& args)
     tip.Axis = ParsePoint(args.Get("--axis"), "--axis");
   }
   return tip;
+}
+double ParseFrameBudgetMs(const Arguments& args)
+{
+  const double budgetMs = args.GetNumber("--frame-budget-ms", 16.7);
+  if (!std::isfinite(budgetMs) || budgetMs < 0.0)
+  {
+    throw InputError("--frame-budget-ms", "expected a time in ms, 0 or more (0: no budget), got '" + args.Get("--frame-budget-ms") + "'");
+  }
+  return budgetMs;
 }
 } // namespace vp

@@ -11,6 +11,9 @@ namespace vp
 DangerThresholds ParseDangerThresholds(const Arguments& args);
 /// --tip X,Y,Z and --axis X,Y,Z in model coordinates, each optional.
 ScalpelTipDefinition ParseTipDefinition(const Arguments& args);
+/// --frame-budget-ms MS (default 16.7, one refresh at 60 Hz; 0 switches the check off): a finite
+/// number, not negative; throws InputError naming the option.
+double ParseFrameBudgetMs(const Arguments& args);
 } // namespace vp
 
 #endif

@@ -32,9 +32,10 @@ namespace
 const char* Usage =
   "usage: vesselproximity view --vessels CLASS=FILE[,CLASS=FILE...] [--scalpel FILE.stl [--tip X,Y,Z] [--axis X,Y,Z]]\n"
   "         [--poses FILE] [--pose N] [--liver FILE] [--method exact|zbuffer] [--danger-mm C,W,D] [--no-surface]\n"
-  "         [--size WxH] [--keys K,K,...] [--screenshot FILE.png] [engine options]\n"
+  "         [--size WxH] [--keys K,K,...] [--screenshot FILE.png] [--frame-budget-ms MS] [engine options]\n"
   "  Opens the 3D view: vessels coloured by class, the scalpel coloured by danger level, a line to\n"
-  "  the closest vessel point, a readout per class and the distance over time.\n"
+  "  the closest vessel point, a readout per class and the distance over time; a frame that took\n"
+  "  longer than --frame-budget-ms (default 16.7, 60 Hz; 0: none) says so under the readout.\n"
   "  --scalpel: default the built-in CUSA handpiece. Without --poses it starts 30 mm anterior of\n"
   "    the vessels' centre, pointing posterior (into the patient).\n"
   "  --poses: recorded poses to replay (space plays, n/b step); --pose N shows pose N first.\n"
@@ -86,7 +87,7 @@ int RunViewCommand(const std::vector<std::string>& argv)
   }
   std::set<std::string> options = EngineValueOptions();
   options.insert({ "--vessels", "--scalpel", "--tip", "--axis", "--poses", "--pose", "--liver", "--danger-mm", "--size",
-    "--keys", "--screenshot" });
+    "--keys", "--screenshot", "--frame-budget-ms" });
   const Arguments args(argv, options, { "--no-surface" });
   if (!args.Positional().empty())
   {
@@ -145,6 +146,7 @@ int RunViewCommand(const std::vector<std::string>& argv)
   logic->SetDistanceEngine(engine);
   logic->SetScalpel(scalpel);
   logic->SetDangerThresholds(thresholds);
+  logic->GetTrackingLogic()->SetFrameBudgetMs(ParseFrameBudgetMs(args));
   logic->SetComputeSurfaceDistance(!args.Has("--no-surface"));
   for (const auto& m : meshes)
   {

@@ -55,6 +55,8 @@ vtkSmartPointer<vtkVesselProximityLogic> MakePhantomLogic(const std::string& tmp
   }
   logic->SetScalpel(vp::LoadScalpel(vp::WriteDefaultScalpel(tmp), {}));
   logic->SetComputeSurfaceDistance(false);
+  // The pictures must not depend on the machine's speed: no frame-budget line in them.
+  logic->GetTrackingLogic()->SetFrameBudgetMs(0.0);
   return logic;
 }
 
@@ -163,6 +165,29 @@ TEST(Overlays, ConfigurableColoursAndThresholds)
   EXPECT_NEAR(rgb[0], 1.0, 1e-12);
   EXPECT_NEAR(rgb[1], 200 / 255.0, 1e-12);
   EXPECT_NEAR(rgb[2], 0.0, 1e-12);
+  std::filesystem::remove_all(tmp);
+}
+
+// The readout's last line speaks only of a frame over its budget: a budget no frame can meet puts
+// it there, the next frame within a generous budget clears it.
+TEST(Overlays, AFrameOverItsBudgetIsShownAndCleared)
+{
+  const std::string tmp = vp::test::MakeTempDir("overlays_budget");
+  auto logic = MakePhantomLogic(tmp);
+  vtkNew<vtkVesselProximityOverlays> overlays;
+  overlays->SetLogic(logic);
+  vtkProximityReadoutRepresentation* readout = overlays->GetReadout();
+  const int last = readout->GetNumberOfLines() - 1;
+  logic->ProcessPose(Pose(0.0, TipDownAt(16.0)));
+  EXPECT_EQ(readout->GetLineText(last), "") << "budget off: nothing to say";
+  logic->GetTrackingLogic()->SetFrameBudgetMs(1e-9);
+  const vp::TrackedFrame& late = logic->ProcessPose(Pose(0.02, TipDownAt(15.5)));
+  ASSERT_TRUE(late.OverBudget);
+  EXPECT_NE(readout->GetLineText(last).find("over the 0.0 ms budget"), std::string::npos) << readout->GetLineText(last);
+  EXPECT_EQ(readout->GetLineText(last).find("frame "), 0u) << readout->GetLineText(last);
+  logic->GetTrackingLogic()->SetFrameBudgetMs(60000.0);
+  EXPECT_FALSE(logic->ProcessPose(Pose(0.04, TipDownAt(15.0))).OverBudget);
+  EXPECT_EQ(readout->GetLineText(last), "");
   std::filesystem::remove_all(tmp);
 }
 

@@ -144,6 +144,41 @@ TEST_F(TrackCommand, WritesTheDocumentedRecord)
   EXPECT_EQ(s["level_changes"][5]["to"], "safe");
   EXPECT_EQ(s["worst_level"], "danger");
   EXPECT_EQ(Slurp(out + "/distance.png").substr(0, 4), "\x89PNG");
+
+  // The frame budget: the summary's frame times are the quantiles of the frame_ms column, and its
+  // count of late frames is the count of frames over the default 16.7 ms.
+  std::vector<double> frameMs;
+  for (std::size_t i = 1; i < rows.size(); ++i)
+  {
+    frameMs.push_back(std::stod(rows[i][column("frame_ms")]));
+  }
+  std::sort(frameMs.begin(), frameMs.end());
+  EXPECT_NEAR(s["frame_ms"]["median"].get<double>(), frameMs[(frameMs.size() + 1) / 2 - 1], 1e-5);
+  EXPECT_NEAR(s["frame_ms"]["max"].get<double>(), frameMs.back(), 1e-5);
+  EXPECT_LE(s["frame_ms"]["median"].get<double>(), s["frame_ms"]["p95"].get<double>());
+  EXPECT_LE(s["frame_ms"]["p95"].get<double>(), s["frame_ms"]["max"].get<double>());
+  EXPECT_EQ(s["frame_ms"]["budget"].get<double>(), 16.7);
+  EXPECT_EQ(s["frames_over_budget"].get<long>(), std::count_if(frameMs.begin(), frameMs.end(), [](double ms) { return ms > 16.7; }));
+  EXPECT_NE(r.Out.find("frames over the 16.7 ms budget"), std::string::npos) << r.Out;
+}
+
+TEST_F(TrackCommand, CountsTheFramesOverTheBudget)
+{
+  const std::string common = "track --vessels " + this->Vessels + " --scalpel " + this->Tool + " --poses " + this->ApproachPoses();
+  // No frame is computed in a nanosecond: every one is late.
+  const ToolRun late = RunTool(this->Dir, common + " --frame-budget-ms 0.000001 -o " + this->Dir + "/late");
+  ASSERT_EQ(late.ExitCode, 0) << late.Err;
+  const nlohmann::json s = nlohmann::json::parse(Slurp(this->Dir + "/late/summary.json"));
+  EXPECT_EQ(s["frames_over_budget"].get<int>(), this->Frames);
+  EXPECT_NE(late.Out.find(std::to_string(this->Frames) + " of " + std::to_string(this->Frames) + " frames over the 1e-06 ms budget"),
+    std::string::npos) << late.Out;
+  // 0 switches the budget off.
+  const ToolRun off = RunTool(this->Dir, common + " --frame-budget-ms 0 -o " + this->Dir + "/off");
+  ASSERT_EQ(off.ExitCode, 0) << off.Err;
+  const nlohmann::json o = nlohmann::json::parse(Slurp(this->Dir + "/off/summary.json"));
+  EXPECT_EQ(o["frames_over_budget"].get<int>(), 0);
+  EXPECT_EQ(o["frame_ms"]["budget"].get<double>(), 0.0);
+  EXPECT_NE(off.Out.find("no frame budget"), std::string::npos) << off.Out;
 }
 
 TEST_F(TrackCommand, EachBadPoseFileGivesItsLineAndWritesNothing)
@@ -186,6 +221,8 @@ TEST_F(TrackCommand, EachBadPoseFileGivesItsLineAndWritesNothing)
     { " --method brute", "--method: expected exact, zbuffer or both" },
     { " --range 5", "--range: the range (5 mm) must reach the caution threshold" },
     { " --tip 0,0", "--tip: expected X,Y,Z" },
+    { " --frame-budget-ms -1", "--frame-budget-ms: expected a time in ms, 0 or more" },
+    { " --frame-budget-ms inf", "--frame-budget-ms: expected a number" },
   };
   for (const auto& o : options)
   {

@@ -51,8 +51,9 @@ void vtkProximityReadoutRepresentation::SetClasses(
   }
   this->ClassNames = names;
   this->Lines.clear();
-  for (std::size_t i = 0; i <= names.size(); ++i)
+  for (std::size_t i = 0; i <= names.size() + 1; ++i)
   {
+    const bool frameTimeLine = i == names.size() + 1;
     auto line = vtkSmartPointer<vtkTextActor>::New();
     vtkTextProperty* text = line->GetTextProperty();
     text->SetFontFamilyToCourier(); // columns line up
@@ -61,7 +62,11 @@ void vtkProximityReadoutRepresentation::SetClasses(
     // Class colours are for surfaces; lifted halfway to white they stay readable on the dark view.
     const std::array<double, 3> c = i == 0 || i - 1 >= colours.size() ? std::array<double, 3>{ 1, 1, 1 } : colours[i - 1];
     text->SetColor(0.5 + 0.5 * c[0], 0.5 + 0.5 * c[1], 0.5 + 0.5 * c[2]);
-    line->SetInput(i == 0 ? "no pose yet" : (Readable(names[i - 1]) + ": -").c_str());
+    if (frameTimeLine)
+    {
+      text->SetColor(1.0, 0.65, 0.2); // amber: a late answer, not a vessel
+    }
+    line->SetInput(i == 0 ? "no pose yet" : frameTimeLine ? "" : (Readable(names[i - 1]) + ": -").c_str());
     this->Lines.push_back(line);
     for (vtkRenderer* r : this->Renderers)
     {
@@ -131,6 +136,16 @@ void vtkProximityReadoutRepresentation::ShowFrame(
     }
     this->SetLine(static_cast<int>(c) + 1, text);
   }
+}
+
+void vtkProximityReadoutRepresentation::ShowFrameTime(double frameMs, bool overBudget, double budgetMs)
+{
+  char text[96] = "";
+  if (overBudget)
+  {
+    std::snprintf(text, sizeof(text), "frame %.1f ms, over the %.1f ms budget", frameMs, budgetMs);
+  }
+  this->SetLine(static_cast<int>(this->Lines.size()) - 1, text);
 }
 
 std::string vtkProximityReadoutRepresentation::GetLineText(int i) const

@@ -15,7 +15,8 @@ class vtkRenderer;
 class vtkTextActor;
 
 /// The numbers a surgeon reads: one line per vessel class in the upper left corner ("portal vein
-/// 4.2 mm  warning"), in the class's colour, under a headline with the overall level. A line is
+/// 4.2 mm  warning"), in the class's colour, under a headline with the overall level, and below
+/// them, only while it is so, a line saying the frame took longer than its budget. A line is
 /// re-typeset only when its text changes (GetNumberOfTextUpdates() counts), so a tool resting
 /// still costs nothing.
 class vtkProximityReadoutRepresentation : public vtkObject
@@ -30,7 +31,10 @@ public:
   /// Shows a frame's answers: per class distance, inside and level; the overall level heads it.
   void ShowFrame(const vp::ProximityResult& proximity, const std::vector<vp::DangerLevel>& classLevels,
     vp::DangerLevel overall);
-  /// The text of line i (0: the headline, then one per class).
+  /// Shows the last line only for a frame over its budget ("frame 23.4 ms, over the 16.7 ms
+  /// budget"); empty otherwise, so a frame in time costs no text update.
+  void ShowFrameTime(double frameMs, bool overBudget, double budgetMs);
+  /// The text of line i (0: the headline, then one per class, then the frame-time line).
   std::string GetLineText(int i) const;
   int GetNumberOfLines() const { return static_cast<int>(this->Lines.size()); }
   int GetNumberOfTextUpdates() const { return this->TextUpdates; }

@@ -142,6 +142,8 @@ void vtkVesselProximityOverlays::ShowFrame(const vp::TrackedFrame& frame)
     this->ClosestLine->Hide();
   }
   this->Readout->ShowFrame(frame.Proximity, frame.ClassLevels, frame.Level);
+  this->Readout->ShowFrameTime(frame.FrameMs, frame.OverBudget,
+    this->Logic ? this->Logic->GetTrackingLogic()->GetFrameBudgetMs() : 0.0);
   this->Plot->AddFrame(frame.TimeS, frame.Proximity);
 }
 

@@ -3,6 +3,7 @@
 #include "vtkExactVesselDistance.h"
 #include "vtkScalpelModel.h"
 #include "vtkFclSurfaceDistance.h"
+#include "vtkScalpelPenetration.h"
 #include "vtkVesselDistanceEngine.h"
 
 #include <vtkObjectFactory.h>
@@ -126,11 +127,18 @@ void vtkVesselProximityLogic::Build()
     this->Surface->SetToolSurface(this->GetScalpel()->GetModel());
     this->Surface->Build(); // the trees, once: not in the first frame's time
     this->Tracking->SetSurfaceDistance(this->Surface);
+    this->Penetration = vtkSmartPointer<vtkScalpelPenetration>::New();
+    this->Penetration->SetVesselDistance(this->Exact);
+    this->Penetration->SetToolSurface(this->GetScalpel()->GetModel());
+    this->Penetration->Build();
+    this->Tracking->SetPenetration(this->Penetration);
   }
   else
   {
     this->Surface = nullptr;
+    this->Penetration = nullptr;
     this->Tracking->SetSurfaceDistance(nullptr);
+    this->Tracking->SetPenetration(nullptr);
   }
   this->SceneChanged = false;
   ++this->NumberOfBuilds;

@@ -15,6 +15,7 @@ class vtkExactVesselDistance;
 class vtkPolyData;
 class vtkScalpelModel;
 class vtkFclSurfaceDistance;
+class vtkScalpelPenetration;
 class vtkVesselDistanceEngine;
 
 /// The module's logic: the scene (vessel surfaces per class, the scalpel) and everything computed
@@ -57,7 +58,8 @@ public:
   vtkSetMacro(CompareWithExact, bool);
   vtkGetMacro(CompareWithExact, bool);
   vtkBooleanMacro(CompareWithExact, bool);
-  /// Whether the whole instrument surface is measured beside the tip (default true).
+  /// Whether the whole instrument surface is measured beside the tip (default true), with the
+  /// instrument's penetration volume and depth in each class.
   vtkSetMacro(ComputeSurfaceDistance, bool);
   vtkGetMacro(ComputeSurfaceDistance, bool);
   vtkBooleanMacro(ComputeSurfaceDistance, bool);
@@ -94,6 +96,7 @@ protected:
   vtkSmartPointer<vtkVesselDistanceEngine> Engine;
   vtkSmartPointer<vtkExactVesselDistance> Exact;
   vtkSmartPointer<vtkFclSurfaceDistance> Surface;
+  vtkSmartPointer<vtkScalpelPenetration> Penetration;
   vtkSmartPointer<vtkScalpelTrackingLogic> Tracking;
   bool CompareWithExact = false;
   bool ComputeSurfaceDistance = true;

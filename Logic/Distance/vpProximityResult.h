@@ -50,6 +50,18 @@ struct ProximityResult
   }
 };
 
+/// How far the instrument is inside one vessel class: its volume inside the class and the depth of
+/// its deepest point, each within a stated bound (both 0 when nothing overlaps).
+struct Penetration
+{
+  /// False when it could not be decided (an open vessel or instrument surface has no inside).
+  bool Known = true;
+  double DepthMm = 0.0;        ///< deepest instrument point inside, distance to the vessel wall
+  double DepthBoundMm = 0.0;   ///< |DepthMm - exact| is at most this
+  double VolumeMm3 = 0.0;      ///< instrument volume inside the class
+  double VolumeBoundMm3 = 0.0; ///< |VolumeMm3 - exact| is at most this
+};
+
 /// The closest approach of the whole instrument surface (not only its tip) to one vessel class.
 struct SurfaceProximity
 {

@@ -297,13 +297,21 @@ void vtkExactVesselDistance::VisitTrianglesNear(
   RunPointQuery(tree, centre, radiusMm, &VisitForCaller, &state);
 }
 
-double vtkExactVesselDistance::NearestDistanceWithin(int classIndex, const double point[3], double radiusMm) const
+double vtkExactVesselDistance::NearestDistanceWithin(
+  int classIndex, const double point[3], double radiusMm, std::optional<bool>* inside) const
 {
   this->EnsureBuilt();
   const auto c = static_cast<std::size_t>(classIndex);
-  const QueryState state = FindNearestTriangle(this->Impl->Trees.at(c), *this->Surfaces.at(c), point, radiusMm);
+  const vp::VesselSurface& surface = *this->Surfaces.at(c);
+  const QueryState state = FindNearestTriangle(this->Impl->Trees.at(c), surface, point, radiusMm);
   const double best = std::sqrt(state.Best2);
-  return state.Triangle >= 0 && best <= radiusMm ? best : std::numeric_limits<double>::infinity();
+  const bool found = state.Triangle >= 0 && best <= radiusMm;
+  if (inside)
+  {
+    *inside = found ? surface.IsInside(point, static_cast<std::size_t>(state.Triangle), state.Closest, state.Feature)
+                    : std::nullopt;
+  }
+  return found ? best : std::numeric_limits<double>::infinity();
 }
 
 void vtkExactVesselDistance::PrintSelf(ostream& os, vtkIndent indent)

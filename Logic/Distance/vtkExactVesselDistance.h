@@ -5,6 +5,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 
 /// Exact distance from a point to each vessel class, answered from a bounding volume hierarchy
 /// built once per mesh (Embree's BVH and its point queries; Embree is the well-kept library
@@ -38,8 +39,10 @@ public:
   /// For queries other than the tip's, such as the whole instrument surface.
   void VisitTrianglesNear(int classIndex, const double centre[3], double radiusMm, const TriangleVisitor& visit) const;
   /// Distance from point to the nearest triangle of class classIndex, or +infinity when none lies
-  /// within radiusMm.
-  double NearestDistanceWithin(int classIndex, const double point[3], double radiusMm) const;
+  /// within radiusMm. inside (may be null) receives whether point is inside the class's surface
+  /// (empty for an open surface, or when nothing lies within radiusMm).
+  double NearestDistanceWithin(
+    int classIndex, const double point[3], double radiusMm, std::optional<bool>* inside = nullptr) const;
 
 protected:
   vtkExactVesselDistance();

@@ -57,6 +57,26 @@ void TrackingSummary::Add(const TrackedFrame& frame)
     {
       Lower(this->SurfaceMinimum[c], frame.Surface[c].DistanceMm, false, frame.Surface[c].PointOnVesselMm, frame);
     }
+    if (c < frame.Penetrations.size())
+    {
+      this->PenetrationMaximum.resize(classes.size());
+      const Penetration& p = frame.Penetrations[c];
+      ClassPenetration& most = this->PenetrationMaximum[c];
+      most.Known = most.Known && p.Known;
+      if (p.Known && p.DepthMm > most.DepthMm)
+      {
+        most.DepthMm = p.DepthMm;
+        most.DepthBoundMm = p.DepthBoundMm;
+        most.DepthFrame = frame.Frame;
+      }
+      if (p.Known && p.VolumeMm3 > most.VolumeMm3)
+      {
+        most.VolumeMm3 = p.VolumeMm3;
+        most.VolumeBoundMm3 = p.VolumeBoundMm3;
+        most.VolumeFrame = frame.Frame;
+      }
+      most.FramesInside += p.Known && p.VolumeMm3 > 0.0 ? 1 : 0;
+    }
   }
   ++this->FramesInLevel[static_cast<int>(frame.Level)];
   this->Worst = std::max(this->Worst, frame.Level);

@@ -21,6 +21,19 @@ struct ClassMinimum
   double PointMm[3] = { 0, 0, 0 }; ///< closest vessel point at that frame
 };
 
+/// The instrument's largest penetration of one class over a run (each maximum from its own frame).
+struct ClassPenetration
+{
+  bool Known = true;          ///< false when some frame could not decide it (an open surface)
+  double DepthMm = 0.0;       ///< deepest
+  double DepthBoundMm = 0.0;
+  int DepthFrame = -1;        ///< -1: never inside
+  double VolumeMm3 = 0.0;     ///< largest volume
+  double VolumeBoundMm3 = 0.0;
+  int VolumeFrame = -1;
+  int FramesInside = 0;       ///< frames with any volume inside
+};
+
 /// What a surgeon or researcher reads after a run: per class the closest approach of the tip
 /// (and of the whole surface when computed), the time spent at each danger level, and the
 /// level changes. Frames are added in order.
@@ -35,6 +48,8 @@ public:
   const std::vector<std::string>& GetClassNames() const { return this->ClassNames; }
   const std::vector<ClassMinimum>& GetTipMinimum() const { return this->TipMinimum; }
   const std::vector<ClassMinimum>& GetSurfaceMinimum() const { return this->SurfaceMinimum; }
+  /// Per class; empty when no frame carried penetrations.
+  const std::vector<ClassPenetration>& GetPenetrationMaximum() const { return this->PenetrationMaximum; }
   /// Seconds at each level (index: DangerLevel). A frame's level holds until the next frame's
   /// time, so the last frame adds nothing and the times sum to the duration.
   const std::array<double, NumberOfDangerLevels>& GetTimeInLevelS() const { return this->TimeInLevelS; }
@@ -57,6 +72,7 @@ private:
   std::vector<std::string> ClassNames;
   std::vector<ClassMinimum> TipMinimum;
   std::vector<ClassMinimum> SurfaceMinimum;
+  std::vector<ClassPenetration> PenetrationMaximum;
   std::array<double, NumberOfDangerLevels> TimeInLevelS{};
   std::array<int, NumberOfDangerLevels> FramesInLevel{};
   std::vector<DangerLevelChange> Changes;

@@ -42,6 +42,15 @@ void vtkScalpelTrackingLogic::SetSurfaceDistance(vtkScalpelSurfaceDistance* surf
   }
 }
 
+void vtkScalpelTrackingLogic::SetPenetration(vtkScalpelPenetration* penetration)
+{
+  if (this->Penetration != penetration)
+  {
+    this->Penetration = penetration;
+    this->Modified();
+  }
+}
+
 void vtkScalpelTrackingLogic::Reset()
 {
   this->Last = vp::TrackedFrame();
@@ -80,6 +89,10 @@ const vp::TrackedFrame& vtkScalpelTrackingLogic::ProcessPose(const vp::TrackedPo
   {
     this->SurfaceDistance->ComputeSurfaceProximity(
       pose.ModelToWorld, frame.Surface, hasPrevious && !this->Last.Surface.empty() ? &this->Last.Surface : nullptr);
+    if (this->Penetration)
+    {
+      this->Penetration->ComputePenetration(pose.ModelToWorld, frame.Surface, frame.Penetrations);
+    }
   }
   frame.FrameMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   frame.OverBudget = this->FrameBudgetMs > 0.0 && frame.FrameMs > this->FrameBudgetMs;
@@ -126,7 +139,8 @@ void vtkScalpelTrackingLogic::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "DistanceEngine: " << (this->Engine ? this->Engine->GetMethodName() : "(none)") << "\n";
   os << indent << "Scalpel: " << (this->Scalpel ? "set" : "(none)") << "\n";
-  os << indent << "SurfaceDistance: " << (this->SurfaceDistance ? "on" : "off") << "\n";
+  os << indent << "SurfaceDistance: " << (this->SurfaceDistance ? this->SurfaceDistance->GetMethodName() : "off") << "\n";
+  os << indent << "Penetration: " << (this->Penetration ? "on" : "off") << "\n";
   os << indent << "DangerThresholds (caution, warning, danger): " << this->Thresholds.CautionMm << ", "
      << this->Thresholds.WarningMm << ", " << this->Thresholds.DangerMm << " mm\n";
   os << indent << "FrameBudgetMs: " << this->FrameBudgetMs << (this->FrameBudgetMs > 0 ? "" : " (off)") << "\n";

@@ -5,6 +5,7 @@
 #include "vpPoseFile.h"
 #include "vpProximityResult.h"
 #include "vtkScalpelModel.h"
+#include "vtkScalpelPenetration.h"
 #include "vtkScalpelSurfaceDistance.h"
 #include "vtkVesselDistanceEngine.h"
 
@@ -30,6 +31,7 @@ struct TrackedFrame
   DangerLevel Level = DangerLevel::Safe; ///< the worst over the classes
   int LevelClass = -1;             ///< the class that set Level, -1 when all are safe
   std::vector<SurfaceProximity> Surface; ///< per class; empty when not computed
+  std::vector<Penetration> Penetrations; ///< per class: the instrument inside it; empty when not computed
   double FrameMs = 0.0;            ///< wall time of the distance queries of this frame
   bool OverBudget = false;         ///< FrameMs exceeded the tracking logic's frame budget
 };
@@ -78,6 +80,10 @@ public:
   /// Optional: whole-surface distance (costs more than the tip; null switches it off, the default).
   void SetSurfaceDistance(vtkScalpelSurfaceDistance* surface);
   vtkScalpelSurfaceDistance* GetSurfaceDistance() const { return this->SurfaceDistance; }
+  /// Optional, with the surface distance: the instrument's penetration volume and depth per class
+  /// (null switches it off, the default).
+  void SetPenetration(vtkScalpelPenetration* penetration);
+  vtkScalpelPenetration* GetPenetration() const { return this->Penetration; }
 
   /// The time a frame may take, in ms (default 16.7: one refresh at 60 Hz; the paper's 40 ms is
   /// where a navigator's animation freezes). A frame that takes longer is marked OverBudget; 0
@@ -105,6 +111,7 @@ protected:
   vtkSmartPointer<vtkVesselDistanceEngine> Engine;
   vtkSmartPointer<vtkScalpelModel> Scalpel;
   vtkSmartPointer<vtkScalpelSurfaceDistance> SurfaceDistance;
+  vtkSmartPointer<vtkScalpelPenetration> Penetration;
   vp::DangerThresholds Thresholds;
   double FrameBudgetMs = 16.7;
   vp::TrackedFrame Last;

@@ -70,7 +70,8 @@ std::string FramesCsv(const std::vector<TrackedFrame>& frames, const std::vector
       "_level";
     if (surface)
     {
-      csv += "," + c + "_surface_mm";
+      csv += "," + c + "_surface_mm," + c + "_penetration_depth_mm," + c + "_penetration_volume_mm3," + c +
+        "_penetration_depth_bound_mm," + c + "_penetration_volume_bound_mm3";
     }
   }
   csv += "\n";
@@ -100,6 +101,14 @@ std::string FramesCsv(const std::vector<TrackedFrame>& frames, const std::vector
       if (surface)
       {
         csv += "," + (f.Surface[k].InRange ? Number(f.Surface[k].DistanceMm) : "");
+        // Empty where it cannot be known (an open surface has no inside), never a silent 0.
+        const bool known = k < f.Penetrations.size() && f.Penetrations[k].Known;
+        const Penetration none;
+        const Penetration& p = known ? f.Penetrations[k] : none;
+        for (double v : { p.DepthMm, p.VolumeMm3, p.DepthBoundMm, p.VolumeBoundMm3 })
+        {
+          csv += "," + (known ? Number(v) : "");
+        }
       }
     }
     csv += "\n";
@@ -142,6 +151,15 @@ Json SummaryJson(const TrackingSummary& s, vtkScalpelTrackingLogic* logic, vtkVe
     if (surface)
     {
       entry["surface_minimum"] = MinimumJson(s.GetSurfaceMinimum()[c]);
+      if (c < s.GetPenetrationMaximum().size())
+      {
+        const ClassPenetration& p = s.GetPenetrationMaximum()[c];
+        entry["penetration_maximum"] = !p.Known ? Json(nullptr)
+                                                : Json{ { "depth_mm", p.DepthMm }, { "depth_bound_mm", p.DepthBoundMm },
+                                                    { "depth_frame", p.DepthFrame }, { "volume_mm3", p.VolumeMm3 },
+                                                    { "volume_bound_mm3", p.VolumeBoundMm3 }, { "volume_frame", p.VolumeFrame },
+                                                    { "frames_inside", p.FramesInside } };
+      }
     }
     classes[s.GetClassNames()[c]] = entry;
   }

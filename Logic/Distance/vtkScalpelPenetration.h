@@ -1,0 +1,86 @@
+#ifndef vtkScalpelPenetration_h
+#define vtkScalpelPenetration_h
+
+#include "vpProximityResult.h"
+#include "vtkExactVesselDistance.h"
+
+#include <vtkObject.h>
+#include <vtkSmartPointer.h>
+
+#include <array>
+#include <memory>
+#include <mutex>
+#include <vector>
+
+class vtkPolyData;
+
+/// How far an instrument is inside each vessel class: the volume of the instrument inside the
+/// class (mm³) and the depth of its deepest point (mm, the distance to the vessel wall), each with
+/// a bound. The paper (Table 1) lists both among the z-buffer's strengths; this is the exact
+/// engine's answer, to a stated bound.
+///
+/// The instrument's solid is sampled once, in model coordinates, on a lattice of CellSizeMm cubes
+/// held in an octree: a cube whose centre lies farther from the instrument's wall than its half
+/// diagonal is uniformly inside (kept whole) or outside (dropped), so only the cells the wall cuts
+/// are classified one by one. Per pose and class, the same octree is walked in the world: a cube
+/// farther from the vessel wall than its half diagonal plus a cell's is uniformly inside or
+/// outside the vessel and is counted whole (one exact point query, with inside, from the vessel
+/// engine); only cubes the wall passes are split down to cells. With r the half diagonal of a cell:
+/// - VolumeMm3 = cell volume x cells whose centre is inside both; VolumeBoundMm3 = cell volume x
+///   cells within r of either wall that may meet both solids (only those can be counted wrongly);
+/// - DepthMm = the largest distance to the vessel wall of a cell centre inside the vessel and
+///   inside (or within r of) the instrument; DepthBoundMm = r, either way (distance is 1-Lipschitz).
+/// Nothing is computed where the surfaces neither touch nor nest: a class whose whole-instrument
+/// distance is above 0 is tested at one instrument point only (is the instrument entirely inside?).
+///
+/// A vessel or instrument surface that is not closed has no inside: Penetration::Known is false
+/// for that class (all of them, for an open instrument), never a silent 0.
+class vtkScalpelPenetration : public vtkObject
+{
+public:
+  static vtkScalpelPenetration* New();
+  vtkTypeMacro(vtkScalpelPenetration, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// The vessel classes (an exact engine, built before the first query).
+  void SetVesselDistance(vtkExactVesselDistance* engine);
+  vtkExactVesselDistance* GetVesselDistance() const { return this->Vessels; }
+  /// The instrument surface in model coordinates (closed, for an inside).
+  void SetToolSurface(vtkPolyData* model);
+  /// Edge of a lattice cell (mm). Default 0.4 mm: a depth bound of 0.35 mm, as the z-buffer's
+  /// default cell. Smaller cells cost more, as the cube of the edge near the walls' crossing.
+  void SetCellSizeMm(double cellMm);
+  double GetCellSizeMm() const { return this->CellSizeMm; }
+
+  /// Samples the instrument now (the first query does otherwise); GetBuildTimeMs() says how long.
+  void Build();
+  double GetBuildTimeMs() const { return this->BuildTimeMs; }
+  /// The instrument's volume as sampled (mm³) and its bound; false before Build() or for an open
+  /// instrument.
+  bool GetToolVolumeMm3(double& volume, double& bound) const;
+
+  /// Per class of the vessel engine, in its order. surface: the whole-instrument distances for
+  /// the same pose (vtkScalpelSurfaceDistance), which say where nothing can overlap.
+  /// Thread-safe after Build().
+  void ComputePenetration(const std::array<double, 16>& modelToWorld, const std::vector<vp::SurfaceProximity>& surface,
+    std::vector<vp::Penetration>& out) const;
+
+protected:
+  vtkScalpelPenetration();
+  ~vtkScalpelPenetration() override;
+
+  vtkSmartPointer<vtkExactVesselDistance> Vessels;
+  vtkSmartPointer<vtkPolyData> ToolSurface;
+  double CellSizeMm = 0.4;
+  double BuildTimeMs = 0.0;
+
+private:
+  vtkScalpelPenetration(const vtkScalpelPenetration&) = delete;
+  void operator=(const vtkScalpelPenetration&) = delete;
+
+  struct Lattice;
+  std::shared_ptr<const Lattice> Tool;
+  std::mutex BuildLock;
+};
+
+#endif

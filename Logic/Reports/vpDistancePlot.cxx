@@ -192,8 +192,9 @@ std::string TickLabel(double value, double step)
 
 std::string BandLegendText(const PlotBand& band)
 {
-  const std::string range = std::isfinite(band.ToMm) ? NumberText(band.FromMm) + "-" + NumberText(band.ToMm)
-                                                      : "> " + NumberText(band.FromMm);
+  const std::string range = !std::isfinite(band.FromMm) ? "< " + NumberText(band.ToMm)
+    : std::isfinite(band.ToMm)                          ? NumberText(band.FromMm) + "-" + NumberText(band.ToMm)
+                                                        : "> " + NumberText(band.FromMm);
   return (band.Label.empty() ? "" : band.Label + " ") + "(" + range + " mm)";
 }
 
@@ -337,9 +338,22 @@ Layout LayOut(const std::vector<double>& timesS, const std::vector<PlotSeries>& 
   f.TopPx = std::max(f.TopPx, f.BottomPx + 1);
   const int maxYTicks = std::max(2, (f.TopPx - f.BottomPx) / 40);
   f.YMaxMm = options.YMaxMm > 0 ? options.YMaxMm : AutomaticYMax(series, bands, maxYTicks);
-  layout.YStep = NiceTickStep(f.YMaxMm, maxYTicks);
+  double lowest = 0.0;
+  for (const PlotSeries& s : series)
+  {
+    for (double v : s.ValuesMm)
+    {
+      lowest = std::isfinite(v) ? std::min(lowest, v) : lowest;
+    }
+  }
+  f.YMinMm = options.YMinMm < 0 ? options.YMinMm : lowest;
+  layout.YStep = NiceTickStep(f.YMaxMm - f.YMinMm, maxYTicks);
+  if (options.YMinMm >= 0 && lowest < 0)
+  {
+    f.YMinMm = std::floor(lowest / layout.YStep - 1e-9) * layout.YStep; // a whole tick below
+  }
   int yTickWidth = 0;
-  for (double v : TickValues(0, f.YMaxMm, layout.YStep))
+  for (double v : TickValues(f.YMinMm, f.YMaxMm, layout.YStep))
   {
     layout.YTickTexts.push_back(RenderText(TickLabel(v, layout.YStep), 12));
     yTickWidth = std::max(yTickWidth, layout.YTickTexts.back().Width());
@@ -382,7 +396,7 @@ void DrawAxes(Canvas& canvas, const Layout& layout)
   FillRect(canvas, { p.X0 - 1, p.Y1 + 1, p.X1 + 1, p.Y1 + 1 }, Frame);
   FillRect(canvas, { p.X0 - 1, p.Y0 - 1, p.X0 - 1, p.Y1 + 1 }, Frame);
   FillRect(canvas, { p.X1 + 1, p.Y0 - 1, p.X1 + 1, p.Y1 + 1 }, Frame);
-  const std::vector<double> yTicks = TickValues(0, layout.Frame.YMaxMm, layout.YStep);
+  const std::vector<double> yTicks = TickValues(layout.Frame.YMinMm, layout.Frame.YMaxMm, layout.YStep);
   for (std::size_t i = 0; i < yTicks.size(); ++i)
   {
     const int y = static_cast<int>(std::lround(layout.Frame.YOf(yTicks[i])));
@@ -416,7 +430,7 @@ double DistancePlotFrame::XOf(double timeS) const
 
 double DistancePlotFrame::YOf(double distanceMm) const
 {
-  return this->BottomPx + distanceMm / this->YMaxMm * (this->TopPx - this->BottomPx);
+  return this->BottomPx + (distanceMm - this->YMinMm) / (this->YMaxMm - this->YMinMm) * (this->TopPx - this->BottomPx);
 }
 
 double NiceTickStep(double span, int maxTicks)
@@ -461,6 +475,12 @@ vtkSmartPointer<vtkImageData> RenderDistancePlot(const std::vector<double>& time
 
   const Layout layout = LayOut(timesS, series, bands, options);
   DrawBands(canvas, bands, layout.Frame, layout.Plot);
+  if (layout.Frame.YMinMm < 0)
+  {
+    // The vessel wall: distances above, penetrations below.
+    const int zero = static_cast<int>(std::lround(layout.Frame.YOf(0.0)));
+    FillRect(canvas, { layout.Plot.X0, zero, layout.Plot.X1, zero }, Frame);
+  }
   for (const PlotSeries& s : series)
   {
     DrawSeries(canvas, timesS, s, layout.Frame, layout.Plot);

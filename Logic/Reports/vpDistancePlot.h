@@ -25,7 +25,8 @@ struct PlotSeries
 };
 
 /// A horizontal background band (a danger level), drawn under the lines. ToMm may be +infinity
-/// for the open-ended "safe" band; the legend then shows "> FromMm".
+/// for the open-ended "safe" band (the legend then shows "> FromMm"), FromMm -infinity for one
+/// below zero ("< ToMm": inside a vessel).
 struct PlotBand
 {
   double FromMm;
@@ -44,6 +45,10 @@ struct DistancePlotOptions
   /// Top of the y axis. 0: from the data, and at least the highest finite band edge, so every
   /// band shows even when the tool never came near it.
   double YMaxMm = 0;
+  /// Bottom of the y axis: 0 (default) keeps it at 0 unless a value is negative (a penetration,
+  /// drawn as a negative distance), which takes it down to a tick below the lowest value; a
+  /// negative number fixes it there.
+  double YMinMm = 0;
 };
 
 /// Where the data went in the image: the plot area in vtkImageData pixel indices (row 0 at the
@@ -58,6 +63,7 @@ struct DistancePlotFrame
   double TimeMinS = 0;
   double TimeMaxS = 1;
   double YMaxMm = 1;
+  double YMinMm = 0;
 
   /// Pixel coordinates as doubles; pixel i has its centre at i.
   double XOf(double timeS) const;

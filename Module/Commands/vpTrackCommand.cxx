@@ -192,28 +192,55 @@ Json SummaryJson(const TrackingSummary& s, vtkScalpelTrackingLogic* logic, vtkVe
   return out;
 }
 
+/// Per class, the tip's signed distance (negative: the penetration depth) and, with the whole
+/// surface, the instrument's (its distance, or minus its penetration depth), below zero drawn
+/// over a breach band.
 void WritePlot(const std::string& file, const std::vector<TrackedFrame>& frames, const std::vector<std::string>& classes,
-  const DangerThresholds& t, double rangeMm)
+  const DangerThresholds& t, double rangeMm, bool surface)
 {
+  const double none = std::numeric_limits<double>::quiet_NaN();
   std::vector<double> times;
-  std::vector<PlotSeries> series(classes.size());
+  std::vector<PlotSeries> series;
   for (std::size_t c = 0; c < classes.size(); ++c)
   {
-    series[c].Name = classes[c] + " (tip)";
-    series[c].Colour = PlotSeriesColour(classes[c], static_cast<int>(c));
+    const Rgb colour = PlotSeriesColour(classes[c], static_cast<int>(c));
+    series.push_back({ classes[c] + " (tip)", colour, {} });
+    if (surface)
+    {
+      // The same hue, lighter: the instrument beside its tip.
+      const Rgb light = { static_cast<unsigned char>((colour[0] + 2 * 255) / 3), static_cast<unsigned char>((colour[1] + 2 * 255) / 3),
+        static_cast<unsigned char>((colour[2] + 2 * 255) / 3) };
+      series.push_back({ classes[c] + " (instrument)", light, {} });
+    }
   }
+  bool below = false;
   for (const TrackedFrame& f : frames)
   {
     times.push_back(f.TimeS);
+    std::size_t s = 0;
     for (std::size_t c = 0; c < classes.size(); ++c)
     {
       const ClassProximity& p = f.Proximity.Classes[c];
-      series[c].ValuesMm.push_back(p.InRange ? p.DistanceMm : std::numeric_limits<double>::quiet_NaN());
+      const double tip = !p.InRange ? none : p.Inside.value_or(false) ? -p.DistanceMm : p.DistanceMm;
+      series[s++].ValuesMm.push_back(tip);
+      below = below || tip < 0;
+      if (surface)
+      {
+        const bool inside = c < f.Penetrations.size() && f.Penetrations[c].Known && f.Penetrations[c].DepthMm > 0;
+        const double whole = inside ? -f.Penetrations[c].DepthMm : c < f.Surface.size() && f.Surface[c].InRange ? f.Surface[c].DistanceMm : none;
+        series[s++].ValuesMm.push_back(whole);
+        below = below || whole < 0;
+      }
     }
   }
-  const std::vector<PlotBand> bands = DangerBands(t, rangeMm);
+  std::vector<PlotBand> bands = DangerBands(t, rangeMm);
+  if (below)
+  {
+    bands.push_back({ -std::numeric_limits<double>::infinity(), 0.0, DangerLevelColour(DangerLevel::Breach), "breach, depth" });
+  }
   DistancePlotOptions options;
-  options.Title = "Tip distance to each vessel class over time";
+  options.Title = surface ? "Tip and instrument distance to each vessel class over time (inside: below 0)"
+                          : "Tip distance to each vessel class over time (inside: below 0)";
   WriteDistancePlotPng(file, times, series, bands, options);
 }
 } // namespace
@@ -326,7 +353,7 @@ int RunTrackCommand(const std::vector<std::string>& argv)
     written.push_back(outDir + "/frames.csv");
     WriteFileAtomically(outDir + "/summary.json", doc.dump(2) + "\n");
     written.push_back(outDir + "/summary.json");
-    WritePlot(outDir + "/distance.png", frames, classes, thresholds, engine->GetRangeMm());
+    WritePlot(outDir + "/distance.png", frames, classes, thresholds, engine->GetRangeMm(), surface);
   }
   catch (...)
   {

@@ -191,6 +191,36 @@ TEST(Overlays, AFrameOverItsBudgetIsShownAndCleared)
   std::filesystem::remove_all(tmp);
 }
 
+// With the whole instrument measured, each class line says where the instrument is: its distance,
+// or inside, its depth and volume.
+TEST(Overlays, ReadoutShowsTheInstrumentBesideTheTip)
+{
+  vtkNew<vtkProximityReadoutRepresentation> readout;
+  readout->SetClasses({ "portal_vein", "hepatic_vein" }, { { 0, 0.6, 0.8 }, { 0.4, 0.2, 0.7 } });
+  vp::ProximityResult proximity;
+  proximity.Classes.resize(2);
+  proximity.Classes[0].ClassName = "portal_vein";
+  proximity.Classes[0].InRange = true;
+  proximity.Classes[0].DistanceMm = 0.6;
+  proximity.Classes[0].Inside = true;
+  proximity.Classes[1].ClassName = "hepatic_vein";
+  proximity.Classes[1].InRange = true;
+  proximity.Classes[1].DistanceMm = 3.3;
+  std::vector<vp::SurfaceProximity> surface(2);
+  surface[0].InRange = true;
+  surface[1].InRange = true;
+  surface[1].DistanceMm = 2.58;
+  std::vector<vp::Penetration> penetrations(2);
+  penetrations[0].DepthMm = 1.02;
+  penetrations[0].VolumeMm3 = 3.71;
+  readout->ShowFrame(proximity, { vp::DangerLevel::Breach, vp::DangerLevel::Warning }, vp::DangerLevel::Breach, surface, penetrations);
+  EXPECT_NE(readout->GetLineText(1).find("tool 1.0 mm in, 3.7 mm3"), std::string::npos) << readout->GetLineText(1);
+  EXPECT_NE(readout->GetLineText(2).find("tool 2.6 mm"), std::string::npos) << readout->GetLineText(2);
+  // Without the whole instrument: the tip alone, as before.
+  readout->ShowFrame(proximity, { vp::DangerLevel::Breach, vp::DangerLevel::Warning }, vp::DangerLevel::Breach);
+  EXPECT_EQ(readout->GetLineText(1).find("tool"), std::string::npos) << readout->GetLineText(1);
+}
+
 TEST(Overlays, ZBufferLayersAreNotRebuiltWhenTheScalpelMoves)
 {
   try

@@ -181,6 +181,42 @@ TEST(DistancePlot, SeriesIsDrawnAtItsValuesAndInTheLegend)
   EXPECT_GT(Count(image, frame.RightPx + 2, 0, image->GetDimensions()[0] - 1, image->GetDimensions()[1] - 1, IsRed), 0);
 }
 
+// A penetration is a negative distance: the axis goes below zero, a line marks the vessel wall at
+// 0, and the values inside are drawn under it; data that never goes below 0 keeps the axis at 0.
+TEST(DistancePlot, PenetrationIsDrawnBelowTheZeroLine)
+{
+  std::vector<double> times;
+  vp::PlotSeries series{ "portal_vein (tip)", Red, {} };
+  for (int i = 0; i < 30; ++i)
+  {
+    times.push_back(i);
+    series.ValuesMm.push_back(i < 10 ? 6.0 : i < 20 ? -3.0 : 6.0); // 3 mm inside from 10 s to 19 s
+  }
+  vp::DistancePlotFrame frame;
+  auto bands = DangerBands();
+  bands.push_back({ -INFINITY, 0, { 255, 0, 255 }, "breach" });
+  const auto image = vp::RenderDistancePlot(times, { series }, bands, Options(), &frame);
+  EXPECT_LT(frame.YMinMm, -3.0);
+  EXPECT_GE(frame.YMinMm, -5.0) << "a tick below the lowest value, not more";
+  const int zero = static_cast<int>(std::lround(frame.YOf(0.0)));
+  EXPECT_GT(zero, frame.BottomPx + 5) << "the zero line is above the bottom of the plot";
+  // At 15 s the line is at -3 mm: below the zero line, in the series colour, over the breach band.
+  const int x = static_cast<int>(std::lround(frame.XOf(15)));
+  const int y = static_cast<int>(std::lround(frame.YOf(-3.0)));
+  EXPECT_LT(y, zero);
+  EXPECT_EQ(Pixel(image, x, y), Red);
+  EXPECT_EQ(Pixel(image, x, (y + frame.BottomPx) / 2), (vp::Rgb{ 255, 0, 255 })) << "the breach band below zero";
+  EXPECT_EQ(Pixel(image, static_cast<int>(std::lround(frame.XOf(5))), zero), (vp::Rgb{ 60, 60, 60 })) << "the zero line";
+  // At 5 s, +6 mm: above the zero line.
+  EXPECT_EQ(Pixel(image, static_cast<int>(std::lround(frame.XOf(5))), static_cast<int>(std::lround(frame.YOf(6.0)))), Red);
+
+  // Nothing below zero: the axis starts at 0 as before.
+  vp::DistancePlotFrame positive;
+  GappedSeries gapped;
+  vp::RenderDistancePlot(gapped.Times, { gapped.Series }, DangerBands(), Options(), &positive);
+  EXPECT_EQ(positive.YMinMm, 0.0);
+}
+
 TEST(DistancePlot, ValuesBeyondTheAxisAreCutAtThePlotArea)
 {
   vp::DistancePlotFrame frame;

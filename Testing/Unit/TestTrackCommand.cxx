@@ -162,6 +162,48 @@ TEST_F(TrackCommand, WritesTheDocumentedRecord)
   EXPECT_NE(r.Out.find("frames over the 16.7 ms budget"), std::string::npos) << r.Out;
 }
 
+// The tool goes 3 mm into the sphere and out: frames.csv carries the penetration of the whole
+// instrument (depth and volume against the closed form, within their stated bounds), 0 with its
+// bound 0 while apart, and summary.json the deepest frame.
+TEST_F(TrackCommand, ReportsThePenetrationOfTheWholeInstrument)
+{
+  std::ostringstream poses;
+  poses << "time,x,y,z,qw,qx,qy,qz\n";
+  const double h = std::sqrt(0.5);
+  int frames = 0;
+  for (double x : { 14.0, 12.0, 10.5, 9.5, 8.0, 7.0, 8.0, 10.0, 12.0 })
+  {
+    poses << frames++ * 0.05 << "," << x << ",0,0," << h << ",0," << -h << ",0\n";
+  }
+  const std::string out = this->Dir + "/into";
+  const ToolRun r = RunTool(this->Dir, "track --vessels " + this->Vessels + " --scalpel " + this->Tool + " --poses " +
+      this->WriteText("into.csv", poses.str()) + " -o " + out);
+  ASSERT_EQ(r.ExitCode, 0) << r.Err;
+  const auto rows = ReadCsvCells(out + "/frames.csv");
+  ASSERT_EQ(rows.size(), static_cast<std::size_t>(frames + 1));
+  auto cell = [&](int frame, const std::string& name) {
+    const auto it = std::find(rows[0].begin(), rows[0].end(), name);
+    EXPECT_NE(it, rows[0].end()) << name;
+    return std::stod(rows[static_cast<std::size_t>(frame + 1)][static_cast<std::size_t>(it - rows[0].begin())]);
+  };
+  EXPECT_EQ(cell(0, "portal_vein_penetration_volume_mm3"), 0.0);
+  EXPECT_EQ(cell(0, "portal_vein_penetration_volume_bound_mm3"), 0.0);
+  EXPECT_EQ(cell(5, "hepatic_vein_penetration_depth_mm"), 0.0);
+  // Frame 5: the tip face (radius 1.5, 16 facets) 3 mm inside the sphere of radius 10.
+  const double analytic = 2 * M_PI * ((1000.0 - std::pow(100.0 - 2.25, 1.5)) / 3.0 - 7.0 * 1.125);
+  const double facets = 8.0 * std::sin(2 * M_PI / 16) / M_PI; // the 16-gon's share of the disc
+  EXPECT_NEAR(cell(5, "portal_vein_penetration_depth_mm"), 3.0, cell(5, "portal_vein_penetration_depth_bound_mm") + 0.02);
+  EXPECT_NEAR(cell(5, "portal_vein_penetration_volume_mm3"), analytic * facets,
+    cell(5, "portal_vein_penetration_volume_bound_mm3") + 0.01 * analytic);
+  EXPECT_GT(cell(5, "portal_vein_penetration_volume_mm3"), cell(4, "portal_vein_penetration_volume_mm3"));
+  const nlohmann::json s = nlohmann::json::parse(Slurp(out + "/summary.json"));
+  const auto& most = s["classes"]["portal_vein"]["penetration_maximum"];
+  EXPECT_EQ(most["depth_frame"].get<int>(), 5);
+  EXPECT_EQ(most["volume_frame"].get<int>(), 5);
+  EXPECT_EQ(most["frames_inside"].get<int>(), 4); // 9.5, 8, 7, 8
+  EXPECT_EQ(s["classes"]["hepatic_vein"]["penetration_maximum"]["frames_inside"].get<int>(), 0);
+}
+
 TEST_F(TrackCommand, CountsTheFramesOverTheBudget)
 {
   const std::string common = "track --vessels " + this->Vessels + " --scalpel " + this->Tool + " --poses " + this->ApproachPoses();

@@ -115,8 +115,9 @@ void vtkProximityReadoutRepresentation::SetLine(int i, const std::string& text)
   }
 }
 
-void vtkProximityReadoutRepresentation::ShowFrame(
-  const vp::ProximityResult& proximity, const std::vector<vp::DangerLevel>& classLevels, vp::DangerLevel overall)
+void vtkProximityReadoutRepresentation::ShowFrame(const vp::ProximityResult& proximity,
+  const std::vector<vp::DangerLevel>& classLevels, vp::DangerLevel overall, const std::vector<vp::SurfaceProximity>& surface,
+  const std::vector<vp::Penetration>& penetrations)
 {
   this->SetLine(0, Upper(vp::DangerLevelName(overall)));
   for (std::size_t c = 0; c < this->ClassNames.size() && c < proximity.Classes.size(); ++c)
@@ -134,7 +135,18 @@ void vtkProximityReadoutRepresentation::ShowFrame(
       std::snprintf(text, sizeof(text), "%-15s %6.1f mm%s  %s", name.c_str(), p.DistanceMm, inside ? " inside" : "",
         c < classLevels.size() ? vp::DangerLevelName(classLevels[c]) : "");
     }
-    this->SetLine(static_cast<int>(c) + 1, text);
+    std::string line = text;
+    if (c < penetrations.size() && penetrations[c].Known && penetrations[c].VolumeMm3 > 0.0)
+    {
+      std::snprintf(text, sizeof(text), "  | tool %.1f mm in, %.1f mm3", penetrations[c].DepthMm, penetrations[c].VolumeMm3);
+      line += text;
+    }
+    else if (c < surface.size() && surface[c].InRange)
+    {
+      std::snprintf(text, sizeof(text), "  | tool %.1f mm", surface[c].DistanceMm);
+      line += text;
+    }
+    this->SetLine(static_cast<int>(c) + 1, line);
   }
 }
 

@@ -29,8 +29,12 @@ public:
   /// Declares the classes (in the engine's order) with their display colours (RGB 0..1).
   void SetClasses(const std::vector<std::string>& names, const std::vector<std::array<double, 3>>& colours);
   /// Shows a frame's answers: per class distance, inside and level; the overall level heads it.
+  /// With the whole instrument measured (surface and penetrations not empty), each class line also
+  /// gives the instrument's distance ("tool 2.6 mm") or, inside, its depth and volume ("tool 1.0 mm
+  /// in, 3.7 mm3").
   void ShowFrame(const vp::ProximityResult& proximity, const std::vector<vp::DangerLevel>& classLevels,
-    vp::DangerLevel overall);
+    vp::DangerLevel overall, const std::vector<vp::SurfaceProximity>& surface = {},
+    const std::vector<vp::Penetration>& penetrations = {});
   /// Shows the last line only for a frame over its budget ("frame 23.4 ms, over the 16.7 ms
   /// budget"); empty otherwise, so a frame in time costs no text update.
   void ShowFrameTime(double frameMs, bool overBudget, double budgetMs);

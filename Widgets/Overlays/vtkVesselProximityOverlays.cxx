@@ -141,7 +141,7 @@ void vtkVesselProximityOverlays::ShowFrame(const vp::TrackedFrame& frame)
   {
     this->ClosestLine->Hide();
   }
-  this->Readout->ShowFrame(frame.Proximity, frame.ClassLevels, frame.Level);
+  this->Readout->ShowFrame(frame.Proximity, frame.ClassLevels, frame.Level, frame.Surface, frame.Penetrations);
   this->Readout->ShowFrameTime(frame.FrameMs, frame.OverBudget,
     this->Logic ? this->Logic->GetTrackingLogic()->GetFrameBudgetMs() : 0.0);
   this->Plot->AddFrame(frame.TimeS, frame.Proximity);

@@ -6,6 +6,8 @@
 // the answer. A running best per class (atomicMin on the float's bits) lets far tiles and pixels
 // skip their work, which keeps the cost to the pixels near the vessel nearest the tip.
 // The invocation after the last tile answers "is the tip inside" and the directional distance.
+// One dispatch answers a batch of points (workgroup z: the point), each with its own state and
+// records; ReduceProximity.comp then picks each answer's record on the device.
 // No shared memory and no barriers: lavapipe runs a workgroup with a barrier as coroutines, which
 // cost more than the whole query.
 #extension GL_GOOGLE_include_directive : require
@@ -18,17 +20,18 @@ layout(std430, binding = 1) readonly buffer Crossings { uint Crossing[]; };
 layout(std430, binding = 2) readonly buffer DepthRanges { uint DepthRange[]; };
 layout(std430, binding = 3) readonly buffer TileRanges { uint TileRange[]; };
 layout(std430, binding = 4) readonly buffer TileOrder { ivec2 Order[]; };
-// Per class, 32 words: [0] best distance (float bits, starts at the range), [1] inside,
-// [2] directional distance (float bits), [8..31] the paper's distance bits.
+// Per point and class, 32 words: [0] best distance (float bits, starts at the range), [1] inside,
+// [2] directional distance (float bits), [3..6] the chosen record (ReduceProximity.comp),
+// [8..31] the paper's distance bits.
 layout(std430, binding = 5) buffer QueryState { uint State[]; };
-// Per class and tile: distance (float bits), pixel, depth of the closest point (float bits).
+// Per point, class and tile: distance (float bits), pixel, depth of the closest point (float bits).
 layout(std430, binding = 6) writeonly buffer Records { uvec4 Record[]; };
+// Per point: the tip in grid units (pixels, pixels, slices), then the unit axis in mm (or zero).
+layout(std430, binding = 7) readonly buffer Points { vec4 Point[]; };
 
 layout(push_constant) uniform Parameters
 {
-  vec3 Tip;           // in grid units: pixels, pixels, slices
   float PixelMm;
-  vec3 AxisMm;        // unit scalpel axis in mm, or zero
   float SliceMm;
   float RangeMm;
   float HalfDiagonalMm;
@@ -43,7 +46,12 @@ layout(push_constant) uniform Parameters
   int OrderCount;
   int PaperMode;
   uint RangeStride;
+  int Classes;
 } P;
+
+// This invocation's point (set first thing in main).
+vec3 Tip;
+vec3 AxisMm;
 
 // glslang 12 rejects a global const initialised from uintBitsToFloat.
 #define Inf uintBitsToFloat(0x7F800000u)
@@ -61,8 +69,8 @@ bool Occupied3(uint cls, ivec3 cell)
 // one. Its entry distance is never more than the true distance to the surface along the axis.
 float Directional(uint cls)
 {
-  vec3 dirGrid = vec3(P.AxisMm.xy / P.PixelMm, P.AxisMm.z / P.SliceMm); // cells per mm
-  ivec3 cell = ivec3(floor(P.Tip));
+  vec3 dirGrid = vec3(AxisMm.xy / P.PixelMm, AxisMm.z / P.SliceMm); // cells per mm
+  ivec3 cell = ivec3(floor(Tip));
   ivec3 stepDir = ivec3(sign(dirGrid));
   vec3 tMax;
   vec3 tDelta;
@@ -76,7 +84,7 @@ float Directional(uint cls)
     else
     {
       float boundary = float(cell[k]) + (dirGrid[k] > 0.0 ? 1.0 : 0.0);
-      tMax[k] = (boundary - P.Tip[k]) / dirGrid[k];
+      tMax[k] = (boundary - Tip[k]) / dirGrid[k];
       tDelta[k] = 1.0 / abs(dirGrid[k]);
     }
   }
@@ -101,7 +109,7 @@ float Directional(uint cls)
 // overstates danger within one cell of the surface rather than hiding a breach.
 uint Inside(uint cls)
 {
-  ivec3 cell = ivec3(floor(P.Tip));
+  ivec3 cell = ivec3(floor(Tip));
   if (cell.x < 0 || cell.y < 0 || cell.x >= P.Nx || cell.y >= P.Ny || cell.z < 0)
   {
     return 0u;
@@ -132,7 +140,7 @@ uint Inside(uint cls)
 // slice nearest the tip.
 float NearestSlice(uint base, float window, out float depth)
 {
-  float tz = P.Tip.z;
+  float tz = Tip.z;
   int start = clamp(int(floor(tz)), 0, P.Nz - 1);
   float best = Inf;
   depth = 0.0;
@@ -196,8 +204,12 @@ float AxisGap(float x, float lo, float hi)
 void main()
 {
   uint cls = gl_WorkGroupID.y;
+  uint point = gl_WorkGroupID.z;
   uint index = gl_GlobalInvocationID.x;
-  uint stateBase = cls * StateStride;
+  Tip = Point[2u * point].xyz;
+  AxisMm = Point[2u * point + 1u].xyz;
+  uint answer = point * uint(P.Classes) + cls;
+  uint stateBase = answer * StateStride;
   if (index > uint(P.OrderCount))
   {
     return;
@@ -205,12 +217,12 @@ void main()
   if (index == uint(P.OrderCount))
   {
     State[stateBase + 1u] = Inside(cls);
-    State[stateBase + 2u] = floatBitsToUint(any(notEqual(P.AxisMm, vec3(0.0))) ? Directional(cls) : Inf);
+    State[stateBase + 2u] = floatBitsToUint(any(notEqual(AxisMm, vec3(0.0))) ? Directional(cls) : Inf);
     return;
   }
 
-  uint recordIndex = cls * uint(P.OrderCount) + index;
-  ivec2 tile = ivec2(floor(P.Tip.xy / 8.0)) + Order[index];
+  uint recordIndex = answer * uint(P.OrderCount) + index;
+  ivec2 tile = ivec2(floor(Tip.xy / 8.0)) + Order[index];
   if (tile.x < 0 || tile.y < 0 || tile.x >= P.TilesX || tile.y >= P.TilesY)
   {
     Record[recordIndex] = uvec4(floatBitsToUint(Inf), 0u, 0u, 0u);
@@ -226,9 +238,9 @@ void main()
   }
   {
     vec2 lo = vec2(tile * 8);
-    float dx = AxisGap(P.Tip.x, lo.x, lo.x + 8.0) * P.PixelMm;
-    float dy = AxisGap(P.Tip.y, lo.y, lo.y + 8.0) * P.PixelMm;
-    float dz = AxisGap(P.Tip.z, floor(tileLo), floor(tileHi) + 1.0) * P.SliceMm;
+    float dx = AxisGap(Tip.x, lo.x, lo.x + 8.0) * P.PixelMm;
+    float dy = AxisGap(Tip.y, lo.y, lo.y + 8.0) * P.PixelMm;
+    float dz = AxisGap(Tip.z, floor(tileLo), floor(tileHi) + 1.0) * P.SliceMm;
     if (sqrt(dx * dx + dy * dy + dz * dz) > uintBitsToFloat(State[stateBase]))
     {
       Record[recordIndex] = uvec4(floatBitsToUint(Inf), 0u, 0u, 0u);
@@ -258,11 +270,11 @@ void main()
     // The column's occupied slices span [floor(zlo), floor(zhi) + 1).
     zlo = floor(zlo);
     zhi = floor(zhi) + 1.0;
-    float dx = AxisGap(P.Tip.x, float(pix.x), float(pix.x + 1)) * P.PixelMm;
-    float dy = AxisGap(P.Tip.y, float(pix.y), float(pix.y + 1)) * P.PixelMm;
+    float dx = AxisGap(Tip.x, float(pix.x), float(pix.x + 1)) * P.PixelMm;
+    float dy = AxisGap(Tip.y, float(pix.y), float(pix.y + 1)) * P.PixelMm;
     float dxy2 = dx * dx + dy * dy;
     float best = min(bestHere, uintBitsToFloat(State[stateBase]));
-    float dzColumn = AxisGap(P.Tip.z, zlo, zhi) * P.SliceMm;
+    float dzColumn = AxisGap(Tip.z, zlo, zhi) * P.SliceMm;
     float lowerBound = sqrt(dxy2 + dzColumn * dzColumn);
     if (lowerBound > best)
     {
@@ -274,7 +286,7 @@ void main()
     {
       // The paper: one cuboid from the nearest to the farthest depth.
       d = lowerBound;
-      depth = clamp(P.Tip.z, zlo, zhi);
+      depth = clamp(Tip.z, zlo, zhi);
     }
     else
     {

@@ -4,10 +4,12 @@
 #include "vpEdgeSplitting.h"
 #include "vpGpuBuffer.h"
 #include "vpInputError.h"
+#include "vpPreparedCommands.h"
 #include "vpVulkanContext.h"
 
 #include "QueryProximity_comp_spv.h"
 #include "RasterizeLayers_comp_spv.h"
+#include "ReduceProximity_comp_spv.h"
 #include "SummarizeColumns_comp_spv.h"
 #include "SummarizeTiles_comp_spv.h"
 
@@ -56,17 +58,29 @@ struct TileParameters
 
 struct QueryParameters
 {
-  float Tip[3];
   float PixelMm;
-  float AxisMm[3];
   float SliceMm;
   float RangeMm;
   float HalfDiagonalMm;
   float BinWidthMm;
   std::int32_t Bins, Nx, Ny, Nz, Words, TilesX, TilesY, OrderCount, PaperMode;
   std::uint32_t RangeStride;
+  std::int32_t Classes;
 };
-static_assert(sizeof(QueryParameters) == 84, "push constant layout of QueryProximity.comp");
+static_assert(sizeof(QueryParameters) == 64, "push constant layout of QueryProximity.comp");
+
+struct ReduceParameters
+{
+  std::uint32_t Step, Answers, OrderCount, RangeBits;
+};
+
+/// What a query writes per point: the tip in grid units, then the unit axis (QueryProximity.comp).
+struct PointRecord
+{
+  float Tip[4];
+  float Axis[4];
+};
+static_assert(sizeof(PointRecord) == 32, "Points layout of QueryProximity.comp");
 
 float Bits(std::uint32_t u)
 {
@@ -110,9 +124,13 @@ struct vtkZBufferVesselDistance::Internals
   // Query.
   double OrderRangeMm = -1.0;
   std::uint32_t OrderCount = 0;
-  std::unique_ptr<vp::GpuBuffer> Order, State, Records, HostState, HostRecords;
+  std::unique_ptr<vp::GpuBuffer> Order, State, Records, HostState, Points;
 
-  std::unique_ptr<vp::ComputeKernel> Raster, Columns, Tiles, Query;
+  std::unique_ptr<vp::ComputeKernel> Raster, Columns, Tiles, Query, Reduce;
+  // The query's submission, recorded for one batch size and one set of parameters.
+  std::unique_ptr<vp::PreparedCommands> Prepared;
+  std::uint32_t PreparedPoints = 0;
+  QueryParameters PreparedParameters{};
 
   vp::VulkanContext& Device(const std::string& selector)
   {
@@ -128,10 +146,13 @@ struct vtkZBufferVesselDistance::Internals
 
   void Release()
   {
+    this->Prepared.reset(); // before the buffers and kernels it names
     this->Raster.reset();
     this->Columns.reset();
     this->Tiles.reset();
     this->Query.reset();
+    this->Reduce.reset();
+    this->Points.reset();
     this->Positions.reset();
     this->Indices.reset();
     this->Occupancy.reset();
@@ -142,7 +163,6 @@ struct vtkZBufferVesselDistance::Internals
     this->State.reset();
     this->Records.reset();
     this->HostState.reset();
-    this->HostRecords.reset();
     this->Rendered = false;
     this->OrderRangeMm = -1.0;
   }
@@ -215,14 +235,17 @@ struct vtkZBufferVesselDistance::Internals
       return std::make_pair(gx * gx + gy * gy, o[0] * o[0] + o[1] * o[1]);
     };
     std::stable_sort(order.begin(), order.end(), [&](const auto& a, const auto& b) { return gap(a) < gap(b); });
+    this->Prepared.reset(); // it names the buffers replaced here
     this->OrderCount = static_cast<std::uint32_t>(order.size());
     this->Order = std::make_unique<vp::GpuBuffer>(*this->Context, order.size() * 8, vp::GpuBuffer::Placement::Device);
     this->Order->Upload(order.data(), order.size() * 8);
-    const VkDeviceSize recordBytes = static_cast<VkDeviceSize>(this->OrderCount) * this->Classes() * 16;
+    const VkDeviceSize recordBytes =
+      static_cast<VkDeviceSize>(this->OrderCount) * this->Classes() * vtkZBufferVesselDistance::BatchCapacity * 16;
     this->Records = std::make_unique<vp::GpuBuffer>(*this->Context, recordBytes, vp::GpuBuffer::Placement::Device);
-    this->HostRecords = std::make_unique<vp::GpuBuffer>(*this->Context, recordBytes, vp::GpuBuffer::Placement::Host);
     this->Query->BindBuffers({ this->Occupancy->Handle(), this->Crossings->Handle(), this->DepthRanges->Handle(),
-      this->TileRanges->Handle(), this->Order->Handle(), this->State->Handle(), this->Records->Handle() });
+      this->TileRanges->Handle(), this->Order->Handle(), this->State->Handle(), this->Records->Handle(),
+      this->Points->Handle() });
+    this->Reduce->BindBuffers({ this->State->Handle(), this->Records->Handle() });
     this->OrderRangeMm = rangeMm;
   }
 };
@@ -488,9 +511,11 @@ void vtkZBufferVesselDistance::BuildInternal()
   s.Crossings = std::make_unique<vp::GpuBuffer>(context, layerBytes, Placement::Device);
   s.DepthRanges = std::make_unique<vp::GpuBuffer>(context, rangeBytes, Placement::Device);
   s.TileRanges = std::make_unique<vp::GpuBuffer>(context, tileBytes, Placement::Device);
-  const VkDeviceSize stateBytes = StateStride * 4ull * std::max(classes, 1u);
+  const VkDeviceSize stateBytes = StateStride * 4ull * std::max(classes, 1u) * BatchCapacity;
   s.State = std::make_unique<vp::GpuBuffer>(context, stateBytes, Placement::Device);
   s.HostState = std::make_unique<vp::GpuBuffer>(context, stateBytes, Placement::Host);
+  // Written by the host for every batch, read by the query: host-visible, no copy.
+  s.Points = std::make_unique<vp::GpuBuffer>(context, sizeof(PointRecord) * BatchCapacity, Placement::Host);
 
   s.Raster = std::make_unique<vp::ComputeKernel>(
     context, RasterizeLayers_comp, RasterizeLayers_comp_size, 4, static_cast<std::uint32_t>(sizeof(RasterParameters)));
@@ -502,7 +527,9 @@ void vtkZBufferVesselDistance::BuildInternal()
     context, SummarizeTiles_comp, SummarizeTiles_comp_size, 2, static_cast<std::uint32_t>(sizeof(TileParameters)));
   s.Tiles->BindBuffers({ s.DepthRanges->Handle(), s.TileRanges->Handle() });
   s.Query = std::make_unique<vp::ComputeKernel>(
-    context, QueryProximity_comp, QueryProximity_comp_size, 7, static_cast<std::uint32_t>(sizeof(QueryParameters)));
+    context, QueryProximity_comp, QueryProximity_comp_size, 8, static_cast<std::uint32_t>(sizeof(QueryParameters)));
+  s.Reduce = std::make_unique<vp::ComputeKernel>(
+    context, ReduceProximity_comp, ReduceProximity_comp_size, 2, static_cast<std::uint32_t>(sizeof(ReduceParameters)));
 
   s.Renders = 0;
   if (!moving && classes > 0)
@@ -514,43 +541,84 @@ void vtkZBufferVesselDistance::BuildInternal()
 void vtkZBufferVesselDistance::ComputeProximity(
   const double tip[3], const double* axis, vp::ProximityResult& result, const vp::ProximityResult*) const
 {
-  this->BeginResult(tip, result);
+  std::vector<vp::ProximityResult> one;
+  this->ComputeProximityBatch(tip, 1, axis, one);
+  result = std::move(one.front());
+}
+
+void vtkZBufferVesselDistance::ComputeProximityBatch(
+  const double* tips, std::size_t count, const double* axes, std::vector<vp::ProximityResult>& results) const
+{
+  results.resize(count);
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    this->BeginResult(tips + 3 * i, results[i]);
+  }
   std::lock_guard<std::mutex> lock(this->Impl->Lock);
   Internals& s = *this->Impl;
-  const std::uint32_t classes = s.Classes();
   const double binWidth = this->BinWidthMm();
-  result.ErrorBoundMm = s.Grid.ErrorBoundMm(binWidth);
-  if (classes == 0)
+  for (vp::ProximityResult& r : results)
+  {
+    r.ErrorBoundMm = s.Grid.ErrorBoundMm(binWidth);
+  }
+  if (s.Classes() == 0 || count == 0)
   {
     return;
   }
-
   if (this->BoxMode == MovingWithTip)
   {
     this->CheckMovingBox(s.Grid.PixelMm); // the range may have changed since Build()
-    if (!s.Rendered || !s.Grid.ContainsBall(tip, this->RangeMm))
+    for (std::size_t i = 0; i < count; ++i)
     {
-      s.Grid = vp::DepthLayerGrid::Centred(tip, this->MovingBoxSizeMm, s.Grid.PixelMm, s.Grid.SliceMm, s.AnchorMm);
-      s.Render();
+      const double* tip = tips + 3 * i;
+      if (!s.Rendered || !s.Grid.ContainsBall(tip, this->RangeMm))
+      {
+        s.Grid = vp::DepthLayerGrid::Centred(tip, this->MovingBoxSizeMm, s.Grid.PixelMm, s.Grid.SliceMm, s.AnchorMm);
+        s.Render();
+      }
+      this->AnswerBatch(tips + 3 * i, 1, axes ? axes + 3 * i : nullptr, &results[i]);
+    }
+    return;
+  }
+  for (std::size_t first = 0; first < count; first += BatchCapacity)
+  {
+    const std::size_t n = std::min(BatchCapacity, count - first);
+    this->AnswerBatch(tips + 3 * first, n, axes ? axes + 3 * first : nullptr, &results[first]);
+  }
+}
+
+void vtkZBufferVesselDistance::AnswerBatch(
+  const double* tips, std::size_t count, const double* axes, vp::ProximityResult* results) const
+{
+  Internals& s = *this->Impl;
+  const std::uint32_t classes = s.Classes();
+  s.PrepareOrder(this->RangeMm);
+  const vp::DepthLayerGrid& g = s.Grid;
+  const double binWidth = this->BinWidthMm();
+
+  auto* points = static_cast<PointRecord*>(s.Points->Mapped());
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    const double* tip = tips + 3 * i;
+    PointRecord& p = points[i];
+    p = PointRecord{};
+    p.Tip[0] = static_cast<float>((tip[0] - g.OriginMm[0]) / g.PixelMm);
+    p.Tip[1] = static_cast<float>((tip[1] - g.OriginMm[1]) / g.PixelMm);
+    p.Tip[2] = static_cast<float>((tip[2] - g.OriginMm[2]) / g.SliceMm);
+    if (axes)
+    {
+      const double* axis = axes + 3 * i;
+      const double n = std::sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
+      for (int k = 0; k < 3 && n > 0.0; ++k)
+      {
+        p.Axis[k] = static_cast<float>(axis[k] / n);
+      }
     }
   }
-  s.PrepareOrder(this->RangeMm);
 
-  const vp::DepthLayerGrid& g = s.Grid;
   QueryParameters q{};
-  q.Tip[0] = static_cast<float>((tip[0] - g.OriginMm[0]) / g.PixelMm);
-  q.Tip[1] = static_cast<float>((tip[1] - g.OriginMm[1]) / g.PixelMm);
-  q.Tip[2] = static_cast<float>((tip[2] - g.OriginMm[2]) / g.SliceMm);
   q.PixelMm = static_cast<float>(g.PixelMm);
   q.SliceMm = static_cast<float>(g.SliceMm);
-  if (axis)
-  {
-    const double n = std::sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
-    for (int k = 0; k < 3 && n > 0.0; ++k)
-    {
-      q.AxisMm[k] = static_cast<float>(axis[k] / n);
-    }
-  }
   q.RangeMm = static_cast<float>(this->RangeMm);
   q.HalfDiagonalMm = static_cast<float>(g.HalfDiagonalMm());
   q.BinWidthMm = static_cast<float>(binWidth);
@@ -564,80 +632,81 @@ void vtkZBufferVesselDistance::ComputeProximity(
   q.OrderCount = static_cast<std::int32_t>(s.OrderCount);
   q.PaperMode = this->LayerMode == PaperNearFar ? 1 : 0;
   q.RangeStride = static_cast<std::uint32_t>(g.Pixels()) * classes;
+  q.Classes = static_cast<std::int32_t>(classes);
 
-  std::vector<std::uint32_t> state(StateStride * classes, 0u);
-  for (std::uint32_t c = 0; c < classes; ++c)
+  const std::uint32_t n = static_cast<std::uint32_t>(count);
+  if (!s.Prepared || s.PreparedPoints != n || std::memcmp(&s.PreparedParameters, &q, sizeof q) != 0)
   {
-    state[c * StateStride] = Bits(static_cast<float>(this->RangeMm));
-    state[c * StateStride + 2] = FloatInfBits;
+    s.Prepared.reset();
+    const std::uint32_t answers = n * classes;
+    const VkDeviceSize stateBytes = static_cast<VkDeviceSize>(answers) * StateStride * 4;
+    const ReduceParameters reset{ 0, answers, s.OrderCount, Bits(q.RangeMm) };
+    const ReduceParameters choose{ 1, answers, s.OrderCount, Bits(q.RangeMm) };
+    const ReduceParameters copy{ 2, answers, s.OrderCount, Bits(q.RangeMm) };
+    s.Prepared = std::make_unique<vp::PreparedCommands>(*s.Context, [&](VkCommandBuffer cmd) {
+      s.Reduce->Record(cmd, &reset, (answers + 63) / 64);
+      vp::ComputeKernel::Barrier(cmd);
+      s.Query->Record(cmd, &q, (s.OrderCount + 1 + 63) / 64, classes, n);
+      vp::ComputeKernel::Barrier(cmd);
+      s.Reduce->Record(cmd, &choose, (answers * s.OrderCount + 63) / 64);
+      vp::ComputeKernel::Barrier(cmd);
+      s.Reduce->Record(cmd, &copy, (answers + 63) / 64);
+      vp::ComputeKernel::Barrier(cmd);
+      VkBufferCopy stateCopy{ 0, 0, stateBytes };
+      vkCmdCopyBuffer(cmd, s.State->Handle(), s.HostState->Handle(), 1, &stateCopy);
+      vp::ComputeKernel::Barrier(cmd);
+    });
+    s.PreparedPoints = n;
+    s.PreparedParameters = q;
   }
-  const VkDeviceSize stateBytes = state.size() * 4;
-  const VkDeviceSize recordBytes = static_cast<VkDeviceSize>(s.OrderCount) * classes * 16;
-  s.Context->Submit([&](VkCommandBuffer cmd) {
-    vkCmdUpdateBuffer(cmd, s.State->Handle(), 0, stateBytes, state.data());
-    vp::ComputeKernel::Barrier(cmd);
-    s.Query->Record(cmd, &q, (s.OrderCount + 1 + 63) / 64, classes);
-    vp::ComputeKernel::Barrier(cmd);
-    VkBufferCopy stateCopy{ 0, 0, stateBytes };
-    vkCmdCopyBuffer(cmd, s.State->Handle(), s.HostState->Handle(), 1, &stateCopy);
-    VkBufferCopy recordCopy{ 0, 0, recordBytes };
-    vkCmdCopyBuffer(cmd, s.Records->Handle(), s.HostRecords->Handle(), 1, &recordCopy);
-    vp::ComputeKernel::Barrier(cmd);
-  });
+  s.Prepared->Submit();
 
   const auto* hostState = static_cast<const std::uint32_t*>(s.HostState->Mapped());
-  const auto* records = static_cast<const std::uint32_t*>(s.HostRecords->Mapped());
-  for (std::uint32_t c = 0; c < classes; ++c)
+  for (std::size_t i = 0; i < count; ++i)
   {
-    vp::ClassProximity& out = result.Classes[c];
-    float best = std::numeric_limits<float>::infinity();
-    std::uint32_t bestPixel = 0;
-    float bestDepth = 0.0f;
-    for (std::uint32_t r = 0; r < s.OrderCount; ++r)
+    const double* tip = tips + 3 * i;
+    for (std::uint32_t c = 0; c < classes; ++c)
     {
-      const std::uint32_t* rec = records + 4 * (static_cast<std::size_t>(c) * s.OrderCount + r);
-      const float d = Bits(rec[0]);
-      if (d < best)
+      vp::ClassProximity& out = results[i].Classes[c];
+      const std::uint32_t* cs = hostState + (i * classes + c) * StateStride;
+      const float directional = Bits(cs[2]);
+      if (axes && std::isfinite(directional) && directional <= this->RangeMm)
       {
-        best = d;
-        bestPixel = rec[1];
-        bestDepth = Bits(rec[2]);
+        out.DirectionalMm = directional;
       }
-    }
-    const std::uint32_t* cs = hostState + c * StateStride;
-    const float directional = Bits(cs[2]);
-    if (axis && std::isfinite(directional) && directional <= this->RangeMm)
-    {
-      out.DirectionalMm = directional;
-    }
-    if (!(best <= this->RangeMm))
-    {
-      out.InRange = false; // as the exact engine: no distance, no point, no inside answer
-      continue;
-    }
-    out.InRange = true;
-    out.Inside = this->Surfaces[c]->IsClosed() ? std::optional<bool>(cs[1] != 0u) : std::nullopt;
-    // The nearest marked cell is at most a cell diagonal nearer than the surface it holds:
-    // its distance plus half a diagonal is within half a diagonal of the truth.
-    double distance = best + g.HalfDiagonalMm();
-    if (this->DistanceBins > 0)
-    {
-      for (int bin = 0; bin < this->DistanceBins; ++bin)
+      // cs[3]: the record the device chose (none: nothing within range).
+      const float best = cs[3] == 0xFFFFFFFFu ? std::numeric_limits<float>::infinity() : Bits(cs[4]);
+      if (!(best <= this->RangeMm))
       {
-        if (cs[8 + bin / 32] & (1u << (bin % 32)))
+        out.InRange = false; // as the exact engine: no distance, no point, no inside answer
+        continue;
+      }
+      out.InRange = true;
+      out.Inside = this->Surfaces[c]->IsClosed() ? std::optional<bool>(cs[1] != 0u) : std::nullopt;
+      // The nearest marked cell is at most a cell diagonal nearer than the surface it holds:
+      // its distance plus half a diagonal is within half a diagonal of the truth.
+      double distance = best + g.HalfDiagonalMm();
+      if (this->DistanceBins > 0)
+      {
+        for (int bin = 0; bin < this->DistanceBins; ++bin)
         {
-          distance = (bin + 0.5) * binWidth;
-          break;
+          if (cs[8 + bin / 32] & (1u << (bin % 32)))
+          {
+            distance = (bin + 0.5) * binWidth;
+            break;
+          }
         }
       }
+      out.DistanceMm = distance;
+      const std::uint32_t bestPixel = cs[5];
+      const float bestDepth = Bits(cs[6]);
+      const int px = static_cast<int>(bestPixel % static_cast<std::uint32_t>(g.Nx));
+      const int py = static_cast<int>(bestPixel / static_cast<std::uint32_t>(g.Nx));
+      out.ClosestPoint[0] = Clamp(tip[0], g.OriginMm[0] + px * g.PixelMm, g.OriginMm[0] + (px + 1) * g.PixelMm);
+      out.ClosestPoint[1] = Clamp(tip[1], g.OriginMm[1] + py * g.PixelMm, g.OriginMm[1] + (py + 1) * g.PixelMm);
+      out.ClosestPoint[2] = g.OriginMm[2] + bestDepth * g.SliceMm;
+      out.TriangleId = -1;
     }
-    out.DistanceMm = distance;
-    const int i = static_cast<int>(bestPixel % static_cast<std::uint32_t>(g.Nx));
-    const int j = static_cast<int>(bestPixel / static_cast<std::uint32_t>(g.Nx));
-    out.ClosestPoint[0] = Clamp(tip[0], g.OriginMm[0] + i * g.PixelMm, g.OriginMm[0] + (i + 1) * g.PixelMm);
-    out.ClosestPoint[1] = Clamp(tip[1], g.OriginMm[1] + j * g.PixelMm, g.OriginMm[1] + (j + 1) * g.PixelMm);
-    out.ClosestPoint[2] = g.OriginMm[2] + bestDepth * g.SliceMm;
-    out.TriangleId = -1;
   }
 }
 

@@ -33,7 +33,8 @@
 /// bound, but smaller where the axis passes within a cell of a vessel it does not hit. "Inside" is
 /// decided at the pixel centre and may differ from the exact answer within about a cell of a surface.
 ///
-/// Queries are serialised by a lock: one GPU submission at a time.
+/// Queries are serialised by a lock: one GPU submission at a time. A batch of tips goes in one
+/// submission (ComputeProximityBatch), and the device, not the host, picks each answer.
 class vtkZBufferVesselDistance : public vtkVesselDistanceEngine
 {
 public:
@@ -87,7 +88,7 @@ public:
   /// The device in use; opens it when needed. Throws vp::DeviceError when there is none.
   std::string GetDeviceName();
   /// The bound on |reported - exact| of every distance, for the current settings (after Build()).
-  double GetErrorBoundMm() const;
+  double GetErrorBoundMm() const override;
   /// The box and cells in use (after Build(); for the moving box, the latest one).
   vp::DepthLayerGrid GetGrid() const;
   /// How many times the layers were rendered, and how long the last rendering took (ms).
@@ -96,8 +97,17 @@ public:
   /// Triangles sent to the rasteriser after splitting the long ones (after Build()).
   std::size_t GetNumberOfRasterTriangles() const;
 
+  /// One tip: a batch of one.
   void ComputeProximity(const double tip[3], const double* axis, vp::ProximityResult& result,
     const vp::ProximityResult* previous = nullptr) const override;
+  /// Up to BatchCapacity tips per GPU submission, nothing scanned on the host: the device picks
+  /// each answer's closest cell, and the host reads 32 words per tip and class. The submission is
+  /// recorded once per batch size and settings and then only resubmitted. With the moving box,
+  /// tips are answered one at a time (each may need its own box).
+  void ComputeProximityBatch(
+    const double* tips, std::size_t count, const double* axes, std::vector<vp::ProximityResult>& results) const override;
+  /// Tips per GPU submission.
+  static constexpr std::size_t BatchCapacity = 256;
   const char* GetMethodName() const override { return "zbuffer"; }
 
 protected:
@@ -113,6 +123,8 @@ private:
   double BinWidthMm() const;
   /// Throws InputError unless each half of the moving box holds the range plus a cell.
   void CheckMovingBox(double cellMm) const;
+  /// One submission for up to BatchCapacity tips on the current layers (lock held, results begun).
+  void AnswerBatch(const double* tips, std::size_t count, const double* axes, vp::ProximityResult* results) const;
 
   int LayerMode = ExactIntervals;
   int BoxMode = FixedAroundVessels;

@@ -379,10 +379,15 @@ void VulkanContext::Submit(const std::function<void(VkCommandBuffer)>& record)
   Check(vkBeginCommandBuffer(this->Commands, &begin), "vkBeginCommandBuffer");
   record(this->Commands);
   Check(vkEndCommandBuffer(this->Commands), "vkEndCommandBuffer");
+  this->SubmitRecorded(this->Commands);
+}
+
+void VulkanContext::SubmitRecorded(VkCommandBuffer commands)
+{
   VkSubmitInfo submit{};
   submit.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO;
   submit.commandBufferCount = 1;
-  submit.pCommandBuffers = &this->Commands;
+  submit.pCommandBuffers = &commands;
   Check(vkResetFences(this->LogicalDevice, 1, &this->Fence), "vkResetFences");
   Check(vkQueueSubmit(this->Queue, 1, &submit, this->Fence), "vkQueueSubmit");
   Check(vkWaitForFences(this->LogicalDevice, 1, &this->Fence, VK_TRUE, UINT64_MAX), "vkWaitForFences");

@@ -69,6 +69,10 @@ public:
 
   /// Records commands with record(), submits them to the compute queue and waits for them.
   void Submit(const std::function<void(VkCommandBuffer)>& record);
+  /// Submits an already recorded command buffer (vp::PreparedCommands) and waits for it.
+  void SubmitRecorded(VkCommandBuffer commands);
+  /// The pool prepared command buffers come from.
+  VkCommandPool Pool() const { return this->CommandPool; }
 
   /// Throws DeviceError with what, the Vulkan result's name, when result is not VK_SUCCESS.
   static void Check(VkResult result, const char* what);

@@ -86,9 +86,51 @@ std::vector<std::size_t> ParseSizes(const std::string& text)
   return sizes;
 }
 
+/// All tips as one batch (ComputeProximityBatch), five times: time per batch and tips per second
+/// (from the median batch). With singles, also how many answers differ from them in any way
+/// (there must be none: a batch is the single queries, bit for bit).
+Json BenchBatch(vtkVesselDistanceEngine* engine, const std::vector<std::array<double, 3>>& tips,
+  const std::vector<ProximityResult>* singles);
+
 Json Timing(const std::vector<double>& ms)
 {
   return { { "median_ms", Quantile(ms, 0.5) }, { "p95_ms", Quantile(ms, 0.95) }, { "queries", ms.size() } };
+}
+
+Json BenchBatch(vtkVesselDistanceEngine* engine, const std::vector<std::array<double, 3>>& tips,
+  const std::vector<ProximityResult>* singles)
+{
+  std::vector<double> flat;
+  for (const auto& t : tips)
+  {
+    flat.insert(flat.end(), t.begin(), t.end());
+  }
+  std::vector<double> ms;
+  std::vector<ProximityResult> batch;
+  for (int run = 0; run < 5; ++run)
+  {
+    const double start = NowMs();
+    engine->ComputeProximityBatch(flat.data(), tips.size(), nullptr, batch);
+    ms.push_back(NowMs() - start);
+  }
+  Json out = Timing(ms);
+  out["tips"] = tips.size();
+  out["tips_per_second"] = 1000.0 * static_cast<double>(tips.size()) / std::max(1e-9, Quantile(ms, 0.5));
+  if (singles)
+  {
+    int differ = 0;
+    for (std::size_t i = 0; i < batch.size() && i < singles->size(); ++i)
+    {
+      for (std::size_t c = 0; c < batch[i].Classes.size(); ++c)
+      {
+        const ClassProximity& a = batch[i].Classes[c];
+        const ClassProximity& b = (*singles)[i].Classes[c];
+        differ += a.InRange != b.InRange || (a.InRange && (a.DistanceMm != b.DistanceMm || a.Inside != b.Inside)) ? 1 : 0;
+      }
+    }
+    out["answers_differing_from_single_queries"] = differ;
+  }
+  return out;
 }
 
 std::vector<NamedMesh> BuiltInVessels()
@@ -235,11 +277,13 @@ Json BenchZBuffer(vtkVesselDistanceEngine* engine, const std::vector<NamedMesh>&
   std::vector<double> cachedMs, paperMs, exactMs, bruteMs, movingMs;
   ExactComparison check;
   ProximityResult z, e;
+  std::vector<ProximityResult> singles;
   for (std::size_t i = 0; i < tips.size(); ++i)
   {
     double start = NowMs();
     zbuffer->ComputeProximity(tips[i].data(), nullptr, z);
     cachedMs.push_back(NowMs() - start);
+    singles.push_back(z);
     start = NowMs();
     exact->ComputeProximity(tips[i].data(), nullptr, e);
     exactMs.push_back(NowMs() - start);
@@ -251,6 +295,9 @@ Json BenchZBuffer(vtkVesselDistanceEngine* engine, const std::vector<NamedMesh>&
     brute->ComputeProximity(tips[i].data(), nullptr, e);
     bruteMs.push_back(NowMs() - start);
   }
+  std::fprintf(stderr, ", batches");
+  const Json zbufferBatch = BenchBatch(zbuffer, tips, &singles);
+  const Json exactBatch = BenchBatch(exact, tips, nullptr);
   zbuffer->SetLayerMode(vtkZBufferVesselDistance::PaperNearFar);
   for (const auto& tip : tips)
   {
@@ -290,6 +337,8 @@ Json BenchZBuffer(vtkVesselDistanceEngine* engine, const std::vector<NamedMesh>&
   entry["moving_box"]["last_render_ms"] = movingRenderMs;
   entry["exact_all_classes"] = Timing(exactMs);
   entry["brute_all_classes"] = Timing(bruteMs);
+  entry["batched"] = zbufferBatch;
+  entry["exact_batched"] = exactBatch;
   entry["answers_compared"] = check.Compared;
   entry["max_abs_diff_vs_exact_mm"] = check.MaxAbsDifferenceMm;
   entry["outside_bound"] = check.OutsideBound;
@@ -502,6 +551,16 @@ int RunBenchCommand(const std::vector<std::string>& argv)
         s["max_abs_diff_vs_exact_mm"].get<double>(), s["outside_bound"].get<int>());
     }
     std::printf("cached query time, largest size / smallest: %.2f\n", z["cached_query_ratio_largest_to_smallest"].get<double>());
+    std::printf("%10s | %14s %14s %16s | %14s\n", "tris/class", "batch med ms", "batch p95 ms", "z-buffer tips/s",
+      "exact tips/s");
+    for (const Json& s : z["sizes"])
+    {
+      std::printf("%10zu | %14.2f %14.2f %16.0f | %14.0f   (%zu tips a batch, %d answers differ from single queries)\n",
+        s["triangles_per_class"].get<std::size_t>(), s["batched"]["median_ms"].get<double>(),
+        s["batched"]["p95_ms"].get<double>(), s["batched"]["tips_per_second"].get<double>(),
+        s["exact_batched"]["tips_per_second"].get<double>(), s["batched"]["tips"].get<std::size_t>(),
+        s["batched"]["answers_differing_from_single_queries"].get<int>());
+    }
   }
   if (benchReplay)
   {

@@ -1,6 +1,8 @@
 // The exact engine against analytic shapes, against the paper's brute-force algorithm, and on the
 // IRCADb reference vessel meshes.
 #include "vpAnalyticShapes.h"
+#include "vpBatchTestSupport.h"
+#include "vpBuiltInPhantom.h"
 #include "vpTestSupport.h"
 #include "vtkBruteForceVesselDistance.h"
 #include "vtkExactVesselDistance.h"
@@ -285,6 +287,30 @@ TEST(ExactDistance, DirectionalDistanceAlongTheAxis)
   EXPECT_NEAR(*b.Classes[0].DirectionalMm, 15.0, Tol);
   exact->ComputeProximity(tip, up, r);
   EXPECT_FALSE(r.Classes[0].DirectionalMm.has_value()) << "nothing above";
+}
+
+// A batch, answered on all cores, equals the tips one by one, bit for bit: for the exact engine
+// and for brute force (the engines' default batch).
+TEST(ExactDistance, BatchEqualsSingleQueriesBitForBit)
+{
+  std::vector<std::pair<std::string, vtkSmartPointer<vtkPolyData>>> vessels = vp::MakeBuiltInVessels();
+  std::mt19937 random(5);
+  std::uniform_real_distribution<double> coordinate(-60.0, 60.0);
+  std::vector<std::array<double, 3>> tips(300);
+  for (auto& t : tips)
+  {
+    t = { coordinate(random), coordinate(random), coordinate(random) };
+  }
+  vtkNew<vtkExactVesselDistance> exact;
+  vtkNew<vtkBruteForceVesselDistance> brute;
+  for (const auto& v : vessels)
+  {
+    exact->AddVessel(v.first, v.second);
+    brute->AddVessel(v.first, v.second);
+  }
+  EXPECT_GT(vp::test::ExpectBatchEqualsSingles(exact, tips, "exact"), 100);
+  const std::vector<std::array<double, 3>> few(tips.begin(), tips.begin() + 70); // still split across threads
+  EXPECT_GT(vp::test::ExpectBatchEqualsSingles(brute, few, "brute force"), 20);
 }
 
 TEST(ExactDistance, ConcurrentQueriesGiveTheSerialAnswers)

@@ -19,6 +19,8 @@
 #include <cmath>
 #include <random>
 
+#include "vpBatchTestSupport.h"
+
 namespace
 {
 /// Skips the test, saying why, when this machine has no Vulkan device.
@@ -183,6 +185,27 @@ TEST(ZBufferDistance, WithinBoundOnTheAnalyticPhantom)
   EXPECT_GT(a.InsideChecked, 1000);
   // The engine is approximate: a difference of zero everywhere would mean nothing was compared.
   EXPECT_GT(a.MaxDifferenceMm, 0.0);
+}
+
+// A batch (more tips than one submission holds, so several submissions, and a last one of another
+// size) answers exactly as the tips one by one: in the default mode, the paper's mode with its
+// distance bits, and with the moving box (tips one at a time, each possibly re-rendering).
+TEST(ZBufferDistance, BatchEqualsSingleQueriesBitForBit)
+{
+  VP_REQUIRE_VULKAN();
+  const Vessels vessels = vp::MakeBuiltInVessels();
+  double b[6];
+  VesselBounds(vessels, b);
+  const auto tips = RandomTips(b, 10.0, static_cast<int>(2 * vtkZBufferVesselDistance::BatchCapacity + 37), 11);
+  auto z = Make<vtkZBufferVesselDistance>(vessels, 50.0);
+  EXPECT_GT(vp::test::ExpectBatchEqualsSingles(z, tips, "exact intervals"), 500);
+  z->SetLayerMode(vtkZBufferVesselDistance::PaperNearFar);
+  z->SetDistanceBins(64);
+  EXPECT_GT(vp::test::ExpectBatchEqualsSingles(z, tips, "paper mode, 64 bins"), 500);
+  auto moving = Make<vtkZBufferVesselDistance>(vessels, 30.0);
+  moving->SetBoxMode(vtkZBufferVesselDistance::MovingWithTip);
+  const std::vector<std::array<double, 3>> few(tips.begin(), tips.begin() + 20);
+  EXPECT_GT(vp::test::ExpectBatchEqualsSingles(moving, few, "moving box"), 10);
 }
 
 TEST(ZBufferDistance, StackedBranchesStayApartOnlyInTheExactIntervalMode)

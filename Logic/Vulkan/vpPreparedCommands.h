@@ -1,0 +1,31 @@
+#ifndef vpPreparedCommands_h
+#define vpPreparedCommands_h
+
+#include "vpVulkanContext.h"
+
+#include <functional>
+
+namespace vp
+{
+/// A command buffer recorded once and submitted many times: what a query that runs every frame
+/// needs, so that each frame costs a submission and a wait, not a recording. Everything it uses
+/// (buffers, descriptor sets, push constants) must stay as it was when recorded; its owner records
+/// a new one when any of it changes. Freed with the object; must not outlive its context.
+class PreparedCommands
+{
+public:
+  PreparedCommands(VulkanContext& context, const std::function<void(VkCommandBuffer)>& record);
+  ~PreparedCommands();
+  PreparedCommands(const PreparedCommands&) = delete;
+  PreparedCommands& operator=(const PreparedCommands&) = delete;
+
+  /// Submits the commands and waits for them.
+  void Submit() { this->Context.SubmitRecorded(this->Commands); }
+
+private:
+  VulkanContext& Context;
+  VkCommandBuffer Commands = VK_NULL_HANDLE;
+};
+} // namespace vp
+
+#endif

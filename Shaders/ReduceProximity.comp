@@ -1,0 +1,73 @@
+#version 450
+// The per-query passes around QueryProximity.comp that keep the host out of the loop, one shader
+// with three steps (Step), each a dispatch over the batch's answers (point x class):
+//   0: reset each answer's state: best distance = the range, no inside, no directional distance,
+//      no record chosen, no distance bits;
+//   1: one invocation per record: a record whose distance equals its answer's best offers its
+//      index, and the lowest index wins (the record the host once found by scanning them all);
+//   2: one invocation per answer: copy the chosen record's distance, pixel and depth into the
+//      state, so the host reads 32 words per answer and nothing else.
+layout(local_size_x = 64) in;
+
+layout(std430, binding = 0) buffer QueryState { uint State[]; };
+layout(std430, binding = 1) readonly buffer Records { uvec4 Record[]; };
+
+layout(push_constant) uniform Parameters
+{
+  uint Step;
+  uint Answers;    // points x classes
+  uint OrderCount; // records per answer
+  uint RangeBits;  // the range, as float bits
+} P;
+
+const uint StateStride = 32u;
+const uint NoRecord = 0xFFFFFFFFu;
+
+void main()
+{
+  uint i = gl_GlobalInvocationID.x;
+  if (P.Step == 0u)
+  {
+    if (i >= P.Answers)
+    {
+      return;
+    }
+    uint base = i * StateStride;
+    State[base] = P.RangeBits;
+    State[base + 1u] = 0u;
+    State[base + 2u] = 0x7F800000u; // +infinity: no directional distance
+    State[base + 3u] = NoRecord;
+    for (uint w = 4u; w < StateStride; ++w)
+    {
+      State[base + w] = 0u;
+    }
+    return;
+  }
+  if (P.Step == 1u)
+  {
+    if (i >= P.Answers * P.OrderCount)
+    {
+      return;
+    }
+    uint answer = i / P.OrderCount;
+    uint base = answer * StateStride;
+    if (Record[i].x == State[base])
+    {
+      atomicMin(State[base + 3u], i - answer * P.OrderCount);
+    }
+    return;
+  }
+  if (i >= P.Answers)
+  {
+    return;
+  }
+  uint base = i * StateStride;
+  uint chosen = State[base + 3u];
+  if (chosen != NoRecord)
+  {
+    uvec4 r = Record[i * P.OrderCount + chosen];
+    State[base + 4u] = r.x;
+    State[base + 5u] = r.y;
+    State[base + 6u] = r.z;
+  }
+}

@@ -16,6 +16,7 @@ public:
 
   void ComputeProximity(const double tip[3], const double* axis, vp::ProximityResult& result,
     const vp::ProximityResult* previous = nullptr) const override;
+  std::string GetDeviceDescription() override { return "cpu (every triangle, one thread)"; }
   const char* GetMethodName() const override { return "brute"; }
 
 protected:

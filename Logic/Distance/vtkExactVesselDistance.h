@@ -29,6 +29,7 @@ public:
   void ComputeProximity(const double tip[3], const double* axis, vp::ProximityResult& result,
     const vp::ProximityResult* previous = nullptr) const override;
   const char* GetMethodName() const override { return "exact"; }
+  std::string GetDeviceDescription() override { return "cpu (Embree BVH)"; }
 
   /// Receives a triangle of the class (its index in GetSurface()) that may lie within the search
   /// sphere, and returns the radius still worth searching: never more than before, so each

@@ -243,6 +243,11 @@ void vtkScalpelPenetration::Build()
   this->BuildTimeMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
+bool vtkScalpelPenetration::IsToolClosed() const
+{
+  return this->Tool && this->Tool->Closed;
+}
+
 bool vtkScalpelPenetration::GetToolVolumeMm3(double& volume, double& bound) const
 {
   if (!this->Tool || !this->Tool->Closed || this->Tool->Root < 0)

@@ -58,6 +58,9 @@ public:
   /// The instrument's volume as sampled (mm³) and its bound; false before Build() or for an open
   /// instrument.
   bool GetToolVolumeMm3(double& volume, double& bound) const;
+  /// Whether the instrument's surface is closed (after Build()): without an inside, no
+  /// penetration can be known.
+  bool IsToolClosed() const;
 
   /// Per class of the vessel engine, in its order. surface: the whole-instrument distances for
   /// the same pose (vtkScalpelSurfaceDistance), which say where nothing can overlap.

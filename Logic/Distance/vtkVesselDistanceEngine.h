@@ -65,6 +65,10 @@ public:
   /// settings: 0 for exact engines.
   virtual double GetErrorBoundMm() const { return 0.0; }
 
+  /// Where the answers are computed, for reports ("cpu (Embree BVH)", a GPU's name, ...). The
+  /// z-buffer engine opens its device to say; throws vp::DeviceError when there is none.
+  virtual std::string GetDeviceDescription() { return "cpu"; }
+
   /// Short name used on the command line and in reports ("exact", "brute", ...).
   virtual const char* GetMethodName() const = 0;
 

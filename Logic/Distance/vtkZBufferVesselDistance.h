@@ -109,6 +109,8 @@ public:
   /// Tips per GPU submission.
   static constexpr std::size_t BatchCapacity = 256;
   const char* GetMethodName() const override { return "zbuffer"; }
+  /// The device's name and "(Vulkan)".
+  std::string GetDeviceDescription() override { return this->GetDeviceName() + " (Vulkan)"; }
 
 protected:
   vtkZBufferVesselDistance();

@@ -256,12 +256,12 @@ Json BenchReplay(const std::vector<NamedMesh>& vessels, std::size_t frames, unsi
     ExactComparison check;
     for (std::size_t i = 0; i < cached.Frames.size(); ++i)
     {
-      check.Add(cached.Frames[i].Proximity, tip.Frames[i].Proximity, zbuffer->GetRangeMm(), ErrorBoundMm(zbuffer));
+      check.Add(cached.Frames[i].Proximity, tip.Frames[i].Proximity, zbuffer->GetRangeMm(), zbuffer->GetErrorBoundMm());
     }
     Json z = Entry(cached);
-    z["device"] = DescribeDevice(zbuffer);
+    z["device"] = zbuffer->GetDeviceDescription();
     z["build_and_render_ms"] = renderMs;
-    z["error_bound_mm"] = ErrorBoundMm(zbuffer);
+    z["error_bound_mm"] = zbuffer->GetErrorBoundMm();
     z["max_abs_diff_vs_exact_mm"] = check.MaxAbsDifferenceMm;
     z["outside_bound"] = check.OutsideBound;
     out["zbuffer_cached"] = z;

@@ -147,7 +147,7 @@ int RunDistanceCommand(const std::vector<std::string>& argv)
   {
     reference->ComputeProximityBatch(flatTips.data(), tips.size(), hasAxis ? axes.data() : nullptr, exactResults);
   }
-  const double bound = ErrorBoundMm(engine);
+  const double bound = engine->GetErrorBoundMm();
   ExactComparison comparison;
   std::vector<std::vector<char>> withinBound(exactResults.size());
   for (std::size_t i = 0; i < exactResults.size(); ++i)
@@ -167,7 +167,7 @@ int RunDistanceCommand(const std::vector<std::string>& argv)
   {
     Json out;
     out["method"] = engine->GetMethodName();
-    out["device"] = DescribeDevice(engine);
+    out["device"] = engine->GetDeviceDescription();
     out["space"] = space;
     out["range_mm"] = engine->GetRangeMm();
     out["error_bound_mm"] = bound;
@@ -224,7 +224,7 @@ int RunDistanceCommand(const std::vector<std::string>& argv)
   }
 
   std::printf("method %s on %s, range %.1f mm, error bound %.3f mm, space %s, %zu tip(s)\n", engine->GetMethodName(),
-    DescribeDevice(engine).c_str(), engine->GetRangeMm(), bound, space.c_str(), tips.size());
+    engine->GetDeviceDescription().c_str(), engine->GetRangeMm(), bound, space.c_str(), tips.size());
   for (std::size_t i = 0; i < results.size(); ++i)
   {
     const ProximityResult& r = results[i];

@@ -102,25 +102,6 @@ vtkSmartPointer<vtkVesselDistanceEngine> MakeDistanceEngine(const std::string& m
   return engine;
 }
 
-std::string DescribeDevice(vtkVesselDistanceEngine* engine)
-{
-  if (auto* z = vtkZBufferVesselDistance::SafeDownCast(engine))
-  {
-    return z->GetDeviceName() + " (Vulkan)";
-  }
-  if (vtkBruteForceVesselDistance::SafeDownCast(engine))
-  {
-    return "cpu (every triangle, one thread)";
-  }
-  return "cpu (Embree BVH)";
-}
-
-double ErrorBoundMm(vtkVesselDistanceEngine* engine)
-{
-  auto* z = vtkZBufferVesselDistance::SafeDownCast(engine);
-  return z ? z->GetErrorBoundMm() : 0.0;
-}
-
 bool WithinErrorBound(const ClassProximity& answer, const ClassProximity& exact, double rangeMm, double boundMm)
 {
   if (exact.InRange && answer.InRange)

@@ -22,11 +22,6 @@ std::set<std::string> EngineValueOptions();
 /// bad option and DeviceError when the z-buffer engine was asked for and there is no device.
 vtkSmartPointer<vtkVesselDistanceEngine> MakeDistanceEngine(const std::string& method, const Arguments& args);
 
-/// What computed the answers, for reports: the Vulkan device's name, or the CPU engine.
-std::string DescribeDevice(vtkVesselDistanceEngine* engine);
-/// The engine's bound on |reported - exact| (0 for the exact and brute-force engines).
-double ErrorBoundMm(vtkVesselDistanceEngine* engine);
-
 /// The accuracy contract of one answer against the exact one: within boundMm when both are in
 /// range; out of range when the exact one is, unless it lies within boundMm beyond the range.
 bool WithinErrorBound(const ClassProximity& answer, const ClassProximity& exact, double rangeMm, double boundMm);

@@ -134,9 +134,9 @@ Json SummaryJson(const TrackingSummary& s, vtkScalpelTrackingLogic* logic, vtkVe
   out["frames"] = s.GetNumberOfFrames();
   out["duration_s"] = s.GetDurationS();
   out["method"] = engine->GetMethodName();
-  out["device"] = DescribeDevice(engine);
+  out["device"] = engine->GetDeviceDescription();
   out["range_mm"] = engine->GetRangeMm();
-  out["error_bound_mm"] = ErrorBoundMm(engine);
+  out["error_bound_mm"] = engine->GetErrorBoundMm();
   vtkScalpelModel* scalpel = logic->GetScalpel();
   out["scalpel"] = { { "tip_mm", { scalpel->GetTipMm()[0], scalpel->GetTipMm()[1], scalpel->GetTipMm()[2] } },
     { "axis", { scalpel->GetAxis()[0], scalpel->GetAxis()[1], scalpel->GetAxis()[2] } },
@@ -301,6 +301,11 @@ int RunTrackCommand(const std::vector<std::string>& argv)
 
   vtkScalpelTrackingLogic* logic = proximity->GetTrackingLogic();
   logic->SetFrameBudgetMs(budgetMs);
+  if (logic->GetPenetration() && !logic->GetPenetration()->IsToolClosed())
+  {
+    std::cerr << "track: " << args.Get("--scalpel")
+              << ": the surface is not closed, so the instrument's penetration depth and volume cannot be known (left empty)\n";
+  }
   TrackingSummary summary;
   vtkNew<vtkCallbackCommand> onChange;
   onChange->SetClientData(&summary);
@@ -319,7 +324,7 @@ int RunTrackCommand(const std::vector<std::string>& argv)
     summary.Add(frames.back());
     if (method == "both")
     {
-      check.Add(frames.back().Proximity, proximity->GetLastExactProximity(), engine->GetRangeMm(), ErrorBoundMm(engine));
+      check.Add(frames.back().Proximity, proximity->GetLastExactProximity(), engine->GetRangeMm(), engine->GetErrorBoundMm());
     }
     if (NowMs() - lastReport > 1000.0)
     {
@@ -335,7 +340,7 @@ int RunTrackCommand(const std::vector<std::string>& argv)
     if (check.OutsideBound > 0)
     {
       std::cerr << "vesselproximity: warning: " << check.OutsideBound << " answer(s) of the z-buffer engine outside its error bound of "
-                << ErrorBoundMm(engine) << " mm\n";
+                << engine->GetErrorBoundMm() << " mm\n";
     }
   }
 
@@ -370,7 +375,7 @@ int RunTrackCommand(const std::vector<std::string>& argv)
   }
 
   std::printf("%zu frames over %.2f s, method %s on %s, error bound %.3f mm\n", frames.size(), summary.GetDurationS(),
-    engine->GetMethodName(), DescribeDevice(engine).c_str(), ErrorBoundMm(engine));
+    engine->GetMethodName(), engine->GetDeviceDescription().c_str(), engine->GetErrorBoundMm());
   std::printf("  %-16s %16s %10s %20s\n", "class", "tip minimum mm", "at time", surface ? "whole surface mm" : "");
   for (std::size_t c = 0; c < classes.size(); ++c)
   {

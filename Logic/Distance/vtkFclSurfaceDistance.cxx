@@ -1,13 +1,10 @@
 #include "vtkFclSurfaceDistance.h"
 
 #include "vpInputError.h"
+#include "vpVesselSurface.h"
 
-#include <vtkCellArray.h>
-#include <vtkCellArrayIterator.h>
-#include <vtkNew.h>
 #include <vtkObjectFactory.h>
 #include <vtkPolyData.h>
-#include <vtkTriangleFilter.h>
 
 #include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/narrowphase/distance.h>
@@ -24,8 +21,21 @@ namespace
 {
 using Model = fcl::BVHModel<fcl::OBBRSSd>;
 
-std::shared_ptr<Model> MakeModel(const std::vector<fcl::Vector3d>& points, const std::vector<fcl::Triangle>& triangles)
+/// FCL's tree over a prepared surface (triangulated, in the surface's own coordinates).
+std::shared_ptr<Model> MakeModel(const vp::VesselSurface& surface)
 {
+  std::vector<fcl::Vector3d> points(surface.NumberOfPoints());
+  for (std::size_t i = 0; i < points.size(); ++i)
+  {
+    const double* p = surface.Point(static_cast<std::int32_t>(i));
+    points[i] = fcl::Vector3d(p[0], p[1], p[2]);
+  }
+  std::vector<fcl::Triangle> triangles;
+  triangles.reserve(surface.NumberOfTriangles());
+  for (const auto& t : surface.TriangleArray())
+  {
+    triangles.emplace_back(static_cast<std::size_t>(t[0]), static_cast<std::size_t>(t[1]), static_cast<std::size_t>(t[2]));
+  }
   auto model = std::make_shared<Model>();
   model->beginModel(static_cast<int>(triangles.size()), static_cast<int>(points.size()));
   model->addSubModel(points, triangles);
@@ -77,34 +87,8 @@ void vtkFclSurfaceDistance::Build()
   {
     throw vp::InputError("scalpel model", "has no surface for the whole-instrument distance");
   }
-  vtkNew<vtkTriangleFilter> filter;
-  filter->SetInputData(this->ToolSurface);
-  filter->PassLinesOff();
-  filter->PassVertsOff();
-  filter->Update();
-  vtkPolyData* mesh = filter->GetOutput();
-  std::vector<fcl::Vector3d> points(static_cast<std::size_t>(mesh->GetNumberOfPoints()));
-  for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
-  {
-    mesh->GetPoint(i, points[static_cast<std::size_t>(i)].data());
-  }
-  std::vector<fcl::Triangle> triangles;
-  const vtkIdType* ids = nullptr;
-  vtkIdType n = 0;
-  auto polys = vtk::TakeSmartPointer(mesh->GetPolys()->NewIterator());
-  for (polys->GoToFirstCell(); !polys->IsDoneWithTraversal(); polys->GoToNextCell())
-  {
-    polys->GetCurrentCell(n, ids);
-    if (n == 3)
-    {
-      triangles.emplace_back(static_cast<std::size_t>(ids[0]), static_cast<std::size_t>(ids[1]), static_cast<std::size_t>(ids[2]));
-    }
-  }
-  if (triangles.empty())
-  {
-    throw vp::InputError("scalpel model", "has no triangles for the whole-instrument distance");
-  }
-  s.Tool = MakeModel(points, triangles);
+  // Triangulated as the vessels are (fans of polygons), in model coordinates.
+  s.Tool = MakeModel(vp::VesselSurface("scalpel model", this->ToolSurface));
   s.ToolBuiltFrom = this->ToolSurface;
   s.ToolBuiltAt = this->ToolSurface->GetMTime();
   if (vesselsCurrent)
@@ -115,20 +99,7 @@ void vtkFclSurfaceDistance::Build()
   s.Vessels.clear();
   for (int c = 0; c < this->Vessels->GetNumberOfVessels(); ++c)
   {
-    const vp::VesselSurface& surface = this->Vessels->GetSurface(c);
-    std::vector<fcl::Vector3d> vp(surface.NumberOfPoints());
-    for (std::size_t i = 0; i < vp.size(); ++i)
-    {
-      const double* p = surface.Point(static_cast<std::int32_t>(i));
-      vp[i] = fcl::Vector3d(p[0], p[1], p[2]);
-    }
-    std::vector<fcl::Triangle> vt;
-    vt.reserve(surface.NumberOfTriangles());
-    for (const auto& t : surface.TriangleArray())
-    {
-      vt.emplace_back(static_cast<std::size_t>(t[0]), static_cast<std::size_t>(t[1]), static_cast<std::size_t>(t[2]));
-    }
-    s.Vessels.push_back(MakeModel(vp, vt));
+    s.Vessels.push_back(MakeModel(this->Vessels->GetSurface(c)));
   }
   s.VesselsBuiltFrom = this->Vessels;
   s.VesselsBuiltAt = this->Vessels->GetMTime();

@@ -94,8 +94,21 @@ vtkSmartPointer<vtkScalpelSurfaceDistance> Make(Calculator kind)
   return fcl;
 }
 
+/// The shaft and a sphere of radius 10 at the origin, measured by the calculator of the parameter.
 class InstrumentDistance : public ::testing::TestWithParam<Calculator>
 {
+protected:
+  void SetUp() override
+  {
+    this->Engine->AddVessel("portal_vein", this->Vessel);
+    this->Engine->Build();
+    this->Surface->SetVesselDistance(this->Engine);
+    this->Surface->SetToolSurface(this->Tool);
+  }
+  vtkSmartPointer<vtkPolyData> Vessel = vp::MakeSphere(Origin, 10.0, 24, 48);
+  vtkSmartPointer<vtkPolyData> Tool = ToolShaft();
+  vtkNew<vtkExactVesselDistance> Engine;
+  vtkSmartPointer<vtkScalpelSurfaceDistance> Surface = Make(GetParam());
 };
 } // namespace
 
@@ -103,14 +116,6 @@ class InstrumentDistance : public ::testing::TestWithParam<Calculator>
 // answer for the one before (a jump, the worst case for a warm start: the bound it gives is loose).
 TEST_P(InstrumentDistance, EqualsBruteForceAndSeesTheShaftBeforeTheTip)
 {
-  auto vessel = vp::MakeSphere(Origin, 10.0, 24, 48);
-  vtkNew<vtkExactVesselDistance> engine;
-  engine->AddVessel("portal_vein", vessel);
-  engine->Build();
-  auto tool = ToolShaft();
-  auto surface = Make(GetParam());
-  surface->SetVesselDistance(engine);
-  surface->SetToolSurface(tool);
   std::mt19937 random(3);
   std::uniform_real_distribution<double> angle(0.0, 2 * M_PI), offset(-25.0, 25.0);
   int touching = 0;
@@ -120,11 +125,11 @@ TEST_P(InstrumentDistance, EqualsBruteForceAndSeesTheShaftBeforeTheTip)
     const double axis[3] = { offset(random), offset(random), offset(random) };
     const vp::Matrix4 rotation = vp::RotationAboutAxis({ axis[0], axis[1], axis[2] }, angle(random), { offset(random), offset(random), offset(random) });
     std::vector<vp::SurfaceProximity> result;
-    surface->ComputeSurfaceProximity(rotation, result, previous.empty() ? nullptr : &previous);
+    this->Surface->ComputeSurfaceProximity(rotation, result, previous.empty() ? nullptr : &previous);
     ASSERT_EQ(result.size(), 1u);
     previous = result;
-    const double reference = BruteForceSurfaceDistance(tool, rotation, vessel);
-    if (reference > engine->GetRangeMm())
+    const double reference = BruteForceSurfaceDistance(this->Tool, rotation, this->Vessel);
+    if (reference > this->Engine->GetRangeMm())
     {
       EXPECT_FALSE(result[0].InRange);
       continue;
@@ -143,9 +148,9 @@ TEST_P(InstrumentDistance, EqualsBruteForceAndSeesTheShaftBeforeTheTip)
   // the tip is 32 mm away, the surface 2 mm (less the facets' chord error).
   const vp::Matrix4 beside{ 1, 0, 0, 13.5, 0, 0, -1, -40, 0, 1, 0, 0, 0, 0, 0, 1 };
   std::vector<vp::SurfaceProximity> result;
-  surface->ComputeSurfaceProximity(beside, result);
+  this->Surface->ComputeSurfaceProximity(beside, result);
   ASSERT_TRUE(result[0].InRange);
-  EXPECT_NEAR(result[0].DistanceMm, BruteForceSurfaceDistance(tool, beside, vessel), 1e-9);
+  EXPECT_NEAR(result[0].DistanceMm, BruteForceSurfaceDistance(this->Tool, beside, this->Vessel), 1e-9);
   EXPECT_NEAR(result[0].DistanceMm, 2.0, 0.1);
 }
 
@@ -153,14 +158,6 @@ TEST_P(InstrumentDistance, EqualsBruteForceAndSeesTheShaftBeforeTheTip)
 // (the previous closest pair) must never hide a nearer pair that appears as the tool turns.
 TEST_P(InstrumentDistance, TrackedApproachEqualsBruteForceEveryFrame)
 {
-  auto vessel = vp::MakeSphere(Origin, 10.0, 24, 48);
-  vtkNew<vtkExactVesselDistance> engine;
-  engine->AddVessel("portal_vein", vessel);
-  engine->Build();
-  auto tool = ToolShaft();
-  auto surface = Make(GetParam());
-  surface->SetVesselDistance(engine);
-  surface->SetToolSurface(tool);
   std::vector<vp::SurfaceProximity> previous;
   int inside = 0;
   for (int i = 0; i <= 60; ++i)
@@ -170,9 +167,9 @@ TEST_P(InstrumentDistance, TrackedApproachEqualsBruteForceEveryFrame)
     m[3] = 22.0 - 0.4 * i;
     m[7] = 3.0;
     std::vector<vp::SurfaceProximity> result;
-    surface->ComputeSurfaceProximity(m, result, previous.empty() ? nullptr : &previous);
+    this->Surface->ComputeSurfaceProximity(m, result, previous.empty() ? nullptr : &previous);
     previous = result;
-    const double reference = BruteForceSurfaceDistance(tool, m, vessel);
+    const double reference = BruteForceSurfaceDistance(this->Tool, m, this->Vessel);
     ASSERT_TRUE(result[0].InRange) << "frame " << i;
     ASSERT_NEAR(result[0].DistanceMm, reference, 1e-9) << "frame " << i;
     inside += reference == 0.0 ? 1 : 0;

@@ -57,6 +57,22 @@ double OverlapVolume(double offset, double tip, const std::function<bool(double,
   return volume;
 }
 
+/// The vertical extent over (x, y) of a solid symmetric about z = 0 whose horizontal section at
+/// (x, y) is within radius: a sphere about the origin, or a tube along x (alongX: x is ignored).
+std::function<bool(double, double, double&, double&)> RoundSolid(double radius, bool alongX)
+{
+  return [radius, alongX](double x, double y, double& low, double& high) {
+    const double h2 = radius * radius - (alongX ? 0.0 : x * x) - y * y;
+    if (h2 <= 0)
+    {
+      return false;
+    }
+    high = std::sqrt(h2);
+    low = -high;
+    return true;
+  };
+}
+
 struct Scene
 {
   vtkNew<vtkExactVesselDistance> Vessels;
@@ -98,16 +114,7 @@ TEST(Penetration, CylinderIntoASphereAtKnownDepths)
   const double origin[3] = { 0, 0, 0 };
   const double radius = 10.0;
   Scene scene(vp::MakeSphere(origin, radius, 96, 192));
-  auto sphere = [&](double x, double y, double& low, double& high) {
-    const double h2 = radius * radius - x * x - y * y;
-    if (h2 <= 0)
-    {
-      return false;
-    }
-    high = std::sqrt(h2);
-    low = -high;
-    return true;
-  };
+  const auto sphere = RoundSolid(radius, false);
   for (double depth : { 0.5, 1.5, 3.0, 6.0 })
   {
     // From below: the tip face's centre is depth inside the sphere's lowest point.
@@ -131,16 +138,7 @@ TEST(Penetration, CylinderIntoATubeAtKnownDepths)
   const double x[3] = { 1, 0, 0 };
   const double radius = 5.0;
   Scene scene(vp::MakeCappedCylinder(origin, x, radius, 80.0, 192));
-  auto tube = [&](double, double y, double& low, double& high) {
-    const double h2 = radius * radius - y * y;
-    if (h2 <= 0)
-    {
-      return false;
-    }
-    high = std::sqrt(h2);
-    low = -high;
-    return true;
-  };
+  const auto tube = RoundSolid(radius, true);
   // At depth 1.0 a layer of cell centres lies on the tube's wall, the lattice's worst case: the
   // bound must hold there too. Off the lattice, the estimate is also checked to be close.
   for (double depth : { 1.0, 1.13, 2.57, 4.11 })
@@ -168,16 +166,7 @@ TEST(Penetration, AGrazingToolHasLittleAndAToolApartHasNone)
   Scene scene(vp::MakeSphere(origin, 10.0, 96, 192));
   // The tool's side 0.05 mm into the sphere's equator: touching, with almost nothing inside.
   const vp::Penetration graze = scene.At(TipAt(10.0 + ToolRadiusMm - 0.05, 0, 5.0));
-  const double analytic = OverlapVolume(10.0 + ToolRadiusMm - 0.05, 5.0, [](double x, double y, double& low, double& high) {
-    const double h2 = 100.0 - x * x - y * y;
-    if (h2 <= 0)
-    {
-      return false;
-    }
-    high = std::sqrt(h2);
-    low = -high;
-    return true;
-  });
+  const double analytic = OverlapVolume(10.0 + ToolRadiusMm - 0.05, 5.0, RoundSolid(10.0, false));
   EXPECT_LT(analytic, 0.2);
   EXPECT_NEAR(graze.VolumeMm3, analytic, graze.VolumeBoundMm3 + FacetToleranceMm3(analytic));
   EXPECT_LE(graze.DepthMm, 0.05 + graze.DepthBoundMm + FacetToleranceMm);

@@ -6,6 +6,7 @@
 #include "vpDangerBands.h"
 #include "vpDangerLevels.h"
 #include "vpDistancePlot.h"
+#include "vpPlotValues.h"
 #include "vpEngineOptions.h"
 #include "vpInputError.h"
 #include "vpPointCsv.h"
@@ -198,7 +199,6 @@ Json SummaryJson(const TrackingSummary& s, vtkScalpelTrackingLogic* logic, vtkVe
 void WritePlot(const std::string& file, const std::vector<TrackedFrame>& frames, const std::vector<std::string>& classes,
   const DangerThresholds& t, double rangeMm, bool surface)
 {
-  const double none = std::numeric_limits<double>::quiet_NaN();
   std::vector<double> times;
   std::vector<PlotSeries> series;
   for (std::size_t c = 0; c < classes.size(); ++c)
@@ -207,10 +207,7 @@ void WritePlot(const std::string& file, const std::vector<TrackedFrame>& frames,
     series.push_back({ classes[c] + " (tip)", colour, {} });
     if (surface)
     {
-      // The same hue, lighter: the instrument beside its tip.
-      const Rgb light = { static_cast<unsigned char>((colour[0] + 2 * 255) / 3), static_cast<unsigned char>((colour[1] + 2 * 255) / 3),
-        static_cast<unsigned char>((colour[2] + 2 * 255) / 3) };
-      series.push_back({ classes[c] + " (instrument)", light, {} });
+      series.push_back({ classes[c] + " (instrument)", InstrumentColour(colour), {} });
     }
   }
   bool below = false;
@@ -220,14 +217,12 @@ void WritePlot(const std::string& file, const std::vector<TrackedFrame>& frames,
     std::size_t s = 0;
     for (std::size_t c = 0; c < classes.size(); ++c)
     {
-      const ClassProximity& p = f.Proximity.Classes[c];
-      const double tip = !p.InRange ? none : p.Inside.value_or(false) ? -p.DistanceMm : p.DistanceMm;
+      const double tip = TipPlotValueMm(f, c);
       series[s++].ValuesMm.push_back(tip);
       below = below || tip < 0;
       if (surface)
       {
-        const bool inside = c < f.Penetrations.size() && f.Penetrations[c].Known && f.Penetrations[c].DepthMm > 0;
-        const double whole = inside ? -f.Penetrations[c].DepthMm : c < f.Surface.size() && f.Surface[c].InRange ? f.Surface[c].DistanceMm : none;
+        const double whole = InstrumentPlotValueMm(f, c);
         series[s++].ValuesMm.push_back(whole);
         below = below || whole < 0;
       }

@@ -1,6 +1,7 @@
 // Distance-over-time plot: numbers read off the rendered pixels (bands where their millimetres
 // are, lines where their values are, nothing in a NaN gap), headless text, and the PNG file.
 #include "vpDistancePlot.h"
+#include "vpPlotValues.h"
 #include "vpInputError.h"
 #include "vpTestSupport.h"
 
@@ -215,6 +216,37 @@ TEST(DistancePlot, PenetrationIsDrawnBelowTheZeroLine)
   GappedSeries gapped;
   vp::RenderDistancePlot(gapped.Times, { gapped.Series }, DangerBands(), Options(), &positive);
   EXPECT_EQ(positive.YMinMm, 0.0);
+}
+
+// What both plots draw for a frame: the tip's distance or minus its depth inside, the instrument's
+// distance or minus its penetration depth, gaps where nothing is known.
+TEST(DistancePlot, PlotValuesAreSignedDistancesWithGaps)
+{
+  vp::TrackedFrame f;
+  f.Proximity.Classes.resize(3);
+  f.Proximity.Classes[0].InRange = true;
+  f.Proximity.Classes[0].DistanceMm = 0.6;
+  f.Proximity.Classes[0].Inside = true;
+  f.Proximity.Classes[1].InRange = true;
+  f.Proximity.Classes[1].DistanceMm = 3.3;
+  f.Proximity.Classes[1].Inside = false;
+  EXPECT_EQ(vp::TipPlotValueMm(f, 0), -0.6);
+  EXPECT_EQ(vp::TipPlotValueMm(f, 1), 3.3);
+  EXPECT_TRUE(std::isnan(vp::TipPlotValueMm(f, 2))) << "out of range: a gap";
+  EXPECT_TRUE(std::isnan(vp::InstrumentPlotValueMm(f, 0))) << "the instrument not measured: a gap";
+  f.Surface.resize(3);
+  f.Surface[0].InRange = true; // touching
+  f.Surface[1].InRange = true;
+  f.Surface[1].DistanceMm = 2.6;
+  f.Penetrations.resize(3);
+  f.Penetrations[0].DepthMm = 1.02;
+  f.Penetrations[0].VolumeMm3 = 3.7;
+  f.Penetrations[2].Known = false;
+  EXPECT_EQ(vp::InstrumentPlotValueMm(f, 0), -1.02);
+  EXPECT_EQ(vp::InstrumentPlotValueMm(f, 1), 2.6);
+  EXPECT_TRUE(std::isnan(vp::InstrumentPlotValueMm(f, 2)));
+  const vp::Rgb light = vp::InstrumentColour({ 0, 150, 200 });
+  EXPECT_EQ(light, (vp::Rgb{ 170, 220, 236 }));
 }
 
 TEST(DistancePlot, ValuesBeyondTheAxisAreCutAtThePlotArea)

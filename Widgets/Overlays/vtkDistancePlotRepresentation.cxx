@@ -1,5 +1,7 @@
 #include "vtkDistancePlotRepresentation.h"
 
+#include "vpPlotValues.h"
+
 #include "vpDangerBands.h"
 #include "vpDistancePlot.h"
 
@@ -11,6 +13,8 @@
 #include <vtkObjectFactory.h>
 #include <vtkRenderer.h>
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
 
 vtkStandardNewMacro(vtkDistancePlotRepresentation);
@@ -58,23 +62,29 @@ void vtkDistancePlotRepresentation::ClearHistory()
 {
   this->Times.clear();
   this->ValuesMm.assign(this->ClassNames.size(), {});
+  this->InstrumentValuesMm.assign(this->ClassNames.size(), {});
+  this->ShowsInstrument = false;
   this->Redraw();
 }
 
-void vtkDistancePlotRepresentation::AddFrame(double timeS, const vp::ProximityResult& proximity)
+void vtkDistancePlotRepresentation::AddFrame(const vp::TrackedFrame& frame)
 {
-  this->Times.push_back(timeS);
+  this->Times.push_back(frame.TimeS);
+  this->ShowsInstrument = this->ShowsInstrument || !frame.Surface.empty();
   for (std::size_t c = 0; c < this->ClassNames.size(); ++c)
   {
-    const bool known = c < proximity.Classes.size() && proximity.Classes[c].InRange;
-    this->ValuesMm[c].push_back(known ? proximity.Classes[c].DistanceMm : std::numeric_limits<double>::quiet_NaN());
+    this->ValuesMm[c].push_back(vp::TipPlotValueMm(frame, c));
+    this->InstrumentValuesMm[c].push_back(vp::InstrumentPlotValueMm(frame, c));
   }
-  while (!this->Times.empty() && this->Times.front() < timeS - this->TimeWindowS)
+  while (!this->Times.empty() && this->Times.front() < frame.TimeS - this->TimeWindowS)
   {
     this->Times.pop_front();
-    for (auto& values : this->ValuesMm)
+    for (auto* history : { &this->ValuesMm, &this->InstrumentValuesMm })
     {
-      values.pop_front();
+      for (auto& values : *history)
+      {
+        values.pop_front();
+      }
     }
   }
   this->Redraw();
@@ -82,23 +92,41 @@ void vtkDistancePlotRepresentation::AddFrame(double timeS, const vp::ProximityRe
 
 void vtkDistancePlotRepresentation::Redraw()
 {
-  std::vector<vp::PlotSeries> series(this->ClassNames.size());
-  for (std::size_t c = 0; c < series.size(); ++c)
+  std::vector<vp::PlotSeries> series;
+  double deepest = 0.0;
+  for (std::size_t c = 0; c < this->ClassNames.size(); ++c)
   {
-    series[c].Name = this->ClassNames[c];
-    series[c].Colour = vp::PlotSeriesColour(this->ClassNames[c], static_cast<int>(c));
-    series[c].ValuesMm.assign(this->ValuesMm[c].begin(), this->ValuesMm[c].end());
+    const vp::Rgb colour = vp::PlotSeriesColour(this->ClassNames[c], static_cast<int>(c));
+    series.push_back({ this->ClassNames[c], colour, { this->ValuesMm[c].begin(), this->ValuesMm[c].end() } });
+    if (this->ShowsInstrument)
+    {
+      series.push_back({ this->ClassNames[c] + " (instrument)", vp::InstrumentColour(colour),
+        { this->InstrumentValuesMm[c].begin(), this->InstrumentValuesMm[c].end() } });
+    }
+  }
+  for (const vp::PlotSeries& s : series)
+  {
+    for (double v : s.ValuesMm)
+    {
+      deepest = std::isfinite(v) ? std::min(deepest, v) : deepest;
+    }
   }
   vp::DistancePlotOptions options;
   options.WidthPx = this->WidthPx;
   options.HeightPx = this->HeightPx;
-  options.Title = "tip distance (mm)";
+  options.Title = this->ShowsInstrument ? "tip and instrument distance (mm)" : "tip distance (mm)";
   options.YLabel = "";
   // A fixed scale: a plot that rescales with every frame is hard to read at a glance.
   options.YMaxMm = std::max(this->Thresholds.CautionMm * 2.0, 20.0);
   const std::vector<double> times(this->Times.begin(), this->Times.end());
-  this->Mapper->SetInputData(
-    vp::RenderDistancePlot(times, series, vp::DangerBands(this->Thresholds, options.YMaxMm), options));
+  std::vector<vp::PlotBand> bands = vp::DangerBands(this->Thresholds, options.YMaxMm);
+  if (deepest < 0.0)
+  {
+    // Fixed too: 5 mm below the wall, deeper in steps of 5 mm only when something goes deeper.
+    options.YMinMm = -5.0 * std::ceil(-deepest / 5.0);
+    bands.push_back({ -std::numeric_limits<double>::infinity(), 0.0, vp::DangerLevelColour(vp::DangerLevel::Breach), "breach" });
+  }
+  this->Mapper->SetInputData(vp::RenderDistancePlot(times, series, bands, options));
   ++this->Redraws;
   this->Modified();
 }

@@ -3,6 +3,7 @@
 
 #include "vpDangerLevels.h"
 #include "vpProximityResult.h"
+#include "vtkScalpelTrackingLogic.h"
 
 #include <vtkObject.h>
 #include <vtkSmartPointer.h>
@@ -17,8 +18,10 @@ class vtkImageMapper;
 class vtkRenderer;
 
 /// The distance-over-time plot in the lower right corner of the view: the tip's distance to each
-/// vessel class over the last TimeWindowS seconds, on the danger bands, drawn by the same
-/// rasteriser as the report's distance.png (vp::RenderDistancePlot) so the two look alike.
+/// vessel class over the last TimeWindowS seconds, and the whole instrument's when it is
+/// measured, on the danger bands; inside a vessel below zero (vp::TipPlotValueMm and
+/// vp::InstrumentPlotValueMm). Drawn by the same rasteriser and with the same values as the
+/// report's distance.png, so the two look alike.
 /// Redrawn when a frame is added, never when only the camera moves.
 class vtkDistancePlotRepresentation : public vtkObject
 {
@@ -35,8 +38,8 @@ public:
   /// Plot size in pixels (default 480 x 240).
   void SetSizePx(int width, int height);
 
-  /// Appends a frame's tip distances (out-of-range classes leave a gap) and redraws.
-  void AddFrame(double timeS, const vp::ProximityResult& proximity);
+  /// Appends a frame's distances (out-of-range classes leave a gap) and redraws.
+  void AddFrame(const vp::TrackedFrame& frame);
   void ClearHistory();
   int GetNumberOfSamples() const { return static_cast<int>(this->Times.size()); }
   int GetNumberOfRedraws() const { return this->Redraws; }
@@ -51,7 +54,9 @@ protected:
 
   std::vector<std::string> ClassNames;
   std::deque<double> Times;
-  std::vector<std::deque<double>> ValuesMm;
+  std::vector<std::deque<double>> ValuesMm;           ///< per class, the tip
+  std::vector<std::deque<double>> InstrumentValuesMm; ///< per class, the whole instrument
+  bool ShowsInstrument = false; ///< a frame in the window carried the whole instrument
   vp::DangerThresholds Thresholds;
   double TimeWindowS = 20.0;
   int WidthPx = 480;

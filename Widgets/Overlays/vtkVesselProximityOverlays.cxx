@@ -144,7 +144,7 @@ void vtkVesselProximityOverlays::ShowFrame(const vp::TrackedFrame& frame)
   this->Readout->ShowFrame(frame.Proximity, frame.ClassLevels, frame.Level, frame.Surface, frame.Penetrations);
   this->Readout->ShowFrameTime(frame.FrameMs, frame.OverBudget,
     this->Logic ? this->Logic->GetTrackingLogic()->GetFrameBudgetMs() : 0.0);
-  this->Plot->AddFrame(frame.TimeS, frame.Proximity);
+  this->Plot->AddFrame(frame);
 }
 
 void vtkVesselProximityOverlays::PrintSelf(ostream& os, vtkIndent indent)

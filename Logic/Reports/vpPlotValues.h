@@ -1,0 +1,22 @@
+#ifndef vpPlotValues_h
+#define vpPlotValues_h
+
+#include "vpDistancePlot.h"
+#include "vtkScalpelTrackingLogic.h"
+
+#include <cstddef>
+
+namespace vp
+{
+/// What the distance plots draw for class c of a frame, shared by the report (distance.png) and
+/// the live plot, so both say the same: distances above zero, penetrations below.
+/// The tip: its distance, minus it when the tip is inside; NaN (a gap) out of range.
+double TipPlotValueMm(const TrackedFrame& frame, std::size_t c);
+/// The whole instrument: minus its penetration depth when it is inside, else its distance; NaN
+/// out of range or when the instrument was not measured.
+double InstrumentPlotValueMm(const TrackedFrame& frame, std::size_t c);
+/// The instrument's line: the class's hue, lighter, beside the tip's.
+Rgb InstrumentColour(const Rgb& classColour);
+} // namespace vp
+
+#endif

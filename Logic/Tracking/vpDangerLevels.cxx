@@ -79,6 +79,14 @@ DangerLevel ClassifyDanger(const ClassProximity& proximity, double errorBoundMm,
   {
     return DangerLevel::Breach;
   }
+  // An approximate engine's "outside" cannot be trusted near a wall: the z-buffer decides inside
+  // at its pixel centre, up to half a pixel diagonal from the tip, so a tip that close to a wall
+  // may be on either side, and its reported distance is then at most that plus its bound. Within
+  // twice the bound (more than that sum) it is taken as inside: breach-or-danger is breach.
+  if (errorBoundMm > 0.0 && proximity.DistanceMm <= 2.0 * errorBoundMm)
+  {
+    return DangerLevel::Breach;
+  }
   return ClassifyDistance(proximity.DistanceMm - errorBoundMm, thresholds);
 }
 } // namespace vp

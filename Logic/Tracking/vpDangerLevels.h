@@ -37,7 +37,9 @@ const char* DangerLevelName(DangerLevel level);
 std::array<unsigned char, 3> DangerLevelColour(DangerLevel level);
 
 /// The level of one class's answer. Conservative for approximate engines: the distance less the
-/// engine's error bound decides, so the level may overstate the danger but never understate it.
+/// engine's error bound decides, so the level may overstate the danger but never understate it;
+/// and an answer within twice the bound of a wall is a breach, since such an engine cannot tell
+/// that close which side of the wall the tip is on (the exact engine, bound 0, always can).
 DangerLevel ClassifyDanger(const ClassProximity& proximity, double errorBoundMm, const DangerThresholds& thresholds);
 /// The level of a distance alone (no inside/outside knowledge): Breach is never returned.
 DangerLevel ClassifyDistance(double distanceMm, const DangerThresholds& thresholds);

@@ -72,6 +72,12 @@ const vp::TrackedFrame& vtkScalpelTrackingLogic::ProcessPose(const vp::TrackedPo
           " mm) must reach the caution threshold (" + vp::NumberText(this->Thresholds.CautionMm) +
           " mm), or a class beyond it would look safe");
     }
+    if (this->Engine->GetErrorBoundMm() >= this->Thresholds.DangerMm)
+    {
+      throw vp::InputError("cell size", "the engine's error bound (" + vp::NumberText(this->Engine->GetErrorBoundMm()) +
+          " mm) must be below the danger threshold (" + vp::NumberText(this->Thresholds.DangerMm) +
+          " mm), or it cannot tell danger from safety: use smaller cells");
+    }
   }
   const bool hasPrevious = this->FramesProcessed > 0;
   const vp::DangerLevel previousLevel = this->Last.Level;

@@ -97,7 +97,8 @@ public:
 
   /// Places the scalpel at pose, computes the frame, fires the event on a change of level, and
   /// returns the frame (valid until the next call). Throws vp::InputError when the engine's range
-  /// is shorter than the caution threshold (a far class would look safe when it is not).
+  /// is shorter than the caution threshold (a far class would look safe when it is not), or its
+  /// error bound is not below the danger threshold (it could not tell danger from safety).
   const vp::TrackedFrame& ProcessPose(const vp::TrackedPose& pose);
   const vp::TrackedFrame& GetLastFrame() const { return this->Last; }
   int GetNumberOfFrames() const { return this->FramesProcessed; }

@@ -368,6 +368,56 @@ TEST_F(TrackCommand, ZBufferLevelsNeverUnderstateTheExactOnes)
   EXPECT_GT(stricter, 0) << "the bound should make some frames near a threshold one level stricter";
 }
 
+// The example approach onto the phantom's artery (Testing/Data/approach_poses.csv) enters it by
+// 1.2 mm, and passes within a cell of its wall on the way: frame by frame, at the default cell and
+// at 1 and 2 mm cells, the z-buffer's level is never milder than the exact engine's. Where its
+// pixel-centre inside test cannot decide (within twice its bound of a wall), it says breach.
+TEST_F(TrackCommand, ZBufferLevelIsNeverMilderThanExactAtAnyCellSize)
+{
+  const ToolRun phantom = RunTool(this->Dir, "phantom -o " + this->Dir + "/phantom");
+  ASSERT_EQ(phantom.ExitCode, 0) << phantom.Err;
+  const std::string p = this->Dir + "/phantom/";
+  const std::string common = "track --vessels portal_vein=" + p + "portal_vein.stl,hepatic_artery=" + p +
+    "hepatic_artery.stl,hepatic_vein=" + p + "hepatic_vein.stl --scalpel " + this->Tool + " --poses " +
+    std::string(VP_SOURCE_DIR) + "/Testing/Data/approach_poses.csv --no-surface";
+  const ToolRun e = RunTool(this->Dir, common + " -o " + this->Dir + "/exact");
+  ASSERT_EQ(e.ExitCode, 0) << e.Err;
+  const auto eRows = ReadCsvCells(this->Dir + "/exact/frames.csv");
+  const std::vector<std::string> order = { "safe", "caution", "warning", "danger", "breach" };
+  auto rank = [&](const std::string& level) { return std::find(order.begin(), order.end(), level) - order.begin(); };
+  const std::size_t level = std::find(eRows[0].begin(), eRows[0].end(), "danger_level") - eRows[0].begin();
+  int breaches = 0;
+  for (std::size_t i = 1; i < eRows.size(); ++i)
+  {
+    breaches += eRows[i][level] == "breach" ? 1 : 0;
+  }
+  ASSERT_GT(breaches, 5) << "the example must enter the artery";
+  for (const char* cell : { "0.4", "1", "2" })
+  {
+    const std::string out = this->Dir + "/z" + cell;
+    const ToolRun z = RunTool(this->Dir, common + " --method zbuffer --cell " + cell + " -o " + out);
+    if (z.ExitCode == 4)
+    {
+      GTEST_SKIP() << "no Vulkan device: " << z.Err;
+    }
+    ASSERT_EQ(z.ExitCode, 0) << z.Err;
+    const auto zRows = ReadCsvCells(out + "/frames.csv");
+    ASSERT_EQ(zRows.size(), eRows.size());
+    for (std::size_t i = 1; i < zRows.size(); ++i)
+    {
+      EXPECT_GE(rank(zRows[i][level]), rank(eRows[i][level]))
+        << "cell " << cell << " frame " << i - 1 << ": z-buffer " << zRows[i][level] << ", exact " << eRows[i][level];
+    }
+  }
+  // 3 mm cells: a bound (2.6 mm) beyond the danger threshold (2 mm) cannot tell danger from
+  // safety, and is refused in one line with nothing written.
+  const ToolRun coarse = RunTool(this->Dir, common + " --method zbuffer --cell 3 -o " + this->Dir + "/coarse");
+  EXPECT_EQ(coarse.ExitCode, 1) << coarse.Err;
+  EXPECT_NE(coarse.Err.find("cell size: the engine's error bound (2.6"), std::string::npos) << coarse.Err;
+  EXPECT_EQ(std::count(coarse.Err.begin(), coarse.Err.end(), '\n'), 2) << "the tip's source, then one line: " << coarse.Err;
+  EXPECT_FALSE(vp::test::FileExists(this->Dir + "/coarse"));
+}
+
 TEST_F(TrackCommand, RegisterRefusesBadInputInOneLineAndWritesNothing)
 {
   const std::string points = this->WriteText("points.csv", "0,0,0\n1,0,0\n0,1,0\n0,0,-5\n1,1,-10\n2,0,-20\n");

@@ -112,6 +112,14 @@ TEST(DangerLevels, ThresholdsNamesAndTheErrorBound)
   p.DistanceMm = 5.2;
   EXPECT_EQ(vp::ClassifyDanger(p, 0.0, t), vp::DangerLevel::Caution);
   EXPECT_EQ(vp::ClassifyDanger(p, 0.35, t), vp::DangerLevel::Warning);
+  // Within twice its bound of a wall, an approximate engine cannot tell the sides apart: breach.
+  // The exact engine (bound 0) on the wall itself is in danger, not inside.
+  p.DistanceMm = 0.69;
+  EXPECT_EQ(vp::ClassifyDanger(p, 0.347, t), vp::DangerLevel::Breach);
+  p.DistanceMm = 0.70;
+  EXPECT_EQ(vp::ClassifyDanger(p, 0.347, t), vp::DangerLevel::Danger);
+  p.DistanceMm = 0.0;
+  EXPECT_EQ(vp::ClassifyDanger(p, 0.0, t), vp::DangerLevel::Danger);
   p.Inside = true;
   EXPECT_EQ(vp::ClassifyDanger(p, 0.0, t), vp::DangerLevel::Breach);
   p.InRange = false;

@@ -109,10 +109,6 @@ void vtkFclSurfaceDistance::Build()
 void vtkFclSurfaceDistance::ComputeSurfaceProximity(
   const std::array<double, 16>& m, std::vector<vp::SurfaceProximity>& out, const std::vector<vp::SurfaceProximity>* previous) const
 {
-  if (!this->Vessels)
-  {
-    throw std::logic_error("vtkFclSurfaceDistance: set the vessel distance engine first");
-  }
   const_cast<vtkFclSurfaceDistance*>(this)->Build();
   const Internals& s = *this->Impl;
   fcl::Transform3d pose = fcl::Transform3d::Identity();
@@ -126,7 +122,7 @@ void vtkFclSurfaceDistance::ComputeSurfaceProximity(
   }
   const fcl::Transform3d worldToTool = pose.inverse();
   const Model* tool = s.Tool.get();
-  const double range = this->RangeMm > 0 ? std::min(this->RangeMm, this->Vessels->GetRangeMm()) : this->Vessels->GetRangeMm();
+  const double range = this->SearchRangeMm();
   out.assign(s.Vessels.size(), vp::SurfaceProximity());
   for (std::size_t c = 0; c < s.Vessels.size(); ++c)
   {

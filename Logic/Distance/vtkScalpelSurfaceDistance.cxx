@@ -187,7 +187,7 @@ void vtkScalpelSurfaceDistance::ComputeSurfaceProximity(
   };
 
   const int classes = this->Vessels->GetNumberOfVessels();
-  const double range = this->RangeMm > 0 ? std::min(this->RangeMm, this->Vessels->GetRangeMm()) : this->Vessels->GetRangeMm();
+  const double range = this->SearchRangeMm();
   out.assign(static_cast<std::size_t>(classes), vp::SurfaceProximity());
   for (int c = 0; c < classes; ++c)
   {
@@ -266,6 +266,11 @@ void vtkScalpelSurfaceDistance::ComputeSurfaceProximity(
       });
     }
   }
+}
+
+double vtkScalpelSurfaceDistance::SearchRangeMm() const
+{
+  return this->RangeMm > 0 ? std::min(this->RangeMm, this->Vessels->GetRangeMm()) : this->Vessels->GetRangeMm();
 }
 
 void vtkScalpelSurfaceDistance::PrintSelf(ostream& os, vtkIndent indent)

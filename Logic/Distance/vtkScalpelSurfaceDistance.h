@@ -62,6 +62,9 @@ protected:
   vtkScalpelSurfaceDistance();
   ~vtkScalpelSurfaceDistance() override;
 
+  /// The range searched: RangeMm, or the vessel engine's when that is shorter or RangeMm is 0.
+  double SearchRangeMm() const;
+
   vtkSmartPointer<vtkExactVesselDistance> Vessels;
   vtkSmartPointer<vtkPolyData> ToolSurface;
   double RangeMm = 0.0;

@@ -29,7 +29,6 @@ vtkStandardNewMacro(vtkZBufferVesselDistance);
 namespace
 {
 constexpr std::uint32_t StateStride = 32; // words per class in the query state, as in the shader
-constexpr std::uint32_t FloatInfBits = 0x7F800000u;
 // Triangles are split until no edge is longer than this many cells, which bounds the pixels one
 // rasteriser invocation visits (and so the longest invocation).
 constexpr double MaxEdgeCells = 4.0;

@@ -47,6 +47,10 @@ void TrackingSummary::Add(const TrackedFrame& frame)
   {
     this->TimeInLevelS[static_cast<int>(this->LastLevel)] += frame.TimeS - this->LastTimeS;
   }
+  if (!frame.Penetrations.empty())
+  {
+    this->PenetrationMaximum.resize(classes.size());
+  }
   for (std::size_t c = 0; c < classes.size() && c < this->TipMinimum.size(); ++c)
   {
     if (classes[c].InRange)
@@ -59,7 +63,6 @@ void TrackingSummary::Add(const TrackedFrame& frame)
     }
     if (c < frame.Penetrations.size())
     {
-      this->PenetrationMaximum.resize(classes.size());
       const Penetration& p = frame.Penetrations[c];
       ClassPenetration& most = this->PenetrationMaximum[c];
       most.Known = most.Known && p.Known;

@@ -83,14 +83,15 @@ void vtkVesselDistanceEngine::EnsureBuilt() const
 }
 
 void vtkVesselDistanceEngine::ComputeProximityBatch(
-  const double* tips, std::size_t count, const double* axes, std::vector<vp::ProximityResult>& results) const
+  const Points& tips, const Points* axes, std::vector<vp::ProximityResult>& results) const
 {
   this->EnsureBuilt(); // before any thread starts
+  const std::size_t count = tips.size();
   results.resize(count);
   auto answer = [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i)
     {
-      this->ComputeProximity(tips + 3 * i, axes ? axes + 3 * i : nullptr, results[i]);
+      this->ComputeProximity(tips[i].data(), axes ? (*axes)[i].data() : nullptr, results[i]);
     }
   };
   // A thread costs tens of microseconds to start: only batches worth it are split.

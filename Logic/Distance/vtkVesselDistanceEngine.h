@@ -8,6 +8,7 @@
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
 
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -53,13 +54,13 @@ public:
   virtual void ComputeProximity(const double tip[3], const double* axis, vp::ProximityResult& result,
     const vp::ProximityResult* previous = nullptr) const = 0;
 
-  /// Proximity of every vessel class to each of count tips (tips: x, y, z per tip, LPS mm), with
-  /// an axis per tip (axes: 3 per tip, or null for none). results[i] equals, bit for bit,
+  /// Proximity of every vessel class to each tip (LPS mm), with an axis per tip (axes: as many as
+  /// tips, or null for none). results[i] equals, bit for bit,
   /// ComputeProximity() for tip i without a previous answer. This default answers the tips on
   /// all cores (the engines' queries are thread-safe after Build()); an engine that can answer
   /// them at once overrides it (the z-buffer: one GPU submission per batch).
-  virtual void ComputeProximityBatch(
-    const double* tips, std::size_t count, const double* axes, std::vector<vp::ProximityResult>& results) const;
+  using Points = std::vector<std::array<double, 3>>;
+  virtual void ComputeProximityBatch(const Points& tips, const Points* axes, std::vector<vp::ProximityResult>& results) const;
 
   /// The bound on |reported - exact| of every distance this engine reports with its current
   /// settings: 0 for exact engines.

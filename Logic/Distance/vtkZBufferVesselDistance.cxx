@@ -541,18 +541,22 @@ void vtkZBufferVesselDistance::ComputeProximity(
   const double tip[3], const double* axis, vp::ProximityResult& result, const vp::ProximityResult*) const
 {
   std::vector<vp::ProximityResult> one;
-  this->ComputeProximityBatch(tip, 1, axis, one);
+  const Points tips{ { tip[0], tip[1], tip[2] } };
+  const Points axes{ { axis ? axis[0] : 0.0, axis ? axis[1] : 0.0, axis ? axis[2] : 0.0 } };
+  this->ComputeProximityBatch(tips, axis ? &axes : nullptr, one);
   result = std::move(one.front());
 }
 
 void vtkZBufferVesselDistance::ComputeProximityBatch(
-  const double* tips, std::size_t count, const double* axes, std::vector<vp::ProximityResult>& results) const
+  const Points& tips, const Points* axes, std::vector<vp::ProximityResult>& results) const
 {
+  const std::size_t count = tips.size();
   results.resize(count);
   for (std::size_t i = 0; i < count; ++i)
   {
-    this->BeginResult(tips + 3 * i, results[i]);
+    this->BeginResult(tips[i].data(), results[i]);
   }
+  const std::array<double, 3>* axis = axes ? axes->data() : nullptr;
   std::lock_guard<std::mutex> lock(this->Impl->Lock);
   Internals& s = *this->Impl;
   const double binWidth = this->BinWidthMm();
@@ -569,25 +573,25 @@ void vtkZBufferVesselDistance::ComputeProximityBatch(
     this->CheckMovingBox(s.Grid.PixelMm); // the range may have changed since Build()
     for (std::size_t i = 0; i < count; ++i)
     {
-      const double* tip = tips + 3 * i;
+      const double* tip = tips[i].data();
       if (!s.Rendered || !s.Grid.ContainsBall(tip, this->RangeMm))
       {
         s.Grid = vp::DepthLayerGrid::Centred(tip, this->MovingBoxSizeMm, s.Grid.PixelMm, s.Grid.SliceMm, s.AnchorMm);
         s.Render();
       }
-      this->AnswerBatch(tips + 3 * i, 1, axes ? axes + 3 * i : nullptr, &results[i]);
+      this->AnswerBatch(&tips[i], 1, axis ? axis + i : nullptr, &results[i]);
     }
     return;
   }
   for (std::size_t first = 0; first < count; first += BatchCapacity)
   {
     const std::size_t n = std::min(BatchCapacity, count - first);
-    this->AnswerBatch(tips + 3 * first, n, axes ? axes + 3 * first : nullptr, &results[first]);
+    this->AnswerBatch(&tips[first], n, axis ? axis + first : nullptr, &results[first]);
   }
 }
 
 void vtkZBufferVesselDistance::AnswerBatch(
-  const double* tips, std::size_t count, const double* axes, vp::ProximityResult* results) const
+  const std::array<double, 3>* tips, std::size_t count, const std::array<double, 3>* axes, vp::ProximityResult* results) const
 {
   Internals& s = *this->Impl;
   const std::uint32_t classes = s.Classes();
@@ -598,7 +602,7 @@ void vtkZBufferVesselDistance::AnswerBatch(
   auto* points = static_cast<PointRecord*>(s.Points->Mapped());
   for (std::size_t i = 0; i < count; ++i)
   {
-    const double* tip = tips + 3 * i;
+    const double* tip = tips[i].data();
     PointRecord& p = points[i];
     p = PointRecord{};
     p.Tip[0] = static_cast<float>((tip[0] - g.OriginMm[0]) / g.PixelMm);
@@ -606,7 +610,7 @@ void vtkZBufferVesselDistance::AnswerBatch(
     p.Tip[2] = static_cast<float>((tip[2] - g.OriginMm[2]) / g.SliceMm);
     if (axes)
     {
-      const double* axis = axes + 3 * i;
+      const double* axis = axes[i].data();
       const double n = std::sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
       for (int k = 0; k < 3 && n > 0.0; ++k)
       {
@@ -663,7 +667,7 @@ void vtkZBufferVesselDistance::AnswerBatch(
   const auto* hostState = static_cast<const std::uint32_t*>(s.HostState->Mapped());
   for (std::size_t i = 0; i < count; ++i)
   {
-    const double* tip = tips + 3 * i;
+    const double* tip = tips[i].data();
     for (std::uint32_t c = 0; c < classes; ++c)
     {
       vp::ClassProximity& out = results[i].Classes[c];

@@ -104,8 +104,7 @@ public:
   /// each answer's closest cell, and the host reads 32 words per tip and class. The submission is
   /// recorded once per batch size and settings and then only resubmitted. With the moving box,
   /// tips are answered one at a time (each may need its own box).
-  void ComputeProximityBatch(
-    const double* tips, std::size_t count, const double* axes, std::vector<vp::ProximityResult>& results) const override;
+  void ComputeProximityBatch(const Points& tips, const Points* axes, std::vector<vp::ProximityResult>& results) const override;
   /// Tips per GPU submission.
   static constexpr std::size_t BatchCapacity = 256;
   const char* GetMethodName() const override { return "zbuffer"; }
@@ -126,7 +125,8 @@ private:
   /// Throws InputError unless each half of the moving box holds the range plus a cell.
   void CheckMovingBox(double cellMm) const;
   /// One submission for up to BatchCapacity tips on the current layers (lock held, results begun).
-  void AnswerBatch(const double* tips, std::size_t count, const double* axes, vp::ProximityResult* results) const;
+  void AnswerBatch(
+    const std::array<double, 3>* tips, std::size_t count, const std::array<double, 3>* axes, vp::ProximityResult* results) const;
 
   int LayerMode = ExactIntervals;
   int BoxMode = FixedAroundVessels;

@@ -100,17 +100,12 @@ Json Timing(const std::vector<double>& ms)
 Json BenchBatch(vtkVesselDistanceEngine* engine, const std::vector<std::array<double, 3>>& tips,
   const std::vector<ProximityResult>* singles)
 {
-  std::vector<double> flat;
-  for (const auto& t : tips)
-  {
-    flat.insert(flat.end(), t.begin(), t.end());
-  }
   std::vector<double> ms;
   std::vector<ProximityResult> batch;
   for (int run = 0; run < 5; ++run)
   {
     const double start = NowMs();
-    engine->ComputeProximityBatch(flat.data(), tips.size(), nullptr, batch);
+    engine->ComputeProximityBatch(tips, nullptr, batch);
     ms.push_back(NowMs() - start);
   }
   Json out = Timing(ms);

@@ -131,21 +131,16 @@ int RunDistanceCommand(const std::vector<std::string>& argv)
   }
 
   // One batch: the same answers as tip by tip (bit for bit), in one submission where the engine can.
-  std::vector<double> flatTips, axes;
-  for (const auto& t : tips)
-  {
-    flatTips.insert(flatTips.end(), t.begin(), t.end());
-    axes.insert(axes.end(), axis.begin(), axis.end());
-  }
+  const std::vector<std::array<double, 3>> axes(tips.size(), axis);
   std::vector<ProximityResult> results;
   const double start = NowMs();
-  engine->ComputeProximityBatch(flatTips.data(), tips.size(), hasAxis ? axes.data() : nullptr, results);
+  engine->ComputeProximityBatch(tips, hasAxis ? &axes : nullptr, results);
   const double batchMs = NowMs() - start;
   const std::vector<double> queryMs(tips.size(), batchMs / static_cast<double>(std::max<std::size_t>(1, tips.size())));
   std::vector<ProximityResult> exactResults;
   if (reference)
   {
-    reference->ComputeProximityBatch(flatTips.data(), tips.size(), hasAxis ? axes.data() : nullptr, exactResults);
+    reference->ComputeProximityBatch(tips, hasAxis ? &axes : nullptr, exactResults);
   }
   const double bound = engine->GetErrorBoundMm();
   ExactComparison comparison;

@@ -28,21 +28,20 @@ inline bool SameBits(double a, double b)
 inline int ExpectBatchEqualsSingles(vtkVesselDistanceEngine* engine, const std::vector<std::array<double, 3>>& tips,
   const std::string& what)
 {
-  std::vector<double> flat, axes;
+  std::vector<std::array<double, 3>> axes;
   for (std::size_t i = 0; i < tips.size(); ++i)
   {
-    flat.insert(flat.end(), tips[i].begin(), tips[i].end());
     const double a = 0.37 * static_cast<double>(i);
-    axes.insert(axes.end(), { std::cos(a), std::sin(a), 0.5 });
+    axes.push_back({ std::cos(a), std::sin(a), 0.5 });
   }
   std::vector<ProximityResult> batch;
-  engine->ComputeProximityBatch(flat.data(), tips.size(), axes.data(), batch);
+  engine->ComputeProximityBatch(tips, &axes, batch);
   EXPECT_EQ(batch.size(), tips.size()) << what;
   int inRange = 0;
   for (std::size_t i = 0; i < tips.size() && i < batch.size(); ++i)
   {
     ProximityResult single;
-    engine->ComputeProximity(tips[i].data(), &axes[3 * i], single);
+    engine->ComputeProximity(tips[i].data(), axes[i].data(), single);
     const ProximityResult& b = batch[i];
     EXPECT_TRUE(SameBits(b.ErrorBoundMm, single.ErrorBoundMm)) << what << " tip " << i;
     EXPECT_EQ(b.Classes.size(), single.Classes.size()) << what << " tip " << i;

@@ -2,9 +2,11 @@
 
 #include <algorithm>
 
+#include <limits>
+
 namespace vp
 {
-std::vector<PlotBand> DangerBands(const DangerThresholds& t, double rangeMm)
+std::vector<PlotBand> DangerBands(const DangerThresholds& t, double rangeMm, bool breachBelowZero)
 {
   std::vector<PlotBand> bands;
   const double top = std::max(rangeMm, t.CautionMm);
@@ -13,6 +15,11 @@ std::vector<PlotBand> DangerBands(const DangerThresholds& t, double rangeMm)
   {
     const auto level = static_cast<DangerLevel>(3 - l);
     bands.push_back({ edges[l], edges[l + 1], DangerLevelColour(level), DangerLevelName(level) });
+  }
+  if (breachBelowZero)
+  {
+    bands.push_back({ -std::numeric_limits<double>::infinity(), 0.0, DangerLevelColour(DangerLevel::Breach),
+      DangerLevelName(DangerLevel::Breach) });
   }
   return bands;
 }

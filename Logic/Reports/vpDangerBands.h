@@ -11,8 +11,9 @@ namespace vp
 {
 /// The plot's background: one band per danger level below the caution threshold and the safe
 /// band up to max(rangeMm, caution), in the level's display colour. The same bands in the report
-/// (distance.png) and in the viewer's live plot.
-std::vector<PlotBand> DangerBands(const DangerThresholds& thresholds, double rangeMm);
+/// (distance.png) and in the viewer's live plot. With breachBelowZero, a breach band below 0 too,
+/// for plots where a penetration is drawn as a negative distance.
+std::vector<PlotBand> DangerBands(const DangerThresholds& thresholds, double rangeMm, bool breachBelowZero = false);
 
 /// The colour of a vessel class's plot line: a hue near the class's display colour (portal vein
 /// cyan, hepatic artery red, hepatic vein violet), saturated enough to stand out on the

@@ -338,17 +338,12 @@ Layout LayOut(const std::vector<double>& timesS, const std::vector<PlotSeries>& 
   f.TopPx = std::max(f.TopPx, f.BottomPx + 1);
   const int maxYTicks = std::max(2, (f.TopPx - f.BottomPx) / 40);
   f.YMaxMm = options.YMaxMm > 0 ? options.YMaxMm : AutomaticYMax(series, bands, maxYTicks);
-  double lowest = 0.0;
-  for (const PlotSeries& s : series)
-  {
-    for (double v : s.ValuesMm)
-    {
-      lowest = std::isfinite(v) ? std::min(lowest, v) : lowest;
-    }
-  }
-  f.YMinMm = options.YMinMm < 0 ? options.YMinMm : lowest;
+  const double lowest = LowestValueMm(series);
+  f.YMinMm = options.YMinMm < 0 ? options.YMinMm
+    : lowest < 0 && options.YMinStepMm > 0 ? std::floor(lowest / options.YMinStepMm) * options.YMinStepMm
+                                          : lowest;
   layout.YStep = NiceTickStep(f.YMaxMm - f.YMinMm, maxYTicks);
-  if (options.YMinMm >= 0 && lowest < 0)
+  if (options.YMinMm >= 0 && options.YMinStepMm <= 0 && lowest < 0)
   {
     f.YMinMm = std::floor(lowest / layout.YStep - 1e-9) * layout.YStep; // a whole tick below
   }
@@ -422,6 +417,19 @@ void DrawLabels(Canvas& canvas, const Layout& layout, int heightPx)
   DrawLegend(canvas, layout.Legend, p.X1 + 1 + 2 * GapPx, p.Y1);
 }
 } // namespace
+
+double LowestValueMm(const std::vector<PlotSeries>& series)
+{
+  double lowest = 0.0;
+  for (const PlotSeries& s : series)
+  {
+    for (double v : s.ValuesMm)
+    {
+      lowest = std::isfinite(v) ? std::min(lowest, v) : lowest;
+    }
+  }
+  return lowest;
+}
 
 double DistancePlotFrame::XOf(double timeS) const
 {

@@ -49,6 +49,9 @@ struct DistancePlotOptions
   /// drawn as a negative distance), which takes it down to a tick below the lowest value; a
   /// negative number fixes it there.
   double YMinMm = 0;
+  /// When the axis goes below zero by itself (YMinMm 0), its bottom is a multiple of this (mm);
+  /// 0 (default): of the tick step. A live plot sets it, so its scale moves only in whole steps.
+  double YMinStepMm = 0;
 };
 
 /// Where the data went in the image: the plot area in vtkImageData pixel indices (row 0 at the
@@ -69,6 +72,10 @@ struct DistancePlotFrame
   double XOf(double timeS) const;
   double YOf(double distanceMm) const;
 };
+
+/// The lowest finite value of all the series, or 0 when none is below 0 (a penetration drawn as a
+/// negative distance makes it negative).
+double LowestValueMm(const std::vector<PlotSeries>& series);
 
 /// Renders the plot into unsigned char RGB pixels of options.WidthPx x options.HeightPx.
 /// Text is ASCII only (the embedded font has no other glyphs). Times that are not finite are

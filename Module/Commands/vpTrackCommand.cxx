@@ -210,29 +210,20 @@ void WritePlot(const std::string& file, const std::vector<TrackedFrame>& frames,
       series.push_back({ classes[c] + " (instrument)", InstrumentColour(colour), {} });
     }
   }
-  bool below = false;
   for (const TrackedFrame& f : frames)
   {
     times.push_back(f.TimeS);
     std::size_t s = 0;
     for (std::size_t c = 0; c < classes.size(); ++c)
     {
-      const double tip = TipPlotValueMm(f, c);
-      series[s++].ValuesMm.push_back(tip);
-      below = below || tip < 0;
+      series[s++].ValuesMm.push_back(TipPlotValueMm(f, c));
       if (surface)
       {
-        const double whole = InstrumentPlotValueMm(f, c);
-        series[s++].ValuesMm.push_back(whole);
-        below = below || whole < 0;
+        series[s++].ValuesMm.push_back(InstrumentPlotValueMm(f, c));
       }
     }
   }
-  std::vector<PlotBand> bands = DangerBands(t, rangeMm);
-  if (below)
-  {
-    bands.push_back({ -std::numeric_limits<double>::infinity(), 0.0, DangerLevelColour(DangerLevel::Breach), "breach, depth" });
-  }
+  const std::vector<PlotBand> bands = DangerBands(t, rangeMm, LowestValueMm(series) < 0);
   DistancePlotOptions options;
   options.Title = surface ? "Tip and instrument distance to each vessel class over time (inside: below 0)"
                           : "Tip distance to each vessel class over time (inside: below 0)";

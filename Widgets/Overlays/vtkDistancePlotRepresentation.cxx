@@ -14,8 +14,6 @@
 #include <vtkRenderer.h>
 
 #include <algorithm>
-#include <cmath>
-#include <limits>
 
 vtkStandardNewMacro(vtkDistancePlotRepresentation);
 
@@ -93,7 +91,6 @@ void vtkDistancePlotRepresentation::AddFrame(const vp::TrackedFrame& frame)
 void vtkDistancePlotRepresentation::Redraw()
 {
   std::vector<vp::PlotSeries> series;
-  double deepest = 0.0;
   for (std::size_t c = 0; c < this->ClassNames.size(); ++c)
   {
     const vp::Rgb colour = vp::PlotSeriesColour(this->ClassNames[c], static_cast<int>(c));
@@ -104,13 +101,6 @@ void vtkDistancePlotRepresentation::Redraw()
         { this->InstrumentValuesMm[c].begin(), this->InstrumentValuesMm[c].end() } });
     }
   }
-  for (const vp::PlotSeries& s : series)
-  {
-    for (double v : s.ValuesMm)
-    {
-      deepest = std::isfinite(v) ? std::min(deepest, v) : deepest;
-    }
-  }
   vp::DistancePlotOptions options;
   options.WidthPx = this->WidthPx;
   options.HeightPx = this->HeightPx;
@@ -119,14 +109,10 @@ void vtkDistancePlotRepresentation::Redraw()
   // A fixed scale: a plot that rescales with every frame is hard to read at a glance.
   options.YMaxMm = std::max(this->Thresholds.CautionMm * 2.0, 20.0);
   const std::vector<double> times(this->Times.begin(), this->Times.end());
-  std::vector<vp::PlotBand> bands = vp::DangerBands(this->Thresholds, options.YMaxMm);
-  if (deepest < 0.0)
-  {
-    // Fixed too: 5 mm below the wall, deeper in steps of 5 mm only when something goes deeper.
-    options.YMinMm = -5.0 * std::ceil(-deepest / 5.0);
-    bands.push_back({ -std::numeric_limits<double>::infinity(), 0.0, vp::DangerLevelColour(vp::DangerLevel::Breach), "breach" });
-  }
-  this->Mapper->SetInputData(vp::RenderDistancePlot(times, series, bands, options));
+  // Fixed below zero too: 5 mm under the wall, deeper in 5 mm steps only when something goes deeper.
+  options.YMinStepMm = 5.0;
+  this->Mapper->SetInputData(vp::RenderDistancePlot(
+    times, series, vp::DangerBands(this->Thresholds, options.YMaxMm, vp::LowestValueMm(series) < 0), options));
   ++this->Redraws;
   this->Modified();
 }

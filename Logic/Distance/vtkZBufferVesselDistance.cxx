@@ -123,13 +123,29 @@ struct vtkZBufferVesselDistance::Internals
   // Query.
   double OrderRangeMm = -1.0;
   std::uint32_t OrderCount = 0;
+  // Per entry of the order table, the least distance from any tip in the centre tile to that
+  // tile (mm), ascending: the tiles a shorter search needs are a prefix of the table.
+  std::vector<double> OrderGapMm;
   std::unique_ptr<vp::GpuBuffer> Order, State, Records, HostState, Points;
 
   std::unique_ptr<vp::ComputeKernel> Raster, Columns, Tiles, Query, Reduce;
-  // The query's submission, recorded for one batch size and one set of parameters.
-  std::unique_ptr<vp::PreparedCommands> Prepared;
-  std::uint32_t PreparedPoints = 0;
-  QueryParameters PreparedParameters{};
+  // The query's submissions, each recorded once for one batch size and one set of parameters
+  // (the whole instrument's search asks for a few ranges and sizes again and again).
+  struct PreparedQuery
+  {
+    std::uint32_t Points = 0;
+    QueryParameters Parameters{};
+    std::unique_ptr<vp::PreparedCommands> Commands;
+  };
+  std::vector<PreparedQuery> Prepared;
+  static constexpr std::size_t MaxPrepared = 64;
+
+  // The tiles of the order table within searchMm of any tip in the centre tile.
+  std::uint32_t OrderCountWithin(double searchMm) const
+  {
+    return static_cast<std::uint32_t>(
+      std::upper_bound(this->OrderGapMm.begin(), this->OrderGapMm.end(), searchMm) - this->OrderGapMm.begin());
+  }
 
   vp::VulkanContext& Device(const std::string& selector)
   {
@@ -145,7 +161,7 @@ struct vtkZBufferVesselDistance::Internals
 
   void Release()
   {
-    this->Prepared.reset(); // before the buffers and kernels it names
+    this->Prepared.clear(); // before the buffers and kernels it names
     this->Raster.reset();
     this->Columns.reset();
     this->Tiles.reset();
@@ -234,8 +250,13 @@ struct vtkZBufferVesselDistance::Internals
       return std::make_pair(gx * gx + gy * gy, o[0] * o[0] + o[1] * o[1]);
     };
     std::stable_sort(order.begin(), order.end(), [&](const auto& a, const auto& b) { return gap(a) < gap(b); });
-    this->Prepared.reset(); // it names the buffers replaced here
+    this->Prepared.clear(); // it names the buffers replaced here
     this->OrderCount = static_cast<std::uint32_t>(order.size());
+    this->OrderGapMm.clear();
+    for (const auto& o : order)
+    {
+      this->OrderGapMm.push_back(std::sqrt(static_cast<double>(gap(o).first)) * 8.0 * this->Grid.PixelMm);
+    }
     this->Order = std::make_unique<vp::GpuBuffer>(*this->Context, order.size() * 8, vp::GpuBuffer::Placement::Device);
     this->Order->Upload(order.data(), order.size() * 8);
     const VkDeviceSize recordBytes =
@@ -550,6 +571,22 @@ void vtkZBufferVesselDistance::ComputeProximity(
 void vtkZBufferVesselDistance::ComputeProximityBatch(
   const Points& tips, const Points* axes, std::vector<vp::ProximityResult>& results) const
 {
+  this->AnswerAll(tips, axes, this->RangeMm, true, results);
+}
+
+void vtkZBufferVesselDistance::ComputeProximityBatchWithin(
+  const Points& points, double searchMm, std::vector<vp::ProximityResult>& results) const
+{
+  if (this->BoxMode == MovingWithTip)
+  {
+    throw vp::InputError("box mode", "a search of many points needs the box fixed around the vessels (each point would move the box)");
+  }
+  this->AnswerAll(points, nullptr, std::min(searchMm, this->RangeMm), false, results);
+}
+
+void vtkZBufferVesselDistance::AnswerAll(
+  const Points& tips, const Points* axes, double searchMm, bool bins, std::vector<vp::ProximityResult>& results) const
+{
   const std::size_t count = tips.size();
   results.resize(count);
   for (std::size_t i = 0; i < count; ++i)
@@ -559,7 +596,7 @@ void vtkZBufferVesselDistance::ComputeProximityBatch(
   const std::array<double, 3>* axis = axes ? axes->data() : nullptr;
   std::lock_guard<std::mutex> lock(this->Impl->Lock);
   Internals& s = *this->Impl;
-  const double binWidth = this->BinWidthMm();
+  const double binWidth = bins ? this->BinWidthMm() : 0.0;
   for (vp::ProximityResult& r : results)
   {
     r.ErrorBoundMm = s.Grid.ErrorBoundMm(binWidth);
@@ -579,25 +616,45 @@ void vtkZBufferVesselDistance::ComputeProximityBatch(
         s.Grid = vp::DepthLayerGrid::Centred(tip, this->MovingBoxSizeMm, s.Grid.PixelMm, s.Grid.SliceMm, s.AnchorMm);
         s.Render();
       }
-      this->AnswerBatch(&tips[i], 1, axis ? axis + i : nullptr, &results[i]);
+      this->AnswerBatch(&tips[i], 1, axis ? axis + i : nullptr, searchMm, binWidth, &results[i]);
     }
     return;
   }
   for (std::size_t first = 0; first < count; first += BatchCapacity)
   {
     const std::size_t n = std::min(BatchCapacity, count - first);
-    this->AnswerBatch(&tips[first], n, axis ? axis + first : nullptr, &results[first]);
+    this->AnswerBatch(&tips[first], n, axis ? axis + first : nullptr, searchMm, binWidth, &results[first]);
   }
 }
 
-void vtkZBufferVesselDistance::AnswerBatch(
-  const std::array<double, 3>* tips, std::size_t count, const std::array<double, 3>* axes, vp::ProximityResult* results) const
+void vtkZBufferVesselDistance::CopyOccupancy(std::vector<std::uint32_t>& words) const
+{
+  std::lock_guard<std::mutex> lock(this->Impl->Lock);
+  Internals& s = *this->Impl;
+  words.clear();
+  if (!s.Rendered || !s.Occupancy)
+  {
+    return;
+  }
+  const VkDeviceSize bytes = s.Occupancy->Size();
+  vp::GpuBuffer host(*s.Context, bytes, vp::GpuBuffer::Placement::Host);
+  s.Context->Submit([&](VkCommandBuffer cmd) {
+    VkBufferCopy region{ 0, 0, bytes };
+    vkCmdCopyBuffer(cmd, s.Occupancy->Handle(), host.Handle(), 1, &region);
+    vp::ComputeKernel::Barrier(cmd);
+  });
+  words.resize(static_cast<std::size_t>(bytes / 4));
+  std::memcpy(words.data(), host.Mapped(), words.size() * 4);
+}
+
+void vtkZBufferVesselDistance::AnswerBatch(const std::array<double, 3>* tips, std::size_t count,
+  const std::array<double, 3>* axes, double searchMm, double binWidth, vp::ProximityResult* results) const
 {
   Internals& s = *this->Impl;
   const std::uint32_t classes = s.Classes();
   s.PrepareOrder(this->RangeMm);
   const vp::DepthLayerGrid& g = s.Grid;
-  const double binWidth = this->BinWidthMm();
+  const std::uint32_t orderCount = s.OrderCountWithin(searchMm);
 
   auto* points = static_cast<PointRecord*>(s.Points->Mapped());
   for (std::size_t i = 0; i < count; ++i)
@@ -622,36 +679,45 @@ void vtkZBufferVesselDistance::AnswerBatch(
   QueryParameters q{};
   q.PixelMm = static_cast<float>(g.PixelMm);
   q.SliceMm = static_cast<float>(g.SliceMm);
-  q.RangeMm = static_cast<float>(this->RangeMm);
+  q.RangeMm = static_cast<float>(searchMm);
   q.HalfDiagonalMm = static_cast<float>(g.HalfDiagonalMm());
   q.BinWidthMm = static_cast<float>(binWidth);
-  q.Bins = this->DistanceBins;
+  q.Bins = binWidth > 0.0 ? this->DistanceBins : 0;
   q.Nx = g.Nx;
   q.Ny = g.Ny;
   q.Nz = g.Nz;
   q.Words = g.Words();
   q.TilesX = g.TilesX();
   q.TilesY = g.TilesY();
-  q.OrderCount = static_cast<std::int32_t>(s.OrderCount);
+  q.OrderCount = static_cast<std::int32_t>(orderCount);
   q.PaperMode = this->LayerMode == PaperNearFar ? 1 : 0;
   q.RangeStride = static_cast<std::uint32_t>(g.Pixels()) * classes;
   q.Classes = static_cast<std::int32_t>(classes);
 
   const std::uint32_t n = static_cast<std::uint32_t>(count);
-  if (!s.Prepared || s.PreparedPoints != n || std::memcmp(&s.PreparedParameters, &q, sizeof q) != 0)
+  auto prepared = std::find_if(s.Prepared.begin(), s.Prepared.end(), [&](const Internals::PreparedQuery& p) {
+    return p.Points == n && std::memcmp(&p.Parameters, &q, sizeof q) == 0;
+  });
+  if (prepared == s.Prepared.end())
   {
-    s.Prepared.reset();
+    if (s.Prepared.size() >= Internals::MaxPrepared)
+    {
+      s.Prepared.clear();
+    }
     const std::uint32_t answers = n * classes;
     const VkDeviceSize stateBytes = static_cast<VkDeviceSize>(answers) * StateStride * 4;
-    const ReduceParameters reset{ 0, answers, s.OrderCount, Bits(q.RangeMm) };
-    const ReduceParameters choose{ 1, answers, s.OrderCount, Bits(q.RangeMm) };
-    const ReduceParameters copy{ 2, answers, s.OrderCount, Bits(q.RangeMm) };
-    s.Prepared = std::make_unique<vp::PreparedCommands>(*s.Context, [&](VkCommandBuffer cmd) {
+    const ReduceParameters reset{ 0, answers, orderCount, Bits(q.RangeMm) };
+    const ReduceParameters choose{ 1, answers, orderCount, Bits(q.RangeMm) };
+    const ReduceParameters copy{ 2, answers, orderCount, Bits(q.RangeMm) };
+    Internals::PreparedQuery entry;
+    entry.Points = n;
+    entry.Parameters = q;
+    entry.Commands = std::make_unique<vp::PreparedCommands>(*s.Context, [&](VkCommandBuffer cmd) {
       s.Reduce->Record(cmd, &reset, (answers + 63) / 64);
       vp::ComputeKernel::Barrier(cmd);
-      s.Query->Record(cmd, &q, (s.OrderCount + 1 + 63) / 64, classes, n);
+      s.Query->Record(cmd, &q, (orderCount + 1 + 63) / 64, classes, n);
       vp::ComputeKernel::Barrier(cmd);
-      s.Reduce->Record(cmd, &choose, (answers * s.OrderCount + 63) / 64);
+      s.Reduce->Record(cmd, &choose, (answers * orderCount + 63) / 64);
       vp::ComputeKernel::Barrier(cmd);
       s.Reduce->Record(cmd, &copy, (answers + 63) / 64);
       vp::ComputeKernel::Barrier(cmd);
@@ -659,10 +725,10 @@ void vtkZBufferVesselDistance::AnswerBatch(
       vkCmdCopyBuffer(cmd, s.State->Handle(), s.HostState->Handle(), 1, &stateCopy);
       vp::ComputeKernel::Barrier(cmd);
     });
-    s.PreparedPoints = n;
-    s.PreparedParameters = q;
+    s.Prepared.push_back(std::move(entry));
+    prepared = s.Prepared.end() - 1;
   }
-  s.Prepared->Submit();
+  prepared->Commands->Submit();
 
   const auto* hostState = static_cast<const std::uint32_t*>(s.HostState->Mapped());
   for (std::size_t i = 0; i < count; ++i)
@@ -673,13 +739,13 @@ void vtkZBufferVesselDistance::AnswerBatch(
       vp::ClassProximity& out = results[i].Classes[c];
       const std::uint32_t* cs = hostState + (i * classes + c) * StateStride;
       const float directional = Bits(cs[2]);
-      if (axes && std::isfinite(directional) && directional <= this->RangeMm)
+      if (axes && std::isfinite(directional) && directional <= searchMm)
       {
         out.DirectionalMm = directional;
       }
       // cs[3]: the record the device chose (none: nothing within range).
       const float best = cs[3] == 0xFFFFFFFFu ? std::numeric_limits<float>::infinity() : Bits(cs[4]);
-      if (!(best <= this->RangeMm))
+      if (!(best <= searchMm))
       {
         out.InRange = false; // as the exact engine: no distance, no point, no inside answer
         continue;
@@ -689,9 +755,9 @@ void vtkZBufferVesselDistance::AnswerBatch(
       // The nearest marked cell is at most a cell diagonal nearer than the surface it holds:
       // its distance plus half a diagonal is within half a diagonal of the truth.
       double distance = best + g.HalfDiagonalMm();
-      if (this->DistanceBins > 0)
+      if (q.Bins > 0)
       {
-        for (int bin = 0; bin < this->DistanceBins; ++bin)
+        for (int bin = 0; bin < q.Bins; ++bin)
         {
           if (cs[8 + bin / 32] & (1u << (bin % 32)))
           {

@@ -4,6 +4,7 @@
 #include "vpDepthLayerGrid.h"
 #include "vtkVesselDistanceEngine.h"
 
+#include <cstdint>
 #include <memory>
 #include <string>
 
@@ -105,6 +106,15 @@ public:
   /// recorded once per batch size and settings and then only resubmitted. With the moving box,
   /// tips are answered one at a time (each may need its own box).
   void ComputeProximityBatch(const Points& tips, const Points* axes, std::vector<vp::ProximityResult>& results) const override;
+  /// The whole instrument's search: as ComputeProximityBatch without axes, but only surfaces
+  /// within searchMm (at most the range) are found, and the distance bins are not used (each
+  /// distance is the nearest marked cell's plus half a cell diagonal, within
+  /// vp::DepthLayerGrid::ErrorBoundMm() of the truth). A shorter search visits fewer tiles: its
+  /// cost follows the distance still to beat, not the range. Needs the fixed box.
+  void ComputeProximityBatchWithin(const Points& points, double searchMm, std::vector<vp::ProximityResult>& results) const;
+  /// The occupancy bits of the current layers, [class][pixel][word] (one bit per slice; see
+  /// Shaders/DepthLayersCommon.glsl), copied to the host; empty before the first rendering.
+  void CopyOccupancy(std::vector<std::uint32_t>& words) const;
   /// Tips per GPU submission.
   static constexpr std::size_t BatchCapacity = 256;
   const char* GetMethodName() const override { return "zbuffer"; }
@@ -124,9 +134,11 @@ private:
   double BinWidthMm() const;
   /// Throws InputError unless each half of the moving box holds the range plus a cell.
   void CheckMovingBox(double cellMm) const;
+  /// Every tip within searchMm; bins: whether the distance bins apply.
+  void AnswerAll(const Points& tips, const Points* axes, double searchMm, bool bins, std::vector<vp::ProximityResult>& results) const;
   /// One submission for up to BatchCapacity tips on the current layers (lock held, results begun).
-  void AnswerBatch(
-    const std::array<double, 3>* tips, std::size_t count, const std::array<double, 3>* axes, vp::ProximityResult* results) const;
+  void AnswerBatch(const std::array<double, 3>* tips, std::size_t count, const std::array<double, 3>* axes, double searchMm,
+    double binWidthMm, vp::ProximityResult* results) const;
 
   int LayerMode = ExactIntervals;
   int BoxMode = FixedAroundVessels;

@@ -5,6 +5,7 @@
 #include "vpBuiltInPhantom.h"
 #include "vpTestSupport.h"
 #include "vpVulkanContext.h"
+#include "vpVulkanTestSupport.h"
 #include "vtkExactVesselDistance.h"
 #include "vtkVesselMeshReader.h"
 #include "vtkZBufferVesselDistance.h"
@@ -23,20 +24,6 @@
 
 namespace
 {
-/// Skips the test, saying why, when this machine has no Vulkan device.
-#define VP_REQUIRE_VULKAN()                                                                                            \
-  do                                                                                                                   \
-  {                                                                                                                    \
-    try                                                                                                                \
-    {                                                                                                                  \
-      vp::VulkanContext::ListDevices();                                                                                \
-    }                                                                                                                  \
-    catch (const vp::DeviceError& e)                                                                                   \
-    {                                                                                                                  \
-      GTEST_SKIP() << "z-buffer engine not tested: " << e.what();                                                     \
-    }                                                                                                                  \
-  } while (0)
-
 using Vessels = std::vector<std::pair<std::string, vtkSmartPointer<vtkPolyData>>>;
 
 template <typename Engine>

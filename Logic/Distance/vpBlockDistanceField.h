@@ -1,0 +1,51 @@
+#ifndef vpBlockDistanceField_h
+#define vpBlockDistanceField_h
+
+#include "vpDepthLayerGrid.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace vp
+{
+/// Per vessel class, a lower bound on the distance from any point to the cells the z-buffer
+/// marked, cheap enough to ask for every point of an instrument at every pose: it tells the
+/// whole-instrument search which of the instrument's points can still be the nearest, so that
+/// only those go to the GPU.
+///
+/// The grid's cells are grouped into cubic blocks of BlockCells() cells a side; a block is marked
+/// when it holds a marked cell. Each block keeps the gap from its box to the nearest marked
+/// block's box (0 for a marked block and its neighbours): every point of the block is at least that
+/// far from every marked cell. Built once per rendering of the layers, in linear time: the squared
+/// Euclidean distance transform between block centres (Felzenszwalb and Huttenlocher's lower
+/// envelope, one axis at a time) followed by a minimum over the 27 neighbours, since the gap
+/// between two blocks per axis, max(0, |i - j| - 1) blocks, is the least of |i + e - j| over e in
+/// {-1, 0, 1}.
+class BlockDistanceField
+{
+public:
+  BlockDistanceField() = default;
+  /// occupancy: the layers' bits, [class][pixel][word] (vtkZBufferVesselDistance::CopyOccupancy).
+  /// blockMm: the wanted block edge; the block is a whole number of cells, at least one.
+  BlockDistanceField(const DepthLayerGrid& grid, int classes, const std::vector<std::uint32_t>& occupancy, double blockMm);
+
+  /// At most the distance from p (mm) to the nearest marked cell of class cls; +infinity when the
+  /// class has none.
+  double LowerBoundMm(int cls, const double p[3]) const;
+  int BlockCells() const { return this->Cells; }
+  int NumberOfClasses() const { return this->Classes; }
+  /// Marked blocks of class cls.
+  std::size_t MarkedBlocks(int cls) const { return this->Marked[cls]; }
+
+private:
+  DepthLayerGrid Grid;
+  int Classes = 0;
+  int Cells = 1;
+  int Dims[3] = { 0, 0, 0 };
+  double EdgeMm[3] = { 0, 0, 0 };
+  std::vector<std::size_t> Marked;
+  std::vector<float> GapMm; // [class][z][y][x]
+};
+} // namespace vp
+
+#endif

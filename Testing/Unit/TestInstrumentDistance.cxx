@@ -9,6 +9,7 @@
 #include "vtkFclSurfaceDistance.h"
 #include "vtkScalpelSurfaceDistance.h"
 #include "vtkVesselMeshReader.h"
+#include "vpBlockDistanceField.h"
 #include "vtkZBufferSurfaceDistance.h"
 #include "vtkZBufferVesselDistance.h"
 #include "vpVulkanTestSupport.h"
@@ -185,6 +186,69 @@ TEST_F(InstrumentDistance, TrackedApproachEqualsBruteForceEveryFrame)
     inside += reference == 0.0 ? 1 : 0;
   }
   EXPECT_GT(inside, 10);
+}
+
+// The block field's bound, against the distance to every marked cell's box: never above it (or
+// the search would skip a nearer sample) and, for blocks of two cells, never more than two block
+// diagonals below it within the grid (or it would prune nothing). Points inside and outside.
+TEST(BlockDistanceField, NeverAboveTheDistanceToTheMarkedCells)
+{
+  vp::DepthLayerGrid grid;
+  grid.OriginMm[0] = -3.0;
+  grid.OriginMm[1] = 2.0;
+  grid.OriginMm[2] = 1.0;
+  grid.PixelMm = grid.SliceMm = 0.5;
+  grid.Nx = 21;
+  grid.Ny = 13;
+  grid.Nz = 40;
+  const int classes = 2;
+  std::vector<std::uint32_t> occupancy(grid.Pixels() * grid.Words() * classes, 0u);
+  std::mt19937 random(7);
+  std::vector<std::array<int, 4>> marked; // class, x, y, z
+  for (int i = 0; i < 12; ++i)
+  {
+    const std::array<int, 4> cell{ i % 2 == 0 ? 0 : (i < 6 ? 0 : 1), std::uniform_int_distribution<int>(0, grid.Nx - 1)(random),
+      std::uniform_int_distribution<int>(0, grid.Ny - 1)(random), std::uniform_int_distribution<int>(0, grid.Nz - 1)(random) };
+    marked.push_back(cell);
+    const std::size_t column = static_cast<std::size_t>(cell[0]) * grid.Pixels() + static_cast<std::size_t>(cell[2]) * grid.Nx + cell[1];
+    occupancy[column * grid.Words() + cell[3] / 32] |= 1u << (cell[3] % 32);
+  }
+  const vp::BlockDistanceField field(grid, classes, occupancy, 1.0);
+  ASSERT_EQ(field.BlockCells(), 2);
+  const double slack = 2.0 * std::sqrt(3.0) * 1.0;
+  std::uniform_real_distribution<double> x(-8.0, 16.0), y(-3.0, 14.0), z(-4.0, 26.0);
+  int inside = 0;
+  for (int i = 0; i < 3000; ++i)
+  {
+    const double p[3] = { x(random), y(random), z(random) };
+    for (int c = 0; c < classes; ++c)
+    {
+      double truth = std::numeric_limits<double>::infinity();
+      for (const auto& m : marked)
+      {
+        if (m[0] != c)
+        {
+          continue;
+        }
+        double d2 = 0.0;
+        for (int k = 0; k < 3; ++k)
+        {
+          const double lo = grid.OriginMm[k] + m[k + 1] * (k < 2 ? grid.PixelMm : grid.SliceMm);
+          const double hi = lo + (k < 2 ? grid.PixelMm : grid.SliceMm);
+          const double g = std::max({ 0.0, lo - p[k], p[k] - hi });
+          d2 += g * g;
+        }
+        truth = std::min(truth, std::sqrt(d2));
+      }
+      const double bound = field.LowerBoundMm(c, p);
+      ASSERT_LE(bound, truth + 1e-9) << "class " << c << " at " << p[0] << "," << p[1] << "," << p[2];
+      const bool inGrid = p[0] >= grid.OriginMm[0] && p[0] <= grid.OriginMm[0] + grid.SizeMm(0) && p[1] >= grid.OriginMm[1] &&
+        p[1] <= grid.OriginMm[1] + grid.SizeMm(1) && p[2] >= grid.OriginMm[2] && p[2] <= grid.OriginMm[2] + grid.SizeMm(2);
+      inside += inGrid ? 1 : 0;
+      ASSERT_TRUE(!inGrid || bound >= truth - slack - 1e-9) << "class " << c << " at " << p[0] << "," << p[1] << "," << p[2];
+    }
+  }
+  EXPECT_GT(inside, 500);
 }
 
 // The z-buffer's whole instrument (measured beside FCL in bench --engines replay; too slow on

@@ -2,6 +2,7 @@
 
 #include "vpInputError.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace vp
@@ -88,5 +89,25 @@ DangerLevel ClassifyDanger(const ClassProximity& proximity, double errorBoundMm,
     return DangerLevel::Breach;
   }
   return ClassifyDistance(proximity.DistanceMm - errorBoundMm, thresholds);
+}
+
+DangerLevel ClassifyDangerWithHysteresis(const ClassProximity& proximity, double errorBoundMm,
+  const DangerThresholds& thresholds, DangerLevel previous, double hysteresisMm)
+{
+  const DangerLevel now = ClassifyDanger(proximity, errorBoundMm, thresholds);
+  if (now >= previous || !(hysteresisMm > 0.0) || !proximity.InRange)
+  {
+    return now; // in, or no hysteresis, or gone out of range (beyond the caution threshold)
+  }
+  // Leaving: the level held is the one the thresholds raised by the hysteresis give, never above
+  // the previous level and never below the level now.
+  const DangerThresholds raised{ thresholds.CautionMm + hysteresisMm, thresholds.WarningMm + hysteresisMm,
+    thresholds.DangerMm + hysteresisMm };
+  DangerLevel held = ClassifyDanger(proximity, errorBoundMm, raised);
+  if (previous == DangerLevel::Breach && proximity.DistanceMm - errorBoundMm <= hysteresisMm)
+  {
+    held = DangerLevel::Breach;
+  }
+  return std::max(now, std::min(previous, held));
 }
 } // namespace vp

@@ -41,6 +41,13 @@ std::array<unsigned char, 3> DangerLevelColour(DangerLevel level);
 /// and an answer within twice the bound of a wall is a breach, since such an engine cannot tell
 /// that close which side of the wall the tip is on (the exact engine, bound 0, always can).
 DangerLevel ClassifyDanger(const ClassProximity& proximity, double errorBoundMm, const DangerThresholds& thresholds);
+/// The level of one class's answer given its level in the frame before, with hysteresis on the way
+/// out only: a more dangerous level is entered at once (no breach is ever delayed); a level is left
+/// only when the distance exceeds that level's threshold by hysteresisMm (for a breach, the wall:
+/// the tip must be hysteresisMm outside). Tracking noise at a threshold then changes the level once
+/// in and once out instead of at every frame. hysteresisMm 0 is ClassifyDanger.
+DangerLevel ClassifyDangerWithHysteresis(const ClassProximity& proximity, double errorBoundMm,
+  const DangerThresholds& thresholds, DangerLevel previous, double hysteresisMm);
 /// The level of a distance alone (no inside/outside knowledge): Breach is never returned.
 DangerLevel ClassifyDistance(double distanceMm, const DangerThresholds& thresholds);
 } // namespace vp

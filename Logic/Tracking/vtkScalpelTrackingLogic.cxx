@@ -8,6 +8,7 @@
 #include <vtkObjectFactory.h>
 
 #include <chrono>
+#include <cmath>
 
 vtkStandardNewMacro(vtkScalpelTrackingLogic);
 
@@ -47,6 +48,19 @@ void vtkScalpelTrackingLogic::SetPenetration(vtkScalpelPenetration* penetration)
   if (this->Penetration != penetration)
   {
     this->Penetration = penetration;
+    this->Modified();
+  }
+}
+
+void vtkScalpelTrackingLogic::SetHysteresisMm(double hysteresisMm)
+{
+  if (!(hysteresisMm >= 0.0) || !std::isfinite(hysteresisMm))
+  {
+    throw vp::InputError("hysteresis", "expected a distance in mm, 0 or more, got " + vp::NumberText(hysteresisMm));
+  }
+  if (this->HysteresisMm != hysteresisMm)
+  {
+    this->HysteresisMm = hysteresisMm;
     this->Modified();
   }
 }
@@ -107,7 +121,10 @@ const vp::TrackedFrame& vtkScalpelTrackingLogic::ProcessPose(const vp::TrackedPo
   frame.ClassLevels.resize(classes.size());
   for (std::size_t c = 0; c < classes.size(); ++c)
   {
-    frame.ClassLevels[c] = vp::ClassifyDanger(classes[c], frame.Proximity.ErrorBoundMm, this->Thresholds);
+    const vp::DangerLevel before =
+      hasPrevious && c < this->Last.ClassLevels.size() ? this->Last.ClassLevels[c] : vp::DangerLevel::Safe;
+    frame.ClassLevels[c] = vp::ClassifyDangerWithHysteresis(
+      classes[c], frame.Proximity.ErrorBoundMm, this->Thresholds, before, this->HysteresisMm);
     // The worst level wins; among equals, the nearer class names it.
     const bool worse = frame.LevelClass < 0 || frame.ClassLevels[c] > frame.Level ||
       (frame.ClassLevels[c] == frame.Level && classes[c].DistanceMm < classes[frame.LevelClass].DistanceMm);
@@ -149,6 +166,7 @@ void vtkScalpelTrackingLogic::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Penetration: " << (this->Penetration ? "on" : "off") << "\n";
   os << indent << "DangerThresholds (caution, warning, danger): " << this->Thresholds.CautionMm << ", "
      << this->Thresholds.WarningMm << ", " << this->Thresholds.DangerMm << " mm\n";
+  os << indent << "HysteresisMm: " << this->HysteresisMm << "\n";
   os << indent << "FrameBudgetMs: " << this->FrameBudgetMs << (this->FrameBudgetMs > 0 ? "" : " (off)") << "\n";
   os << indent << "FramesProcessed: " << this->FramesProcessed << "\n";
 }

@@ -91,6 +91,13 @@ public:
   void SetFrameBudgetMs(double budgetMs) { this->FrameBudgetMs = budgetMs; }
   double GetFrameBudgetMs() const { return this->FrameBudgetMs; }
 
+  /// Hysteresis on the way out of a level, in mm (default 0.3): entering a more dangerous level is
+  /// immediate, leaving one needs the distance to exceed its threshold by this much (see
+  /// vp::ClassifyDangerWithHysteresis); 0 switches it off. Tracking noise of a tenth of a
+  /// millimetre at a threshold would otherwise flicker the level.
+  void SetHysteresisMm(double hysteresisMm);
+  double GetHysteresisMm() const { return this->HysteresisMm; }
+
   /// Danger thresholds (defaults 10, 5, 2 mm). Validated when the first pose is processed.
   void SetDangerThresholds(const vp::DangerThresholds& thresholds) { this->Thresholds = thresholds; }
   const vp::DangerThresholds& GetDangerThresholds() const { return this->Thresholds; }
@@ -115,6 +122,7 @@ protected:
   vtkSmartPointer<vtkScalpelPenetration> Penetration;
   vp::DangerThresholds Thresholds;
   double FrameBudgetMs = 16.7;
+  double HysteresisMm = 0.3;
   vp::TrackedFrame Last;
   int FramesProcessed = 0;
 

@@ -38,13 +38,15 @@ using Json = nlohmann::ordered_json;
 const char* Usage =
   "usage: vesselproximity track --vessels CLASS=FILE[,CLASS=FILE...] --scalpel FILE.stl --poses FILE\n"
   "         [--tip X,Y,Z] [--axis X,Y,Z] [--method exact|zbuffer|both] [--danger-mm C,W,D]\n"
-  "         [--no-surface] [--frame-budget-ms MS] [engine options] -o OUTDIR\n"
+  "         [--no-surface] [--frame-budget-ms MS] [--hysteresis-mm MM] [engine options] -o OUTDIR\n"
   "  Replays tracked scalpel poses (model-to-world; CSV `time,m00..m33` or `time,x,y,z,qw,qx,qy,qz`,\n"
   "  or JSON) and writes OUTDIR/frames.csv (one row per pose), summary.json and distance.png.\n"
   "  The tip and axis (model coordinates): --tip/--axis, else FILE.json beside the model\n"
   "  ({\"tip_mm\": [x,y,z], \"axis\": [x,y,z]}), else found automatically (reported).\n"
   "  --danger-mm: caution, warning and danger thresholds (default 10,5,2 mm); a tip inside a\n"
   "    vessel is a breach. The level uses distance minus the engine's error bound.\n"
+  "  --hysteresis-mm: a level is entered at once but left only when the distance exceeds its\n"
+  "    threshold by this much (default 0.3; 0: none), so tracking noise does not flicker it.\n"
   "  --no-surface: skip the whole-instrument distance (the closest approach of any point of the\n"
   "    scalpel surface, computed exactly beside the tip's).\n"
   "  --frame-budget-ms: the time one frame may take (default 16.7, 60 Hz; 0: no budget); the\n"
@@ -144,6 +146,7 @@ Json SummaryJson(const TrackingSummary& s, vtkScalpelTrackingLogic* logic, vtkVe
     { "tip_source", scalpel->GetTipSource() } };
   const DangerThresholds& t = logic->GetDangerThresholds();
   out["danger_thresholds_mm"] = { { "caution", t.CautionMm }, { "warning", t.WarningMm }, { "danger", t.DangerMm } };
+  out["hysteresis_mm"] = logic->GetHysteresisMm();
   Json classes = Json::object();
   for (std::size_t c = 0; c < s.GetClassNames().size(); ++c)
   {
@@ -239,7 +242,7 @@ int RunTrackCommand(const std::vector<std::string>& argv)
     return 0;
   }
   std::set<std::string> options = EngineValueOptions();
-  options.insert({ "--vessels", "--scalpel", "--poses", "--tip", "--axis", "--danger-mm", "--frame-budget-ms", "-o" });
+  options.insert({ "--vessels", "--scalpel", "--poses", "--tip", "--axis", "--danger-mm", "--frame-budget-ms", "--hysteresis-mm", "-o" });
   const Arguments args(argv, options, { "--no-surface" });
   if (!args.Positional().empty())
   {
@@ -260,6 +263,7 @@ int RunTrackCommand(const std::vector<std::string>& argv)
   const DangerThresholds thresholds = ParseDangerThresholds(args);
   const ScalpelTipDefinition tip = ParseTipDefinition(args);
   const double budgetMs = ParseFrameBudgetMs(args);
+  const double hysteresisMm = ParseHysteresisMm(args);
   const bool surface = !args.Has("--no-surface");
   const std::string outDir = args.Get("-o");
 
@@ -287,6 +291,7 @@ int RunTrackCommand(const std::vector<std::string>& argv)
 
   vtkScalpelTrackingLogic* logic = proximity->GetTrackingLogic();
   logic->SetFrameBudgetMs(budgetMs);
+  logic->SetHysteresisMm(hysteresisMm);
   if (logic->GetPenetration() && !logic->GetPenetration()->IsToolClosed())
   {
     std::cerr << "track: " << args.Get("--scalpel")

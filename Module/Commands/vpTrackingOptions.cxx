@@ -1,8 +1,6 @@
 #include "vpTrackingOptions.h"
 
 #include "vpInputError.h"
-
-
 #include "vpPointCsv.h"
 
 namespace vp
@@ -32,6 +30,7 @@ ScalpelTipDefinition ParseTipDefinition(const Arguments& args)
   }
   return tip;
 }
+
 double ParseFrameBudgetMs(const Arguments& args)
 {
   const double budgetMs = args.GetNumber("--frame-budget-ms", 16.7);
@@ -40,5 +39,15 @@ double ParseFrameBudgetMs(const Arguments& args)
     throw InputError("--frame-budget-ms", "expected a time in ms, 0 or more (0: no budget), got '" + args.Get("--frame-budget-ms") + "'");
   }
   return budgetMs;
+}
+
+double ParseHysteresisMm(const Arguments& args)
+{
+  const double hysteresisMm = args.GetNumber("--hysteresis-mm", 0.3);
+  if (hysteresisMm < 0.0)
+  {
+    throw InputError("--hysteresis-mm", "expected a distance in mm, 0 or more (0: none), got '" + args.Get("--hysteresis-mm") + "'");
+  }
+  return hysteresisMm;
 }
 } // namespace vp

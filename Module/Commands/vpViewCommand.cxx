@@ -32,10 +32,12 @@ namespace
 const char* Usage =
   "usage: vesselproximity view --vessels CLASS=FILE[,CLASS=FILE...] [--scalpel FILE.stl [--tip X,Y,Z] [--axis X,Y,Z]]\n"
   "         [--poses FILE] [--pose N] [--liver FILE] [--method exact|zbuffer] [--danger-mm C,W,D] [--no-surface]\n"
-  "         [--size WxH] [--keys K,K,...] [--screenshot FILE.png] [--frame-budget-ms MS] [engine options]\n"
+  "         [--size WxH] [--keys K,K,...] [--screenshot FILE.png] [--frame-budget-ms MS]\n"
+  "         [--hysteresis-mm MM] [engine options]\n"
   "  Opens the 3D view: vessels coloured by class, the scalpel coloured by danger level, a line to\n"
   "  the closest vessel point, a readout per class and the distance over time; a frame that took\n"
   "  longer than --frame-budget-ms (default 16.7, 60 Hz; 0: none) says so under the readout.\n"
+  "  --hysteresis-mm: a level is left only this far past its threshold (default 0.3; 0: none).\n"
   "  --scalpel: default the built-in CUSA handpiece. Without --poses it starts 30 mm anterior of\n"
   "    the vessels' centre, pointing posterior (into the patient).\n"
   "  --poses: recorded poses to replay (space plays, n/b step); --pose N shows pose N first.\n"
@@ -87,7 +89,7 @@ int RunViewCommand(const std::vector<std::string>& argv)
   }
   std::set<std::string> options = EngineValueOptions();
   options.insert({ "--vessels", "--scalpel", "--tip", "--axis", "--poses", "--pose", "--liver", "--danger-mm", "--size",
-    "--keys", "--screenshot", "--frame-budget-ms" });
+    "--keys", "--screenshot", "--frame-budget-ms", "--hysteresis-mm" });
   const Arguments args(argv, options, { "--no-surface" });
   if (!args.Positional().empty())
   {
@@ -147,6 +149,7 @@ int RunViewCommand(const std::vector<std::string>& argv)
   logic->SetScalpel(scalpel);
   logic->SetDangerThresholds(thresholds);
   logic->GetTrackingLogic()->SetFrameBudgetMs(ParseFrameBudgetMs(args));
+  logic->GetTrackingLogic()->SetHysteresisMm(ParseHysteresisMm(args));
   logic->SetComputeSurfaceDistance(!args.Has("--no-surface"));
   for (const auto& m : meshes)
   {

@@ -175,6 +175,7 @@ TEST_F(Tracking, EachFrameEqualsADirectQueryAtItsTip)
 
 TEST_F(Tracking, DangerLevelChangesAreReportedOncePerChange)
 {
+  this->Logic->SetHysteresisMm(0.0); // each frame's level from its own distance alone
   for (double jitter : { 0.0, 0.3 })
   {
     this->Logic->Reset();
@@ -218,6 +219,63 @@ TEST_F(Tracking, DangerLevelChangesAreReportedOncePerChange)
       }
       EXPECT_NEAR(this->Events.Changes[0].DistanceMm, 10.0, 0.25); // first frame within 10 mm
     }
+  }
+}
+
+// Tracking noise of 0.2 mm at each threshold: with the default 0.3 mm hysteresis the level changes
+// once in (at the first frame past the threshold) and once out (only 0.3 mm beyond it); without
+// it, at every frame. A step into the vessel is a breach on that very frame, and the breach holds
+// until the tip is 0.3 mm outside.
+TEST_F(Tracking, HysteresisChangesTheLevelOnceInAndOnceOut)
+{
+  EXPECT_DOUBLE_EQ(this->Logic->GetHysteresisMm(), 0.3);
+  EXPECT_THROW(this->Logic->SetHysteresisMm(-0.1), vp::InputError);
+  const vp::DangerThresholds t;
+  for (double threshold : { t.CautionMm, t.WarningMm, t.DangerMm })
+  {
+    for (double hysteresis : { 0.3, 0.0 })
+    {
+      this->Logic->SetHysteresisMm(hysteresis);
+      this->Logic->Reset();
+      std::vector<double> distances{ threshold + 1.0 };
+      for (int i = 0; i < 20; ++i)
+      {
+        distances.push_back(threshold + (i % 2 == 0 ? -0.2 : 0.2));
+      }
+      distances.push_back(threshold + 0.5);
+      std::vector<int> changedAt;
+      vp::DangerLevel before = vp::DangerLevel::Safe;
+      for (std::size_t i = 0; i < distances.size(); ++i)
+      {
+        const vp::TrackedFrame& f = this->Logic->ProcessPose(PoseTowardsMinusX(0.02 * i, 10.0 + distances[i]));
+        if (i > 0 && f.Level != before)
+        {
+          changedAt.push_back(static_cast<int>(i));
+        }
+        before = f.Level;
+      }
+      if (hysteresis > 0.0)
+      {
+        ASSERT_EQ(changedAt.size(), 2u) << "threshold " << threshold;
+        EXPECT_EQ(changedAt[0], 1) << "threshold " << threshold << ": entering must not wait";
+        EXPECT_EQ(changedAt[1], 21) << "threshold " << threshold << ": left before 0.3 mm past it";
+      }
+      else
+      {
+        EXPECT_EQ(changedAt.size(), 20u) << "threshold " << threshold; // at every frame of the noise
+      }
+    }
+  }
+
+  this->Logic->SetHysteresisMm(0.3);
+  this->Logic->Reset();
+  const double steps[] = { 3.0, -1.0, 0.2, 0.5 };
+  const vp::DangerLevel expected[] = { vp::DangerLevel::Warning, vp::DangerLevel::Breach, vp::DangerLevel::Breach,
+    vp::DangerLevel::Danger };
+  for (int i = 0; i < 4; ++i)
+  {
+    const vp::TrackedFrame& f = this->Logic->ProcessPose(PoseTowardsMinusX(0.02 * i, 10.0 + steps[i]));
+    EXPECT_EQ(f.Level, expected[i]) << "frame " << i << ", " << steps[i] << " mm from the wall";
   }
 }
 
@@ -281,5 +339,6 @@ TEST_F(Tracking, SummaryMinimumIsTheDeepestPenetration)
   EXPECT_NEAR(m.DistanceMm, 2.0, 0.02);
   EXPECT_EQ(m.Frame, 4);
   EXPECT_EQ(summary.GetWorstLevel(), vp::DangerLevel::Breach);
-  EXPECT_EQ(summary.GetFramesInLevel()[static_cast<int>(vp::DangerLevel::Breach)], 3);
+  // Three frames inside, and the one 0.05 mm outside, within the hysteresis: the breach holds.
+  EXPECT_EQ(summary.GetFramesInLevel()[static_cast<int>(vp::DangerLevel::Breach)], 4);
 }

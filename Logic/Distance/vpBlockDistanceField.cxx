@@ -64,7 +64,7 @@ void DistanceTransformLine(double* f, std::size_t stride, int n, double s, std::
 /// In place along one line: each value becomes the least of itself and its two neighbours.
 void MinimumOfNeighbours(double* f, std::size_t stride, int n, std::vector<double>& values)
 {
-  values.assign(n, Inf);
+  values.resize(n);
   for (int i = 0; i < n; ++i)
   {
     values[i] = f[i * stride];

@@ -7,8 +7,8 @@
 
 #include <algorithm>
 #include <chrono>
-#include <thread>
 #include <cmath>
+#include <thread>
 
 vtkVesselDistanceEngine::vtkVesselDistanceEngine() = default;
 vtkVesselDistanceEngine::~vtkVesselDistanceEngine() = default;

@@ -155,17 +155,9 @@ void vtkZBufferSurfaceDistance::ComputeSurfaceProximity(
   std::vector<double> best(classes, Inf);
   std::vector<std::int64_t> bestSample(classes, -1);
   std::vector<std::array<double, 3>> bestVessel(classes);
-  std::vector<char> queried(S.Points.size(), 0);
-  std::vector<std::array<double, 3>> world(S.Points.size());
-  std::vector<char> placed(S.Points.size(), 0);
-  auto worldOf = [&](std::size_t i) -> const std::array<double, 3>& {
-    if (!placed[i])
-    {
-      world[i] = Transform(m, S.Points[i]);
-      placed[i] = 1;
-    }
-    return world[i];
-  };
+  // Transformed when needed, not kept: nine products cost less than a per-pose array of every
+  // sample (a million for the CUSA).
+  auto worldOf = [&](std::size_t i) { return Transform(m, S.Points[i]); };
   long long measured = 0, submissions = 0;
   std::vector<vp::ProximityResult> results;
   vtkZBufferVesselDistance::Points batch;
@@ -191,7 +183,6 @@ void vtkZBufferSurfaceDistance::ComputeSurfaceProximity(
     for (std::size_t j = 0; j < batchSamples.size(); ++j)
     {
       const std::size_t i = batchSamples[j];
-      queried[i] = 1;
       ++measured;
       for (int c = 0; c < classes; ++c)
       {
@@ -268,19 +259,22 @@ void vtkZBufferSurfaceDistance::ComputeSurfaceProximity(
       }
     }
   }
+  const std::vector<std::size_t> seeds = batchSamples;
   if (!batch.empty())
   {
     measure(range);
   }
 
-  // Candidates: samples whose bound for some class is below the best found for it.
+  // Candidates: the samples, seeds apart, whose bound for some class is below the best found for
+  // it. Each sample is in one cluster, so in the list at most once.
   struct Candidate
   {
-    double Key;
-    std::uint32_t Sample;
+    double Key;          // the least of its bounds below the best of their class
+    std::uint32_t Index; // into candidateSample, and into bounds by class
   };
   std::vector<Candidate> candidates;
-  std::vector<float> bounds; // [candidate][class]
+  std::vector<std::size_t> candidateSample;
+  std::vector<double> bounds; // [candidate][class]
   for (std::size_t k = 0; k < clusters; ++k)
   {
     bool wanted = false;
@@ -295,23 +289,18 @@ void vtkZBufferSurfaceDistance::ComputeSurfaceProximity(
     const auto& cl = S.Clusters[k];
     for (std::size_t i = cl.First; i < cl.First + cl.Count; ++i)
     {
-      if (queried[i])
+      if (std::find(seeds.begin(), seeds.end(), i) != seeds.end())
       {
         continue;
       }
       double key = Inf;
       const std::size_t at = bounds.size();
       bounds.resize(at + classes);
+      const std::array<double, 3> p = worldOf(i);
       for (int c = 0; c < classes; ++c)
       {
-        const double b = clusterBound[k * classes + c] < limit(c) ? field.LowerBoundMm(c, worldOf(i).data()) : Inf;
-        // Rounded down to a float: still a lower bound.
-        float f = static_cast<float>(b);
-        if (static_cast<double>(f) > b)
-        {
-          f = std::nextafter(f, 0.0f);
-        }
-        bounds[at + c] = f;
+        const double b = clusterBound[k * classes + c] < limit(c) ? field.LowerBoundMm(c, p.data()) : Inf;
+        bounds[at + c] = b;
         if (b < limit(c))
         {
           key = std::min(key, b);
@@ -322,28 +311,25 @@ void vtkZBufferSurfaceDistance::ComputeSurfaceProximity(
         bounds.resize(at);
         continue;
       }
-      candidates.push_back({ key, static_cast<std::uint32_t>(at / classes) });
-      batchSamples.push_back(i); // reused below as the candidates' samples
+      candidates.push_back({ key, static_cast<std::uint32_t>(candidateSample.size()) });
+      candidateSample.push_back(i);
     }
   }
-  std::vector<std::size_t> candidateSample;
-  candidateSample.swap(batchSamples);
   std::sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) { return a.Key < b.Key; });
 
   // Nearest bound first, one batch at a time, each searching no farther than the farthest best
   // it can still improve.
-  auto stillWanted = [&](const Candidate& cand, double& searchMm) {
-    bool wanted = false;
+  // The farthest best a candidate can still improve; 0 when it can improve none.
+  auto wantedTo = [&](const Candidate& cand) {
+    double searchMm = 0.0;
     for (int c = 0; c < classes; ++c)
     {
-      const double b = bounds[cand.Sample * classes + c];
-      if (b < limit(c))
+      if (bounds[cand.Index * classes + c] < limit(c))
       {
-        wanted = true;
         searchMm = std::max(searchMm, limit(c));
       }
     }
-    return wanted;
+    return searchMm;
   };
   std::size_t next = 0;
   while (next < candidates.size() && measured < this->MaxQueriedPoints)
@@ -353,11 +339,12 @@ void vtkZBufferSurfaceDistance::ComputeSurfaceProximity(
       measured + static_cast<long long>(batch.size()) < this->MaxQueriedPoints)
     {
       const Candidate& cand = candidates[next++];
-      const std::size_t i = candidateSample[cand.Sample];
-      if (!queried[i] && stillWanted(cand, searchMm))
+      const double wanted = wantedTo(cand);
+      if (wanted > 0.0)
       {
-        batch.push_back(worldOf(i));
-        batchSamples.push_back(i);
+        searchMm = std::max(searchMm, wanted);
+        batch.push_back(worldOf(candidateSample[cand.Index]));
+        batchSamples.push_back(candidateSample[cand.Index]);
       }
     }
     if (!batch.empty())
@@ -370,17 +357,13 @@ void vtkZBufferSurfaceDistance::ComputeSurfaceProximity(
   std::vector<std::size_t> undecidedSample(classes, 0);
   for (std::size_t j = next; j < candidates.size(); ++j)
   {
-    double ignored = 0.0;
-    if (!queried[candidateSample[candidates[j].Sample]] && stillWanted(candidates[j], ignored))
+    for (int c = 0; c < classes; ++c)
     {
-      for (int c = 0; c < classes; ++c)
+      const double b = bounds[candidates[j].Index * classes + c];
+      if (b < limit(c) && b < undecided[c])
       {
-        const double b = bounds[candidates[j].Sample * classes + c];
-        if (b < limit(c) && b < undecided[c])
-        {
-          undecided[c] = b;
-          undecidedSample[c] = candidateSample[candidates[j].Sample];
-        }
+        undecided[c] = b;
+        undecidedSample[c] = candidateSample[candidates[j].Index];
       }
     }
   }

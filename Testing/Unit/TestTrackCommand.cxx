@@ -212,14 +212,16 @@ TEST_F(TrackCommand, CountsTheFramesOverTheBudget)
   ASSERT_EQ(late.ExitCode, 0) << late.Err;
   const nlohmann::json s = nlohmann::json::parse(Slurp(this->Dir + "/late/summary.json"));
   EXPECT_EQ(s["frames_over_budget"].get<int>(), this->Frames);
+  EXPECT_EQ(s["hysteresis_mm"].get<double>(), 0.3); // the default, as the summary records it
   EXPECT_NE(late.Out.find(std::to_string(this->Frames) + " of " + std::to_string(this->Frames) + " frames over the 1e-06 ms budget"),
     std::string::npos) << late.Out;
-  // 0 switches the budget off.
-  const ToolRun off = RunTool(this->Dir, common + " --frame-budget-ms 0 -o " + this->Dir + "/off");
+  // 0 switches the budget off (and the hysteresis, recorded as set).
+  const ToolRun off = RunTool(this->Dir, common + " --frame-budget-ms 0 --hysteresis-mm 0 -o " + this->Dir + "/off");
   ASSERT_EQ(off.ExitCode, 0) << off.Err;
   const nlohmann::json o = nlohmann::json::parse(Slurp(this->Dir + "/off/summary.json"));
   EXPECT_EQ(o["frames_over_budget"].get<int>(), 0);
   EXPECT_EQ(o["frame_ms"]["budget"].get<double>(), 0.0);
+  EXPECT_EQ(o["hysteresis_mm"].get<double>(), 0.0);
   EXPECT_NE(off.Out.find("no frame budget"), std::string::npos) << off.Out;
 }
 
@@ -265,6 +267,8 @@ TEST_F(TrackCommand, EachBadPoseFileGivesItsLineAndWritesNothing)
     { " --tip 0,0", "--tip: expected X,Y,Z" },
     { " --frame-budget-ms -1", "--frame-budget-ms: expected a time in ms, 0 or more" },
     { " --frame-budget-ms inf", "--frame-budget-ms: expected a number" },
+    { " --hysteresis-mm -0.1", "--hysteresis-mm: expected a distance in mm, 0 or more" },
+    { " --hysteresis-mm abc", "--hysteresis-mm: expected a number" },
   };
   for (const auto& o : options)
   {

@@ -1,5 +1,7 @@
 #include "vpBlockDistanceField.h"
 
+#include "vpSquaredDistanceTransform.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -8,58 +10,6 @@
 namespace
 {
 constexpr double Inf = std::numeric_limits<double>::infinity();
-
-/// In place along one line of n values spaced stride apart: d(p) = min_q f(q) + (s (p - q))^2
-/// (Felzenszwalb and Huttenlocher 2012, the lower envelope of parabolas). Infinite f never wins.
-void DistanceTransformLine(double* f, std::size_t stride, int n, double s, std::vector<double>& values,
-  std::vector<int>& v, std::vector<double>& z)
-{
-  values.resize(n);
-  v.resize(n);
-  z.resize(n + 1);
-  for (int i = 0; i < n; ++i)
-  {
-    values[i] = f[i * stride];
-  }
-  const double s2 = s * s;
-  int k = -1;
-  for (int q = 0; q < n; ++q)
-  {
-    if (values[q] == Inf)
-    {
-      continue;
-    }
-    double cut = -Inf;
-    while (k >= 0)
-    {
-      const int r = v[k];
-      cut = ((values[q] + s2 * q * q) - (values[r] + s2 * r * r)) / (2.0 * s2 * (q - r));
-      if (cut > z[k])
-      {
-        break;
-      }
-      --k;
-    }
-    ++k;
-    v[k] = q;
-    z[k] = k == 0 ? -Inf : cut;
-    z[k + 1] = Inf;
-  }
-  if (k < 0)
-  {
-    return; // nothing finite on this line
-  }
-  int j = 0;
-  for (int p = 0; p < n; ++p)
-  {
-    while (z[j + 1] < p)
-    {
-      ++j;
-    }
-    const double d = p - v[j];
-    f[p * stride] = values[v[j]] + s2 * d * d;
-  }
-}
 
 /// In place along one line: each value becomes the least of itself and its two neighbours.
 void MinimumOfNeighbours(double* f, std::size_t stride, int n, std::vector<double>& values)
@@ -109,11 +59,11 @@ BlockDistanceField::BlockDistanceField(
   const int P[3] = { this->Dims[0] + 2, this->Dims[1] + 2, this->Dims[2] + 2 };
   const std::size_t padded = static_cast<std::size_t>(P[0]) * P[1] * P[2];
   const std::size_t blocks = static_cast<std::size_t>(this->Dims[0]) * this->Dims[1] * this->Dims[2];
-  this->GapMm.assign(blocks * classes, std::numeric_limits<float>::infinity());
+  this->Gaps.assign(blocks * classes, std::numeric_limits<float>::infinity());
   this->Marked.assign(classes, 0);
   std::vector<double> field;
-  std::vector<double> values, z;
-  std::vector<int> v;
+  std::vector<double> values, line;
+  vp::SquaredDistanceTransform transform;
   auto at = [&](int x, int y, int zz) { return (static_cast<std::size_t>(zz) * P[1] + y) * P[0] + x; };
   for (int c = 0; c < classes; ++c)
   {
@@ -151,8 +101,17 @@ BlockDistanceField::BlockDistanceField(
       {
         for (int i = 0; i < P[a]; ++i)
         {
-          double* line = field.data() + i * stride[a] + j * stride[b];
-          DistanceTransformLine(line, stride[axis], P[axis], this->EdgeMm[axis], values, v, z);
+          double* first = field.data() + i * stride[a] + j * stride[b];
+          line.resize(P[axis]);
+          for (int q = 0; q < P[axis]; ++q)
+          {
+            line[q] = first[q * stride[axis]];
+          }
+          transform.Line(line.data(), P[axis], this->EdgeMm[axis]);
+          for (int q = 0; q < P[axis]; ++q)
+          {
+            first[q * stride[axis]] = line[q];
+          }
         }
       }
     }
@@ -167,7 +126,7 @@ BlockDistanceField::BlockDistanceField(
         }
       }
     }
-    float* gap = this->GapMm.data() + static_cast<std::size_t>(c) * blocks;
+    float* gap = this->Gaps.data() + static_cast<std::size_t>(c) * blocks;
     for (int zz = 0; zz < this->Dims[2]; ++zz)
     {
       for (int y = 0; y < this->Dims[1]; ++y)
@@ -188,12 +147,8 @@ BlockDistanceField::BlockDistanceField(
   }
 }
 
-double BlockDistanceField::LowerBoundMm(int cls, const double p[3]) const
+double BlockDistanceField::GapMm(int cls, const double p[3], double& outsideMm) const
 {
-  if (this->Marked.empty() || this->Marked[cls] == 0)
-  {
-    return Inf;
-  }
   // Outside the blocks' box, the point is at least its distance to the box from every marked
   // cell, and at least the gap of the box point nearest it less that distance.
   int index[3];
@@ -215,9 +170,91 @@ double BlockDistanceField::LowerBoundMm(int cls, const double p[3]) const
     index[k] = std::min(this->Dims[k] - 1, std::max(0, static_cast<int>(std::floor(clamped))));
   }
   const std::size_t blocks = static_cast<std::size_t>(this->Dims[0]) * this->Dims[1] * this->Dims[2];
-  const double gap = this->GapMm[static_cast<std::size_t>(cls) * blocks +
+  outsideMm = std::sqrt(outside2);
+  return this->Gaps[static_cast<std::size_t>(cls) * blocks +
     (static_cast<std::size_t>(index[2]) * this->Dims[1] + index[1]) * this->Dims[0] + index[0]];
-  const double outside = std::sqrt(outside2);
+}
+
+double BlockDistanceField::LowerBoundMm(int cls, const double p[3]) const
+{
+  if (this->Marked.empty() || this->Marked[cls] == 0)
+  {
+    return Inf;
+  }
+  double outside = 0.0;
+  const double gap = this->GapMm(cls, p, outside);
   return std::max(outside, gap - outside);
+}
+
+double BlockDistanceField::UpperBoundMm(int cls, const double p[3]) const
+{
+  if (this->Marked.empty() || this->Marked[cls] == 0)
+  {
+    return Inf;
+  }
+  double outside = 0.0;
+  const double gap = this->GapMm(cls, p, outside);
+  const double diagonal =
+    std::sqrt(this->EdgeMm[0] * this->EdgeMm[0] + this->EdgeMm[1] * this->EdgeMm[1] + this->EdgeMm[2] * this->EdgeMm[2]);
+  // The float gap may lie a rounding below the true one; the cells' coverage tolerance (a
+  // thousandth of a cell each side) is well inside the 1e-3 diagonal added.
+  return outside + gap * (1.0 + 1e-6) + 2.0 * diagonal * 1.001 + 1e-4;
+}
+bool BlockDistanceField::StepTowardMarked(int cls, double p[3]) const
+{
+  if (this->Marked.empty() || this->Marked[cls] == 0)
+  {
+    return false;
+  }
+  int index[3];
+  for (int k = 0; k < 3; ++k)
+  {
+    const double u = (p[k] - this->Grid.OriginMm[k]) / this->EdgeMm[k];
+    if (!(u >= 0.0 && u < this->Dims[k]))
+    {
+      return false;
+    }
+    index[k] = static_cast<int>(u);
+  }
+  const std::size_t blocks = static_cast<std::size_t>(this->Dims[0]) * this->Dims[1] * this->Dims[2];
+  const float* gaps = this->Gaps.data() + static_cast<std::size_t>(cls) * blocks;
+  auto gapAt = [&](int x, int y, int z) { return gaps[(static_cast<std::size_t>(z) * this->Dims[1] + y) * this->Dims[0] + x]; };
+  float lowest = gapAt(index[0], index[1], index[2]);
+  if (lowest == 0.0f)
+  {
+    return false;
+  }
+  int best[3] = { -1, -1, -1 };
+  for (int dz = -1; dz <= 1; ++dz)
+  {
+    for (int dy = -1; dy <= 1; ++dy)
+    {
+      for (int dx = -1; dx <= 1; ++dx)
+      {
+        const int j[3] = { index[0] + dx, index[1] + dy, index[2] + dz };
+        if (j[0] < 0 || j[1] < 0 || j[2] < 0 || j[0] >= this->Dims[0] || j[1] >= this->Dims[1] || j[2] >= this->Dims[2])
+        {
+          continue;
+        }
+        const float g = gapAt(j[0], j[1], j[2]);
+        if (g < lowest)
+        {
+          lowest = g;
+          best[0] = j[0];
+          best[1] = j[1];
+          best[2] = j[2];
+        }
+      }
+    }
+  }
+  if (best[0] < 0)
+  {
+    return false;
+  }
+  for (int k = 0; k < 3; ++k)
+  {
+    p[k] = this->Grid.OriginMm[k] + (best[k] + 0.5) * this->EdgeMm[k];
+  }
+  return true;
 }
 } // namespace vp

@@ -32,19 +32,30 @@ public:
   /// At most the distance from p (mm) to the nearest marked cell of class cls; +infinity when the
   /// class has none.
   double LowerBoundMm(int cls, const double p[3]) const;
+  /// At least the distance from p (mm) to class cls's surface: the gap plus the diagonals of the
+  /// two blocks (a marked block holds surface); +infinity when the class has none.
+  double UpperBoundMm(int cls, const double p[3]) const;
+  /// Moves p to the centre of the neighbouring block with the least gap when that is less than
+  /// p's block's: a step toward the marked cells (the gap falls with every step until it is 0).
+  /// False when p is outside the blocks' box, its gap is 0, or no neighbour is nearer.
+  bool StepTowardMarked(int cls, double p[3]) const;
   int BlockCells() const { return this->Cells; }
   int NumberOfClasses() const { return this->Classes; }
   /// Marked blocks of class cls.
   std::size_t MarkedBlocks(int cls) const { return this->Marked[cls]; }
+  std::size_t MemoryBytes() const { return this->Gaps.size() * sizeof(float); }
 
 private:
+  /// The gap of the block nearest p (mm) and p's distance to the blocks' box.
+  double GapMm(int cls, const double p[3], double& outsideMm) const;
+
   DepthLayerGrid Grid;
   int Classes = 0;
   int Cells = 1;
   int Dims[3] = { 0, 0, 0 };
   double EdgeMm[3] = { 0, 0, 0 };
   std::vector<std::size_t> Marked;
-  std::vector<float> GapMm; // [class][z][y][x]
+  std::vector<float> Gaps; // [class][z][y][x], mm
 };
 } // namespace vp
 

@@ -14,23 +14,24 @@
 #include <vector>
 
 /// The whole-instrument distance on the z-buffer engine's depth layers: per class, the least
-/// distance from any point of the instrument's surface to the vessel's marked cells, with the
-/// closest pair, within a stated bound. Nothing about the vessels is rebuilt when the tool moves.
+/// distance from any point of the instrument's surface to the vessel's surface as the layers hold
+/// it, with the closest pair, within a bound stated per answer. Nothing about the vessels is
+/// rebuilt when the tool moves, and no sample costs a GPU round trip.
 ///
 /// The instrument is sampled once (vp::SurfaceSamples: every surface point within
-/// SampleSpacingMm of a sample, grouped in clusters). After each rendering of the layers, a
-/// lower-bound field over blocks of cells (vp::BlockDistanceField) is built on the host from the
-/// layers' occupancy. Per pose, the field bounds every cluster and then every sample from below,
-/// and only the samples that can still be the nearest go to the GPU, in batches nearest-bound
-/// first, each batch searching only as far as the best distance found so far
-/// (vtkZBufferVesselDistance::ComputeProximityBatchWithin). The previous frame's closest samples
-/// go first: they set a tight bound from the first batch on.
+/// SampleSpacingMm of a sample, grouped in clusters of 2 mm). After each rendering of the layers,
+/// a distance field of the marked cells is built on the host from the layers' occupancy
+/// (vp::CellDistanceField: a byte per cell, exact distances between cell centres, in linear
+/// time), which bounds the distance from any point from below and above in constant time. Per
+/// pose, each cluster is bounded from below at its centre, and only the clusters that can still
+/// hold the nearest sample are opened, nearest first, after the previous frame's closest samples.
 ///
-/// Bound: the samples' least distance is within SampleSpacingMm above the surface's, and each
-/// sample's within the layers' bound of the truth, so the answer (that least distance less half
-/// the spacing) is within GetErrorBoundMm() of the exact one. When a pose would need more than
-/// MaxQueriedPoints samples measured, the search stops and the answer's bound widens by half the
-/// gap still undecided (its own ErrorBoundMm says so); it never claims more than it knows.
+/// Bound: with the samples' least lower and upper bounds lo and hi, the truth lies in
+/// [lo - SampleSpacingMm, hi]; the answer is the middle and its ErrorBoundMm half the width, at
+/// most GetErrorBoundMm() (0.82 mm with 0.4 mm cells, about 0.6 mm typically) within the field's
+/// reach (254 eighths of a cell: 12.7 mm), a few millimetres wider beyond it. The closest point on
+/// the vessel is the nearest marked cell's point nearest the tool's, found by descending the field
+/// (or, beyond its reach, one query of the layers).
 class vtkZBufferSurfaceDistance : public vtkScalpelSurfaceDistance
 {
 public:
@@ -46,14 +47,16 @@ public:
   /// Default 0: half the engine's cell.
   vtkSetMacro(SampleSpacingMm, double);
   vtkGetMacro(SampleSpacingMm, double);
-  /// Edge of the lower-bound field's blocks, mm (a whole number of cells). Default 1.6 mm.
+  /// Edge of the coarse blocks that bound distances beyond the field's reach, mm (a whole number
+  /// of cells). Default 1.6 mm.
   vtkSetMacro(BlockMm, double);
   vtkGetMacro(BlockMm, double);
-  /// Most samples measured on the GPU per pose. Default 8192.
-  vtkSetMacro(MaxQueriedPoints, int);
-  vtkGetMacro(MaxQueriedPoints, int);
+  /// Most field cells per class: one byte each. When the layers hold more cells, a field cell
+  /// covers k x k x k of them (the bound grows with it). Default 2^26 (64 MiB per class).
+  vtkSetMacro(MaxFieldCells, long long);
+  vtkGetMacro(MaxFieldCells, long long);
 
-  /// Samples the instrument and builds the lower-bound field now (the first query does it
+  /// Samples the instrument and builds the distance field now (the first query does it
   /// otherwise, and again after the tool or the engine changed).
   void Build();
   double GetBuildTimeMs() const { return this->BuildTimeMs; }
@@ -64,10 +67,15 @@ public:
   /// The instrument's samples (after Build()).
   long long GetNumberOfToolTriangles() const override;
   long long GetNumberOfSamples() const;
-  /// The bound of an answer whose search finished: the layers' bound plus half the spacing.
+  /// The largest bound of an answer within the field's reach: the field's (a cell's diagonal and
+  /// an eighth of a cell's edge, vp::CellDistanceField::BoundMm) plus half the spacing.
   double GetErrorBoundMm() const;
-  /// Samples measured and GPU submissions for the last pose (for benchmarks).
-  long long GetLastQueriedPoints() const { return this->LastQueried; }
+  /// The field's memory (bytes) and layer cells per field cell along an axis (after Build()).
+  std::size_t GetFieldMemoryBytes() const;
+  int GetFieldLayerCellsPerCell() const;
+  /// Samples evaluated and GPU submissions (closest points beyond the field's reach) for the
+  /// last pose (for benchmarks).
+  long long GetLastEvaluatedSamples() const { return this->LastEvaluated; }
   long long GetLastSubmissions() const { return this->LastSubmissions; }
 
 protected:
@@ -77,7 +85,7 @@ protected:
   vtkSmartPointer<vtkZBufferVesselDistance> ZBuffer;
   double SampleSpacingMm = 0.0;
   double BlockMm = 1.6;
-  int MaxQueriedPoints = 8192;
+  long long MaxFieldCells = 1LL << 26;
   double BuildTimeMs = 0.0;
 
 private:
@@ -87,7 +95,7 @@ private:
   struct Internals;
   std::unique_ptr<Internals> Impl;
   mutable std::mutex BuildLock;
-  mutable std::atomic<long long> LastQueried{ 0 };
+  mutable std::atomic<long long> LastEvaluated{ 0 };
   mutable std::atomic<long long> LastSubmissions{ 0 };
 };
 

@@ -289,10 +289,9 @@ Json BenchReplay(const std::vector<NamedMesh>& vessels, std::size_t frames, unsi
       zsurface->SetToolSurface(scalpel->GetModel());
       zsurface->Build();
       logic->SetSurfaceDistance(zsurface);
-      std::vector<double> measured, submissions;
-      // About a second a frame on lavapipe: the first poses only.
-      const Replay zwhole = Run(logic, poses, std::min<std::size_t>(poses.size(), ZBufferSurfaceFrames), [&]() {
-        measured.push_back(static_cast<double>(zsurface->GetLastQueriedPoints()));
+      std::vector<double> evaluated, submissions;
+      const Replay zwhole = Run(logic, poses, poses.size(), [&]() {
+        evaluated.push_back(static_cast<double>(zsurface->GetLastEvaluatedSamples()));
         submissions.push_back(static_cast<double>(zsurface->GetLastSubmissions()));
       });
       logic->SetSurfaceDistance(nullptr);
@@ -301,8 +300,10 @@ Json BenchReplay(const std::vector<NamedMesh>& vessels, std::size_t frames, unsi
       w["build_ms"] = zsurface->GetBuildTimeMs();
       w["tool_samples"] = zsurface->GetNumberOfSamples();
       w["error_bound_mm"] = zsurface->GetErrorBoundMm();
-      w["samples_measured_median"] = Quantile(measured, 0.5);
-      w["samples_measured_p95"] = Quantile(measured, 0.95);
+      w["field_memory_mb"] = static_cast<double>(zsurface->GetFieldMemoryBytes()) / (1024.0 * 1024.0);
+      w["field_layer_cells_per_cell"] = zsurface->GetFieldLayerCellsPerCell();
+      w["samples_evaluated_median"] = Quantile(evaluated, 0.5);
+      w["samples_evaluated_p95"] = Quantile(evaluated, 0.95);
       w["submissions_median"] = Quantile(submissions, 0.5);
       w["submissions_p95"] = Quantile(submissions, 0.95);
       w["vs_exact_tip_and_surface"] = CompareSurfaces(zwhole, whole);

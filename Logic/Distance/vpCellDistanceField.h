@@ -1,0 +1,76 @@
+#ifndef vpCellDistanceField_h
+#define vpCellDistanceField_h
+
+#include "vpBlockDistanceField.h"
+#include "vpDepthLayerGrid.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace vp
+{
+/// Per vessel class, the distance from any point to the vessel's surface as the z-buffer's
+/// layers hold it, in constant time: two bounds from one byte. What lets the whole instrument's
+/// every sample be asked at every pose, with no GPU round trip per sample.
+///
+/// The field's cells are the layers' cells (or cubes of k x k x k of them when the box holds more
+/// than maxCellsPerClass cells; a field cell is marked when one of its cells is). Each keeps the
+/// Euclidean distance D from its centre to the nearest marked cell's centre, exact (three passes
+/// of vp::SquaredDistanceTransform) and rounded down to an eighth of the smallest cell edge, u,
+/// up to ReachMm() = 254 u (12.7 mm for 0.4 mm cells). Built once per rendering of the layers,
+/// in time linear in the cells, one class at a time.
+///
+/// Bounds: every marked cell holds surface and all the surface in the box lies in marked cells,
+/// so for p in a cell at t from its centre, with E the cell's half diagonal (widened by the
+/// rasteriser's coverage tolerance):
+///   D - t - E  <=  d(p, surface)  <=  D + u + t + E.
+/// Beyond the reach, a coarse vp::BlockDistanceField (blocks of farBlockMm) gives both bounds,
+/// wider by about two block diagonals; farther than 12.7 mm is beyond every danger threshold.
+/// The field's box is the layers' padded by 16 of their cells (6.4 mm for 0.4 mm cells) on every
+/// side; outside it (where every vessel is more than that away), with q the nearest box point at o
+/// from p: sqrt(o^2 + low(q)^2) <= d(p, surface) <= o + high(q).
+class CellDistanceField
+{
+public:
+  CellDistanceField() = default;
+  /// occupancy: the layers' bits, [class][pixel][word] (vtkZBufferVesselDistance::CopyOccupancy).
+  CellDistanceField(const DepthLayerGrid& grid, int classes, const std::vector<std::uint32_t>& occupancy,
+    std::size_t maxCellsPerClass = std::size_t(1) << 26, double farBlockMm = 1.6);
+
+  /// Bounds on the distance from p (mm) to class cls's surface; both +infinity when the class
+  /// has none.
+  void Bounds(int cls, const double p[3], double& lowMm, double& highMm) const;
+  /// A point of the marked cell nearest p (the point of that cell closest to p), found by
+  /// descending the field from p's cell; false when p is outside the box or beyond the reach, or
+  /// the descent stalls on the rounding (the caller then asks the layers).
+  bool NearestMarkedPoint(int cls, const double p[3], double pointMm[3]) const;
+
+  /// Distances up to this are held to a cell; beyond, only to the coarse blocks.
+  double ReachMm() const { return 254.0 * this->UnitMm; }
+  /// The largest half width of Bounds() within the reach and the box: E + h + u / 2.
+  double BoundMm() const;
+  /// Layer cells per field cell along each axis (k).
+  int LayerCellsPerCell() const { return this->K; }
+  const double* CellMm() const { return this->EdgeMm; }
+  int NumberOfClasses() const { return this->Classes; }
+  std::size_t MemoryBytes() const { return this->Values.size() + this->Far.MemoryBytes(); }
+
+private:
+  /// The cell holding p, clamped to the box; its centre; p's distance to the box.
+  std::size_t CellOf(const double p[3], int index[3], double centre[3], double& outsideMm) const;
+
+  double OriginMm[3] = { 0, 0, 0 }; // the field's lowest corner: the layers' box padded
+  int Classes = 0;
+  int K = 1;
+  int Dims[3] = { 0, 0, 0 };
+  double EdgeMm[3] = { 0, 0, 0 };
+  double UnitMm = 0.0;
+  double HalfDiagonalMm = 0.0; // E: the half diagonal with the coverage tolerance
+  std::vector<std::size_t> Marked;
+  std::vector<std::uint8_t> Values; // [class][y][x][z]: D / u rounded down, 255 beyond the reach
+  BlockDistanceField Far;
+};
+} // namespace vp
+
+#endif

@@ -3,6 +3,8 @@
 #include "vtkExactVesselDistance.h"
 #include "vtkScalpelModel.h"
 #include "vtkFclSurfaceDistance.h"
+#include "vtkZBufferSurfaceDistance.h"
+#include "vtkZBufferVesselDistance.h"
 #include "vtkScalpelPenetration.h"
 #include "vtkVesselDistanceEngine.h"
 
@@ -122,10 +124,25 @@ void vtkVesselProximityLogic::Build()
   this->Tracking->SetDistanceEngine(this->Engine);
   if (surface)
   {
-    this->Surface = vtkSmartPointer<vtkFclSurfaceDistance>::New();
-    this->Surface->SetVesselDistance(this->Exact);
-    this->Surface->SetToolSurface(this->GetScalpel()->GetModel());
-    this->Surface->Build(); // the trees, once: not in the first frame's time
+    // The z-buffer answers the whole instrument from its own layers (a distance field of them,
+    // within a stated bound) when they stay put; otherwise FCL answers it exactly.
+    auto* layers = vtkZBufferVesselDistance::SafeDownCast(this->Engine);
+    if (layers && layers->GetBoxMode() == vtkZBufferVesselDistance::FixedAroundVessels)
+    {
+      auto zbuffer = vtkSmartPointer<vtkZBufferSurfaceDistance>::New();
+      zbuffer->SetZBuffer(layers);
+      zbuffer->SetToolSurface(this->GetScalpel()->GetModel());
+      zbuffer->Build(); // the samples and the field, once: not in the first frame's time
+      this->Surface = zbuffer;
+    }
+    else
+    {
+      auto fcl = vtkSmartPointer<vtkFclSurfaceDistance>::New();
+      fcl->SetVesselDistance(this->Exact);
+      fcl->SetToolSurface(this->GetScalpel()->GetModel());
+      fcl->Build(); // the trees, once: not in the first frame's time
+      this->Surface = fcl;
+    }
     this->Tracking->SetSurfaceDistance(this->Surface);
     this->Penetration = vtkSmartPointer<vtkScalpelPenetration>::New();
     this->Penetration->SetVesselDistance(this->Exact);

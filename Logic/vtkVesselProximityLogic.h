@@ -14,7 +14,7 @@
 class vtkExactVesselDistance;
 class vtkPolyData;
 class vtkScalpelModel;
-class vtkFclSurfaceDistance;
+class vtkScalpelSurfaceDistance;
 class vtkScalpelPenetration;
 class vtkVesselDistanceEngine;
 
@@ -27,7 +27,8 @@ class vtkVesselDistanceEngine;
 /// the vessels, the scalpel model or the engine change; never because the scalpel moved. Unlike
 /// SlicerIGT's BreachWarning, which rebuilds its locator whenever the tool moves.
 ///
-/// Defaults: the exact engine answers; the whole instrument surface is measured too (exactly);
+/// Defaults: the exact engine answers; the whole instrument surface is measured too (exactly, by
+/// FCL; from the layers, within their bound, when the engine is the z-buffer with its fixed box);
 /// answers are not compared with the exact engine (switch it on with an approximate engine).
 class vtkVesselProximityLogic : public vtkObject
 {
@@ -95,7 +96,7 @@ protected:
   std::vector<std::pair<std::string, vtkSmartPointer<vtkPolyData>>> Vessels;
   vtkSmartPointer<vtkVesselDistanceEngine> Engine;
   vtkSmartPointer<vtkExactVesselDistance> Exact;
-  vtkSmartPointer<vtkFclSurfaceDistance> Surface;
+  vtkSmartPointer<vtkScalpelSurfaceDistance> Surface;
   vtkSmartPointer<vtkScalpelPenetration> Penetration;
   vtkSmartPointer<vtkScalpelTrackingLogic> Tracking;
   bool CompareWithExact = false;

@@ -80,10 +80,10 @@ double vtkZBufferSurfaceDistance::GetErrorBoundMm() const
   std::lock_guard<std::mutex> lock(this->BuildLock);
   if (this->Impl->Field)
   {
-    return this->Impl->Field->BoundMm() + 0.5 * spacing;
+    return 2.0 * this->Impl->Field->BoundMm() + spacing;
   }
   // Before the field is built: its cells are the layers' (the default size allows 2^26 of them).
-  return grid.ErrorBoundMm() + grid.HalfDiagonalMm() + std::min(grid.PixelMm, grid.SliceMm) / 16.0 + 1e-4 + 0.5 * spacing;
+  return 2.0 * (grid.ErrorBoundMm() + grid.HalfDiagonalMm() + std::min(grid.PixelMm, grid.SliceMm) / 16.0 + 1e-4) + spacing;
 }
 
 void vtkZBufferSurfaceDistance::Build()
@@ -99,6 +99,10 @@ void vtkZBufferSurfaceDistance::Build()
   std::lock_guard<std::mutex> lock(this->BuildLock);
   Internals& s = *this->Impl;
   this->ZBuffer->Build();
+  if (this->ZBuffer->GetNumberOfRenders() == 0)
+  {
+    this->ZBuffer->RenderLayers(); // the field is built from them
+  }
   const auto start = std::chrono::steady_clock::now();
   bool worked = false;
   const vp::DepthLayerGrid grid = this->ZBuffer->GetGrid();
@@ -251,7 +255,9 @@ void vtkZBufferSurfaceDistance::ComputeSurfaceProximity(
   }
 
   // The samples' least distance is within the spacing above the surface's: the true distance
-  // lies in [low - spacing, high], reported at the middle with half the width as its bound.
+  // lies in [low - spacing, high]. Reported at its lower end, with the width as its bound: the
+  // answer may overstate proximity, never understate it (contact reads 0, as the penetration
+  // expects).
   long long submissions = 0;
   out.assign(classes, vp::SurfaceProximity{});
   for (int c = 0; c < classes; ++c)
@@ -264,8 +270,8 @@ void vtkZBufferSurfaceDistance::ComputeSurfaceProximity(
     }
     r.InRange = true;
     const double lower = std::max(0.0, low[c] - S.SpacingMm);
-    r.DistanceMm = 0.5 * (lower + high[c]);
-    r.ErrorBoundMm = 0.5 * (high[c] - lower);
+    r.DistanceMm = lower;
+    r.ErrorBoundMm = high[c] - lower;
     const std::array<double, 3>& tool = bestPoint[c];
     double vessel[3];
     if (!field.NearestMarkedPoint(c, tool.data(), vessel))

@@ -27,9 +27,10 @@
 /// hold the nearest sample are opened, nearest first, after the previous frame's closest samples.
 ///
 /// Bound: with the samples' least lower and upper bounds lo and hi, the truth lies in
-/// [lo - SampleSpacingMm, hi]; the answer is the middle and its ErrorBoundMm half the width, at
-/// most GetErrorBoundMm() (0.82 mm with 0.4 mm cells, about 0.6 mm typically) within the field's
-/// reach (254 eighths of a cell: 12.7 mm), a few millimetres wider beyond it. The closest point on
+/// [lo - SampleSpacingMm, hi]. The answer is the lower end, never above the truth (it may
+/// overstate proximity, never understate it; contact reads 0), and its ErrorBoundMm the width, at
+/// most GetErrorBoundMm() (1.64 mm with 0.4 mm cells, about 1.2 mm typically) within the field's
+/// reach (254 eighths of a cell: 12.7 mm) and box, a few millimetres wider beyond. The closest point on
 /// the vessel is the nearest marked cell's point nearest the tool's, found by descending the field
 /// (or, beyond its reach, one query of the layers).
 class vtkZBufferSurfaceDistance : public vtkScalpelSurfaceDistance
@@ -67,8 +68,8 @@ public:
   /// The instrument's samples (after Build()).
   long long GetNumberOfToolTriangles() const override;
   long long GetNumberOfSamples() const;
-  /// The largest bound of an answer within the field's reach: the field's (a cell's diagonal and
-  /// an eighth of a cell's edge, vp::CellDistanceField::BoundMm) plus half the spacing.
+  /// The largest bound of an answer within the field's reach: twice the field's (a cell's
+  /// diagonal and an eighth of a cell's edge, vp::CellDistanceField::BoundMm) plus the spacing.
   double GetErrorBoundMm() const;
   /// The field's memory (bytes) and layer cells per field cell along an axis (after Build()).
   std::size_t GetFieldMemoryBytes() const;

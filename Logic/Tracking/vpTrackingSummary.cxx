@@ -8,7 +8,7 @@ namespace vp
 {
 namespace
 {
-void Lower(ClassMinimum& minimum, double distanceMm, bool inside, const double point[3], const TrackedFrame& frame)
+void Lower(ClassMinimum& minimum, double distanceMm, double boundMm, bool inside, const double point[3], const TrackedFrame& frame)
 {
   const double signedMm = inside ? -distanceMm : distanceMm;
   if (!minimum.Seen || signedMm < (minimum.Inside ? -minimum.DistanceMm : minimum.DistanceMm))
@@ -16,6 +16,7 @@ void Lower(ClassMinimum& minimum, double distanceMm, bool inside, const double p
     minimum.Seen = true;
     minimum.Inside = inside;
     minimum.DistanceMm = distanceMm;
+    minimum.ErrorBoundMm = boundMm;
     minimum.Frame = frame.Frame;
     minimum.TimeS = frame.TimeS;
     std::copy(point, point + 3, minimum.PointMm);
@@ -55,11 +56,13 @@ void TrackingSummary::Add(const TrackedFrame& frame)
   {
     if (classes[c].InRange)
     {
-      Lower(this->TipMinimum[c], classes[c].DistanceMm, classes[c].Inside.value_or(false), classes[c].ClosestPoint, frame);
+      Lower(this->TipMinimum[c], classes[c].DistanceMm, frame.Proximity.ErrorBoundMm, classes[c].Inside.value_or(false),
+        classes[c].ClosestPoint, frame);
     }
     if (c < frame.Surface.size() && frame.Surface[c].InRange)
     {
-      Lower(this->SurfaceMinimum[c], frame.Surface[c].DistanceMm, false, frame.Surface[c].PointOnVesselMm, frame);
+      Lower(this->SurfaceMinimum[c], frame.Surface[c].DistanceMm, frame.Surface[c].ErrorBoundMm, false,
+        frame.Surface[c].PointOnVesselMm, frame);
     }
     if (c < frame.Penetrations.size())
     {

@@ -16,6 +16,7 @@ struct ClassMinimum
   bool Seen = false; ///< false when the class was never in range
   bool Inside = false; ///< then DistanceMm is the penetration depth
   double DistanceMm = 0.0;
+  double ErrorBoundMm = 0.0; ///< that answer's bound (0 for the exact engines)
   int Frame = 0;
   double TimeS = 0.0;
   double PointMm[3] = { 0, 0, 0 }; ///< closest vessel point at that frame

@@ -74,7 +74,7 @@ std::string FramesCsv(const std::vector<TrackedFrame>& frames, const std::vector
     if (surface)
     {
       csv += "," + c + "_surface_mm," + c + "_penetration_depth_mm," + c + "_penetration_volume_mm3," + c +
-        "_penetration_depth_bound_mm," + c + "_penetration_volume_bound_mm3";
+        "_penetration_depth_bound_mm," + c + "_penetration_volume_bound_mm3," + c + "_surface_bound_mm";
     }
   }
   csv += "\n";
@@ -112,6 +112,7 @@ std::string FramesCsv(const std::vector<TrackedFrame>& frames, const std::vector
         {
           csv += "," + (known ? Number(v) : "");
         }
+        csv += "," + (f.Surface[k].InRange ? Number(f.Surface[k].ErrorBoundMm) : "");
       }
     }
     csv += "\n";
@@ -125,8 +126,8 @@ Json MinimumJson(const ClassMinimum& m)
   {
     return nullptr;
   }
-  return { { "distance_mm", m.DistanceMm }, { "inside", m.Inside }, { "frame", m.Frame }, { "time", m.TimeS },
-    { "point", { m.PointMm[0], m.PointMm[1], m.PointMm[2] } } };
+  return { { "distance_mm", m.DistanceMm }, { "error_bound_mm", m.ErrorBoundMm }, { "inside", m.Inside }, { "frame", m.Frame },
+    { "time", m.TimeS }, { "point", { m.PointMm[0], m.PointMm[1], m.PointMm[2] } } };
 }
 
 Json SummaryJson(const TrackingSummary& s, vtkScalpelTrackingLogic* logic, vtkVesselDistanceEngine* engine,

@@ -337,6 +337,55 @@ TEST_F(TrackCommand, RegisterWritesTheTransformAndTheError)
   EXPECT_FALSE(vp::test::FileExists(this->Dir + "/x.json"));
 }
 
+// With the z-buffer, the whole instrument comes from its layers too: every frame's distance never
+// above the exact one (FCL's) and within its own bound below it (frames.csv's
+// <class>_surface_bound_mm; 0 for the exact engine), the summary's minimum with its bound.
+TEST_F(TrackCommand, ZBufferWholeInstrumentIsNeverFartherThanTheExactOne)
+{
+  const std::string common =
+    "track --vessels " + this->Vessels + " --scalpel " + this->Tool + " --poses " + this->ApproachPoses();
+  const ToolRun z = RunTool(this->Dir, common + " --method zbuffer -o " + this->Dir + "/z");
+  if (z.ExitCode == 4)
+  {
+    GTEST_SKIP() << "no Vulkan device: " << z.Err;
+  }
+  ASSERT_EQ(z.ExitCode, 0) << z.Err;
+  const ToolRun e = RunTool(this->Dir, common + " -o " + this->Dir + "/e");
+  ASSERT_EQ(e.ExitCode, 0) << e.Err;
+  const auto zRows = ReadCsvCells(this->Dir + "/z/frames.csv");
+  const auto eRows = ReadCsvCells(this->Dir + "/e/frames.csv");
+  ASSERT_EQ(zRows.size(), eRows.size());
+  auto column = [](const std::vector<std::string>& header, const std::string& name) {
+    const std::size_t at = static_cast<std::size_t>(std::find(header.begin(), header.end(), name) - header.begin());
+    EXPECT_LT(at, header.size()) << name;
+    return at;
+  };
+  const std::size_t zd = column(zRows[0], "portal_vein_surface_mm"), zb = column(zRows[0], "portal_vein_surface_bound_mm");
+  const std::size_t ed = column(eRows[0], "portal_vein_surface_mm"), eb = column(eRows[0], "portal_vein_surface_bound_mm");
+  double widest = 0.0;
+  for (std::size_t i = 1; i < zRows.size(); ++i)
+  {
+    const double exact = std::stod(eRows[i][ed]);
+    const double d = std::stod(zRows[i][zd]), bound = std::stod(zRows[i][zb]);
+    EXPECT_EQ(std::stod(eRows[i][eb]), 0.0) << "frame " << i - 1;
+    EXPECT_LE(d, exact + 1e-4) << "frame " << i - 1; // frames.csv rounds to 1e-4
+    EXPECT_LE(exact, d + bound + 1e-4) << "frame " << i - 1;
+    if (exact < 5.0) // well within the field's padding (6.4 mm) and reach (12.7 mm)
+    {
+      widest = std::max(widest, bound);
+    }
+  }
+  EXPECT_GT(widest, 0.0);
+  EXPECT_LT(widest, 1.65) << "near the vessel the bound is at most 1.64 mm with 0.4 mm cells";
+  std::ifstream in(this->Dir + "/z/summary.json");
+  const nlohmann::json s = nlohmann::json::parse(in);
+  const auto& minimum = s["classes"]["portal_vein"]["surface_minimum"];
+  EXPECT_GT(minimum["error_bound_mm"].get<double>(), 0.0);
+  // The approach turns 0.5 mm from the sphere, the tip leading.
+  EXPECT_LE(minimum["distance_mm"].get<double>(), 0.5 + 1e-4);
+  EXPECT_GE(minimum["distance_mm"].get<double>() + minimum["error_bound_mm"].get<double>(), 0.5 - 1e-4);
+}
+
 // The z-buffer engine tracks within its bound of the exact engine, and its levels are never
 // milder than the exact engine's on the same frame (the bound is taken off the distance).
 TEST_F(TrackCommand, ZBufferLevelsNeverUnderstateTheExactOnes)

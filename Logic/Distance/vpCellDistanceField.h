@@ -17,16 +17,17 @@ namespace vp
 /// The field's cells are the layers' cells (or cubes of k x k x k of them when the box holds more
 /// than maxCellsPerClass cells; a field cell is marked when one of its cells is). Each keeps the
 /// Euclidean distance D from its centre to the nearest marked cell's centre, exact (three passes
-/// of vp::SquaredDistanceTransform) and rounded down to an eighth of the smallest cell edge, u,
-/// up to ReachMm() = 254 u (12.7 mm for 0.4 mm cells). Built once per rendering of the layers,
+/// of vp::SquaredDistanceTransform) and rounded down to a level: levels an eighth of the smallest
+/// cell edge apart up to 16 edges (6.4 mm for 0.4 mm cells, where danger is decided), half an edge
+/// apart beyond, up to ReachMm() = 79.5 edges (31.8 mm). Built once per rendering of the layers,
 /// in time linear in the cells, one class at a time.
 ///
 /// Bounds: every marked cell holds surface and all the surface in the box lies in marked cells,
 /// so for p in a cell at t from its centre, with E the cell's half diagonal (widened by the
-/// rasteriser's coverage tolerance):
-///   D - t - E  <=  d(p, surface)  <=  D + u + t + E.
+/// rasteriser's coverage tolerance) and D's level between L and the next, L':
+///   L - t - E  <=  d(p, surface)  <=  L' + t + E.
 /// Beyond the reach, a coarse vp::BlockDistanceField (blocks of farBlockMm) gives both bounds,
-/// wider by about two block diagonals; farther than 12.7 mm is beyond every danger threshold.
+/// wider by about two block diagonals.
 /// The field's box is the layers' padded by 16 of their cells (6.4 mm for 0.4 mm cells) on every
 /// side; outside it (where every vessel is more than that away), with q the nearest box point at o
 /// from p: sqrt(o^2 + low(q)^2) <= d(p, surface) <= o + high(q).
@@ -47,8 +48,10 @@ public:
   bool NearestMarkedPoint(int cls, const double p[3], double pointMm[3]) const;
 
   /// Distances up to this are held to a cell; beyond, only to the coarse blocks.
-  double ReachMm() const { return 254.0 * this->UnitMm; }
-  /// The largest half width of Bounds() within the reach and the box: E + h + u / 2.
+  double ReachMm() const { return this->LevelMm(255); }
+  /// Distances up to this are held to an eighth of a cell edge (u).
+  double FineReachMm() const { return this->LevelMm(128); }
+  /// The largest half width of Bounds() within the fine reach and the box: E + h + u / 2.
   double BoundMm() const;
   /// Layer cells per field cell along each axis (k).
   int LayerCellsPerCell() const { return this->K; }
@@ -57,6 +60,9 @@ public:
   std::size_t MemoryBytes() const { return this->Values.size() + this->Far.MemoryBytes(); }
 
 private:
+  /// The distance a stored value stands for, and the value of a distance (rounded down).
+  double LevelMm(int v) const;
+  std::uint8_t Quantise(double d) const;
   /// The cell holding p, clamped to the box; its centre; p's distance to the box.
   std::size_t CellOf(const double p[3], int index[3], double centre[3], double& outsideMm) const;
 

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <future>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -107,6 +108,8 @@ void vtkZBufferSurfaceDistance::Build()
   bool worked = false;
   const vp::DepthLayerGrid grid = this->ZBuffer->GetGrid();
   const double spacing = this->SampleSpacingMm > 0.0 ? this->SampleSpacingMm : 0.5 * grid.PixelMm;
+  // The samples (one thread) are made while the field is built (the others): they share nothing.
+  std::future<std::shared_ptr<const vp::SurfaceSamples>> samples;
   if (!s.Samples || s.SamplesFrom != this->ToolSurface || !this->ToolSurface ||
     s.SamplesAt < this->ToolSurface->GetMTime() || s.SamplesSpacingMm != spacing)
   {
@@ -114,14 +117,13 @@ void vtkZBufferSurfaceDistance::Build()
     {
       throw vp::InputError("scalpel model", "has no surface for the whole-instrument distance");
     }
-    const vp::VesselSurface tool("scalpel model", this->ToolSurface);
+    auto tool = std::make_shared<const vp::VesselSurface>("scalpel model", this->ToolSurface);
     // Clusters of about five blocks: few enough to bound them all at every pose, small enough
     // that a cluster's radius keeps its bound tight.
-    s.Samples = std::make_shared<const vp::SurfaceSamples>(
-      vp::SurfaceSamples::Of(tool.PointArray(), tool.TriangleArray(), spacing, std::max(2.0, 4.0 * spacing)));
-    s.SamplesFrom = this->ToolSurface;
-    s.SamplesAt = this->ToolSurface->GetMTime();
-    s.SamplesSpacingMm = spacing;
+    samples = std::async(std::launch::async, [tool, spacing]() {
+      return std::make_shared<const vp::SurfaceSamples>(
+        vp::SurfaceSamples::Of(tool->PointArray(), tool->TriangleArray(), spacing, std::max(2.0, 4.0 * spacing)));
+    });
     worked = true;
   }
   if (!s.Field || s.FieldFrom != this->ZBuffer || s.FieldAt < this->ZBuffer->GetMTime() ||
@@ -138,6 +140,13 @@ void vtkZBufferSurfaceDistance::Build()
     s.FieldBlockMm = this->BlockMm;
     s.FieldMaxCells = this->MaxFieldCells;
     worked = true;
+  }
+  if (samples.valid())
+  {
+    s.Samples = samples.get();
+    s.SamplesFrom = this->ToolSurface;
+    s.SamplesAt = this->ToolSurface->GetMTime();
+    s.SamplesSpacingMm = spacing;
   }
   if (worked)
   {

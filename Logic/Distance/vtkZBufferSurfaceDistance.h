@@ -30,7 +30,8 @@
 /// [lo - SampleSpacingMm, hi]. The answer is the lower end, never above the truth (it may
 /// overstate proximity, never understate it; contact reads 0), and its ErrorBoundMm the width, at
 /// most GetErrorBoundMm() (1.64 mm with 0.4 mm cells, about 1.2 mm typically) within the field's
-/// reach (254 eighths of a cell: 12.7 mm) and box, a few millimetres wider beyond. The closest point on
+/// fine reach (16 cells: 6.4 mm) and box; beyond, the field's levels are half a cell apart up to
+/// 79.5 cells (31.8 mm), and the coarse blocks' a few millimetres wide farther still. The closest point on
 /// the vessel is the nearest marked cell's point nearest the tool's, found by descending the field
 /// (or, beyond its reach, one query of the layers).
 class vtkZBufferSurfaceDistance : public vtkScalpelSurfaceDistance
@@ -68,8 +69,9 @@ public:
   /// The instrument's samples (after Build()).
   long long GetNumberOfToolTriangles() const override;
   long long GetNumberOfSamples() const;
-  /// The largest bound of an answer within the field's reach: twice the field's (a cell's
-  /// diagonal and an eighth of a cell's edge, vp::CellDistanceField::BoundMm) plus the spacing.
+  /// The largest bound of an answer within the field's fine reach (16 cells) and box: twice the
+  /// field's (a cell's diagonal and an eighth of a cell's edge, vp::CellDistanceField::BoundMm)
+  /// plus the spacing.
   double GetErrorBoundMm() const;
   /// The field's memory (bytes) and layer cells per field cell along an axis (after Build()).
   std::size_t GetFieldMemoryBytes() const;

@@ -301,7 +301,7 @@ TEST(CellDistanceField, BoundsTheDistanceToAnySurfaceThroughTheMarkedCells)
   grid.OriginMm[1] = 2.0;
   grid.OriginMm[2] = 1.0;
   grid.PixelMm = grid.SliceMm = 0.25;
-  grid.Nx = 130; // 32.5 mm: some points lie beyond the reach of 254 eighths of a cell (7.9 mm)
+  grid.Nx = 130; // 32.5 mm: some points lie beyond the reach of 79.5 cells (19.9 mm)
   grid.Ny = 27;
   grid.Nz = 70;
   std::vector<std::array<int, 4>> marked;
@@ -311,12 +311,13 @@ TEST(CellDistanceField, BoundsTheDistanceToAnySurfaceThroughTheMarkedCells)
     const vp::CellDistanceField field(grid, 2, occupancy, maxCells, 1.0);
     const int k = field.LayerCellsPerCell();
     EXPECT_TRUE(maxCells > 20000 ? k == 1 : k > 1) << k;
-    EXPECT_NEAR(field.ReachMm(), 254.0 * k * grid.PixelMm / 8.0, 1e-12);
+    EXPECT_NEAR(field.FineReachMm(), 16.0 * k * grid.PixelMm, 1e-12);
+    EXPECT_NEAR(field.ReachMm(), 79.5 * k * grid.PixelMm, 1e-12);
     const double h = k * grid.HalfDiagonalMm();
     EXPECT_NEAR(field.BoundMm(), 2.0 * h + k * grid.PixelMm / 16.0, 2e-3 * h + 3e-4);
     std::mt19937 random(13);
     std::uniform_real_distribution<double> x(-8.0, 35.0), y(-3.0, 14.0), z(-4.0, 26.0);
-    int withinReach = 0, beyondReach = 0, descended = 0;
+    int withinReach = 0, withinFarReach = 0, beyondReach = 0, descended = 0;
     for (int i = 0; i < 4000; ++i)
     {
       const double p[3] = { x(random), y(random), z(random) };
@@ -327,10 +328,15 @@ TEST(CellDistanceField, BoundsTheDistanceToAnySurfaceThroughTheMarkedCells)
         field.Bounds(c, p, low, high);
         ASSERT_LE(low, nearest + 1e-9) << "k " << k << " class " << c << " at " << p[0] << "," << p[1] << "," << p[2];
         ASSERT_GE(high, farthest - 1e-9) << "k " << k << " class " << c << " at " << p[0] << "," << p[1] << "," << p[2];
-        if (InGrid(grid, p) && high < field.ReachMm())
+        if (InGrid(grid, p) && high < field.FineReachMm())
         {
           ++withinReach;
           ASSERT_LE(high - low, 2.0 * field.BoundMm() + 1e-9) << "k " << k << " at " << p[0] << "," << p[1] << "," << p[2];
+        }
+        else if (InGrid(grid, p) && high < field.ReachMm())
+        {
+          ++withinFarReach; // levels half a cell apart
+          ASSERT_LE(high - low, 2.0 * field.BoundMm() + k * grid.PixelMm * 3.0 / 8.0 + 1e-9);
         }
         beyondReach += nearest > field.ReachMm() + 2.0 * field.BoundMm() ? 1 : 0;
         double point[3];
@@ -346,10 +352,11 @@ TEST(CellDistanceField, BoundsTheDistanceToAnySurfaceThroughTheMarkedCells)
         }
       }
     }
-    EXPECT_GT(withinReach, 500) << "k " << k;
+    EXPECT_GT(withinReach, 100) << "k " << k;
+    EXPECT_GT(withinFarReach, 100) << "k " << k;
     if (k == 1)
     {
-      EXPECT_GT(beyondReach, 100);
+      EXPECT_GT(beyondReach, 20);
     }
     EXPECT_GT(descended, 500) << "k " << k;
   }
@@ -419,7 +426,7 @@ TEST_F(InstrumentDistance, ZBufferSurfaceIsWithinItsBoundOfBruteForce)
     const double* a = result[0].PointOnToolMm;
     const double* b = result[0].PointOnVesselMm;
     const double pair = std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
-    if (reference < 5.0) // within the field's padding (6.4 mm) by more than the widest interval
+    if (reference < 4.5) // within the field's fine reach and padding (6.4 mm) by more than the widest interval
     {
       ++near;
       EXPECT_LE(result[0].ErrorBoundMm, bound + 1e-12) << "pose " << i;

@@ -535,3 +535,143 @@ TEST(InstrumentDistanceOnIrcadb, FclEqualsOurSearchPatient4Cautery)
 {
   CompareOnIrcadb("3Dircadb1.4", "Cautery.stl");
 }
+
+namespace
+{
+/// The z-buffer's whole instrument against FCL's exact one at 500 random poses (a PLUS instrument
+/// turned at random, placed a few millimetres from a random vessel vertex): never farther than
+/// exact, exact never beyond its bound, and that bound at most the stated one within 4.5 mm of a
+/// vessel.
+void CompareZBufferWithFcl(const std::string& label, const std::vector<std::pair<std::string, vtkSmartPointer<vtkPolyData>>>& vessels,
+  const std::string& instrument)
+{
+  const std::string data = vp::test::TestDataDir();
+  if (data.empty())
+  {
+    GTEST_SKIP() << "VP_TEST_DATA not set: the z-buffer's whole instrument against FCL on " << label << " not tested";
+  }
+  vtkNew<vtkSTLReader> stl;
+  stl->SetFileName((data + "/plusmodelcatalog/" + instrument).c_str());
+  stl->Update();
+  ASSERT_GT(stl->GetOutput()->GetNumberOfPolys(), 0);
+  vtkNew<vtkExactVesselDistance> engine;
+  vtkNew<vtkZBufferVesselDistance> layers;
+  for (const auto& v : vessels)
+  {
+    engine->AddVessel(v.first, v.second);
+    layers->AddVessel(v.first, v.second);
+  }
+  engine->Build();
+  vtkNew<vtkFclSurfaceDistance> fcl;
+  fcl->SetVesselDistance(engine);
+  fcl->SetToolSurface(stl->GetOutput());
+  vtkNew<vtkZBufferSurfaceDistance> zbuffer;
+  zbuffer->SetZBuffer(layers);
+  zbuffer->SetToolSurface(stl->GetOutput());
+  zbuffer->Build();
+  const double stated = zbuffer->GetErrorBoundMm();
+  std::mt19937 random(11);
+  std::normal_distribution<double> normal;
+  std::uniform_real_distribution<double> angle(0.0, 2.0 * M_PI);
+  int compared = 0, near = 0, touching = 0, disagreements = 0;
+  for (int pose = 0; pose < 500; ++pose)
+  {
+    vtkPolyData* v = vessels[std::uniform_int_distribution<std::size_t>(0, vessels.size() - 1)(random)].second;
+    double p[3];
+    v->GetPoint(std::uniform_int_distribution<vtkIdType>(0, v->GetNumberOfPoints() - 1)(random), p);
+    const vp::Matrix4 m = vp::RotationAboutAxis({ normal(random), normal(random), normal(random) + 1e-3 }, angle(random),
+      { p[0] + 4.0 * normal(random), p[1] + 4.0 * normal(random), p[2] + 4.0 * normal(random) });
+    std::vector<vp::SurfaceProximity> exact, z;
+    fcl->ComputeSurfaceProximity(m, exact);
+    zbuffer->ComputeSurfaceProximity(m, z);
+    ASSERT_EQ(exact.size(), z.size());
+    for (std::size_t c = 0; c < z.size(); ++c)
+    {
+      if (exact[c].InRange != z[c].InRange)
+      {
+        // Only at the edge of the range, where the z-buffer's bound leaves it open: never a class
+        // within range that it calls out of range.
+        ++disagreements;
+        ASSERT_TRUE(z[c].InRange) << label << " pose " << pose << " class " << c << ": exact " << exact[c].DistanceMm;
+        EXPECT_GE(z[c].DistanceMm + z[c].ErrorBoundMm, layers->GetRangeMm() - 1e-9) << label << " pose " << pose << " class " << c;
+        continue;
+      }
+      if (!z[c].InRange)
+      {
+        continue;
+      }
+      ++compared;
+      const double truth = exact[c].DistanceMm;
+      ASSERT_LE(z[c].DistanceMm, truth + 1e-9) << label << " pose " << pose << " class " << c << ": farther than exact";
+      ASSERT_LE(truth, z[c].DistanceMm + z[c].ErrorBoundMm + 1e-9) << label << " pose " << pose << " class " << c;
+      touching += truth == 0.0 ? 1 : 0;
+      if (truth < 4.5)
+      {
+        ++near;
+        EXPECT_LE(z[c].ErrorBoundMm, stated + 1e-9) << label << " pose " << pose << " class " << c;
+      }
+    }
+  }
+  EXPECT_GT(compared, 1000) << label;
+  EXPECT_GT(near, 100) << label;
+  EXPECT_GT(touching, 10) << label;
+  EXPECT_LT(disagreements, 100) << label;
+}
+
+std::vector<std::pair<std::string, vtkSmartPointer<vtkPolyData>>> ReadIrcadbVessels(const std::string& patient)
+{
+  std::vector<std::pair<std::string, vtkSmartPointer<vtkPolyData>>> vessels;
+  const std::string extracted = vp::test::ExtractedDataDir();
+  if (extracted.empty())
+  {
+    return vessels;
+  }
+  for (const auto& entry : { std::make_pair("portal_vein", "portalvein.vtk"), std::make_pair("hepatic_vein", "venoussystem.vtk"),
+         std::make_pair("hepatic_artery", "artery.vtk") })
+  {
+    vtkNew<vtkVesselMeshReader> reader;
+    reader->SetFileName(extracted + "/ircadb/" + patient + "/MESHES_VTK/" + entry.second);
+    reader->Read();
+    vessels.emplace_back(entry.first, reader->GetOutput());
+  }
+  return vessels;
+}
+} // namespace
+
+TEST(ZBufferInstrumentDistance, NeverFartherThanFclOnThePhantomScalpel)
+{
+  VP_REQUIRE_VULKAN();
+  const std::string dir = vp::test::MakeTempDir("zbuffer-phantom");
+  ASSERT_EQ(vp::test::RunTool(dir, "phantom -o " + dir).ExitCode, 0);
+  std::vector<std::pair<std::string, vtkSmartPointer<vtkPolyData>>> vessels;
+  for (const char* name : { "portal_vein", "hepatic_artery", "hepatic_vein" })
+  {
+    vtkNew<vtkVesselMeshReader> reader;
+    reader->SetFileName(dir + "/" + name + ".stl");
+    reader->Read();
+    vessels.emplace_back(name, reader->GetOutput());
+  }
+  CompareZBufferWithFcl("phantom", vessels, "Scalpel.stl");
+}
+
+TEST(ZBufferInstrumentDistance, NeverFartherThanFclOnIrcadbPatient1Scalpel)
+{
+  VP_REQUIRE_VULKAN();
+  const auto vessels = ReadIrcadbVessels("3Dircadb1.1");
+  if (vessels.empty())
+  {
+    GTEST_SKIP() << "IRCADb archives not extracted: the z-buffer's whole instrument on patient 1 not tested";
+  }
+  CompareZBufferWithFcl("IRCADb patient 1", vessels, "Scalpel.stl");
+}
+
+TEST(ZBufferInstrumentDistance, NeverFartherThanFclOnIrcadbPatient4Cautery)
+{
+  VP_REQUIRE_VULKAN();
+  const auto vessels = ReadIrcadbVessels("3Dircadb1.4");
+  if (vessels.empty())
+  {
+    GTEST_SKIP() << "IRCADb archives not extracted: the z-buffer's whole instrument on patient 4 not tested";
+  }
+  CompareZBufferWithFcl("IRCADb patient 4", vessels, "Cautery.stl");
+}

@@ -146,6 +146,7 @@ void vtkVesselProximityLogic::Build()
     this->Tracking->SetSurfaceDistance(this->Surface);
     this->Penetration = vtkSmartPointer<vtkScalpelPenetration>::New();
     this->Penetration->SetVesselDistance(this->Exact);
+    this->Penetration->SetZBufferSurface(vtkZBufferSurfaceDistance::SafeDownCast(this->Surface));
     this->Penetration->SetToolSurface(this->GetScalpel()->GetModel());
     this->Penetration->Build();
     this->Tracking->SetPenetration(this->Penetration);

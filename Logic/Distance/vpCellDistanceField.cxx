@@ -100,14 +100,40 @@ void TransformAxis(LargeBuffer<float>& field, const int dims[3], const std::size
 namespace vp
 {
 CellDistanceField::CellDistanceField(const DepthLayerGrid& grid, int classes, const std::vector<std::uint32_t>& occupancy,
-  std::size_t maxCellsPerClass, double farBlockMm)
+  const std::vector<std::uint32_t>& crossings, std::size_t maxCellsPerClass, double farBlockMm)
   : Classes(classes)
+  , Layers(grid)
   , Far(grid, classes, occupancy, farBlockMm)
 {
   const std::size_t words = static_cast<std::size_t>(grid.Words());
-  if (occupancy.size() < grid.Pixels() * words * static_cast<std::size_t>(classes))
+  const std::size_t layerWords = grid.Pixels() * words * static_cast<std::size_t>(classes);
+  if (occupancy.size() < layerWords || (!crossings.empty() && crossings.size() < layerWords))
   {
-    throw std::invalid_argument("vp::CellDistanceField: the occupancy does not hold every class's layers");
+    throw std::invalid_argument("vp::CellDistanceField: the occupancy or the crossings do not hold every class's layers");
+  }
+  if (!crossings.empty())
+  {
+    // Per column, bit z: the parity of the crossings below slice z, or a crossing in it.
+    this->InsideBits.resize(layerWords);
+    const std::size_t columns = grid.Pixels() * static_cast<std::size_t>(classes);
+    vtkSMPTools::For(0, static_cast<vtkIdType>(columns), [&](vtkIdType begin, vtkIdType end) {
+      for (vtkIdType column = begin; column < end; ++column)
+      {
+        std::uint32_t carry = 0u; // the parity of every bit below this word, all bits set or none
+        for (std::size_t w = 0; w < words; ++w)
+        {
+          const std::uint32_t bits = crossings[static_cast<std::size_t>(column) * words + w];
+          std::uint32_t inclusive = bits; // bit z: the parity of bits 0..z of the word
+          for (int shift = 1; shift < 32; shift *= 2)
+          {
+            inclusive ^= inclusive << shift;
+          }
+          inclusive ^= carry;
+          this->InsideBits[static_cast<std::size_t>(column) * words + w] = (inclusive ^ bits) | bits;
+          carry = (inclusive >> 31) ? ~0u : 0u;
+        }
+      }
+    });
   }
   const int n[3] = { grid.Nx, grid.Ny, grid.Nz };
   // Padded on every side: the layers' box ends two cells past the vessels, and a point just
@@ -260,6 +286,23 @@ void CellDistanceField::Bounds(int cls, const double p[3], double& lowMm, double
   low = std::max(0.0, low - SlackMm);
   lowMm = outside > 0.0 ? std::sqrt(outside * outside + low * low) : low;
   highMm = outside + high;
+}
+
+bool CellDistanceField::Inside(int cls, const double p[3]) const
+{
+  if (this->InsideBits.empty())
+  {
+    return false;
+  }
+  const DepthLayerGrid& g = this->Layers;
+  const double u[3] = { (p[0] - g.OriginMm[0]) / g.PixelMm, (p[1] - g.OriginMm[1]) / g.PixelMm, (p[2] - g.OriginMm[2]) / g.SliceMm };
+  if (!(u[0] >= 0.0 && u[1] >= 0.0 && u[2] >= 0.0 && u[0] < g.Nx && u[1] < g.Ny && u[2] < g.Nz))
+  {
+    return false;
+  }
+  const int x = static_cast<int>(u[0]), y = static_cast<int>(u[1]), z = static_cast<int>(u[2]);
+  const std::size_t column = static_cast<std::size_t>(cls) * g.Pixels() + static_cast<std::size_t>(y) * g.Nx + x;
+  return (this->InsideBits[column * g.Words() + static_cast<std::size_t>(z >> 5)] >> (z & 31)) & 1u;
 }
 
 bool CellDistanceField::NearestMarkedPoint(int cls, const double p[3], double pointMm[3]) const

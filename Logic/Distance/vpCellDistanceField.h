@@ -35,13 +35,26 @@ class CellDistanceField
 {
 public:
   CellDistanceField() = default;
-  /// occupancy: the layers' bits, [class][pixel][word] (vtkZBufferVesselDistance::CopyOccupancy).
+  /// occupancy: the layers' bits, [class][pixel][word] (vtkZBufferVesselDistance::CopyOccupancy);
+  /// crossings: their crossing bits in the same layout (CopyCrossings), or empty when Inside()
+  /// is not wanted.
   CellDistanceField(const DepthLayerGrid& grid, int classes, const std::vector<std::uint32_t>& occupancy,
-    std::size_t maxCellsPerClass = std::size_t(1) << 26, double farBlockMm = 1.6);
+    const std::vector<std::uint32_t>& crossings, std::size_t maxCellsPerClass = std::size_t(1) << 26,
+    double farBlockMm = 1.6);
 
   /// Bounds on the distance from p (mm) to class cls's surface; both +infinity when the class
   /// has none.
   void Bounds(int cls, const double p[3], double& lowMm, double& highMm) const;
+  /// Whether p is inside class cls as the layers decide it: the parity of the pixel-centre ray's
+  /// crossings below p's slice, and inside when one lies in p's own slice (undecided: the more
+  /// dangerous side), as the z-buffer's tip query decides. Right wherever p is farther than a
+  /// cell's diagonal from the surface. Outside the layers' box, false (every vessel lies in it).
+  /// False for every point when the field was built without crossings.
+  bool Inside(int cls, const double p[3]) const;
+  bool HasInside() const { return !this->InsideBits.empty(); }
+  /// The layers' grid the field was built from.
+  const DepthLayerGrid& GetLayerGrid() const { return this->Layers; }
+
   /// A point of the marked cell nearest p (the point of that cell closest to p), found by
   /// descending the field from p's cell; false when p is outside the box or beyond the reach, or
   /// the descent stalls on the rounding (the caller then asks the layers).
@@ -57,7 +70,10 @@ public:
   int LayerCellsPerCell() const { return this->K; }
   const double* CellMm() const { return this->EdgeMm; }
   int NumberOfClasses() const { return this->Classes; }
-  std::size_t MemoryBytes() const { return this->Values.size() + this->Far.MemoryBytes(); }
+  std::size_t MemoryBytes() const
+  {
+    return this->Values.size() + this->InsideBits.size() * sizeof(std::uint32_t) + this->Far.MemoryBytes();
+  }
 
 private:
   /// The distance a stored value stands for, and the value of a distance (rounded down).
@@ -75,6 +91,8 @@ private:
   double HalfDiagonalMm = 0.0; // E: the half diagonal with the coverage tolerance
   std::vector<std::size_t> Marked;
   std::vector<std::uint8_t> Values; // [class][y][x][z]: D / u rounded down, 255 beyond the reach
+  DepthLayerGrid Layers;
+  std::vector<std::uint32_t> InsideBits; // [class][pixel][word] of the layers: Inside() per cell
   BlockDistanceField Far;
 };
 } // namespace vp

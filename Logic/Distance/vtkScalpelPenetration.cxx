@@ -1,6 +1,8 @@
 #include "vtkScalpelPenetration.h"
 
+#include "vpCellDistanceField.h"
 #include "vpInputError.h"
+#include "vtkZBufferSurfaceDistance.h"
 
 #include <vtkNew.h>
 #include <vtkObjectFactory.h>
@@ -149,24 +151,43 @@ struct vtkScalpelPenetration::Lattice
 
 namespace
 {
-/// One pose and one class: the walk of the instrument's octree in the world.
+/// One pose and one class: the walk of the instrument's octree in the world. The vessel wall's
+/// distance comes from the exact engine, or, from the z-buffer's distance field, as an interval
+/// [Low, High] with inside from its layers (right wherever the wall is farther than NearMm).
 struct Walk
 {
   const vtkExactVesselDistance* Vessels;
+  const vp::CellDistanceField* Field;
   int Class;
   const std::array<double, 16>& M;
+  double NearMm; ///< a cell nearer the wall than this is counted as uncertain
   long long CellsInBoth = 0;
   long long CellsUncertain = 0;
   double DepthMm = 0.0;
 
-  double Query(const double model[3], std::optional<bool>& inside) const
+  struct Answer
+  {
+    double Low;  ///< the wall is at least this far
+    double High; ///< and at most this far
+    bool Inside;
+  };
+  Answer Query(const double model[3]) const
   {
     double w[3];
     for (int r = 0; r < 3; ++r)
     {
       w[r] = this->M[4 * r] * model[0] + this->M[4 * r + 1] * model[1] + this->M[4 * r + 2] * model[2] + this->M[4 * r + 3];
     }
-    return this->Vessels->NearestDistanceWithin(this->Class, w, AnywhereMm, &inside);
+    if (this->Field)
+    {
+      Answer a;
+      this->Field->Bounds(this->Class, w, a.Low, a.High);
+      a.Inside = this->Field->Inside(this->Class, w);
+      return a;
+    }
+    std::optional<bool> inside;
+    const double d = this->Vessels->NearestDistanceWithin(this->Class, w, AnywhereMm, &inside);
+    return { d, d, inside.value_or(false) };
   }
 };
 } // namespace
@@ -181,6 +202,20 @@ void vtkScalpelPenetration::SetVesselDistance(vtkExactVesselDistance* engine)
     this->Vessels = engine;
     this->Modified();
   }
+}
+
+void vtkScalpelPenetration::SetZBufferSurface(vtkZBufferSurfaceDistance* surface)
+{
+  if (this->ZBufferSurface != surface)
+  {
+    this->ZBufferSurface = surface;
+    this->Modified();
+  }
+}
+
+vtkZBufferSurfaceDistance* vtkScalpelPenetration::GetZBufferSurface() const
+{
+  return this->ZBufferSurface;
 }
 
 void vtkScalpelPenetration::SetToolSurface(vtkPolyData* model)
@@ -270,11 +305,10 @@ void Deepest(const L& lattice, Walk& walk, const Cube& cube)
 {
   Cube children[8];
   const int count = lattice.Children(cube, children);
-  std::pair<double, int> order[8];
+  std::pair<double, int> order[8]; // the farthest the wall can be
   for (int k = 0; k < count; ++k)
   {
-    std::optional<bool> inside;
-    order[k] = { walk.Query(children[k].Centre, inside), k };
+    order[k] = { walk.Query(children[k].Centre).High, k };
   }
   for (int k = 1; k < count; ++k) // at most eight: farthest from the wall first
   {
@@ -300,32 +334,31 @@ void Deepest(const L& lattice, Walk& walk, const Cube& cube)
 template <typename L>
 void Visit(const L& lattice, Walk& walk, const Cube& cube)
 {
-  std::optional<bool> insideVessel;
-  const double d = walk.Query(cube.Centre, insideVessel);
-  const double r = lattice.HalfDiagonalMm(0);
+  const Walk::Answer a = walk.Query(cube.Centre);
+  const double r = walk.NearMm;
   const double reach = lattice.HalfDiagonalMm(cube.Level);
-  const bool inside = insideVessel.value_or(false);
+  const bool inside = a.Inside;
   if (cube.Level == 0)
   {
     const bool inTool = cube.Explicit ? cube.Explicit->InTool : true;
     const bool nearTool = cube.Explicit ? cube.Explicit->NearTool : false;
-    const bool nearVessel = d <= r;
+    const bool nearVessel = a.Low <= r;
     walk.CellsInBoth += inTool && inside ? 1 : 0;
     walk.CellsUncertain += (nearTool || nearVessel) && (inside || nearVessel) ? 1 : 0;
     if (inside)
     {
-      walk.DepthMm = std::max(walk.DepthMm, d);
+      walk.DepthMm = std::max(walk.DepthMm, a.High);
     }
     return;
   }
-  if (d > reach + r)
+  if (a.Low > reach + r)
   {
     // The vessel wall is farther than any of the cube's cells reaches: all inside, or all out.
     if (inside)
     {
       walk.CellsInBoth += cube.CellsInTool();
       walk.CellsUncertain += cube.CellsNearTool();
-      if (d + reach > walk.DepthMm)
+      if (a.High + reach > walk.DepthMm)
       {
         Deepest(lattice, walk, cube);
       }
@@ -351,6 +384,17 @@ void vtkScalpelPenetration::ComputePenetration(const std::array<double, 16>& m,
   const_cast<vtkScalpelPenetration*>(this)->Build();
   const Lattice& lattice = *this->Tool;
   const int classes = this->Vessels->GetNumberOfVessels();
+  // With the z-buffer, its field answers the walk: a cell is near the wall while the wall may lie
+  // within a layer cell's diagonal (where the layers' inside may be wrong) or within the
+  // lattice's half diagonal, and the deepest cell's depth is its upper bound, within the field's
+  // interval and the lattice's half diagonal of the truth.
+  const std::shared_ptr<const vp::CellDistanceField> field = this->ZBufferSurface ? this->ZBufferSurface->GetDistanceField() : nullptr;
+  if (field && (!field->HasInside() || field->NumberOfClasses() != classes))
+  {
+    throw std::logic_error("vtkScalpelPenetration: the z-buffer's field does not match the vessel classes");
+  }
+  const double nearMm = field ? std::max(lattice.HalfDiagonalMm(0), 2.0 * field->GetLayerGrid().ErrorBoundMm()) : lattice.HalfDiagonalMm(0);
+  const double depthBoundMm = field ? lattice.HalfDiagonalMm(0) + 2.0 * field->BoundMm() : lattice.HalfDiagonalMm(0);
   out.assign(static_cast<std::size_t>(classes), vp::Penetration());
   const double cell3 = std::pow(lattice.CellMm, 3);
   for (int c = 0; c < classes; ++c)
@@ -365,13 +409,11 @@ void vtkScalpelPenetration::ComputePenetration(const std::array<double, 16>& m,
     {
       continue; // nothing within range: nothing overlaps
     }
-    Walk walk{ this->Vessels, c, m };
+    Walk walk{ field ? nullptr : this->Vessels.GetPointer(), field.get(), c, m, nearMm };
     if (surface[static_cast<std::size_t>(c)].DistanceMm > 0.0)
     {
       // The walls do not meet: the instrument is wholly inside the vessel, or wholly outside.
-      std::optional<bool> inside;
-      walk.Query(lattice.SurfacePoint, inside);
-      if (!inside.value_or(false))
+      if (!walk.Query(lattice.SurfacePoint).Inside)
       {
         continue;
       }
@@ -381,7 +423,7 @@ void vtkScalpelPenetration::ComputePenetration(const std::array<double, 16>& m,
     p.VolumeMm3 = cell3 * static_cast<double>(walk.CellsInBoth);
     p.VolumeBoundMm3 = cell3 * static_cast<double>(walk.CellsUncertain);
     p.DepthMm = walk.DepthMm;
-    p.DepthBoundMm = walk.CellsInBoth + walk.CellsUncertain > 0 ? lattice.HalfDiagonalMm(0) : 0.0;
+    p.DepthBoundMm = walk.CellsInBoth + walk.CellsUncertain > 0 ? depthBoundMm : 0.0;
   }
 }
 
@@ -389,6 +431,7 @@ void vtkScalpelPenetration::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "VesselDistance: " << (this->Vessels ? "set" : "(none)") << "\n";
+  os << indent << "ZBufferSurface: " << (this->ZBufferSurface ? "set (the walk reads its field)" : "(none)") << "\n";
   os << indent << "CellSizeMm: " << this->CellSizeMm << "\n";
   os << indent << "LatticeNodes: " << (this->Tool ? this->Tool->Nodes.size() : 0) << "\n";
   os << indent << "BuildTimeMs: " << this->BuildTimeMs << "\n";

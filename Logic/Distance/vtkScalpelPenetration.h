@@ -13,6 +13,7 @@
 #include <vector>
 
 class vtkPolyData;
+class vtkZBufferSurfaceDistance;
 
 /// How far an instrument is inside each vessel class: the volume of the instrument inside the
 /// class (mm³) and the depth of its deepest point (mm, the distance to the vessel wall), each with
@@ -45,6 +46,13 @@ public:
   /// The vessel classes (an exact engine, built before the first query).
   void SetVesselDistance(vtkExactVesselDistance* engine);
   vtkExactVesselDistance* GetVesselDistance() const { return this->Vessels; }
+  /// When set, the walk reads the z-buffer's distance field and its layers' inside instead of
+  /// the exact engine (which still says which classes are closed): the paper's superimposition
+  /// of the instrument's cells on the vessels' layers. A cell counts as uncertain while the wall
+  /// may lie within a layer cell's diagonal (0.69 mm) of it; the depth is the deepest cell's upper
+  /// bound, DepthBoundMm the lattice's half diagonal plus the field's interval. Default: none.
+  void SetZBufferSurface(vtkZBufferSurfaceDistance* surface);
+  vtkZBufferSurfaceDistance* GetZBufferSurface() const;
   /// The instrument surface in model coordinates (closed, for an inside).
   void SetToolSurface(vtkPolyData* model);
   /// Edge of a lattice cell (mm). Default 0.4 mm: a depth bound of 0.35 mm, as the z-buffer's
@@ -73,6 +81,7 @@ protected:
   ~vtkScalpelPenetration() override;
 
   vtkSmartPointer<vtkExactVesselDistance> Vessels;
+  vtkSmartPointer<vtkZBufferSurfaceDistance> ZBufferSurface;
   vtkSmartPointer<vtkPolyData> ToolSurface;
   double CellSizeMm = 0.4;
   double BuildTimeMs = 0.0;

@@ -130,10 +130,11 @@ void vtkZBufferSurfaceDistance::Build()
     s.FieldRenders != this->ZBuffer->GetNumberOfRenders() || s.FieldBlockMm != this->BlockMm ||
     s.FieldMaxCells != this->MaxFieldCells)
   {
-    std::vector<std::uint32_t> occupancy;
+    std::vector<std::uint32_t> occupancy, crossings;
     this->ZBuffer->CopyOccupancy(occupancy);
+    this->ZBuffer->CopyCrossings(crossings); // for the penetration's inside
     s.Field = std::make_shared<const vp::CellDistanceField>(
-      grid, this->ZBuffer->GetNumberOfVessels(), occupancy, this->MaxFieldCells, this->BlockMm);
+      grid, this->ZBuffer->GetNumberOfVessels(), occupancy, crossings, this->MaxFieldCells, this->BlockMm);
     s.FieldFrom = this->ZBuffer;
     s.FieldAt = this->ZBuffer->GetMTime();
     s.FieldRenders = this->ZBuffer->GetNumberOfRenders();
@@ -317,6 +318,13 @@ void vtkZBufferSurfaceDistance::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaxFieldCells: " << this->MaxFieldCells << "\n";
   os << indent << "Samples: " << this->GetNumberOfSamples() << "\n";
   os << indent << "BuildTimeMs: " << this->BuildTimeMs << "\n";
+}
+
+std::shared_ptr<const vp::CellDistanceField> vtkZBufferSurfaceDistance::GetDistanceField() const
+{
+  const_cast<vtkZBufferSurfaceDistance*>(this)->Build();
+  std::lock_guard<std::mutex> lock(this->BuildLock);
+  return this->Impl->Field;
 }
 
 std::size_t vtkZBufferSurfaceDistance::GetFieldMemoryBytes() const

@@ -7,6 +7,11 @@
 
 #include <vtkSmartPointer.h>
 
+namespace vp
+{
+class CellDistanceField;
+}
+
 #include <array>
 #include <atomic>
 #include <memory>
@@ -73,6 +78,9 @@ public:
   /// field's (a cell's diagonal and an eighth of a cell's edge, vp::CellDistanceField::BoundMm)
   /// plus the spacing.
   double GetErrorBoundMm() const;
+  /// The distance field of the current layers (building what is out of date), for the
+  /// penetration's walk: it stays valid while held.
+  std::shared_ptr<const vp::CellDistanceField> GetDistanceField() const;
   /// The field's memory (bytes) and layer cells per field cell along an axis (after Build()).
   std::size_t GetFieldMemoryBytes() const;
   int GetFieldLayerCellsPerCell() const;

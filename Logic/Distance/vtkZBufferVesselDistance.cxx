@@ -629,18 +629,29 @@ void vtkZBufferVesselDistance::AnswerAll(
 
 void vtkZBufferVesselDistance::CopyOccupancy(std::vector<std::uint32_t>& words) const
 {
+  this->CopyLayer(false, words);
+}
+
+void vtkZBufferVesselDistance::CopyCrossings(std::vector<std::uint32_t>& words) const
+{
+  this->CopyLayer(true, words);
+}
+
+void vtkZBufferVesselDistance::CopyLayer(bool crossings, std::vector<std::uint32_t>& words) const
+{
   std::lock_guard<std::mutex> lock(this->Impl->Lock);
   Internals& s = *this->Impl;
   words.clear();
-  if (!s.Rendered || !s.Occupancy)
+  const vp::GpuBuffer* layer = crossings ? s.Crossings.get() : s.Occupancy.get();
+  if (!s.Rendered || !layer)
   {
     return;
   }
-  const VkDeviceSize bytes = s.Occupancy->Size();
+  const VkDeviceSize bytes = layer->Size();
   vp::GpuBuffer host(*s.Context, bytes, vp::GpuBuffer::Placement::Host);
   s.Context->Submit([&](VkCommandBuffer cmd) {
     VkBufferCopy region{ 0, 0, bytes };
-    vkCmdCopyBuffer(cmd, s.Occupancy->Handle(), host.Handle(), 1, &region);
+    vkCmdCopyBuffer(cmd, layer->Handle(), host.Handle(), 1, &region);
     vp::ComputeKernel::Barrier(cmd);
   });
   words.resize(static_cast<std::size_t>(bytes / 4));

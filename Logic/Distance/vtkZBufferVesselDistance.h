@@ -115,6 +115,10 @@ public:
   /// The occupancy bits of the current layers, [class][pixel][word] (one bit per slice; see
   /// Shaders/DepthLayersCommon.glsl), copied to the host; empty before the first rendering.
   void CopyOccupancy(std::vector<std::uint32_t>& words) const;
+  /// The crossing bits of the current layers (the pixel-centre ray's surface crossings, toggled
+  /// per slice: their parity below a slice says inside), in the same layout; empty before the
+  /// first rendering.
+  void CopyCrossings(std::vector<std::uint32_t>& words) const;
   /// Tips per GPU submission.
   static constexpr std::size_t BatchCapacity = 256;
   const char* GetMethodName() const override { return "zbuffer"; }
@@ -130,6 +134,8 @@ private:
   vtkZBufferVesselDistance(const vtkZBufferVesselDistance&) = delete;
   void operator=(const vtkZBufferVesselDistance&) = delete;
   void Invalidate();
+  /// The occupancy or the crossings, copied to the host.
+  void CopyLayer(bool crossings, std::vector<std::uint32_t>& words) const;
   /// Width of one of the paper's distance bins; 0 when they are off.
   double BinWidthMm() const;
   /// Throws InputError unless each half of the moving box holds the range plus a cell.

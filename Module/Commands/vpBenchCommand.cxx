@@ -56,8 +56,9 @@ const char* Usage =
   "  replay: the tracking pipeline (vtkScalpelTrackingLogic) on the vessels as given, all classes,\n"
   "    a scalpel (--scalpel, default a 120 mm shaft of 1.5 mm radius) following the tracked tip:\n"
   "    frames per second, exact (tip; tip and whole surface), FCL's whole surface on the same\n"
-  "    poses (its answers compared with ours), z-buffer on cached layers, tip and then tip and\n"
-  "    whole instrument from its distance field (with zbuffer among the engines), brute force on\n"
+  "    poses (its answers compared with ours), z-buffer on cached layers: tip, tip and whole\n"
+  "    instrument from its distance field, and the full frame with its penetration (with zbuffer\n"
+  "    among the engines), brute force on\n"
   "    the first brute-queries frames. --poses replays a pose file (the\n"
   "    demo's poses.csv, say) instead of the generated path.\n"
   "  Defaults: the built-in analytic vessels, sizes 50000,400000,1500000, 2000 queries,\n"
@@ -567,7 +568,7 @@ int RunBenchCommand(const std::vector<std::string>& argv)
     std::printf("  %-36s %8s %14s %12s %12s\n", "engine", "frames", "frames/s", "median ms", "p95 ms");
     for (const char* key :
       { "exact_tip", "exact_tip_and_surface", "fcl_surface", "spheres_tip_and_surface", "exact_tip_and_surface_within_caution",
-        "zbuffer_cached", "zbuffer_tip_and_surface", "brute_tip" })
+        "zbuffer_cached", "zbuffer_tip_and_surface", "zbuffer_full_frame", "brute_tip" })
     {
       if (r.contains(key))
       {
@@ -596,6 +597,14 @@ int RunBenchCommand(const std::vector<std::string>& argv)
                   "(%.3f where exact < 5 mm), %d outside it, %d farther than exact\n",
         w["build_ms"].get<double>(), w["field_memory_mb"].get<double>(), v["max_error_bound_mm"].get<double>(),
         v["max_error_bound_within_5mm"].get<double>(), v["outside_bound"].get<int>(), v["farther_than_reference"].get<int>());
+    }
+    if (r.contains("zbuffer_full_frame"))
+    {
+      const Json& v = r["zbuffer_full_frame"]["vs_exact_penetration"];
+      std::printf("  z-buffer penetration against exact: %d overlapping answers, largest depth difference %.3f mm, volume %.1f "
+                  "mm3, %d outside the bounds\n",
+        v["answers_with_exact_overlap"].get<int>(), v["max_depth_diff_mm"].get<double>(), v["max_volume_diff_mm3"].get<double>(),
+        v["outside_bounds"].get<int>());
     }
   }
   return 0;

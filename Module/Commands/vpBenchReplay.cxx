@@ -179,6 +179,34 @@ Json CompareSurfaces(const Replay& a, const Replay& b)
     { "max_error_bound_within_5mm", largestNearBound }, { "outside_bound", outside }, { "farther_than_reference", farther },
     { "in_range_disagreements", disagreements } };
 }
+/// Two replays' penetrations: the largest depth and volume differences, and the answers of a
+/// whose difference from b's exceeds the two bounds together.
+Json ComparePenetrations(const Replay& a, const Replay& b)
+{
+  double depth = 0.0, volume = 0.0;
+  int outside = 0, overlapping = 0;
+  for (std::size_t i = 0; i < std::min(a.Frames.size(), b.Frames.size()); ++i)
+  {
+    for (std::size_t c = 0; c < std::min(a.Frames[i].Penetrations.size(), b.Frames[i].Penetrations.size()); ++c)
+    {
+      const Penetration& x = a.Frames[i].Penetrations[c];
+      const Penetration& y = b.Frames[i].Penetrations[c];
+      if (!x.Known || !y.Known)
+      {
+        continue;
+      }
+      overlapping += y.VolumeMm3 > 0.0 ? 1 : 0;
+      depth = std::max(depth, std::abs(x.DepthMm - y.DepthMm));
+      volume = std::max(volume, std::abs(x.VolumeMm3 - y.VolumeMm3));
+      outside += std::abs(x.DepthMm - y.DepthMm) > x.DepthBoundMm + y.DepthBoundMm + 1e-9 ||
+          std::abs(x.VolumeMm3 - y.VolumeMm3) > x.VolumeBoundMm3 + y.VolumeBoundMm3 + 1e-9
+        ? 1
+        : 0;
+    }
+  }
+  return { { "answers_with_exact_overlap", overlapping }, { "max_depth_diff_mm", depth }, { "max_volume_diff_mm3", volume },
+    { "outside_bounds", outside } };
+}
 } // namespace
 
 Json BenchReplay(const std::vector<NamedMesh>& vessels, std::size_t frames, unsigned seed, vtkScalpelModel* scalpel,
@@ -315,6 +343,22 @@ Json BenchReplay(const std::vector<NamedMesh>& vessels, std::size_t frames, unsi
       w["submissions_p95"] = Quantile(submissions, 0.95);
       w["vs_exact_tip_and_surface"] = CompareSurfaces(zwhole, whole);
       out["zbuffer_tip_and_surface"] = w;
+
+      std::fprintf(stderr, ", z-buffer full frame");
+      vtkNew<vtkScalpelPenetration> zpenetration;
+      zpenetration->SetVesselDistance(exact); // which classes are closed
+      zpenetration->SetZBufferSurface(zsurface);
+      zpenetration->SetToolSurface(scalpel->GetModel());
+      zpenetration->Build();
+      logic->SetSurfaceDistance(zsurface);
+      logic->SetPenetration(zpenetration);
+      const Replay zfull = Run(logic, poses, poses.size());
+      logic->SetPenetration(nullptr);
+      logic->SetSurfaceDistance(nullptr);
+      Json f = Entry(zfull);
+      f["includes"] = "tip, whole-instrument distance, penetration depth and volume, all from the z-buffer's layers";
+      f["vs_exact_penetration"] = ComparePenetrations(zfull, whole);
+      out["zbuffer_full_frame"] = f;
     }
   }
   std::fprintf(stderr, "\n");

@@ -1,6 +1,8 @@
 #include "vtkVesselMeshReader.h"
 
 #include "vpIndexedMesh.h"
+#include "vpLegacyVtkCounts.h"
+#include "vpObjIndices.h"
 
 #include <vtkAlgorithm.h>
 #include <vtkCallbackCommand.h>
@@ -54,6 +56,11 @@ std::string ReadWholeFile(const std::string& fileName)
   {
     throw vp::InputError(fileName, "is a folder, not a mesh file");
   }
+  if (!S_ISREG(info.st_mode))
+  {
+    // A device or a pipe has no end to wait for (/dev/zero) or may never open (a FIFO).
+    throw vp::InputError(fileName, "is not a regular file (a device, pipe or socket): save the mesh to a file");
+  }
   std::ifstream stream(fileName, std::ios::binary);
   if (!stream)
   {
@@ -104,9 +111,44 @@ private:
   std::string First;
 };
 
-/// A VTK-read polydata's triangles as a soup, so every format goes through one indexing path.
-std::vector<double> TriangleSoupFromPolyData(vtkPolyData* input, const std::string& fileName)
+/// Every polygon and strip of a VTK-read polydata names points it has: VTK's readers keep what
+/// the file says, and its filters index with it unchecked.
+void CheckCellIndices(vtkPolyData* input, const std::string& fileName, bool obj)
 {
+  const vtkIdType points = input->GetNumberOfPoints();
+  for (vtkCellArray* cells : { input->GetPolys(), input->GetStrips() })
+  {
+    if (!cells)
+    {
+      continue;
+    }
+    vtkIdType number = 0;
+    auto iter = vtk::TakeSmartPointer(cells->NewIterator());
+    for (iter->GoToFirstCell(); !iter->IsDoneWithTraversal(); iter->GoToNextCell(), ++number)
+    {
+      vtkIdType size;
+      const vtkIdType* ids;
+      iter->GetCurrentCell(size, ids);
+      for (vtkIdType k = 0; k < size; ++k)
+      {
+        if (ids[k] < 0 || ids[k] >= points)
+        {
+          // An OBJ index is one-based or relative, and the reader has already turned it into
+          // something else: say only that it falls outside.
+          throw vp::InputError(fileName, obj
+              ? "face " + std::to_string(number + 1) + " names a vertex beyond the " + std::to_string(points) + " defined"
+              : std::string(cells == input->GetPolys() ? "polygon " : "strip ") + std::to_string(number + 1) +
+                " names point " + std::to_string(ids[k]) + " of " + std::to_string(points));
+        }
+      }
+    }
+  }
+}
+
+/// A VTK-read polydata's triangles as a soup, so every format goes through one indexing path.
+std::vector<double> TriangleSoupFromPolyData(vtkPolyData* input, const std::string& fileName, bool obj)
+{
+  CheckCellIndices(input, fileName, obj);
   vtkNew<vtkTriangleFilter> triangulate;
   triangulate->SetInputData(input);
   triangulate->PassVertsOff();
@@ -211,6 +253,7 @@ void vtkVesselMeshReader::Read()
       {
         throw vp::InputError(fileName, "not a legacy VTK polydata file");
       }
+      vp::CheckLegacyVtkCounts(bytes, fileName);
       raw = ReadWithVtk(reader.Get(), fileName, "legacy VTK");
       this->FileSpace = vp::ParseSpaceTag(reader->GetHeader() ? reader->GetHeader() : "");
     }
@@ -222,6 +265,7 @@ void vtkVesselMeshReader::Read()
     }
     else if (ext == ".obj")
     {
+      vp::CheckObjIndices(bytes, fileName);
       vtkNew<vtkOBJReader> reader;
       raw = ReadWithVtk(reader.Get(), fileName, "OBJ");
       this->FileSpace = vp::ParseSpaceTag(bytes.substr(0, 4096));
@@ -232,7 +276,7 @@ void vtkVesselMeshReader::Read()
         "unknown mesh format '" + (ext.empty() ? std::string("(no extension)") : ext) +
           "' (expected .stl, .vtk, .vtp or .obj)");
     }
-    const std::vector<double> soup = TriangleSoupFromPolyData(raw, fileName);
+    const std::vector<double> soup = TriangleSoupFromPolyData(raw, fileName, ext == ".obj");
     mesh = vp::BuildIndexedMesh(soup.data(), soup.size() / 9, &dropped);
   }
   if (mesh->GetNumberOfPolys() == 0)

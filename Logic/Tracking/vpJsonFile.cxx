@@ -9,11 +9,16 @@ namespace vp
 {
 nlohmann::json ReadJsonFile(const std::string& fileName, const std::string& what)
 {
-  std::ifstream in(fileName);
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(fileName, ec) || !in)
+  // Checked before opening: a FIFO with no writer would block the open, /dev/zero never ends.
+  if (!std::filesystem::is_regular_file(fileName, ec))
   {
     throw InputError(fileName, std::filesystem::exists(fileName, ec) ? "cannot open as " + what : "no such file");
+  }
+  std::ifstream in(fileName);
+  if (!in)
+  {
+    throw InputError(fileName, "cannot open as " + what);
   }
   try
   {

@@ -59,8 +59,14 @@ std::vector<NumericRow> ReadNumericCsv(const std::string& fileName, const std::s
   {
     throw InputError(fileName, errno == ENOENT ? "no such file" : std::strerror(errno));
   }
+  if (!S_ISREG(info.st_mode))
+  {
+    // Checked before opening: a FIFO with no writer would block the open, /dev/zero never ends.
+    throw InputError(fileName, S_ISDIR(info.st_mode) ? "cannot open as " + what
+                                                     : "is not a regular file (a device, pipe or socket), cannot open as " + what);
+  }
   std::ifstream in(fileName);
-  if (!in || S_ISDIR(info.st_mode))
+  if (!in)
   {
     throw InputError(fileName, "cannot open as " + what);
   }

@@ -105,6 +105,7 @@ TEST_F(DistanceCommand, EachBadInputGivesOneLineAndNoOutput)
   const std::string empty = WriteBytes(this->Dir, "empty.stl", "");
   const std::string badTips = WriteBytes(this->Dir, "badtips.csv", "x,y,z\n1,2,3\n4,5\n");
   const std::string nanTips = WriteBytes(this->Dir, "nantips.csv", "1,2,nan\n");
+  const std::string farObj = WriteBytes(this->Dir, "far.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99999999\n");
   const std::string v = " --vessels portal_vein=" + this->Sphere;
   struct Case
   {
@@ -116,6 +117,7 @@ TEST_F(DistanceCommand, EachBadInputGivesOneLineAndNoOutput)
     { "distance --vessels portal_vein=" + bad + " --tip 0,0,0", bad + ": binary STL declares 9 triangles but the file holds only 1" },
     { "distance --vessels portal_vein=" + empty + " --tip 0,0,0", empty + ": file is empty" },
     { "distance" + v + " --tips " + badTips, badTips + ": line 3: expected x,y,z (3 numbers), got 2" },
+    { "distance --vessels portal_vein=" + farObj + " --tip 0,0,0", farObj + ": line 4: face names vertex 99999999, but 3 are defined before it" },
     { "distance" + v + " --tips " + nanTips, nanTips + ": line 1:" },
     { "distance" + v + " --tips " + this->Dir + "/none.csv", this->Dir + "/none.csv: no such file" },
     { "distance" + v + " --tip 1,2", "--tip: expected X,Y,Z (3 numbers), got 2" },

@@ -11,6 +11,7 @@
 #include <vtkPolyData.h>
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <cmath>
 #include <cstring>
@@ -158,6 +159,8 @@ TEST(MeshReader, EachBadInputGivesOneLineNamingTheFileAndTheProblem)
   withNan[4] = std::numeric_limits<float>::quiet_NaN();
   std::vector<float> withInf = TwoTriangles;
   withInf[10] = std::numeric_limits<float>::infinity();
+  const std::string fifo = dir + "/fifo.stl";
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
   std::string noTriangles = good.substr(0, 84);
   noTriangles[80] = noTriangles[81] = noTriangles[82] = noTriangles[83] = 0;
 
@@ -183,6 +186,26 @@ TEST(MeshReader, EachBadInputGivesOneLineNamingTheFileAndTheProblem)
     { WriteBytes(dir, "garbage.vtp", "<VTKFile type=\"PolyData\"> not really"), "not a readable VTP file" },
     { WriteBytes(dir, "lines.vtk", "# vtk DataFile Version 3.0\nl\nASCII\nDATASET POLYDATA\nPOINTS 2 float\n0 0 0 1 1 1\nLINES 1 3\n2 0 1\n"), "no triangles" },
     { WriteBytes(dir, "empty.obj", "# nothing\n"), "not a readable OBJ file" },
+    // Indices past the points crashed inside VTK's reader or filters (issue 16); a relative index
+    // before the first vertex made up a triangle.
+    { WriteBytes(dir, "far.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99999999\n"), "line 4: face names vertex 99999999, but 3 are defined before it" },
+    { WriteBytes(dir, "before.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -1 -2 -5\n"), "line 4: face names vertex -5, but 3 are defined before it" },
+    { WriteBytes(dir, "notcoords.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/1 2/1 3/1\n"), "line 4: face names texture coordinate 1, but 0 are defined before it" },
+    { WriteBytes(dir, "nonormal.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//2 3//1\n"), "line 5: face names normal 2, but 1 are defined before it" },
+    { WriteBytes(dir, "zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n"), "line 4: face entry '0' is not a nonzero whole-number index" },
+    { WriteBytes(dir, "far.vtk", "# vtk DataFile Version 3.0\nx\nASCII\nDATASET POLYDATA\nPOINTS 3 float\n0 0 0 1 0 0 0 1 0\nPOLYGONS 1 4\n3 0 1 7000000\n"),
+      "polygon 1 names point 7000000 of 3" },
+    { WriteBytes(dir, "huge.vtk", "# vtk DataFile Version 3.0\nx\nBINARY\nDATASET POLYDATA\nPOINTS 2000000000 float\n"),
+      "line 5: POINTS declares 2000000000 points, more than its 77 bytes can hold" },
+    { WriteBytes(dir, "cells.vtk", "# vtk DataFile Version 3.0\nx\nASCII\nDATASET POLYDATA\nPOINTS 3 float\n0 0 0 1 0 0 0 1 0\nPOLYGONS 1 400000000\n3 0 1 2\n"),
+      "line 7: POLYGONS declares 1 cells of 400000000 values" },
+    { WriteBytes(dir, "field.vtk", "# vtk DataFile Version 3.0\nx\nASCII\nDATASET POLYDATA\nPOINTS 3 float\n0 0 0 1 0 0 0 1 0\nPOLYGONS 1 4\n3 0 1 2\nPOINT_DATA 3\nFIELD f 1\nwide 100000 300000 float\n"),
+      "line 11: field array wide declares 100000 x 300000 values" },
+    // Not regular files: /dev/zero never ends, a FIFO with no writer never opens.
+    { "/dev/zero", "is not a regular file" },
+    { fifo, "is not a regular file" },
+    { WriteBytes(dir, "strip.vtk", "# vtk DataFile Version 3.0\nx\nASCII\nDATASET POLYDATA\nPOINTS 3 float\n0 0 0 1 0 0 0 1 0\nTRIANGLE_STRIPS 1 5\n4 0 1 2 3\n"),
+      "strip 1 names point 3 of 3" },
   };
   for (const Case& c : cases)
   {

@@ -278,6 +278,19 @@ TEST_F(TrackCommand, EachBadPoseFileGivesItsLineAndWritesNothing)
     EXPECT_NE(r.Err.find(o.second), std::string::npos) << o.first << "\n  stderr: " << r.Err;
     EXPECT_FALSE(vp::test::FileExists(out)) << o.first;
   }
+  // A device as the pose file never ended (issue 16).
+  const ToolRun zero = RunTool(
+    this->Dir, "track --vessels " + this->Vessels + " --scalpel " + this->Tool + " --poses /dev/zero -o " + out);
+  EXPECT_EQ(zero.ExitCode, 1) << zero.Err;
+  EXPECT_NE(zero.Err.find("/dev/zero: is not a regular file"), std::string::npos) << zero.Err;
+  EXPECT_FALSE(vp::test::FileExists(out));
+  // A scalpel whose face names a vertex it does not have crashed inside VTK (issue 16).
+  const std::string farObj = this->WriteText("far.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99999999\n");
+  const ToolRun r = RunTool(
+    this->Dir, "track --vessels " + this->Vessels + " --scalpel " + farObj + " --tip 0,0,0 --poses " + good + " -o " + out);
+  EXPECT_EQ(r.ExitCode, 1) << r.Err;
+  EXPECT_NE(r.Err.find(farObj + ": line 4: face names vertex 99999999, but 3 are defined before it"), std::string::npos) << r.Err;
+  EXPECT_FALSE(vp::test::FileExists(out));
 }
 
 TEST_F(TrackCommand, RegisterWritesTheTransformAndTheError)

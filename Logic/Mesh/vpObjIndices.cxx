@@ -1,0 +1,133 @@
+#include "vpObjIndices.h"
+
+#include "vpInputError.h"
+
+#include <cctype>
+#include <cstdint>
+#include <string_view>
+
+namespace vp
+{
+namespace
+{
+bool IsSpace(char c)
+{
+  return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v';
+}
+
+/// A whole number with an optional sign, at most 18 digits.
+bool WholeNumber(std::string_view text, std::int64_t& value)
+{
+  std::size_t i = 0;
+  const bool negative = !text.empty() && (text[0] == '-' || text[0] == '+') ? text[0] == '-' : false;
+  if (!text.empty() && (text[0] == '-' || text[0] == '+'))
+  {
+    i = 1;
+  }
+  if (i == text.size() || text.size() - i > 18)
+  {
+    return false;
+  }
+  value = 0;
+  for (; i < text.size(); ++i)
+  {
+    if (!std::isdigit(static_cast<unsigned char>(text[i])))
+    {
+      return false;
+    }
+    value = value * 10 + (text[i] - '0');
+  }
+  value = negative ? -value : value;
+  return true;
+}
+} // namespace
+
+void CheckObjIndices(const std::string& bytes, const std::string& fileName)
+{
+  static const char* const Kinds[3] = { "vertex", "texture coordinate", "normal" };
+  std::int64_t defined[3] = { 0, 0, 0 }; // v, vt, vn so far
+  std::size_t lineNumber = 0;
+  for (std::size_t start = 0; start < bytes.size();)
+  {
+    std::size_t end = bytes.find('\n', start);
+    if (end == std::string::npos)
+    {
+      end = bytes.size();
+    }
+    ++lineNumber;
+    std::string_view line(bytes.data() + start, end - start);
+    start = end + 1;
+    std::size_t i = 0;
+    while (i < line.size() && IsSpace(line[i]))
+    {
+      ++i;
+    }
+    std::size_t j = i;
+    while (j < line.size() && !IsSpace(line[j]))
+    {
+      ++j;
+    }
+    const std::string_view keyword = line.substr(i, j - i);
+    if (keyword == "v" || keyword == "vt" || keyword == "vn")
+    {
+      ++defined[keyword == "v" ? 0 : keyword == "vt" ? 1 : 2];
+      continue;
+    }
+    if (keyword != "f" && keyword != "l" && keyword != "p")
+    {
+      continue;
+    }
+    const std::string what = keyword == "f" ? "face" : keyword == "l" ? "line" : "point";
+    for (std::size_t k = j; k < line.size();)
+    {
+      while (k < line.size() && IsSpace(line[k]))
+      {
+        ++k;
+      }
+      std::size_t e = k;
+      while (e < line.size() && !IsSpace(line[e]))
+      {
+        ++e;
+      }
+      if (e == k)
+      {
+        break;
+      }
+      const std::string_view entry = line.substr(k, e - k);
+      k = e;
+      // v, v/vt, v//vn or v/vt/vn
+      std::size_t part = 0, from = 0;
+      for (;;)
+      {
+        const std::size_t slash = entry.find('/', from);
+        const std::string_view text = entry.substr(from, slash == std::string_view::npos ? std::string_view::npos : slash - from);
+        if (part > 2)
+        {
+          throw InputError(fileName, "line " + std::to_string(lineNumber) + ": " + what + " entry '" + std::string(entry) +
+              "' has more than v/vt/vn");
+        }
+        if (!text.empty() || part == 0)
+        {
+          std::int64_t index = 0;
+          if (!WholeNumber(text, index) || index == 0)
+          {
+            throw InputError(fileName, "line " + std::to_string(lineNumber) + ": " + what + " entry '" + std::string(entry) +
+                "' is not a nonzero whole-number index");
+          }
+          if (index > defined[part] || -index > defined[part])
+          {
+            throw InputError(fileName, "line " + std::to_string(lineNumber) + ": " + what + " names " + Kinds[part] + " " +
+                std::to_string(index) + ", but " + std::to_string(defined[part]) + " are defined before it");
+          }
+        }
+        if (slash == std::string_view::npos)
+        {
+          break;
+        }
+        from = slash + 1;
+        ++part;
+      }
+    }
+  }
+}
+} // namespace vp

@@ -1,7 +1,7 @@
 #include "vtkVesselMeshReader.h"
 
 #include "vpIndexedMesh.h"
-#include "vpLegacyVtkCounts.h"
+#include "vpLegacyVtkGeometry.h"
 #include "vpObjIndices.h"
 
 #include <vtkAlgorithm.h>
@@ -22,6 +22,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
+#include <climits>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -253,7 +254,10 @@ void vtkVesselMeshReader::Read()
       {
         throw vp::InputError(fileName, "not a legacy VTK polydata file");
       }
-      vp::CheckLegacyVtkCounts(bytes, fileName);
+      // VTK reads only the geometry we walked first: its reader trusts what a file declares.
+      const std::size_t geometry = vp::CheckLegacyVtkGeometry(bytes, fileName);
+      reader->ReadFromInputStringOn();
+      reader->SetInputString(bytes.data(), static_cast<int>(std::min<std::size_t>(geometry, INT_MAX)));
       raw = ReadWithVtk(reader.Get(), fileName, "legacy VTK");
       this->FileSpace = vp::ParseSpaceTag(reader->GetHeader() ? reader->GetHeader() : "");
     }

@@ -41,6 +41,53 @@ std::size_t TypeSize(std::string_view type)
   return 0;
 }
 
+/// A decimal number as a C++ stream reads one: sign, digits, point, exponent; no words (nan, inf).
+bool IsNumber(std::string_view t)
+{
+  std::size_t i = 0;
+  if (i < t.size() && (t[i] == '+' || t[i] == '-'))
+  {
+    ++i;
+  }
+  bool digits = false;
+  while (i < t.size() && std::isdigit(static_cast<unsigned char>(t[i])))
+  {
+    ++i;
+    digits = true;
+  }
+  if (i < t.size() && t[i] == '.')
+  {
+    ++i;
+    while (i < t.size() && std::isdigit(static_cast<unsigned char>(t[i])))
+    {
+      ++i;
+      digits = true;
+    }
+  }
+  if (!digits)
+  {
+    return false;
+  }
+  if (i < t.size() && (t[i] == 'e' || t[i] == 'E'))
+  {
+    ++i;
+    if (i < t.size() && (t[i] == '+' || t[i] == '-'))
+    {
+      ++i;
+    }
+    const std::size_t exponent = i;
+    while (i < t.size() && std::isdigit(static_cast<unsigned char>(t[i])))
+    {
+      ++i;
+    }
+    if (i == exponent)
+    {
+      return false;
+    }
+  }
+  return i == t.size();
+}
+
 class Walker
 {
 public:
@@ -180,9 +227,17 @@ private:
     }
     for (std::uint64_t i = 0; i < values; ++i)
     {
-      if (this->Token().empty())
+      // Each a number, as VTK's stream reads it: a keyword here means the section is short, and
+      // VTK's reader then crashed on what followed.
+      const std::string_view t = this->Token();
+      if (t.empty())
       {
         this->Fail(section + " ends past the end of the file");
+      }
+      if (!IsNumber(t))
+      {
+        this->Fail(section + ": value " + std::to_string(i + 1) + " of " + std::to_string(values) + " is '" +
+          std::string(t.substr(0, 40)) + "', not a number");
       }
     }
   }
@@ -262,7 +317,16 @@ private:
       {
         this->Fail(section + ": expected CONNECTIVITY after the offsets");
       }
-      this->Values(size, 1, section + " CONNECTIVITY", this->TypeOf(section + " CONNECTIVITY"));
+      const std::size_t idSize = this->TypeOf(section + " CONNECTIVITY");
+      if (this->Binary)
+      {
+        this->Values(size, 1, section + " CONNECTIVITY", idSize);
+        return;
+      }
+      for (std::uint64_t i = 0; i < size; ++i)
+      {
+        this->Integer(section + " CONNECTIVITY", idSize); // whole numbers: a fraction would split in VTK's stream
+      }
       return;
     }
     this->Pos = mark;

@@ -2,6 +2,7 @@
 
 #include "vpInputError.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cstdint>
 #include <string_view>
@@ -78,6 +79,7 @@ void CheckObjIndices(const std::string& bytes, const std::string& fileName)
       continue;
     }
     const std::string what = keyword == "f" ? "face" : keyword == "l" ? "line" : "point";
+    int form = -1; // the first entry's: which of vt and vn it has (bits 1 and 2)
     for (std::size_t k = j; k < line.size();)
     {
       while (k < line.size() && IsSpace(line[k]))
@@ -95,7 +97,24 @@ void CheckObjIndices(const std::string& bytes, const std::string& fileName)
       }
       const std::string_view entry = line.substr(k, e - k);
       k = e;
-      // v, v/vt, v//vn or v/vt/vn
+      // v, v/vt, v//vn or v/vt/vn, the same in every entry of the line: VTK's reader crashed on
+      // a trailing slash (2/) beside other forms.
+      const std::size_t slashes = static_cast<std::size_t>(std::count(entry.begin(), entry.end(), '/'));
+      const std::size_t firstSlash = entry.find('/');
+      const bool hasTexture = slashes >= 1 && firstSlash + 1 < entry.size() && entry[firstSlash + 1] != '/';
+      const bool hasNormal = slashes == 2 && entry.back() != '/';
+      if (slashes > 2 || (slashes == 1 && !hasTexture) || (slashes == 2 && !hasNormal))
+      {
+        throw InputError(fileName, "line " + std::to_string(lineNumber) + ": " + what + " entry '" + std::string(entry) +
+            "' is not v, v/vt, v//vn or v/vt/vn");
+      }
+      const int entryForm = (hasTexture ? 1 : 0) | (hasNormal ? 2 : 0);
+      if (form >= 0 && entryForm != form)
+      {
+        throw InputError(fileName, "line " + std::to_string(lineNumber) + ": " + what + " entry '" + std::string(entry) +
+            "' is not of the same form as the first");
+      }
+      form = entryForm;
       std::size_t part = 0, from = 0;
       for (;;)
       {

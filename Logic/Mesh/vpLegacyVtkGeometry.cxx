@@ -4,7 +4,13 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
+#include <cfloat>
+#include <cmath>
 #include <cstdint>
+#include <cstdlib>
+#include <limits>
+#include <string>
 #include <string_view>
 
 namespace vp
@@ -86,6 +92,27 @@ bool IsNumber(std::string_view t)
     }
   }
   return i == t.size();
+}
+
+/// Whether a C++ stream reads the number into a type of typeSize bytes without failing: an
+/// integer type's range (for whole numbers), a float's or double's range without over- or
+/// underflow (VTK's reader crashed after a failed read).
+bool InRange(std::string_view t, std::size_t typeSize)
+{
+  const std::string text(t);
+  errno = 0;
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (errno == ERANGE || !std::isfinite(v))
+  {
+    return false;
+  }
+  const double a = std::abs(v);
+  if (typeSize == 4 && a != 0.0 && (a > FLT_MAX || a < FLT_MIN))
+  {
+    return false; // a float, or an int whose fraction we do not know: the float's limits serve both
+  }
+  return a == 0.0 || a >= DBL_MIN;
 }
 
 class Walker
@@ -234,10 +261,10 @@ private:
       {
         this->Fail(section + " ends past the end of the file");
       }
-      if (!IsNumber(t))
+      if (!IsNumber(t) || !InRange(t, typeSize))
       {
         this->Fail(section + ": value " + std::to_string(i + 1) + " of " + std::to_string(values) + " is '" +
-          std::string(t.substr(0, 40)) + "', not a number");
+          std::string(t.substr(0, 40)) + "', not a number its type holds");
       }
     }
   }
@@ -281,6 +308,11 @@ private:
         this->Fail(section + ": expected an integer, got '" + std::string(t.substr(0, 40)) + "'");
       }
       v = v * 10 + (t[i] - '0');
+    }
+    // A stream read of an int fails past its range, and VTK's reader crashed after that.
+    if (typeSize <= 4 && v > std::numeric_limits<std::int32_t>::max())
+    {
+      this->Fail(section + ": '" + std::string(t.substr(0, 40)) + "' is past a 32-bit integer's range");
     }
     return t[0] == '-' ? -v : v;
   }

@@ -5,313 +5,56 @@
 // surface that is off by at most one cell diagonal; the smallest over all pixels, per class, is
 // the answer. A running best per class (atomicMin on the float's bits) lets far tiles and pixels
 // skip their work, which keeps the cost to the pixels near the vessel nearest the tip.
-// The invocation after the last tile answers "is the tip inside" and the directional distance.
+// The DirectionalLanes invocations after the last tile answer "is the tip inside" and the
+// directional distance: each walks the same cells along the axis and reads every
+// DirectionalLanes-th of them, so that on a GPU the walk's memory reads are not one long chain
+// in a single thread (one lane on a CPU device, where the lanes would only repeat the arithmetic).
 // One dispatch answers a batch of points (workgroup z: the point), each with its own state and
 // records; ReduceProximity.comp then picks each answer's record on the device.
 // No shared memory and no barriers: lavapipe runs a workgroup with a barrier as coroutines, which
 // cost more than the whole query.
 #extension GL_GOOGLE_include_directive : require
-#include "DepthLayersCommon.glsl"
+#include "QueryProximityCommon.glsl"
 
 layout(local_size_x = 64) in;
-
-layout(std430, binding = 0) readonly buffer Occupancy { uint Occupied[]; };
-layout(std430, binding = 1) readonly buffer Crossings { uint Crossing[]; };
-layout(std430, binding = 2) readonly buffer DepthRanges { uint DepthRange[]; };
-layout(std430, binding = 3) readonly buffer TileRanges { uint TileRange[]; };
-layout(std430, binding = 4) readonly buffer TileOrder { ivec2 Order[]; };
-// Per point and class, 32 words: [0] best distance (float bits, starts at the range), [1] inside,
-// [2] directional distance (float bits), [3..6] the chosen record (ReduceProximity.comp),
-// [8..31] the paper's distance bits.
-layout(std430, binding = 5) buffer QueryState { uint State[]; };
-// Per point, class and tile: distance (float bits), pixel, depth of the closest point (float bits).
-layout(std430, binding = 6) writeonly buffer Records { uvec4 Record[]; };
-// Per point: the tip in grid units (pixels, pixels, slices), then the unit axis in mm (or zero).
-layout(std430, binding = 7) readonly buffer Points { vec4 Point[]; };
-
-layout(push_constant) uniform Parameters
-{
-  float PixelMm;
-  float SliceMm;
-  float RangeMm;
-  float HalfDiagonalMm;
-  float BinWidthMm;
-  int Bins;
-  int Nx;
-  int Ny;
-  int Nz;
-  int Words;
-  int TilesX;
-  int TilesY;
-  int OrderCount;
-  int PaperMode;
-  uint RangeStride;
-  int Classes;
-} P;
-
-// This invocation's point (set first thing in main).
-vec3 Tip;
-vec3 AxisMm;
-
-// glslang 12 rejects a global const initialised from uintBitsToFloat.
-#define Inf uintBitsToFloat(0x7F800000u)
-const uint StateStride = 32u;
-
-
-bool Occupied3(uint cls, ivec3 cell)
-{
-  uint pixels = uint(P.Nx * P.Ny);
-  uint base = ColumnBase(cls, uint(cell.y * P.Nx + cell.x), uint(P.Words), pixels);
-  return (Occupied[base + uint(cell.z >> 5)] & (1u << uint(cell.z & 31))) != 0u;
-}
-
-// Directional distance: walk the cells along the axis (Amanatides & Woo) to the first occupied
-// one. Its entry distance is never more than the true distance to the surface along the axis.
-float Directional(uint cls)
-{
-  vec3 dirGrid = vec3(AxisMm.xy / P.PixelMm, AxisMm.z / P.SliceMm); // cells per mm
-  ivec3 cell = ivec3(floor(Tip));
-  ivec3 stepDir = ivec3(sign(dirGrid));
-  vec3 tMax;
-  vec3 tDelta;
-  for (int k = 0; k < 3; ++k)
-  {
-    if (dirGrid[k] == 0.0)
-    {
-      tMax[k] = Inf;
-      tDelta[k] = Inf;
-    }
-    else
-    {
-      float boundary = float(cell[k]) + (dirGrid[k] > 0.0 ? 1.0 : 0.0);
-      tMax[k] = (boundary - Tip[k]) / dirGrid[k];
-      tDelta[k] = 1.0 / abs(dirGrid[k]);
-    }
-  }
-  float tEnter = 0.0;
-  int maxSteps = int(P.RangeMm / P.PixelMm) * 2 + int(P.RangeMm / P.SliceMm) + 4;
-  for (int s = 0; s < maxSteps && tEnter <= P.RangeMm; ++s)
-  {
-    if (all(greaterThanEqual(cell, ivec3(0))) && all(lessThan(cell, ivec3(P.Nx, P.Ny, P.Nz))) && Occupied3(cls, cell))
-    {
-      return tEnter;
-    }
-    int k = (tMax.x < tMax.y) ? (tMax.x < tMax.z ? 0 : 2) : (tMax.y < tMax.z ? 1 : 2);
-    tEnter = tMax[k];
-    cell[k] += stepDir[k];
-    tMax[k] += tDelta[k];
-  }
-  return Inf;
-}
-
-// Whether the tip is inside: the parity of the centre-ray crossings below the tip's slice. A
-// crossing in the tip's own slice leaves the side undecided; the answer is then "inside", which
-// overstates danger within one cell of the surface rather than hiding a breach.
-uint Inside(uint cls)
-{
-  ivec3 cell = ivec3(floor(Tip));
-  if (cell.x < 0 || cell.y < 0 || cell.x >= P.Nx || cell.y >= P.Ny || cell.z < 0)
-  {
-    return 0u;
-  }
-  uint pixels = uint(P.Nx * P.Ny);
-  uint base = ColumnBase(cls, uint(cell.y * P.Nx + cell.x), uint(P.Words), pixels);
-  int below = min(cell.z, P.Nz);
-  uint parity = 0u;
-  for (int w = 0; w * 32 < below; ++w)
-  {
-    uint bits = Crossing[base + uint(w)];
-    int n = below - w * 32;
-    if (n < 32)
-    {
-      bits &= (1u << uint(n)) - 1u;
-    }
-    parity ^= uint(bitCount(bits)) & 1u;
-  }
-  if (cell.z < P.Nz && (Crossing[base + uint(cell.z >> 5)] & (1u << uint(cell.z & 31))) != 0u)
-  {
-    return 1u;
-  }
-  return parity;
-}
-
-// Distance in slices from the tip's depth to the nearest occupied slice of the column at base,
-// looking no further than window slices; Inf when there is none. depth receives the point of that
-// slice nearest the tip.
-float NearestSlice(uint base, float window, out float depth)
-{
-  float tz = Tip.z;
-  int start = clamp(int(floor(tz)), 0, P.Nz - 1);
-  float best = Inf;
-  depth = 0.0;
-  // Upwards, from the tip's slice.
-  for (int w = start >> 5; w < P.Words; ++w)
-  {
-    if (float(w * 32) - tz > window)
-    {
-      break;
-    }
-    uint bits = Occupied[base + uint(w)];
-    if (w == (start >> 5))
-    {
-      bits &= ~((1u << uint(start & 31)) - 1u);
-    }
-    if (bits != 0u)
-    {
-      int s = w * 32 + findLSB(bits);
-      float d = max(0.0, float(s) - tz);
-      if (d < best)
-      {
-        best = d;
-        depth = clamp(tz, float(s), float(s + 1));
-      }
-      break;
-    }
-  }
-  // Downwards, from the tip's slice.
-  for (int w = start >> 5; w >= 0; --w)
-  {
-    if (tz - float(w * 32 + 32) > window)
-    {
-      break;
-    }
-    uint bits = Occupied[base + uint(w)];
-    if (w == (start >> 5))
-    {
-      uint keep = uint(start & 31);
-      bits &= (keep == 31u) ? 0xFFFFFFFFu : ((1u << (keep + 1u)) - 1u);
-    }
-    if (bits != 0u)
-    {
-      int s = w * 32 + findMSB(bits);
-      float d = max(0.0, tz - float(s + 1));
-      if (d < best)
-      {
-        best = d;
-        depth = clamp(tz, float(s), float(s + 1));
-      }
-      break;
-    }
-  }
-  return best;
-}
-
-float AxisGap(float x, float lo, float hi)
-{
-  return max(0.0, max(lo - x, x - hi));
-}
 
 void main()
 {
   uint cls = gl_WorkGroupID.y;
   uint point = gl_WorkGroupID.z;
   uint index = gl_GlobalInvocationID.x;
-  Tip = Point[2u * point].xyz;
-  AxisMm = Point[2u * point + 1u].xyz;
+  BeginPoint(point);
   uint answer = point * uint(P.Classes) + cls;
   uint stateBase = answer * StateStride;
-  if (index > uint(P.OrderCount))
+  if (index >= uint(P.OrderCount))
   {
-    return;
-  }
-  if (index == uint(P.OrderCount))
-  {
-    State[stateBase + 1u] = Inside(cls);
-    State[stateBase + 2u] = floatBitsToUint(any(notEqual(AxisMm, vec3(0.0))) ? Directional(cls) : Inf);
+    AnswerLane(cls, stateBase, int(index) - P.OrderCount);
     return;
   }
 
   uint recordIndex = answer * uint(P.OrderCount) + index;
-  ivec2 tile = ivec2(floor(Tip.xy / 8.0)) + Order[index];
-  if (tile.x < 0 || tile.y < 0 || tile.x >= P.TilesX || tile.y >= P.TilesY)
+  ivec2 tile = TileToVisit(cls, stateBase, index);
+  if (tile.x < 0)
   {
     Record[recordIndex] = uvec4(floatBitsToUint(Inf), 0u, 0u, 0u);
     return;
   }
-  uint t = 2u * (cls * uint(P.TilesX * P.TilesY) + uint(tile.y * P.TilesX + tile.x));
-  float tileLo = uintBitsToFloat(TileRange[t]);
-  float tileHi = uintBitsToFloat(TileRange[t + 1u]);
-  if (tileLo > tileHi)
-  {
-    Record[recordIndex] = uvec4(floatBitsToUint(Inf), 0u, 0u, 0u); // empty tile
-    return;
-  }
-  {
-    vec2 lo = vec2(tile * 8);
-    float dx = AxisGap(Tip.x, lo.x, lo.x + 8.0) * P.PixelMm;
-    float dy = AxisGap(Tip.y, lo.y, lo.y + 8.0) * P.PixelMm;
-    float dz = AxisGap(Tip.z, floor(tileLo), floor(tileHi) + 1.0) * P.SliceMm;
-    if (sqrt(dx * dx + dy * dy + dz * dz) > uintBitsToFloat(State[stateBase]))
-    {
-      Record[recordIndex] = uvec4(floatBitsToUint(Inf), 0u, 0u, 0u);
-      return;
-    }
-  }
-
-  uint pixels = uint(P.Nx * P.Ny);
+  // The tile's record: its least distance, and the last of its pixels that gives it.
   float bestHere = Inf;
   uint bestPixel = 0u;
   float bestDepth = 0.0;
   for (int k = 0; k < 64; ++k)
   {
     ivec2 pix = tile * 8 + ivec2(k & 7, k >> 3);
-    if (pix.x >= P.Nx || pix.y >= P.Ny)
-    {
-      continue;
-    }
-    uint pixel = uint(pix.y * P.Nx + pix.x);
-    uint r = cls * pixels + pixel;
-    float zlo = uintBitsToFloat(DepthRange[r]);
-    float zhi = uintBitsToFloat(DepthRange[P.RangeStride + r]);
-    if (zlo > zhi)
-    {
-      continue; // nothing in this column
-    }
-    // The column's occupied slices span [floor(zlo), floor(zhi) + 1).
-    zlo = floor(zlo);
-    zhi = floor(zhi) + 1.0;
-    float dx = AxisGap(Tip.x, float(pix.x), float(pix.x + 1)) * P.PixelMm;
-    float dy = AxisGap(Tip.y, float(pix.y), float(pix.y + 1)) * P.PixelMm;
-    float dxy2 = dx * dx + dy * dy;
     float best = min(bestHere, uintBitsToFloat(State[stateBase]));
-    float dzColumn = AxisGap(Tip.z, zlo, zhi) * P.SliceMm;
-    float lowerBound = sqrt(dxy2 + dzColumn * dzColumn);
-    if (lowerBound > best)
-    {
-      continue;
-    }
-    float d = Inf;
-    float depth = 0.0;
-    if (P.PaperMode != 0)
-    {
-      // The paper: one cuboid from the nearest to the farthest depth.
-      d = lowerBound;
-      depth = clamp(Tip.z, zlo, zhi);
-    }
-    else
-    {
-      float window = sqrt(max(0.0, best * best - dxy2)) / P.SliceMm;
-      float dz = NearestSlice(ColumnBase(cls, pixel, uint(P.Words), pixels), window, depth);
-      if (dz < Inf)
-      {
-        dz *= P.SliceMm;
-        d = sqrt(dxy2 + dz * dz);
-      }
-    }
+    float depth;
+    float d = PixelDistance(cls, pix, best, depth);
     if (d <= best)
     {
       bestHere = d;
-      bestPixel = pixel;
+      bestPixel = uint(pix.y * P.Nx + pix.x);
       bestDepth = depth;
-      atomicMin(State[stateBase], floatBitsToUint(d));
-      if (P.Bins > 0)
-      {
-        int bin = int(floor((d + P.HalfDiagonalMm) / P.BinWidthMm));
-        if (bin < P.Bins)
-        {
-          atomicOr(State[stateBase + 8u + uint(bin >> 5)], 1u << uint(bin & 31));
-        }
-      }
+      Offer(stateBase, d);
     }
   }
   Record[recordIndex] = uvec4(floatBitsToUint(bestHere), bestPixel, floatBitsToUint(bestDepth), 0u);

@@ -5,12 +5,14 @@
 //      no record chosen, no distance bits;
 //   1: one invocation per record: a record whose distance equals its answer's best offers its
 //      index, and the lowest index wins (the record the host once found by scanning them all);
-//   2: one invocation per answer: copy the chosen record's distance, pixel and depth into the
-//      state, so the host reads 32 words per answer and nothing else.
+//   2: one invocation per answer: copy the state, with the chosen record's distance, pixel and
+//      depth, straight into the host-visible answers, so the host reads 32 words per answer and
+//      nothing else, and no copy command follows.
 layout(local_size_x = 64) in;
 
 layout(std430, binding = 0) buffer QueryState { uint State[]; };
 layout(std430, binding = 1) readonly buffer Records { uvec4 Record[]; };
+layout(std430, binding = 2) writeonly buffer Answers { uint Answer[]; };
 
 layout(push_constant) uniform Parameters
 {
@@ -63,11 +65,15 @@ void main()
   }
   uint base = i * StateStride;
   uint chosen = State[base + 3u];
+  for (uint w = 0u; w < StateStride; ++w)
+  {
+    Answer[base + w] = State[base + w];
+  }
   if (chosen != NoRecord)
   {
     uvec4 r = Record[i * P.OrderCount + chosen];
-    State[base + 4u] = r.x;
-    State[base + 5u] = r.y;
-    State[base + 6u] = r.z;
+    Answer[base + 4u] = r.x;
+    Answer[base + 5u] = r.y;
+    Answer[base + 6u] = r.z;
   }
 }

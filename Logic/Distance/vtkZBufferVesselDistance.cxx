@@ -7,6 +7,7 @@
 #include "vpPreparedCommands.h"
 #include "vpVulkanContext.h"
 
+#include "QueryProximityPerPixel_comp_spv.h"
 #include "QueryProximity_comp_spv.h"
 #include "RasterizeLayers_comp_spv.h"
 #include "ReduceProximity_comp_spv.h"
@@ -65,8 +66,19 @@ struct QueryParameters
   std::int32_t Bins, Nx, Ny, Nz, Words, TilesX, TilesY, OrderCount, PaperMode;
   std::uint32_t RangeStride;
   std::int32_t Classes;
+  std::int32_t DirectionalLanes;
 };
-static_assert(sizeof(QueryParameters) == 64, "push constant layout of QueryProximity.comp");
+static_assert(sizeof(QueryParameters) == 68, "push constant layout of QueryProximity.comp");
+
+// Lanes that share the directional walk on a GPU (see QueryProximity.comp).
+constexpr std::int32_t GpuDirectionalLanes = 64;
+// Tips per submission: as many as the records of a batch allow within RecordBudgetBytes, and at
+// most these (a CPU device answers a batch's tips one after another: larger batches only cost
+// memory there; a GPU answers them side by side, so larger batches spread a submission's fixed
+// cost over more tips).
+constexpr std::uint32_t CpuBatchCapacity = 256;
+constexpr std::uint32_t GpuBatchCapacity = 4096;
+constexpr VkDeviceSize RecordBudgetBytes = 256ull << 20;
 
 struct ReduceParameters
 {
@@ -127,13 +139,16 @@ struct vtkZBufferVesselDistance::Internals
   // tile (mm), ascending: the tiles a shorter search needs are a prefix of the table.
   std::vector<double> OrderGapMm;
   std::unique_ptr<vp::GpuBuffer> Order, State, Records, HostState, Points;
+  // Tips per submission for the current order table (PrepareOrder).
+  std::uint32_t Capacity = 0;
 
-  std::unique_ptr<vp::ComputeKernel> Raster, Columns, Tiles, Query, Reduce;
+  std::unique_ptr<vp::ComputeKernel> Raster, Columns, Tiles, Query, QueryPerPixel, Reduce;
   // The query's submissions, each recorded once for one batch size and one set of parameters
   // (the whole instrument's search asks for a few ranges and sizes again and again).
   struct PreparedQuery
   {
     std::uint32_t Points = 0;
+    bool PerPixel = false;
     QueryParameters Parameters{};
     std::unique_ptr<vp::PreparedCommands> Commands;
   };
@@ -166,6 +181,7 @@ struct vtkZBufferVesselDistance::Internals
     this->Columns.reset();
     this->Tiles.reset();
     this->Query.reset();
+    this->QueryPerPixel.reset();
     this->Reduce.reset();
     this->Points.reset();
     this->Positions.reset();
@@ -180,6 +196,7 @@ struct vtkZBufferVesselDistance::Internals
     this->HostState.reset();
     this->Rendered = false;
     this->OrderRangeMm = -1.0;
+    this->Capacity = 0;
   }
 
   std::uint32_t Classes() const { return static_cast<std::uint32_t>(this->FirstTriangle.size()); }
@@ -259,13 +276,27 @@ struct vtkZBufferVesselDistance::Internals
     }
     this->Order = std::make_unique<vp::GpuBuffer>(*this->Context, order.size() * 8, vp::GpuBuffer::Placement::Device);
     this->Order->Upload(order.data(), order.size() * 8);
-    const VkDeviceSize recordBytes =
-      static_cast<VkDeviceSize>(this->OrderCount) * this->Classes() * vtkZBufferVesselDistance::BatchCapacity * 16;
-    this->Records = std::make_unique<vp::GpuBuffer>(*this->Context, recordBytes, vp::GpuBuffer::Placement::Device);
-    this->Query->BindBuffers({ this->Occupancy->Handle(), this->Crossings->Handle(), this->DepthRanges->Handle(),
-      this->TileRanges->Handle(), this->Order->Handle(), this->State->Handle(), this->Records->Handle(),
-      this->Points->Handle() });
-    this->Reduce->BindBuffers({ this->State->Handle(), this->Records->Handle() });
+    const std::uint32_t classes = std::max(this->Classes(), 1u);
+    const VkDeviceSize recordBytesPerTip = static_cast<VkDeviceSize>(this->OrderCount) * classes * 16;
+    const VkDeviceSize budget =
+      std::min<VkDeviceSize>(RecordBudgetBytes, this->Context->Limits().maxStorageBufferRange);
+    this->Capacity = static_cast<std::uint32_t>(std::clamp<VkDeviceSize>(budget / recordBytesPerTip, 1,
+      this->Context->IsCpuDevice() ? CpuBatchCapacity : GpuBatchCapacity));
+    using Placement = vp::GpuBuffer::Placement;
+    this->Records = std::make_unique<vp::GpuBuffer>(*this->Context, recordBytesPerTip * this->Capacity, Placement::Device);
+    const VkDeviceSize stateBytes = StateStride * 4ull * classes * this->Capacity;
+    this->State = std::make_unique<vp::GpuBuffer>(*this->Context, stateBytes, Placement::Device);
+    // The answers are written there by the device, and the points by the host, for every batch:
+    // host-visible, no copy.
+    this->HostState = std::make_unique<vp::GpuBuffer>(*this->Context, stateBytes, Placement::Host);
+    this->Points = std::make_unique<vp::GpuBuffer>(*this->Context, sizeof(PointRecord) * this->Capacity, Placement::Host);
+    for (vp::ComputeKernel* query : { this->Query.get(), this->QueryPerPixel.get() })
+    {
+      query->BindBuffers({ this->Occupancy->Handle(), this->Crossings->Handle(), this->DepthRanges->Handle(),
+        this->TileRanges->Handle(), this->Order->Handle(), this->State->Handle(), this->Records->Handle(),
+        this->Points->Handle() });
+    }
+    this->Reduce->BindBuffers({ this->State->Handle(), this->Records->Handle(), this->HostState->Handle() });
     this->OrderRangeMm = rangeMm;
   }
 };
@@ -378,6 +409,26 @@ void vtkZBufferVesselDistance::SetDistanceBins(int bins)
   this->Modified();
 }
 
+void vtkZBufferVesselDistance::SetQueryPass(int pass)
+{
+  if (pass != QueryPassByDevice && pass != QueryPassPerTile && pass != QueryPassPerPixel)
+  {
+    throw vp::InputError("query pass", "must be by device, per tile or per pixel");
+  }
+  this->QueryPass = pass;
+  this->Modified();
+}
+
+void vtkZBufferVesselDistance::SetDirectionalLanes(int lanes)
+{
+  if (lanes < 0 || lanes > 1024)
+  {
+    throw vp::InputError("directional lanes", "must be between 0 (by device) and 1024");
+  }
+  this->DirectionalLanes = lanes;
+  this->Modified();
+}
+
 void vtkZBufferVesselDistance::SetDeviceSelector(const std::string& selector)
 {
   if (selector != this->DeviceSelector)
@@ -422,6 +473,17 @@ int vtkZBufferVesselDistance::GetNumberOfRenders() const
 double vtkZBufferVesselDistance::GetLastRenderTimeMs() const
 {
   return this->Impl->LastRenderMs;
+}
+
+std::size_t vtkZBufferVesselDistance::GetBatchCapacity() const
+{
+  return this->Impl->Capacity;
+}
+
+double vtkZBufferVesselDistance::GetLastQueryDeviceMs() const
+{
+  std::lock_guard<std::mutex> lock(this->Impl->Lock);
+  return this->Impl->Context && this->Impl->Capacity > 0 ? this->Impl->Context->DeviceMs() : -1.0;
 }
 
 std::size_t vtkZBufferVesselDistance::GetNumberOfRasterTriangles() const
@@ -531,11 +593,6 @@ void vtkZBufferVesselDistance::BuildInternal()
   s.Crossings = std::make_unique<vp::GpuBuffer>(context, layerBytes, Placement::Device);
   s.DepthRanges = std::make_unique<vp::GpuBuffer>(context, rangeBytes, Placement::Device);
   s.TileRanges = std::make_unique<vp::GpuBuffer>(context, tileBytes, Placement::Device);
-  const VkDeviceSize stateBytes = StateStride * 4ull * std::max(classes, 1u) * BatchCapacity;
-  s.State = std::make_unique<vp::GpuBuffer>(context, stateBytes, Placement::Device);
-  s.HostState = std::make_unique<vp::GpuBuffer>(context, stateBytes, Placement::Host);
-  // Written by the host for every batch, read by the query: host-visible, no copy.
-  s.Points = std::make_unique<vp::GpuBuffer>(context, sizeof(PointRecord) * BatchCapacity, Placement::Host);
 
   s.Raster = std::make_unique<vp::ComputeKernel>(
     context, RasterizeLayers_comp, RasterizeLayers_comp_size, 4, static_cast<std::uint32_t>(sizeof(RasterParameters)));
@@ -548,8 +605,10 @@ void vtkZBufferVesselDistance::BuildInternal()
   s.Tiles->BindBuffers({ s.DepthRanges->Handle(), s.TileRanges->Handle() });
   s.Query = std::make_unique<vp::ComputeKernel>(
     context, QueryProximity_comp, QueryProximity_comp_size, 8, static_cast<std::uint32_t>(sizeof(QueryParameters)));
+  s.QueryPerPixel = std::make_unique<vp::ComputeKernel>(context, QueryProximityPerPixel_comp,
+    QueryProximityPerPixel_comp_size, 8, static_cast<std::uint32_t>(sizeof(QueryParameters)));
   s.Reduce = std::make_unique<vp::ComputeKernel>(
-    context, ReduceProximity_comp, ReduceProximity_comp_size, 2, static_cast<std::uint32_t>(sizeof(ReduceParameters)));
+    context, ReduceProximity_comp, ReduceProximity_comp_size, 3, static_cast<std::uint32_t>(sizeof(ReduceParameters)));
 
   s.Renders = 0;
   if (!moving && classes > 0)
@@ -620,9 +679,11 @@ void vtkZBufferVesselDistance::AnswerAll(
     }
     return;
   }
-  for (std::size_t first = 0; first < count; first += BatchCapacity)
+  s.PrepareOrder(this->RangeMm);
+  const std::size_t capacity = s.Capacity;
+  for (std::size_t first = 0; first < count; first += capacity)
   {
-    const std::size_t n = std::min(BatchCapacity, count - first);
+    const std::size_t n = std::min(capacity, count - first);
     this->AnswerBatch(&tips[first], n, axis ? axis + first : nullptr, searchMm, binWidth, &results[first]);
   }
 }
@@ -704,10 +765,16 @@ void vtkZBufferVesselDistance::AnswerBatch(const std::array<double, 3>* tips, st
   q.PaperMode = this->LayerMode == PaperNearFar ? 1 : 0;
   q.RangeStride = static_cast<std::uint32_t>(g.Pixels()) * classes;
   q.Classes = static_cast<std::int32_t>(classes);
+  q.DirectionalLanes = this->DirectionalLanes > 0 ? this->DirectionalLanes
+                                                  : (s.Context->IsCpuDevice() ? 1 : GpuDirectionalLanes);
 
+  // A workgroup per tile: the per-pixel pass needs the device to take that many in one dispatch.
+  const bool perPixel =
+    (this->QueryPass == QueryPassPerPixel || (this->QueryPass == QueryPassByDevice && !s.Context->IsCpuDevice())) &&
+    orderCount + (static_cast<std::uint32_t>(q.DirectionalLanes) + 63) / 64 <= s.Context->Limits().maxComputeWorkGroupCount[0];
   const std::uint32_t n = static_cast<std::uint32_t>(count);
   auto prepared = std::find_if(s.Prepared.begin(), s.Prepared.end(), [&](const Internals::PreparedQuery& p) {
-    return p.Points == n && std::memcmp(&p.Parameters, &q, sizeof q) == 0;
+    return p.Points == n && p.PerPixel == perPixel && std::memcmp(&p.Parameters, &q, sizeof q) == 0;
   });
   if (prepared == s.Prepared.end())
   {
@@ -716,25 +783,33 @@ void vtkZBufferVesselDistance::AnswerBatch(const std::array<double, 3>* tips, st
       s.Prepared.clear();
     }
     const std::uint32_t answers = n * classes;
-    const VkDeviceSize stateBytes = static_cast<VkDeviceSize>(answers) * StateStride * 4;
     const ReduceParameters reset{ 0, answers, orderCount, Bits(q.RangeMm) };
     const ReduceParameters choose{ 1, answers, orderCount, Bits(q.RangeMm) };
     const ReduceParameters copy{ 2, answers, orderCount, Bits(q.RangeMm) };
     Internals::PreparedQuery entry;
     entry.Points = n;
+    entry.PerPixel = perPixel;
     entry.Parameters = q;
     entry.Commands = std::make_unique<vp::PreparedCommands>(*s.Context, [&](VkCommandBuffer cmd) {
+      s.Context->ResetStamps(cmd);
+      s.Context->Stamp(cmd, 0);
       s.Reduce->Record(cmd, &reset, (answers + 63) / 64);
       vp::ComputeKernel::Barrier(cmd);
-      s.Query->Record(cmd, &q, (orderCount + 1 + 63) / 64, classes, n);
+      const std::uint32_t laneGroups = (static_cast<std::uint32_t>(q.DirectionalLanes) + 63) / 64;
+      if (perPixel)
+      {
+        s.QueryPerPixel->Record(cmd, &q, orderCount + laneGroups, classes, n); // a workgroup per tile
+      }
+      else
+      {
+        s.Query->Record(cmd, &q, (orderCount + static_cast<std::uint32_t>(q.DirectionalLanes) + 63) / 64, classes, n);
+      }
       vp::ComputeKernel::Barrier(cmd);
       s.Reduce->Record(cmd, &choose, (answers * orderCount + 63) / 64);
       vp::ComputeKernel::Barrier(cmd);
-      s.Reduce->Record(cmd, &copy, (answers + 63) / 64);
+      s.Reduce->Record(cmd, &copy, (answers + 63) / 64); // into the host-visible answers
       vp::ComputeKernel::Barrier(cmd);
-      VkBufferCopy stateCopy{ 0, 0, stateBytes };
-      vkCmdCopyBuffer(cmd, s.State->Handle(), s.HostState->Handle(), 1, &stateCopy);
-      vp::ComputeKernel::Barrier(cmd);
+      s.Context->Stamp(cmd, 1);
     });
     s.Prepared.push_back(std::move(entry));
     prepared = s.Prepared.end() - 1;
@@ -800,6 +875,10 @@ void vtkZBufferVesselDistance::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MovingBoxSizeMm: " << this->MovingBoxSizeMm[0] << " x " << this->MovingBoxSizeMm[1] << " x "
      << this->MovingBoxSizeMm[2] << "\n";
   os << indent << "DistanceBins: " << this->DistanceBins << "\n";
+  os << indent << "QueryPass: "
+     << (this->QueryPass == QueryPassPerTile ? "PerTile" : this->QueryPass == QueryPassPerPixel ? "PerPixel" : "(by device)")
+     << "\n";
+  os << indent << "DirectionalLanes: " << this->DirectionalLanes << (this->DirectionalLanes ? "" : " (by device)") << "\n";
   os << indent << "DeviceSelector: " << (this->DeviceSelector.empty() ? "(best)" : this->DeviceSelector) << "\n";
   const vp::DepthLayerGrid& g = this->Impl->Grid;
   os << indent << "Grid: " << g.Nx << " x " << g.Ny << " x " << g.Nz << " cells of " << g.PixelMm << " x "

@@ -77,6 +77,25 @@ public:
   /// half a bin. Default 0 (off).
   void SetDistanceBins(int bins);
   int GetDistanceBins() const { return this->DistanceBins; }
+  enum QueryPasses
+  {
+    QueryPassByDevice = 0,
+    QueryPassPerTile = 1,
+    QueryPassPerPixel = 2
+  };
+  /// How the query's pass visits the pixels near the tip: PerTile, one invocation walking the 64
+  /// pixels of a tile (for CPU devices, where a workgroup with a barrier runs as coroutines), or
+  /// PerPixel, one invocation per pixel (the paper's thread per pixel, for GPUs, where the
+  /// per-tile walk is a chain of dependent reads). The answers are the same, bit for bit. Default
+  /// QueryPassByDevice: PerPixel on a GPU, PerTile on a CPU device.
+  void SetQueryPass(int pass);
+  int GetQueryPass() const { return this->QueryPass; }
+  /// Invocations that share the directional walk along the axis, each reading every n-th cell
+  /// of the same walk (same answers for any n). Default 0: 64 on a GPU, where one long chain of
+  /// reads in one thread was most of a tracked query's time, and 1 on a CPU device, where more
+  /// lanes only repeat the walk's arithmetic.
+  void SetDirectionalLanes(int lanes);
+  int GetDirectionalLanes() const { return this->DirectionalLanes; }
   /// Which Vulkan device (see vp::VulkanContext): empty (default) for the best one, an index, or
   /// part of a name.
   void SetDeviceSelector(const std::string& selector);
@@ -101,7 +120,7 @@ public:
   /// One tip: a batch of one.
   void ComputeProximity(const double tip[3], const double* axis, vp::ProximityResult& result,
     const vp::ProximityResult* previous = nullptr) const override;
-  /// Up to BatchCapacity tips per GPU submission, nothing scanned on the host: the device picks
+  /// Up to GetBatchCapacity() tips per GPU submission, nothing scanned on the host: the device picks
   /// each answer's closest cell, and the host reads 32 words per tip and class. The submission is
   /// recorded once per batch size and settings and then only resubmitted. With the moving box,
   /// tips are answered one at a time (each may need its own box).
@@ -119,8 +138,14 @@ public:
   /// per slice: their parity below a slice says inside), in the same layout; empty before the
   /// first rendering.
   void CopyCrossings(std::vector<std::uint32_t>& words) const;
-  /// Tips per GPU submission.
-  static constexpr std::size_t BatchCapacity = 256;
+  /// Tips per GPU submission (after a query): up to 4,096 on a GPU, where the tips of a batch
+  /// run side by side, 256 on a CPU device, fewer when their records would pass 256 MB (a long
+  /// range on small cells).
+  std::size_t GetBatchCapacity() const;
+  /// The device's own time for the latest query submission (all its dispatches, from the
+  /// device's timestamps), in ms; negative when the device keeps no timestamps or before the
+  /// first query. Beside the host's time, it tells what a query's round trip costs.
+  double GetLastQueryDeviceMs() const;
   const char* GetMethodName() const override { return "zbuffer"; }
   /// The device's name and "(Vulkan)".
   std::string GetDeviceDescription() override { return this->GetDeviceName() + " (Vulkan)"; }
@@ -142,7 +167,7 @@ private:
   void CheckMovingBox(double cellMm) const;
   /// Every tip within searchMm; bins: whether the distance bins apply.
   void AnswerAll(const Points& tips, const Points* axes, double searchMm, bool bins, std::vector<vp::ProximityResult>& results) const;
-  /// One submission for up to BatchCapacity tips on the current layers (lock held, results begun).
+  /// One submission for up to GetBatchCapacity() tips on the current layers (lock held, results begun).
   void AnswerBatch(const std::array<double, 3>* tips, std::size_t count, const std::array<double, 3>* axes, double searchMm,
     double binWidthMm, vp::ProximityResult* results) const;
 
@@ -152,6 +177,8 @@ private:
   int ResolutionPx = 0;
   double MovingBoxSizeMm[3] = { 106.0, 106.0, 213.0 };
   int DistanceBins = 0;
+  int DirectionalLanes = 0;
+  int QueryPass = QueryPassByDevice;
   std::string DeviceSelector;
 
   struct Internals;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <chrono>
 #include <cstdlib>
 #include <cstring>
 #include <sstream>
@@ -306,6 +307,16 @@ VulkanContext::VulkanContext(const std::string& selector)
     VkFenceCreateInfo fenceInfo{};
     fenceInfo.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO;
     Check(vkCreateFence(this->LogicalDevice, &fenceInfo, nullptr, &this->Fence), "vkCreateFence");
+    if (families[this->QueueFamily].timestampValidBits > 0 && this->Properties.limits.timestampPeriod > 0.0f)
+    {
+      VkQueryPoolCreateInfo stampInfo{};
+      stampInfo.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO;
+      stampInfo.queryType = VK_QUERY_TYPE_TIMESTAMP;
+      stampInfo.queryCount = 2;
+      Check(vkCreateQueryPool(this->LogicalDevice, &stampInfo, nullptr, &this->Stamps), "vkCreateQueryPool");
+      const std::uint32_t valid = families[this->QueueFamily].timestampValidBits;
+      this->StampMask = valid >= 64 ? ~0ull : (1ull << valid) - 1ull;
+    }
   }
   catch (...)
   {
@@ -328,6 +339,10 @@ void VulkanContext::Destroy()
     {
       vkDestroyFence(this->LogicalDevice, this->Fence, nullptr);
     }
+    if (this->Stamps)
+    {
+      vkDestroyQueryPool(this->LogicalDevice, this->Stamps, nullptr);
+    }
     if (this->CommandPool)
     {
       vkDestroyCommandPool(this->LogicalDevice, this->CommandPool, nullptr);
@@ -348,6 +363,7 @@ void VulkanContext::Destroy()
     vkDestroyInstance(this->Instance, nullptr);
   }
   this->Fence = VK_NULL_HANDLE;
+  this->Stamps = VK_NULL_HANDLE;
   this->CommandPool = VK_NULL_HANDLE;
   this->LogicalDevice = VK_NULL_HANDLE;
   this->Messenger = VK_NULL_HANDLE;
@@ -390,12 +406,52 @@ void VulkanContext::SubmitRecorded(VkCommandBuffer commands)
   submit.pCommandBuffers = &commands;
   Check(vkResetFences(this->LogicalDevice, 1, &this->Fence), "vkResetFences");
   Check(vkQueueSubmit(this->Queue, 1, &submit, this->Fence), "vkQueueSubmit");
-  Check(vkWaitForFences(this->LogicalDevice, 1, &this->Fence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+  VkResult status = VK_NOT_READY;
+  if (!this->IsCpuDevice())
+  {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double, std::milli>(SpinWaitMs);
+    while ((status = vkGetFenceStatus(this->LogicalDevice, this->Fence)) == VK_NOT_READY &&
+      std::chrono::steady_clock::now() < deadline)
+    {
+    }
+  }
+  if (status != VK_SUCCESS)
+  {
+    Check(vkWaitForFences(this->LogicalDevice, 1, &this->Fence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+  }
   if (!this->ValidationMessage.empty())
   {
     const std::string message = this->ValidationMessage;
     this->ValidationMessage.clear();
     throw DeviceError("Vulkan validation: " + message);
   }
+}
+
+void VulkanContext::ResetStamps(VkCommandBuffer cmd) const
+{
+  if (this->Stamps)
+  {
+    vkCmdResetQueryPool(cmd, this->Stamps, 0, 2);
+  }
+}
+
+void VulkanContext::Stamp(VkCommandBuffer cmd, std::uint32_t which) const
+{
+  if (this->Stamps)
+  {
+    vkCmdWriteTimestamp(
+      cmd, which == 0 ? VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT : VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, this->Stamps, which);
+  }
+}
+
+double VulkanContext::DeviceMs() const
+{
+  std::uint64_t ticks[2] = { 0, 0 };
+  if (!this->Stamps || vkGetQueryPoolResults(this->LogicalDevice, this->Stamps, 0, 2, sizeof ticks, ticks,
+                         sizeof ticks[0], VK_QUERY_RESULT_64_BIT) != VK_SUCCESS)
+  {
+    return -1.0;
+  }
+  return static_cast<double>((ticks[1] - ticks[0]) & this->StampMask) * this->Properties.limits.timestampPeriod * 1e-6;
 }
 } // namespace vp

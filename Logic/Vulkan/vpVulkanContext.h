@@ -69,8 +69,24 @@ public:
 
   /// Records commands with record(), submits them to the compute queue and waits for them.
   void Submit(const std::function<void(VkCommandBuffer)>& record);
-  /// Submits an already recorded command buffer (vp::PreparedCommands) and waits for it.
+  /// Submits an already recorded command buffer (vp::PreparedCommands) and waits for it. On a
+  /// GPU the host polls the fence for up to SpinWaitMs before it sleeps on it: a sleeping
+  /// thread is woken tens of microseconds after a short submission ends, which was most of a
+  /// single query's time on an H100. A CPU device (lavapipe) needs the host's cores for the work
+  /// itself, so there the host sleeps at once.
   void SubmitRecorded(VkCommandBuffer commands);
+  /// How long the host polls a GPU's fence before it sleeps, in ms.
+  static constexpr double SpinWaitMs = 2.0;
+  /// Whether the device is a CPU (lavapipe): its work runs on the host's own cores.
+  bool IsCpuDevice() const { return this->Info.Type == "cpu"; }
+
+  /// Timestamps on the device: Stamp(cmd, 0) and Stamp(cmd, 1) recorded around the work of a
+  /// submission (after ResetStamps(cmd), outside any render pass), and DeviceMs() after the
+  /// submission is the device's time between them, in ms; a negative value when the device
+  /// has no compute timestamps.
+  void ResetStamps(VkCommandBuffer cmd) const;
+  void Stamp(VkCommandBuffer cmd, std::uint32_t which) const;
+  double DeviceMs() const;
   /// The pool prepared command buffers come from.
   VkCommandPool Pool() const { return this->CommandPool; }
 
@@ -89,6 +105,8 @@ private:
   VkCommandPool CommandPool = VK_NULL_HANDLE;
   VkCommandBuffer Commands = VK_NULL_HANDLE;
   VkFence Fence = VK_NULL_HANDLE;
+  VkQueryPool Stamps = VK_NULL_HANDLE; // two timestamps; null without compute timestamps
+  std::uint64_t StampMask = ~0ull;     // the bits of a timestamp the queue keeps
   VulkanDeviceInfo Info;
   std::string ValidationMessage;
 

@@ -18,6 +18,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <random>
 
 #include "vpBatchTestSupport.h"
@@ -183,8 +184,12 @@ TEST(ZBufferDistance, BatchEqualsSingleQueriesBitForBit)
   const Vessels vessels = vp::MakeBuiltInVessels();
   double b[6];
   VesselBounds(vessels, b);
-  const auto tips = RandomTips(b, 10.0, static_cast<int>(2 * vtkZBufferVesselDistance::BatchCapacity + 37), 11);
   auto z = Make<vtkZBufferVesselDistance>(vessels, 50.0);
+  vp::ProximityResult first;
+  const double corner[3] = { b[0], b[2], b[4] };
+  z->ComputeProximity(corner, nullptr, first); // the first query sets the capacity for the device
+  ASSERT_GE(z->GetBatchCapacity(), 1u);
+  const auto tips = RandomTips(b, 10.0, static_cast<int>(2 * z->GetBatchCapacity() + 37), 11);
   EXPECT_GT(vp::test::ExpectBatchEqualsSingles(z, tips, "exact intervals"), 500);
   z->SetLayerMode(vtkZBufferVesselDistance::PaperNearFar);
   z->SetDistanceBins(64);
@@ -277,6 +282,105 @@ TEST(ZBufferDistance, OutOfRangeAndInside)
     EXPECT_TRUE(zr.Classes[0].InRange);
     EXPECT_NEAR(zr.Classes[0].DistanceMm, er.Classes[0].DistanceMm, zr.ErrorBoundMm) << depth;
   }
+}
+
+// The directional walk shared by lanes (as on a GPU) reads every cell of the one walk between
+// them: on the built-in vessels, from random tips along random axes, 1, 7 and 64 lanes give the
+// same directional distance, bit for bit, and the tests above (1 lane here) hold for all.
+TEST(ZBufferDistance, DirectionalLanesGiveTheSingleWalksAnswer)
+{
+  VP_REQUIRE_VULKAN();
+  const Vessels vessels = vp::MakeBuiltInVessels();
+  double b[6];
+  VesselBounds(vessels, b);
+  const auto tips = RandomTips(b, 5.0, 150, 21);
+  const auto axes = RandomTips(b, 0.0, 150, 22); // directions towards points of the box
+  auto z = Make<vtkZBufferVesselDistance>(vessels, 50.0);
+  std::vector<std::optional<double>> single;
+  int hits = 0;
+  for (int lanes : { 1, 7, 64 })
+  {
+    z->SetDirectionalLanes(lanes);
+    for (std::size_t i = 0; i < tips.size(); ++i)
+    {
+      const double axis[3] = { axes[i][0] - tips[i][0], axes[i][1] - tips[i][1], axes[i][2] - tips[i][2] };
+      vp::ProximityResult r;
+      z->ComputeProximity(tips[i].data(), axis, r);
+      for (const vp::ClassProximity& c : r.Classes)
+      {
+        const std::size_t k = i * r.Classes.size() + static_cast<std::size_t>(&c - r.Classes.data());
+        if (lanes == 1)
+        {
+          single.push_back(c.DirectionalMm);
+          hits += c.DirectionalMm.has_value() ? 1 : 0;
+        }
+        else
+        {
+          ASSERT_EQ(c.DirectionalMm.has_value(), single[k].has_value()) << lanes << " lanes, tip " << i;
+          if (single[k])
+          {
+            EXPECT_EQ(*c.DirectionalMm, *single[k]) << lanes << " lanes, tip " << i;
+          }
+        }
+      }
+    }
+  }
+  EXPECT_GT(hits, 30); // enough axes meet a vessel for the comparison to mean something
+  EXPECT_THROW(z->SetDirectionalLanes(-1), vp::InputError);
+}
+
+// The per-pixel pass (GPUs) and the per-tile pass (CPU devices) give the same answers, bit for
+// bit: distance, closest point, inside and directional distance, in the exact-interval mode, in
+// the paper's mode with its distance bits, and for a batch.
+TEST(ZBufferDistance, PerPixelPassGivesThePerTileAnswersBitForBit)
+{
+  VP_REQUIRE_VULKAN();
+  const Vessels vessels = vp::MakeBuiltInVessels();
+  double b[6];
+  VesselBounds(vessels, b);
+  const auto tips = RandomTips(b, 5.0, 200, 31);
+  const auto towards = RandomTips(b, 0.0, 200, 32);
+  auto z = Make<vtkZBufferVesselDistance>(vessels, 50.0);
+  auto answers = [&](int pass) {
+    z->SetQueryPass(pass);
+    std::vector<vp::ProximityResult> out(tips.size());
+    for (std::size_t i = 0; i < tips.size(); ++i)
+    {
+      const double axis[3] = { towards[i][0] - tips[i][0], towards[i][1] - tips[i][1], towards[i][2] - tips[i][2] };
+      z->ComputeProximity(tips[i].data(), axis, out[i]);
+    }
+    std::vector<vp::ProximityResult> batch;
+    z->ComputeProximityBatch(tips, nullptr, batch);
+    out.insert(out.end(), batch.begin(), batch.end());
+    return out;
+  };
+  for (int mode : { 0, 1 })
+  {
+    z->SetLayerMode(mode ? vtkZBufferVesselDistance::PaperNearFar : vtkZBufferVesselDistance::ExactIntervals);
+    z->SetDistanceBins(mode ? 64 : 0);
+    const auto tile = answers(vtkZBufferVesselDistance::QueryPassPerTile);
+    const auto pixel = answers(vtkZBufferVesselDistance::QueryPassPerPixel);
+    int inRange = 0;
+    for (std::size_t i = 0; i < tile.size(); ++i)
+    {
+      for (std::size_t c = 0; c < tile[i].Classes.size(); ++c)
+      {
+        const vp::ClassProximity& t = tile[i].Classes[c];
+        const vp::ClassProximity& p = pixel[i].Classes[c];
+        ASSERT_EQ(t.InRange, p.InRange) << "mode " << mode << ", answer " << i;
+        inRange += t.InRange ? 1 : 0;
+        EXPECT_EQ(t.DistanceMm, p.DistanceMm) << "mode " << mode << ", answer " << i;
+        EXPECT_EQ(t.Inside, p.Inside) << "mode " << mode << ", answer " << i;
+        EXPECT_EQ(t.DirectionalMm, p.DirectionalMm) << "mode " << mode << ", answer " << i;
+        for (int k = 0; k < 3; ++k)
+        {
+          EXPECT_EQ(t.ClosestPoint[k], p.ClosestPoint[k]) << "mode " << mode << ", answer " << i;
+        }
+      }
+    }
+    EXPECT_GT(inRange, 600) << "mode " << mode;
+  }
+  EXPECT_THROW(z->SetQueryPass(3), vp::InputError);
 }
 
 TEST(ZBufferDistance, DirectionalDistanceAlongTheAxis)

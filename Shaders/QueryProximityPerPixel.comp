@@ -1,0 +1,83 @@
+#version 450
+// The query pass of QueryProximity.comp for GPUs: one invocation per pixel, the paper's "one
+// thread per pixel", a workgroup per 8 x 8 tile of the order table. The per-tile pass walks a
+// tile's 64 pixels in one invocation, each pixel a chain of dependent memory reads: on a GPU
+// that chain, not the number of pixels, was the query's time. Here the 64 pixels of a tile are
+// read side by side, and the workgroup then picks the tile's record as the per-tile pass does:
+// the least distance, and the last pixel (in the tile's order) that gives it.
+//
+// The answers are the per-tile pass's, bit for bit. Only a record holding the answer's best
+// distance can be chosen (ReduceProximity.comp), and such a record is the same in both passes:
+// a pixel that gives the best distance is never cut off by the running best (which is never
+// below it) and its distance does not depend on how far the search looked; every pixel of the
+// tile with that distance is offered, and the last wins. The distance bits are the same too: the
+// best distance's bit is raised in both, and the host reads only the first raised bit.
+// Shared memory and barriers: fine on a GPU; lavapipe uses the per-tile pass.
+#extension GL_GOOGLE_include_directive : require
+#include "QueryProximityCommon.glsl"
+
+layout(local_size_x = 64) in;
+
+shared float CandidateMm[64];
+shared float CandidateDepth[64];
+
+void main()
+{
+  uint cls = gl_WorkGroupID.y;
+  uint point = gl_WorkGroupID.z;
+  uint entry = gl_WorkGroupID.x;
+  uint k = gl_LocalInvocationID.x;
+  BeginPoint(point);
+  uint answer = point * uint(P.Classes) + cls;
+  uint stateBase = answer * StateStride;
+  if (entry >= uint(P.OrderCount))
+  {
+    // The workgroups after the last tile: the lanes of "inside" and the directional walk.
+    AnswerLane(cls, stateBase, int((entry - uint(P.OrderCount)) * 64u + k));
+    return;
+  }
+
+  uint recordIndex = answer * uint(P.OrderCount) + entry;
+  ivec2 tile = TileToVisit(cls, stateBase, entry);
+  float d = Inf;
+  float depth = 0.0;
+  if (tile.x >= 0)
+  {
+    ivec2 pix = tile * 8 + ivec2(int(k & 7u), int(k >> 3u));
+    float best = uintBitsToFloat(State[stateBase]);
+    d = PixelDistance(cls, pix, best, depth);
+    if (d <= best)
+    {
+      Offer(stateBase, d);
+    }
+    else
+    {
+      d = Inf;
+    }
+  }
+  CandidateMm[k] = d;
+  CandidateDepth[k] = depth;
+  barrier();
+  if (k == 0u)
+  {
+    if (tile.x < 0)
+    {
+      Record[recordIndex] = uvec4(floatBitsToUint(Inf), 0u, 0u, 0u);
+      return;
+    }
+    float bestHere = Inf;
+    uint bestK = 0u;
+    for (uint j = 0u; j < 64u; ++j)
+    {
+      if (CandidateMm[j] <= bestHere && CandidateMm[j] < Inf)
+      {
+        bestHere = CandidateMm[j];
+        bestK = j;
+      }
+    }
+    ivec2 pix = tile * 8 + ivec2(int(bestK & 7u), int(bestK >> 3u));
+    uint bestPixel = bestHere < Inf ? uint(pix.y * P.Nx + pix.x) : 0u;
+    float bestDepth = bestHere < Inf ? CandidateDepth[bestK] : 0.0;
+    Record[recordIndex] = uvec4(floatBitsToUint(bestHere), bestPixel, floatBitsToUint(bestDepth), 0u);
+  }
+}

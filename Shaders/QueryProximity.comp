@@ -6,9 +6,7 @@
 // the answer. A running best per class (atomicMin on the float's bits) lets far tiles and pixels
 // skip their work, which keeps the cost to the pixels near the vessel nearest the tip.
 // The DirectionalLanes invocations after the last tile answer "is the tip inside" and the
-// directional distance: each walks the same cells along the axis and reads every
-// DirectionalLanes-th of them, so that on a GPU the walk's memory reads are not one long chain
-// in a single thread (one lane on a CPU device, where the lanes would only repeat the arithmetic).
+// directional distance, each walking its share of the axis (one lane on a CPU device).
 // One dispatch answers a batch of points (workgroup z: the point), each with its own state and
 // records; ReduceProximity.comp then picks each answer's record on the device.
 // No shared memory and no barriers: lavapipe runs a workgroup with a barrier as coroutines, which

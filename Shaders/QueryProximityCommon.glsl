@@ -56,45 +56,63 @@ bool Occupied3(uint cls, ivec3 cell)
   return (Occupied[base + uint(cell.z >> 5)] & (1u << uint(cell.z & 31))) != 0u;
 }
 
+// The ray's parameter (mm along the axis) where it crosses the plane at grid coordinate boundary
+// of axis k; Inf along an axis the ray does not move on.
+float CrossingMm(int k, float boundary, vec3 dirGrid)
+{
+  return dirGrid[k] == 0.0 ? Inf : (boundary - Tip[k]) / dirGrid[k];
+}
+
+// Where the ray enters cell: the last of its three slab entries (0 for the tip's own cell).
+// Computed from the cell alone, so every lane that walks through a cell gives it the same value.
+float EntryMm(ivec3 cell, vec3 dirGrid)
+{
+  float t = 0.0;
+  for (int k = 0; k < 3; ++k)
+  {
+    if (dirGrid[k] != 0.0)
+    {
+      t = max(t, CrossingMm(k, float(cell[k]) + (dirGrid[k] > 0.0 ? 0.0 : 1.0), dirGrid));
+    }
+  }
+  return t;
+}
+
 // Directional distance: walk the cells along the axis (Amanatides & Woo) to the first occupied
 // one. Its entry distance is never more than the true distance to the surface along the axis.
-// This lane reads only the cells of the steps lane, lane + lanes, ...: every lane walks the same
-// cells with the same arithmetic, so the least entry distance over the lanes is the one a single
-// walk reading every cell finds.
+// Lane `lane` of DirectionalLanes walks its share of the range, the cells entered between
+// RangeMm * lane / lanes and RangeMm * (lane + 1) / lanes, starting from the cell holding the
+// ray's point at the start of its share; every crossing is computed from the cell, not summed
+// step by step, so a lane walks the cells a single walk would and gives each the same entry
+// distance. The least entry over the lanes is the single walk's answer, and on a GPU no thread
+// walks more than its share (one lane on a CPU device).
 float Directional(uint cls, int lane)
 {
   vec3 dirGrid = vec3(AxisMm.xy / P.PixelMm, AxisMm.z / P.SliceMm); // cells per mm
-  ivec3 cell = ivec3(floor(Tip));
+  float lanes = float(P.DirectionalLanes);
+  float startMm = P.RangeMm * float(lane) / lanes;
+  float endMm = lane + 1 == P.DirectionalLanes ? P.RangeMm : P.RangeMm * float(lane + 1) / lanes;
+  ivec3 cell = ivec3(floor(Tip + dirGrid * startMm));
   ivec3 stepDir = ivec3(sign(dirGrid));
-  vec3 tMax;
-  vec3 tDelta;
-  for (int k = 0; k < 3; ++k)
+  int maxSteps = (int(P.RangeMm / P.PixelMm) * 2 + int(P.RangeMm / P.SliceMm)) / P.DirectionalLanes + 8;
+  for (int s = 0; s < maxSteps; ++s)
   {
-    if (dirGrid[k] == 0.0)
+    float tEnter = EntryMm(cell, dirGrid);
+    if (tEnter > endMm)
     {
-      tMax[k] = Inf;
-      tDelta[k] = Inf;
+      break;
     }
-    else
-    {
-      float boundary = float(cell[k]) + (dirGrid[k] > 0.0 ? 1.0 : 0.0);
-      tMax[k] = (boundary - Tip[k]) / dirGrid[k];
-      tDelta[k] = 1.0 / abs(dirGrid[k]);
-    }
-  }
-  float tEnter = 0.0;
-  int maxSteps = int(P.RangeMm / P.PixelMm) * 2 + int(P.RangeMm / P.SliceMm) + 4;
-  for (int s = 0; s < maxSteps && tEnter <= P.RangeMm; ++s)
-  {
-    if (s % P.DirectionalLanes == lane && all(greaterThanEqual(cell, ivec3(0))) &&
-      all(lessThan(cell, ivec3(P.Nx, P.Ny, P.Nz))) && Occupied3(cls, cell))
+    if (all(greaterThanEqual(cell, ivec3(0))) && all(lessThan(cell, ivec3(P.Nx, P.Ny, P.Nz))) && Occupied3(cls, cell))
     {
       return tEnter;
     }
+    vec3 tMax;
+    for (int k = 0; k < 3; ++k)
+    {
+      tMax[k] = CrossingMm(k, float(cell[k]) + (dirGrid[k] > 0.0 ? 1.0 : 0.0), dirGrid);
+    }
     int k = (tMax.x < tMax.y) ? (tMax.x < tMax.z ? 0 : 2) : (tMax.y < tMax.z ? 1 : 2);
-    tEnter = tMax[k];
     cell[k] += stepDir[k];
-    tMax[k] += tDelta[k];
   }
   return Inf;
 }

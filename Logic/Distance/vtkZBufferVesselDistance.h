@@ -87,13 +87,14 @@ public:
   /// pixels of a tile (for CPU devices, where a workgroup with a barrier runs as coroutines), or
   /// PerPixel, one invocation per pixel (the paper's thread per pixel, for GPUs, where the
   /// per-tile walk is a chain of dependent reads). The answers are the same, bit for bit. Default
-  /// QueryPassByDevice: PerPixel on a GPU, PerTile on a CPU device.
+  /// QueryPassByDevice: on a GPU PerPixel for submissions of up to 8 tips and PerTile for larger
+  /// ones (whose tiles fill the device anyway), PerTile on a CPU device.
   void SetQueryPass(int pass);
   int GetQueryPass() const { return this->QueryPass; }
-  /// Invocations that share the directional walk along the axis, each reading every n-th cell
-  /// of the same walk (same answers for any n). Default 0: 64 on a GPU, where one long chain of
-  /// reads in one thread was most of a tracked query's time, and 1 on a CPU device, where more
-  /// lanes only repeat the walk's arithmetic.
+  /// Invocations that share the directional walk along the axis, each walking its share of the
+  /// range (same answers for any number: every crossing is computed from its cell). Default 0:
+  /// 64 on a GPU, where one walk of hundreds of cells in one thread was most of a tracked query's
+  /// time, and 1 on a CPU device, where the lanes run one after another anyway.
   void SetDirectionalLanes(int lanes);
   int GetDirectionalLanes() const { return this->DirectionalLanes; }
   /// Which Vulkan device (see vp::VulkanContext): empty (default) for the best one, an index, or

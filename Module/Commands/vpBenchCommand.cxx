@@ -42,7 +42,7 @@ using Json = nlohmann::ordered_json;
 const char* Usage =
   "usage: vesselproximity bench [--vessels CLASS=FILE,...] [--sizes N,N,...] [--queries N]\n"
   "         [--brute-queries N] [--seed N] [--engines exact,zbuffer,replay] [--json] [-o FILE.json]\n"
-  "         [--scalpel FILE.stl [--tip X,Y,Z]] [--poses FILE.csv]\n"
+  "         [--scalpel FILE.stl [--tip X,Y,Z]] [--poses FILE.csv] [--fine-cell MM]\n"
   "         [z-buffer settings: --device --cell --resolution --bins --range --box-size]\n"
   "  Grows each vessel mesh to each size (longest-edge bisection: same surface, more triangles)\n"
   "  and measures in one run:\n"
@@ -52,7 +52,9 @@ const char* Usage =
   "  zbuffer: all classes at once (range 50 mm), the Vulkan z-buffer engine: rendering the\n"
   "    layers, per-query time with cached layers (exact-interval and paper's mode), the moving\n"
   "    box on the tracked tip, beside the exact engine and brute force on the same tips; the\n"
-  "    largest |zbuffer - exact| against the error bound.\n"
+  "    largest |zbuffer - exact| against the error bound. Side by side, query by query (so that\n"
+  "    both see the device in the same state: a GPU's clock follows its load), the smallest and\n"
+  "    the largest size, and with --fine-cell the smallest size at that cell beside the set one.\n"
   "  replay: the tracking pipeline (vtkScalpelTrackingLogic) on the vessels as given, all classes,\n"
   "    a scalpel (--scalpel, default a 120 mm shaft of 1.5 mm radius) following the tracked tip:\n"
   "    frames per second, exact (tip; tip and whole surface), FCL's whole surface on the same\n"
@@ -233,6 +235,58 @@ Json BenchExact(const std::vector<NamedMesh>& refined, std::size_t target, const
   return sizeEntry;
 }
 
+/// Two z-buffer engines on the same tips, one query on each in turn, so that both see the device
+/// in the same state (a GPU's clock rises and falls with its load, and a light load leaves it low):
+/// host and device times for each, and the second's over the first's.
+Json SideBySide(const std::vector<NamedMesh>& first, const std::vector<NamedMesh>& second, double secondCellMm,
+  const std::vector<std::array<double, 3>>& tips, const Arguments& args)
+{
+  vtkSmartPointer<vtkZBufferVesselDistance> engines[2];
+  for (int e = 0; e < 2; ++e)
+  {
+    engines[e] = vtkZBufferVesselDistance::SafeDownCast(MakeDistanceEngine("zbuffer", args));
+    if (e == 1 && secondCellMm > 0.0)
+    {
+      engines[e]->SetCellSizeMm(secondCellMm);
+    }
+    for (const NamedMesh& vessel : e == 0 ? first : second)
+    {
+      engines[e]->AddVessel(vessel.ClassName, vessel.Mesh);
+    }
+    engines[e]->Build();
+  }
+  std::vector<double> ms[2], deviceMs[2];
+  ProximityResult r;
+  for (const auto& tip : tips)
+  {
+    for (int e = 0; e < 2; ++e)
+    {
+      const double start = NowMs();
+      engines[e]->ComputeProximity(tip.data(), nullptr, r);
+      ms[e].push_back(NowMs() - start);
+      deviceMs[e].push_back(engines[e]->GetLastQueryDeviceMs());
+    }
+  }
+  Json out;
+  for (int e = 0; e < 2; ++e)
+  {
+    std::size_t triangles = 0;
+    for (const NamedMesh& vessel : e == 0 ? first : second)
+    {
+      triangles += static_cast<std::size_t>(vessel.Mesh->GetNumberOfPolys());
+    }
+    Json side = { { "triangles", triangles }, { "cell_mm", engines[e]->GetCellSizeMm() },
+      { "error_bound_mm", engines[e]->GetErrorBoundMm() } };
+    side["cached"] = Timing(ms[e]);
+    side["cached_device"] = Timing(deviceMs[e]);
+    out[e == 0 ? "first" : "second"] = side;
+  }
+  out["ratio_median"] = Quantile(ms[1], 0.5) / std::max(1e-9, Quantile(ms[0], 0.5));
+  out["ratio_p95"] = Quantile(ms[1], 0.95) / std::max(1e-9, Quantile(ms[0], 0.95));
+  out["ratio_device_median"] = Quantile(deviceMs[1], 0.5) / std::max(1e-9, Quantile(deviceMs[0], 0.5));
+  return out;
+}
+
 /// The z-buffer engine on all classes at once at one mesh size, beside the exact engine (same
 /// range, all classes) and brute force on the same tips.
 Json BenchZBuffer(vtkVesselDistanceEngine* engine, const std::vector<NamedMesh>& refined, std::size_t target,
@@ -304,6 +358,25 @@ Json BenchZBuffer(vtkVesselDistanceEngine* engine, const std::vector<NamedMesh>&
   }
   std::fprintf(stderr, ", batches");
   const Json zbufferBatch = BenchBatch(zbuffer, tips, &singles);
+  // The other pass over the same tips, when the device chose the per-pixel one (a GPU): the
+  // per-tile pass a CPU device uses, side by side.
+  Json perTile;
+  if (zbuffer->GetDeviceDescription().find("llvmpipe") == std::string::npos)
+  {
+    std::vector<double> tileMs, tileDeviceMs;
+    zbuffer->SetQueryPass(vtkZBufferVesselDistance::QueryPassPerTile);
+    for (std::size_t i = 0; i < tips.size(); ++i)
+    {
+      const double start = NowMs();
+      zbuffer->ComputeProximity(tips[i].data(), nullptr, z);
+      tileMs.push_back(NowMs() - start);
+      tileDeviceMs.push_back(zbuffer->GetLastQueryDeviceMs());
+    }
+    perTile["cached"] = Timing(tileMs);
+    perTile["cached_device"] = Timing(tileDeviceMs);
+    perTile["batched"] = BenchBatch(zbuffer, tips, &singles);
+    zbuffer->SetQueryPass(vtkZBufferVesselDistance::QueryPassByDevice);
+  }
   const Json exactBatch = BenchBatch(exact, tips, nullptr);
   zbuffer->SetLayerMode(vtkZBufferVesselDistance::PaperNearFar);
   for (const auto& tip : tips)
@@ -344,6 +417,10 @@ Json BenchZBuffer(vtkVesselDistanceEngine* engine, const std::vector<NamedMesh>&
   entry["cached_with_axis"] = Timing(axisMs);
   entry["cached_with_axis_device"] = Timing(axisDeviceMs);
   entry["batch_capacity"] = zbuffer->GetBatchCapacity();
+  if (!perTile.empty())
+  {
+    entry["per_tile_pass"] = perTile;
+  }
   entry["paper_mode"] = Timing(paperMs);
   entry["moving_box"] = Timing(movingMs);
   entry["moving_box"]["renders"] = movingRenders;
@@ -368,7 +445,8 @@ int RunBenchCommand(const std::vector<std::string>& argv)
     return 0;
   }
   std::set<std::string> options = EngineValueOptions();
-  options.insert({ "--vessels", "--sizes", "--queries", "--brute-queries", "--seed", "--engines", "-o", "--scalpel", "--tip", "--poses" });
+  options.insert({ "--vessels", "--sizes", "--queries", "--brute-queries", "--seed", "--engines", "-o", "--scalpel", "--tip", "--poses",
+    "--fine-cell" });
   const Arguments args(argv, options, { "--json" });
   std::set<std::string> engineNames;
   std::istringstream engineList(args.Get("--engines", "exact,zbuffer"));
@@ -469,6 +547,8 @@ int RunBenchCommand(const std::vector<std::string>& argv)
   report["tracked_step_mm"] = 0.5;
   Json sizeList = Json::array();
   Json zbufferSizes = Json::array();
+  std::vector<NamedMesh> smallest, largest; // for the z-buffer side by side
+  std::size_t smallestTarget = 0, largestTarget = 0;
   for (std::size_t target : benchExact || benchZBuffer ? sizes : std::vector<std::size_t>())
   {
     std::vector<NamedMesh> refined;
@@ -484,6 +564,16 @@ int RunBenchCommand(const std::vector<std::string>& argv)
     if (benchZBuffer)
     {
       zbufferSizes.push_back(BenchZBuffer(zbufferEngine, refined, target, tips, track, bruteQueries));
+      if (smallest.empty() || target < smallestTarget)
+      {
+        smallest = refined;
+        smallestTarget = target;
+      }
+      if (largest.empty() || target > largestTarget)
+      {
+        largest = refined;
+        largestTarget = target;
+      }
     }
   }
   if (benchExact)
@@ -502,6 +592,16 @@ int RunBenchCommand(const std::vector<std::string>& argv)
     const double first = zbufferSizes.front()["cached"]["median_ms"].get<double>();
     const double last = zbufferSizes.back()["cached"]["median_ms"].get<double>();
     z["cached_query_ratio_largest_to_smallest"] = last / std::max(1e-9, first);
+    if (largestTarget != smallestTarget)
+    {
+      std::fprintf(stderr, "bench: z-buffer, smallest and largest size side by side\n");
+      z["largest_beside_smallest"] = SideBySide(smallest, largest, 0.0, tips, args);
+    }
+    if (args.Has("--fine-cell"))
+    {
+      std::fprintf(stderr, "bench: z-buffer, the smallest size at %s mm cells beside the set cell\n", args.Get("--fine-cell").c_str());
+      z["fine_cell_beside_cell"] = SideBySide(smallest, smallest, args.GetNumber("--fine-cell", 0.0), tips, args);
+    }
     report["zbuffer"] = z;
   }
 
@@ -564,6 +664,21 @@ int RunBenchCommand(const std::vector<std::string>& argv)
         s["max_abs_diff_vs_exact_mm"].get<double>(), s["outside_bound"].get<int>());
     }
     std::printf("cached query time, largest size / smallest: %.2f\n", z["cached_query_ratio_largest_to_smallest"].get<double>());
+    for (const char* key : { "largest_beside_smallest", "fine_cell_beside_cell" })
+    {
+      if (z.contains(key))
+      {
+        const Json& c = z[key];
+        std::printf("side by side (%s): %zu triangles at %.3f mm cells %.4f / %.4f ms (device %.4f), %zu at %.3f mm "
+                    "%.4f / %.4f ms (device %.4f): ratio %.2f median, %.2f p95, %.2f on the device\n",
+          key, c["first"]["triangles"].get<std::size_t>(), c["first"]["cell_mm"].get<double>(),
+          c["first"]["cached"]["median_ms"].get<double>(), c["first"]["cached"]["p95_ms"].get<double>(),
+          c["first"]["cached_device"]["median_ms"].get<double>(), c["second"]["triangles"].get<std::size_t>(),
+          c["second"]["cell_mm"].get<double>(), c["second"]["cached"]["median_ms"].get<double>(),
+          c["second"]["cached"]["p95_ms"].get<double>(), c["second"]["cached_device"]["median_ms"].get<double>(),
+          c["ratio_median"].get<double>(), c["ratio_p95"].get<double>(), c["ratio_device_median"].get<double>());
+      }
+    }
     std::printf("%10s | %14s %14s | %14s %14s %14s %14s\n", "tris/class", "query med ms", "on device med",
       "axis med ms", "axis p95 ms", "on device med", "on device p95");
     for (const Json& s : z["sizes"])

@@ -284,9 +284,9 @@ TEST(ZBufferDistance, OutOfRangeAndInside)
   }
 }
 
-// The directional walk shared by lanes (as on a GPU) reads every cell of the one walk between
-// them: on the built-in vessels, from random tips along random axes, 1, 7 and 64 lanes give the
-// same directional distance, bit for bit, and the tests above (1 lane here) hold for all.
+// The directional walk shared by lanes (as on a GPU), each walking its share of the range: on the
+// built-in vessels, from random tips along random axes, 1, 7 and 64 lanes give the same
+// directional distance, bit for bit.
 TEST(ZBufferDistance, DirectionalLanesGiveTheSingleWalksAnswer)
 {
   VP_REQUIRE_VULKAN();

@@ -44,7 +44,7 @@ void main()
   for (int k = 0; k < 64; ++k)
   {
     ivec2 pix = tile * 8 + ivec2(k & 7, k >> 3);
-    float best = min(bestHere, uintBitsToFloat(State[stateBase]));
+    float best = min(bestHere, BestSoFar(stateBase));
     float depth;
     float d = PixelDistance(cls, pix, best, depth);
     if (d <= best)

@@ -243,6 +243,12 @@ void AnswerLane(uint cls, uint stateBase, int lane)
   }
 }
 
+// The least distance offered so far, or the range when none is (the state starts at infinity).
+float BestSoFar(uint stateBase)
+{
+  return min(uintBitsToFloat(State[stateBase]), P.RangeMm);
+}
+
 // The tile of the order table's entry, or ivec2(-1) when no pixel of it can be nearer than the
 // best so far (outside the grid, empty, or further than the best).
 ivec2 TileToVisit(uint cls, uint stateBase, uint entry)
@@ -263,7 +269,7 @@ ivec2 TileToVisit(uint cls, uint stateBase, uint entry)
   float dx = AxisGap(Tip.x, lo.x, lo.x + 8.0) * P.PixelMm;
   float dy = AxisGap(Tip.y, lo.y, lo.y + 8.0) * P.PixelMm;
   float dz = AxisGap(Tip.z, floor(tileLo), floor(tileHi) + 1.0) * P.SliceMm;
-  if (sqrt(dx * dx + dy * dy + dz * dz) > uintBitsToFloat(State[stateBase]))
+  if (sqrt(dx * dx + dy * dy + dz * dz) > BestSoFar(stateBase))
   {
     return ivec2(-1);
   }

@@ -44,7 +44,7 @@ void main()
   if (tile.x >= 0)
   {
     ivec2 pix = tile * 8 + ivec2(int(k & 7u), int(k >> 3u));
-    float best = uintBitsToFloat(State[stateBase]);
+    float best = BestSoFar(stateBase);
     d = PixelDistance(cls, pix, best, depth);
     if (d <= best)
     {

@@ -87,7 +87,7 @@ constexpr VkDeviceSize RecordBudgetBytes = 256ull << 20;
 
 struct ReduceParameters
 {
-  std::uint32_t Step, Answers, OrderCount, RangeBits;
+  std::uint32_t Step, Answers, OrderCount;
 };
 
 /// What a query writes per point: the tip in grid units, then the unit axis (QueryProximity.comp).
@@ -103,13 +103,6 @@ float Bits(std::uint32_t u)
   float f;
   std::memcpy(&f, &u, sizeof f);
   return f;
-}
-
-std::uint32_t Bits(float f)
-{
-  std::uint32_t u;
-  std::memcpy(&u, &f, sizeof u);
-  return u;
 }
 
 double Clamp(double x, double lo, double hi)
@@ -302,6 +295,13 @@ struct vtkZBufferVesselDistance::Internals
         this->Points->Handle() });
     }
     this->Reduce->BindBuffers({ this->State->Handle(), this->Records->Handle(), this->HostState->Handle() });
+    // The state starts reset; every query leaves it so.
+    const std::uint32_t answers = this->Capacity * classes;
+    const ReduceParameters reset{ 0, answers, this->OrderCount };
+    this->Context->Submit([&](VkCommandBuffer cmd) {
+      this->Reduce->Record(cmd, &reset, (answers + 63) / 64);
+      vp::ComputeKernel::Barrier(cmd);
+    });
     this->OrderRangeMm = rangeMm;
   }
 };
@@ -789,9 +789,8 @@ void vtkZBufferVesselDistance::AnswerBatch(const std::array<double, 3>* tips, st
       s.Prepared.clear();
     }
     const std::uint32_t answers = n * classes;
-    const ReduceParameters reset{ 0, answers, orderCount, Bits(q.RangeMm) };
-    const ReduceParameters choose{ 1, answers, orderCount, Bits(q.RangeMm) };
-    const ReduceParameters copy{ 2, answers, orderCount, Bits(q.RangeMm) };
+    const ReduceParameters choose{ 1, answers, orderCount };
+    const ReduceParameters copy{ 2, answers, orderCount };
     Internals::PreparedQuery entry;
     entry.Points = n;
     entry.PerPixel = perPixel;
@@ -799,8 +798,6 @@ void vtkZBufferVesselDistance::AnswerBatch(const std::array<double, 3>* tips, st
     entry.Commands = std::make_unique<vp::PreparedCommands>(*s.Context, [&](VkCommandBuffer cmd) {
       s.Context->ResetStamps(cmd);
       s.Context->Stamp(cmd, 0);
-      s.Reduce->Record(cmd, &reset, (answers + 63) / 64);
-      vp::ComputeKernel::Barrier(cmd);
       const std::uint32_t laneGroups = (static_cast<std::uint32_t>(q.DirectionalLanes) + 63) / 64;
       if (perPixel)
       {
@@ -813,7 +810,7 @@ void vtkZBufferVesselDistance::AnswerBatch(const std::array<double, 3>* tips, st
       vp::ComputeKernel::Barrier(cmd);
       s.Reduce->Record(cmd, &choose, (answers * orderCount + 63) / 64);
       vp::ComputeKernel::Barrier(cmd);
-      s.Reduce->Record(cmd, &copy, (answers + 63) / 64); // into the host-visible answers
+      s.Reduce->Record(cmd, &copy, (answers + 63) / 64); // into the host-visible answers, and resets
       vp::ComputeKernel::Barrier(cmd);
       s.Context->Stamp(cmd, 1);
     });

@@ -8,7 +8,8 @@
 // The DirectionalLanes invocations after the last tile answer "is the tip inside" and the
 // directional distance, each walking its share of the axis (one lane on a CPU device).
 // One dispatch answers a batch of points (workgroup z: the point), each with its own state and
-// records; ReduceProximity.comp then picks each answer's record on the device.
+// records; a 64-bit minimum picks each answer's record as the tiles offer theirs, and
+// ReduceProximity.comp hands it to the host.
 // No shared memory and no barriers: lavapipe runs a workgroup with a barrier as coroutines, which
 // cost more than the whole query.
 #extension GL_GOOGLE_include_directive : require
@@ -30,11 +31,9 @@ void main()
     return;
   }
 
-  uint recordIndex = answer * uint(P.OrderCount) + index;
   ivec2 tile = TileToVisit(cls, stateBase, index);
   if (tile.x < 0)
   {
-    Record[recordIndex] = uvec4(floatBitsToUint(Inf), 0u, 0u, 0u);
     return;
   }
   // The tile's record: its least distance, and the last of its pixels that gives it.
@@ -55,5 +54,5 @@ void main()
       Offer(stateBase, d);
     }
   }
-  Record[recordIndex] = uvec4(floatBitsToUint(bestHere), bestPixel, floatBitsToUint(bestDepth), 0u);
+  WriteRecord(answer, index, bestHere, bestPixel, bestDepth);
 }

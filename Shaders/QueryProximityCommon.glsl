@@ -3,6 +3,8 @@
 // bindings, the parameters, and every step of a query but the loop over a tile's pixels.
 // Both passes give the same answers, bit for bit (see QueryProximityPerPixel.comp).
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
+#extension GL_EXT_shader_atomic_int64 : require
 #include "DepthLayersCommon.glsl"
 
 layout(std430, binding = 0) readonly buffer Occupancy { uint Occupied[]; };
@@ -18,6 +20,11 @@ layout(std430, binding = 5) buffer QueryState { uint State[]; };
 layout(std430, binding = 6) writeonly buffer Records { uvec4 Record[]; };
 // Per point: the tip in grid units (pixels, pixels, slices), then the unit axis in mm (or zero).
 layout(std430, binding = 7) readonly buffer Points { vec4 Point[]; };
+// Per point and class, the record chosen so far: the distance's float bits above, the record's
+// index (its entry in the order table) below, so that the 64-bit minimum is the least distance
+// and, among equal ones, the lowest-numbered record, the one the host once found by scanning
+// them all. All ones before any record is offered (ReduceProximity.comp resets it).
+layout(std430, binding = 8) buffer Choices { uint64_t Choice[]; };
 
 layout(push_constant) uniform Parameters
 {
@@ -322,6 +329,17 @@ float PixelDistance(uint cls, ivec2 pix, float best, out float depth)
     return sqrt(dxy2 + dz * dz);
   }
   return Inf;
+}
+
+// A tile's record with a distance: written, and offered to its answer's choice. A record
+// without one is neither written nor read.
+void WriteRecord(uint answer, uint entry, float bestHere, uint bestPixel, float bestDepth)
+{
+  if (bestHere < Inf)
+  {
+    Record[answer * uint(P.OrderCount) + entry] = uvec4(floatBitsToUint(bestHere), bestPixel, floatBitsToUint(bestDepth), 0u);
+    atomicMin(Choice[answer], (uint64_t(floatBitsToUint(bestHere)) << 32) | uint64_t(entry));
+  }
 }
 
 // A distance that is at most the best so far lowers the best and raises its distance bit.

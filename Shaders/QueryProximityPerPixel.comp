@@ -7,7 +7,7 @@
 // the least distance, and the last pixel (in the tile's order) that gives it.
 //
 // The answers are the per-tile pass's, bit for bit. Only a record holding the answer's best
-// distance can be chosen (ReduceProximity.comp), and such a record is the same in both passes:
+// distance can be chosen, and such a record is the same in both passes:
 // a pixel that gives the best distance is never cut off by the running best (which is never
 // below it) and its distance does not depend on how far the search looked; every pixel of the
 // tile with that distance is offered, and the last wins. The distance bits are the same too: the
@@ -37,7 +37,6 @@ void main()
     return;
   }
 
-  uint recordIndex = answer * uint(P.OrderCount) + entry;
   ivec2 tile = TileToVisit(cls, stateBase, entry);
   float d = Inf;
   float depth = 0.0;
@@ -62,7 +61,6 @@ void main()
   {
     if (tile.x < 0)
     {
-      Record[recordIndex] = uvec4(floatBitsToUint(Inf), 0u, 0u, 0u);
       return;
     }
     float bestHere = Inf;
@@ -78,6 +76,6 @@ void main()
     ivec2 pix = tile * 8 + ivec2(int(bestK & 7u), int(bestK >> 3u));
     uint bestPixel = bestHere < Inf ? uint(pix.y * P.Nx + pix.x) : 0u;
     float bestDepth = bestHere < Inf ? CandidateDepth[bestK] : 0.0;
-    Record[recordIndex] = uvec4(floatBitsToUint(bestHere), bestPixel, floatBitsToUint(bestDepth), 0u);
+    WriteRecord(answer, entry, bestHere, bestPixel, bestDepth);
   }
 }

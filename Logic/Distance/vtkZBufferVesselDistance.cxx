@@ -136,7 +136,7 @@ struct vtkZBufferVesselDistance::Internals
   // Per entry of the order table, the least distance from any tip in the centre tile to that
   // tile (mm), ascending: the tiles a shorter search needs are a prefix of the table.
   std::vector<double> OrderGapMm;
-  std::unique_ptr<vp::GpuBuffer> Order, State, Records, HostState, Points;
+  std::unique_ptr<vp::GpuBuffer> Order, State, Choices, Records, HostState, Points;
   // Tips per submission for the current order table (PrepareOrder).
   std::uint32_t Capacity = 0;
 
@@ -190,6 +190,7 @@ struct vtkZBufferVesselDistance::Internals
     this->TileRanges.reset();
     this->Order.reset();
     this->State.reset();
+    this->Choices.reset();
     this->Records.reset();
     this->HostState.reset();
     this->Rendered = false;
@@ -284,6 +285,7 @@ struct vtkZBufferVesselDistance::Internals
     this->Records = std::make_unique<vp::GpuBuffer>(*this->Context, recordBytesPerTip * this->Capacity, Placement::Device);
     const VkDeviceSize stateBytes = StateStride * 4ull * classes * this->Capacity;
     this->State = std::make_unique<vp::GpuBuffer>(*this->Context, stateBytes, Placement::Device);
+    this->Choices = std::make_unique<vp::GpuBuffer>(*this->Context, 8ull * classes * this->Capacity, Placement::Device);
     // The answers are written there by the device, and the points by the host, for every batch:
     // host-visible, no copy.
     this->HostState = std::make_unique<vp::GpuBuffer>(*this->Context, stateBytes, Placement::Host);
@@ -292,9 +294,10 @@ struct vtkZBufferVesselDistance::Internals
     {
       query->BindBuffers({ this->Occupancy->Handle(), this->Crossings->Handle(), this->DepthRanges->Handle(),
         this->TileRanges->Handle(), this->Order->Handle(), this->State->Handle(), this->Records->Handle(),
-        this->Points->Handle() });
+        this->Points->Handle(), this->Choices->Handle() });
     }
-    this->Reduce->BindBuffers({ this->State->Handle(), this->Records->Handle(), this->HostState->Handle() });
+    this->Reduce->BindBuffers(
+      { this->State->Handle(), this->Records->Handle(), this->HostState->Handle(), this->Choices->Handle() });
     // The state starts reset; every query leaves it so.
     const std::uint32_t answers = this->Capacity * classes;
     const ReduceParameters reset{ 0, answers, this->OrderCount };
@@ -502,6 +505,11 @@ void vtkZBufferVesselDistance::BuildInternal()
   Internals& s = *this->Impl;
   vp::VulkanContext& context = s.Device(this->DeviceSelector);
   s.Release();
+  if (!context.HasInt64Atomics())
+  {
+    throw vp::DeviceError("Vulkan device '" + context.Device().Name +
+      "' has no 64-bit buffer atomics (shaderBufferInt64Atomics), which the z-buffer query needs to pick its answers");
+  }
 
   // Cell size, box and anchor.
   double bounds[6] = { std::numeric_limits<double>::max(), -std::numeric_limits<double>::max(),
@@ -609,11 +617,11 @@ void vtkZBufferVesselDistance::BuildInternal()
     context, SummarizeTiles_comp, SummarizeTiles_comp_size, 2, static_cast<std::uint32_t>(sizeof(TileParameters)));
   s.Tiles->BindBuffers({ s.DepthRanges->Handle(), s.TileRanges->Handle() });
   s.Query = std::make_unique<vp::ComputeKernel>(
-    context, QueryProximity_comp, QueryProximity_comp_size, 8, static_cast<std::uint32_t>(sizeof(QueryParameters)));
+    context, QueryProximity_comp, QueryProximity_comp_size, 9, static_cast<std::uint32_t>(sizeof(QueryParameters)));
   s.QueryPerPixel = std::make_unique<vp::ComputeKernel>(context, QueryProximityPerPixel_comp,
-    QueryProximityPerPixel_comp_size, 8, static_cast<std::uint32_t>(sizeof(QueryParameters)));
+    QueryProximityPerPixel_comp_size, 9, static_cast<std::uint32_t>(sizeof(QueryParameters)));
   s.Reduce = std::make_unique<vp::ComputeKernel>(
-    context, ReduceProximity_comp, ReduceProximity_comp_size, 3, static_cast<std::uint32_t>(sizeof(ReduceParameters)));
+    context, ReduceProximity_comp, ReduceProximity_comp_size, 4, static_cast<std::uint32_t>(sizeof(ReduceParameters)));
 
   s.Renders = 0;
   if (!moving && classes > 0)
@@ -789,8 +797,7 @@ void vtkZBufferVesselDistance::AnswerBatch(const std::array<double, 3>* tips, st
       s.Prepared.clear();
     }
     const std::uint32_t answers = n * classes;
-    const ReduceParameters choose{ 1, answers, orderCount };
-    const ReduceParameters copy{ 2, answers, orderCount };
+    const ReduceParameters copy{ 1, answers, orderCount };
     Internals::PreparedQuery entry;
     entry.Points = n;
     entry.PerPixel = perPixel;
@@ -807,8 +814,6 @@ void vtkZBufferVesselDistance::AnswerBatch(const std::array<double, 3>* tips, st
       {
         s.Query->Record(cmd, &q, (orderCount + static_cast<std::uint32_t>(q.DirectionalLanes) + 63) / 64, classes, n);
       }
-      vp::ComputeKernel::Barrier(cmd);
-      s.Reduce->Record(cmd, &choose, (answers * orderCount + 63) / 64);
       vp::ComputeKernel::Barrier(cmd);
       s.Reduce->Record(cmd, &copy, (answers + 63) / 64); // into the host-visible answers, and resets
       vp::ComputeKernel::Barrier(cmd);

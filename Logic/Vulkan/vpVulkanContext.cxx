@@ -289,6 +289,36 @@ VulkanContext::VulkanContext(const std::string& selector)
     deviceInfo.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO;
     deviceInfo.queueCreateInfoCount = 1;
     deviceInfo.pQueueCreateInfos = &queueInfo;
+    // 64-bit buffer atomics, where the device has them (through the extension: the instance asks
+    // for Vulkan 1.1, where they are not core).
+    const char* atomicInt64 = VK_KHR_SHADER_ATOMIC_INT64_EXTENSION_NAME;
+    std::uint32_t nExtensions = 0;
+    vkEnumerateDeviceExtensionProperties(this->PhysicalDevice, nullptr, &nExtensions, nullptr);
+    std::vector<VkExtensionProperties> extensions(nExtensions);
+    vkEnumerateDeviceExtensionProperties(this->PhysicalDevice, nullptr, &nExtensions, extensions.data());
+    VkPhysicalDeviceShaderAtomicInt64FeaturesKHR int64Atomics{};
+    int64Atomics.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_ATOMIC_INT64_FEATURES_KHR;
+    VkPhysicalDeviceFeatures2 features{};
+    features.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2;
+    features.pNext = &int64Atomics;
+    VkPhysicalDeviceFeatures enabled{};
+    VkPhysicalDeviceShaderAtomicInt64FeaturesKHR enabledAtomics{};
+    enabledAtomics.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_ATOMIC_INT64_FEATURES_KHR;
+    if (std::any_of(extensions.begin(), extensions.end(),
+          [&](const VkExtensionProperties& e) { return std::strcmp(e.extensionName, atomicInt64) == 0; }))
+    {
+      vkGetPhysicalDeviceFeatures2(this->PhysicalDevice, &features);
+      if (features.features.shaderInt64 && int64Atomics.shaderBufferInt64Atomics)
+      {
+        enabled.shaderInt64 = VK_TRUE;
+        enabledAtomics.shaderBufferInt64Atomics = VK_TRUE;
+        deviceInfo.pNext = &enabledAtomics;
+        deviceInfo.pEnabledFeatures = &enabled;
+        deviceInfo.enabledExtensionCount = 1;
+        deviceInfo.ppEnabledExtensionNames = &atomicInt64;
+        this->Int64Atomics = true;
+      }
+    }
     Check(vkCreateDevice(this->PhysicalDevice, &deviceInfo, nullptr, &this->LogicalDevice), "vkCreateDevice");
     vkGetDeviceQueue(this->LogicalDevice, this->QueueFamily, 0, &this->Queue);
 

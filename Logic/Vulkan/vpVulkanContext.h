@@ -77,6 +77,9 @@ public:
   void SubmitRecorded(VkCommandBuffer commands);
   /// How long the host polls a GPU's fence before it sleeps, in ms.
   static constexpr double SpinWaitMs = 2.0;
+  /// Whether 64-bit atomics on storage buffers are enabled (VK_KHR_shader_atomic_int64 with
+  /// shaderBufferInt64Atomics): lavapipe and the desktop GPUs have them.
+  bool HasInt64Atomics() const { return this->Int64Atomics; }
   /// Whether the device is a CPU (lavapipe): its work runs on the host's own cores.
   bool IsCpuDevice() const { return this->Info.Type == "cpu"; }
 
@@ -108,6 +111,7 @@ private:
   VkQueryPool Stamps = VK_NULL_HANDLE; // two timestamps; null without compute timestamps
   std::uint64_t StampMask = ~0ull;     // the bits of a timestamp the queue keeps
   VulkanDeviceInfo Info;
+  bool Int64Atomics = false;
   std::string ValidationMessage;
 
   static VKAPI_ATTR VkBool32 VKAPI_CALL OnValidationMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity,

@@ -21,7 +21,11 @@ void main()
 {
   uint cls = gl_WorkGroupID.y;
   uint point = gl_WorkGroupID.z;
-  uint index = gl_GlobalInvocationID.x;
+  uint index = gl_GlobalInvocationID.x + uint(P.FirstEntry);
+  if (index >= uint(P.EndEntry))
+  {
+    return;
+  }
   BeginPoint(point);
   uint answer = point * uint(P.Classes) + cls;
   uint stateBase = answer * StateStride;

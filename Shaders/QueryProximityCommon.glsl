@@ -45,6 +45,10 @@ layout(push_constant) uniform Parameters
   uint RangeStride;
   int Classes;
   int DirectionalLanes;
+  // This dispatch's part of the order table (and, past its end, of the lanes): a batch first
+  // visits the tiles nearest each tip, then the rest, which the best found so far mostly skips.
+  int FirstEntry;
+  int EndEntry;
 } P;
 
 // This invocation's point (set first thing in main).

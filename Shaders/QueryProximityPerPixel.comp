@@ -25,7 +25,7 @@ void main()
 {
   uint cls = gl_WorkGroupID.y;
   uint point = gl_WorkGroupID.z;
-  uint entry = gl_WorkGroupID.x;
+  uint entry = gl_WorkGroupID.x + uint(P.FirstEntry); // EndEntry: this dispatch's workgroups end it
   uint k = gl_LocalInvocationID.x;
   BeginPoint(point);
   uint answer = point * uint(P.Classes) + cls;

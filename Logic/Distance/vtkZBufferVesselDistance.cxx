@@ -67,8 +67,9 @@ struct QueryParameters
   std::uint32_t RangeStride;
   std::int32_t Classes;
   std::int32_t DirectionalLanes;
+  std::int32_t FirstEntry, EndEntry;
 };
-static_assert(sizeof(QueryParameters) == 68, "push constant layout of QueryProximity.comp");
+static_assert(sizeof(QueryParameters) == 76, "push constant layout of QueryProximity.comp");
 
 // Lanes that share the directional walk on a GPU (see QueryProximity.comp).
 constexpr std::int32_t GpuDirectionalLanes = 64;
@@ -77,6 +78,10 @@ constexpr std::int32_t GpuDirectionalLanes = 64;
 // 1.95 ms per pixel, 0.57 per tile (a batch's tiles already fill the device, and the per-pixel
 // pass pays a workgroup for every tile it then skips).
 constexpr std::uint32_t PerPixelMaxTips = 8;
+// A larger batch first visits, for every tip, the tiles within this many tiles of its own: on a
+// GPU all of a dispatch's tiles run at once, so a far tile would start before a near one had
+// lowered the best; after this first dispatch most far tiles are skipped at once.
+constexpr double NearTiles = 2.0;
 // Tips per submission: as many as the records of a batch allow within RecordBudgetBytes, and at
 // most these (a CPU device answers a batch's tips one after another: larger batches only cost
 // memory there; a GPU answers them side by side, so larger batches spread a submission's fixed
@@ -287,9 +292,11 @@ struct vtkZBufferVesselDistance::Internals
     this->State = std::make_unique<vp::GpuBuffer>(*this->Context, stateBytes, Placement::Device);
     this->Choices = std::make_unique<vp::GpuBuffer>(*this->Context, 8ull * classes * this->Capacity, Placement::Device);
     // The answers are written there by the device, and the points by the host, for every batch:
-    // host-visible, no copy.
+    // host-visible, no copy. Every invocation of a query reads its point: in device memory where
+    // the host can write it.
     this->HostState = std::make_unique<vp::GpuBuffer>(*this->Context, stateBytes, Placement::Host);
-    this->Points = std::make_unique<vp::GpuBuffer>(*this->Context, sizeof(PointRecord) * this->Capacity, Placement::Host);
+    this->Points =
+      std::make_unique<vp::GpuBuffer>(*this->Context, sizeof(PointRecord) * this->Capacity, Placement::HostToDevice);
     for (vp::ComputeKernel* query : { this->Query.get(), this->QueryPerPixel.get() })
     {
       query->BindBuffers({ this->Occupancy->Handle(), this->Crossings->Handle(), this->DepthRanges->Handle(),
@@ -805,16 +812,30 @@ void vtkZBufferVesselDistance::AnswerBatch(const std::array<double, 3>* tips, st
     entry.Commands = std::make_unique<vp::PreparedCommands>(*s.Context, [&](VkCommandBuffer cmd) {
       s.Context->ResetStamps(cmd);
       s.Context->Stamp(cmd, 0);
-      const std::uint32_t laneGroups = (static_cast<std::uint32_t>(q.DirectionalLanes) + 63) / 64;
-      if (perPixel)
+      // Entries: a workgroup per tile (per pixel) or an invocation per tile (per tile), then the lanes.
+      const std::uint32_t lanes = static_cast<std::uint32_t>(q.DirectionalLanes);
+      const std::uint32_t end = orderCount + (perPixel ? (lanes + 63) / 64 : lanes);
+      auto visit = [&](std::uint32_t first, std::uint32_t last) {
+        QueryParameters part = q;
+        part.FirstEntry = static_cast<std::int32_t>(first);
+        part.EndEntry = static_cast<std::int32_t>(last);
+        if (perPixel)
+        {
+          s.QueryPerPixel->Record(cmd, &part, last - first, classes, n);
+        }
+        else
+        {
+          s.Query->Record(cmd, &part, (last - first + 63) / 64, classes, n);
+        }
+        vp::ComputeKernel::Barrier(cmd);
+      };
+      const std::uint32_t nearEntries =
+        n > PerPixelMaxTips ? std::min(orderCount, s.OrderCountWithin(NearTiles * 8.0 * g.PixelMm)) : 0;
+      if (nearEntries > 0)
       {
-        s.QueryPerPixel->Record(cmd, &q, orderCount + laneGroups, classes, n); // a workgroup per tile
+        visit(0, nearEntries);
       }
-      else
-      {
-        s.Query->Record(cmd, &q, (orderCount + static_cast<std::uint32_t>(q.DirectionalLanes) + 63) / 64, classes, n);
-      }
-      vp::ComputeKernel::Barrier(cmd);
+      visit(nearEntries, end);
       s.Reduce->Record(cmd, &copy, (answers + 63) / 64); // into the host-visible answers, and resets
       vp::ComputeKernel::Barrier(cmd);
       s.Context->Stamp(cmd, 1);

@@ -25,6 +25,11 @@ GpuBuffer::GpuBuffer(VulkanContext& context, VkDeviceSize bytes, Placement place
   {
     type = context.FindMemoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
   }
+  else if (placement == Placement::HostToDevice)
+  {
+    type = context.FindMemoryType(req.memoryTypeBits,
+      VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+  }
   else
   {
     type = context.FindMemoryType(req.memoryTypeBits,

@@ -9,14 +9,18 @@ namespace vp
 {
 /// A storage buffer and its memory. "Device" buffers live where the device computes fastest and
 /// are filled through a staging copy when the host cannot see them (a GPU) or directly when it
-/// can (lavapipe); "Host" buffers are mapped for reading results back.
+/// can (lavapipe); "Host" buffers are mapped for reading results back; "HostToDevice" buffers are
+/// mapped and written by the host for the device to read many times, in device memory the host
+/// can see when there is such (a GPU's BAR), else in host memory: a GPU that read them from host
+/// memory would cross the bus once per read.
 class GpuBuffer
 {
 public:
   enum class Placement
   {
     Device,
-    Host
+    Host,
+    HostToDevice
   };
   GpuBuffer(VulkanContext& context, VkDeviceSize bytes, Placement placement);
   ~GpuBuffer();

@@ -191,6 +191,42 @@ TEST(Overlays, AFrameOverItsBudgetIsShownAndCleared)
   std::filesystem::remove_all(tmp);
 }
 
+// The plot is drawn when a render shows it, not for every frame: frames without a render draw
+// nothing, the next render draws once with every frame in it, and a render with no new frame
+// (the camera moved) draws nothing.
+TEST(Overlays, ThePlotIsDrawnOnlyWhenARenderShowsIt)
+{
+  vp::VirtualDisplay display;
+  if (!display.Ensure())
+  {
+    GTEST_SKIP() << "no display for rendering: " << display.GetProblem();
+  }
+  const std::string tmp = vp::test::MakeTempDir("overlays_plot");
+  auto logic = MakePhantomLogic(tmp);
+  vtkNew<vtkVesselProximityView> view;
+  view->SetOffScreen(true);
+  view->SetSizePx(400, 300);
+  view->SetLogic(logic);
+  vtkDistancePlotRepresentation* plot = view->GetOverlays()->GetPlot();
+  view->Render();
+  const int before = plot->GetNumberOfRedraws();
+  for (int i = 0; i < 30; ++i)
+  {
+    logic->ProcessPose(Pose(0.02 * i, TipDownAt(20.0 - 0.5 * i)));
+  }
+  EXPECT_EQ(plot->GetNumberOfSamples(), 30);
+  EXPECT_EQ(plot->GetNumberOfRedraws(), before) << "no render, no drawing";
+  view->Render();
+  EXPECT_EQ(plot->GetNumberOfRedraws(), before + 1);
+  view->GetRenderer()->GetActiveCamera()->Azimuth(10);
+  view->Render();
+  EXPECT_EQ(plot->GetNumberOfRedraws(), before + 1) << "only the camera moved";
+  logic->ProcessPose(Pose(0.6, TipDownAt(5.0)));
+  ASSERT_NE(plot->GetImage(), nullptr); // asking for the picture draws it
+  EXPECT_EQ(plot->GetNumberOfRedraws(), before + 2);
+  std::filesystem::remove_all(tmp);
+}
+
 // With the whole instrument measured, each class line says where the instrument is: its distance,
 // or inside, its depth and volume.
 TEST(Overlays, ReadoutShowsTheInstrumentBesideTheTip)

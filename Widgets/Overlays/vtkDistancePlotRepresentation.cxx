@@ -6,6 +6,8 @@
 #include "vpDistancePlot.h"
 
 #include <vtkActor2D.h>
+#include <vtkCallbackCommand.h>
+#include <vtkCommand.h>
 #include <vtkCoordinate.h>
 #include <vtkImageData.h>
 #include <vtkImageMapper.h>
@@ -34,7 +36,27 @@ vtkDistancePlotRepresentation::vtkDistancePlotRepresentation()
   this->SetSizePx(480, 240);
 }
 
-vtkDistancePlotRepresentation::~vtkDistancePlotRepresentation() = default;
+vtkDistancePlotRepresentation::~vtkDistancePlotRepresentation()
+{
+  if (this->Renderer) // null once the renderer is gone
+  {
+    this->RemoveFromRenderer(this->Renderer);
+  }
+}
+
+void vtkDistancePlotRepresentation::Invalidate()
+{
+  this->Stale = true;
+  this->Modified();
+}
+
+void vtkDistancePlotRepresentation::RedrawIfStale()
+{
+  if (this->Stale)
+  {
+    this->Redraw();
+  }
+}
 
 void vtkDistancePlotRepresentation::SetClasses(const std::vector<std::string>& names)
 {
@@ -45,7 +67,7 @@ void vtkDistancePlotRepresentation::SetClasses(const std::vector<std::string>& n
 void vtkDistancePlotRepresentation::SetDangerThresholds(const vp::DangerThresholds& thresholds)
 {
   this->Thresholds = thresholds;
-  this->Redraw();
+  this->Invalidate();
 }
 
 void vtkDistancePlotRepresentation::SetSizePx(int width, int height)
@@ -53,7 +75,7 @@ void vtkDistancePlotRepresentation::SetSizePx(int width, int height)
   this->WidthPx = width;
   this->HeightPx = height;
   this->Actor->GetPositionCoordinate()->SetValue(-width - 10, 10);
-  this->Redraw();
+  this->Invalidate();
 }
 
 void vtkDistancePlotRepresentation::ClearHistory()
@@ -62,7 +84,7 @@ void vtkDistancePlotRepresentation::ClearHistory()
   this->ValuesMm.assign(this->ClassNames.size(), {});
   this->InstrumentValuesMm.assign(this->ClassNames.size(), {});
   this->ShowsInstrument = false;
-  this->Redraw();
+  this->Invalidate();
 }
 
 void vtkDistancePlotRepresentation::AddFrame(const vp::TrackedFrame& frame)
@@ -85,7 +107,7 @@ void vtkDistancePlotRepresentation::AddFrame(const vp::TrackedFrame& frame)
       }
     }
   }
-  this->Redraw();
+  this->Invalidate();
 }
 
 void vtkDistancePlotRepresentation::Redraw()
@@ -114,22 +136,42 @@ void vtkDistancePlotRepresentation::Redraw()
   this->Mapper->SetInputData(vp::RenderDistancePlot(
     times, series, vp::DangerBands(this->Thresholds, options.YMaxMm, vp::LowestValueMm(series) < 0), options));
   ++this->Redraws;
-  this->Modified();
+  this->Stale = false;
 }
 
-vtkImageData* vtkDistancePlotRepresentation::GetImage() const
+vtkImageData* vtkDistancePlotRepresentation::GetImage()
 {
+  this->RedrawIfStale();
   return vtkImageData::SafeDownCast(this->Mapper->GetInput());
 }
 
 void vtkDistancePlotRepresentation::AddToRenderer(vtkRenderer* renderer)
 {
+  if (this->Renderer && this->Renderer != renderer)
+  {
+    this->RemoveFromRenderer(this->Renderer);
+  }
   renderer->AddActor2D(this->Actor);
+  if (this->Renderer != renderer)
+  {
+    vtkNew<vtkCallbackCommand> draw;
+    draw->SetClientData(this);
+    draw->SetCallback([](vtkObject*, unsigned long, void* self, void*) {
+      static_cast<vtkDistancePlotRepresentation*>(self)->RedrawIfStale();
+    });
+    this->StartTag = renderer->AddObserver(vtkCommand::StartEvent, draw);
+    this->Renderer = renderer;
+  }
 }
 
 void vtkDistancePlotRepresentation::RemoveFromRenderer(vtkRenderer* renderer)
 {
   renderer->RemoveActor2D(this->Actor);
+  if (renderer == this->Renderer)
+  {
+    renderer->RemoveObserver(this->StartTag);
+    this->Renderer = nullptr;
+  }
 }
 
 void vtkDistancePlotRepresentation::PrintSelf(ostream& os, vtkIndent indent)

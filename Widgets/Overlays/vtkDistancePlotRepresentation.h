@@ -7,6 +7,7 @@
 
 #include <vtkObject.h>
 #include <vtkSmartPointer.h>
+#include <vtkWeakPointer.h>
 
 #include <deque>
 #include <string>
@@ -22,7 +23,10 @@ class vtkRenderer;
 /// measured, on the danger bands; inside a vessel below zero (vp::TipPlotValueMm and
 /// vp::InstrumentPlotValueMm). Drawn by the same rasteriser and with the same values as the
 /// report's distance.png, so the two look alike.
-/// Redrawn when a frame is added, never when only the camera moves.
+/// Redrawn when the renderer it is in starts a render after a frame was added (or the settings
+/// changed), never when only the camera moves, and never for frames no render shows: a replay
+/// that renders a few key frames of many draws the plot a few times (the demo's screenshots
+/// drew it 918 times for 9 pictures).
 class vtkDistancePlotRepresentation : public vtkObject
 {
 public:
@@ -38,12 +42,14 @@ public:
   /// Plot size in pixels (default 480 x 240).
   void SetSizePx(int width, int height);
 
-  /// Appends a frame's distances (out-of-range classes leave a gap) and redraws.
+  /// Appends a frame's distances (out-of-range classes leave a gap); the plot is drawn again
+  /// before the next render.
   void AddFrame(const vp::TrackedFrame& frame);
   void ClearHistory();
   int GetNumberOfSamples() const { return static_cast<int>(this->Times.size()); }
   int GetNumberOfRedraws() const { return this->Redraws; }
-  vtkImageData* GetImage() const;
+  /// The plot as it stands now (drawn first when a frame came since the last drawing).
+  vtkImageData* GetImage();
 
   void AddToRenderer(vtkRenderer* renderer);
   void RemoveFromRenderer(vtkRenderer* renderer);
@@ -62,13 +68,19 @@ protected:
   int WidthPx = 480;
   int HeightPx = 240;
   int Redraws = 0;
+  bool Stale = true; ///< something changed since the plot was last drawn
   vtkSmartPointer<vtkImageMapper> Mapper;
   vtkSmartPointer<vtkActor2D> Actor;
+  vtkWeakPointer<vtkRenderer> Renderer; ///< the renderer whose StartEvent draws a stale plot
+  unsigned long StartTag = 0;
 
 private:
   vtkDistancePlotRepresentation(const vtkDistancePlotRepresentation&) = delete;
   void operator=(const vtkDistancePlotRepresentation&) = delete;
   void Redraw();
+  /// Marks the plot for drawing before the next render.
+  void Invalidate();
+  void RedrawIfStale();
 };
 
 #endif

@@ -20,8 +20,13 @@ struct ClassProximity
   double ClosestPoint[3] = { 0.0, 0.0, 0.0 };
   /// Triangle holding ClosestPoint, -1 when out of range.
   long long TriangleId = -1;
-  /// Empty when the surface is open (inside is undefined there).
+  /// Whether the tip is inside the class's surface. On a surface that is not closed (holes,
+  /// non-manifold edges, pieces wound the wrong way, duplicated sheets), the engines that can
+  /// still decide it by votes do so; empty when the engine cannot decide it.
   std::optional<bool> Inside;
+  /// The votes on a surface that is not closed disagreed (vp::InsideVote): Inside is the
+  /// majority's, and the danger level takes the answer as a breach, the more dangerous side.
+  bool InsideUncertain = false;
   /// Distance from the tip along the axis to the first surface of the class; empty when no axis
   /// was given or nothing is hit within range.
   std::optional<double> DirectionalMm;

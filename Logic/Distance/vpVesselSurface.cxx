@@ -126,7 +126,7 @@ void VesselSurface::BuildTopology()
   std::vector<std::array<std::int32_t, 3>> neighbours(nt, { -1, -1, -1 });
   std::vector<std::int32_t> parent(nt);
   std::iota(parent.begin(), parent.end(), 0);
-  bool closed = true;
+  MeshDefects defects;
   for (std::size_t i = 0; i < edges.size();)
   {
     std::size_t j = i;
@@ -134,18 +134,34 @@ void VesselSurface::BuildTopology()
     {
       ++j;
     }
-    if (j - i != 2 || edges[i].Forward == edges[i + 1].Forward)
+    if (j - i == 1)
     {
-      closed = false; // boundary, non-manifold or inconsistently wound edge
-      break;
+      ++defects.BoundaryEdges;
     }
-    const DirectedEdge& x = edges[i];
-    const DirectedEdge& y = edges[i + 1];
-    neighbours[x.Triangle][x.Local] = y.Triangle;
-    neighbours[y.Triangle][y.Local] = x.Triangle;
-    parent[FindRoot(parent, x.Triangle)] = FindRoot(parent, y.Triangle);
+    else if (j - i > 2)
+    {
+      ++defects.NonManifoldEdges;
+    }
+    else
+    {
+      const DirectedEdge& x = edges[i];
+      const DirectedEdge& y = edges[i + 1];
+      if (x.Forward == y.Forward)
+      {
+        ++defects.InconsistentEdges;
+      }
+      neighbours[x.Triangle][x.Local] = y.Triangle;
+      neighbours[y.Triangle][y.Local] = x.Triangle;
+      parent[FindRoot(parent, x.Triangle)] = FindRoot(parent, y.Triangle);
+    }
     i = j;
   }
+  for (std::size_t t = 0; t < nt; ++t)
+  {
+    defects.Components += FindRoot(parent, static_cast<std::int32_t>(t)) == static_cast<std::int32_t>(t) ? 1 : 0;
+  }
+  this->DefectCounts = defects;
+  const bool closed = !defects.Any();
   this->Closed = closed;
   if (!closed)
   {
@@ -201,6 +217,25 @@ void VesselSurface::BuildTopology()
   this->FaceNormals = std::move(faceNormals);
   this->Neighbours = std::move(neighbours);
   this->VertexNormals = std::move(vertexNormals);
+}
+
+std::string MeshDefects::Describe() const
+{
+  std::string text;
+  auto add = [&](std::size_t n, const char* what) {
+    if (n > 0)
+    {
+      text += (text.empty() ? "" : ", ") + std::to_string(n) + " " + what + (n == 1 ? "" : "s");
+    }
+  };
+  add(this->BoundaryEdges, "boundary edge");
+  add(this->NonManifoldEdges, "non-manifold edge");
+  add(this->InconsistentEdges, "inconsistently wound edge");
+  if (text.empty())
+  {
+    text = "closed";
+  }
+  return text + ", " + std::to_string(this->Components) + (this->Components == 1 ? " component" : " components");
 }
 
 std::optional<bool> VesselSurface::IsInside(

@@ -13,6 +13,21 @@ class vtkPolyData;
 
 namespace vp
 {
+/// What keeps a surface from being closed, counted over its undirected edges: an edge of one
+/// triangle is a boundary (a hole's rim), of three or more non-manifold (a fin, a duplicated
+/// sheet), of two wound the same way inconsistent (a piece turned inside out). Components are
+/// the pieces joined through edges of exactly two triangles.
+struct MeshDefects
+{
+  std::size_t BoundaryEdges = 0;
+  std::size_t NonManifoldEdges = 0;
+  std::size_t InconsistentEdges = 0;
+  std::size_t Components = 0;
+  bool Any() const { return BoundaryEdges + NonManifoldEdges + InconsistentEdges > 0; }
+  /// "3 boundary edges, 1 non-manifold edge, 2 components", or "closed, 2 components".
+  std::string Describe() const;
+};
+
 /// One vessel class's surface, prepared once for distance queries: indexed triangles in double
 /// precision, and, for closed surfaces, what the sign test needs: outward face normals,
 /// neighbour triangles across each edge and angle-weighted vertex pseudonormals.
@@ -32,6 +47,8 @@ public:
   std::size_t NumberOfTriangles() const { return this->Triangles.size(); }
   std::size_t NumberOfPoints() const { return this->Points.size(); }
   bool IsClosed() const { return this->Closed; }
+  /// The defects that keep it from being closed (none when closed).
+  const MeshDefects& Defects() const { return this->DefectCounts; }
   const double* Point(std::int32_t id) const { return this->Points[id].data(); }
   const std::array<std::int32_t, 3>& Triangle(std::size_t t) const { return this->Triangles[t]; }
   const std::vector<std::array<double, 3>>& PointArray() const { return this->Points; }
@@ -50,6 +67,7 @@ private:
   std::vector<std::array<std::int32_t, 3>> Triangles;
   std::array<double, 6> BoundsMm{};
   bool Closed = false;
+  MeshDefects DefectCounts;
   // Only filled for closed surfaces.
   std::vector<std::array<double, 3>> FaceNormals;     // unit, outward
   std::vector<std::array<std::int32_t, 3>> Neighbours; // across edge ab, bc, ca

@@ -1,9 +1,12 @@
 #include "vtkBruteForceVesselDistance.h"
 
+#include "vpInsideVote.h"
+
 #include <vtkObjectFactory.h>
 
 #include <cmath>
 #include <limits>
+#include <vector>
 
 vtkStandardNewMacro(vtkBruteForceVesselDistance);
 
@@ -116,7 +119,36 @@ void vtkBruteForceVesselDistance::ComputeProximity(const double tip[3], const do
       out.TriangleId = -1;
       continue;
     }
-    out.Inside = surface.IsInside(tip, static_cast<std::size_t>(out.TriangleId), out.ClosestPoint, bestFeature);
+    if (surface.IsClosed())
+    {
+      out.Inside = surface.IsInside(tip, static_cast<std::size_t>(out.TriangleId), out.ClosestPoint, bestFeature);
+    }
+    else if (out.DistanceMm <= 1e-9)
+    {
+      out.Inside = false; // on the surface, as for a closed one
+    }
+    else
+    {
+      // The inside vote with every triangle tested in double: the reference for Embree's rays.
+      int crossings[vp::InsideVote::Rays] = {};
+      std::vector<double> along;
+      for (int r = 0; r < vp::InsideVote::Rays; ++r)
+      {
+        along.clear();
+        for (std::size_t t = 0; t < surface.NumberOfTriangles(); ++t)
+        {
+          const auto& tri = surface.Triangle(t);
+          const double hit = vp::RayTriangle(
+            tip, vp::InsideVote::Directions[r], surface.Point(tri[0]), surface.Point(tri[1]), surface.Point(tri[2]));
+          if (hit >= 0.0)
+          {
+            along.push_back(hit);
+          }
+        }
+        crossings[r] = vp::InsideVote::CountCrossings(along);
+      }
+      out.Inside = vp::InsideVote::Decide(crossings, out.InsideUncertain);
+    }
     if (axis)
     {
       double nearest = std::numeric_limits<double>::infinity();

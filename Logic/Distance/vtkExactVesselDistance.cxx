@@ -1,6 +1,7 @@
 #include "vtkExactVesselDistance.h"
 
 #include "vpInputError.h"
+#include "vpInsideVote.h"
 
 #include <vtkObjectFactory.h>
 
@@ -11,6 +12,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <vector>
 
 vtkStandardNewMacro(vtkExactVesselDistance);
 
@@ -26,6 +28,27 @@ struct SceneDeleter
 };
 using DevicePtr = std::unique_ptr<RTCDeviceTy, DeviceDeleter>;
 using ScenePtr = std::unique_ptr<RTCSceneTy, SceneDeleter>;
+
+/// Collects every triangle a ray crosses: an intersection context whose filter records the hit
+/// and rejects it, so that the traversal goes on to the next.
+struct CrossingContext
+{
+  RTCIntersectContext Context; // first: Embree hands this pointer back to the filter
+  std::vector<double>* Crossed; // distances along the ray, in the tree's float units (mm)
+};
+
+void CollectCrossing(const RTCFilterFunctionNArguments* args)
+{
+  auto* context = reinterpret_cast<CrossingContext*>(args->context);
+  for (unsigned i = 0; i < args->N; ++i)
+  {
+    if (args->valid[i] != 0)
+    {
+      context->Crossed->push_back(RTCRayN_tfar(args->ray, args->N, i));
+      args->valid[i] = 0;
+    }
+  }
+}
 
 /// First search radius; grown until the best triangle found lies within it (or the range is hit).
 constexpr double InitialSearchRadiusMm = 1.0;
@@ -49,6 +72,45 @@ struct QueryState
   vp::TriangleFeature Feature;
   double SlackMm;
 };
+
+/// Whether p is inside a surface that is not closed (vp::InsideVote), its crossings counted by
+/// Embree. On the surface itself (distanceMm within a picometre) it is outside, as for a closed
+/// surface.
+bool VoteInside(const ClassTree& tree, const double p[3], double distanceMm, bool& uncertain)
+{
+  uncertain = false;
+  if (distanceMm <= 1e-9)
+  {
+    return false;
+  }
+  std::vector<double> crossed;
+  int crossings[vp::InsideVote::Rays];
+  for (int r = 0; r < vp::InsideVote::Rays; ++r)
+  {
+    const double* direction = vp::InsideVote::Directions[r];
+    CrossingContext context;
+    rtcInitIntersectContext(&context.Context);
+    context.Context.filter = &CollectCrossing;
+    context.Crossed = &crossed;
+    crossed.clear();
+    RTCRayHit hit{};
+    hit.ray.org_x = static_cast<float>(p[0] - tree.Origin[0]);
+    hit.ray.org_y = static_cast<float>(p[1] - tree.Origin[1]);
+    hit.ray.org_z = static_cast<float>(p[2] - tree.Origin[2]);
+    hit.ray.dir_x = static_cast<float>(direction[0]);
+    hit.ray.dir_y = static_cast<float>(direction[1]);
+    hit.ray.dir_z = static_cast<float>(direction[2]);
+    hit.ray.tnear = 0.0f;
+    hit.ray.tfar = std::numeric_limits<float>::infinity();
+    hit.ray.mask = 0xFFFFFFFFu;
+    hit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    hit.hit.primID = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(tree.Scene.get(), &context.Context, &hit);
+    // A triangle the tree holds in two leaves, reported twice, is one crossing too.
+    crossings[r] = vp::InsideVote::CountCrossings(crossed);
+  }
+  return vp::InsideVote::Decide(crossings, uncertain);
+}
 
 /// Narrows Embree's search sphere to radiusMm (plus the tree's float slack), never widening it:
 /// a candidate found just outside the sphere must not grow the search. Returns whether it shrank.
@@ -184,6 +246,8 @@ void vtkExactVesselDistance::BuildInternal()
     tree.SlackMm = 8.0 * FLT_EPSILON * (extent + this->RangeMm + 1.0);
     tree.Scene.reset(rtcNewScene(impl.Device.get()));
     rtcSetSceneBuildQuality(tree.Scene.get(), RTC_BUILD_QUALITY_MEDIUM);
+    // The inside vote's rays carry their own filter (CollectCrossing); the other rays none.
+    rtcSetSceneFlags(tree.Scene.get(), RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION | RTC_SCENE_FLAG_ROBUST);
     RTCGeometry geometry = rtcNewGeometry(impl.Device.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
     auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0,
       RTC_FORMAT_FLOAT3, 3 * sizeof(float), surface->NumberOfPoints()));
@@ -251,7 +315,14 @@ void vtkExactVesselDistance::ComputeProximity(const double tip[3], const double*
     out.ClosestPoint[0] = state.Closest[0];
     out.ClosestPoint[1] = state.Closest[1];
     out.ClosestPoint[2] = state.Closest[2];
-    out.Inside = surface.IsInside(tip, static_cast<std::size_t>(state.Triangle), state.Closest, state.Feature);
+    if (surface.IsClosed())
+    {
+      out.Inside = surface.IsInside(tip, static_cast<std::size_t>(state.Triangle), state.Closest, state.Feature);
+    }
+    else
+    {
+      out.Inside = VoteInside(tree, tip, distance, out.InsideUncertain);
+    }
 
     if (axis)
     {

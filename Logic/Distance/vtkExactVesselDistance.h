@@ -19,6 +19,11 @@
 /// The search starts with the engine's range as its radius, or, when the previous answer for a
 /// moving tip is passed in, with previous distance + displacement (the triangle inequality), so
 /// a tracked tip costs a few node visits. ComputeProximity() is thread-safe after Build().
+///
+/// Inside: on a closed surface, the angle-weighted pseudonormal at the closest point (exact).
+/// On one that is not closed (VesselSurface::Defects()), vp::InsideVote over Embree's rays: the
+/// parity of the crossings along five fixed rays; when they disagree the answer is inside, the
+/// more dangerous one, and InsideUncertain says so.
 class vtkExactVesselDistance : public vtkVesselDistanceEngine
 {
 public:

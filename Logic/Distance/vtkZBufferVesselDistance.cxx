@@ -866,6 +866,8 @@ void vtkZBufferVesselDistance::AnswerBatch(const std::array<double, 3>* tips, st
         continue;
       }
       out.InRange = true;
+      // On a surface that is not closed the one ray's parity is no answer: an opening it passes
+      // through turns it (the exact engine votes over five rays there).
       out.Inside = this->Surfaces[c]->IsClosed() ? std::optional<bool>(cs[1] != 0u) : std::nullopt;
       // The nearest marked cell is at most a cell diagonal nearer than the surface it holds:
       // its distance plus half a diagonal is within half a diagonal of the truth.

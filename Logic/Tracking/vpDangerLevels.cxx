@@ -76,7 +76,8 @@ DangerLevel ClassifyDanger(const ClassProximity& proximity, double errorBoundMm,
   {
     return DangerLevel::Safe;
   }
-  if (proximity.Inside.value_or(false))
+  // Inside, or not certain that it is outside (the votes on a defective surface disagreed).
+  if (proximity.Inside.value_or(false) || proximity.InsideUncertain)
   {
     return DangerLevel::Breach;
   }

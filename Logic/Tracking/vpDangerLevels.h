@@ -39,7 +39,8 @@ std::array<unsigned char, 3> DangerLevelColour(DangerLevel level);
 /// The level of one class's answer. Conservative for approximate engines: the distance less the
 /// engine's error bound decides, so the level may overstate the danger but never understate it;
 /// and an answer within twice the bound of a wall is a breach, since such an engine cannot tell
-/// that close which side of the wall the tip is on (the exact engine, bound 0, always can).
+/// that close which side of the wall the tip is on (the exact engine, bound 0, always can). An
+/// answer whose inside is uncertain (the votes on a defective surface disagreed) is a breach.
 DangerLevel ClassifyDanger(const ClassProximity& proximity, double errorBoundMm, const DangerThresholds& thresholds);
 /// The level of one class's answer given its level in the frame before, with hysteresis on the way
 /// out only: a more dangerous level is entered at once (no breach is ever delayed); a level is left

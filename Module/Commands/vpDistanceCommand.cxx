@@ -191,6 +191,10 @@ int RunDistanceCommand(const std::vector<std::string>& argv)
         entry["distance_mm"] = c.InRange ? Json(c.DistanceMm) : Json(nullptr);
         entry["point"] = c.InRange ? PointJson(c.ClosestPoint, ras) : Json(nullptr);
         entry["inside"] = c.Inside ? Json(*c.Inside) : Json(nullptr);
+        if (c.InsideUncertain)
+        {
+          entry["inside_uncertain"] = true; // the votes on a defective surface disagreed
+        }
         entry["in_range"] = c.InRange;
         entry["directional_mm"] = c.DirectionalMm ? Json(*c.DirectionalMm) : Json(nullptr);
         if (reference)

@@ -404,7 +404,10 @@ void CompareOnIrcadbPatient(const std::string& patient)
     {
       ASSERT_NEAR(e.Classes[k].DistanceMm, b.Classes[k].DistanceMm, 1e-6) << patient << " tip " << i << " " << e.Classes[k].ClassName;
       EXPECT_NEAR(Norm(e.Classes[k].ClosestPoint, tip), e.Classes[k].DistanceMm, 1e-9);
-      EXPECT_EQ(e.Classes[k].Inside.has_value(), b.Classes[k].Inside.has_value());
+      // The IRCADb surfaces are not closed: inside is their vote, Embree's rays against every
+      // triangle in double.
+      EXPECT_EQ(e.Classes[k].Inside, b.Classes[k].Inside) << patient << " tip " << i << " " << e.Classes[k].ClassName;
+      EXPECT_EQ(e.Classes[k].InsideUncertain, b.Classes[k].InsideUncertain) << patient << " tip " << i;
     }
     const int en = e.NearestIndex(), bn = b.NearestIndex();
     if (en != bn)

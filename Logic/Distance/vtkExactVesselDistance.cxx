@@ -73,6 +73,24 @@ struct QueryState
   double SlackMm;
 };
 
+/// A ray from origin along direction up to tfar, in the tree's coordinates, with no hit yet.
+RTCRayHit MakeRay(const ClassTree& tree, const double origin[3], const double direction[3], float tfar)
+{
+  RTCRayHit hit{};
+  hit.ray.org_x = static_cast<float>(origin[0] - tree.Origin[0]);
+  hit.ray.org_y = static_cast<float>(origin[1] - tree.Origin[1]);
+  hit.ray.org_z = static_cast<float>(origin[2] - tree.Origin[2]);
+  hit.ray.dir_x = static_cast<float>(direction[0]);
+  hit.ray.dir_y = static_cast<float>(direction[1]);
+  hit.ray.dir_z = static_cast<float>(direction[2]);
+  hit.ray.tnear = 0.0f;
+  hit.ray.tfar = tfar;
+  hit.ray.mask = 0xFFFFFFFFu;
+  hit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  hit.hit.primID = RTC_INVALID_GEOMETRY_ID;
+  return hit;
+}
+
 /// Whether p is inside a surface that is not closed (vp::InsideVote), its crossings counted by
 /// Embree. On the surface itself (distanceMm within a picometre) it is outside, as for a closed
 /// surface.
@@ -93,18 +111,7 @@ bool VoteInside(const ClassTree& tree, const double p[3], double distanceMm, boo
     context.Context.filter = &CollectCrossing;
     context.Crossed = &crossed;
     crossed.clear();
-    RTCRayHit hit{};
-    hit.ray.org_x = static_cast<float>(p[0] - tree.Origin[0]);
-    hit.ray.org_y = static_cast<float>(p[1] - tree.Origin[1]);
-    hit.ray.org_z = static_cast<float>(p[2] - tree.Origin[2]);
-    hit.ray.dir_x = static_cast<float>(direction[0]);
-    hit.ray.dir_y = static_cast<float>(direction[1]);
-    hit.ray.dir_z = static_cast<float>(direction[2]);
-    hit.ray.tnear = 0.0f;
-    hit.ray.tfar = std::numeric_limits<float>::infinity();
-    hit.ray.mask = 0xFFFFFFFFu;
-    hit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    hit.hit.primID = RTC_INVALID_GEOMETRY_ID;
+    RTCRayHit hit = MakeRay(tree, p, direction, std::numeric_limits<float>::infinity());
     rtcIntersect1(tree.Scene.get(), &context.Context, &hit);
     // A triangle the tree holds in two leaves, reported twice, is one crossing too.
     crossings[r] = vp::InsideVote::CountCrossings(crossed);
@@ -328,21 +335,7 @@ void vtkExactVesselDistance::ComputeProximity(const double tip[3], const double*
     {
       RTCIntersectContext intersect;
       rtcInitIntersectContext(&intersect);
-      RTCRayHit hit;
-      hit.ray.org_x = static_cast<float>(tip[0] - tree.Origin[0]);
-      hit.ray.org_y = static_cast<float>(tip[1] - tree.Origin[1]);
-      hit.ray.org_z = static_cast<float>(tip[2] - tree.Origin[2]);
-      hit.ray.dir_x = static_cast<float>(axis[0]);
-      hit.ray.dir_y = static_cast<float>(axis[1]);
-      hit.ray.dir_z = static_cast<float>(axis[2]);
-      hit.ray.tnear = 0.0f;
-      hit.ray.tfar = static_cast<float>(this->RangeMm + tree.SlackMm);
-      hit.ray.time = 0.0f;
-      hit.ray.mask = 0xFFFFFFFFu;
-      hit.ray.id = 0;
-      hit.ray.flags = 0;
-      hit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-      hit.hit.primID = RTC_INVALID_GEOMETRY_ID;
+      RTCRayHit hit = MakeRay(tree, tip, axis, static_cast<float>(this->RangeMm + tree.SlackMm));
       rtcIntersect1(tree.Scene.get(), &intersect, &hit);
       if (hit.hit.geomID != RTC_INVALID_GEOMETRY_ID)
       {

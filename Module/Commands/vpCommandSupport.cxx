@@ -1,6 +1,7 @@
 #include "vpCommandSupport.h"
 
 #include "vpInputError.h"
+#include "vtkVesselDistanceEngine.h"
 #include "vtkVesselMeshReader.h"
 
 #include <vtkNew.h>
@@ -10,6 +11,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <iostream>
 #include <set>
 
 namespace vp
@@ -47,5 +49,42 @@ bool CreateOutputFolder(const std::string& folder)
 double NowMs()
 {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+void ReportSurfaceDefects(const std::string& command, vtkVesselDistanceEngine* engine, const std::vector<NamedMesh>& meshes)
+{
+  const bool votes = std::string(engine->GetMethodName()) != "zbuffer";
+  for (int c = 0; c < engine->GetNumberOfVessels(); ++c)
+  {
+    const VesselSurface& surface = engine->GetSurface(c);
+    if (surface.IsClosed())
+    {
+      continue;
+    }
+    std::string file;
+    for (const NamedMesh& m : meshes)
+    {
+      file = m.ClassName == surface.Name() ? m.FileName : file;
+    }
+    std::cerr << command << ": " << surface.Name() << " (" << file << "): the surface is not closed ("
+              << surface.Defects().Describe() << "): "
+              << (votes ? "inside is the majority of five rays' crossing parities, and a tip where they disagree is a breach"
+                        : "the z-buffer cannot tell inside on it (null); --method exact decides it by a vote of rays")
+              << "\n";
+  }
+}
+
+nlohmann::ordered_json SurfacesJson(vtkVesselDistanceEngine* engine)
+{
+  nlohmann::ordered_json out = nlohmann::ordered_json::object();
+  for (int c = 0; c < engine->GetNumberOfVessels(); ++c)
+  {
+    const VesselSurface& surface = engine->GetSurface(c);
+    const MeshDefects& d = surface.Defects();
+    out[surface.Name()] = { { "closed", surface.IsClosed() }, { "triangles", surface.NumberOfTriangles() },
+      { "boundary_edges", d.BoundaryEdges }, { "non_manifold_edges", d.NonManifoldEdges },
+      { "inconsistent_edges", d.InconsistentEdges }, { "components", d.Components } };
+  }
+  return out;
 }
 } // namespace vp

@@ -5,11 +5,14 @@
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
 
+#include <nlohmann/json.hpp>
+
 #include <string>
 #include <utility>
 #include <vector>
 
 class vtkPolyData;
+class vtkVesselDistanceEngine;
 
 namespace vp
 {
@@ -27,6 +30,13 @@ std::vector<NamedMesh> LoadVesselMeshes(const std::vector<std::pair<std::string,
 /// Creates an output folder and its missing parents, like mkdir -p; returns whether it was new.
 /// Throws InputError naming the folder when it cannot be made.
 bool CreateOutputFolder(const std::string& folder);
+
+/// One line on stderr (after the engine's Build()) for each class whose surface is not closed:
+/// its file, its defects, and how its inside is decided, so that nobody reads a vote or a null as
+/// the exact pseudonormal answer of a closed surface.
+void ReportSurfaceDefects(const std::string& command, vtkVesselDistanceEngine* engine, const std::vector<NamedMesh>& meshes);
+/// Per class (after Build()): "closed", and the defects' counts, for the JSON reports.
+nlohmann::ordered_json SurfacesJson(vtkVesselDistanceEngine* engine);
 
 /// Milliseconds since an arbitrary origin (steady clock).
 double NowMs();

@@ -129,6 +129,7 @@ int RunDistanceCommand(const std::vector<std::string>& argv)
   {
     reference->Build();
   }
+  ReportSurfaceDefects("distance", engine, meshes);
 
   // One batch: the same answers as tip by tip (bit for bit), in one submission where the engine can.
   const std::vector<std::array<double, 3>> axes(tips.size(), axis);
@@ -166,6 +167,7 @@ int RunDistanceCommand(const std::vector<std::string>& argv)
     out["space"] = space;
     out["range_mm"] = engine->GetRangeMm();
     out["error_bound_mm"] = bound;
+    out["surfaces"] = SurfacesJson(engine);
     Json list = Json::array();
     for (std::size_t i = 0; i < results.size(); ++i)
     {

@@ -141,6 +141,7 @@ Json SummaryJson(const TrackingSummary& s, vtkScalpelTrackingLogic* logic, vtkVe
   out["device"] = engine->GetDeviceDescription();
   out["range_mm"] = engine->GetRangeMm();
   out["error_bound_mm"] = engine->GetErrorBoundMm();
+  out["surfaces"] = SurfacesJson(engine);
   vtkScalpelModel* scalpel = logic->GetScalpel();
   out["scalpel"] = { { "tip_mm", { scalpel->GetTipMm()[0], scalpel->GetTipMm()[1], scalpel->GetTipMm()[2] } },
     { "axis", { scalpel->GetAxis()[0], scalpel->GetAxis()[1], scalpel->GetAxis()[2] } },
@@ -289,6 +290,7 @@ int RunTrackCommand(const std::vector<std::string>& argv)
   }
   proximity->Build();
   const double buildMs = NowMs() - start;
+  ReportSurfaceDefects("track", engine, meshes);
 
   vtkScalpelTrackingLogic* logic = proximity->GetTrackingLogic();
   logic->SetFrameBudgetMs(budgetMs);

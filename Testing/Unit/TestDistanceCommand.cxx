@@ -73,6 +73,39 @@ TEST_F(DistanceCommand, JsonHasTheDocumentedShape)
   }
 }
 
+// A sphere with one triangle removed (issue 14's user: one defect made the whole class answer
+// "inside: null", and a tip 2.9 mm inside was a warning): the defect is reported on stderr, in one
+// line naming the class and the file, and in the JSON; a tip inside is inside, in both the exact
+// engine and the brute force.
+TEST_F(DistanceCommand, ADefectiveSurfaceIsReportedAndItsInsideStillDecided)
+{
+  const double c[3] = { 0, 0, 0 };
+  vtkSmartPointer<vtkPolyData> sphere = vp::MakeSphere(c, 10.0, 16, 32);
+  sphere->BuildCells();
+  sphere->DeleteCell(40);
+  sphere->RemoveDeletedCells();
+  const std::string holed = this->Write("holed.stl", sphere);
+  for (const char* method : { "exact", "brute" })
+  {
+    const ToolRun r = RunTool(this->Dir,
+      "distance --vessels hepatic_vein=" + holed + " --tip 1,2,-3 --method " + method + " --json");
+    ASSERT_EQ(r.ExitCode, 0) << r.Err;
+    EXPECT_EQ(std::count(r.Err.begin(), r.Err.end(), '\n'), 1) << r.Err;
+    EXPECT_NE(r.Err.find("hepatic_vein (" + holed + "): the surface is not closed (3 boundary edges, 1 component)"),
+      std::string::npos) << r.Err;
+    const auto j = nlohmann::json::parse(r.Out);
+    EXPECT_EQ(j["surfaces"]["hepatic_vein"]["closed"], false);
+    EXPECT_EQ(j["surfaces"]["hepatic_vein"]["boundary_edges"], 3);
+    const auto& hv = j["results"][0]["classes"]["hepatic_vein"];
+    EXPECT_EQ(hv["inside"], true) << method;
+    EXPECT_NEAR(hv["distance_mm"].get<double>(), 10.0 - std::sqrt(14.0), 0.1) << method;
+  }
+  // A closed surface says nothing.
+  const ToolRun closed = RunTool(this->Dir, "distance --vessels hepatic_vein=" + this->Sphere + " --tip 1,2,-3 --json");
+  ASSERT_EQ(closed.ExitCode, 0) << closed.Err;
+  EXPECT_EQ(closed.Err, "");
+}
+
 TEST_F(DistanceCommand, TipsFileRasSpaceAndBruteAgree)
 {
   const std::string tips = WriteBytes(this->Dir, "tips.csv", "x,y,z\n0,0,15\n# a comment\n\n3,4,-20\n");

@@ -94,7 +94,7 @@ RTCRayHit MakeRay(const ClassTree& tree, const double origin[3], const double di
 /// Whether p is inside a surface that is not closed (vp::InsideVote), its crossings counted by
 /// Embree. On the surface itself (distanceMm within a picometre) it is outside, as for a closed
 /// surface.
-bool VoteInside(const ClassTree& tree, const double p[3], double distanceMm, bool& uncertain)
+bool VoteInsideTree(const ClassTree& tree, const double p[3], double distanceMm, bool& uncertain)
 {
   uncertain = false;
   if (distanceMm <= 1e-9)
@@ -328,7 +328,7 @@ void vtkExactVesselDistance::ComputeProximity(const double tip[3], const double*
     }
     else
     {
-      out.Inside = VoteInside(tree, tip, distance, out.InsideUncertain);
+      out.Inside = VoteInsideTree(tree, tip, distance, out.InsideUncertain);
     }
 
     if (axis)
@@ -376,6 +376,12 @@ double vtkExactVesselDistance::NearestDistanceWithin(
                     : std::nullopt;
   }
   return found ? best : std::numeric_limits<double>::infinity();
+}
+
+bool vtkExactVesselDistance::VoteInside(int classIndex, const double point[3], double distanceMm, bool& uncertain) const
+{
+  this->EnsureBuilt();
+  return VoteInsideTree(this->Impl->Trees.at(static_cast<std::size_t>(classIndex)), point, distanceMm, uncertain);
 }
 
 void vtkExactVesselDistance::PrintSelf(ostream& os, vtkIndent indent)

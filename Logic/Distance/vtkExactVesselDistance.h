@@ -49,6 +49,10 @@ public:
   /// (empty for an open surface, or when nothing lies within radiusMm).
   double NearestDistanceWithin(
     int classIndex, const double point[3], double radiusMm, std::optional<bool>* inside = nullptr) const;
+  /// The inside vote (vp::InsideVote) of class classIndex at point, whatever its surface, for an
+  /// engine that cannot decide inside on a surface that is not closed (the z-buffer's one ray).
+  /// distanceMm is the point's distance to the surface (a point on it is outside).
+  bool VoteInside(int classIndex, const double point[3], double distanceMm, bool& uncertain) const;
 
 protected:
   vtkExactVesselDistance();

@@ -6,6 +6,7 @@
 #include "vpInputError.h"
 #include "vpPreparedCommands.h"
 #include "vpVulkanContext.h"
+#include "vtkExactVesselDistance.h"
 
 #include "QueryProximityPerPixel_comp_spv.h"
 #include "QueryProximity_comp_spv.h"
@@ -156,6 +157,10 @@ struct vtkZBufferVesselDistance::Internals
     std::unique_ptr<vp::PreparedCommands> Commands;
   };
   std::vector<PreparedQuery> Prepared;
+  // The classes whose surface is not closed, in an exact engine of their own: their inside is its
+  // vote (one ray along +z cannot vote), and ExactIndex maps a class to its place there (-1: closed).
+  vtkSmartPointer<vtkExactVesselDistance> Votes;
+  std::vector<int> ExactIndex;
   static constexpr std::size_t MaxPrepared = 64;
 
   // The tiles of the order table within searchMm of any tip in the centre tile.
@@ -512,6 +517,24 @@ void vtkZBufferVesselDistance::BuildInternal()
   Internals& s = *this->Impl;
   vp::VulkanContext& context = s.Device(this->DeviceSelector);
   s.Release();
+  s.Votes = nullptr;
+  s.ExactIndex.assign(this->Surfaces.size(), -1);
+  for (std::size_t c = 0; c < this->Surfaces.size(); ++c)
+  {
+    if (!this->Surfaces[c]->IsClosed())
+    {
+      if (!s.Votes)
+      {
+        s.Votes = vtkSmartPointer<vtkExactVesselDistance>::New();
+      }
+      s.ExactIndex[c] = s.Votes->GetNumberOfVessels();
+      s.Votes->AddVessel(this->Meshes[c].first, this->Meshes[c].second);
+    }
+  }
+  if (s.Votes)
+  {
+    s.Votes->Build();
+  }
   if (!context.HasInt64Atomics())
   {
     throw vp::DeviceError("Vulkan device '" + context.Device().Name +
@@ -866,9 +889,16 @@ void vtkZBufferVesselDistance::AnswerBatch(const std::array<double, 3>* tips, st
         continue;
       }
       out.InRange = true;
-      // On a surface that is not closed the one ray's parity is no answer: an opening it passes
-      // through turns it (the exact engine votes over five rays there).
-      out.Inside = this->Surfaces[c]->IsClosed() ? std::optional<bool>(cs[1] != 0u) : std::nullopt;
+      // On a surface that is not closed the one ray's parity is no answer (an opening it passes
+      // through turns it): the exact engine's vote over five rays decides there.
+      if (this->Surfaces[c]->IsClosed())
+      {
+        out.Inside = cs[1] != 0u;
+      }
+      else
+      {
+        out.Inside = s.Votes->VoteInside(s.ExactIndex[c], tip, best + g.HalfDiagonalMm(), out.InsideUncertain);
+      }
       // The nearest marked cell is at most a cell diagonal nearer than the surface it holds:
       // its distance plus half a diagonal is within half a diagonal of the truth.
       double distance = best + g.HalfDiagonalMm();

@@ -53,7 +53,6 @@ double NowMs()
 
 void ReportSurfaceDefects(const std::string& command, vtkVesselDistanceEngine* engine, const std::vector<NamedMesh>& meshes)
 {
-  const bool votes = std::string(engine->GetMethodName()) != "zbuffer";
   for (int c = 0; c < engine->GetNumberOfVessels(); ++c)
   {
     const VesselSurface& surface = engine->GetSurface(c);
@@ -68,8 +67,7 @@ void ReportSurfaceDefects(const std::string& command, vtkVesselDistanceEngine* e
     }
     std::cerr << command << ": " << surface.Name() << " (" << file << "): the surface is not closed ("
               << surface.Defects().Describe() << "): "
-              << (votes ? "inside is the majority of five rays' crossing parities, and a tip where they disagree is a breach"
-                        : "the z-buffer cannot tell inside on it (null); --method exact decides it by a vote of rays")
+              << "inside is the majority of five rays' crossing parities, and a tip where they disagree is a breach"
               << "\n";
   }
 }

@@ -9,6 +9,8 @@
 #include "vpVesselSurface.h"
 #include "vtkBruteForceVesselDistance.h"
 #include "vtkExactVesselDistance.h"
+#include "vtkZBufferVesselDistance.h"
+#include "vpVulkanTestSupport.h"
 
 #include <vtkCellArray.h>
 #include <vtkNew.h>
@@ -128,103 +130,167 @@ std::vector<Defective> DefectiveCopies(const Points& points, const Triangles& tr
   }
   return copies;
 }
-} // namespace
 
-TEST(InsideOnDefectiveMeshes, EveryTipDeeperThanAFifthOfAMillimetreIsClassifiedRight)
+// Per class of the built-in vessels: the defective copies, and 200 tips each side of the closed
+// surface, 0.2 mm or more from the wall, the truth from the closed surface (its pseudonormal);
+// half of them near the defects' place, where a ray is likeliest to meet one.
+struct Case
 {
-  for (const auto& [className, mesh] : vp::MakeBuiltInVessels())
-  {
-    const vp::VesselSurface original(className, mesh);
-    ASSERT_TRUE(original.IsClosed()) << className << ": " << original.Defects().Describe();
-    const Points& points = original.PointArray();
-    const Triangles& triangles = original.TriangleArray();
+  std::string ClassName;
+  std::vector<Defective> Copies;
+  std::vector<std::array<double, 3>> Inside, Outside;
+};
 
-    // The truth from the closed surface (its pseudonormal), 200 tips each side, 0.2 mm or more
-    // from the wall; half of them near the defects' place, where a ray is likeliest to meet one.
-    vtkNew<vtkExactVesselDistance> truth;
-    truth->SetRangeMm(1000.0);
-    truth->AddVessel(className, MakeMesh(points, triangles));
-    truth->Build();
-    const double* b = original.Bounds();
-    const auto near = Centroid(points, triangles[triangles.size() / 3]);
-    std::mt19937 random(17);
-    std::vector<std::array<double, 3>> inside, outside;
-    for (int draw = 0; draw < 200000 && (inside.size() < 200 || outside.size() < 200); ++draw)
+const std::vector<Case>& Cases()
+{
+  static const std::vector<Case> cases = [] {
+    std::vector<Case> out;
+    for (const auto& [className, mesh] : vp::MakeBuiltInVessels())
     {
-      std::array<double, 3> tip;
-      for (int a = 0; a < 3; ++a)
+      const vp::VesselSurface original(className, mesh);
+      const Points& points = original.PointArray();
+      const Triangles& triangles = original.TriangleArray();
+      Case c{ className, DefectiveCopies(points, triangles), {}, {} };
+      vtkNew<vtkExactVesselDistance> truth;
+      truth->SetRangeMm(1000.0);
+      truth->AddVessel(className, MakeMesh(points, triangles));
+      truth->Build();
+      const double* b = original.Bounds();
+      const auto near = Centroid(points, triangles[triangles.size() / 3]);
+      std::mt19937 random(17);
+      for (int draw = 0; draw < 200000 && (c.Inside.size() < 200 || c.Outside.size() < 200); ++draw)
       {
-        tip[a] = draw % 2 ? std::uniform_real_distribution<double>(near[a] - 6.0, near[a] + 6.0)(random)
-                          : std::uniform_real_distribution<double>(b[2 * a] - 3.0, b[2 * a + 1] + 3.0)(random);
-      }
-      vp::ProximityResult r;
-      truth->ComputeProximity(tip.data(), nullptr, r);
-      const vp::ClassProximity& c = r.Classes[0];
-      if (!c.InRange || c.DistanceMm < 0.2)
-      {
-        continue;
-      }
-      auto& side = *c.Inside ? inside : outside;
-      if (side.size() < 200)
-      {
-        side.push_back(tip);
-      }
-    }
-    ASSERT_EQ(inside.size(), 200u) << className;
-    ASSERT_EQ(outside.size(), 200u) << className;
-
-    for (const Defective& copy : DefectiveCopies(points, triangles))
-    {
-      const std::string where = className + ", " + copy.Name;
-      const vp::VesselSurface surface(className, copy.Mesh);
-      EXPECT_FALSE(surface.IsClosed()) << where;
-      EXPECT_TRUE(copy.Reported(surface.Defects())) << where << ": " << surface.Defects().Describe();
-      vtkNew<vtkExactVesselDistance> exact;
-      vtkNew<vtkBruteForceVesselDistance> brute;
-      for (vtkVesselDistanceEngine* engine : { static_cast<vtkVesselDistanceEngine*>(exact.Get()),
-             static_cast<vtkVesselDistanceEngine*>(brute.Get()) })
-      {
-        engine->SetRangeMm(1000.0);
-        engine->AddVessel(className, copy.Mesh);
-        engine->Build();
-      }
-      int checked = 0;
-      int uncertain = 0;
-      for (const auto* tips : { &inside, &outside })
-      {
-        const bool expected = tips == &inside;
-        for (std::size_t i = 0; i < tips->size(); ++i)
+        std::array<double, 3> tip;
+        for (int a = 0; a < 3; ++a)
         {
-          vp::ProximityResult e;
-          exact->ComputeProximity((*tips)[i].data(), nullptr, e);
-          ASSERT_TRUE(e.Classes[0].Inside.has_value()) << where;
-          EXPECT_EQ(*e.Classes[0].Inside, expected) << where << ", tip " << i << (e.Classes[0].InsideUncertain ? " (uncertain)" : "");
-          // Every inside tip is a breach; so is an outside one whose rays disagreed.
-          const vp::DangerLevel level = vp::ClassifyDanger(e.Classes[0], 0.0, vp::DangerThresholds{});
-          if (expected || e.Classes[0].InsideUncertain)
+          tip[a] = draw % 2 ? std::uniform_real_distribution<double>(near[a] - 6.0, near[a] + 6.0)(random)
+                            : std::uniform_real_distribution<double>(b[2 * a] - 3.0, b[2 * a + 1] + 3.0)(random);
+        }
+        vp::ProximityResult r;
+        truth->ComputeProximity(tip.data(), nullptr, r);
+        const vp::ClassProximity& p = r.Classes[0];
+        if (p.InRange && p.DistanceMm >= 0.2 && original.IsClosed())
+        {
+          auto& side = *p.Inside ? c.Inside : c.Outside;
+          if (side.size() < 200)
           {
-            EXPECT_EQ(level, vp::DangerLevel::Breach) << where << ", tip " << i;
-            uncertain += e.Classes[0].InsideUncertain ? 1 : 0;
+            side.push_back(tip);
           }
-          else
-          {
-            EXPECT_NE(level, vp::DangerLevel::Breach) << where << ", tip " << i;
-          }
-          // The brute force, the reference of the vote, on every tenth tip (it tests every triangle).
-          if (i % 10 == 0)
-          {
-            vp::ProximityResult r;
-            brute->ComputeProximity((*tips)[i].data(), nullptr, r);
-            EXPECT_EQ(r.Classes[0].Inside, e.Classes[0].Inside) << where << ", tip " << i;
-            EXPECT_EQ(r.Classes[0].InsideUncertain, e.Classes[0].InsideUncertain) << where << ", tip " << i;
-          }
-          ++checked;
         }
       }
-      EXPECT_EQ(checked, 400) << where;
-      EXPECT_LE(uncertain, 40) << where << ": the rays should rarely disagree";
+      out.push_back(std::move(c));
+    }
+    return out;
+  }();
+  return cases;
+}
+
+// Runs check(tip, expected inside, where) over every tip of every defective copy, with engine
+// made anew for each copy by make.
+void ForEveryTip(const std::function<vtkSmartPointer<vtkVesselDistanceEngine>()>& make,
+  const std::function<void(vtkVesselDistanceEngine*, vtkPolyData*, const double*, bool, const std::string&)>& check)
+{
+  for (const Case& c : Cases())
+  {
+    ASSERT_EQ(c.Inside.size(), 200u) << c.ClassName;
+    ASSERT_EQ(c.Outside.size(), 200u) << c.ClassName;
+    for (const Defective& copy : c.Copies)
+    {
+      vtkSmartPointer<vtkVesselDistanceEngine> engine = make();
+      engine->SetRangeMm(50.0);
+      engine->AddVessel(c.ClassName, copy.Mesh);
+      engine->Build();
+      for (const auto* tips : { &c.Inside, &c.Outside })
+      {
+        for (std::size_t i = 0; i < tips->size(); ++i)
+        {
+          check(engine, copy.Mesh, (*tips)[i].data(), tips == &c.Inside,
+            c.ClassName + ", " + copy.Name + ", " + (tips == &c.Inside ? "inside" : "outside") + " tip " + std::to_string(i));
+        }
+      }
     }
   }
+}
+} // namespace
+
+TEST(InsideOnDefectiveMeshes, EachDefectIsReported)
+{
+  for (const Case& c : Cases())
+  {
+    for (const Defective& copy : c.Copies)
+    {
+      const vp::VesselSurface surface(c.ClassName, copy.Mesh);
+      EXPECT_FALSE(surface.IsClosed()) << c.ClassName << ", " << copy.Name;
+      EXPECT_TRUE(copy.Reported(surface.Defects())) << c.ClassName << ", " << copy.Name << ": " << surface.Defects().Describe();
+    }
+  }
+}
+
+// Every tip classified right by the exact engine; every inside one a breach, and so is an
+// outside one whose rays disagreed (rarely); the brute force, the vote's reference, agrees.
+TEST(InsideOnDefectiveMeshes, EveryTipDeeperThanAFifthOfAMillimetreIsClassifiedRight)
+{
+  int uncertain = 0, checked = 0;
+  vtkSmartPointer<vtkBruteForceVesselDistance> brute;
+  vtkPolyData* bruteMesh = nullptr;
+  ForEveryTip([] { return vtkSmartPointer<vtkExactVesselDistance>::New(); },
+    [&](vtkVesselDistanceEngine* exact, vtkPolyData* mesh, const double* tip, bool expected, const std::string& where) {
+      vp::ProximityResult e;
+      exact->ComputeProximity(tip, nullptr, e);
+      ASSERT_TRUE(e.Classes[0].Inside.has_value()) << where;
+      EXPECT_EQ(*e.Classes[0].Inside, expected) << where << (e.Classes[0].InsideUncertain ? " (uncertain)" : "");
+      const vp::DangerLevel level = vp::ClassifyDanger(e.Classes[0], 0.0, vp::DangerThresholds{});
+      if (expected || e.Classes[0].InsideUncertain)
+      {
+        EXPECT_EQ(level, vp::DangerLevel::Breach) << where;
+      }
+      else
+      {
+        EXPECT_NE(level, vp::DangerLevel::Breach) << where;
+      }
+      uncertain += e.Classes[0].InsideUncertain ? 1 : 0;
+      // The brute force on every tenth tip (it tests every triangle).
+      if (++checked % 10 == 0)
+      {
+        if (mesh != bruteMesh)
+        {
+          brute = vtkSmartPointer<vtkBruteForceVesselDistance>::New();
+          brute->SetRangeMm(50.0);
+          brute->AddVessel(exact->GetVesselName(0), mesh);
+          brute->Build();
+          bruteMesh = mesh;
+        }
+        vp::ProximityResult r;
+        brute->ComputeProximity(tip, nullptr, r);
+        EXPECT_EQ(r.Classes[0].Inside, e.Classes[0].Inside) << where;
+        EXPECT_EQ(r.Classes[0].InsideUncertain, e.Classes[0].InsideUncertain) << where;
+      }
+    });
+  EXPECT_EQ(checked, 3 * 4 * 400);
+  EXPECT_LE(uncertain, checked / 50) << "the rays should rarely disagree";
+}
+
+// The z-buffer's one ray cannot vote: on a surface that is not closed it takes the exact engine's
+// vote, so every tip is classified right there too, and every inside one is a breach.
+TEST(InsideOnDefectiveMeshes, TheZBufferTakesTheVoteAndEveryInsideTipIsABreach)
+{
+  VP_REQUIRE_VULKAN();
+  int checked = 0;
+  ForEveryTip([] { return vtkSmartPointer<vtkZBufferVesselDistance>::New(); },
+    [&](vtkVesselDistanceEngine* z, vtkPolyData*, const double* tip, bool expected, const std::string& where) {
+      vp::ProximityResult r;
+      z->ComputeProximity(tip, nullptr, r);
+      const vp::ClassProximity& c = r.Classes[0];
+      ASSERT_TRUE(c.InRange) << where;
+      ASSERT_TRUE(c.Inside.has_value()) << where;
+      EXPECT_EQ(*c.Inside, expected) << where << (c.InsideUncertain ? " (uncertain)" : "");
+      if (expected)
+      {
+        EXPECT_EQ(vp::ClassifyDanger(c, r.ErrorBoundMm, vp::DangerThresholds{}), vp::DangerLevel::Breach) << where;
+      }
+      ++checked;
+    });
+  EXPECT_EQ(checked, 3 * 4 * 400);
 }
 
 // A closed surface keeps its exact answer (the pseudonormal): no vote, never uncertain.

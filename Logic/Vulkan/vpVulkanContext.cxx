@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
+#include <mutex>
 #include <sstream>
 
 namespace vp
@@ -121,6 +122,25 @@ VkInstance CreateInstance(bool validation)
   return instance;
 }
 
+// One instance per process (two with the validation layer), made on first use and kept to the
+// process's end, never destroyed: the Vulkan loader unloads the driver with the last instance,
+// and lavapipe (Mesa 22.3.6-1+deb12u2) leaves behind, at each unload, a block it allocated once per
+// load, which LeakSanitizer then reports as ours (128 bytes an engine, from an unloaded module
+// nothing can name in a suppression). Loaded once, the driver also stops reloading LLVM for
+// every engine. A failure is not kept: the next call tries again.
+VkInstance SharedInstance(bool validation)
+{
+  static std::mutex lock;
+  static VkInstance instances[2] = { VK_NULL_HANDLE, VK_NULL_HANDLE };
+  std::lock_guard<std::mutex> guard(lock);
+  VkInstance& instance = instances[validation ? 1 : 0];
+  if (instance == VK_NULL_HANDLE)
+  {
+    instance = CreateInstance(validation);
+  }
+  return instance;
+}
+
 std::vector<VkPhysicalDevice> PhysicalDevices(VkInstance instance)
 {
   std::uint32_t n = 0;
@@ -159,22 +179,12 @@ void VulkanContext::Check(VkResult result, const char* what)
 
 std::vector<VulkanDeviceInfo> VulkanContext::ListDevices()
 {
-  VkInstance instance = CreateInstance(false);
+  const auto devices = PhysicalDevices(SharedInstance(false));
   std::vector<VulkanDeviceInfo> out;
-  try
+  for (std::size_t i = 0; i < devices.size(); ++i)
   {
-    const auto devices = PhysicalDevices(instance);
-    for (std::size_t i = 0; i < devices.size(); ++i)
-    {
-      out.push_back(Describe(devices[i], static_cast<int>(i)));
-    }
+    out.push_back(Describe(devices[i], static_cast<int>(i)));
   }
-  catch (...)
-  {
-    vkDestroyInstance(instance, nullptr);
-    throw;
-  }
-  vkDestroyInstance(instance, nullptr);
   return out;
 }
 
@@ -193,7 +203,7 @@ VKAPI_ATTR VkBool32 VKAPI_CALL VulkanContext::OnValidationMessage(VkDebugUtilsMe
 VulkanContext::VulkanContext(const std::string& selector)
 {
   const bool validation = WantsValidation() && LayerAvailable("VK_LAYER_KHRONOS_validation");
-  this->Instance = CreateInstance(validation);
+  this->Instance = SharedInstance(validation);
   try
   {
     if (validation)
@@ -388,10 +398,7 @@ void VulkanContext::Destroy()
       destroy(this->Instance, this->Messenger, nullptr);
     }
   }
-  if (this->Instance)
-  {
-    vkDestroyInstance(this->Instance, nullptr);
-  }
+  // The instance is the process's (SharedInstance): it stays.
   this->Fence = VK_NULL_HANDLE;
   this->Stamps = VK_NULL_HANDLE;
   this->CommandPool = VK_NULL_HANDLE;

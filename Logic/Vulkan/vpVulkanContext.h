@@ -31,7 +31,8 @@ struct VulkanDeviceInfo
   std::uint32_t ApiVersion = 0;
 };
 
-/// A headless Vulkan instance and logical device with one compute queue: no window, no display,
+/// A headless Vulkan logical device with one compute queue, on the process's one instance (kept
+/// until the process ends, so that the driver is loaded once): no window, no display,
 /// no surface extension. Mesa's lavapipe (a CPU device) works as well as a GPU.
 ///
 /// Device choice: an empty selector takes a discrete GPU when there is one, then an integrated
@@ -97,7 +98,7 @@ public:
   static void Check(VkResult result, const char* what);
 
 private:
-  VkInstance Instance = VK_NULL_HANDLE;
+  VkInstance Instance = VK_NULL_HANDLE; // the process's, shared by every context (never destroyed)
   VkDebugUtilsMessengerEXT Messenger = VK_NULL_HANDLE;
   VkPhysicalDevice PhysicalDevice = VK_NULL_HANDLE;
   VkPhysicalDeviceProperties Properties{};

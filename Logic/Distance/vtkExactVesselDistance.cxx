@@ -326,7 +326,7 @@ void vtkExactVesselDistance::ComputeProximity(const double tip[3], const double*
     {
       out.Inside = surface.IsInside(tip, static_cast<std::size_t>(state.Triangle), state.Closest, state.Feature);
     }
-    else
+    else if (this->VoteOnOpenSurfaces)
     {
       out.Inside = VoteInsideTree(tree, tip, distance, out.InsideUncertain);
     }

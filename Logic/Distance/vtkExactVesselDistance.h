@@ -34,6 +34,11 @@ public:
   void ComputeProximity(const double tip[3], const double* axis, vp::ProximityResult& result,
     const vp::ProximityResult* previous = nullptr) const override;
   const char* GetMethodName() const override { return "exact"; }
+  /// Whether inside is decided on a surface that is not closed, by the vote of rays (default
+  /// on). Off: it stays empty there, as before the vote, for callers that need only distances
+  /// and for the bench's measure of what the vote costs.
+  vtkSetMacro(VoteOnOpenSurfaces, bool);
+  vtkGetMacro(VoteOnOpenSurfaces, bool);
   std::string GetDeviceDescription() override { return "cpu (Embree BVH)"; }
 
   /// Receives a triangle of the class (its index in GetSurface()) that may lie within the search
@@ -55,6 +60,7 @@ public:
   bool VoteInside(int classIndex, const double point[3], double distanceMm, bool& uncertain) const;
 
 protected:
+  bool VoteOnOpenSurfaces = true;
   vtkExactVesselDistance();
   ~vtkExactVesselDistance() override;
   void BuildInternal() override;

@@ -16,6 +16,7 @@
 #include "SummarizeTiles_comp_spv.h"
 
 #include <vtkObjectFactory.h>
+#include <vtkSMPTools.h>
 
 #include <algorithm>
 #include <array>
@@ -869,6 +870,13 @@ void vtkZBufferVesselDistance::AnswerBatch(const std::array<double, 3>* tips, st
   prepared->Commands->Submit();
 
   const auto* hostState = static_cast<const std::uint32_t*>(s.HostState->Mapped());
+  struct Vote
+  {
+    std::size_t Tip;
+    std::uint32_t Class;
+    double DistanceMm;
+  };
+  std::vector<Vote> votes; // the answers on surfaces that are not closed
   for (std::size_t i = 0; i < count; ++i)
   {
     const double* tip = tips[i].data();
@@ -897,7 +905,7 @@ void vtkZBufferVesselDistance::AnswerBatch(const std::array<double, 3>* tips, st
       }
       else
       {
-        out.Inside = s.Votes->VoteInside(s.ExactIndex[c], tip, best + g.HalfDiagonalMm(), out.InsideUncertain);
+        votes.push_back({ i, c, best + g.HalfDiagonalMm() });
       }
       // The nearest marked cell is at most a cell diagonal nearer than the surface it holds:
       // its distance plus half a diagonal is within half a diagonal of the truth.
@@ -923,6 +931,24 @@ void vtkZBufferVesselDistance::AnswerBatch(const std::array<double, 3>* tips, st
       out.ClosestPoint[2] = g.OriginMm[2] + bestDepth * g.SliceMm;
       out.TriangleId = -1;
     }
+  }
+  // The votes run on the host, five rays each: a batch's on all cores (Embree's queries are
+  // thread-safe), so that a batch on a defective surface does not wait for them one by one.
+  auto vote = [&](vtkIdType begin, vtkIdType end) {
+    for (vtkIdType k = begin; k < end; ++k)
+    {
+      const Vote& v = votes[static_cast<std::size_t>(k)];
+      vp::ClassProximity& out = results[v.Tip].Classes[v.Class];
+      out.Inside = s.Votes->VoteInside(s.ExactIndex[v.Class], tips[v.Tip].data(), v.DistanceMm, out.InsideUncertain);
+    }
+  };
+  if (votes.size() >= 64)
+  {
+    vtkSMPTools::For(0, static_cast<vtkIdType>(votes.size()), vote);
+  }
+  else
+  {
+    vote(0, static_cast<vtkIdType>(votes.size()));
   }
 }
 

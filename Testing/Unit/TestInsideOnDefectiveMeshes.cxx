@@ -291,6 +291,26 @@ TEST(InsideOnDefectiveMeshes, TheZBufferTakesTheVoteAndEveryInsideTipIsABreach)
       ++checked;
     });
   EXPECT_EQ(checked, 3 * 4 * 400);
+
+  // A batch answers as the tips one by one (its votes run on all cores).
+  const Case& c = Cases().front();
+  auto z = vtkSmartPointer<vtkZBufferVesselDistance>::New();
+  z->SetRangeMm(50.0);
+  z->AddVessel(c.ClassName, c.Copies.front().Mesh);
+  z->Build();
+  std::vector<std::array<double, 3>> all(c.Inside);
+  all.insert(all.end(), c.Outside.begin(), c.Outside.end());
+  std::vector<vp::ProximityResult> batch;
+  z->ComputeProximityBatch(all, nullptr, batch);
+  ASSERT_EQ(batch.size(), all.size());
+  for (std::size_t i = 0; i < all.size(); ++i)
+  {
+    vp::ProximityResult single;
+    z->ComputeProximity(all[i].data(), nullptr, single);
+    EXPECT_EQ(batch[i].Classes[0].Inside, single.Classes[0].Inside) << "tip " << i;
+    EXPECT_EQ(batch[i].Classes[0].InsideUncertain, single.Classes[0].InsideUncertain) << "tip " << i;
+    EXPECT_EQ(*batch[i].Classes[0].Inside, i < c.Inside.size()) << "tip " << i;
+  }
 }
 
 // A closed surface keeps its exact answer (the pseudonormal): no vote, never uncertain.

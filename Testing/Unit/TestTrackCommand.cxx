@@ -401,6 +401,65 @@ TEST_F(TrackCommand, ZBufferWholeInstrumentIsNeverFartherThanTheExactOne)
 
 // The z-buffer engine tracks within its bound of the exact engine, and its levels are never
 // milder than the exact engine's on the same frame (the bound is taken off the distance).
+// Issue 14's user: a vessel surface with one defect answered "inside: null", and a tip inside it
+// was a warning. A sphere with one triangle removed, the tip going 6 mm into it: every frame
+// 0.2 mm or more inside is a breach, with the exact engine and with the z-buffer, the defect is
+// said on stderr and in summary.json, and frames well outside are not breaches.
+TEST_F(TrackCommand, ATipInsideADefectiveSurfaceIsABreach)
+{
+  const double centre[3] = { 0, 0, 0 };
+  vtkSmartPointer<vtkPolyData> sphere = vp::MakeSphere(centre, 10.0, 48, 96);
+  sphere->BuildCells();
+  sphere->DeleteCell(2000);
+  sphere->RemoveDeletedCells();
+  const std::string holed = this->Write("holed.stl", sphere);
+  std::ostringstream csv;
+  csv << "time,x,y,z,qw,qx,qy,qz\n";
+  const double h = std::sqrt(0.5);
+  std::vector<double> xs;
+  for (double x = 16.0; x >= 4.0; x -= 0.5)
+  {
+    csv << xs.size() * 0.05 << "," << x << ",0.3,0.2," << h << ",0," << -h << ",0\n";
+    xs.push_back(x);
+  }
+  const std::string poses = this->WriteText("into.csv", csv.str());
+  for (const char* method : { "exact", "zbuffer" })
+  {
+    const std::string out = this->Dir + "/defective_" + method;
+    const ToolRun r = RunTool(this->Dir, "track --vessels portal_vein=" + holed + " --scalpel " + this->Tool + " --poses " + poses +
+        " --no-surface --method " + method + " -o " + out);
+    if (r.ExitCode == 4)
+    {
+      GTEST_SKIP() << "no Vulkan device: " << r.Err;
+    }
+    ASSERT_EQ(r.ExitCode, 0) << r.Err;
+    EXPECT_NE(r.Err.find("portal_vein (" + holed + "): the surface is not closed (3 boundary edges, 1 component)"),
+      std::string::npos) << r.Err;
+    std::ifstream in(out + "/summary.json");
+    const nlohmann::json summary = nlohmann::json::parse(in);
+    EXPECT_EQ(summary["surfaces"]["portal_vein"]["closed"], false);
+    EXPECT_EQ(summary["surfaces"]["portal_vein"]["boundary_edges"], 3);
+    const auto rows = ReadCsvCells(out + "/frames.csv");
+    ASSERT_EQ(rows.size(), xs.size() + 1);
+    const std::size_t level = std::find(rows[0].begin(), rows[0].end(), "danger_level") - rows[0].begin();
+    int breaches = 0;
+    for (std::size_t i = 0; i < xs.size(); ++i)
+    {
+      const double depth = 10.0 - std::sqrt(xs[i] * xs[i] + 0.3 * 0.3 + 0.2 * 0.2);
+      if (depth >= 0.2)
+      {
+        EXPECT_EQ(rows[i + 1][level], "breach") << method << ", tip " << depth << " mm inside";
+        ++breaches;
+      }
+      else if (depth <= -1.0)
+      {
+        EXPECT_NE(rows[i + 1][level], "breach") << method << ", tip " << -depth << " mm outside";
+      }
+    }
+    EXPECT_GE(breaches, 11) << method;
+  }
+}
+
 TEST_F(TrackCommand, ZBufferLevelsNeverUnderstateTheExactOnes)
 {
   const std::string poses = this->ApproachPoses();

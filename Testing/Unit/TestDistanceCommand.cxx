@@ -80,11 +80,7 @@ TEST_F(DistanceCommand, JsonHasTheDocumentedShape)
 TEST_F(DistanceCommand, ADefectiveSurfaceIsReportedAndItsInsideStillDecided)
 {
   const double c[3] = { 0, 0, 0 };
-  vtkSmartPointer<vtkPolyData> sphere = vp::MakeSphere(c, 10.0, 16, 32);
-  sphere->BuildCells();
-  sphere->DeleteCell(40);
-  sphere->RemoveDeletedCells();
-  const std::string holed = this->Write("holed.stl", sphere);
+  const std::string holed = this->Write("holed.stl", vp::test::WithoutCell(vp::MakeSphere(c, 10.0, 16, 32), 40));
   for (const char* method : { "exact", "brute" })
   {
     const ToolRun r = RunTool(this->Dir,

@@ -32,6 +32,17 @@ inline std::string WriteMeshFile(const std::string& dir, const std::string& name
   return writer->GetFileName();
 }
 
+/// mesh with cell `cell` removed: a hole of one triangle, the smallest defect a surface can have.
+inline vtkSmartPointer<vtkPolyData> WithoutCell(vtkPolyData* mesh, vtkIdType cell)
+{
+  auto holed = vtkSmartPointer<vtkPolyData>::New();
+  holed->DeepCopy(mesh);
+  holed->BuildCells();
+  holed->DeleteCell(cell);
+  holed->RemoveDeletedCells();
+  return holed;
+}
+
 /// A grid of the given size whose voxel centres p (LPS) get label(p).
 inline LabelGrid MakeGrid(const int dims[3], const std::array<double, 16>& ijkToLps,
   const std::function<int(const double p[3])>& label)

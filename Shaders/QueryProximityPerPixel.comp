@@ -74,8 +74,6 @@ void main()
       }
     }
     ivec2 pix = tile * 8 + ivec2(int(bestK & 7u), int(bestK >> 3u));
-    uint bestPixel = bestHere < Inf ? uint(pix.y * P.Nx + pix.x) : 0u;
-    float bestDepth = bestHere < Inf ? CandidateDepth[bestK] : 0.0;
-    WriteRecord(answer, entry, bestHere, bestPixel, bestDepth);
+    WriteRecord(answer, entry, bestHere, uint(pix.y * P.Nx + pix.x), CandidateDepth[bestK]); // none when Inf
   }
 }

@@ -27,6 +27,9 @@ struct InsideVote
     { -0.30151134, -0.90453403, 0.30151134 },
     { 0.87287156, 0.21821789, -0.43643578 },
   };
+  /// A point this close to the surface (mm) is on it, and outside, as VesselSurface::IsInside
+  /// has it for a closed surface: touching is distance 0, not a breach.
+  static constexpr double OnSurfaceMm = 1e-9;
   /// Crossings closer than this along a ray are one (mm): a duplicated wall's copies, the
   /// triangles meeting at an edge the ray passes through.
   static constexpr double CoincidentMm = 1e-3;

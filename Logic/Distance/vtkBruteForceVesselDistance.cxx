@@ -123,9 +123,9 @@ void vtkBruteForceVesselDistance::ComputeProximity(const double tip[3], const do
     {
       out.Inside = surface.IsInside(tip, static_cast<std::size_t>(out.TriangleId), out.ClosestPoint, bestFeature);
     }
-    else if (out.DistanceMm <= 1e-9)
+    else if (out.DistanceMm <= vp::InsideVote::OnSurfaceMm)
     {
-      out.Inside = false; // on the surface, as for a closed one
+      out.Inside = false;
     }
     else
     {

@@ -97,7 +97,7 @@ RTCRayHit MakeRay(const ClassTree& tree, const double origin[3], const double di
 bool VoteInsideTree(const ClassTree& tree, const double p[3], double distanceMm, bool& uncertain)
 {
   uncertain = false;
-  if (distanceMm <= 1e-9)
+  if (distanceMm <= vp::InsideVote::OnSurfaceMm)
   {
     return false;
   }

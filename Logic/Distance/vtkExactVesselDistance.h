@@ -22,8 +22,8 @@
 ///
 /// Inside: on a closed surface, the angle-weighted pseudonormal at the closest point (exact).
 /// On one that is not closed (VesselSurface::Defects()), vp::InsideVote over Embree's rays: the
-/// parity of the crossings along five fixed rays; when they disagree the answer is inside, the
-/// more dangerous one, and InsideUncertain says so.
+/// majority of the crossing parities along five fixed rays; when they disagree InsideUncertain
+/// says so, and the danger level is a breach.
 class vtkExactVesselDistance : public vtkVesselDistanceEngine
 {
 public:

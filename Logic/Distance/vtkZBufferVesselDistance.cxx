@@ -518,6 +518,11 @@ void vtkZBufferVesselDistance::BuildInternal()
   Internals& s = *this->Impl;
   vp::VulkanContext& context = s.Device(this->DeviceSelector);
   s.Release();
+  if (!context.HasInt64Atomics())
+  {
+    throw vp::DeviceError("Vulkan device '" + context.Device().Name +
+      "' has no 64-bit buffer atomics (shaderBufferInt64Atomics), which the z-buffer query needs to pick its answers");
+  }
   s.Votes = nullptr;
   s.ExactIndex.assign(this->Surfaces.size(), -1);
   for (std::size_t c = 0; c < this->Surfaces.size(); ++c)
@@ -535,11 +540,6 @@ void vtkZBufferVesselDistance::BuildInternal()
   if (s.Votes)
   {
     s.Votes->Build();
-  }
-  if (!context.HasInt64Atomics())
-  {
-    throw vp::DeviceError("Vulkan device '" + context.Device().Name +
-      "' has no 64-bit buffer atomics (shaderBufferInt64Atomics), which the z-buffer query needs to pick its answers");
   }
 
   // Cell size, box and anchor.
@@ -813,10 +813,12 @@ void vtkZBufferVesselDistance::AnswerBatch(const std::array<double, 3>* tips, st
                                                   : (s.Context->IsCpuDevice() ? 1 : GpuDirectionalLanes);
 
   // A workgroup per tile: the per-pixel pass needs the device to take that many in one dispatch.
+  const std::uint32_t lanes = static_cast<std::uint32_t>(q.DirectionalLanes);
+  const std::uint32_t laneGroups = (lanes + 63) / 64;
   const bool perPixel =
     (this->QueryPass == QueryPassPerPixel ||
       (this->QueryPass == QueryPassByDevice && !s.Context->IsCpuDevice() && count <= PerPixelMaxTips)) &&
-    orderCount + (static_cast<std::uint32_t>(q.DirectionalLanes) + 63) / 64 <= s.Context->Limits().maxComputeWorkGroupCount[0];
+    orderCount + laneGroups <= s.Context->Limits().maxComputeWorkGroupCount[0];
   const std::uint32_t n = static_cast<std::uint32_t>(count);
   auto prepared = std::find_if(s.Prepared.begin(), s.Prepared.end(), [&](const Internals::PreparedQuery& p) {
     return p.Points == n && p.PerPixel == perPixel && std::memcmp(&p.Parameters, &q, sizeof q) == 0;
@@ -837,8 +839,7 @@ void vtkZBufferVesselDistance::AnswerBatch(const std::array<double, 3>* tips, st
       s.Context->ResetStamps(cmd);
       s.Context->Stamp(cmd, 0);
       // Entries: a workgroup per tile (per pixel) or an invocation per tile (per tile), then the lanes.
-      const std::uint32_t lanes = static_cast<std::uint32_t>(q.DirectionalLanes);
-      const std::uint32_t end = orderCount + (perPixel ? (lanes + 63) / 64 : lanes);
+      const std::uint32_t end = orderCount + (perPixel ? laneGroups : lanes);
       auto visit = [&](std::uint32_t first, std::uint32_t last) {
         QueryParameters part = q;
         part.FirstEntry = static_cast<std::int32_t>(first);

@@ -256,6 +256,16 @@ Json BenchExact(const std::vector<NamedMesh>& refined, std::size_t target, const
   return sizeEntry;
 }
 
+/// One z-buffer query, its host time in ms and its device time (the engine's timestamps).
+void TimedQuery(vtkZBufferVesselDistance* zbuffer, const double* tip, const double* axis, ProximityResult& result,
+  std::vector<double>& ms, std::vector<double>& deviceMs)
+{
+  const double start = NowMs();
+  zbuffer->ComputeProximity(tip, axis, result);
+  ms.push_back(NowMs() - start);
+  deviceMs.push_back(zbuffer->GetLastQueryDeviceMs());
+}
+
 /// Two z-buffer engines on the same tips, in turns of SideBySideTurn queries, so that both see the
 /// device in the same state (a GPU's clock rises and falls with its load, and a light load leaves
 /// it low): host and device times for each, and the second's over the first's. The first query of
@@ -285,15 +295,10 @@ Json SideBySide(const std::vector<NamedMesh>& first, const std::vector<NamedMesh
   {
     for (int e = 0; e < 2; ++e)
     {
-      for (std::size_t i = first; i < std::min(tips.size(), first + SideBySideTurn); ++i)
+      engines[e]->ComputeProximity(tips[first].data(), nullptr, r); // the query after the switch
+      for (std::size_t i = first + 1; i < std::min(tips.size(), first + SideBySideTurn); ++i)
       {
-        const double start = NowMs();
-        engines[e]->ComputeProximity(tips[i].data(), nullptr, r);
-        if (i > first)
-        {
-          ms[e].push_back(NowMs() - start);
-          deviceMs[e].push_back(engines[e]->GetLastQueryDeviceMs());
-        }
+        TimedQuery(engines[e], tips[i].data(), nullptr, r, ms[e], deviceMs[e]);
       }
     }
   }
@@ -361,12 +366,9 @@ Json BenchZBuffer(vtkVesselDistanceEngine* engine, const std::vector<NamedMesh>&
   std::vector<ProximityResult> singles;
   for (std::size_t i = 0; i < tips.size(); ++i)
   {
-    double start = NowMs();
-    zbuffer->ComputeProximity(tips[i].data(), nullptr, z);
-    cachedMs.push_back(NowMs() - start);
-    cachedDeviceMs.push_back(zbuffer->GetLastQueryDeviceMs());
+    TimedQuery(zbuffer, tips[i].data(), nullptr, z, cachedMs, cachedDeviceMs);
     singles.push_back(z);
-    start = NowMs();
+    const double start = NowMs();
     exact->ComputeProximity(tips[i].data(), nullptr, e);
     exactMs.push_back(NowMs() - start);
     check.Add(z, e, zbuffer->GetRangeMm(), bound);
@@ -381,10 +383,7 @@ Json BenchZBuffer(vtkVesselDistanceEngine* engine, const std::vector<NamedMesh>&
   for (std::size_t i = 0; i < tips.size(); ++i)
   {
     const double axis[3] = { std::cos(0.37 * i), std::sin(0.37 * i), 0.3 };
-    const double start = NowMs();
-    zbuffer->ComputeProximity(tips[i].data(), axis, z);
-    axisMs.push_back(NowMs() - start);
-    axisDeviceMs.push_back(zbuffer->GetLastQueryDeviceMs());
+    TimedQuery(zbuffer, tips[i].data(), axis, z, axisMs, axisDeviceMs);
   }
   std::fprintf(stderr, ", batches");
   const Json zbufferBatch = BenchBatch(zbuffer, tips, &singles);
@@ -395,12 +394,9 @@ Json BenchZBuffer(vtkVesselDistanceEngine* engine, const std::vector<NamedMesh>&
   {
     std::vector<double> tileMs, tileDeviceMs;
     zbuffer->SetQueryPass(vtkZBufferVesselDistance::QueryPassPerTile);
-    for (std::size_t i = 0; i < tips.size(); ++i)
+    for (const auto& tip : tips)
     {
-      const double start = NowMs();
-      zbuffer->ComputeProximity(tips[i].data(), nullptr, z);
-      tileMs.push_back(NowMs() - start);
-      tileDeviceMs.push_back(zbuffer->GetLastQueryDeviceMs());
+      TimedQuery(zbuffer, tip.data(), nullptr, z, tileMs, tileDeviceMs);
     }
     otherPass["cached_per_tile"] = Timing(tileMs);
     otherPass["cached_per_tile_device"] = Timing(tileDeviceMs);

@@ -475,6 +475,12 @@ int RunBenchCommand(const std::vector<std::string>& argv)
   options.insert({ "--vessels", "--sizes", "--queries", "--brute-queries", "--seed", "--engines", "-o", "--scalpel", "--tip", "--poses",
     "--fine-cell" });
   const Arguments args(argv, options, { "--json" });
+  // Checked before any work: a bad value must not surface after minutes of benchmarks.
+  const double fineCellMm = args.GetNumber("--fine-cell", 0.0);
+  if (args.Has("--fine-cell") && !(fineCellMm > 0.0 && std::isfinite(fineCellMm)))
+  {
+    throw InputError("--fine-cell", "must be a positive number of millimetres");
+  }
   std::set<std::string> engineNames;
   std::istringstream engineList(args.Get("--engines", "exact,zbuffer"));
   for (std::string name; std::getline(engineList, name, ',');)
@@ -627,7 +633,7 @@ int RunBenchCommand(const std::vector<std::string>& argv)
     if (args.Has("--fine-cell"))
     {
       std::fprintf(stderr, "bench: z-buffer, the smallest size at %s mm cells beside the set cell\n", args.Get("--fine-cell").c_str());
-      z["fine_cell_beside_cell"] = SideBySide(smallest, smallest, args.GetNumber("--fine-cell", 0.0), tips, args);
+      z["fine_cell_beside_cell"] = SideBySide(smallest, smallest, fineCellMm, tips, args);
     }
     report["zbuffer"] = z;
   }

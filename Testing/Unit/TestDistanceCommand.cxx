@@ -102,6 +102,20 @@ TEST_F(DistanceCommand, ADefectiveSurfaceIsReportedAndItsInsideStillDecided)
   EXPECT_EQ(closed.Err, "");
 }
 
+// bench's --fine-cell is checked before any benchmark runs: one line naming it, nothing written.
+TEST_F(DistanceCommand, BenchRefusesABadFineCellInOneLine)
+{
+  for (const char* value : { "-1", "0", "abc" })
+  {
+    const std::string out = this->Dir + "/bench_" + value + ".json";
+    const ToolRun r = RunTool(this->Dir, std::string("bench --engines zbuffer --sizes 1000 --queries 5 --fine-cell ") + value + " -o " + out);
+    EXPECT_NE(r.ExitCode, 0) << value;
+    EXPECT_EQ(std::count(r.Err.begin(), r.Err.end(), '\n'), 1) << value << ": " << r.Err;
+    EXPECT_NE(r.Err.find("--fine-cell"), std::string::npos) << r.Err;
+    EXPECT_FALSE(std::ifstream(out).good()) << value;
+  }
+}
+
 TEST_F(DistanceCommand, TipsFileRasSpaceAndBruteAgree)
 {
   const std::string tips = WriteBytes(this->Dir, "tips.csv", "x,y,z\n0,0,15\n# a comment\n\n3,4,-20\n");

@@ -281,7 +281,10 @@ int vtkVesselSurfaceRepair::RequestData(vtkInformation*, vtkInformationVector** 
   wind->ComputeCellNormalsOn();
   wind->Update();
   const std::vector<Triangle> wound = Triangles(wind->GetOutput());
-  for (std::size_t t = 0; t < std::min(wound.size(), current.size()); ++t)
+  // Only the given triangles count as turned: the hole filler's come in either winding, and
+  // vtkFillHolesFilter appends them after the given ones.
+  const std::size_t kept = current.size() - report.AddedTriangles;
+  for (std::size_t t = 0; t < std::min(wound.size(), kept); ++t)
   {
     report.TurnedTriangles += Reversed(current[t], wound[t]) ? 1 : 0;
   }

@@ -21,7 +21,7 @@ struct SurfaceRepairReport
   std::size_t RemovedFins = 0;         // triangles hanging by one edge off a non-manifold edge
   std::size_t FilledHoles = 0;         // boundary loops closed
   std::size_t AddedTriangles = 0;      // the triangles that closed them
-  std::size_t TurnedTriangles = 0;     // rewound to agree with their neighbours
+  std::size_t TurnedTriangles = 0;     // given triangles rewound to agree with their neighbours
   bool Changed() const
   {
     return MergedPoints + RemovedDegenerate + RemovedDuplicates + RemovedFins + AddedTriangles + TurnedTriangles > 0;

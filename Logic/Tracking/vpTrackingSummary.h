@@ -49,6 +49,9 @@ public:
   const std::vector<std::string>& GetClassNames() const { return this->ClassNames; }
   const std::vector<ClassMinimum>& GetTipMinimum() const { return this->TipMinimum; }
   const std::vector<ClassMinimum>& GetSurfaceMinimum() const { return this->SurfaceMinimum; }
+  /// Per class, the frames whose tip's inside was uncertain (the rays' votes on a defective
+  /// surface disagreed; those frames' level is a breach).
+  const std::vector<int>& GetFramesInsideUncertain() const { return this->FramesInsideUncertain; }
   /// Per class; empty when no frame carried penetrations.
   const std::vector<ClassPenetration>& GetPenetrationMaximum() const { return this->PenetrationMaximum; }
   /// Seconds at each level (index: DangerLevel). A frame's level holds until the next frame's
@@ -73,6 +76,7 @@ private:
   std::vector<std::string> ClassNames;
   std::vector<ClassMinimum> TipMinimum;
   std::vector<ClassMinimum> SurfaceMinimum;
+  std::vector<int> FramesInsideUncertain;
   std::vector<ClassPenetration> PenetrationMaximum;
   std::array<double, NumberOfDangerLevels> TimeInLevelS{};
   std::array<int, NumberOfDangerLevels> FramesInLevel{};

@@ -137,7 +137,7 @@ std::vector<NamedMesh> BuiltInVessels()
   std::vector<NamedMesh> vessels;
   for (const auto& v : MakeBuiltInVessels())
   {
-    vessels.push_back({ v.first, "built-in", v.second });
+    vessels.push_back({ v.first, "built-in", v.second, std::nullopt });
   }
   return vessels;
 }
@@ -588,7 +588,7 @@ int RunBenchCommand(const std::vector<std::string>& argv)
     for (const NamedMesh& vessel : vessels)
     {
       std::fprintf(stderr, "bench: refining %s to %zu triangles\n", vessel.ClassName.c_str(), target);
-      refined.push_back({ vessel.ClassName, vessel.FileName, RefineToTriangleCount(vessel.Mesh, target) });
+      refined.push_back({ vessel.ClassName, vessel.FileName, RefineToTriangleCount(vessel.Mesh, target), std::nullopt });
     }
     if (benchExact)
     {

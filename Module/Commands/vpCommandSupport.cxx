@@ -29,9 +29,22 @@ std::vector<NamedMesh> LoadVesselMeshes(const std::vector<std::pair<std::string,
     vtkNew<vtkVesselMeshReader> reader;
     reader->SetFileName(pair.second);
     reader->Read();
-    meshes.push_back({ pair.first, pair.second, reader->GetOutput() });
+    meshes.push_back({ pair.first, pair.second, reader->GetOutput(), std::nullopt });
   }
   return meshes;
+}
+
+void RepairVesselMeshes(const std::string& command, std::vector<NamedMesh>& meshes)
+{
+  for (NamedMesh& m : meshes)
+  {
+    vtkNew<vtkVesselSurfaceRepair> repair;
+    repair->SetInputData(m.Mesh);
+    repair->Update();
+    m.Mesh = repair->GetOutput();
+    m.Repair = repair->GetReport();
+    std::cerr << command << ": " << m.ClassName << " (" << m.FileName << "): --repair: " << m.Repair->Describe() << "\n";
+  }
 }
 
 bool CreateOutputFolder(const std::string& folder)
@@ -72,16 +85,33 @@ void ReportSurfaceDefects(const std::string& command, vtkVesselDistanceEngine* e
   }
 }
 
-nlohmann::ordered_json SurfacesJson(vtkVesselDistanceEngine* engine)
+nlohmann::ordered_json SurfaceJson(const VesselSurface& surface)
+{
+  const MeshDefects& d = surface.Defects();
+  return { { "closed", surface.IsClosed() }, { "triangles", surface.NumberOfTriangles() },
+    { "boundary_edges", d.BoundaryEdges }, { "non_manifold_edges", d.NonManifoldEdges },
+    { "inconsistent_edges", d.InconsistentEdges }, { "components", d.Components } };
+}
+
+nlohmann::ordered_json SurfacesJson(vtkVesselDistanceEngine* engine, const std::vector<NamedMesh>& meshes)
 {
   nlohmann::ordered_json out = nlohmann::ordered_json::object();
   for (int c = 0; c < engine->GetNumberOfVessels(); ++c)
   {
     const VesselSurface& surface = engine->GetSurface(c);
-    const MeshDefects& d = surface.Defects();
-    out[surface.Name()] = { { "closed", surface.IsClosed() }, { "triangles", surface.NumberOfTriangles() },
-      { "boundary_edges", d.BoundaryEdges }, { "non_manifold_edges", d.NonManifoldEdges },
-      { "inconsistent_edges", d.InconsistentEdges }, { "components", d.Components } };
+    nlohmann::ordered_json& entry = out[surface.Name()];
+    entry = SurfaceJson(surface);
+    for (const NamedMesh& m : meshes)
+    {
+      if (m.ClassName == surface.Name() && m.Repair)
+      {
+        const SurfaceRepairReport& r = *m.Repair;
+        entry["repair"] = { { "merged_points", r.MergedPoints }, { "removed_degenerate_triangles", r.RemovedDegenerate },
+          { "removed_duplicated_triangles", r.RemovedDuplicates }, { "removed_fin_triangles", r.RemovedFins },
+          { "filled_holes", r.FilledHoles }, { "added_triangles", r.AddedTriangles },
+          { "turned_triangles", r.TurnedTriangles }, { "description", r.Describe() } };
+      }
+    }
   }
   return out;
 }

@@ -2,17 +2,23 @@
 #define vpCommandSupport_h
 
 #include "vpQuantile.h"
+#include "vtkVesselSurfaceRepair.h"
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
 
 #include <nlohmann/json.hpp>
 
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 class vtkPolyData;
 class vtkVesselDistanceEngine;
+namespace vp
+{
+class VesselSurface;
+}
 
 namespace vp
 {
@@ -21,11 +27,17 @@ struct NamedMesh
   std::string ClassName;
   std::string FileName;
   vtkSmartPointer<vtkPolyData> Mesh;
+  /// What --repair did to it (absent without --repair).
+  std::optional<SurfaceRepairReport> Repair;
 };
 
 /// Reads each CLASS=FILE pair; throws InputError naming the file on any problem, and for a class
 /// named twice.
 std::vector<NamedMesh> LoadVesselMeshes(const std::vector<std::pair<std::string, std::string>>& pairs);
+
+/// --repair: each mesh replaced by what vtkVesselSurfaceRepair makes of it, and one line on
+/// stderr per class saying what it changed ("nothing to repair" included).
+void RepairVesselMeshes(const std::string& command, std::vector<NamedMesh>& meshes);
 
 /// Creates an output folder and its missing parents, like mkdir -p; returns whether it was new.
 /// Throws InputError naming the folder when it cannot be made.
@@ -35,8 +47,11 @@ bool CreateOutputFolder(const std::string& folder);
 /// its file, its defects, and how its inside is decided, so that nobody reads a vote or a null as
 /// the exact pseudonormal answer of a closed surface.
 void ReportSurfaceDefects(const std::string& command, vtkVesselDistanceEngine* engine, const std::vector<NamedMesh>& meshes);
-/// Per class (after Build()): "closed", and the defects' counts, for the JSON reports.
-nlohmann::ordered_json SurfacesJson(vtkVesselDistanceEngine* engine);
+/// "closed", the triangles and the defects' counts of one surface.
+nlohmann::ordered_json SurfaceJson(const VesselSurface& surface);
+/// Per class (after Build()): "closed", and the defects' counts, for the JSON reports; with
+/// --repair, what the repair did ("repair").
+nlohmann::ordered_json SurfacesJson(vtkVesselDistanceEngine* engine, const std::vector<NamedMesh>& meshes);
 
 /// Milliseconds since an arbitrary origin (steady clock).
 double NowMs();

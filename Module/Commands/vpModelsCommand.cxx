@@ -5,6 +5,7 @@
 #include "vpInputError.h"
 #include "vpSegmentationImport.h"
 #include "vpVesselLabelTable.h"
+#include "vpVesselSurface.h"
 #include "vtkVesselMeshWriter.h"
 #include "vtkVesselModelBuilder.h"
 
@@ -185,7 +186,7 @@ int RunModelsCommand(const std::vector<std::string>& argv)
       { "label", m.Structures.front()->LabelValue }, { "voxels", m.Voxels },
       { "triangles", m.Surface->GetNumberOfPolys() }, { "volume_mm3", m.VolumeMm3 },
       { "voxel_volume_mm3", m.VoxelVolumeMm3 }, { "area_mm2", m.AreaMm2 }, { "file", m.ClassName + ".stl" },
-      { "sources", sources }, { "build_ms", m.Ms } });
+      { "surface", SurfaceJson(VesselSurface(m.ClassName, m.Surface)) }, { "sources", sources }, { "build_ms", m.Ms } });
   }
   doc["unmapped"] = nlohmann::json::array();
   for (const LabelStructure* s : unmapped)

@@ -38,7 +38,7 @@ using Json = nlohmann::ordered_json;
 const char* Usage =
   "usage: vesselproximity track --vessels CLASS=FILE[,CLASS=FILE...] --scalpel FILE.stl --poses FILE\n"
   "         [--tip X,Y,Z] [--axis X,Y,Z] [--method exact|zbuffer|both] [--danger-mm C,W,D]\n"
-  "         [--no-surface] [--frame-budget-ms MS] [--hysteresis-mm MM] [engine options] -o OUTDIR\n"
+  "         [--no-surface] [--frame-budget-ms MS] [--hysteresis-mm MM] [--repair] [engine options] -o OUTDIR\n"
   "  Replays tracked scalpel poses (model-to-world; CSV `time,m00..m33` or `time,x,y,z,qw,qx,qy,qz`,\n"
   "  or JSON) and writes OUTDIR/frames.csv (one row per pose), summary.json and distance.png.\n"
   "  The tip and axis (model coordinates): --tip/--axis, else FILE.json beside the model\n"
@@ -47,6 +47,9 @@ const char* Usage =
   "    vessel is a breach. The level uses distance minus the engine's error bound.\n"
   "  --hysteresis-mm: a level is entered at once but left only when the distance exceeds its\n"
   "    threshold by this much (default 0.3; 0: none), so tracking noise does not flicker it.\n"
+  "  --repair: merge coincident points, drop duplicated triangles and fins, fill holes up to\n"
+  "    30 mm and make the winding consistent before building (no point moves), saying per class\n"
+  "    on stderr what changed; an open surface's inside is otherwise a vote of five rays.\n"
   "  --no-surface: skip the whole-instrument distance (the closest approach of any point of the\n"
   "    scalpel surface, computed exactly beside the tip's).\n"
   "  --frame-budget-ms: the time one frame may take (default 16.7, 60 Hz; 0: no budget); the\n"
@@ -70,7 +73,7 @@ std::string FramesCsv(const std::vector<TrackedFrame>& frames, const std::vector
   for (const auto& c : classes)
   {
     csv += "," + c + "_point_x," + c + "_point_y," + c + "_point_z," + c + "_directional_mm," + c + "_inside," + c +
-      "_level";
+      "_inside_uncertain," + c + "_level";
     if (surface)
     {
       csv += "," + c + "_surface_mm," + c + "_penetration_depth_mm," + c + "_penetration_volume_mm3," + c +
@@ -100,6 +103,7 @@ std::string FramesCsv(const std::vector<TrackedFrame>& frames, const std::vector
       }
       csv += "," + (c.DirectionalMm ? Number(*c.DirectionalMm) : "");
       csv += "," + (c.InRange && c.Inside ? std::string(*c.Inside ? "1" : "0") : "");
+      csv += "," + (c.InRange ? std::string(c.InsideUncertain ? "1" : "0") : "");
       csv += std::string(",") + DangerLevelName(f.ClassLevels[k]);
       if (surface)
       {
@@ -131,7 +135,7 @@ Json MinimumJson(const ClassMinimum& m)
 }
 
 Json SummaryJson(const TrackingSummary& s, vtkScalpelTrackingLogic* logic, vtkVesselDistanceEngine* engine,
-  const std::string& posesFile, bool surface, const Json& comparison)
+  const std::vector<NamedMesh>& meshes, const std::string& posesFile, bool surface, const Json& comparison)
 {
   Json out;
   out["poses"] = posesFile;
@@ -141,7 +145,7 @@ Json SummaryJson(const TrackingSummary& s, vtkScalpelTrackingLogic* logic, vtkVe
   out["device"] = engine->GetDeviceDescription();
   out["range_mm"] = engine->GetRangeMm();
   out["error_bound_mm"] = engine->GetErrorBoundMm();
-  out["surfaces"] = SurfacesJson(engine);
+  out["surfaces"] = SurfacesJson(engine, meshes);
   vtkScalpelModel* scalpel = logic->GetScalpel();
   out["scalpel"] = { { "tip_mm", { scalpel->GetTipMm()[0], scalpel->GetTipMm()[1], scalpel->GetTipMm()[2] } },
     { "axis", { scalpel->GetAxis()[0], scalpel->GetAxis()[1], scalpel->GetAxis()[2] } },
@@ -154,6 +158,7 @@ Json SummaryJson(const TrackingSummary& s, vtkScalpelTrackingLogic* logic, vtkVe
   {
     Json entry;
     entry["tip_minimum"] = MinimumJson(s.GetTipMinimum()[c]);
+    entry["frames_inside_uncertain"] = s.GetFramesInsideUncertain()[c];
     if (surface)
     {
       entry["surface_minimum"] = MinimumJson(s.GetSurfaceMinimum()[c]);
@@ -245,7 +250,7 @@ int RunTrackCommand(const std::vector<std::string>& argv)
   }
   std::set<std::string> options = EngineValueOptions();
   options.insert({ "--vessels", "--scalpel", "--poses", "--tip", "--axis", "--danger-mm", "--frame-budget-ms", "--hysteresis-mm", "-o" });
-  const Arguments args(argv, options, { "--no-surface" });
+  const Arguments args(argv, options, { "--no-surface", "--repair" });
   if (!args.Positional().empty())
   {
     throw InputError(args.Positional()[0], "unexpected argument (see vesselproximity track --help)");
@@ -273,7 +278,11 @@ int RunTrackCommand(const std::vector<std::string>& argv)
   const double start = NowMs();
   const std::vector<TrackedPose> poses = ReadPoseFile(args.Get("--poses"));
   auto engine = MakeDistanceEngine(method, args);
-  const auto meshes = LoadVesselMeshes(ParsePairs(args.Get("--vessels"), "--vessels"));
+  auto meshes = LoadVesselMeshes(ParsePairs(args.Get("--vessels"), "--vessels"));
+  if (args.Has("--repair"))
+  {
+    RepairVesselMeshes("track", meshes);
+  }
   auto scalpel = LoadScalpel(args.Get("--scalpel"), tip);
   std::cerr << "track: " << scalpel->GetTipSource() << "\n";
   // The module logic builds the engine, and beside it the exact engine when the check of
@@ -340,7 +349,7 @@ int RunTrackCommand(const std::vector<std::string>& argv)
 
   std::vector<std::string> classes = summary.GetClassNames();
   const std::string csv = FramesCsv(frames, classes, surface);
-  Json doc = SummaryJson(summary, logic, engine, args.Get("--poses"), surface, comparison);
+  Json doc = SummaryJson(summary, logic, engine, meshes, args.Get("--poses"), surface, comparison);
   doc["timing_ms"]["load_and_build"] = buildMs;
 
   // Write. A failure part-way removes what this run wrote.

@@ -102,6 +102,35 @@ TEST_F(DistanceCommand, ADefectiveSurfaceIsReportedAndItsInsideStillDecided)
   EXPECT_EQ(closed.Err, "");
 }
 
+// --repair fills the hole before the engine is built: the surface is closed, its inside exact
+// (no vote), one line says what changed, and the JSON keeps the record.
+TEST_F(DistanceCommand, RepairClosesTheSurfaceAndSaysWhatItChanged)
+{
+  const double c[3] = { 0, 0, 0 };
+  const std::string holed = this->Write("holed.stl", vp::test::WithoutCell(vp::MakeSphere(c, 10.0, 16, 32), 40));
+  for (const char* method : { "exact", "zbuffer" })
+  {
+    const ToolRun r = RunTool(this->Dir,
+      "distance --vessels hepatic_vein=" + holed + " --tip 1,2,-3 --method " + method + " --repair --json");
+    ASSERT_EQ(r.ExitCode, 0) << r.Err;
+    EXPECT_EQ(r.Err, "distance: hepatic_vein (" + holed + "): --repair: filled 1 hole with 1 triangle; now closed, 1 component\n")
+      << method;
+    const auto j = nlohmann::json::parse(r.Out);
+    const auto& surface = j["surfaces"]["hepatic_vein"];
+    EXPECT_EQ(surface["closed"], true) << method;
+    EXPECT_EQ(surface["boundary_edges"], 0) << method;
+    EXPECT_EQ(surface["repair"]["filled_holes"], 1) << method;
+    EXPECT_EQ(surface["repair"]["added_triangles"], 1) << method;
+    const auto& hv = j["results"][0]["classes"]["hepatic_vein"];
+    EXPECT_EQ(hv["inside"], true) << method;
+    EXPECT_FALSE(hv.contains("inside_uncertain")) << method;
+  }
+  // A closed surface is left as it is, and the line says so.
+  const ToolRun closed = RunTool(this->Dir, "distance --vessels hepatic_vein=" + this->Sphere + " --tip 1,2,-3 --repair");
+  ASSERT_EQ(closed.ExitCode, 0) << closed.Err;
+  EXPECT_NE(closed.Err.find("--repair: nothing to repair; now closed, 1 component"), std::string::npos) << closed.Err;
+}
+
 // bench's --fine-cell is checked before any benchmark runs: one line naming it, nothing written.
 TEST_F(DistanceCommand, BenchRefusesABadFineCellInOneLine)
 {

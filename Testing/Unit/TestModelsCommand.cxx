@@ -86,6 +86,11 @@ TEST_F(ModelsCommand, WritesOneClosedStlPerClassAndListsTheRest)
   EXPECT_EQ(doc["unmapped"][0]["name"], "bone");
   for (const auto& s : doc["structures"])
   {
+    // Flying edges on a padded grid: every model closed, and models.json says so.
+    EXPECT_EQ(s["surface"]["closed"], true) << s["name"];
+    EXPECT_EQ(s["surface"]["boundary_edges"], 0) << s["name"];
+    EXPECT_EQ(s["surface"]["non_manifold_edges"], 0) << s["name"];
+    EXPECT_EQ(s["surface"]["triangles"], s["triangles"]) << s["name"];
     const std::string stl = vp::test::Slurp(out + "/" + s["file"].get<std::string>());
     ASSERT_GT(stl.size(), 84u);
     EXPECT_EQ(vp::ParseSpaceTag(stl.substr(0, 80)), vp::MeshSpace::LPS);

@@ -456,6 +456,88 @@ TEST_F(TrackCommand, ATipInsideADefectiveSurfaceIsABreach)
   }
 }
 
+// A wide hole (a 45 degree cap cut off a sphere) that some of the five rays leave through: inside
+// the rays disagree, frames.csv marks those frames uncertain, summary.json counts them, and their
+// level is a breach. --repair fills the hole: the surface is closed, and nothing is uncertain.
+TEST_F(TrackCommand, AnUncertainInsideIsMarkedAndABreachAndRepairClosesTheHole)
+{
+  const double centre[3] = { 0, 0, 0 };
+  const double ray0[3] = { 0.26726124, 0.53452248, 0.80178373 }; // vp::InsideVote's first ray
+  vtkSmartPointer<vtkPolyData> capped = vtkSmartPointer<vtkPolyData>::New();
+  capped->DeepCopy(vp::MakeSphere(centre, 10.0, 48, 96));
+  capped->BuildCells();
+  for (vtkIdType cell = 0; cell < capped->GetNumberOfCells(); ++cell)
+  {
+    double p[3], c[3] = { 0, 0, 0 };
+    vtkIdType n;
+    const vtkIdType* ids;
+    capped->GetCellPoints(cell, n, ids);
+    for (vtkIdType k = 0; k < n; ++k)
+    {
+      capped->GetPoint(ids[k], p);
+      for (int a = 0; a < 3; ++a)
+      {
+        c[a] += p[a] / static_cast<double>(n);
+      }
+    }
+    if ((c[0] * ray0[0] + c[1] * ray0[1] + c[2] * ray0[2]) / std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]) > std::cos(M_PI / 4))
+    {
+      capped->DeleteCell(cell);
+    }
+  }
+  capped->RemoveDeletedCells();
+  const std::string holed = this->Write("capped.stl", capped);
+  std::ostringstream csv;
+  csv << "time,x,y,z,qw,qx,qy,qz\n";
+  const double h = std::sqrt(0.5);
+  std::vector<double> xs;
+  for (double x = 9.0; x >= 0.0; x -= 0.5)
+  {
+    csv << xs.size() * 0.05 << "," << x << ",0.3,0.2," << h << ",0," << -h << ",0\n";
+    xs.push_back(x);
+  }
+  const std::string poses = this->WriteText("inside.csv", csv.str());
+  for (const char* method : { "exact", "zbuffer" })
+  {
+    for (const bool repair : { false, true })
+    {
+      const std::string where = std::string(method) + (repair ? " --repair" : "");
+      const std::string out = this->Dir + "/uncertain_" + method + (repair ? "_repaired" : "");
+      const ToolRun r = RunTool(this->Dir, "track --vessels portal_vein=" + holed + " --scalpel " + this->Tool + " --poses " +
+          poses + " --no-surface --method " + method + (repair ? " --repair" : "") + " -o " + out);
+      ASSERT_EQ(r.ExitCode, 0) << where << ": " << r.Err;
+      std::ifstream in(out + "/summary.json");
+      const nlohmann::json summary = nlohmann::json::parse(in);
+      EXPECT_EQ(summary["surfaces"]["portal_vein"]["closed"], repair) << where;
+      const auto rows = ReadCsvCells(out + "/frames.csv");
+      ASSERT_EQ(rows.size(), xs.size() + 1);
+      const auto column = [&](const std::string& name) {
+        return static_cast<std::size_t>(std::find(rows[0].begin(), rows[0].end(), name) - rows[0].begin());
+      };
+      const std::size_t level = column("danger_level"), uncertain = column("portal_vein_inside_uncertain");
+      ASSERT_LT(uncertain, rows[0].size()) << where;
+      int marked = 0;
+      for (std::size_t i = 1; i < rows.size(); ++i)
+      {
+        EXPECT_EQ(rows[i][level], "breach") << where << ", x " << xs[i - 1]; // every tip is 0.9 mm or more inside
+        marked += rows[i][uncertain] == "1" ? 1 : 0;
+      }
+      EXPECT_EQ(summary["classes"]["portal_vein"]["frames_inside_uncertain"], marked) << where;
+      if (repair)
+      {
+        EXPECT_EQ(marked, 0) << where;
+        EXPECT_EQ(summary["surfaces"]["portal_vein"]["repair"]["filled_holes"], 1) << where;
+        EXPECT_NE(r.Err.find("--repair: filled 1 hole with"), std::string::npos) << where << ": " << r.Err;
+      }
+      else
+      {
+        EXPECT_GT(marked, 0) << where;
+        EXPECT_FALSE(summary["surfaces"]["portal_vein"].contains("repair")) << where;
+      }
+    }
+  }
+}
+
 TEST_F(TrackCommand, ZBufferLevelsNeverUnderstateTheExactOnes)
 {
   const std::string poses = this->ApproachPoses();

@@ -25,6 +25,7 @@ const Rgb White = { 255, 255, 255 };
 const Rgb Frame = { 60, 60, 60 };
 const double LineHalfWidthPx = 1.0;   // 2 px lines
 const double PointHalfWidthPx = 2.5;  // a lone sample as a 5 px dot
+const double RimPx = 1.0;             // the contrasting rim each side of a line
 const int TickLengthPx = 5;
 const int GapPx = 6;
 const int LegendSwatchPx = 24;
@@ -41,7 +42,11 @@ class Canvas
 {
 public:
   Canvas(vtkImageData* image, int width, int height)
-    : Pixels(static_cast<unsigned char*>(image->GetScalarPointer()))
+    : Canvas(static_cast<unsigned char*>(image->GetScalarPointer()), width, height)
+  {
+  }
+  Canvas(unsigned char* pixels, int width, int height)
+    : Pixels(pixels)
     , Width(width)
     , Height(height)
   {
@@ -61,10 +66,46 @@ public:
     }
   }
 
+  /// The colour at (x, y), clamped to the image.
+  Rgb At(int x, int y) const
+  {
+    x = std::clamp(x, 0, this->Width - 1);
+    y = std::clamp(y, 0, this->Height - 1);
+    const unsigned char* p = this->Pixels + 3 * (static_cast<std::size_t>(y) * this->Width + x);
+    return { p[0], p[1], p[2] };
+  }
+  /// A copy of the pixels, to read what lay under a drawing once it is covered.
+  std::vector<unsigned char> Copy() const
+  {
+    return std::vector<unsigned char>(this->Pixels, this->Pixels + 3 * static_cast<std::size_t>(this->Width) * this->Height);
+  }
+
 private:
   unsigned char* Pixels;
   int Width, Height;
 };
+
+/// WCAG's relative luminance of an sRGB colour.
+double Luminance(const Rgb& c)
+{
+  double l = 0;
+  const double weight[3] = { 0.2126, 0.7152, 0.0722 };
+  for (int k = 0; k < 3; ++k)
+  {
+    const double v = c[k] / 255.0;
+    l += weight[k] * (v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4));
+  }
+  return l;
+}
+
+/// Black or white, whichever has the higher WCAG contrast ratio against the band under a line:
+/// the rim that keeps a line readable where its own colour is close to the band's (the artery's
+/// red on the breach band, the portal vein's blue on the danger band).
+Rgb RimColour(const Rgb& under)
+{
+  const double l = Luminance(under);
+  return (l + 0.05) / 0.05 >= 1.05 / (l + 0.05) ? Black : White;
+}
 
 void FillRect(Canvas& canvas, const Rect& r, const Rgb& colour)
 {
@@ -87,8 +128,10 @@ double DistanceToSegment(double px, double py, double ax, double ay, double bx, 
 
 /// A capsule around the segment, antialiased by coverage; a zero-length segment is a dot. Only
 /// pixels inside clip are touched, so values beyond the axes are cut at the plot area's edge.
+/// colourAt(x, y) gives each pixel's colour.
+template <typename ColourAt>
 void DrawSegment(Canvas& canvas, double ax, double ay, double bx, double by, double halfWidth,
-  const Rgb& colour, const Rect& clip)
+  const ColourAt& colourAt, const Rect& clip)
 {
   if (!std::isfinite(ax + ay + bx + by))
   {
@@ -105,9 +148,18 @@ void DrawSegment(Canvas& canvas, double ax, double ay, double bx, double by, dou
     for (int x = x0; x <= x1; ++x)
     {
       const double coverage = halfWidth + 0.5 - DistanceToSegment(x, y, ax, ay, bx, by);
-      canvas.Blend(x, y, colour, coverage);
+      if (coverage > 0)
+      {
+        canvas.Blend(x, y, colourAt(x, y), coverage);
+      }
     }
   }
+}
+
+void DrawSegment(Canvas& canvas, double ax, double ay, double bx, double by, double halfWidth,
+  const Rgb& colour, const Rect& clip)
+{
+  DrawSegment(canvas, ax, ay, bx, by, halfWidth, [&](int, int) { return colour; }, clip);
 }
 
 /// A string rendered by FreeType (no render window needed), with its ink box in the image's
@@ -276,24 +328,35 @@ void DrawLegend(Canvas& canvas, const std::vector<LegendEntry>& entries, int lef
   }
 }
 
-void DrawSeries(Canvas& canvas, const std::vector<double>& timesS, const PlotSeries& s,
+/// The series' line, over a rim RimPx wide each side in black or white as the band under it
+/// (bands, the picture before any line) asks: readable on every band, and where lines cross.
+void DrawSeries(Canvas& canvas, const Canvas& bands, const std::vector<double>& timesS, const PlotSeries& s,
   const DistancePlotFrame& frame, const Rect& clip)
 {
   const auto valid = [&](std::size_t i) { return i < timesS.size() && std::isfinite(timesS[i]) && std::isfinite(s.ValuesMm[i]); };
-  for (std::size_t i = 0; i < timesS.size(); ++i)
+  const auto rim = [&](int x, int y) { return RimColour(bands.At(x, y)); };
+  const auto line = [&](int, int) { return s.Colour; };
+  for (const bool outline : { true, false })
   {
-    if (!valid(i))
+    for (std::size_t i = 0; i < timesS.size(); ++i)
     {
-      continue;
-    }
-    const double x = frame.XOf(timesS[i]), y = frame.YOf(s.ValuesMm[i]);
-    if (valid(i + 1))
-    {
-      DrawSegment(canvas, x, y, frame.XOf(timesS[i + 1]), frame.YOf(s.ValuesMm[i + 1]), LineHalfWidthPx, s.Colour, clip);
-    }
-    else if (i == 0 || !valid(i - 1))
-    {
-      DrawSegment(canvas, x, y, x, y, PointHalfWidthPx, s.Colour, clip); // alone: no line would show it
+      if (!valid(i))
+      {
+        continue;
+      }
+      const double x = frame.XOf(timesS[i]), y = frame.YOf(s.ValuesMm[i]);
+      if (valid(i + 1))
+      {
+        const double bx = frame.XOf(timesS[i + 1]), by = frame.YOf(s.ValuesMm[i + 1]);
+        outline ? DrawSegment(canvas, x, y, bx, by, LineHalfWidthPx + RimPx, rim, clip)
+                : DrawSegment(canvas, x, y, bx, by, LineHalfWidthPx, line, clip);
+      }
+      else if (i == 0 || !valid(i - 1))
+      {
+        // Alone: no line would show it.
+        outline ? DrawSegment(canvas, x, y, x, y, PointHalfWidthPx + RimPx, rim, clip)
+                : DrawSegment(canvas, x, y, x, y, PointHalfWidthPx, line, clip);
+      }
     }
   }
 }
@@ -489,9 +552,11 @@ vtkSmartPointer<vtkImageData> RenderDistancePlot(const std::vector<double>& time
     const int zero = static_cast<int>(std::lround(layout.Frame.YOf(0.0)));
     FillRect(canvas, { layout.Plot.X0, zero, layout.Plot.X1, zero }, Frame);
   }
+  std::vector<unsigned char> under = canvas.Copy();
+  const Canvas bandsOnly(under.data(), options.WidthPx, options.HeightPx);
   for (const PlotSeries& s : series)
   {
-    DrawSeries(canvas, timesS, s, layout.Frame, layout.Plot);
+    DrawSeries(canvas, bandsOnly, timesS, s, layout.Frame, layout.Plot);
   }
   DrawAxes(canvas, layout);
   DrawLabels(canvas, layout, options.HeightPx);

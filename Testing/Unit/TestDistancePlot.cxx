@@ -1,5 +1,6 @@
 // Distance-over-time plot: numbers read off the rendered pixels (bands where their millimetres
 // are, lines where their values are, nothing in a NaN gap), headless text, and the PNG file.
+#include "vpDangerBands.h"
 #include "vpDistancePlot.h"
 #include "vpPlotValues.h"
 #include "vpInputError.h"
@@ -216,6 +217,70 @@ TEST(DistancePlot, PenetrationIsDrawnBelowTheZeroLine)
   GappedSeries gapped;
   vp::RenderDistancePlot(gapped.Times, { gapped.Series }, DangerBands(), Options(), &positive);
   EXPECT_EQ(positive.YMinMm, 0.0);
+}
+
+namespace
+{
+double Luminance(const vp::Rgb& c)
+{
+  double l = 0;
+  const double weight[3] = { 0.2126, 0.7152, 0.0722 };
+  for (int k = 0; k < 3; ++k)
+  {
+    const double v = c[k] / 255.0;
+    l += weight[k] * (v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4));
+  }
+  return l;
+}
+
+double ContrastRatio(const vp::Rgb& a, const vp::Rgb& b)
+{
+  const double la = Luminance(a), lb = Luminance(b);
+  return (std::max(la, lb) + 0.05) / (std::min(la, lb) + 0.05);
+}
+} // namespace
+
+// Every class's tip and instrument colour, drawn across every danger band the reports use (the
+// artery's red on the breach band, the portal vein's blue on the danger band), stands out from
+// the band: across the line, some pixel contrasts with the band by WCAG's 3:1 for graphics.
+TEST(DistancePlot, LinesAreReadableOnEveryDangerBand)
+{
+  const auto bands = vp::DangerBands(vp::DangerThresholds{}, 20.0, true);
+  std::vector<vp::PlotSeries> all;
+  int index = 0;
+  for (const char* name : { "portal_vein", "hepatic_artery", "hepatic_vein", "other" })
+  {
+    const vp::Rgb colour = vp::PlotSeriesColour(name, index++);
+    all.push_back({ std::string(name) + " (tip)", colour, {} });
+    all.push_back({ std::string(name) + " (instrument)", vp::InstrumentColour(colour), {} });
+  }
+  for (const vp::PlotBand& band : bands)
+  {
+    const double valueMm = std::isfinite(band.FromMm) && std::isfinite(band.ToMm) ? 0.5 * (band.FromMm + band.ToMm)
+      : std::isfinite(band.FromMm) ? band.FromMm + 3.0 : band.ToMm - 1.5;
+    for (const vp::PlotSeries& colour : all)
+    {
+      vp::PlotSeries series = colour;
+      std::vector<double> times;
+      for (int i = 0; i < 10; ++i)
+      {
+        times.push_back(i);
+        series.ValuesMm.push_back(valueMm);
+      }
+      vp::DistancePlotFrame frame;
+      auto options = Options();
+      options.YMinMm = -4.0;
+      const auto image = vp::RenderDistancePlot(times, { series }, bands, options, &frame);
+      const int x = Round(frame.XOf(5)), y = Round(frame.YOf(valueMm));
+      ASSERT_EQ(Pixel(image, x, y + 12), band.Colour) << band.Label << ": the band around the line";
+      double best = 0;
+      for (int dy = -4; dy <= 4; ++dy)
+      {
+        best = std::max(best, ContrastRatio(Pixel(image, x, y + dy), band.Colour));
+      }
+      EXPECT_GE(best, 3.0) << series.Name << " on the " << band.Label << " band";
+    }
+  }
 }
 
 // What both plots draw for a frame: the tip's distance or minus its depth inside, the instrument's

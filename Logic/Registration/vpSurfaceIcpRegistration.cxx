@@ -1,12 +1,14 @@
 #include "vpSurfaceIcpRegistration.h"
 
 #include "vpInputError.h"
+#include "vpQuantile.h"
 
 #include <vtkMath.h>
 #include <vtkNew.h>
 #include <vtkPolyData.h>
 #include <vtkStaticCellLocator.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace vp
@@ -64,19 +66,21 @@ SurfaceRegistration RegisterSurfaceIcp(vtkPolyData* modelSurface, const std::vec
   Matrix4 worldToModel = InvertTransform(initialModelToWorld);
   SurfaceRegistration result;
   double meanResidual = 0.0;
+  std::vector<double> residuals(worldPoints.size());
   for (int iteration = 0; iteration <= maximumIterations; ++iteration)
   {
     double normal[6][6] = {};
     double rhs[6] = {};
     double sum = 0.0;
-    for (const Point3& w : worldPoints)
+    for (std::size_t i = 0; i < worldPoints.size(); ++i)
     {
-      const Point3 p = TransformPoint(worldToModel, w);
+      const Point3 p = TransformPoint(worldToModel, worldPoints[i]);
       double closest[3], squared = 0.0, n[3];
       vtkIdType cell = -1;
       int subId = 0;
       locator->FindClosestPoint(p.data(), closest, cell, subId, squared);
-      sum += std::sqrt(squared);
+      residuals[i] = std::sqrt(squared);
+      sum += residuals[i];
       TriangleNormal(modelSurface, cell, n);
       double pxn[3];
       vtkMath::Cross(p.data(), n, pxn);
@@ -124,6 +128,93 @@ SurfaceRegistration RegisterSurfaceIcp(vtkPolyData* modelSurface, const std::vec
   }
   result.ModelToWorld = InvertTransform(worldToModel);
   result.MeanResidualMm = meanResidual;
+  result.MedianResidualMm = Quantile(residuals, 0.5);
+  result.P95ResidualMm = Quantile(residuals, 0.95);
+  int far = 0;
+  for (const double r : residuals)
+  {
+    far += r > SurfaceRegistration::FarResidualFactor * result.MedianResidualMm ? 1 : 0;
+  }
+  result.FarFraction = static_cast<double>(far) / static_cast<double>(residuals.size());
+  result.ResidualsMm = std::move(residuals);
   return result;
+}
+
+std::vector<Matrix4> IcpStarts(const std::vector<Point3>& worldPoints, const Matrix4& guess, const std::vector<double>& turnsDeg,
+  const std::vector<double>& shiftsMm)
+{
+  // The measured points' centroid and principal axes: a thin instrument's wrong minima lie along
+  // and about its long axis.
+  Point3 centroid{ 0.0, 0.0, 0.0 };
+  for (const Point3& w : worldPoints)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      centroid[a] += w[a] / static_cast<double>(worldPoints.size());
+    }
+  }
+  double covariance[3][3] = {};
+  for (const Point3& w : worldPoints)
+  {
+    for (int i = 0; i < 3; ++i)
+    {
+      for (int j = 0; j < 3; ++j)
+      {
+        covariance[i][j] += (w[i] - centroid[i]) * (w[j] - centroid[j]);
+      }
+    }
+  }
+  double* rows[3] = { covariance[0], covariance[1], covariance[2] };
+  double values[3], vectors[3][3];
+  double* vectorRows[3] = { vectors[0], vectors[1], vectors[2] };
+  vtkMath::Jacobi(rows, values, vectorRows); // eigenvectors in the columns
+  std::vector<Matrix4> starts{ guess };
+  for (int a = 0; a < 3; ++a)
+  {
+    const Point3 axis{ vectors[0][a], vectors[1][a], vectors[2][a] };
+    for (const double turnDeg : turnsDeg)
+    {
+      // A turn about the centroid: rotate, then put the centroid back where it was.
+      Matrix4 turn = RotationAboutAxis(axis, turnDeg * vtkMath::Pi() / 180.0, { 0.0, 0.0, 0.0 });
+      const Point3 moved = TransformPoint(turn, centroid);
+      for (int k = 0; k < 3; ++k)
+      {
+        turn[4 * k + 3] = centroid[k] - moved[k];
+      }
+      starts.push_back(MultiplyTransforms(turn, guess));
+    }
+    for (const double shiftMm : shiftsMm)
+    {
+      const Point3 offset{ shiftMm * axis[0], shiftMm * axis[1], shiftMm * axis[2] };
+      starts.push_back(MultiplyTransforms(RotationAboutAxis({ 1.0, 0.0, 0.0 }, 0.0, offset), guess));
+    }
+  }
+  return starts;
+}
+
+SurfaceRegistration RegisterSurfaceIcpMultiStart(vtkPolyData* modelSurface, const std::vector<Point3>& worldPoints,
+  const std::array<double, 16>& guessModelToWorld)
+{
+  const std::vector<Matrix4> starts =
+    IcpStarts(worldPoints, guessModelToWorld, { -20.0, -10.0, 10.0, 20.0 }, { -10.0, -5.0, 5.0, 10.0 });
+  std::vector<SurfaceRegistration> coarse;
+  for (const Matrix4& start : starts)
+  {
+    coarse.push_back(RegisterSurfaceIcp(modelSurface, worldPoints, start, 30));
+  }
+  std::sort(coarse.begin(), coarse.end(),
+    [](const SurfaceRegistration& a, const SurfaceRegistration& b) { return a.MeanResidualMm < b.MeanResidualMm; });
+  SurfaceRegistration best;
+  for (std::size_t k = 0; k < std::min<std::size_t>(3, coarse.size()); ++k)
+  {
+    SurfaceRegistration fine = RegisterSurfaceIcp(modelSurface, worldPoints, coarse[k].ModelToWorld, 300);
+    fine.Iterations += coarse[k].Iterations;
+    if (k == 0 || fine.MeanResidualMm < best.MeanResidualMm)
+    {
+      best = fine;
+    }
+  }
+  best.Starts = static_cast<int>(starts.size());
+  return best;
 }
 } // namespace vp

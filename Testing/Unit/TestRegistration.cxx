@@ -152,9 +152,8 @@ TEST(PivotCalibration, RefusesTooFewPosesNoRotationAndOneAxis)
   EXPECT_NE(message(spin).find("about one axis only"), std::string::npos) << message(spin);
 }
 
-// On the PLUS catalogue's tracked pointer. (On its thin scalpel blade and on the Straizys holder
-// assembly, ICP from 3 mm and 3 degrees off settles 1.4 and 8 degrees from the truth, with
-// residuals twice the noise: local minima, point-to-point and point-to-plane alike; issue 5.)
+// On the PLUS catalogue's tracked pointer, one ICP from a few millimetres and degrees off. (The
+// thin instruments need the multi-start: the next test.)
 TEST(SurfaceIcpRegistration, ConvergesOnARealInstrumentFromAFewMillimetresAndDegreesOff)
 {
   const std::string data = vp::test::TestDataDir();
@@ -190,5 +189,65 @@ TEST(SurfaceIcpRegistration, ConvergesOnARealInstrumentFromAFewMillimetresAndDeg
   EXPECT_GT(fit.Iterations, 1);
   const double startResidual = vp::RegisterSurfaceIcp(scalpel, measured, guess, 1).MeanResidualMm;
   EXPECT_GT(startResidual, 2.0 * fit.MeanResidualMm) << "the fit improved on the guess";
+}
+} // namespace
+namespace
+{
+// The thin instruments (issue 14): from 10 mm and 10 degrees off, a single ICP slides into wrong
+// minima (on these poses the PLUS scalpel's tip 7.5 mm up its shaft, the Straizys holder 13
+// degrees off). The multi-start fit is within 0.5 mm and 0.5 degrees of the truth, or it says
+// it does not explain the points (and `register icp` refuses it); most are fitted.
+TEST(SurfaceIcpRegistration, ThinInstrumentsFromTenMillimetresAndDegreesOffAreFittedOrRefused)
+{
+  const std::string data = vp::test::TestDataDir();
+  if (data.empty())
+    GTEST_SKIP() << "VP_TEST_DATA not set: the thin instruments' STLs are in ../shared/data";
+  for (const std::string& file : { data + "/plusmodelcatalog/Scalpel.stl", data + "/straizys-scalpel/scalpel_mech_cutting_tool_assembly.stl" })
+  {
+    vtkNew<vtkVesselMeshReader> reader;
+    reader->SetFileName(file);
+    reader->Read();
+    vtkPolyData* tool = reader->GetOutput();
+    std::mt19937 random(3);
+    std::normal_distribution<double> normal(0.0, 1.0);
+    int fitted = 0, wrongSingle = 0;
+    for (int trial = 0; trial < 4; ++trial)
+    {
+      const Matrix truth = Rigid({ normal(random), normal(random), normal(random) }, 40.0 + 10 * trial, { -40.0, 85.0, 210.0 });
+      std::uniform_int_distribution<vtkIdType> vertex(0, tool->GetNumberOfPoints() - 1);
+      std::vector<Point3> measured;
+      for (int i = 0; i < 400; ++i)
+      {
+        Point3 p;
+        tool->GetPoint(vertex(random), p.data());
+        const Point3 w = vp::TransformPoint(truth, p);
+        measured.push_back({ w[0] + 0.1 * normal(random), w[1] + 0.1 * normal(random), w[2] + 0.1 * normal(random) });
+      }
+      const Point3 axis{ normal(random), normal(random), normal(random) };
+      Point3 shift{ normal(random), normal(random), normal(random) };
+      const double length = std::sqrt(shift[0] * shift[0] + shift[1] * shift[1] + shift[2] * shift[2]);
+      for (double& s : shift)
+      {
+        s *= 10.0 / length;
+      }
+      // 10 degrees about the instrument's tip (its origin) and 10 mm off.
+      const Matrix guess = vp::MultiplyTransforms(truth, Rigid(axis, 10.0, shift));
+      const auto fit = vp::RegisterSurfaceIcpMultiStart(tool, measured, guess);
+      const double rotationDeg = vp::RotationBetweenDeg(fit.ModelToWorld, truth);
+      const double tipMm = Distance(vp::TransformPoint(fit.ModelToWorld, { 0, 0, 0 }), vp::TransformPoint(truth, { 0, 0, 0 }));
+      std::printf("%s, trial %d: %s, %.2f deg, tip %.2f mm, %.1f%% of the points far\n", file.c_str(), trial,
+        fit.ExplainsThePoints() ? "fitted" : "refused", rotationDeg, tipMm, 100.0 * fit.FarFraction);
+      if (fit.ExplainsThePoints())
+      {
+        EXPECT_LE(rotationDeg, 0.5) << file << ", trial " << trial;
+        EXPECT_LE(tipMm, 0.5) << file << ", trial " << trial;
+        ++fitted;
+      }
+      const auto single = vp::RegisterSurfaceIcp(tool, measured, guess);
+      wrongSingle += vp::RotationBetweenDeg(single.ModelToWorld, truth) > 0.5 ? 1 : 0;
+    }
+    EXPECT_GE(fitted, 3) << file;
+    EXPECT_GE(wrongSingle, 1) << file << ": these poses should be hard for a single ICP";
+  }
 }
 } // namespace

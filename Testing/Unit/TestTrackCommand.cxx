@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <random>
 #include <sstream>
 
 namespace
@@ -619,6 +620,51 @@ TEST_F(TrackCommand, ZBufferLevelIsNeverMilderThanExactAtAnyCellSize)
   EXPECT_NE(coarse.Err.find("cell size: the engine's error bound (2.6"), std::string::npos) << coarse.Err;
   EXPECT_EQ(std::count(coarse.Err.begin(), coarse.Err.end(), '\n'), 2) << "the tip's source, then one line: " << coarse.Err;
   EXPECT_FALSE(vp::test::FileExists(this->Dir + "/coarse"));
+}
+
+// register icp on points measured on the tool: from a guess 2 mm off it fits and says how well.
+// Points measured on another instrument (a shaft half as long again as the model's) cannot all
+// lie on the model: the best fit leaves a third of them far, and is refused in one line, nothing
+// written.
+TEST_F(TrackCommand, RegisterIcpFitsFromNearAndRefusesAFitThatDoesNotExplainThePoints)
+{
+  std::mt19937 random(5);
+  std::normal_distribution<double> noise(0.0, 0.05);
+  // Model to world: 90 degrees about x, then 30 mm along y.
+  // 300 points on a 1.5 mm shaft from the tip (z = 0) back to z = -lengthMm: on its side, and
+  // one in ten on the tip's flat end, which fixes the fit along the shaft.
+  const auto measure = [&](double lengthMm, const std::string& name) {
+    std::uniform_real_distribution<double> angle(0.0, 2.0 * M_PI), along(-lengthMm, 0.0), unit(0.0, 1.0);
+    std::ostringstream csv;
+    for (int i = 0; i < 300; ++i)
+    {
+      const double a = angle(random), r = i % 10 ? 1.5 : 1.5 * std::sqrt(unit(random));
+      const double p[3] = { r * std::cos(a), r * std::sin(a), i % 10 ? along(random) : 0.0 };
+      csv << p[0] + noise(random) << "," << -p[2] + 30.0 + noise(random) << "," << p[1] + noise(random) << "\n";
+    }
+    return this->WriteText(name, csv.str());
+  };
+  const std::string near = this->WriteText("near.json",
+    R"({"model_to_world": [1, 0, 0, 1, 0, 0, -1, 32, 0, 1, 0, 0, 0, 0, 0, 1]})");
+  const std::string points = measure(80.0, "measured.csv");
+  const std::string fitted = this->Dir + "/fitted.json";
+  const ToolRun good = RunTool(this->Dir, "register icp --model " + this->Tool + " --points " + points + " --initial " + near + " -o " + fitted);
+  ASSERT_EQ(good.ExitCode, 0) << good.Err;
+  std::ifstream in(fitted);
+  const nlohmann::json result = nlohmann::json::parse(in);
+  EXPECT_EQ(result["starts"], 25);
+  EXPECT_LT(result["mean_residual_mm"].get<double>(), 0.1);
+  EXPECT_LE(result["far_fraction"].get<double>(), 0.0375);
+  EXPECT_NEAR(result["model_to_world"][7].get<double>(), 30.0, 0.1) << "the tip's y";
+
+  const std::string other = measure(120.0, "other.csv");
+  const std::string refused = this->Dir + "/refused.json";
+  const ToolRun bad = RunTool(this->Dir, "register icp --model " + this->Tool + " --points " + other + " --initial " + near + " -o " + refused);
+  EXPECT_EQ(bad.ExitCode, 1) << bad.Out;
+  EXPECT_EQ(std::count(bad.Err.begin(), bad.Err.end(), '\n'), 1) << bad.Err;
+  EXPECT_NE(bad.Err.find(other + ": ICP from " + near + " found no fit that explains the points"), std::string::npos) << bad.Err;
+  EXPECT_TRUE(bad.Out.empty()) << bad.Out;
+  EXPECT_FALSE(vp::test::FileExists(refused));
 }
 
 TEST_F(TrackCommand, RegisterRefusesBadInputInOneLineAndWritesNothing)

@@ -95,6 +95,11 @@ TEST(SurfaceRepair, EachDefectIsUndoneAndTheAnswersAreTheOriginals)
       {
         EXPECT_EQ(r.MergedPoints, 1u) << where;
       }
+      else if (copy.Name.find("repeated") != std::string::npos)
+      {
+        EXPECT_EQ(r.MergedPoints, 1u) << where;
+        EXPECT_EQ(r.RemovedDuplicates, 1u) << where;
+      }
       else if (copy.Name.find("fin") != std::string::npos)
       {
         EXPECT_EQ(r.RemovedFins, 1u) << where;

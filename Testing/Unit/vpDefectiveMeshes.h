@@ -105,6 +105,17 @@ inline std::vector<Defective> DefectiveCopies(const Points& points, const Triang
       [](const vp::MeshDefects& d) { return d.BoundaryEdges == 4 && d.NonManifoldEdges == 0; } });
   }
   {
+    // A point duplicated and a triangle repeated on the copy: its far edge is shared by three
+    // triangles (non-manifold), its two others by one (boundary), where an export wrote a face
+    // twice with its own points.
+    Points repeated = points;
+    Triangles twice = triangles;
+    repeated.push_back(points[triangles[at][0]]);
+    twice.push_back({ static_cast<std::int32_t>(repeated.size() - 1), triangles[at][1], triangles[at][2] });
+    copies.push_back({ "a triangle repeated on a duplicated point (non-manifold)", MakeMesh(repeated, twice),
+      [](const vp::MeshDefects& d) { return d.NonManifoldEdges == 1 && d.BoundaryEdges == 2; } });
+  }
+  {
     // A fin: a new triangle on an edge of the surface, standing 1 mm out of it.
     Points finned = points;
     Triangles fin = triangles;

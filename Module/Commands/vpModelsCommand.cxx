@@ -1,6 +1,7 @@
 // vesselproximity models: segmented labelmaps in, one closed STL surface per vessel class out.
 #include "vpArguments.h"
 #include "vpCommandSupport.h"
+#include "vpRunFolder.h"
 #include "vpCommands.h"
 #include "vpInputError.h"
 #include "vpSegmentationImport.h"
@@ -83,6 +84,7 @@ int RunModelsCommand(const std::vector<std::string>& argv)
   {
     throw InputError("-o", "an output folder is required");
   }
+  RunFolder run(outDir, "models.json");
   const std::string spaceName = args.Get("--space", "LPS");
   if (spaceName != "LPS" && spaceName != "RAS")
   {
@@ -188,6 +190,12 @@ int RunModelsCommand(const std::vector<std::string>& argv)
       { "voxel_volume_mm3", m.VoxelVolumeMm3 }, { "area_mm2", m.AreaMm2 }, { "file", m.ClassName + ".stl" },
       { "surface", SurfaceJson(VesselSurface(m.ClassName, m.Surface)) }, { "sources", sources }, { "build_ms", m.Ms } });
   }
+  doc["files"] = nlohmann::json::array();
+  for (const ClassModel& m : models)
+  {
+    doc["files"].push_back(m.ClassName + ".stl");
+  }
+  doc["files"].push_back("models.json");
   doc["unmapped"] = nlohmann::json::array();
   for (const LabelStructure* s : unmapped)
   {
@@ -195,35 +203,18 @@ int RunModelsCommand(const std::vector<std::string>& argv)
   }
   doc["timing_ms"] = { { "read", readMs }, { "total", NowMs() - start } };
 
-  // Write. A failure part-way removes what this run wrote.
-  const bool created = CreateOutputFolder(outDir);
-  std::vector<std::string> written;
-  try
+  // Write: the folder holds this run whole, or the previous one as it was.
+  run.Begin();
+  for (const ClassModel& m : models)
   {
-    for (const ClassModel& m : models)
-    {
-      vtkNew<vtkVesselMeshWriter> writer;
-      writer->SetFileName(outDir + "/" + m.ClassName + ".stl");
-      writer->SetInputData(m.Surface);
-      writer->SetFileSpace(spaceName == "RAS" ? MeshSpace::RAS : MeshSpace::LPS);
-      writer->Write();
-      written.push_back(writer->GetFileName());
-    }
-    WriteFileAtomically(outDir + "/models.json", doc.dump(2) + "\n");
+    vtkNew<vtkVesselMeshWriter> writer;
+    writer->SetFileName(run.File(m.ClassName + ".stl"));
+    writer->SetInputData(m.Surface);
+    writer->SetFileSpace(spaceName == "RAS" ? MeshSpace::RAS : MeshSpace::LPS);
+    writer->Write();
   }
-  catch (...)
-  {
-    for (const auto& file : written)
-    {
-      std::remove(file.c_str());
-    }
-    if (created)
-    {
-      std::error_code ec;
-      fs::remove(outDir, ec);
-    }
-    throw;
-  }
+  WriteFileAtomically(run.File("models.json"), doc.dump(2) + "\n");
+  run.Commit();
 
   std::cout << std::left << std::setw(16) << "class" << std::right << std::setw(10) << "voxels" << std::setw(12)
             << "triangles" << std::setw(14) << "volume_mm3" << std::setw(12) << "area_mm2" << "  file\n";

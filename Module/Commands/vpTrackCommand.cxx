@@ -2,6 +2,7 @@
 // per-frame record (frames.csv), the run's summary (summary.json) and its plot (distance.png).
 #include "vpArguments.h"
 #include "vpCommandSupport.h"
+#include "vpRunFolder.h"
 #include "vpCommands.h"
 #include "vpDangerBands.h"
 #include "vpDangerLevels.h"
@@ -273,6 +274,7 @@ int RunTrackCommand(const std::vector<std::string>& argv)
   const double hysteresisMm = ParseHysteresisMm(args);
   const bool surface = !args.Has("--no-surface");
   const std::string outDir = args.Get("-o");
+  RunFolder run(outDir, "summary.json");
 
   // Everything that can be refused is read before any computing: poses first, they are cheap.
   const double start = NowMs();
@@ -351,31 +353,14 @@ int RunTrackCommand(const std::vector<std::string>& argv)
   const std::string csv = FramesCsv(frames, classes, surface);
   Json doc = SummaryJson(summary, logic, engine, meshes, args.Get("--poses"), surface, comparison);
   doc["timing_ms"]["load_and_build"] = buildMs;
+  doc["files"] = { "frames.csv", "summary.json", "distance.png" };
 
-  // Write. A failure part-way removes what this run wrote.
-  const bool created = CreateOutputFolder(outDir);
-  std::vector<std::string> written;
-  try
-  {
-    WriteFileAtomically(outDir + "/frames.csv", csv);
-    written.push_back(outDir + "/frames.csv");
-    WriteFileAtomically(outDir + "/summary.json", doc.dump(2) + "\n");
-    written.push_back(outDir + "/summary.json");
-    WritePlot(outDir + "/distance.png", frames, classes, thresholds, engine->GetRangeMm(), surface);
-  }
-  catch (...)
-  {
-    for (const auto& file : written)
-    {
-      std::remove(file.c_str());
-    }
-    if (created)
-    {
-      std::error_code ec;
-      std::filesystem::remove(outDir, ec);
-    }
-    throw;
-  }
+  // Write: the folder holds this run whole, or the previous one as it was.
+  run.Begin();
+  WriteFileAtomically(run.File("frames.csv"), csv);
+  WriteFileAtomically(run.File("summary.json"), doc.dump(2) + "\n");
+  WritePlot(run.File("distance.png"), frames, classes, thresholds, engine->GetRangeMm(), surface);
+  run.Commit();
 
   std::printf("%zu frames over %.2f s, method %s on %s, error bound %.3f mm\n", frames.size(), summary.GetDurationS(),
     engine->GetMethodName(), engine->GetDeviceDescription().c_str(), engine->GetErrorBoundMm());

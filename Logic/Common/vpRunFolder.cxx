@@ -1,0 +1,212 @@
+#include "vpRunFolder.h"
+
+#include "vpInputError.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cerrno>
+#include <csignal>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <system_error>
+#include <unistd.h>
+
+namespace fs = std::filesystem;
+
+namespace vp
+{
+namespace
+{
+// The signals held while a run is written, the first one that arrived, and the handlers they had.
+const int HeldSignals[] = { SIGINT, SIGTERM, SIGHUP };
+volatile std::sig_atomic_t PendingSignal = 0;
+struct sigaction PreviousActions[3];
+int Holders = 0; // RunFolders begun and not released
+
+extern "C" void RecordSignal(int signal)
+{
+  if (PendingSignal == 0)
+  {
+    PendingSignal = signal;
+  }
+}
+
+void HoldSignals()
+{
+  if (Holders++ > 0)
+  {
+    return;
+  }
+  PendingSignal = 0;
+  struct sigaction record = {};
+  record.sa_handler = RecordSignal;
+  sigemptyset(&record.sa_mask);
+  for (int i = 0; i < 3; ++i)
+  {
+    sigaction(HeldSignals[i], &record, &PreviousActions[i]);
+  }
+}
+
+// Restores the handlers; a signal that came meanwhile is raised again, to act as it would have.
+void ReleaseSignals()
+{
+  if (--Holders > 0)
+  {
+    return;
+  }
+  for (int i = 0; i < 3; ++i)
+  {
+    sigaction(HeldSignals[i], &PreviousActions[i], nullptr);
+  }
+  if (const int signal = PendingSignal)
+  {
+    PendingSignal = 0;
+    std::raise(signal);
+  }
+}
+
+// The files the previous run's report says it wrote: "files", or a models.json's structures;
+// none when there is no readable report (then nothing is removed).
+std::set<std::string> PreviousRunFiles(const std::string& report)
+{
+  std::set<std::string> files;
+  std::ifstream in(report);
+  const nlohmann::json doc = nlohmann::json::parse(in, nullptr, false);
+  if (!in || doc.is_discarded() || !doc.is_object())
+  {
+    return files;
+  }
+  const auto add = [&](const nlohmann::json& name) {
+    // Only a plain name in the folder: a report is data we do not control.
+    if (name.is_string() && fs::path(name.get<std::string>()).filename() == name.get<std::string>() &&
+      name.get<std::string>() != "." && name.get<std::string>() != "..")
+    {
+      files.insert(name.get<std::string>());
+    }
+  };
+  if (doc.contains("files") && doc["files"].is_array())
+  {
+    for (const auto& name : doc["files"])
+    {
+      add(name);
+    }
+  }
+  if (doc.contains("structures") && doc["structures"].is_array())
+  {
+    for (const auto& s : doc["structures"])
+    {
+      if (s.is_object() && s.contains("file"))
+      {
+        add(s["file"]);
+      }
+    }
+  }
+  return files;
+}
+} // namespace
+
+RunFolder::RunFolder(const std::string& target, const std::string& report)
+  : TargetPath(fs::path(target).lexically_normal().string())
+  , ReportName(report)
+{
+  std::error_code ec;
+  if (fs::exists(this->TargetPath, ec) && !fs::is_directory(this->TargetPath, ec))
+  {
+    throw InputError(target, "cannot create folder: a file has that name");
+  }
+  this->StagingPath = (fs::path(this->TargetPath) / (".vesselproximity-partial-" + std::to_string(::getpid()))).string();
+}
+
+RunFolder::~RunFolder()
+{
+  this->Release();
+}
+
+void RunFolder::Begin()
+{
+  if (this->Begun)
+  {
+    return;
+  }
+  HoldSignals();
+  this->Begun = true;
+  std::error_code ec;
+  this->CreatedTarget = !fs::exists(this->TargetPath, ec);
+  fs::create_directories(this->TargetPath, ec);
+  if (ec || !fs::is_directory(this->TargetPath, ec))
+  {
+    throw InputError(this->TargetPath, "cannot create folder: " + (ec ? ec.message() : std::string("a file has that name")));
+  }
+  fs::remove_all(this->StagingPath, ec); // left by a killed process that had our pid
+  if (!fs::create_directory(this->StagingPath, ec))
+  {
+    throw InputError(this->TargetPath, "cannot write here: " + ec.message());
+  }
+}
+
+std::string RunFolder::File(const std::string& name)
+{
+  if (!this->Begun)
+  {
+    return this->TargetPath + "/" + name;
+  }
+  if (std::find(this->Names.begin(), this->Names.end(), name) == this->Names.end())
+  {
+    this->Names.push_back(name);
+  }
+  return this->StagingPath + "/" + name;
+}
+
+void RunFolder::Commit()
+{
+  if (!this->Begun)
+  {
+    return;
+  }
+  std::error_code ec;
+  const std::set<std::string> ours(this->Names.begin(), this->Names.end());
+  for (const std::string& stale : PreviousRunFiles(this->TargetPath + "/" + this->ReportName))
+  {
+    if (!ours.count(stale))
+    {
+      fs::remove(this->TargetPath + "/" + stale, ec);
+    }
+  }
+  // The report last: whoever sees the new report sees every file it lists.
+  std::vector<std::string> order = this->Names;
+  std::stable_partition(order.begin(), order.end(), [&](const std::string& n) { return n != this->ReportName; });
+  for (const std::string& name : order)
+  {
+    if (!fs::exists(this->StagingPath + "/" + name, ec))
+    {
+      continue; // named, never written (a writer that failed quietly is the writer's to report)
+    }
+    if (std::rename((this->StagingPath + "/" + name).c_str(), (this->TargetPath + "/" + name).c_str()) != 0)
+    {
+      throw InputError(this->TargetPath + "/" + name, std::string("cannot write: ") + std::strerror(errno));
+    }
+  }
+  this->CreatedTarget = false; // it holds the run now
+  this->Release();
+}
+
+void RunFolder::Release()
+{
+  if (!this->Begun)
+  {
+    return;
+  }
+  std::error_code ec;
+  fs::remove_all(this->StagingPath, ec);
+  if (this->CreatedTarget)
+  {
+    fs::remove(this->TargetPath, ec); // only if empty: a failed first run leaves no folder
+  }
+  this->Begun = false;
+  ReleaseSignals();
+}
+} // namespace vp

@@ -1,0 +1,51 @@
+#ifndef vpRunFolder_h
+#define vpRunFolder_h
+
+#include <string>
+#include <vector>
+
+namespace vp
+{
+/// The files of one run in an output folder, put in place together. The run writes into a
+/// staging folder inside the target (".vesselproximity-partial-PID", on the same file system);
+/// Commit() removes the files of the previous run that this one does not write again (as its
+/// report lists them: "files", or a models.json's structures), then renames each new file into
+/// place, the report last. Until Commit() nothing in the target changes; a run that fails, or
+/// whose RunFolder is destroyed without Commit(), removes its staging folder and leaves the
+/// previous results exactly as they were. Files that no run of ours wrote are never touched.
+///
+/// SIGINT, SIGTERM and SIGHUP are held from Begin() to Commit() or destruction (the writing only:
+/// the commands compute everything first) and acted on after, so an interrupted run leaves the
+/// old results or the new, never a mixture and never a staging folder.
+class RunFolder
+{
+public:
+  /// report: the run's report file name ("models.json", "summary.json"), written last. Throws
+  /// InputError(target, ...) when the target is a file.
+  RunFolder(const std::string& target, const std::string& report);
+  ~RunFolder();
+  RunFolder(const RunFolder&) = delete;
+  RunFolder& operator=(const RunFolder&) = delete;
+
+  /// Holds the signals and creates the target (and its missing parents) and the staging folder.
+  void Begin();
+  /// The path to write a file of this run to: inside the staging folder once begun, in the
+  /// target otherwise (to name it in messages).
+  std::string File(const std::string& name);
+  /// Puts the run's files in place; throws InputError(target, ...) when it cannot.
+  void Commit();
+
+  const std::string& Target() const { return this->TargetPath; }
+
+private:
+  std::string TargetPath;
+  std::string ReportName;
+  std::string StagingPath;
+  std::vector<std::string> Names; // the run's files, in the order given
+  bool Begun = false;
+  bool CreatedTarget = false;
+  void Release();
+};
+} // namespace vp
+
+#endif

@@ -897,17 +897,6 @@ void vtkZBufferVesselDistance::AnswerBatch(const std::array<double, 3>* tips, st
         out.InRange = false; // as the exact engine: no distance, no point, no inside answer
         continue;
       }
-      out.InRange = true;
-      // On a surface that is not closed the one ray's parity is no answer (an opening it passes
-      // through turns it): the exact engine's vote over five rays decides there.
-      if (this->Surfaces[c]->IsClosed())
-      {
-        out.Inside = cs[1] != 0u;
-      }
-      else
-      {
-        votes.push_back({ i, c, best + g.HalfDiagonalMm() });
-      }
       // The nearest marked cell is at most a cell diagonal nearer than the surface it holds:
       // its distance plus half a diagonal is within half a diagonal of the truth.
       double distance = best + g.HalfDiagonalMm();
@@ -921,6 +910,22 @@ void vtkZBufferVesselDistance::AnswerBatch(const std::array<double, 3>* tips, st
             break;
           }
         }
+      }
+      if (distance > this->RangeMm)
+      {
+        out.InRange = false; // beyond the range, as the exact engine reports what lies there
+        continue;
+      }
+      out.InRange = true;
+      // On a surface that is not closed the one ray's parity is no answer (an opening it passes
+      // through turns it): the exact engine's vote over five rays decides there.
+      if (this->Surfaces[c]->IsClosed())
+      {
+        out.Inside = cs[1] != 0u;
+      }
+      else
+      {
+        votes.push_back({ i, c, best + g.HalfDiagonalMm() });
       }
       out.DistanceMm = distance;
       const std::uint32_t bestPixel = cs[5];

@@ -6,7 +6,7 @@
 #include <vtkMath.h>
 #include <vtkNew.h>
 #include <vtkPolyData.h>
-#include <vtkStaticCellLocator.h>
+#include <vtkCellLocator.h>
 
 #include <algorithm>
 #include <cmath>
@@ -54,8 +54,9 @@ SurfaceRegistration RegisterSurfaceIcp(vtkPolyData* modelSurface, const std::vec
   {
     throw InputError("ICP", "at least 6 measured surface points are needed, got " + std::to_string(worldPoints.size()));
   }
-  vtkNew<vtkStaticCellLocator> locator;
+  vtkNew<vtkCellLocator> locator; // built serially: the same fit on every run (the static locator's threaded build is not)
   locator->SetDataSet(modelSurface);
+  locator->CacheCellBoundsOn();
   locator->BuildLocator();
 
   // Point-to-plane ICP (Chen and Medioni): each measured point is pulled onto the tangent plane

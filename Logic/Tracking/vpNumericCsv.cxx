@@ -1,5 +1,6 @@
 #include "vpNumericCsv.h"
 
+#include "vpDecimal.h"
 #include "vpInputError.h"
 
 #include <cerrno>
@@ -21,8 +22,14 @@ bool ParseNumbers(const std::string& text, std::vector<double>& values, std::str
     {
       ++p;
     }
-    char* end = nullptr;
-    const double v = std::strtod(p, &end);
+    const char* end = ScanDecimal(p);
+    char* read = nullptr;
+    const double v = std::strtod(p, &read);
+    if (end == p && read != p && !std::isfinite(v))
+    {
+      problem = "NaN or infinite value";
+      return false;
+    }
     if (end == p)
     {
       problem = "'" + text.substr(0, 40) + "' is not a list of numbers";
@@ -86,9 +93,7 @@ std::vector<NumericRow> ReadNumericCsv(const std::string& fileName, const std::s
     std::string problem;
     if (!ParseNumbers(line, row.Values, problem))
     {
-      char* end = nullptr;
-      std::strtod(line.c_str() + first, &end);
-      if (rows.empty() && end == line.c_str() + first)
+      if (rows.empty() && ScanDecimal(line.c_str() + first) == line.c_str() + first)
       {
         continue; // a header: its first field is no number at all
       }

@@ -65,6 +65,27 @@ void vtkScalpelTrackingLogic::SetHysteresisMm(double hysteresisMm)
   }
 }
 
+void vtkScalpelTrackingLogic::ValidateSettings() const
+{
+  if (!this->Engine)
+  {
+    throw std::logic_error("vtkScalpelTrackingLogic: set the distance engine first");
+  }
+  this->Thresholds.Validate("danger thresholds");
+  if (this->Engine->GetRangeMm() < this->Thresholds.CautionMm)
+  {
+    throw vp::InputError("--range", "the range (" + vp::NumberText(this->Engine->GetRangeMm()) +
+        " mm) must reach the caution threshold (" + vp::NumberText(this->Thresholds.CautionMm) +
+        " mm), or a class beyond it would look safe");
+  }
+  if (this->Engine->GetErrorBoundMm() >= this->Thresholds.DangerMm)
+  {
+    throw vp::InputError("cell size", "the engine's error bound (" + vp::NumberText(this->Engine->GetErrorBoundMm()) +
+        " mm) must be below the danger threshold (" + vp::NumberText(this->Thresholds.DangerMm) +
+        " mm), or it cannot tell danger from safety: use smaller cells");
+  }
+}
+
 void vtkScalpelTrackingLogic::Reset()
 {
   this->Last = vp::TrackedFrame();
@@ -79,19 +100,7 @@ const vp::TrackedFrame& vtkScalpelTrackingLogic::ProcessPose(const vp::TrackedPo
   }
   if (this->FramesProcessed == 0)
   {
-    this->Thresholds.Validate("danger thresholds");
-    if (this->Engine->GetRangeMm() < this->Thresholds.CautionMm)
-    {
-      throw vp::InputError("--range", "the range (" + vp::NumberText(this->Engine->GetRangeMm()) +
-          " mm) must reach the caution threshold (" + vp::NumberText(this->Thresholds.CautionMm) +
-          " mm), or a class beyond it would look safe");
-    }
-    if (this->Engine->GetErrorBoundMm() >= this->Thresholds.DangerMm)
-    {
-      throw vp::InputError("cell size", "the engine's error bound (" + vp::NumberText(this->Engine->GetErrorBoundMm()) +
-          " mm) must be below the danger threshold (" + vp::NumberText(this->Thresholds.DangerMm) +
-          " mm), or it cannot tell danger from safety: use smaller cells");
-    }
+    this->ValidateSettings();
   }
   const bool hasPrevious = this->FramesProcessed > 0;
   const vp::DangerLevel previousLevel = this->Last.Level;

@@ -1,5 +1,6 @@
 #include "vpArguments.h"
 
+#include "vpDecimal.h"
 #include "vpInputError.h"
 
 #include <cmath>
@@ -67,8 +68,8 @@ double Arguments::GetNumber(const std::string& name, double fallback) const
     return fallback;
   }
   const std::string text = this->Get(name);
-  char* end = nullptr;
-  const double v = std::strtod(text.c_str(), &end);
+  const char* end = ScanDecimal(text.c_str());
+  const double v = std::strtod(text.c_str(), nullptr);
   if (text.empty() || *end != '\0' || !std::isfinite(v))
   {
     throw InputError(name, "expected a number, got '" + text + "'");
@@ -76,20 +77,22 @@ double Arguments::GetNumber(const std::string& name, double fallback) const
   return v;
 }
 
-int GetIntegerChecked(const std::string& name, const std::string& text)
+int Arguments::GetInteger(const std::string& name, int fallback, int minimum) const
 {
+  if (!this->Has(name))
+  {
+    return fallback;
+  }
+  const std::string text = this->Get(name);
   char* end = nullptr;
   const long v = std::strtol(text.c_str(), &end, 10);
-  if (text.empty() || *end != '\0' || v <= 0 || v > 1000000000L)
+  if (text.empty() || *end != '\0' || v < minimum || v > 1000000000L)
   {
-    throw InputError(name, "expected a positive whole number, got '" + text + "'");
+    throw InputError(name, (minimum == 1 ? std::string("expected a positive whole number")
+                                         : "expected a whole number of at least " + std::to_string(minimum)) +
+        ", got '" + text + "'");
   }
   return static_cast<int>(v);
-}
-
-int Arguments::GetInteger(const std::string& name, int fallback) const
-{
-  return this->Has(name) ? GetIntegerChecked(name, this->Get(name)) : fallback;
 }
 
 bool WantsHelp(const std::vector<std::string>& args)

@@ -19,7 +19,8 @@ public:
   bool Has(const std::string& name) const { return this->Values.count(name) > 0; }
   std::string Get(const std::string& name, const std::string& fallback = std::string()) const;
   double GetNumber(const std::string& name, double fallback) const;
-  int GetInteger(const std::string& name, int fallback) const;
+  /// A whole number of at least minimum (default 1); throws InputError naming the option.
+  int GetInteger(const std::string& name, int fallback, int minimum = 1) const;
   const std::vector<std::string>& Positional() const { return this->Positionals; }
 
 private:

@@ -34,7 +34,7 @@ std::vector<NamedMesh> LoadVesselMeshes(const std::vector<std::pair<std::string,
   return meshes;
 }
 
-void RepairVesselMeshes(const std::string& command, std::vector<NamedMesh>& meshes)
+void RepairVesselMeshes(std::vector<NamedMesh>& meshes)
 {
   for (NamedMesh& m : meshes)
   {
@@ -43,7 +43,6 @@ void RepairVesselMeshes(const std::string& command, std::vector<NamedMesh>& mesh
     repair->Update();
     m.Mesh = repair->GetOutput();
     m.Repair = repair->GetReport();
-    std::cerr << command << ": " << m.ClassName << " (" << m.FileName << "): --repair: " << m.Repair->Describe() << "\n";
   }
 }
 
@@ -66,6 +65,13 @@ double NowMs()
 
 void ReportSurfaceDefects(const std::string& command, vtkVesselDistanceEngine* engine, const std::vector<NamedMesh>& meshes)
 {
+  for (const NamedMesh& m : meshes)
+  {
+    if (m.Repair)
+    {
+      std::cerr << command << ": " << m.ClassName << " (" << m.FileName << "): --repair: " << m.Repair->Describe() << "\n";
+    }
+  }
   for (int c = 0; c < engine->GetNumberOfVessels(); ++c)
   {
     const VesselSurface& surface = engine->GetSurface(c);

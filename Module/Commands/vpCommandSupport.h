@@ -35,17 +35,18 @@ struct NamedMesh
 /// named twice.
 std::vector<NamedMesh> LoadVesselMeshes(const std::vector<std::pair<std::string, std::string>>& pairs);
 
-/// --repair: each mesh replaced by what vtkVesselSurfaceRepair makes of it, and one line on
-/// stderr per class saying what it changed ("nothing to repair" included).
-void RepairVesselMeshes(const std::string& command, std::vector<NamedMesh>& meshes);
+/// --repair: each mesh replaced by what vtkVesselSurfaceRepair makes of it, its report kept
+/// (ReportSurfaceDefects says what changed).
+void RepairVesselMeshes(std::vector<NamedMesh>& meshes);
 
 /// Creates an output folder and its missing parents, like mkdir -p; returns whether it was new.
 /// Throws InputError naming the folder when it cannot be made.
 bool CreateOutputFolder(const std::string& folder);
 
-/// One line on stderr (after the engine's Build()) for each class whose surface is not closed:
-/// its file, its defects, and how its inside is decided, so that nobody reads a vote or a null as
-/// the exact pseudonormal answer of a closed surface.
+/// One line on stderr (after the engine's Build(), so that no line comes before a refusal) for
+/// each class --repair went over, saying what it changed, and for each class whose surface is
+/// not closed: its file, its defects, and how its inside is decided, so that nobody reads a vote
+/// or a null as the exact pseudonormal answer of a closed surface.
 void ReportSurfaceDefects(const std::string& command, vtkVesselDistanceEngine* engine, const std::vector<NamedMesh>& meshes);
 /// "closed", the triangles and the defects' counts of one surface.
 nlohmann::ordered_json SurfaceJson(const VesselSurface& surface);

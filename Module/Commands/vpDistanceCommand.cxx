@@ -54,7 +54,7 @@ int RunDistanceCommand(const std::vector<std::string>& argv)
 {
   if (WantsHelp(argv))
   {
-    std::cout << Usage << EngineOptionsUsage;
+    std::cout << Usage << EngineOptionsUsage({ "exact", "zbuffer", "both", "brute", "auto" });
     return 0;
   }
   std::set<std::string> options = EngineValueOptions();
@@ -121,7 +121,7 @@ int RunDistanceCommand(const std::vector<std::string>& argv)
   auto meshes = LoadVesselMeshes(ParsePairs(args.Get("--vessels"), "--vessels"));
   if (args.Has("--repair"))
   {
-    RepairVesselMeshes("distance", meshes);
+    RepairVesselMeshes(meshes);
   }
   const double loadMs = NowMs() - loadStart;
   for (const auto& m : meshes)

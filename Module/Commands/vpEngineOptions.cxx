@@ -13,16 +13,34 @@
 
 namespace vp
 {
-const char* EngineOptionsUsage =
-  "  --method: exact (default; Embree BVH, exact), zbuffer (Vulkan depth layers, within\n"
-  "    error_bound_mm), both (z-buffer, checked against exact), brute (the paper's CPU\n"
-  "    algorithm), auto (z-buffer when a Vulkan device opens, else exact).\n"
+const char* EngineSettingsUsage =
   "  --range MM: classes further than this are reported as null (default 50 mm).\n"
   "  z-buffer settings: --device NAME|INDEX (default: a GPU if any, else lavapipe),\n"
   "    --cell MM (cell edge, default 0.4: bound 0.35 mm), --resolution PX (pixels across the\n"
   "    box instead), --layers exact|paper (paper: nearest and farthest depth only),\n"
   "    --box fixed|moving, --box-size X,Y,Z (moving box, default 106,106,213 mm),\n"
-  "    --bins N (the paper's distance bits: N bins over the range, a multiple of 16).\n";
+  "    --bins N (the paper's distance bits: N bins over the range, a multiple of 16; 0, the\n"
+  "    default, off).\n";
+
+std::string EngineOptionsUsage(const std::set<std::string>& methods)
+{
+  static const std::pair<const char*, const char*> all[] = {
+    { "exact", "exact (default; Embree BVH, exact)" },
+    { "zbuffer", "zbuffer (Vulkan depth layers, within error_bound_mm)" },
+    { "both", "both (z-buffer, checked against exact)" },
+    { "brute", "brute (the paper's CPU algorithm)" },
+    { "auto", "auto (z-buffer when a Vulkan device opens, else exact)" },
+  };
+  std::string text = "  --method, one of:\n";
+  for (const auto& [name, description] : all)
+  {
+    if (methods.count(name))
+    {
+      text += "    " + std::string(description) + "\n";
+    }
+  }
+  return text + EngineSettingsUsage;
+}
 
 std::set<std::string> EngineValueOptions()
 {
@@ -57,7 +75,7 @@ vtkSmartPointer<vtkZBufferVesselDistance> MakeZBuffer(const Arguments& args)
     const auto size = ParsePoint(args.Get("--box-size"), "--box-size");
     z->SetMovingBoxSizeMm(size[0], size[1], size[2]);
   }
-  z->SetDistanceBins(args.GetInteger("--bins", 0));
+  z->SetDistanceBins(args.GetInteger("--bins", 0, 0)); // 0: off, as the help says
   // Open the device now: a missing one is reported before any file is read.
   z->GetDeviceName();
   return z;
@@ -108,7 +126,12 @@ bool WithinErrorBound(const ClassProximity& answer, const ClassProximity& exact,
   {
     return std::abs(answer.DistanceMm - exact.DistanceMm) <= boundMm;
   }
-  return !exact.InRange && (!answer.InRange || answer.DistanceMm <= rangeMm + boundMm);
+  // Near the range's edge either may fall beyond it: within the bound of the edge, that agrees.
+  if (exact.InRange)
+  {
+    return exact.DistanceMm >= rangeMm - boundMm;
+  }
+  return !answer.InRange || answer.DistanceMm <= rangeMm + boundMm;
 }
 
 void ExactComparison::Add(const ProximityResult& answer, const ProximityResult& exact, double rangeMm, double boundMm,

@@ -13,7 +13,10 @@
 namespace vp
 {
 /// The options every command that computes distances shares, with their help text.
-extern const char* EngineOptionsUsage;
+/// The engine settings' help (--range and the z-buffer's).
+extern const char* EngineSettingsUsage;
+/// --method's help, listing only the methods the command accepts, then EngineSettingsUsage.
+std::string EngineOptionsUsage(const std::set<std::string>& methods);
 std::set<std::string> EngineValueOptions();
 
 /// The engine --method names, configured from the z-buffer options. "auto" is the z-buffer

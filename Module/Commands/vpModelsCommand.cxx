@@ -105,11 +105,11 @@ int RunModelsCommand(const std::vector<std::string>& argv)
   std::vector<LabelStructures> imports;
   for (const std::string& input : args.Positional())
   {
+    // Said once read: a line before a refusal would make its one line two.
     const double t0 = NowMs();
-    std::cerr << "models: reading " << input << "\n";
     imports.push_back(ImportSegmentation(input, [&](const std::string& name) { return !table.ClassOfName(name).empty(); }));
-    std::cerr << "models:   " << imports.back().size() << " structure(s) in " << std::fixed << std::setprecision(0)
-              << NowMs() - t0 << " ms\n";
+    std::cerr << "models: " << input << ": " << imports.back().size() << " structure(s) read in " << std::fixed
+              << std::setprecision(0) << NowMs() - t0 << " ms\n";
   }
   const double readMs = NowMs() - start;
 

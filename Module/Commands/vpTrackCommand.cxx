@@ -246,7 +246,7 @@ int RunTrackCommand(const std::vector<std::string>& argv)
 {
   if (WantsHelp(argv))
   {
-    std::cout << Usage << EngineOptionsUsage;
+    std::cout << Usage << EngineOptionsUsage({ "exact", "zbuffer", "both" });
     return 0;
   }
   std::set<std::string> options = EngineValueOptions();
@@ -283,10 +283,9 @@ int RunTrackCommand(const std::vector<std::string>& argv)
   auto meshes = LoadVesselMeshes(ParsePairs(args.Get("--vessels"), "--vessels"));
   if (args.Has("--repair"))
   {
-    RepairVesselMeshes("track", meshes);
+    RepairVesselMeshes(meshes);
   }
   auto scalpel = LoadScalpel(args.Get("--scalpel"), tip);
-  std::cerr << "track: " << scalpel->GetTipSource() << "\n";
   // The module logic builds the engine, and beside it the exact engine when the check of
   // --method both or the whole surface needs one.
   vtkNew<vtkVesselProximityLogic> proximity;
@@ -301,11 +300,13 @@ int RunTrackCommand(const std::vector<std::string>& argv)
   }
   proximity->Build();
   const double buildMs = NowMs() - start;
-  ReportSurfaceDefects("track", engine, meshes);
-
   vtkScalpelTrackingLogic* logic = proximity->GetTrackingLogic();
   logic->SetFrameBudgetMs(budgetMs);
   logic->SetHysteresisMm(hysteresisMm);
+  logic->ValidateSettings();
+  // Said once everything is built and checked: a line before a refusal would make its one line two.
+  std::cerr << "track: " << scalpel->GetTipSource() << "\n";
+  ReportSurfaceDefects("track", engine, meshes);
   if (logic->GetPenetration() && !logic->GetPenetration()->IsToolClosed())
   {
     std::cerr << "track: " << args.Get("--scalpel")

@@ -84,7 +84,7 @@ int RunViewCommand(const std::vector<std::string>& argv)
 {
   if (WantsHelp(argv))
   {
-    std::cout << Usage << EngineOptionsUsage << vtkVesselProximityView::KeyHelp();
+    std::cout << Usage << EngineOptionsUsage({ "exact", "zbuffer" }) << vtkVesselProximityView::KeyHelp();
     return 0;
   }
   std::set<std::string> options = EngineValueOptions();

@@ -81,7 +81,7 @@ TEST_F(ModelsCommand, WritesOneClosedStlPerClassAndListsTheRest)
   const std::string out = this->Dir + "/models";
   const ToolRun r = RunTool(this->Dir, "models " + this->Masks + " -o " + out);
   ASSERT_EQ(r.ExitCode, 0) << r.Err;
-  EXPECT_NE(r.Err.find("models: reading"), std::string::npos) << "progress on stderr";
+  EXPECT_NE(r.Err.find(": 3 structure(s) read in"), std::string::npos) << "progress on stderr: " << r.Err;
   EXPECT_NE(r.Err.find("bone"), std::string::npos) << "unknown structures are named";
   const auto doc = nlohmann::json::parse(vp::test::Slurp(out + "/models.json"));
   EXPECT_EQ(doc["space"], "LPS");

@@ -69,9 +69,10 @@ Agreement ExpectWithinBound(vtkZBufferVesselDistance* zbuffer, vtkExactVesselDis
       const std::string where = label + " tip " + std::to_string(i) + " " + ec.ClassName;
       if (ec.InRange)
       {
-        EXPECT_TRUE(zc.InRange) << where << ": exact " << ec.DistanceMm;
         if (!zc.InRange)
         {
+          // Beyond the range by its estimate: only where the truth lies within the bound of it.
+          EXPECT_GE(ec.DistanceMm, range - bound) << where << ": exact " << ec.DistanceMm;
           continue;
         }
         ++a.Compared;
@@ -459,7 +460,14 @@ TEST(ZBufferDistance, CachedLayersGiveTheReRenderedAnswers)
         ++compared;
         EXPECT_NEAR(a.Classes[k].DistanceMm, b.Classes[k].DistanceMm, 1e-4) << step;
         EXPECT_EQ(a.Classes[k].Inside, b.Classes[k].Inside) << step;
-        EXPECT_NEAR(a.Classes[k].DistanceMm, c.Classes[k].DistanceMm, 2 * a.ErrorBoundMm) << step;
+        if (c.Classes[k].InRange)
+        {
+          EXPECT_NEAR(a.Classes[k].DistanceMm, c.Classes[k].DistanceMm, 2 * a.ErrorBoundMm) << step;
+        }
+        else
+        {
+          EXPECT_GE(a.Classes[k].DistanceMm, 20.0 - 2 * a.ErrorBoundMm) << step << ": out of the 20 mm range only at its edge";
+        }
       }
     }
   }

@@ -1,0 +1,57 @@
+#ifndef vpDecimal_h
+#define vpDecimal_h
+
+namespace vp
+{
+/// The end of a plain decimal number at p ([+-]digits[.digits][e[+-]digits], or [+-].digits...),
+/// or p itself when none starts there. What strtod also reads but a person never means as a
+/// coordinate or a setting (hexadecimal "0x10", "inf", "nan") is no number here.
+inline const char* ScanDecimal(const char* p)
+{
+  const char* q = p;
+  if (*q == '+' || *q == '-')
+  {
+    ++q;
+  }
+  const auto digit = [](char c) { return c >= '0' && c <= '9'; };
+  const char* mantissa = q;
+  while (digit(*q))
+  {
+    ++q;
+  }
+  bool any = q > mantissa;
+  if (*q == '.')
+  {
+    const char* fraction = ++q;
+    while (digit(*q))
+    {
+      ++q;
+    }
+    any = any || q > fraction;
+  }
+  if (!any)
+  {
+    return p;
+  }
+  if (*q == 'e' || *q == 'E')
+  {
+    const char* e = q + 1;
+    if (*e == '+' || *e == '-')
+    {
+      ++e;
+    }
+    if (digit(*e))
+    {
+      while (digit(*e))
+      {
+        ++e;
+      }
+      q = e;
+    }
+  }
+  // "0x10": the 0 is a number, and what follows it is not.
+  return q;
+}
+} // namespace vp
+
+#endif

@@ -293,6 +293,49 @@ TEST_F(DistanceCommand, BothChecksTheZBufferAgainstTheExactEngine)
   EXPECT_NEAR(j["results"][0]["classes"]["portal_vein"]["directional_mm"].get<double>(), 5.0, bound + 0.4);
 }
 
+// Issue 16's small inconsistencies: numbers are plain decimals, --bins 0 is off as the help
+// says, each --help lists the methods its command accepts, and at the range's edge the z-buffer
+// reports no class beyond --range (as exact reports none), agreeing with exact within its bound.
+TEST_F(DistanceCommand, OptionsAndTheRangeEdgeAreAsTheHelpSays)
+{
+  const std::string vessels = "distance --vessels portal_vein=" + this->Sphere;
+  const ToolRun hex = RunTool(this->Dir, vessels + " --tip 0x10,0,0");
+  EXPECT_EQ(hex.ExitCode, 1);
+  EXPECT_NE(hex.Err.find("--tip: expected X,Y,Z"), std::string::npos) << hex.Err;
+  EXPECT_EQ(std::count(hex.Err.begin(), hex.Err.end(), '\n'), 1) << hex.Err;
+  const ToolRun bins = RunTool(this->Dir, vessels + " --tip 0,0,15 --method zbuffer --bins 0");
+  EXPECT_EQ(bins.ExitCode, 0) << bins.Err;
+  const ToolRun trackHelp = RunTool(this->Dir, "track --help");
+  EXPECT_EQ(trackHelp.Out.find("brute"), std::string::npos) << trackHelp.Out;
+  EXPECT_EQ(trackHelp.Out.find("auto ("), std::string::npos) << trackHelp.Out;
+  const ToolRun distanceHelp = RunTool(this->Dir, "distance --help");
+  EXPECT_NE(distanceHelp.Out.find("brute ("), std::string::npos) << distanceHelp.Out;
+
+  std::ostringstream csv;
+  csv << "x,y,z\n";
+  for (int k = 0; k <= 20; ++k)
+  {
+    csv << "0,0," << 10.0 + 49.0 + 0.1 * k << "\n"; // 49 to 51 mm from the sphere's top
+  }
+  const std::string tips = WriteBytes(this->Dir, "edge.csv", csv.str());
+  const ToolRun both = RunTool(this->Dir, vessels + " --tips " + tips + " --method both --json");
+  ASSERT_EQ(both.ExitCode, 0) << both.Err;
+  const auto j = nlohmann::json::parse(both.Out);
+  EXPECT_EQ(j["comparison"]["outside_bound"], 0);
+  int inRange = 0;
+  for (const auto& item : j["results"])
+  {
+    const auto& c = item["classes"]["portal_vein"];
+    if (c["in_range"].get<bool>())
+    {
+      ++inRange;
+      EXPECT_LE(c["distance_mm"].get<double>(), 50.0) << item["tip"];
+    }
+  }
+  EXPECT_GE(inRange, 8) << "up to 49.65 mm in range at least";
+  EXPECT_LE(inRange, 14) << "beyond 50.35 mm out of range";
+}
+
 TEST_F(DistanceCommand, PhantomWritesClosedVesselsThatAreFound)
 {
   const ToolRun p = RunTool(this->Dir, "phantom -o " + this->Dir + "/out/phantom"); // parents made too

@@ -85,25 +85,12 @@ private:
   int Width, Height;
 };
 
-/// WCAG's relative luminance of an sRGB colour.
-double Luminance(const Rgb& c)
-{
-  double l = 0;
-  const double weight[3] = { 0.2126, 0.7152, 0.0722 };
-  for (int k = 0; k < 3; ++k)
-  {
-    const double v = c[k] / 255.0;
-    l += weight[k] * (v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4));
-  }
-  return l;
-}
-
 /// Black or white, whichever has the higher WCAG contrast ratio against the band under a line:
 /// the rim that keeps a line readable where its own colour is close to the band's (the artery's
 /// red on the breach band, the portal vein's blue on the danger band).
 Rgb RimColour(const Rgb& under)
 {
-  const double l = Luminance(under);
+  const double l = RelativeLuminance(under);
   return (l + 0.05) / 0.05 >= 1.05 / (l + 0.05) ? Black : White;
 }
 
@@ -520,6 +507,24 @@ double NiceTickStep(double span, int maxTicks)
     }
   }
   return 10 * magnitude;
+}
+
+double RelativeLuminance(const Rgb& c)
+{
+  double l = 0;
+  const double weight[3] = { 0.2126, 0.7152, 0.0722 };
+  for (int k = 0; k < 3; ++k)
+  {
+    const double v = c[k] / 255.0;
+    l += weight[k] * (v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4));
+  }
+  return l;
+}
+
+double ContrastRatio(const Rgb& a, const Rgb& b)
+{
+  const double la = RelativeLuminance(a), lb = RelativeLuminance(b);
+  return (std::max(la, lb) + 0.05) / (std::min(la, lb) + 0.05);
 }
 
 vtkSmartPointer<vtkImageData> RenderDistancePlot(const std::vector<double>& timesS,

@@ -77,6 +77,11 @@ struct DistancePlotFrame
 /// negative distance makes it negative).
 double LowestValueMm(const std::vector<PlotSeries>& series);
 
+/// WCAG 2's relative luminance of an sRGB colour (0 black to 1 white), and the contrast ratio of
+/// two colours (1 to 21; 3 is WCAG's minimum for graphics). The plot's lines are rimmed by them.
+double RelativeLuminance(const Rgb& colour);
+double ContrastRatio(const Rgb& a, const Rgb& b);
+
 /// Renders the plot into unsigned char RGB pixels of options.WidthPx x options.HeightPx.
 /// Text is ASCII only (the embedded font has no other glyphs). Times that are not finite are
 /// skipped like missing values; an empty or zero time span gets a 1 s span around it.

@@ -219,26 +219,6 @@ TEST(DistancePlot, PenetrationIsDrawnBelowTheZeroLine)
   EXPECT_EQ(positive.YMinMm, 0.0);
 }
 
-namespace
-{
-double Luminance(const vp::Rgb& c)
-{
-  double l = 0;
-  const double weight[3] = { 0.2126, 0.7152, 0.0722 };
-  for (int k = 0; k < 3; ++k)
-  {
-    const double v = c[k] / 255.0;
-    l += weight[k] * (v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4));
-  }
-  return l;
-}
-
-double ContrastRatio(const vp::Rgb& a, const vp::Rgb& b)
-{
-  const double la = Luminance(a), lb = Luminance(b);
-  return (std::max(la, lb) + 0.05) / (std::min(la, lb) + 0.05);
-}
-} // namespace
 
 // Every class's tip and instrument colour, drawn across every danger band the reports use (the
 // artery's red on the breach band, the portal vein's blue on the danger band), stands out from
@@ -276,7 +256,7 @@ TEST(DistancePlot, LinesAreReadableOnEveryDangerBand)
       double best = 0;
       for (int dy = -4; dy <= 4; ++dy)
       {
-        best = std::max(best, ContrastRatio(Pixel(image, x, y + dy), band.Colour));
+        best = std::max(best, vp::ContrastRatio(Pixel(image, x, y + dy), band.Colour));
       }
       EXPECT_GE(best, 3.0) << series.Name << " on the " << band.Label << " band";
     }

@@ -67,6 +67,20 @@ protected:
     std::ofstream(this->Dir + "/" + name) << text;
     return this->Dir + "/" + name;
   }
+  /// The tool pointing along -x, its tip at (x, 0.3, 0.2), x from `from` down to `to` in 0.5 mm
+  /// steps, 20 frames a second; xs gets the tip's x at each frame.
+  std::string TipAlongX(const std::string& name, double from, double to, std::vector<double>& xs)
+  {
+    std::ostringstream csv;
+    csv << "time,x,y,z,qw,qx,qy,qz\n";
+    const double h = std::sqrt(0.5);
+    for (double x = from; x >= to; x -= 0.5)
+    {
+      csv << xs.size() * 0.05 << "," << x << ",0.3,0.2," << h << ",0," << -h << ",0\n";
+      xs.push_back(x);
+    }
+    return this->WriteText(name, csv.str());
+  }
   /// The tool pointing along -x (quaternion: -90 degrees about y), tip at (x, 0, 0), x from 30
   /// down to 10.5 mm in 0.5 mm steps and back to 30, 20 frames a second.
   std::string ApproachPoses()
@@ -410,16 +424,8 @@ TEST_F(TrackCommand, ATipInsideADefectiveSurfaceIsABreach)
 {
   const double centre[3] = { 0, 0, 0 };
   const std::string holed = this->Write("holed.stl", vp::test::WithoutCell(vp::MakeSphere(centre, 10.0, 48, 96), 2000));
-  std::ostringstream csv;
-  csv << "time,x,y,z,qw,qx,qy,qz\n";
-  const double h = std::sqrt(0.5);
   std::vector<double> xs;
-  for (double x = 16.0; x >= 4.0; x -= 0.5)
-  {
-    csv << xs.size() * 0.05 << "," << x << ",0.3,0.2," << h << ",0," << -h << ",0\n";
-    xs.push_back(x);
-  }
-  const std::string poses = this->WriteText("into.csv", csv.str());
+  const std::string poses = this->TipAlongX("into.csv", 16.0, 4.0, xs);
   for (const char* method : { "exact", "zbuffer" })
   {
     const std::string out = this->Dir + "/defective_" + method;
@@ -488,16 +494,8 @@ TEST_F(TrackCommand, AnUncertainInsideIsMarkedAndABreachAndRepairClosesTheHole)
   }
   capped->RemoveDeletedCells();
   const std::string holed = this->Write("capped.stl", capped);
-  std::ostringstream csv;
-  csv << "time,x,y,z,qw,qx,qy,qz\n";
-  const double h = std::sqrt(0.5);
   std::vector<double> xs;
-  for (double x = 9.0; x >= 0.0; x -= 0.5)
-  {
-    csv << xs.size() * 0.05 << "," << x << ",0.3,0.2," << h << ",0," << -h << ",0\n";
-    xs.push_back(x);
-  }
-  const std::string poses = this->WriteText("inside.csv", csv.str());
+  const std::string poses = this->TipAlongX("inside.csv", 9.0, 0.0, xs);
   for (const char* method : { "exact", "zbuffer" })
   {
     for (const bool repair : { false, true })

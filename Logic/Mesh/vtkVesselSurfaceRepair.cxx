@@ -11,7 +11,6 @@
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataNormals.h>
-#include <vtkRemoveDuplicatePolys.h>
 #include <vtkTriangleFilter.h>
 
 #include <algorithm>
@@ -76,6 +75,26 @@ std::map<EdgeKey, std::vector<std::size_t>> EdgeUses(const std::vector<Triangle>
     }
   }
   return uses;
+}
+
+// The first of each set of triangles on the same three points, in order. (VTK 9.1's
+// vtkRemoveDuplicatePolys does the same but leaks a vtkIdList whenever it finds no duplicate,
+// which fails every sanitizer run that repairs a surface without one.)
+std::vector<Triangle> WithoutDuplicates(const std::vector<Triangle>& triangles)
+{
+  std::set<Triangle> seen;
+  std::vector<Triangle> kept;
+  kept.reserve(triangles.size());
+  for (const Triangle& t : triangles)
+  {
+    Triangle key = t;
+    std::sort(key.begin(), key.end());
+    if (seen.insert(key).second)
+    {
+      kept.push_back(t);
+    }
+  }
+  return kept;
 }
 
 // A fin hangs off a non-manifold edge by that edge alone: its two other edges are its own. Such
@@ -244,14 +263,11 @@ int vtkVesselSurfaceRepair::RequestData(vtkInformation*, vtkInformationVector** 
   report.MergedPoints = UsedPoints(given) - UsedPoints(cleaned);
   report.RemovedDegenerate = given.size() - cleaned.size();
 
-  vtkNew<vtkRemoveDuplicatePolys> unique;
-  unique->SetInputData(MakeMesh(clean->GetOutput()->GetPoints(), cleaned));
-  unique->Update();
-  const std::vector<Triangle> deduplicated = Triangles(unique->GetOutput());
+  const std::vector<Triangle> deduplicated = WithoutDuplicates(cleaned);
   report.RemovedDuplicates = cleaned.size() - deduplicated.size();
 
   std::vector<Triangle> current = WithoutFins(deduplicated, report.RemovedFins);
-  vtkSmartPointer<vtkPoints> points = unique->GetOutput()->GetPoints();
+  vtkSmartPointer<vtkPoints> points = clean->GetOutput()->GetPoints();
 
   const std::size_t loopsBefore = BoundaryLoops(current);
   if (loopsBefore > 0 && this->MaximumHoleRadiusMm > 0.0)

@@ -34,7 +34,8 @@ struct SurfaceRepairReport
 
 /// Repairs a vessel surface so that its inside can be decided exactly, with VTK's filters:
 /// coincident points merged and degenerate triangles dropped (vtkCleanPolyData, exact
-/// coincidence only), duplicated triangles removed (vtkRemoveDuplicatePolys), triangles hanging
+/// coincidence only), duplicated triangles removed (by hand: VTK 9.1's vtkRemoveDuplicatePolys
+/// leaks), triangles hanging
 /// off a non-manifold edge by that edge alone removed (fins), holes up to MaximumHoleRadiusMm
 /// filled (vtkFillHolesFilter) and the winding made consistent (vtkPolyDataNormals). Nothing is
 /// moved: every point of the output is a point of the input. What cannot be repaired (a hole

@@ -264,7 +264,11 @@ float BestSoFar(uint stateBase)
 // best so far (outside the grid, empty, or further than the best).
 ivec2 TileToVisit(uint cls, uint stateBase, uint entry)
 {
-  ivec2 tile = ivec2(floor(Tip.xy / 8.0)) + Order[entry];
+  // Offsets from the grid's tile nearest the tip: a tip beyond the grid (or any --range) needs
+  // no longer table than the grid is wide, and every tile within reach of the tip is within
+  // the same reach of that tile.
+  ivec2 base = ivec2(clamp(floor(Tip.xy / 8.0), vec2(0.0), vec2(P.TilesX - 1, P.TilesY - 1)));
+  ivec2 tile = base + Order[entry];
   if (tile.x < 0 || tile.y < 0 || tile.x >= P.TilesX || tile.y >= P.TilesY)
   {
     return ivec2(-1);

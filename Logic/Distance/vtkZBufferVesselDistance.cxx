@@ -256,14 +256,17 @@ struct vtkZBufferVesselDistance::Internals
   }
 
   // The tiles within rangeMm of the tip's tile, nearest first: the query visits them in this
-  // order so that the running best shrinks early and far tiles skip their work.
+  // order so that the running best shrinks early and far tiles skip their work. The offsets
+  // start at the grid's tile nearest the tip, so the table is never wider than the grid,
+  // whatever the range (--range 1e9 asked for gigabytes before).
   void PrepareOrder(double rangeMm)
   {
     if (this->OrderRangeMm == rangeMm)
     {
       return;
     }
-    const int reach = static_cast<int>(std::ceil(rangeMm / (8.0 * this->Grid.PixelMm))) + 1;
+    const double tilesAcross = std::max(this->Grid.TilesX(), this->Grid.TilesY());
+    const int reach = static_cast<int>(std::min(std::ceil(rangeMm / (8.0 * this->Grid.PixelMm)) + 1.0, tilesAcross));
     std::vector<std::array<std::int32_t, 2>> order;
     for (int dy = -reach; dy <= reach; ++dy)
     {

@@ -15,6 +15,7 @@
 #include <cmath>
 #include <fstream>
 #include <sstream>
+#include <sys/resource.h>
 #include <sys/wait.h>
 
 namespace
@@ -334,6 +335,23 @@ TEST_F(DistanceCommand, OptionsAndTheRangeEdgeAreAsTheHelpSays)
   }
   EXPECT_GE(inRange, 8) << "up to 49.65 mm in range at least";
   EXPECT_LE(inRange, 14) << "beyond 50.35 mm out of range";
+}
+
+// --range 1e9 (issue 16): the z-buffer's tile order table is never wider than its grid, so a
+// huge range costs no memory (it asked for gigabytes and ran out), and tips metres away are
+// answered within the bound.
+TEST_F(DistanceCommand, AHugeRangeNeedsNoMoreMemoryAndFarTipsAreAnswered)
+{
+  const std::string tips = WriteBytes(this->Dir, "far.csv", "x,y,z\n0,0,15\n500,0,0\n-3000,40,20\n0,0,100000\n");
+  const ToolRun r = RunTool(this->Dir, "distance --vessels portal_vein=" + this->Sphere + " --tips " + tips +
+      " --method both --range 1e9 --json");
+  ASSERT_EQ(r.ExitCode, 0) << r.Err;
+  struct rusage usage = {};
+  getrusage(RUSAGE_CHILDREN, &usage);
+  EXPECT_LT(usage.ru_maxrss, 1024L * 1024L) << "kB at most, of any command this test process ran";
+  const auto j = nlohmann::json::parse(r.Out);
+  EXPECT_EQ(j["comparison"]["outside_bound"], 0);
+  EXPECT_NEAR(j["results"][3]["classes"]["portal_vein"]["distance_mm"].get<double>(), 100000.0 - 10.0, 0.5);
 }
 
 TEST_F(DistanceCommand, PhantomWritesClosedVesselsThatAreFound)

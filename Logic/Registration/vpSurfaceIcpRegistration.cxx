@@ -6,6 +6,7 @@
 #include <vtkMath.h>
 #include <vtkNew.h>
 #include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
 #include <vtkCellLocator.h>
 
 #include <algorithm>
@@ -41,10 +42,11 @@ void TriangleNormal(vtkPolyData* surface, vtkIdType cell, double normal[3])
     normal[0] = normal[1] = normal[2] = 0.0;
   }
 }
-} // namespace
 
-SurfaceRegistration RegisterSurfaceIcp(vtkPolyData* modelSurface, const std::vector<Point3>& worldPoints,
-  const std::array<double, 16>& initialModelToWorld, int maximumIterations)
+// What every fit needs: a surface, enough points, and the locator over the surface (built
+// serially, so that the same fit comes on every run: the threaded build of vtkStaticCellLocator
+// orders equal candidates differently from run to run).
+vtkSmartPointer<vtkCellLocator> IcpLocator(vtkPolyData* modelSurface, const std::vector<Point3>& worldPoints)
 {
   if (!modelSurface || modelSurface->GetNumberOfCells() == 0)
   {
@@ -54,11 +56,16 @@ SurfaceRegistration RegisterSurfaceIcp(vtkPolyData* modelSurface, const std::vec
   {
     throw InputError("ICP", "at least 6 measured surface points are needed, got " + std::to_string(worldPoints.size()));
   }
-  vtkNew<vtkCellLocator> locator; // built serially: the same fit on every run (the static locator's threaded build is not)
+  auto locator = vtkSmartPointer<vtkCellLocator>::New();
   locator->SetDataSet(modelSurface);
   locator->CacheCellBoundsOn();
   locator->BuildLocator();
+  return locator;
+}
 
+SurfaceRegistration FitFromStart(vtkPolyData* modelSurface, vtkCellLocator* locator, const std::vector<Point3>& worldPoints,
+  const std::array<double, 16>& initialModelToWorld, int maximumIterations)
+{
   // Point-to-plane ICP (Chen and Medioni): each measured point is pulled onto the tangent plane
   // of its closest surface point, not onto the point itself, so the fit may slide along the
   // surface; it needs far fewer iterations than point-to-point ICP (VTK's
@@ -141,6 +148,14 @@ SurfaceRegistration RegisterSurfaceIcp(vtkPolyData* modelSurface, const std::vec
   return result;
 }
 
+} // namespace
+
+SurfaceRegistration RegisterSurfaceIcp(vtkPolyData* modelSurface, const std::vector<Point3>& worldPoints,
+  const std::array<double, 16>& initialModelToWorld, int maximumIterations)
+{
+  return FitFromStart(modelSurface, IcpLocator(modelSurface, worldPoints), worldPoints, initialModelToWorld, maximumIterations);
+}
+
 std::vector<Matrix4> IcpStarts(const std::vector<Point3>& worldPoints, const Matrix4& guess, const std::vector<double>& turnsDeg,
   const std::vector<double>& shiftsMm)
 {
@@ -198,17 +213,19 @@ SurfaceRegistration RegisterSurfaceIcpMultiStart(vtkPolyData* modelSurface, cons
 {
   const std::vector<Matrix4> starts =
     IcpStarts(worldPoints, guessModelToWorld, { -20.0, -10.0, 10.0, 20.0 }, { -10.0, -5.0, 5.0, 10.0 });
+  // One locator for every start: the surface does not change.
+  const vtkSmartPointer<vtkCellLocator> locator = IcpLocator(modelSurface, worldPoints);
   std::vector<SurfaceRegistration> coarse;
   for (const Matrix4& start : starts)
   {
-    coarse.push_back(RegisterSurfaceIcp(modelSurface, worldPoints, start, 30));
+    coarse.push_back(FitFromStart(modelSurface, locator, worldPoints, start, 30));
   }
   std::sort(coarse.begin(), coarse.end(),
     [](const SurfaceRegistration& a, const SurfaceRegistration& b) { return a.MeanResidualMm < b.MeanResidualMm; });
   SurfaceRegistration best;
   for (std::size_t k = 0; k < std::min<std::size_t>(3, coarse.size()); ++k)
   {
-    SurfaceRegistration fine = RegisterSurfaceIcp(modelSurface, worldPoints, coarse[k].ModelToWorld, 300);
+    SurfaceRegistration fine = FitFromStart(modelSurface, locator, worldPoints, coarse[k].ModelToWorld, 300);
     fine.Iterations += coarse[k].Iterations;
     if (k == 0 || fine.MeanResidualMm < best.MeanResidualMm)
     {

@@ -109,6 +109,18 @@ std::set<std::string> PreviousRunFiles(const std::string& report)
 }
 } // namespace
 
+bool CreateOutputFolder(const std::string& folder)
+{
+  std::error_code ec;
+  const bool created = !fs::exists(folder, ec);
+  fs::create_directories(folder, ec);
+  if (ec || !fs::is_directory(folder, ec))
+  {
+    throw InputError(folder, "cannot create folder: " + (ec ? ec.message() : std::string("a file has that name")));
+  }
+  return created;
+}
+
 RunFolder::RunFolder(const std::string& target, const std::string& report)
   : TargetPath(fs::path(target).lexically_normal().string())
   , ReportName(report)
@@ -134,13 +146,8 @@ void RunFolder::Begin()
   }
   HoldSignals();
   this->Begun = true;
+  this->CreatedTarget = CreateOutputFolder(this->TargetPath);
   std::error_code ec;
-  this->CreatedTarget = !fs::exists(this->TargetPath, ec);
-  fs::create_directories(this->TargetPath, ec);
-  if (ec || !fs::is_directory(this->TargetPath, ec))
-  {
-    throw InputError(this->TargetPath, "cannot create folder: " + (ec ? ec.message() : std::string("a file has that name")));
-  }
   fs::remove_all(this->StagingPath, ec); // left by a killed process that had our pid
   if (!fs::create_directory(this->StagingPath, ec))
   {

@@ -6,6 +6,10 @@
 
 namespace vp
 {
+/// Creates an output folder and its missing parents, like mkdir -p; returns whether it was new.
+/// Throws InputError naming the folder when it cannot be made.
+bool CreateOutputFolder(const std::string& folder);
+
 /// The files of one run in an output folder, put in place together. The run writes into a
 /// staging folder inside the target (".vesselproximity-partial-PID", on the same file system);
 /// Commit() removes the files of the previous run that this one does not write again (as its

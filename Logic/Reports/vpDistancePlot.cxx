@@ -90,8 +90,7 @@ private:
 /// red on the breach band, the portal vein's blue on the danger band).
 Rgb RimColour(const Rgb& under)
 {
-  const double l = RelativeLuminance(under);
-  return (l + 0.05) / 0.05 >= 1.05 / (l + 0.05) ? Black : White;
+  return ContrastRatio(under, Black) >= ContrastRatio(under, White) ? Black : White;
 }
 
 void FillRect(Canvas& canvas, const Rect& r, const Rgb& colour)

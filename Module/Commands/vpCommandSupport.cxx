@@ -10,7 +10,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <filesystem>
 #include <iostream>
 #include <set>
 
@@ -44,18 +43,6 @@ void RepairVesselMeshes(std::vector<NamedMesh>& meshes)
     m.Mesh = repair->GetOutput();
     m.Repair = repair->GetReport();
   }
-}
-
-bool CreateOutputFolder(const std::string& folder)
-{
-  std::error_code ec;
-  const bool created = !std::filesystem::exists(folder, ec);
-  std::filesystem::create_directories(folder, ec);
-  if (ec || !std::filesystem::is_directory(folder, ec))
-  {
-    throw InputError(folder, "cannot create folder: " + (ec ? ec.message() : std::string("a file has that name")));
-  }
-  return created;
 }
 
 double NowMs()

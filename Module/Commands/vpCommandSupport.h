@@ -2,6 +2,7 @@
 #define vpCommandSupport_h
 
 #include "vpQuantile.h"
+#include "vpRunFolder.h" // CreateOutputFolder
 #include "vtkVesselSurfaceRepair.h"
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
@@ -39,9 +40,6 @@ std::vector<NamedMesh> LoadVesselMeshes(const std::vector<std::pair<std::string,
 /// (ReportSurfaceDefects says what changed).
 void RepairVesselMeshes(std::vector<NamedMesh>& meshes);
 
-/// Creates an output folder and its missing parents, like mkdir -p; returns whether it was new.
-/// Throws InputError naming the folder when it cannot be made.
-bool CreateOutputFolder(const std::string& folder);
 
 /// One line on stderr (after the engine's Build(), so that no line comes before a refusal) for
 /// each class --repair went over, saying what it changed, and for each class whose surface is

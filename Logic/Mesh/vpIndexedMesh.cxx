@@ -3,6 +3,7 @@
 #include <vtkCellArray.h>
 #include <vtkDoubleArray.h>
 #include <vtkIdTypeArray.h>
+#include <vtkNew.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 
@@ -116,4 +117,18 @@ vtkSmartPointer<vtkPolyData> BuildIndexedMesh(
 
 template vtkSmartPointer<vtkPolyData> BuildIndexedMesh<float>(const float*, std::size_t, std::size_t*);
 template vtkSmartPointer<vtkPolyData> BuildIndexedMesh<double>(const double*, std::size_t, std::size_t*);
+
+vtkSmartPointer<vtkPolyData> MakeTriangleMesh(vtkPoints* points, const std::vector<std::array<vtkIdType, 3>>& triangles)
+{
+  vtkNew<vtkCellArray> cells;
+  cells->AllocateExact(static_cast<vtkIdType>(triangles.size()), static_cast<vtkIdType>(3 * triangles.size()));
+  for (const auto& t : triangles)
+  {
+    cells->InsertNextCell(3, t.data());
+  }
+  auto mesh = vtkSmartPointer<vtkPolyData>::New();
+  mesh->SetPoints(points);
+  mesh->SetPolys(cells);
+  return mesh;
+}
 } // namespace vp

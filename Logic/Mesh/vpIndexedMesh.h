@@ -3,9 +3,13 @@
 
 #include <vtkSmartPointer.h>
 
+#include <array>
 #include <cstddef>
+#include <vector>
 
 #include <vtkPolyData.h>
+
+class vtkPoints;
 
 namespace vp
 {
@@ -16,6 +20,9 @@ namespace vp
 template <typename Real>
 vtkSmartPointer<vtkPolyData> BuildIndexedMesh(
   const Real* coordinates, std::size_t triangleCount, std::size_t* degenerateDropped);
+
+/// A vtkPolyData of the given points (shared, not copied) and triangles (point ids), nothing else.
+vtkSmartPointer<vtkPolyData> MakeTriangleMesh(vtkPoints* points, const std::vector<std::array<vtkIdType, 3>>& triangles);
 } // namespace vp
 
 #endif

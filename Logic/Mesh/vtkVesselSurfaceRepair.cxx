@@ -1,5 +1,7 @@
 #include "vtkVesselSurfaceRepair.h"
 
+#include "vpIndexedMesh.h"
+
 #include <vtkCellArray.h>
 #include <vtkCleanPolyData.h>
 #include <vtkFillHolesFilter.h>
@@ -16,7 +18,6 @@
 #include <algorithm>
 #include <array>
 #include <map>
-#include <numeric>
 #include <set>
 #include <sstream>
 #include <vector>
@@ -41,21 +42,6 @@ std::vector<Triangle> Triangles(vtkPolyData* mesh)
     }
   }
   return out;
-}
-
-// Points and the given triangles, nothing else (no normals, no other cells).
-vtkSmartPointer<vtkPolyData> MakeMesh(vtkPoints* points, const std::vector<Triangle>& triangles)
-{
-  vtkNew<vtkCellArray> cells;
-  cells->AllocateExact(static_cast<vtkIdType>(triangles.size()), static_cast<vtkIdType>(3 * triangles.size()));
-  for (const Triangle& t : triangles)
-  {
-    cells->InsertNextCell(3, t.data());
-  }
-  auto mesh = vtkSmartPointer<vtkPolyData>::New();
-  mesh->SetPoints(points);
-  mesh->SetPolys(cells);
-  return mesh;
 }
 
 using EdgeKey = std::pair<vtkIdType, vtkIdType>;
@@ -247,7 +233,7 @@ int vtkVesselSurfaceRepair::RequestData(vtkInformation*, vtkInformationVector** 
     output->Initialize();
     return 1;
   }
-  vtkSmartPointer<vtkPolyData> mesh = MakeMesh(triangulate->GetOutput()->GetPoints(), given);
+  vtkSmartPointer<vtkPolyData> mesh = vp::MakeTriangleMesh(triangulate->GetOutput()->GetPoints(), given);
   report.Before = vp::VesselSurface("repair", mesh).Defects();
 
   // Exact coincidence only: a tolerance would move points, and a repair must not move the wall.
@@ -273,7 +259,7 @@ int vtkVesselSurfaceRepair::RequestData(vtkInformation*, vtkInformationVector** 
   if (loopsBefore > 0 && this->MaximumHoleRadiusMm > 0.0)
   {
     vtkNew<vtkFillHolesFilter> fill;
-    fill->SetInputData(MakeMesh(points, current));
+    fill->SetInputData(vp::MakeTriangleMesh(points, current));
     fill->SetHoleSize(this->MaximumHoleRadiusMm);
     vtkNew<vtkTriangleFilter> fillTriangles;
     fillTriangles->SetInputConnection(fill->GetOutputPort());
@@ -289,7 +275,7 @@ int vtkVesselSurfaceRepair::RequestData(vtkInformation*, vtkInformationVector** 
   // the sign of its volume), so no auto-orientation here. The filter skips its consistency pass
   // when it is asked for no normals at all, hence the cell normals nobody reads.
   vtkNew<vtkPolyDataNormals> wind;
-  wind->SetInputData(MakeMesh(points, current));
+  wind->SetInputData(vp::MakeTriangleMesh(points, current));
   wind->ConsistencyOn();
   wind->SplittingOff();
   wind->AutoOrientNormalsOff();
@@ -305,7 +291,7 @@ int vtkVesselSurfaceRepair::RequestData(vtkInformation*, vtkInformationVector** 
     report.TurnedTriangles += Reversed(current[t], wound[t]) ? 1 : 0;
   }
 
-  vtkSmartPointer<vtkPolyData> repaired = MakeMesh(points, wound);
+  vtkSmartPointer<vtkPolyData> repaired = vp::MakeTriangleMesh(points, wound);
   report.After = vp::VesselSurface("repair", repaired).Defects();
   output->ShallowCopy(repaired);
   return 1;

@@ -1,5 +1,7 @@
 #include "vpMeshRefinement.h"
 
+#include "vpIndexedMesh.h"
+
 #include <vtkCellArray.h>
 #include <vtkCellArrayIterator.h>
 #include <vtkPoints.h>
@@ -104,15 +106,6 @@ vtkSmartPointer<vtkPolyData> RefineToTriangleCount(vtkPolyData* mesh, std::size_
     }
     tris.swap(next);
   }
-  auto polys = vtkSmartPointer<vtkCellArray>::New();
-  polys->AllocateExact(static_cast<vtkIdType>(tris.size()), static_cast<vtkIdType>(tris.size() * 3));
-  for (const Tri& t : tris)
-  {
-    polys->InsertNextCell(3, t.data());
-  }
-  auto out = vtkSmartPointer<vtkPolyData>::New();
-  out->SetPoints(points);
-  out->SetPolys(polys);
-  return out;
+  return MakeTriangleMesh(points, tris);
 }
 } // namespace vp

@@ -72,11 +72,15 @@ void vtkScalpelTrackingLogic::ValidateSettings() const
     throw std::logic_error("vtkScalpelTrackingLogic: set the distance engine first");
   }
   this->Thresholds.Validate("danger thresholds");
-  if (this->Engine->GetRangeMm() < this->Thresholds.CautionMm)
+  // An engine with a bound reports a class out of range when its estimate is beyond the range,
+  // where the truth may lie the bound nearer: the range must reach the threshold by that much.
+  const double boundMm = this->Engine->GetErrorBoundMm();
+  if (this->Engine->GetRangeMm() < this->Thresholds.CautionMm + boundMm)
   {
     throw vp::InputError("--range", "the range (" + vp::NumberText(this->Engine->GetRangeMm()) +
-        " mm) must reach the caution threshold (" + vp::NumberText(this->Thresholds.CautionMm) +
-        " mm), or a class beyond it would look safe");
+        " mm) must reach the caution threshold (" + vp::NumberText(this->Thresholds.CautionMm) + " mm)" +
+        (boundMm > 0.0 ? " plus the engine's error bound (" + vp::NumberText(boundMm) + " mm)" : std::string()) +
+        ", or a class beyond it would look safe");
   }
   if (this->Engine->GetErrorBoundMm() >= this->Thresholds.DangerMm)
   {

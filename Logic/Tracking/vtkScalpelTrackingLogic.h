@@ -102,9 +102,9 @@ public:
   void SetDangerThresholds(const vp::DangerThresholds& thresholds) { this->Thresholds = thresholds; }
   const vp::DangerThresholds& GetDangerThresholds() const { return this->Thresholds; }
 
-  /// Throws vp::InputError when the engine's range is shorter than the caution threshold (a far
-  /// class would look safe when it is not), or its error bound is not below the danger threshold
-  /// (it could not tell danger from safety). ProcessPose checks this at its first frame; a front
+  /// Throws vp::InputError when the engine's range is shorter than the caution threshold plus
+  /// its error bound (a far class would look safe when it is not), or its error bound is not
+  /// below the danger threshold (it could not tell danger from safety). ProcessPose checks this at its first frame; a front
   /// end calls it to refuse the settings before it says anything.
   void ValidateSettings() const;
   /// Places the scalpel at pose, computes the frame, fires the event on a change of level, and

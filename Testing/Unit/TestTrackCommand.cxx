@@ -279,6 +279,8 @@ TEST_F(TrackCommand, EachBadPoseFileGivesItsLineAndWritesNothing)
     { " --danger-mm 5,10,2", "--danger-mm: danger thresholds must fall" },
     { " --method brute", "--method: expected exact, zbuffer or both" },
     { " --range 5", "--range: the range (5 mm) must reach the caution threshold" },
+    // The z-buffer's null beyond the range may be its bound nearer: 10 mm cannot vouch for 10.
+    { " --method zbuffer --range 10", "--range: the range (10 mm) must reach the caution threshold (10 mm) plus the engine's error bound" },
     { " --tip 0,0", "--tip: expected X,Y,Z" },
     { " --frame-budget-ms -1", "--frame-budget-ms: expected a time in ms, 0 or more" },
     { " --frame-budget-ms inf", "--frame-budget-ms: expected a number" },

@@ -5,7 +5,6 @@
 
 #include <array>
 #include <vector>
-#include <vector>
 
 class vtkPolyData;
 
@@ -55,8 +54,14 @@ SurfaceRegistration RegisterSurfaceIcp(vtkPolyData* modelSurface, const std::vec
 /// Multi-start ICP for instruments a single ICP cannot fit from a rough guess (a thin blade
 /// slides along its own shaft into a wrong minimum from 10 mm off): ICP from each of IcpStarts
 /// (the guess; turned 10 and 20 degrees either way, shifted 5 and 10 mm either way: 25 starts)
-/// for 30 iterations, the three with the least mean residual refined to convergence, the least
-/// of those the answer.
+/// for 30 iterations on a hundred of the points, the three with the least mean residual refined
+/// to convergence on all of them. Then it hops: the same from 25 starts turned 2 and 4 degrees
+/// and shifted 1.5 and 3 mm around the best fit (10 iterations, the best one refined), taken
+/// while it lowers the mean residual by 1%, at most four times; the wide starts alone can stop in
+/// a minimum a millimetre or a degree beside the right one. Measured on the PLUS scalpel and the
+/// Straizys holder, 80 trials from 10 mm and 10 degrees off: all within 0.37 degrees and 0.18 mm
+/// (the wide starts alone: 2 wrong). Whether the answer explains the points is still the
+/// caller's to ask (SurfaceRegistration::ExplainsThePoints).
 SurfaceRegistration RegisterSurfaceIcpMultiStart(vtkPolyData* modelSurface, const std::vector<Point3>& worldPoints,
   const std::array<double, 16>& guessModelToWorld);
 

@@ -14,8 +14,11 @@
 #include <vtkNew.h>
 #include <vtkPolyData.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstdio>
+#include <numeric>
 #include <random>
 
 namespace
@@ -193,61 +196,98 @@ TEST(SurfaceIcpRegistration, ConvergesOnARealInstrumentFromAFewMillimetresAndDeg
 } // namespace
 namespace
 {
+// A thin instrument's ICP problem: 400 of its vertices placed by a random pose, with 0.1 mm noise
+// on each coordinate, and a guess 10 degrees (about the tip, its origin) and 10 mm off. Trial k
+// of the sequence from one seed, so a hard case can be named and run alone.
+struct IcpTrial
+{
+  Matrix Truth;
+  Matrix Guess;
+  std::vector<Point3> Measured;
+};
+
+IcpTrial MakeIcpTrial(vtkPolyData* tool, int trial)
+{
+  std::mt19937 random(11);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  std::uniform_int_distribution<vtkIdType> vertex(0, tool->GetNumberOfPoints() - 1);
+  IcpTrial t;
+  for (int k = 0; k <= trial; ++k)
+  {
+    t.Truth = Rigid({ normal(random), normal(random), normal(random) }, 40.0 + 10 * k, { -40.0, 85.0, 210.0 });
+    t.Measured.clear();
+    for (int i = 0; i < 400; ++i)
+    {
+      Point3 p;
+      tool->GetPoint(vertex(random), p.data());
+      const Point3 w = vp::TransformPoint(t.Truth, p);
+      t.Measured.push_back({ w[0] + 0.1 * normal(random), w[1] + 0.1 * normal(random), w[2] + 0.1 * normal(random) });
+    }
+    const Point3 axis{ normal(random), normal(random), normal(random) };
+    Point3 shift{ normal(random), normal(random), normal(random) };
+    const double length = std::sqrt(shift[0] * shift[0] + shift[1] * shift[1] + shift[2] * shift[2]);
+    for (double& s : shift)
+    {
+      s *= 10.0 / length;
+    }
+    t.Guess = vp::MultiplyTransforms(t.Truth, Rigid(axis, 10.0, shift));
+  }
+  return t;
+}
+
 // The thin instruments (issue 14): from 10 mm and 10 degrees off, a single ICP slides into wrong
-// minima (on these poses the PLUS scalpel's tip 7.5 mm up its shaft, the Straizys holder 13
-// degrees off). The multi-start fit is within 0.5 mm and 0.5 degrees of the truth, or it says
-// it does not explain the points (and `register icp` refuses it); most are fitted.
+// minima (the PLUS scalpel's tip millimetres up its shaft, the Straizys holder degrees off). The
+// multi-start fit must be within 0.5 mm and 0.5 degrees of the truth, or say it does not explain
+// the points (and `register icp` refuses it). Scalpel trial 25 and holder trial 11 are the ones
+// where the wide starts alone ended in a wrong minimum; the hop to neighbouring minima fits them.
+// VP_ICP_TRIALS=40 runs trials 0-39 of each instrument instead: all 80 fitted right (0.37 degrees
+// and 0.18 mm at worst), where the wide starts alone fitted 78 and refused 2.
 TEST(SurfaceIcpRegistration, ThinInstrumentsFromTenMillimetresAndDegreesOffAreFittedOrRefused)
 {
   const std::string data = vp::test::TestDataDir();
   if (data.empty())
     GTEST_SKIP() << "VP_TEST_DATA not set: the thin instruments' STLs are in ../shared/data";
-  for (const std::string& file : { data + "/plusmodelcatalog/Scalpel.stl", data + "/straizys-scalpel/scalpel_mech_cutting_tool_assembly.stl" })
+  struct Instrument
+  {
+    std::string File;
+    std::vector<int> Trials;
+  };
+  const std::vector<Instrument> instruments = { { data + "/plusmodelcatalog/Scalpel.stl", { 0, 1, 25 } },
+    { data + "/straizys-scalpel/scalpel_mech_cutting_tool_assembly.stl", { 0, 1, 3, 11 } } };
+  const char* survey = std::getenv("VP_ICP_TRIALS");
+  for (const Instrument& instrument : instruments)
   {
     vtkNew<vtkVesselMeshReader> reader;
-    reader->SetFileName(file);
+    reader->SetFileName(instrument.File);
     reader->Read();
     vtkPolyData* tool = reader->GetOutput();
-    std::mt19937 random(3);
-    std::normal_distribution<double> normal(0.0, 1.0);
-    int fitted = 0, wrongSingle = 0;
-    for (int trial = 0; trial < 4; ++trial)
+    std::vector<int> trials = instrument.Trials;
+    if (survey)
     {
-      const Matrix truth = Rigid({ normal(random), normal(random), normal(random) }, 40.0 + 10 * trial, { -40.0, 85.0, 210.0 });
-      std::uniform_int_distribution<vtkIdType> vertex(0, tool->GetNumberOfPoints() - 1);
-      std::vector<Point3> measured;
-      for (int i = 0; i < 400; ++i)
-      {
-        Point3 p;
-        tool->GetPoint(vertex(random), p.data());
-        const Point3 w = vp::TransformPoint(truth, p);
-        measured.push_back({ w[0] + 0.1 * normal(random), w[1] + 0.1 * normal(random), w[2] + 0.1 * normal(random) });
-      }
-      const Point3 axis{ normal(random), normal(random), normal(random) };
-      Point3 shift{ normal(random), normal(random), normal(random) };
-      const double length = std::sqrt(shift[0] * shift[0] + shift[1] * shift[1] + shift[2] * shift[2]);
-      for (double& s : shift)
-      {
-        s *= 10.0 / length;
-      }
-      // 10 degrees about the instrument's tip (its origin) and 10 mm off.
-      const Matrix guess = vp::MultiplyTransforms(truth, Rigid(axis, 10.0, shift));
-      const auto fit = vp::RegisterSurfaceIcpMultiStart(tool, measured, guess);
-      const double rotationDeg = vp::RotationBetweenDeg(fit.ModelToWorld, truth);
-      const double tipMm = Distance(vp::TransformPoint(fit.ModelToWorld, { 0, 0, 0 }), vp::TransformPoint(truth, { 0, 0, 0 }));
-      std::printf("%s, trial %d: %s, %.2f deg, tip %.2f mm, %.1f%% of the points far\n", file.c_str(), trial,
-        fit.ExplainsThePoints() ? "fitted" : "refused", rotationDeg, tipMm, 100.0 * fit.FarFraction);
+      trials.resize(static_cast<std::size_t>(std::max(1, std::atoi(survey))));
+      std::iota(trials.begin(), trials.end(), 0);
+    }
+    int fitted = 0, wrongSingle = 0;
+    for (const int trial : trials)
+    {
+      const IcpTrial t = MakeIcpTrial(tool, trial);
+      const auto fit = vp::RegisterSurfaceIcpMultiStart(tool, t.Measured, t.Guess);
+      const double rotationDeg = vp::RotationBetweenDeg(fit.ModelToWorld, t.Truth);
+      const double tipMm =
+        Distance(vp::TransformPoint(fit.ModelToWorld, { 0, 0, 0 }), vp::TransformPoint(t.Truth, { 0, 0, 0 }));
+      std::printf("%s, trial %d: %s, %.2f deg, tip %.2f mm, %.1f%% of the points far, %d starts\n", instrument.File.c_str(),
+        trial, fit.ExplainsThePoints() ? "fitted" : "refused", rotationDeg, tipMm, 100.0 * fit.FarFraction, fit.Starts);
       if (fit.ExplainsThePoints())
       {
-        EXPECT_LE(rotationDeg, 0.5) << file << ", trial " << trial;
-        EXPECT_LE(tipMm, 0.5) << file << ", trial " << trial;
+        EXPECT_LE(rotationDeg, 0.5) << instrument.File << ", trial " << trial;
+        EXPECT_LE(tipMm, 0.5) << instrument.File << ", trial " << trial;
         ++fitted;
       }
-      const auto single = vp::RegisterSurfaceIcp(tool, measured, guess);
-      wrongSingle += vp::RotationBetweenDeg(single.ModelToWorld, truth) > 0.5 ? 1 : 0;
+      const auto single = vp::RegisterSurfaceIcp(tool, t.Measured, t.Guess);
+      wrongSingle += vp::RotationBetweenDeg(single.ModelToWorld, t.Truth) > 0.5 ? 1 : 0;
     }
-    EXPECT_GE(fitted, 3) << file;
-    EXPECT_GE(wrongSingle, 1) << file << ": these poses should be hard for a single ICP";
+    EXPECT_EQ(fitted, static_cast<int>(trials.size())) << instrument.File;
+    EXPECT_GE(wrongSingle, 1) << instrument.File << ": these poses should be hard for a single ICP";
   }
 }
 } // namespace

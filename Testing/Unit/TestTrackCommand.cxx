@@ -652,7 +652,7 @@ TEST_F(TrackCommand, RegisterIcpFitsFromNearAndRefusesAFitThatDoesNotExplainTheP
   ASSERT_EQ(good.ExitCode, 0) << good.Err;
   std::ifstream in(fitted);
   const nlohmann::json result = nlohmann::json::parse(in);
-  EXPECT_EQ(result["starts"], 25);
+  EXPECT_EQ(result["starts"], 50) << "25 wide starts and one round of hops that found nothing better";
   EXPECT_LT(result["mean_residual_mm"].get<double>(), 0.1);
   EXPECT_LE(result["far_fraction"].get<double>(), 0.0375);
   EXPECT_NEAR(result["model_to_world"][7].get<double>(), 30.0, 0.1) << "the tip's y";

@@ -133,6 +133,11 @@ RunFolder::RunFolder(const std::string& target, const std::string& report)
   this->StagingPath = (fs::path(this->TargetPath) / (".vesselproximity-partial-" + std::to_string(::getpid()))).string();
 }
 
+bool RunFolder::SignalPending()
+{
+  return PendingSignal != 0;
+}
+
 RunFolder::~RunFolder()
 {
   this->Release();

@@ -18,9 +18,11 @@ bool CreateOutputFolder(const std::string& folder);
 /// whose RunFolder is destroyed without Commit(), removes its staging folder and leaves the
 /// previous results exactly as they were. Files that no run of ours wrote are never touched.
 ///
-/// SIGINT, SIGTERM and SIGHUP are held from Begin() to Commit() or destruction (the writing only:
-/// the commands compute everything first) and acted on after, so an interrupted run leaves the
-/// old results or the new, never a mixture and never a staging folder.
+/// SIGINT, SIGTERM and SIGHUP are held from Begin() to Commit() or destruction and acted on
+/// after, so an interrupted run leaves the old results or the new, never a mixture and never a
+/// staging folder. A run that streams its results while it computes (track's frames) begins
+/// first and asks SignalPending() between steps, giving up (destroying the RunFolder) when one
+/// came, so the user's Ctrl-C still stops it at once.
 class RunFolder
 {
 public:
@@ -40,6 +42,8 @@ public:
   void Commit();
 
   const std::string& Target() const { return this->TargetPath; }
+  /// Whether a held signal came since Begin().
+  static bool SignalPending();
 
 private:
   std::string TargetPath;

@@ -59,7 +59,9 @@ bool ParseNumbers(const std::string& text, std::vector<double>& values, std::str
   }
 }
 
-std::vector<NumericRow> ReadNumericCsv(const std::string& fileName, const std::string& what)
+NumericCsvReader::NumericCsvReader(const std::string& fileName, const std::string& what)
+  : Name(fileName)
+  , What(what)
 {
   struct stat info;
   if (stat(fileName.c_str(), &info) != 0)
@@ -72,38 +74,51 @@ std::vector<NumericRow> ReadNumericCsv(const std::string& fileName, const std::s
     throw InputError(fileName, S_ISDIR(info.st_mode) ? "cannot open as " + what
                                                      : "is not a regular file (a device, pipe or socket), cannot open as " + what);
   }
-  std::ifstream in(fileName);
-  if (!in)
+  this->In.open(fileName);
+  if (!this->In)
   {
     throw InputError(fileName, "cannot open as " + what);
   }
-  std::vector<NumericRow> rows;
-  std::string line;
-  std::size_t number = 0;
-  while (std::getline(in, line))
+}
+
+bool NumericCsvReader::Next(NumericRow& row)
+{
+  while (std::getline(this->In, this->Line))
   {
-    ++number;
-    const std::size_t first = line.find_first_not_of(" \t\r");
-    if (first == std::string::npos || line[first] == '#')
+    ++this->LineNumber;
+    const std::size_t first = this->Line.find_first_not_of(" \t\r");
+    if (first == std::string::npos || this->Line[first] == '#')
     {
       continue;
     }
-    NumericRow row;
-    row.Line = number;
+    row.Line = this->LineNumber;
     std::string problem;
-    if (!ParseNumbers(line, row.Values, problem))
+    if (!ParseNumbers(this->Line, row.Values, problem))
     {
-      if (rows.empty() && ScanDecimal(line.c_str() + first) == line.c_str() + first)
+      if (this->Rows == 0 && ScanDecimal(this->Line.c_str() + first) == this->Line.c_str() + first)
       {
         continue; // a header: its first field is no number at all
       }
-      throw InputError(fileName, "line " + std::to_string(number) + ": " + problem);
+      throw InputError(this->Name, "line " + std::to_string(this->LineNumber) + ": " + problem);
     }
-    rows.push_back(std::move(row));
+    ++this->Rows;
+    return true;
   }
-  if (rows.empty())
+  if (this->Rows == 0)
   {
-    throw InputError(fileName, "nothing in it: expected " + what);
+    throw InputError(this->Name, "nothing in it: expected " + this->What);
+  }
+  return false;
+}
+
+std::vector<NumericRow> ReadNumericCsv(const std::string& fileName, const std::string& what)
+{
+  NumericCsvReader reader(fileName, what);
+  std::vector<NumericRow> rows;
+  NumericRow row;
+  while (reader.Next(row))
+  {
+    rows.push_back(row);
   }
   return rows;
 }

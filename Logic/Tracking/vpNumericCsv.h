@@ -2,6 +2,7 @@
 #define vpNumericCsv_h
 
 #include <cstddef>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,25 @@ bool ParseNumbers(const std::string& text, std::vector<double>& values, std::str
 /// file and the line for anything else, naming what the file should hold (e.g. "a point list")
 /// when it cannot be opened or holds no row.
 std::vector<NumericRow> ReadNumericCsv(const std::string& fileName, const std::string& what);
+
+/// The same rows one at a time, for files too long to hold (a pose stream of an hour): the
+/// same checks and messages, with "nothing in it" thrown by the first Next() that finds no row.
+class NumericCsvReader
+{
+public:
+  NumericCsvReader(const std::string& fileName, const std::string& what);
+  /// The next row; false at the end of the file.
+  bool Next(NumericRow& row);
+  const std::string& FileName() const { return this->Name; }
+
+private:
+  std::string Name;
+  std::string What;
+  std::ifstream In;
+  std::string Line;
+  std::size_t LineNumber = 0;
+  std::size_t Rows = 0;
+};
 } // namespace vp
 
 #endif

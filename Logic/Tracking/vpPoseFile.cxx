@@ -71,47 +71,43 @@ std::string MakePose(const double* values, std::size_t count, TrackedPose& pose)
 }
 
 // Makes the pose at time from the numbers after the time (16: matrix; 7: position and
-// quaternion) and appends it, or throws naming fileName and where (the line or pose).
-void AppendPose(std::vector<TrackedPose>& poses, double time, const double* values, std::size_t count,
+// quaternion), after the previous pose (null for the first), or throws naming fileName and where
+// (the line or pose).
+TrackedPose CheckedPose(double time, const double* values, std::size_t count, const TrackedPose* previous,
   const std::string& fileName, const std::string& where)
 {
   TrackedPose pose;
   pose.TimeS = time;
   std::string problem = MakePose(values, count, pose);
-  if (problem.empty() && !poses.empty() && !(pose.TimeS > poses.back().TimeS))
+  if (problem.empty() && previous && !(pose.TimeS > previous->TimeS))
   {
-    problem = "time " + NumberText(pose.TimeS) + " is not after the previous " + NumberText(poses.back().TimeS);
+    problem = "time " + NumberText(pose.TimeS) + " is not after the previous " + NumberText(previous->TimeS);
   }
   if (!problem.empty())
   {
     throw InputError(fileName, where + problem);
   }
-  poses.push_back(pose);
+  return pose;
 }
 
-std::vector<TrackedPose> ReadCsv(const std::string& fileName)
+// The pose of one CSV row, after the previous (null for the first, whose columns every row must have).
+TrackedPose CsvPose(const NumericRow& row, std::size_t columns, const TrackedPose* previous, const std::string& fileName)
 {
-  std::vector<TrackedPose> poses;
-  const auto rows =
-    ReadNumericCsv(fileName, "a pose list (time,m00..m33 or time,x,y,z,qw,qx,qy,qz per line)");
-  const std::size_t columns = rows.front().Values.size();
-  for (const NumericRow& row : rows)
+  const std::string where = "line " + std::to_string(row.Line) + ": ";
+  if (row.Values.size() != 17 && row.Values.size() != 8)
   {
-    const std::string where = "line " + std::to_string(row.Line) + ": ";
-    if (row.Values.size() != 17 && row.Values.size() != 8)
-    {
-      throw InputError(fileName, where + "expected 17 numbers (time and a 4x4 matrix) or 8 (time, x,y,z, qw,qx,qy,qz), got " +
-          std::to_string(row.Values.size()));
-    }
-    if (row.Values.size() != columns)
-    {
-      throw InputError(fileName, where + std::to_string(row.Values.size()) + " numbers where the first pose has " +
-          std::to_string(columns));
-    }
-    AppendPose(poses, row.Values[0], row.Values.data() + 1, row.Values.size() - 1, fileName, where);
+    throw InputError(fileName, where + "expected 17 numbers (time and a 4x4 matrix) or 8 (time, x,y,z, qw,qx,qy,qz), got " +
+        std::to_string(row.Values.size()));
   }
-  return poses;
+  if (row.Values.size() != columns)
+  {
+    throw InputError(fileName, where + std::to_string(row.Values.size()) + " numbers where the first pose has " +
+        std::to_string(columns));
+  }
+  return CheckedPose(row.Values[0], row.Values.data() + 1, row.Values.size() - 1, previous, fileName, where);
 }
+
+constexpr const char* CsvWhat = "a pose list (time,m00..m33 or time,x,y,z,qw,qx,qy,qz per line)";
 
 std::vector<double> Numbers(const nlohmann::json& value, std::size_t count, const std::string& what)
 {
@@ -172,7 +168,7 @@ std::vector<TrackedPose> ReadJson(const std::string& fileName)
     {
       throw InputError(fileName, where + e.what());
     }
-    AppendPose(poses, time, values.data(), values.size(), fileName, where);
+    poses.push_back(CheckedPose(time, values.data(), values.size(), poses.empty() ? nullptr : &poses.back(), fileName, where));
   }
   return poses;
 }
@@ -187,9 +183,57 @@ std::array<double, 16> PoseFromQuaternion(const std::array<double, 3>& p, const 
     0, 0, 0, 1 };
 }
 
+PoseStream::PoseStream(const std::string& fileName)
+  : Name(fileName)
+{
+  if (EndsWith(fileName, ".json"))
+  {
+    this->Poses = ReadJson(fileName);
+  }
+  else
+  {
+    this->Csv = std::make_unique<NumericCsvReader>(fileName, CsvWhat);
+  }
+}
+
+PoseStream::~PoseStream() = default;
+
+bool PoseStream::Next(TrackedPose& pose)
+{
+  if (!this->Csv)
+  {
+    if (this->Read == this->Poses.size())
+    {
+      return false;
+    }
+    pose = this->Poses[this->Read++];
+    return true;
+  }
+  NumericRow row;
+  if (!this->Csv->Next(row))
+  {
+    return false;
+  }
+  if (this->Read == 0)
+  {
+    this->Columns = row.Values.size();
+  }
+  pose = CsvPose(row, this->Columns, this->Read > 0 ? &this->Previous : nullptr, this->Name);
+  this->Previous = pose;
+  ++this->Read;
+  return true;
+}
+
 std::vector<TrackedPose> ReadPoseFile(const std::string& fileName)
 {
-  return EndsWith(fileName, ".json") ? ReadJson(fileName) : ReadCsv(fileName);
+  PoseStream stream(fileName);
+  std::vector<TrackedPose> poses;
+  TrackedPose pose;
+  while (stream.Next(pose))
+  {
+    poses.push_back(pose);
+  }
+  return poses;
 }
 
 std::string FormatPoseCsv(const std::vector<TrackedPose>& poses)

@@ -2,6 +2,8 @@
 #define vpPoseFile_h
 
 #include <array>
+#include <cstddef>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -26,6 +28,35 @@ struct TrackedPose
 /// orthonormal (|R^T R - I| > 1e-3) or is a reflection, a quaternion not of unit length (within
 /// 1e-3), a matrix whose last row is not 0 0 0 1, and a file without poses. Throws vp::InputError.
 std::vector<TrackedPose> ReadPoseFile(const std::string& fileName);
+
+class NumericCsvReader;
+
+/// The poses of a pose file one at a time, with ReadPoseFile's checks and messages: a CSV file
+/// is read a line at a time, so an hour of tracking need not fit in memory; a JSON file is read
+/// whole (it is one document). A caller that must refuse a bad file before computing anything
+/// reads it through once first.
+class PoseStream
+{
+public:
+  /// Opens the file; throws vp::InputError naming it when it cannot be read.
+  explicit PoseStream(const std::string& fileName);
+  ~PoseStream();
+  PoseStream(const PoseStream&) = delete;
+  PoseStream& operator=(const PoseStream&) = delete;
+  /// The next pose; false after the last. Throws vp::InputError on a bad line or pose, and on a
+  /// file without poses.
+  bool Next(TrackedPose& pose);
+  /// The poses returned so far.
+  std::size_t PosesRead() const { return this->Read; }
+
+private:
+  std::string Name;
+  std::unique_ptr<NumericCsvReader> Csv;
+  std::vector<TrackedPose> Poses; // a JSON file's
+  std::size_t Read = 0;
+  std::size_t Columns = 0;
+  TrackedPose Previous;
+};
 
 /// The CSV form ReadPoseFile reads, `time,m00,...,m33` with a header line, each number to 17
 /// significant digits so a pose read back is the pose written.

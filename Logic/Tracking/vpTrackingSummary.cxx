@@ -1,7 +1,5 @@
 #include "vpTrackingSummary.h"
 
-#include "vpQuantile.h"
-
 #include <algorithm>
 
 namespace vp
@@ -24,14 +22,9 @@ void Lower(ClassMinimum& minimum, double distanceMm, double boundMm, bool inside
 }
 } // namespace
 
-double TrackingSummary::GetFrameMsQuantile(double q) const
-{
-  return Quantile(this->FrameMs, q);
-}
-
 void TrackingSummary::Add(const TrackedFrame& frame)
 {
-  this->FrameMs.push_back(frame.FrameMs);
+  this->FrameMs.Add(frame.FrameMs);
   this->FramesOverBudget += frame.OverBudget ? 1 : 0;
   const auto& classes = frame.Proximity.Classes;
   if (this->Frames == 0)

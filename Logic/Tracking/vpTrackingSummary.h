@@ -1,6 +1,7 @@
 #ifndef vpTrackingSummary_h
 #define vpTrackingSummary_h
 
+#include "vpRunningQuantiles.h"
 #include "vtkScalpelTrackingLogic.h"
 
 #include <array>
@@ -37,7 +38,8 @@ struct ClassPenetration
 
 /// What a surgeon or researcher reads after a run: per class the closest approach of the tip
 /// (and of the whole surface when computed), the time spent at each danger level, and the
-/// level changes. Frames are added in order.
+/// level changes. Frames are added in order; nothing grows with their number but the level
+/// changes.
 class TrackingSummary
 {
 public:
@@ -61,9 +63,9 @@ public:
   const std::array<int, NumberOfDangerLevels>& GetFramesInLevel() const { return this->FramesInLevel; }
   const std::vector<DangerLevelChange>& GetChanges() const { return this->Changes; }
   DangerLevel GetWorstLevel() const { return this->Worst; }
-  /// Every frame's computing time, in order (ms), and the q-quantile of them (nearest rank).
-  const std::vector<double>& GetFrameMs() const { return this->FrameMs; }
-  double GetFrameMsQuantile(double q) const;
+  /// The q-quantile of the frames' computing times (ms; nearest rank, vp::RunningQuantiles: at
+  /// most 0.1% above the exact one, the maximum exact), in memory that does not grow with the run.
+  double GetFrameMsQuantile(double q) const { return this->FrameMs.Quantile(q); }
   /// Frames the tracking logic marked as over its frame budget.
   int GetFramesOverBudget() const { return this->FramesOverBudget; }
 
@@ -81,7 +83,7 @@ private:
   std::array<double, NumberOfDangerLevels> TimeInLevelS{};
   std::array<int, NumberOfDangerLevels> FramesInLevel{};
   std::vector<DangerLevelChange> Changes;
-  std::vector<double> FrameMs;
+  RunningQuantiles FrameMs;
   int FramesOverBudget = 0;
 };
 } // namespace vp

@@ -6,8 +6,8 @@
 #include "vpCommands.h"
 #include "vpDangerBands.h"
 #include "vpDangerLevels.h"
-#include "vpDistancePlot.h"
-#include "vpPlotValues.h"
+#include "vpDistancePlotRecorder.h"
+#include "vpFramesCsv.h"
 #include "vpEngineOptions.h"
 #include "vpInputError.h"
 #include "vpPointCsv.h"
@@ -24,8 +24,13 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <memory>
+#include <sys/resource.h>
 #include <filesystem>
 #include <iostream>
 #include <limits>
@@ -61,68 +66,6 @@ std::string Number(double value, const char* format = "%.4f")
   char text[64];
   std::snprintf(text, sizeof(text), format, value);
   return text;
-}
-
-std::string FramesCsv(const std::vector<TrackedFrame>& frames, const std::vector<std::string>& classes, bool surface)
-{
-  std::string csv = "frame,time,tip_x,tip_y,tip_z,nearest_class,nearest_mm";
-  for (const auto& c : classes)
-  {
-    csv += "," + c + "_mm";
-  }
-  csv += ",danger_level,error_bound_mm,frame_ms,axis_x,axis_y,axis_z";
-  for (const auto& c : classes)
-  {
-    csv += "," + c + "_point_x," + c + "_point_y," + c + "_point_z," + c + "_directional_mm," + c + "_inside," + c +
-      "_inside_uncertain," + c + "_level";
-    if (surface)
-    {
-      csv += "," + c + "_surface_mm," + c + "_penetration_depth_mm," + c + "_penetration_volume_mm3," + c +
-        "_penetration_depth_bound_mm," + c + "_penetration_volume_bound_mm3," + c + "_surface_bound_mm";
-    }
-  }
-  csv += "\n";
-  for (const TrackedFrame& f : frames)
-  {
-    const auto& r = f.Proximity;
-    const int nearest = r.NearestIndex();
-    csv += std::to_string(f.Frame) + "," + Number(f.TimeS, "%.6f") + "," + Number(f.TipMm[0]) + "," + Number(f.TipMm[1]) +
-      "," + Number(f.TipMm[2]) + "," + (nearest >= 0 ? r.Classes[nearest].ClassName : "") + "," +
-      (nearest >= 0 ? Number(r.Classes[nearest].DistanceMm) : "");
-    for (const auto& c : r.Classes)
-    {
-      csv += "," + (c.InRange ? Number(c.DistanceMm) : "");
-    }
-    csv += std::string(",") + DangerLevelName(f.Level) + "," + Number(r.ErrorBoundMm) + "," + Number(f.FrameMs, "%.5f") +
-      "," + Number(f.AxisWorld[0], "%.6f") + "," + Number(f.AxisWorld[1], "%.6f") + "," + Number(f.AxisWorld[2], "%.6f");
-    for (std::size_t k = 0; k < r.Classes.size(); ++k)
-    {
-      const ClassProximity& c = r.Classes[k];
-      for (int a = 0; a < 3; ++a)
-      {
-        csv += "," + (c.InRange ? Number(c.ClosestPoint[a]) : "");
-      }
-      csv += "," + (c.DirectionalMm ? Number(*c.DirectionalMm) : "");
-      csv += "," + (c.InRange && c.Inside ? std::string(*c.Inside ? "1" : "0") : "");
-      csv += "," + (c.InRange ? std::string(c.InsideUncertain ? "1" : "0") : "");
-      csv += std::string(",") + DangerLevelName(f.ClassLevels[k]);
-      if (surface)
-      {
-        csv += "," + (f.Surface[k].InRange ? Number(f.Surface[k].DistanceMm) : "");
-        // Empty where it cannot be known (an open surface has no inside), never a silent 0.
-        const bool known = k < f.Penetrations.size() && f.Penetrations[k].Known;
-        const Penetration none;
-        const Penetration& p = known ? f.Penetrations[k] : none;
-        for (double v : { p.DepthMm, p.VolumeMm3, p.DepthBoundMm, p.VolumeBoundMm3 })
-        {
-          csv += "," + (known ? Number(v) : "");
-        }
-        csv += "," + (f.Surface[k].InRange ? Number(f.Surface[k].ErrorBoundMm) : "");
-      }
-    }
-    csv += "\n";
-  }
-  return csv;
 }
 
 Json MinimumJson(const ClassMinimum& m)
@@ -204,42 +147,6 @@ Json SummaryJson(const TrackingSummary& s, vtkScalpelTrackingLogic* logic, vtkVe
   return out;
 }
 
-/// Per class, the tip's signed distance (negative: the penetration depth) and, with the whole
-/// surface, the instrument's (its distance, or minus its penetration depth), below zero drawn
-/// over a breach band.
-void WritePlot(const std::string& file, const std::vector<TrackedFrame>& frames, const std::vector<std::string>& classes,
-  const DangerThresholds& t, double rangeMm, bool surface)
-{
-  std::vector<double> times;
-  std::vector<PlotSeries> series;
-  for (std::size_t c = 0; c < classes.size(); ++c)
-  {
-    const Rgb colour = PlotSeriesColour(classes[c], static_cast<int>(c));
-    series.push_back({ classes[c] + " (tip)", colour, {} });
-    if (surface)
-    {
-      series.push_back({ classes[c] + " (instrument)", InstrumentColour(colour), {} });
-    }
-  }
-  for (const TrackedFrame& f : frames)
-  {
-    times.push_back(f.TimeS);
-    std::size_t s = 0;
-    for (std::size_t c = 0; c < classes.size(); ++c)
-    {
-      series[s++].ValuesMm.push_back(TipPlotValueMm(f, c));
-      if (surface)
-      {
-        series[s++].ValuesMm.push_back(InstrumentPlotValueMm(f, c));
-      }
-    }
-  }
-  const std::vector<PlotBand> bands = DangerBands(t, rangeMm, LowestValueMm(series) < 0);
-  DistancePlotOptions options;
-  options.Title = surface ? "Tip and instrument distance to each vessel class over time (inside: below 0)"
-                          : "Tip distance to each vessel class over time (inside: below 0)";
-  WriteDistancePlotPng(file, times, series, bands, options);
-}
 } // namespace
 
 int RunTrackCommand(const std::vector<std::string>& argv)
@@ -277,8 +184,18 @@ int RunTrackCommand(const std::vector<std::string>& argv)
   RunFolder run(outDir, "summary.json");
 
   // Everything that can be refused is read before any computing: poses first, they are cheap.
+  // They are read through once to be checked and counted, and again, a pose at a time, as the
+  // frames are computed: an hour of tracking never has to fit in memory.
   const double start = NowMs();
-  const std::vector<TrackedPose> poses = ReadPoseFile(args.Get("--poses"));
+  const std::string posesFile = args.Get("--poses");
+  std::size_t poseCount = 0;
+  {
+    PoseStream check(posesFile);
+    for (TrackedPose pose; check.Next(pose);)
+    {
+      ++poseCount;
+    }
+  }
   auto engine = MakeDistanceEngine(method, args);
   auto meshes = LoadVesselMeshes(ParsePairs(args.Get("--vessels"), "--vessels"));
   if (args.Has("--repair"))
@@ -320,24 +237,57 @@ int RunTrackCommand(const std::vector<std::string>& argv)
   });
   logic->AddObserver(vtkScalpelTrackingLogic::DangerLevelChangedEvent, onChange);
 
-  std::vector<TrackedFrame> frames;
-  frames.reserve(poses.size());
+  // The frames stream into frames.csv in the run's staging folder as they are computed, and the
+  // summary and the plot keep what they need in memory that does not grow with the run.
+  run.Begin();
+  std::ofstream framesCsv(run.File("frames.csv"), std::ios::binary | std::ios::trunc);
+  const auto writeFailed = [&]() {
+    return InputError(run.Target() + "/frames.csv", std::string("write failed: ") + std::strerror(errno));
+  };
+  if (!framesCsv)
+  {
+    throw writeFailed();
+  }
+  std::unique_ptr<DistancePlotRecorder> plot;
   ExactComparison check;
   double lastReport = NowMs();
-  for (std::size_t i = 0; i < poses.size(); ++i)
+  PoseStream poses(posesFile);
+  for (TrackedPose pose; poses.Next(pose);)
   {
-    frames.push_back(proximity->ProcessPose(poses[i]));
-    summary.Add(frames.back());
+    if (RunFolder::SignalPending())
+    {
+      return 1; // the RunFolder removes what was written, then the signal acts
+    }
+    const TrackedFrame frame = proximity->ProcessPose(pose);
+    summary.Add(frame);
+    if (!plot)
+    {
+      plot = std::make_unique<DistancePlotRecorder>(summary.GetClassNames(), surface);
+      framesCsv << FramesCsvHeader(summary.GetClassNames(), surface);
+    }
+    plot->Add(frame);
+    framesCsv << FramesCsvRow(frame, surface);
+    if (!framesCsv)
+    {
+      throw writeFailed();
+    }
     if (method == "both")
     {
-      check.Add(frames.back().Proximity, proximity->GetLastExactProximity(), engine->GetRangeMm(), engine->GetErrorBoundMm());
+      check.Add(frame.Proximity, proximity->GetLastExactProximity(), engine->GetRangeMm(), engine->GetErrorBoundMm());
     }
     if (NowMs() - lastReport > 1000.0)
     {
       lastReport = NowMs();
-      std::fprintf(stderr, "track: frame %zu of %zu (%.0f%%)\n", i + 1, poses.size(), 100.0 * (i + 1) / poses.size());
+      const std::size_t done = poses.PosesRead();
+      std::fprintf(stderr, "track: frame %zu of %zu (%.0f%%)\n", done, poseCount, 100.0 * done / poseCount);
     }
   }
+  framesCsv.flush();
+  if (!framesCsv)
+  {
+    throw writeFailed();
+  }
+  framesCsv.close();
   Json comparison;
   if (method == "both")
   {
@@ -351,19 +301,20 @@ int RunTrackCommand(const std::vector<std::string>& argv)
   }
 
   std::vector<std::string> classes = summary.GetClassNames();
-  const std::string csv = FramesCsv(frames, classes, surface);
-  Json doc = SummaryJson(summary, logic, engine, meshes, args.Get("--poses"), surface, comparison);
+  Json doc = SummaryJson(summary, logic, engine, meshes, posesFile, surface, comparison);
   doc["timing_ms"]["load_and_build"] = buildMs;
   doc["files"] = { "frames.csv", "summary.json", "distance.png" };
+  struct rusage usage = {};
+  getrusage(RUSAGE_SELF, &usage);
+  doc["peak_memory_mb"] = static_cast<double>(usage.ru_maxrss) / 1024.0; // Linux: kB
 
-  // Write: the folder holds this run whole, or the previous one as it was.
-  run.Begin();
-  WriteFileAtomically(run.File("frames.csv"), csv);
+  // The plot and the summary, then the folder holds this run whole, or the previous one as it was.
+  plot->Write(run.File("distance.png"), thresholds, engine->GetRangeMm());
   WriteFileAtomically(run.File("summary.json"), doc.dump(2) + "\n");
-  WritePlot(run.File("distance.png"), frames, classes, thresholds, engine->GetRangeMm(), surface);
   run.Commit();
 
-  std::printf("%zu frames over %.2f s, method %s on %s, error bound %.3f mm\n", frames.size(), summary.GetDurationS(),
+  const std::size_t frameCount = static_cast<std::size_t>(summary.GetNumberOfFrames());
+  std::printf("%zu frames over %.2f s, method %s on %s, error bound %.3f mm\n", frameCount, summary.GetDurationS(),
     engine->GetMethodName(), engine->GetDeviceDescription().c_str(), engine->GetErrorBoundMm());
   std::printf("  %-16s %16s %10s %20s\n", "class", "tip minimum mm", "at time", surface ? "whole surface mm" : "");
   for (std::size_t c = 0; c < classes.size(); ++c)
@@ -382,7 +333,7 @@ int RunTrackCommand(const std::vector<std::string>& argv)
   std::printf("\n  %zu level change(s), worst level %s\n", summary.GetChanges().size(), DangerLevelName(summary.GetWorstLevel()));
   std::printf("  frame median %.4f ms, p95 %.4f ms, max %.4f ms; %s\n", summary.GetFrameMsQuantile(0.5),
     summary.GetFrameMsQuantile(0.95), summary.GetFrameMsQuantile(1.0),
-    budgetMs > 0 ? (std::to_string(summary.GetFramesOverBudget()) + " of " + std::to_string(frames.size()) +
+    budgetMs > 0 ? (std::to_string(summary.GetFramesOverBudget()) + " of " + std::to_string(frameCount) +
                      " frames over the " + Number(budgetMs, "%g") + " ms budget")
                      .c_str()
                  : "no frame budget");

@@ -13,9 +13,24 @@
 
 #include <algorithm>
 #include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <random>
+#include <set>
 #include <sstream>
+
+#include <fcntl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define VP_UNDER_ASAN 1
+#endif
+#endif
 
 namespace
 {
@@ -160,15 +175,18 @@ TEST_F(TrackCommand, WritesTheDocumentedRecord)
   EXPECT_EQ(s["worst_level"], "danger");
   EXPECT_EQ(Slurp(out + "/distance.png").substr(0, 4), "\x89PNG");
 
-  // The frame budget: the summary's frame times are the quantiles of the frame_ms column, and its
-  // count of late frames is the count of frames over the default 16.7 ms.
+  // The frame budget: the summary's frame times are the quantiles of the frame_ms column (within
+  // vp::RunningQuantiles' 0.1%, never below; the column has 5 decimals), and its count of late
+  // frames is the count of frames over the default 16.7 ms.
   std::vector<double> frameMs;
   for (std::size_t i = 1; i < rows.size(); ++i)
   {
     frameMs.push_back(std::stod(rows[i][column("frame_ms")]));
   }
   std::sort(frameMs.begin(), frameMs.end());
-  EXPECT_NEAR(s["frame_ms"]["median"].get<double>(), frameMs[(frameMs.size() + 1) / 2 - 1], 1e-5);
+  const double median = frameMs[(frameMs.size() + 1) / 2 - 1];
+  EXPECT_GE(s["frame_ms"]["median"].get<double>(), median - 1e-5);
+  EXPECT_LE(s["frame_ms"]["median"].get<double>(), median * 1.001 + 1e-5);
   EXPECT_NEAR(s["frame_ms"]["max"].get<double>(), frameMs.back(), 1e-5);
   EXPECT_LE(s["frame_ms"]["median"].get<double>(), s["frame_ms"]["p95"].get<double>());
   EXPECT_LE(s["frame_ms"]["p95"].get<double>(), s["frame_ms"]["max"].get<double>());
@@ -695,3 +713,81 @@ TEST_F(TrackCommand, RegisterRefusesBadInputInOneLineAndWritesNothing)
     EXPECT_FALSE(vp::test::FileExists(out)) << c.first;
   }
 }
+
+namespace
+{
+// Long sessions (issue 16): the frames stream to frames.csv and the summary and the plot keep
+// bounded state, so a million poses take the memory ten thousand take (within 10%, as
+// summary.json's peak_memory_mb says). Ctrl-C in the middle of the long run leaves the earlier
+// run's folder exactly as it was. Under AddressSanitizer, whose quarantine holds up to 256 MB of
+// freed memory whatever the program does, the long run is 100,000 poses and its memory is not
+// compared.
+TEST_F(TrackCommand, AMillionPosesTakeTheMemoryOfTenThousandAndAnInterruptLeavesThePreviousRun)
+{
+#ifdef VP_UNDER_ASAN
+  const int longRun = 100000;
+#else
+  const int longRun = 1000000;
+#endif
+  // The tip swings 2 to 8 mm from the sphere's wall, once a minute at 100 Hz.
+  const auto posesFile = [&](int count) {
+    const std::string path = this->Dir + "/poses" + std::to_string(count) + ".csv";
+    std::FILE* f = std::fopen(path.c_str(), "w");
+    std::fprintf(f, "time,x,y,z,qw,qx,qy,qz\n");
+    for (int i = 0; i < count; ++i)
+    {
+      std::fprintf(f, "%.2f,%.4f,0.3,0.2,1,0,0,0\n", 0.01 * i, 15.0 + 3.0 * std::sin(0.001 * i));
+    }
+    std::fclose(f);
+    return path;
+  };
+  const std::string out = this->Dir + "/long";
+  const std::string common = "track --vessels " + this->Vessels + " --scalpel " + this->Tool + " --no-surface -o " + out + " --poses ";
+  const ToolRun shortRun = RunTool(this->Dir, common + posesFile(10000));
+  ASSERT_EQ(shortRun.ExitCode, 0) << shortRun.Err;
+  const std::string shortSummary = Slurp(out + "/summary.json");
+  const std::string shortFrames = Slurp(out + "/frames.csv");
+  const auto first = nlohmann::json::parse(shortSummary);
+  EXPECT_EQ(first["frames"], 10000);
+
+  const std::string longPoses = posesFile(longRun);
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0)
+  {
+    const int null = open("/dev/null", O_WRONLY);
+    dup2(null, 1);
+    dup2(null, 2);
+    const std::string vesselArg = this->Vessels;
+    execl(VP_EXECUTABLE, VP_EXECUTABLE, "track", "--vessels", vesselArg.c_str(), "--scalpel", this->Tool.c_str(), "--no-surface",
+      "-o", out.c_str(), "--poses", longPoses.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  usleep(1500000); // into the frames: the poses are checked in about 0.3 s
+  kill(child, SIGINT);
+  int status = 0;
+  waitpid(child, &status, 0);
+  EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGINT) << "status " << status;
+  std::set<std::string> found;
+  for (const auto& entry : std::filesystem::directory_iterator(out))
+  {
+    found.insert(entry.path().filename().string());
+  }
+  EXPECT_EQ(found, (std::set<std::string>{ "distance.png", "frames.csv", "summary.json" })) << "no staging folder left";
+  EXPECT_EQ(Slurp(out + "/summary.json"), shortSummary) << "the earlier run, as it was";
+  EXPECT_EQ(Slurp(out + "/frames.csv"), shortFrames);
+
+  const ToolRun whole = RunTool(this->Dir, common + longPoses);
+  ASSERT_EQ(whole.ExitCode, 0) << whole.Err;
+  const auto second = nlohmann::json::parse(Slurp(out + "/summary.json"));
+  EXPECT_EQ(second["frames"], longRun);
+  std::ifstream csv(out + "/frames.csv", std::ios::binary);
+  EXPECT_EQ(std::count(std::istreambuf_iterator<char>(csv), std::istreambuf_iterator<char>(), '\n'), longRun + 1);
+  const double shortMb = first["peak_memory_mb"].get<double>(), longMb = second["peak_memory_mb"].get<double>();
+  std::printf("peak memory: %.1f MB after 10,000 frames, %.1f MB after %d\n", shortMb, longMb, longRun);
+#ifndef VP_UNDER_ASAN
+  EXPECT_LE(longMb, 1.1 * shortMb);
+#endif
+  EXPECT_EQ(second["worst_level"], "warning") << "2.005 mm from the wall at the closest";
+}
+} // namespace

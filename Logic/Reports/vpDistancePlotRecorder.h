@@ -1,0 +1,59 @@
+#ifndef vpDistancePlotRecorder_h
+#define vpDistancePlotRecorder_h
+
+#include "vpDangerLevels.h"
+#include "vpDistancePlot.h"
+#include "vtkScalpelTrackingLogic.h"
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace vp
+{
+/// distance.png of a tracking run, recorded frame by frame in memory that does not grow with
+/// the run: per class the tip's plot value and, with the whole surface, the instrument's
+/// (vp::TipPlotValueMm, InstrumentPlotValueMm).
+///
+/// Up to MaximumBuckets frames each frame is kept, and the plot is the frames' own. Past that,
+/// neighbouring buckets of frames merge in pairs (a bucket then spans 2, 4, ... frames), and each
+/// keeps per line its smallest and largest value, drawn at the bucket's first and last time in
+/// the order they came. With at least MaximumBuckets / 2 buckets across a plot narrower than that
+/// in pixels, a bucket is under a pixel wide, so the picture keeps every peak and every dip (a
+/// breach is never smoothed away); only the order of the values inside a pixel is lost.
+class DistancePlotRecorder
+{
+public:
+  static constexpr std::size_t MaximumBuckets = 4096;
+
+  DistancePlotRecorder(const std::vector<std::string>& classes, bool surface);
+  void Add(const TrackedFrame& frame);
+  /// What the plot draws: the times and, per line (per class the tip's, then with the surface
+  /// the instrument's), a value at each.
+  void Samples(std::vector<double>& timesS, std::vector<PlotSeries>& series) const;
+  /// Writes the PNG: the recorded lines over the danger bands of thresholds up to rangeMm.
+  void Write(const std::string& fileName, const DangerThresholds& thresholds, double rangeMm) const;
+  /// Frames per bucket now (1 while every frame is kept).
+  std::size_t FramesPerBucket() const { return this->Width; }
+
+private:
+  struct Extreme
+  {
+    double LowMm, HighMm;     // NaN when the bucket has no value (out of range)
+    double LowAtS, HighAtS;   // when they came
+  };
+  struct Bucket
+  {
+    double FirstS, LastS;
+    std::size_t Frames;
+    std::vector<Extreme> Lines;
+  };
+  static void Fold(Extreme& e, const Extreme& later);
+  std::vector<std::string> Classes;
+  bool Surface;
+  std::size_t Width = 1;
+  std::vector<Bucket> Buckets;
+};
+} // namespace vp
+
+#endif

@@ -1,0 +1,83 @@
+#include "vpFramesCsv.h"
+
+#include "vpDangerLevels.h"
+
+#include <cstdio>
+
+namespace vp
+{
+namespace
+{
+std::string Number(double value, const char* format = "%.4f")
+{
+  char text[64];
+  std::snprintf(text, sizeof(text), format, value);
+  return text;
+}
+} // namespace
+
+std::string FramesCsvHeader(const std::vector<std::string>& classes, bool surface)
+{
+  std::string csv = "frame,time,tip_x,tip_y,tip_z,nearest_class,nearest_mm";
+  for (const auto& c : classes)
+  {
+    csv += "," + c + "_mm";
+  }
+  csv += ",danger_level,error_bound_mm,frame_ms,axis_x,axis_y,axis_z";
+  for (const auto& c : classes)
+  {
+    csv += "," + c + "_point_x," + c + "_point_y," + c + "_point_z," + c + "_directional_mm," + c + "_inside," + c +
+      "_inside_uncertain," + c + "_level";
+    if (surface)
+    {
+      csv += "," + c + "_surface_mm," + c + "_penetration_depth_mm," + c + "_penetration_volume_mm3," + c +
+        "_penetration_depth_bound_mm," + c + "_penetration_volume_bound_mm3," + c + "_surface_bound_mm";
+    }
+  }
+  csv += "\n";
+  return csv;
+}
+
+std::string FramesCsvRow(const TrackedFrame& f, bool surface)
+{
+  std::string csv;
+  const auto& r = f.Proximity;
+  const int nearest = r.NearestIndex();
+  csv += std::to_string(f.Frame) + "," + Number(f.TimeS, "%.6f") + "," + Number(f.TipMm[0]) + "," + Number(f.TipMm[1]) +
+    "," + Number(f.TipMm[2]) + "," + (nearest >= 0 ? r.Classes[nearest].ClassName : "") + "," +
+    (nearest >= 0 ? Number(r.Classes[nearest].DistanceMm) : "");
+  for (const auto& c : r.Classes)
+  {
+    csv += "," + (c.InRange ? Number(c.DistanceMm) : "");
+  }
+  csv += std::string(",") + DangerLevelName(f.Level) + "," + Number(r.ErrorBoundMm) + "," + Number(f.FrameMs, "%.5f") +
+    "," + Number(f.AxisWorld[0], "%.6f") + "," + Number(f.AxisWorld[1], "%.6f") + "," + Number(f.AxisWorld[2], "%.6f");
+  for (std::size_t k = 0; k < r.Classes.size(); ++k)
+  {
+    const ClassProximity& c = r.Classes[k];
+    for (int a = 0; a < 3; ++a)
+    {
+      csv += "," + (c.InRange ? Number(c.ClosestPoint[a]) : "");
+    }
+    csv += "," + (c.DirectionalMm ? Number(*c.DirectionalMm) : "");
+    csv += "," + (c.InRange && c.Inside ? std::string(*c.Inside ? "1" : "0") : "");
+    csv += "," + (c.InRange ? std::string(c.InsideUncertain ? "1" : "0") : "");
+    csv += std::string(",") + DangerLevelName(f.ClassLevels[k]);
+    if (surface)
+    {
+      csv += "," + (f.Surface[k].InRange ? Number(f.Surface[k].DistanceMm) : "");
+      // Empty where it cannot be known (an open surface has no inside), never a silent 0.
+      const bool known = k < f.Penetrations.size() && f.Penetrations[k].Known;
+      const Penetration none;
+      const Penetration& p = known ? f.Penetrations[k] : none;
+      for (double v : { p.DepthMm, p.VolumeMm3, p.DepthBoundMm, p.VolumeBoundMm3 })
+      {
+        csv += "," + (known ? Number(v) : "");
+      }
+      csv += "," + (f.Surface[k].InRange ? Number(f.Surface[k].ErrorBoundMm) : "");
+    }
+  }
+  csv += "\n";
+  return csv;
+}
+} // namespace vp

@@ -1,0 +1,20 @@
+#ifndef vpFramesCsv_h
+#define vpFramesCsv_h
+
+#include "vtkScalpelTrackingLogic.h"
+
+#include <string>
+#include <vector>
+
+namespace vp
+{
+/// frames.csv, the per-frame record of a tracking run (columns in README's "track"), written a
+/// row at a time as the frames are computed. Lengths and coordinates to 4 decimals, times to 6,
+/// an empty field where there is no value (out of range, not known), never a made-up 0.
+/// The header line, for these classes, with the whole surface's columns or without.
+std::string FramesCsvHeader(const std::vector<std::string>& classes, bool surface);
+/// One frame's line, the columns as the header's.
+std::string FramesCsvRow(const TrackedFrame& frame, bool surface);
+} // namespace vp
+
+#endif

@@ -68,7 +68,9 @@ void CheckFinite(const std::vector<float>& coords, const std::string& sourceName
 
 /// ASCII STL: only the "vertex x y z" lines carry geometry; facet normals are recomputed from
 /// the winding, as every reader of STL that wants consistent normals does.
-StlSoup ParseAsciiStl(const char* data, std::size_t size, const std::string& sourceName)
+// wholeFile false: data is the start of a longer file, cut at a line's end; only what it holds
+// is checked (no end, no facet left open, no "solid" needed yet).
+StlSoup ParseAsciiStl(const char* data, std::size_t size, const std::string& sourceName, bool wholeFile = true)
 {
   StlSoup soup;
   soup.Binary = false;
@@ -151,6 +153,10 @@ StlSoup ParseAsciiStl(const char* data, std::size_t size, const std::string& sou
     throw InputError(sourceName,
       "line " + std::to_string(line) + ": unexpected '" + word.substr(0, 32) + "' in ASCII STL");
   }
+  if (!wholeFile)
+  {
+    return soup;
+  }
   if (!sawSolid)
   {
     throw InputError(sourceName, "not an STL file (no 'solid' keyword)");
@@ -200,33 +206,29 @@ MeshSpace ParseSpaceTag(const std::string& header)
   return MeshSpace::Unspecified;
 }
 
-StlSoup ParseStl(const char* data, std::size_t size, const std::string& sourceName)
+namespace
 {
-  if (size == 0)
-  {
-    throw InputError(sourceName, "file is empty");
-  }
+// Whether an STL file of fileSize bytes starting with data (size bytes of it) is ASCII: it begins
+// with "solid" and no NUL, and its size is not exactly what a binary header declares (many binary
+// headers also begin with "solid": the size check decides first).
+bool IsAsciiStl(const char* data, std::size_t size, std::uint64_t fileSize)
+{
   const bool exactBinarySize = size >= HeaderBytes + 4 &&
-    HeaderBytes + 4 + std::uint64_t(ReadUint32LE(data + HeaderBytes)) * FacetBytes == size;
-  // Many binary STL headers also begin with "solid": the size check decides first.
-  if (!exactBinarySize && StartsWithSolid(data, size) &&
-    std::memchr(data, '\0', std::min<std::size_t>(size, HeaderBytes + 4)) == nullptr)
-  {
-    StlSoup soup = ParseAsciiStl(data, size, sourceName);
-    CheckFinite(soup.Coordinates, sourceName);
-    if (soup.Coordinates.empty())
-    {
-      throw InputError(sourceName, "STL file has no triangles");
-    }
-    return soup;
-  }
+    HeaderBytes + 4 + std::uint64_t(ReadUint32LE(data + HeaderBytes)) * FacetBytes == fileSize;
+  return !exactBinarySize && StartsWithSolid(data, size) &&
+    std::memchr(data, '\0', std::min<std::size_t>(size, HeaderBytes + 4)) == nullptr;
+}
+
+// A binary STL's triangle count, checked against the file's size.
+std::uint64_t BinaryStlCount(const char* data, std::size_t size, std::uint64_t fileSize, const std::string& sourceName)
+{
   if (size < HeaderBytes + 4)
   {
     throw InputError(sourceName,
       "too short for a binary STL (" + std::to_string(size) + " bytes, the header alone is 84)");
   }
   const std::uint64_t count = ReadUint32LE(data + HeaderBytes);
-  const std::uint64_t available = (size - HeaderBytes - 4) / FacetBytes;
+  const std::uint64_t available = (fileSize - HeaderBytes - 4) / FacetBytes;
   if (count > available)
   {
     throw InputError(sourceName,
@@ -237,6 +239,45 @@ StlSoup ParseStl(const char* data, std::size_t size, const std::string& sourceNa
   {
     throw InputError(sourceName, "STL file has no triangles");
   }
+  return count;
+}
+} // namespace
+
+void CheckStlStart(const char* data, std::size_t size, std::uint64_t fileSize, const std::string& sourceName)
+{
+  if (fileSize == 0)
+  {
+    throw InputError(sourceName, "file is empty");
+  }
+  if (!IsAsciiStl(data, size, fileSize))
+  {
+    BinaryStlCount(data, size, fileSize, sourceName);
+    return;
+  }
+  const char* lastLine = static_cast<const char*>(memrchr(data, '\n', size));
+  if (lastLine)
+  {
+    ParseAsciiStl(data, static_cast<std::size_t>(lastLine - data) + 1, sourceName, false);
+  }
+}
+
+StlSoup ParseStl(const char* data, std::size_t size, const std::string& sourceName)
+{
+  if (size == 0)
+  {
+    throw InputError(sourceName, "file is empty");
+  }
+  if (IsAsciiStl(data, size, size))
+  {
+    StlSoup soup = ParseAsciiStl(data, size, sourceName);
+    CheckFinite(soup.Coordinates, sourceName);
+    if (soup.Coordinates.empty())
+    {
+      throw InputError(sourceName, "STL file has no triangles");
+    }
+    return soup;
+  }
+  const std::uint64_t count = BinaryStlCount(data, size, size, sourceName);
   StlSoup soup;
   soup.Binary = true;
   soup.Space = ParseSpaceTag(std::string(data, HeaderBytes));

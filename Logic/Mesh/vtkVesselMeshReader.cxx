@@ -3,6 +3,7 @@
 #include "vpIndexedMesh.h"
 #include "vpLegacyVtkGeometry.h"
 #include "vpObjIndices.h"
+#include "vpStlFormat.h"
 
 #include <vtkAlgorithm.h>
 #include <vtkCallbackCommand.h>
@@ -24,6 +25,7 @@
 #include <cerrno>
 #include <climits>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -46,7 +48,10 @@ std::string LowerExtension(const std::string& fileName)
   return ext;
 }
 
-std::string ReadWholeFile(const std::string& fileName)
+constexpr std::uint64_t StartBytes = 1 << 20;
+
+// The file's size, refusing what is not a regular file.
+std::uint64_t RegularFileSize(const std::string& fileName)
 {
   struct stat info;
   if (stat(fileName.c_str(), &info) != 0)
@@ -62,14 +67,25 @@ std::string ReadWholeFile(const std::string& fileName)
     // A device or a pipe has no end to wait for (/dev/zero) or may never open (a FIFO).
     throw vp::InputError(fileName, "is not a regular file (a device, pipe or socket): save the mesh to a file");
   }
+  return static_cast<std::uint64_t>(info.st_size);
+}
+
+// The file's first maximumBytes bytes (all of it when shorter), read straight into the string.
+std::string ReadFileStart(const std::string& fileName, std::uint64_t maximumBytes)
+{
   std::ifstream stream(fileName, std::ios::binary);
   if (!stream)
   {
     throw vp::InputError(fileName, std::string("cannot open: ") + std::strerror(errno));
   }
-  std::ostringstream bytes;
-  bytes << stream.rdbuf();
-  return bytes.str();
+  std::string bytes(static_cast<std::size_t>(maximumBytes), '\0');
+  stream.read(&bytes[0], static_cast<std::streamsize>(bytes.size()));
+  bytes.resize(static_cast<std::size_t>(stream.gcount()));
+  if (stream.bad())
+  {
+    throw vp::InputError(fileName, std::string("cannot read: ") + std::strerror(errno));
+  }
+  return bytes;
 }
 
 /// Collects the first error a VTK reader raises instead of letting it print to the console.
@@ -229,7 +245,15 @@ void vtkVesselMeshReader::Read()
     throw vp::InputError("(no file name)", "no mesh file given");
   }
   const std::string ext = LowerExtension(fileName);
-  const std::string bytes = ReadWholeFile(fileName);
+  const std::uint64_t fileSize = RegularFileSize(fileName);
+  if (ext == ".stl" && fileSize > StartBytes)
+  {
+    // What the start can tell is checked before the rest is read: a gigabyte of zeros or of text
+    // is refused at once.
+    const std::string start = ReadFileStart(fileName, StartBytes);
+    vp::CheckStlStart(start.data(), start.size(), fileSize, fileName);
+  }
+  const std::string bytes = ReadFileStart(fileName, fileSize);
   if (bytes.empty())
   {
     throw vp::InputError(fileName, "file is empty");

@@ -11,9 +11,13 @@
 #include <vtkPolyData.h>
 
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
+#include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <limits>
@@ -226,6 +230,36 @@ TEST(MeshReader, EachBadInputGivesOneLineNamingTheFileAndTheProblem)
     EXPECT_NE(message.find(c.Problem), std::string::npos) << c.Path << " -> " << message;
     EXPECT_EQ(message.find('\n'), std::string::npos) << "one line: " << message;
   }
+}
+
+// A gigabyte of zeros named .stl, and a gigabyte whose second line is not STL (issue 16): refused
+// from the file's first megabyte, before the rest is read (each was read whole first, 2.1 GB of
+// memory and 17 s for the zeros). The files are sparse: they take no disk.
+TEST(MeshReader, AGigabyteOfZerosOrOfTextIsRefusedFromItsStart)
+{
+  const std::string dir = vp::test::MakeTempDir("huge");
+  const auto sparse = [&](const std::string& name, const std::string& start) {
+    const std::string path = dir + "/" + name;
+    {
+      std::ofstream(path, std::ios::binary) << start;
+    }
+    EXPECT_EQ(truncate(path.c_str(), off_t(1) << 30), 0);
+    return path;
+  };
+  const std::string zeros = sparse("zeros.stl", "");
+  const std::string text = sparse("text.stl", "solid garbage\nthis is not a facet\n" + std::string(100, ' ') + "\n");
+  struct rusage before = {};
+  getrusage(RUSAGE_SELF, &before);
+  const auto start = std::chrono::steady_clock::now();
+  const std::string zeroError = ReadError(zeros);
+  const std::string textError = ReadError(text);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  struct rusage after = {};
+  getrusage(RUSAGE_SELF, &after);
+  std::printf("both refused in %.3f s, peak memory %ld -> %ld kB\n", seconds, before.ru_maxrss, after.ru_maxrss);
+  EXPECT_EQ(zeroError, zeros + ": STL file has no triangles");
+  EXPECT_EQ(textError, text + ": line 2: unexpected 'this' in ASCII STL");
+  EXPECT_LT(after.ru_maxrss - before.ru_maxrss, 64L * 1024L) << "kB: neither file was read whole";
 }
 
 TEST(MeshReader, VtkVtpAndObjAreReadAsTheSameTriangles)

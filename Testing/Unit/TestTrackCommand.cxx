@@ -15,6 +15,7 @@
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -789,5 +790,48 @@ TEST_F(TrackCommand, AMillionPosesTakeTheMemoryOfTenThousandAndAnInterruptLeaves
   EXPECT_LE(longMb, 1.1 * shortMb);
 #endif
   EXPECT_EQ(second["worst_level"], "warning") << "2.005 mm from the wall at the closest";
+}
+} // namespace
+
+namespace
+{
+// A full file system (issue 16): track fails in one line naming frames.csv, and the folder keeps
+// the previous run exactly as it was, no staging folder left (the old summary was lost, the old
+// plot kept, before). A 400 kB tmpfs mounted in a user and mount namespace (unshare -rm), where
+// the system allows one; skipped with a message where it does not.
+TEST_F(TrackCommand, AFullFileSystemFailsInOneLineAndLeavesThePreviousRun)
+{
+  const auto poses = [&](const std::string& name, int count) {
+    std::ostringstream csv;
+    csv << "time,x,y,z,qw,qx,qy,qz\n";
+    for (int i = 0; i < count; ++i)
+    {
+      csv << 0.01 * i << "," << 15.0 + std::sin(0.01 * i) << ",0.3,0.2,1,0,0,0\n";
+    }
+    return this->WriteText(name, csv.str());
+  };
+  const std::string small = poses("small.csv", 100), big = poses("big.csv", 5000);
+  const std::string fs = this->Dir + "/fs", d = this->Dir;
+  std::filesystem::create_directories(fs);
+  const std::string track = std::string(VP_EXECUTABLE) + " track --vessels " + this->Vessels + " --scalpel " + this->Tool +
+    " --no-surface -o " + fs + "/out --poses ";
+  const std::string script = "mount -t tmpfs -o size=400k tmpfs " + fs + " || exit 3; " + track + small +
+    " >/dev/null 2>&1 || exit 4; cp " + fs + "/out/summary.json " + d + "/before.json; ls -A " + fs + "/out > " + d +
+    "/before.txt; " + track + big + " > " + d + "/full.out 2> " + d + "/full.err; echo $? > " + d + "/full.rc; cp " + fs +
+    "/out/summary.json " + d + "/after.json; ls -A " + fs + "/out > " + d + "/after.txt";
+  const int status = std::system(("unshare -rm sh -c '" + script + "' 2>/dev/null").c_str());
+  if (WIFEXITED(status) && (WEXITSTATUS(status) == 3 || WEXITSTATUS(status) == 1))
+    GTEST_SKIP() << "no tmpfs can be mounted here (unshare -rm refused), so no full file system to test";
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "status " << status;
+  EXPECT_EQ(Slurp(d + "/full.rc"), "1\n");
+  const std::string err = Slurp(d + "/full.err");
+  const std::string line = "vesselproximity: error: " + fs + "/out/frames.csv: write failed: No space left on device\n";
+  ASSERT_GE(err.size(), line.size()) << err;
+  EXPECT_EQ(err.substr(err.size() - line.size()), line) << "the run's last word, after its tip line";
+  EXPECT_EQ(err.find("error"), err.size() - line.size() + std::string("vesselproximity: ").size()) << err;
+  EXPECT_TRUE(Slurp(d + "/full.out").empty());
+  EXPECT_EQ(Slurp(d + "/after.txt"), Slurp(d + "/before.txt")) << "the same files, no staging folder";
+  EXPECT_EQ(Slurp(d + "/after.json"), Slurp(d + "/before.json")) << "the previous run, as it was";
+  EXPECT_EQ(nlohmann::json::parse(Slurp(d + "/after.json"))["frames"], 100);
 }
 } // namespace

@@ -21,6 +21,11 @@ LabelStructures ImportSegmentation(const std::string& input, const StructureFilt
   {
     return DicomLabelSeriesReader::ReadFolder(input, wanted);
   }
+  if (!fs::is_regular_file(input, ec))
+  {
+    // Before anything opens it: a FIFO with no writer would block the open, /dev/zero never ends.
+    throw InputError(input, "is not a regular file (a device, pipe or socket) nor a DICOM series folder");
+  }
   if (LabelmapFileReader::Handles(input))
   {
     return LabelmapFileReader::Read(input);

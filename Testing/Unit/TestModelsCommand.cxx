@@ -7,6 +7,7 @@
 #include "vpTestSupport.h"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <nlohmann/json.hpp>
 
@@ -163,6 +164,16 @@ TEST_F(ModelsCommand, AFolderHoldsOneWholeRunAfterAReRunOrAnInterrupt)
     EXPECT_EQ(found, expected) << "interrupted after " << 8 * k << " ms: the run's files, the user's, nothing else";
     EXPECT_TRUE(doc["files"].size() == 2u || doc["files"].size() == 3u) << doc["files"];
   }
+}
+
+// Inputs that are not files (issue 16): a FIFO with no writer blocked the open for ever, so it is
+// refused before anything opens it, as /dev/zero is.
+TEST_F(ModelsCommand, ADeviceOrAPipeIsRefusedBeforeItIsOpened)
+{
+  const std::string fifo = this->Dir + "/labels.nrrd";
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  this->ExpectRefused(fifo, fifo, "is not a regular file (a device, pipe or socket) nor a DICOM series folder");
+  this->ExpectRefused("/dev/zero", "/dev/zero", "is not a regular file");
 }
 
 TEST_F(ModelsCommand, EachBadSeriesGetsItsOneLineAndWritesNothing)

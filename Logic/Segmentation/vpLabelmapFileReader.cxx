@@ -13,6 +13,9 @@
 #include <itkVectorImage.h>
 
 #include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <fstream>
 #include <charconv>
 #include <cmath>
 #include <map>
@@ -122,6 +125,39 @@ std::map<int, SegmentKeys> ReadSegmentKeys(const itk::MetaDataDictionary& dictio
   }
   return segments;
 }
+// Whether the voxels are stored uncompressed in the file itself (a .nii, or a .nrrd with
+// "encoding: raw" and no separate data file), so that the file's size bounds what the header may
+// claim.
+bool HoldsRawVoxels(const std::string& fileName)
+{
+  if (EndsWith(fileName, ".nii"))
+  {
+    return true;
+  }
+  if (!EndsWith(fileName, ".nrrd"))
+  {
+    return false;
+  }
+  std::ifstream in(fileName, std::ios::binary);
+  bool raw = false;
+  for (std::string line; std::getline(in, line) && !line.empty() && line != "\r";)
+  {
+    const std::string lower = [&] {
+      std::string l = line;
+      std::transform(l.begin(), l.end(), l.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+      return l;
+    }();
+    if (lower.rfind("data file:", 0) == 0 || lower.rfind("datafile:", 0) == 0)
+    {
+      return false;
+    }
+    if (lower.rfind("encoding:", 0) == 0)
+    {
+      raw = lower.find("raw") != std::string::npos;
+    }
+  }
+  return raw;
+}
 } // namespace
 
 bool LabelmapFileReader::Handles(const std::string& fileName)
@@ -163,6 +199,17 @@ LabelStructures LabelmapFileReader::Read(const std::string& fileName, std::size_
     {
       throw InputError(fileName, "the header claims " + std::to_string(static_cast<long long>(claimed)) +
           " voxels, more than the " + std::to_string(maximumVoxels) + " this reader takes");
+    }
+    // Uncompressed voxels must be in the file: a header claiming more is refused before the
+    // image is allocated (a 100-byte file claiming 600^3 voxels took 256 MB first).
+    std::error_code ec;
+    const auto fileBytes = std::filesystem::file_size(fileName, ec);
+    const double claimedBytes = claimed * static_cast<double>(io->GetComponentSize());
+    if (!ec && HoldsRawVoxels(fileName) && claimedBytes > static_cast<double>(fileBytes))
+    {
+      throw InputError(fileName, "the header claims " + std::to_string(static_cast<long long>(claimed)) + " voxels (" +
+          std::to_string(static_cast<long long>(claimedBytes)) + " bytes, uncompressed), but the file is only " +
+          std::to_string(fileBytes) + " bytes");
     }
     auto reader = itk::ImageFileReader<Image>::New();
     reader->SetImageIO(io);

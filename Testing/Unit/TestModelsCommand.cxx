@@ -7,6 +7,7 @@
 #include "vpTestSupport.h"
 
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 
 #include <nlohmann/json.hpp>
@@ -174,6 +175,19 @@ TEST_F(ModelsCommand, ADeviceOrAPipeIsRefusedBeforeItIsOpened)
   ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
   this->ExpectRefused(fifo, fifo, "is not a regular file (a device, pipe or socket) nor a DICOM series folder");
   this->ExpectRefused("/dev/zero", "/dev/zero", "is not a regular file");
+}
+
+// A 100-byte NRRD whose header claims 600^3 raw voxels (issue 16): refused from its size before
+// the image is allocated (it took 256 MB first), in bounded memory.
+TEST_F(ModelsCommand, ARawLabelmapClaimingMoreVoxelsThanItHoldsIsRefusedBeforeAllocating)
+{
+  const std::string nrrd = this->Dir + "/claims.nrrd";
+  std::ofstream(nrrd, std::ios::binary) << "NRRD0004\ntype: unsigned char\ndimension: 3\nsizes: 600 600 600\n"
+                                           "spacings: 1 1 1\nencoding: raw\n\n" << std::string(3, '\1');
+  this->ExpectRefused(nrrd, nrrd, "the header claims 216000000 voxels (216000000 bytes, uncompressed), but the file is only 95 bytes");
+  struct rusage usage = {};
+  getrusage(RUSAGE_CHILDREN, &usage);
+  EXPECT_LT(usage.ru_maxrss, 200L * 1024L) << "kB at most, of the command (256 MB and more before)";
 }
 
 TEST_F(ModelsCommand, EachBadSeriesGetsItsOneLineAndWritesNothing)

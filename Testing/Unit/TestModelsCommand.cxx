@@ -137,16 +137,8 @@ TEST_F(ModelsCommand, AFolderHoldsOneWholeRunAfterAReRunOrAnInterrupt)
   // run (here the run takes about 70 ms, the writing a few of them; under the sanitizers longer).
   for (int k = 0; k < 40; ++k)
   {
-    const pid_t child = fork();
+    const pid_t child = vp::test::StartTool({ "models", this->Masks, "-o", out });
     ASSERT_GE(child, 0);
-    if (child == 0)
-    {
-      const int null = open("/dev/null", O_WRONLY);
-      dup2(null, 1);
-      dup2(null, 2);
-      execl(VP_EXECUTABLE, VP_EXECUTABLE, "models", this->Masks.c_str(), "-o", out.c_str(), static_cast<char*>(nullptr));
-      _exit(127);
-    }
     usleep(static_cast<useconds_t>(8000 * k));
     kill(child, SIGINT);
     int status = 0;

@@ -752,18 +752,9 @@ TEST_F(TrackCommand, AMillionPosesTakeTheMemoryOfTenThousandAndAnInterruptLeaves
   EXPECT_EQ(first["frames"], 10000);
 
   const std::string longPoses = posesFile(longRun);
-  const pid_t child = fork();
+  const pid_t child = vp::test::StartTool(
+    { "track", "--vessels", this->Vessels, "--scalpel", this->Tool, "--no-surface", "-o", out, "--poses", longPoses });
   ASSERT_GE(child, 0);
-  if (child == 0)
-  {
-    const int null = open("/dev/null", O_WRONLY);
-    dup2(null, 1);
-    dup2(null, 2);
-    const std::string vesselArg = this->Vessels;
-    execl(VP_EXECUTABLE, VP_EXECUTABLE, "track", "--vessels", vesselArg.c_str(), "--scalpel", this->Tool.c_str(), "--no-surface",
-      "-o", out.c_str(), "--poses", longPoses.c_str(), static_cast<char*>(nullptr));
-    _exit(127);
-  }
   usleep(1500000); // into the frames: the poses are checked in about 0.3 s
   kill(child, SIGINT);
   int status = 0;

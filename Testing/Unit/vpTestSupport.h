@@ -5,6 +5,9 @@
 #include <fstream>
 #include <sstream>
 #include <sys/wait.h>
+#include <fcntl.h>
+#include <unistd.h>
+#include <vector>
 #include <string>
 #include <sys/stat.h>
 
@@ -89,6 +92,30 @@ inline std::string Slurp(const std::string& path)
 
 #ifdef VP_EXECUTABLE
 /// Runs the tool with arguments; environment ("NAME=value ...") is set for it alone.
+/// Starts the vesselproximity executable with arguments, its output silenced, and returns its
+/// process id at once (for tests that interrupt it); -1 when it cannot be started.
+inline pid_t StartTool(const std::vector<std::string>& arguments)
+{
+  std::vector<std::string> argv{ VP_EXECUTABLE };
+  argv.insert(argv.end(), arguments.begin(), arguments.end());
+  std::vector<char*> pointers;
+  for (std::string& a : argv)
+  {
+    pointers.push_back(&a[0]);
+  }
+  pointers.push_back(nullptr);
+  const pid_t child = fork();
+  if (child == 0)
+  {
+    const int null = open("/dev/null", O_WRONLY);
+    dup2(null, 1);
+    dup2(null, 2);
+    execv(VP_EXECUTABLE, pointers.data());
+    _exit(127);
+  }
+  return child;
+}
+
 inline ToolRun RunTool(const std::string& dir, const std::string& arguments, const std::string& environment = std::string())
 {
   const std::string out = dir + "/stdout.txt", err = dir + "/stderr.txt";

@@ -1,6 +1,7 @@
 #ifndef vpInputError_h
 #define vpInputError_h
 
+#include <cstdio>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -30,6 +31,15 @@ inline std::string NumberText(double value, int significantDigits = 6)
   out.precision(significantDigits);
   out << value;
   return out.str();
+}
+
+/// A number in a report's fixed form, as printf's format writes it ("%.4f": columns of
+/// frames.csv, "%.3f": a table on the terminal).
+inline std::string FixedText(double value, const char* printfFormat)
+{
+  char text[64];
+  std::snprintf(text, sizeof(text), printfFormat, value);
+  return text;
 }
 } // namespace vp
 

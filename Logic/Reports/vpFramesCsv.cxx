@@ -1,8 +1,7 @@
 #include "vpFramesCsv.h"
 
 #include "vpDangerLevels.h"
-
-#include <cstdio>
+#include "vpInputError.h"
 
 namespace vp
 {
@@ -10,9 +9,7 @@ namespace
 {
 std::string Number(double value, const char* format = "%.4f")
 {
-  char text[64];
-  std::snprintf(text, sizeof(text), format, value);
-  return text;
+  return FixedText(value, format);
 }
 } // namespace
 

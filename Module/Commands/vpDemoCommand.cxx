@@ -25,12 +25,6 @@ const char* Usage =
   "  (rendered off-screen; Xvfb is started when there is no display). --frame-budget-ms: the\n"
   "  time one frame may take (default 16.7, 60 Hz; 0: none); frames over it are counted.\n";
 
-std::string Fixed(double value, const char* format)
-{
-  char text[32];
-  std::snprintf(text, sizeof(text), format, value);
-  return text;
-}
 } // namespace
 
 void PrintDemoTable(const DemoReport& report, const nlohmann::json& summary)
@@ -55,8 +49,8 @@ void PrintDemoTable(const DemoReport& report, const nlohmann::json& summary)
     const auto surface = entry.value("surface_minimum", nlohmann::json());
     std::printf("  %-16s %18s %18s\n", name.c_str(),
       tip.is_null() ? "out of range"
-                    : (Fixed(tip.at("distance_mm").get<double>(), "%.2f") + (tip.at("inside").get<bool>() ? " inside" : "")).c_str(),
-      surface.is_null() ? "-" : Fixed(surface.at("distance_mm").get<double>(), "%.2f").c_str());
+                    : (FixedText(tip.at("distance_mm").get<double>(), "%.2f") + (tip.at("inside").get<bool>() ? " inside" : "")).c_str(),
+      surface.is_null() ? "-" : FixedText(surface.at("distance_mm").get<double>(), "%.2f").c_str());
   }
   std::printf("  worst level %s; %zu level changes:", summary.at("worst_level").get<std::string>().c_str(),
     summary.at("level_changes").size());

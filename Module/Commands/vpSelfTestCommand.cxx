@@ -74,9 +74,7 @@ long long OpenEdges(vtkPolyData* mesh)
 
 std::string Text(double value)
 {
-  char text[32];
-  std::snprintf(text, sizeof(text), "%.3f", value);
-  return text;
+  return FixedText(value, "%.3f");
 }
 
 /// The exact engine's level at every frame and its changes, computed here, independently of the

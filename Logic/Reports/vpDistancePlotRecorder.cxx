@@ -8,18 +8,25 @@
 
 namespace vp
 {
-void DistancePlotRecorder::Fold(Extreme& e, const Extreme& later)
+void DistancePlotRecorder::Append(Bucket& into, const Bucket& later)
 {
-  // NaN (no value) never wins, and is replaced by any value.
-  if (std::isfinite(later.LowMm) && !(later.LowMm >= e.LowMm))
+  into.LastS = later.LastS;
+  into.Frames += later.Frames;
+  for (std::size_t k = 0; k < into.Lines.size(); ++k)
   {
-    e.LowMm = later.LowMm;
-    e.LowAtS = later.LowAtS;
-  }
-  if (std::isfinite(later.HighMm) && !(later.HighMm <= e.HighMm))
-  {
-    e.HighMm = later.HighMm;
-    e.HighAtS = later.HighAtS;
+    // NaN (no value) never wins, and is replaced by any value.
+    Extreme& e = into.Lines[k];
+    const Extreme& l = later.Lines[k];
+    if (std::isfinite(l.LowMm) && !(l.LowMm >= e.LowMm))
+    {
+      e.LowMm = l.LowMm;
+      e.LowAtS = l.LowAtS;
+    }
+    if (std::isfinite(l.HighMm) && !(l.HighMm <= e.HighMm))
+    {
+      e.HighMm = l.HighMm;
+      e.HighAtS = l.HighAtS;
+    }
   }
 }
 
@@ -31,34 +38,26 @@ DistancePlotRecorder::DistancePlotRecorder(const std::vector<std::string>& class
 
 void DistancePlotRecorder::Add(const TrackedFrame& frame)
 {
-  std::vector<double> values;
+  // The frame as a bucket of its own, then into the last bucket while it has room.
+  const double t = frame.TimeS;
+  Bucket one{ t, t, 1, {} };
   for (std::size_t c = 0; c < this->Classes.size(); ++c)
   {
-    values.push_back(TipPlotValueMm(frame, c));
+    const double tip = TipPlotValueMm(frame, c);
+    one.Lines.push_back({ tip, tip, t, t });
     if (this->Surface)
     {
-      values.push_back(InstrumentPlotValueMm(frame, c));
+      const double instrument = InstrumentPlotValueMm(frame, c);
+      one.Lines.push_back({ instrument, instrument, t, t });
     }
   }
-  if (this->Buckets.empty() || this->Buckets.back().Frames == this->Width)
+  if (!this->Buckets.empty() && this->Buckets.back().Frames < this->Width)
   {
-    Bucket fresh{ frame.TimeS, frame.TimeS, 0, {} };
-    for (const double v : values)
-    {
-      fresh.Lines.push_back({ v, v, frame.TimeS, frame.TimeS });
-    }
-    fresh.Frames = 1;
-    this->Buckets.push_back(std::move(fresh));
+    Append(this->Buckets.back(), one);
   }
   else
   {
-    Bucket& last = this->Buckets.back();
-    last.LastS = frame.TimeS;
-    ++last.Frames;
-    for (std::size_t k = 0; k < values.size(); ++k)
-    {
-      Fold(last.Lines[k], { values[k], values[k], frame.TimeS, frame.TimeS });
-    }
+    this->Buckets.push_back(std::move(one));
   }
   if (this->Buckets.size() < MaximumBuckets)
   {
@@ -69,15 +68,8 @@ void DistancePlotRecorder::Add(const TrackedFrame& frame)
   merged.reserve(MaximumBuckets / 2);
   for (std::size_t b = 0; b + 1 < this->Buckets.size(); b += 2)
   {
-    Bucket m = std::move(this->Buckets[b]);
-    const Bucket& later = this->Buckets[b + 1];
-    m.LastS = later.LastS;
-    m.Frames += later.Frames;
-    for (std::size_t k = 0; k < m.Lines.size(); ++k)
-    {
-      Fold(m.Lines[k], later.Lines[k]);
-    }
-    merged.push_back(std::move(m));
+    merged.push_back(std::move(this->Buckets[b]));
+    Append(merged.back(), this->Buckets[b + 1]);
   }
   this->Buckets = std::move(merged);
   this->Width *= 2;

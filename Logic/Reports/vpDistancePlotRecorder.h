@@ -48,7 +48,8 @@ private:
     std::size_t Frames;
     std::vector<Extreme> Lines;
   };
-  static void Fold(Extreme& e, const Extreme& later);
+  /// Appends the frames of later (the bucket after into) to into.
+  static void Append(Bucket& into, const Bucket& later);
   std::vector<std::string> Classes;
   bool Surface;
   std::size_t Width = 1;

@@ -70,20 +70,34 @@ std::uint64_t RegularFileSize(const std::string& fileName)
   return static_cast<std::uint64_t>(info.st_size);
 }
 
-// The file's first maximumBytes bytes (all of it when shorter), read straight into the string.
-std::string ReadFileStart(const std::string& fileName, std::uint64_t maximumBytes)
+// The file's bytes, read straight into one string. An STL's first StartBytes are checked
+// before the rest is read (vp::CheckStlStart): a gigabyte of zeros or of text is refused at once.
+std::string ReadMeshFile(const std::string& fileName, std::uint64_t fileSize, bool stl)
 {
   std::ifstream stream(fileName, std::ios::binary);
   if (!stream)
   {
     throw vp::InputError(fileName, std::string("cannot open: ") + std::strerror(errno));
   }
-  std::string bytes(static_cast<std::size_t>(maximumBytes), '\0');
-  stream.read(&bytes[0], static_cast<std::streamsize>(bytes.size()));
-  bytes.resize(static_cast<std::size_t>(stream.gcount()));
-  if (stream.bad())
+  const auto read = [&](std::string& bytes, std::size_t from) {
+    stream.read(&bytes[from], static_cast<std::streamsize>(bytes.size() - from));
+    bytes.resize(from + static_cast<std::size_t>(stream.gcount()));
+    if (stream.bad())
+    {
+      throw vp::InputError(fileName, std::string("cannot read: ") + std::strerror(errno));
+    }
+  };
+  std::string bytes(static_cast<std::size_t>(std::min(fileSize, StartBytes)), '\0');
+  read(bytes, 0);
+  if (stl && fileSize > bytes.size())
   {
-    throw vp::InputError(fileName, std::string("cannot read: ") + std::strerror(errno));
+    vp::CheckStlStart(bytes.data(), bytes.size(), fileSize, fileName);
+  }
+  const std::size_t start = bytes.size();
+  if (fileSize > start)
+  {
+    bytes.resize(static_cast<std::size_t>(fileSize));
+    read(bytes, start);
   }
   return bytes;
 }
@@ -245,15 +259,7 @@ void vtkVesselMeshReader::Read()
     throw vp::InputError("(no file name)", "no mesh file given");
   }
   const std::string ext = LowerExtension(fileName);
-  const std::uint64_t fileSize = RegularFileSize(fileName);
-  if (ext == ".stl" && fileSize > StartBytes)
-  {
-    // What the start can tell is checked before the rest is read: a gigabyte of zeros or of text
-    // is refused at once.
-    const std::string start = ReadFileStart(fileName, StartBytes);
-    vp::CheckStlStart(start.data(), start.size(), fileSize, fileName);
-  }
-  const std::string bytes = ReadFileStart(fileName, fileSize);
+  const std::string bytes = ReadMeshFile(fileName, RegularFileSize(fileName), ext == ".stl");
   if (bytes.empty())
   {
     throw vp::InputError(fileName, "file is empty");

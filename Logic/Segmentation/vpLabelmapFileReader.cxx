@@ -125,6 +125,7 @@ std::map<int, SegmentKeys> ReadSegmentKeys(const itk::MetaDataDictionary& dictio
   }
   return segments;
 }
+
 // Whether the voxels are stored uncompressed in the file itself (a .nii, or a .nrrd with
 // "encoding: raw" and no separate data file), so that the file's size bounds what the header may
 // claim.
@@ -142,11 +143,8 @@ bool HoldsRawVoxels(const std::string& fileName)
   bool raw = false;
   for (std::string line; std::getline(in, line) && !line.empty() && line != "\r";)
   {
-    const std::string lower = [&] {
-      std::string l = line;
-      std::transform(l.begin(), l.end(), l.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-      return l;
-    }();
+    std::string lower = line;
+    std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
     if (lower.rfind("data file:", 0) == 0 || lower.rfind("datafile:", 0) == 0)
     {
       return false;

@@ -61,13 +61,6 @@ const char* Usage =
   "  --frame-budget-ms: the time one frame may take (default 16.7, 60 Hz; 0: no budget); the\n"
   "    frames over it are counted in summary.json and on the terminal.\n";
 
-std::string Number(double value, const char* format = "%.4f")
-{
-  char text[64];
-  std::snprintf(text, sizeof(text), format, value);
-  return text;
-}
-
 Json MinimumJson(const ClassMinimum& m)
 {
   if (!m.Seen)
@@ -258,7 +251,7 @@ int RunTrackCommand(const std::vector<std::string>& argv)
     {
       return 1; // the RunFolder removes what was written, then the signal acts
     }
-    const TrackedFrame frame = proximity->ProcessPose(pose);
+    const TrackedFrame& frame = proximity->ProcessPose(pose); // valid until the next pose
     summary.Add(frame);
     if (!plot)
     {
@@ -322,8 +315,8 @@ int RunTrackCommand(const std::vector<std::string>& argv)
     const ClassMinimum& m = summary.GetTipMinimum()[c];
     const ClassMinimum& s = summary.GetSurfaceMinimum()[c];
     std::printf("  %-16s %16s %10s %20s\n", classes[c].c_str(),
-      m.Seen ? (Number(m.DistanceMm, "%.3f") + (m.Inside ? " inside" : "")).c_str() : "out of range",
-      m.Seen ? Number(m.TimeS, "%.3f").c_str() : "", surface ? (s.Seen ? Number(s.DistanceMm, "%.3f").c_str() : "out of range") : "");
+      m.Seen ? (FixedText(m.DistanceMm, "%.3f") + (m.Inside ? " inside" : "")).c_str() : "out of range",
+      m.Seen ? FixedText(m.TimeS, "%.3f").c_str() : "", surface ? (s.Seen ? FixedText(s.DistanceMm, "%.3f").c_str() : "out of range") : "");
   }
   std::printf("  time at each level:");
   for (int l = 0; l < NumberOfDangerLevels; ++l)
@@ -334,7 +327,7 @@ int RunTrackCommand(const std::vector<std::string>& argv)
   std::printf("  frame median %.4f ms, p95 %.4f ms, max %.4f ms; %s\n", summary.GetFrameMsQuantile(0.5),
     summary.GetFrameMsQuantile(0.95), summary.GetFrameMsQuantile(1.0),
     budgetMs > 0 ? (std::to_string(summary.GetFramesOverBudget()) + " of " + std::to_string(frameCount) +
-                     " frames over the " + Number(budgetMs, "%g") + " ms budget")
+                     " frames over the " + FixedText(budgetMs, "%g") + " ms budget")
                      .c_str()
                  : "no frame budget");
   if (method == "both")

@@ -46,7 +46,7 @@ void vtkVesselDistanceEngine::SetRangeMm(double range)
 {
   if (!(range > 0.0) || !std::isfinite(range))
   {
-    throw vp::InputError("--range", "must be a positive number of millimetres");
+    throw vp::ParameterError("RangeMm", "must be a positive number of millimetres");
   }
   if (range != this->RangeMm)
   {

@@ -352,7 +352,7 @@ void vtkZBufferVesselDistance::CheckMovingBox(double cellMm) const
   {
     if (0.5 * this->MovingBoxSizeMm[k] < this->RangeMm + cellMm)
     {
-      throw vp::InputError("--box-size", "each half of the moving box must hold the range (" +
+      throw vp::ParameterError("MovingBoxSizeMm", "each half of the moving box must hold the range (" +
           std::to_string(this->RangeMm) + " mm) plus a cell");
     }
   }
@@ -362,7 +362,7 @@ void vtkZBufferVesselDistance::SetLayerMode(int mode)
 {
   if (mode != ExactIntervals && mode != PaperNearFar)
   {
-    throw vp::InputError("--layers", "must be exact or paper");
+    throw vp::ParameterError("LayerMode", "must be exact or paper");
   }
   // The layers hold both; only the query changes.
   this->LayerMode = mode;
@@ -373,7 +373,7 @@ void vtkZBufferVesselDistance::SetBoxMode(int mode)
 {
   if (mode != FixedAroundVessels && mode != MovingWithTip)
   {
-    throw vp::InputError("--box", "must be fixed or moving");
+    throw vp::ParameterError("BoxMode", "must be fixed or moving");
   }
   if (mode != this->BoxMode)
   {
@@ -386,7 +386,7 @@ void vtkZBufferVesselDistance::SetCellSizeMm(double cellMm)
 {
   if (!(cellMm > 0.0) || !std::isfinite(cellMm))
   {
-    throw vp::InputError("--cell", "must be a positive number of millimetres");
+    throw vp::ParameterError("CellSizeMm", "must be a positive number of millimetres");
   }
   if (cellMm != this->CellSizeMm)
   {
@@ -399,7 +399,7 @@ void vtkZBufferVesselDistance::SetResolutionPx(int pixels)
 {
   if (pixels < 0 || pixels > 16384)
   {
-    throw vp::InputError("--resolution", "must be between 1 and 16384 pixels (0 for the default cell size)");
+    throw vp::ParameterError("ResolutionPx", "must be between 1 and 16384 pixels (0 for the default cell size)");
   }
   if (pixels != this->ResolutionPx)
   {
@@ -414,7 +414,7 @@ void vtkZBufferVesselDistance::SetMovingBoxSizeMm(double x, double y, double z)
   {
     if (!(v > 0.0) || !std::isfinite(v))
     {
-      throw vp::InputError("--box-size", "must be three positive numbers of millimetres");
+      throw vp::ParameterError("MovingBoxSizeMm", "must be three positive numbers of millimetres");
     }
   }
   this->MovingBoxSizeMm[0] = x;
@@ -427,7 +427,7 @@ void vtkZBufferVesselDistance::SetDistanceBins(int bins)
 {
   if (bins < 0 || bins % 16 != 0 || bins > 768)
   {
-    throw vp::InputError("--bins", "must be 0 (off) or a multiple of 16 up to 768");
+    throw vp::ParameterError("DistanceBins", "must be 0 (off) or a multiple of 16 up to 768");
   }
   this->DistanceBins = bins;
   this->Modified();
@@ -587,7 +587,7 @@ void vtkZBufferVesselDistance::BuildInternal()
     static_cast<VkDeviceSize>(s.Grid.Pixels()) * s.Grid.Words() * 4ull * std::max(classes, 1u);
   if (layerBytes > context.Limits().maxStorageBufferRange)
   {
-    throw vp::InputError("--cell/--resolution", "the depth layers would need " + std::to_string(layerBytes >> 20) +
+    throw vp::ParameterError("CellSizeMm/ResolutionPx", "the depth layers would need " + std::to_string(layerBytes >> 20) +
         " MiB, more than the Vulkan device allows in one buffer (" +
         std::to_string(context.Limits().maxStorageBufferRange >> 20) + " MiB); use larger cells");
   }

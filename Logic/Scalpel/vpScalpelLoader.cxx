@@ -79,7 +79,7 @@ vtkSmartPointer<vtkScalpelModel> LoadScalpel(const std::string& modelFile, const
   scalpel->SetModel(reader->GetOutput());
 
   ScalpelTipDefinition definition = given;
-  std::string source = "--tip";
+  std::string source = given.Source;
   const std::string besideFile = ScalpelDefinitionFileFor(modelFile);
   std::error_code ec;
   if (!definition.TipMm && std::filesystem::is_regular_file(besideFile, ec))

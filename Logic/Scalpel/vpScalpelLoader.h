@@ -14,6 +14,9 @@ struct ScalpelTipDefinition
 {
   std::optional<std::array<double, 3>> TipMm;
   std::optional<std::array<double, 3>> Axis;
+  /// Where the given tip came from, in the words of the front end that took it ("--tip" for a
+  /// command), for the scalpel's TipSource.
+  std::string Source = "the given tip";
 };
 
 /// The tip definition file that belongs to a model: the model's name with .json in place of its

@@ -33,8 +33,8 @@ public:
   void SetAxis(double x, double y, double z);
   vtkGetVector3Macro(Axis, double);
 
-  /// Where the tip definition came from, in words, for reports ("Scalpel.json", "--tip", or the
-  /// automatic finder's reasoning).
+  /// Where the tip definition came from, in words, for reports ("Scalpel.json", the given
+  /// tip as the front end names it ("--tip"), or the automatic finder's reasoning).
   void SetTipSource(const std::string& source) { this->TipSource = source; }
   const std::string& GetTipSource() const { return this->TipSource; }
 

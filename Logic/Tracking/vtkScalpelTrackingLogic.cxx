@@ -77,7 +77,7 @@ void vtkScalpelTrackingLogic::ValidateSettings() const
   const double boundMm = this->Engine->GetErrorBoundMm();
   if (this->Engine->GetRangeMm() < this->Thresholds.CautionMm + boundMm)
   {
-    throw vp::InputError("--range", "the range (" + vp::NumberText(this->Engine->GetRangeMm()) +
+    throw vp::ParameterError("RangeMm", "the range (" + vp::NumberText(this->Engine->GetRangeMm()) +
         " mm) must reach the caution threshold (" + vp::NumberText(this->Thresholds.CautionMm) + " mm)" +
         (boundMm > 0.0 ? " plus the engine's error bound (" + vp::NumberText(boundMm) + " mm)" : std::string()) +
         ", or a class beyond it would look safe");

@@ -1,6 +1,7 @@
 #include "vpCommandTable.h"
 
 #include "vpCommands.h"
+#include "vpEngineOptions.h"
 #include "vpInputError.h"
 #include "vpVulkanContext.h"
 
@@ -36,6 +37,11 @@ int RunCommandReportingErrors(const CommandEntry& command, const std::vector<std
   try
   {
     return command.Run(args);
+  }
+  catch (const ParameterError& e)
+  {
+    std::cerr << "vesselproximity: error: " << FlagOfParameter(e.GetParameter()) << ": " << e.GetProblem() << "\n";
+    return 1;
   }
   catch (const InputError& e)
   {

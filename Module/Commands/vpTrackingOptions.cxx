@@ -20,6 +20,7 @@ DangerThresholds ParseDangerThresholds(const Arguments& args)
 ScalpelTipDefinition ParseTipDefinition(const Arguments& args)
 {
   ScalpelTipDefinition tip;
+  tip.Source = "--tip";
   if (args.Has("--tip"))
   {
     tip.TipMm = ParsePoint(args.Get("--tip"), "--tip");

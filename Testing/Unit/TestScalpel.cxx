@@ -135,6 +135,7 @@ TEST_F(ScalpelLoader, GivenTipWinsAndGetsThePrincipalAxisTowardsIt)
   this->WriteDefinition(R"({"tip_mm": [0, 0, -100]})");
   vp::ScalpelTipDefinition given;
   given.TipMm = std::array<double, 3>{ 0, 0, 0 };
+  given.Source = "--tip";
   auto scalpel = vp::LoadScalpel(this->Model, given);
   EXPECT_DOUBLE_EQ(scalpel->GetTipMm()[2], 0.0);
   EXPECT_NEAR(scalpel->GetAxis()[2], 1.0, 1e-9); // from the centre (z = -50) towards z = 0

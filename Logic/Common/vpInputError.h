@@ -23,6 +23,27 @@ public:
   }
 };
 
+/// A setting of the logic outside what it accepts. The logic names the setting as it knows it
+/// ("RangeMm", the name of its Set/Get pair), never as a front end spells it: a command reports
+/// it under its flag (--range), a Slicer CLI under its XML name (rangeMm). what() reads
+/// "RangeMm: problem" for a caller that has no names of its own.
+class ParameterError : public InputError
+{
+public:
+  ParameterError(const std::string& parameter, const std::string& problem)
+    : InputError(parameter, problem)
+    , Parameter(parameter)
+    , Problem(problem)
+  {
+  }
+  const std::string& GetParameter() const { return this->Parameter; }
+  const std::string& GetProblem() const { return this->Problem; }
+
+private:
+  std::string Parameter;
+  std::string Problem;
+};
+
 /// A number as a message shows it: the shortest form to the given significant digits ("0.9",
 /// "1.41421"), not std::to_string's fixed six decimals.
 inline std::string NumberText(double value, int significantDigits = 6)

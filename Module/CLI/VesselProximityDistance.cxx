@@ -3,8 +3,10 @@
 // program returns the distance to each vessel class through the return-parameter file and,
 // when asked, writes the distance command's JSON report.
 #include "vpCliDescription.h"
-#include "vpCommands.h"
+#include "vpClock.h"
+#include "vpDistanceEngineSettings.h"
 #include "vpInputError.h"
+#include "vpTipDistanceQuery.h"
 #include "vpVulkanContext.h"
 #include "vtkVesselMeshWriter.h"
 
@@ -12,9 +14,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include <iostream>
+#include <algorithm>
 #include <limits>
-#include <sstream>
 
 #ifndef VP_VERSION
 #define VP_VERSION "0.1.0"
@@ -72,11 +73,12 @@ vp::cli::ModuleDescription Describe()
                                   .SetTypeAttribute("model")
                                   .SetFileExtensions(".stl,.vtk,.vtp,.obj")
                                   .SetLongFlag(v.Parameter)
+                                  .SetLogicName("Vessels")
                                   .SetChannel(Channel::Input)
                                   .SetLabel(v.Label)
                                   .SetDescription(std::string(v.Label) + " surface model (class " + v.ClassName +
                                     "): STL, VTK, VTP or OBJ; a SPACE=RAS/LPS header tag is honoured, untagged "
-                                    "files are LPS. A file name must not contain a comma."));
+                                    "files are LPS."));
   }
   d.Groups.push_back(models);
 
@@ -89,6 +91,7 @@ vp::cli::ModuleDescription Describe()
                                  .SetDescription("The scalpel tip, one point (Slicer passes it in LPS). Required."));
   scalpel.Parameters.push_back(Parameter(ParameterType::DoubleVector, "axis")
                                  .SetLongFlag("axis")
+                                 .SetLogicName("Axis")
                                  .SetLabel("Scalpel axis")
                                  .SetDescription("Direction the scalpel points, x,y,z in LPS (need not be unit "
                                                  "length), for the directional distance along it. Optional."));
@@ -97,6 +100,7 @@ vp::cli::ModuleDescription Describe()
   vp::cli::ParameterGroup engine{ "Distance engine", "Which engine answers, and how far it looks", {} };
   engine.Parameters.push_back(Parameter(ParameterType::StringEnumeration, "method")
                                 .SetLongFlag("method")
+                                .SetLogicName("Method")
                                 .SetLabel("Method")
                                 .SetDescription("exact: BVH, exact. zbuffer: Vulkan depth layers, within the error "
                                                 "bound. both: z-buffer checked against exact. auto: z-buffer when a "
@@ -105,6 +109,7 @@ vp::cli::ModuleDescription Describe()
                                 .SetElements({ "exact", "zbuffer", "both", "auto" }));
   engine.Parameters.push_back(Parameter(ParameterType::Float, "rangeMm")
                                 .SetLongFlag("rangeMm")
+                                .SetLogicName("RangeMm")
                                 .SetLabel("Range (mm)")
                                 .SetDescription("Classes further from the tip than this return -1.")
                                 .SetDefault("50")
@@ -151,57 +156,22 @@ vp::cli::ModuleDescription Describe()
   return d;
 }
 
-/// Routes std::cout into a string for a scope: the distance command prints its JSON there.
-class CaptureStdout
-{
-public:
-  CaptureStdout()
-    : Saved(std::cout.rdbuf(this->Buffer.rdbuf()))
-  {
-  }
-  ~CaptureStdout() { std::cout.rdbuf(this->Saved); }
-  CaptureStdout(const CaptureStdout&) = delete;
-  CaptureStdout& operator=(const CaptureStdout&) = delete;
-  std::string Text() const { return this->Buffer.str(); }
-
-private:
-  std::ostringstream Buffer;
-  std::streambuf* Saved;
-};
-
-std::string JoinNumbers(const std::vector<double>& numbers)
-{
-  std::string text;
-  for (double v : numbers)
-  {
-    text += (text.empty() ? "" : ",") + vp::cli::FormatNumber(v);
-  }
-  return text;
-}
-
 void Run(const vp::cli::ParsedArguments& args, vp::cli::ReturnValues& results)
 {
-  std::string vessels;
-  for (const VesselClass& v : Vessels)
+  vp::TipDistanceRequest request;
+  vp::DistanceEngineSettings settings;
+  settings.Method = args.GetString("method");
+  settings.RangeMm = args.GetNumber("rangeMm");
+  try
   {
-    if (!args.IsSet(v.Parameter))
-    {
-      continue;
-    }
-    const std::string file = args.GetString(v.Parameter);
-    if (file.find(',') != std::string::npos)
-    {
-      // The distance command's CLASS=FILE list is comma separated.
-      throw vp::InputError("--" + std::string(v.Parameter), "a file name with a comma cannot be used: " + file);
-    }
-    vessels += (vessels.empty() ? "" : ",") + std::string(v.ClassName) + "=" + file;
+    request.Engine = vp::MakeDistanceEngine(settings);
   }
-  if (vessels.empty())
+  catch (const vp::DeviceError& e)
   {
-    throw vp::cli::UsageError("--portalVein/--hepaticArtery/--hepaticVein", "give at least one vessel model");
+    throw vp::cli::ExitError(4, e.what());
   }
-  std::vector<std::string> command = { "--vessels", vessels, "--tip", JoinNumbers(args.GetNumbers("tip")), "--method",
-    args.GetString("method"), "--range", args.GetString("rangeMm"), "--json" };
+  request.CompareWithExact = settings.Method == "both";
+  request.TipsMm.push_back(args.GetPoint("tip"));
   if (args.IsSet("axis"))
   {
     const std::vector<double> axis = args.GetNumbers("axis");
@@ -209,66 +179,61 @@ void Run(const vp::cli::ParsedArguments& args, vp::cli::ReturnValues& results)
     {
       throw vp::InputError("--axis", "expected three numbers x,y,z, got " + std::to_string(axis.size()));
     }
-    command.insert(command.end(), { "--axis", JoinNumbers(axis) });
+    request.Axis = std::array<double, 3>{ axis[0], axis[1], axis[2] };
   }
-
-  std::string reportText;
-  try
+  std::vector<std::pair<std::string, std::string>> vessels;
+  for (const VesselClass& v : Vessels)
   {
-    CaptureStdout capture;
-    const int code = vp::RunDistanceCommand(command);
-    if (code != 0)
+    if (args.IsSet(v.Parameter))
     {
-      throw vp::cli::ExitError(code, "distance: failed (exit code " + std::to_string(code) + ")");
+      vessels.emplace_back(v.ClassName, args.GetString(v.Parameter));
     }
-    reportText = capture.Text();
   }
-  catch (const vp::DeviceError& e)
+  if (vessels.empty())
   {
-    throw vp::cli::ExitError(4, e.what());
+    throw vp::cli::UsageError("--portalVein/--hepaticArtery/--hepaticVein", "give at least one vessel model");
   }
-  const auto report = nlohmann::json::parse(reportText);
-  const auto& answer = report.at("results").at(0);
-
+  const double loadStart = vp::NowMs();
+  request.Vessels = vp::LoadVesselMeshes(vessels);
+  const double loadMs = vp::NowMs() - loadStart;
+  const vp::TipDistanceAnswer answer = vp::ComputeTipDistances(request);
   if (args.IsSet("report"))
   {
-    vp::WriteFileAtomically(args.GetString("report"), reportText);
+    vp::WriteFileAtomically(args.GetString("report"), vp::TipDistanceReportJson(request, answer, false, loadMs).dump(2) + "\n");
   }
 
-  const auto& nearest = answer.at("nearest");
-  if (!nearest.is_null())
+  const vp::ProximityResult& r = answer.Results.at(0);
+  const int nearest = r.NearestIndex();
+  if (nearest >= 0)
   {
-    const std::string cls = nearest.at("class").get<std::string>();
-    results.Set("nearestClass", cls);
-    results.Set("nearestDistanceMm", nearest.at("distance_mm").get<double>());
-    results.Set("nearestPoint", nearest.at("point").get<std::vector<double>>());
-    const auto& inside = answer.at("classes").at(cls).at("inside");
-    results.Set("nearestInside", inside.is_boolean() && inside.get<bool>());
+    const vp::ClassProximity& n = r.Classes[nearest];
+    results.Set("nearestClass", n.ClassName);
+    results.Set("nearestDistanceMm", n.DistanceMm);
+    results.Set("nearestPoint", std::vector<double>(n.ClosestPoint, n.ClosestPoint + 3));
+    results.Set("nearestInside", n.Inside && *n.Inside);
   }
   double directional = std::numeric_limits<double>::infinity();
   for (const VesselClass& v : Vessels)
   {
-    const auto& classes = answer.at("classes");
-    if (!classes.contains(v.ClassName))
+    for (const vp::ClassProximity& c : r.Classes)
     {
-      continue;
-    }
-    const auto& c = classes.at(v.ClassName);
-    if (!c.at("distance_mm").is_null())
-    {
-      results.Set(v.DistanceResult, c.at("distance_mm").get<double>());
-    }
-    if (c.contains("directional_mm") && c.at("directional_mm").is_number())
-    {
-      directional = std::min(directional, c.at("directional_mm").get<double>());
+      if (c.ClassName != v.ClassName)
+      {
+        continue;
+      }
+      if (c.InRange)
+      {
+        results.Set(v.DistanceResult, c.DistanceMm);
+      }
+      directional = c.DirectionalMm ? std::min(directional, *c.DirectionalMm) : directional;
     }
   }
-  if (directional <= report.at("range_mm").get<double>())
+  if (directional <= request.Engine->GetRangeMm())
   {
     results.Set("directionalDistanceMm", directional);
   }
-  results.Set("errorBoundMm", answer.at("error_bound_mm").get<double>());
-  results.Set("methodUsed", report.at("method").get<std::string>());
+  results.Set("errorBoundMm", r.ErrorBoundMm);
+  results.Set("methodUsed", std::string(request.Engine->GetMethodName()));
 }
 } // namespace
 

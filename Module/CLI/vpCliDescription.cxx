@@ -407,6 +407,12 @@ Parameter& Parameter::SetLongFlag(std::string longFlag)
   return *this;
 }
 
+Parameter& Parameter::SetLogicName(std::string name)
+{
+  this->LogicName = std::move(name);
+  return *this;
+}
+
 Parameter& Parameter::SetIndex(int index)
 {
   this->Index = index;
@@ -1102,6 +1108,19 @@ int RunProgram(const ModuleDescription& description, int argc, const char* const
   {
     std::cerr << program << ": error: " << e.what() << "\n";
     return e.GetExitCode();
+  }
+  catch (const ParameterError& e)
+  {
+    std::string name = e.GetParameter();
+    for (const ParameterGroup& group : description.Groups)
+    {
+      for (const Parameter& p : group.Parameters)
+      {
+        name = p.GetLogicName() == e.GetParameter() ? p.DisplayName() : name;
+      }
+    }
+    std::cerr << program << ": error: " << name << ": " << e.GetProblem() << "\n";
+    return 1;
   }
   catch (const InputError& e)
   {

@@ -90,6 +90,9 @@ public:
   /// Refused when absent (SEM has no such element: the description says so, and the program
   /// reports a missing one as a usage error).
   Parameter& SetRequired(bool required = true);
+  /// The logic's name of the setting this parameter gives ("RangeMm"): a vp::ParameterError the
+  /// logic raises for it is reported under this parameter's DisplayName().
+  Parameter& SetLogicName(std::string name);
 
   ParameterType GetType() const { return this->Type; }
   const std::string& GetName() const { return this->Name; }
@@ -109,6 +112,7 @@ public:
   const std::string& GetFileExtensions() const { return this->FileExtensions; }
   const std::string& GetCoordinateSystem() const { return this->CoordinateSystem; }
   bool IsRequired() const { return this->Required; }
+  const std::string& GetLogicName() const { return this->LogicName; }
 
   /// A simple output (number, boolean, string, enumeration, vector) with no flag and no index:
   /// Slicer does not pass it; the program reports it through the return-parameter file.
@@ -125,7 +129,7 @@ private:
   bool HasConstraints = false;
   double Minimum = 0.0, Maximum = 0.0, Step = 0.0;
   std::vector<std::string> Elements;
-  std::string TypeAttribute, FileExtensions, CoordinateSystem;
+  std::string TypeAttribute, FileExtensions, CoordinateSystem, LogicName;
   bool Required = false;
 };
 

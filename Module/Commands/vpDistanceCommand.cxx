@@ -5,7 +5,8 @@
 #include "vpEngineOptions.h"
 #include "vpInputError.h"
 #include "vpPointCsv.h"
-#include "vtkExactVesselDistance.h"
+#include "vpPatientSpace.h"
+#include "vpTipDistanceQuery.h"
 
 #include <vtkSmartPointer.h>
 
@@ -19,7 +20,6 @@ namespace vp
 {
 namespace
 {
-using Json = nlohmann::ordered_json;
 
 const char* Usage =
   "usage: vesselproximity distance --vessels CLASS=FILE[,CLASS=FILE...] (--tip X,Y,Z | --tips FILE.csv)\n"
@@ -36,18 +36,86 @@ const char* Usage =
   "  --tips: answered as one batch (the z-buffer engine: one GPU submission per 256 tips); the\n"
   "    query times are then the batch's time per tip.\n";
 
-/// LPS <-> RAS is its own inverse: negate x and y.
 std::array<double, 3> ConvertSpace(const std::array<double, 3>& p, bool ras)
 {
-  return ras ? std::array<double, 3>{ -p[0], -p[1], p[2] } : p;
+  return ras ? ConvertLpsRas(p) : p;
 }
 
-Json PointJson(const double p[3], bool ras)
+TipDistanceRequest ParseRequest(const Arguments& args, bool ras)
 {
-  const auto q = ConvertSpace({ p[0], p[1], p[2] }, ras);
-  return Json::array({ q[0], q[1], q[2] });
+  TipDistanceRequest request;
+  const std::string method = args.Get("--method", "exact");
+  request.Engine = MakeDistanceEngine(method, args);
+  request.CompareWithExact = method == "both";
+  if (args.Has("--tip"))
+  {
+    request.TipsMm.push_back(ParsePoint(args.Get("--tip"), "--tip"));
+  }
+  else
+  {
+    request.TipsMm = ReadPointCsv(args.Get("--tips"));
+  }
+  for (auto& t : request.TipsMm)
+  {
+    t = ConvertSpace(t, ras);
+  }
+  if (args.Has("--axis"))
+  {
+    request.Axis = ConvertSpace(ParsePoint(args.Get("--axis"), "--axis"), ras);
+  }
+  return request;
 }
 
+/// "  portal_vein  12.345  (1.00, 2.00, 3.00)  no  -" and, when compared, the exact answer.
+void PrintClassRow(const ClassProximity& c, const ClassProximity* exact, bool within, bool ras)
+{
+  char check[64] = "";
+  if (exact)
+  {
+    std::snprintf(check, sizeof(check), "  %8s  %s", exact->InRange ? FixedText(exact->DistanceMm, "%.3f").c_str() : "-",
+      within ? "yes" : "NO");
+  }
+  if (!c.InRange)
+  {
+    std::printf("  %-16s %12s  %-28s %-7s %-14s%s\n", c.ClassName.c_str(), "out of range", "", "", "", check);
+    return;
+  }
+  const auto q = ConvertSpace({ c.ClosestPoint[0], c.ClosestPoint[1], c.ClosestPoint[2] }, ras);
+  char point[64];
+  std::snprintf(point, sizeof(point), "(%.2f, %.2f, %.2f)", q[0], q[1], q[2]);
+  std::printf("  %-16s %12.3f  %-28s %-7s %-14s%s\n", c.ClassName.c_str(), c.DistanceMm, point,
+    c.Inside ? (*c.Inside ? "yes" : "no") : "open", c.DirectionalMm ? FixedText(*c.DirectionalMm, "%.3f").c_str() : "-", check);
+}
+
+void PrintTable(const TipDistanceRequest& request, const TipDistanceAnswer& answer, bool ras, double loadMs)
+{
+  vtkVesselDistanceEngine* engine = request.Engine;
+  const bool compared = !answer.Exact.empty();
+  std::printf("method %s on %s, range %.1f mm, error bound %.3f mm, space %s, %zu tip(s)\n", engine->GetMethodName(),
+    engine->GetDeviceDescription().c_str(), engine->GetRangeMm(), engine->GetErrorBoundMm(), ras ? "RAS" : "LPS",
+    answer.Results.size());
+  for (std::size_t i = 0; i < answer.Results.size(); ++i)
+  {
+    const ProximityResult& r = answer.Results[i];
+    const auto tip = ConvertSpace({ r.Tip[0], r.Tip[1], r.Tip[2] }, ras);
+    const int nearest = r.NearestIndex();
+    std::printf("tip (%.2f, %.2f, %.2f)  nearest: %s\n", tip[0], tip[1], tip[2],
+      nearest >= 0 ? r.Classes[nearest].ClassName.c_str() : "none in range");
+    std::printf("  %-16s %12s  %-28s %-7s %-14s%s\n", "class", "distance mm", "closest point", "inside", "directional mm",
+      compared ? "  exact mm  within bound" : "");
+    for (std::size_t k = 0; k < r.Classes.size(); ++k)
+    {
+      PrintClassRow(r.Classes[k], compared ? &answer.Exact[i].Classes[k] : nullptr, compared && answer.WithinBound[i][k], ras);
+    }
+  }
+  std::printf("load %.1f ms, build %.1f ms, query median %.4f ms, p95 %.4f ms\n", loadMs, engine->GetBuildTimeMs(),
+    answer.QueryMs(), answer.QueryMs());
+  if (compared)
+  {
+    std::printf("against the exact engine: largest difference %.4f mm, %d answer(s) outside the bound\n",
+      answer.Comparison.MaxAbsDifferenceMm, answer.Comparison.OutsideBound);
+  }
+}
 } // namespace
 
 int RunDistanceCommand(const std::vector<std::string>& argv)
@@ -78,211 +146,29 @@ int RunDistanceCommand(const std::vector<std::string>& argv)
     throw InputError("--space", "expected LPS or RAS, got '" + space + "'");
   }
   const bool ras = space == "RAS";
-  const std::string method = args.Get("--method", "exact");
-  auto engine = MakeDistanceEngine(method, args);
-  // --method both: the exact engine beside the z-buffer one, every answer checked against it.
-  vtkSmartPointer<vtkExactVesselDistance> reference;
-  if (method == "both")
-  {
-    reference = vtkSmartPointer<vtkExactVesselDistance>::New();
-    reference->SetRangeMm(engine->GetRangeMm());
-  }
-
-  std::vector<std::array<double, 3>> tips;
-  if (args.Has("--tip"))
-  {
-    tips.push_back(ParsePoint(args.Get("--tip"), "--tip"));
-  }
-  else
-  {
-    tips = ReadPointCsv(args.Get("--tips"));
-  }
-  for (auto& t : tips)
-  {
-    t = ConvertSpace(t, ras);
-  }
-  std::array<double, 3> axis{};
-  const bool hasAxis = args.Has("--axis");
-  if (hasAxis)
-  {
-    axis = ConvertSpace(ParsePoint(args.Get("--axis"), "--axis"), ras);
-    const double n = std::sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
-    if (!(n > 0))
-    {
-      throw InputError("--axis", "must not be the zero vector");
-    }
-    for (double& c : axis)
-    {
-      c /= n;
-    }
-  }
-
+  TipDistanceRequest request = ParseRequest(args, ras);
   const double loadStart = NowMs();
-  auto meshes = LoadVesselMeshes(ParsePairs(args.Get("--vessels"), "--vessels"));
+  request.Vessels = LoadVesselMeshes(ParsePairs(args.Get("--vessels"), "--vessels"));
   if (args.Has("--repair"))
   {
-    RepairVesselMeshes(meshes);
+    RepairVesselMeshes(request.Vessels);
   }
   const double loadMs = NowMs() - loadStart;
-  for (const auto& m : meshes)
+  const TipDistanceAnswer answer = ComputeTipDistances(request);
+  ReportSurfaceDefects("distance", request.Engine, request.Vessels);
+  if (answer.Comparison.OutsideBound > 0)
   {
-    engine->AddVessel(m.ClassName, m.Mesh);
-    if (reference)
-    {
-      reference->AddVessel(m.ClassName, m.Mesh);
-    }
+    std::cerr << "vesselproximity: warning: " << answer.Comparison.OutsideBound
+              << " answer(s) of the z-buffer engine outside its error bound of " << request.Engine->GetErrorBoundMm() << " mm\n";
   }
-  engine->Build();
-  if (reference)
-  {
-    reference->Build();
-  }
-  ReportSurfaceDefects("distance", engine, meshes);
-
-  // One batch: the same answers as tip by tip (bit for bit), in one submission where the engine can.
-  const std::vector<std::array<double, 3>> axes(tips.size(), axis);
-  std::vector<ProximityResult> results;
-  const double start = NowMs();
-  engine->ComputeProximityBatch(tips, hasAxis ? &axes : nullptr, results);
-  const double batchMs = NowMs() - start;
-  const std::vector<double> queryMs(tips.size(), batchMs / static_cast<double>(std::max<std::size_t>(1, tips.size())));
-  std::vector<ProximityResult> exactResults;
-  if (reference)
-  {
-    reference->ComputeProximityBatch(tips, hasAxis ? &axes : nullptr, exactResults);
-  }
-  const double bound = engine->GetErrorBoundMm();
-  ExactComparison comparison;
-  std::vector<std::vector<char>> withinBound(exactResults.size());
-  for (std::size_t i = 0; i < exactResults.size(); ++i)
-  {
-    comparison.Add(results[i], exactResults[i], engine->GetRangeMm(), bound, &withinBound[i]);
-  }
-  const int outsideBound = comparison.OutsideBound;
-  const double maxDifference = comparison.MaxAbsDifferenceMm;
-  if (outsideBound > 0)
-  {
-    std::cerr << "vesselproximity: warning: " << outsideBound << " answer(s) of the z-buffer engine outside its error bound of "
-              << bound << " mm\n";
-  }
-
   // Everything is computed before anything is printed: a failure leaves no partial output.
   if (args.Has("--json"))
   {
-    Json out;
-    out["method"] = engine->GetMethodName();
-    out["device"] = engine->GetDeviceDescription();
-    out["space"] = space;
-    out["range_mm"] = engine->GetRangeMm();
-    out["error_bound_mm"] = bound;
-    out["surfaces"] = SurfacesJson(engine, meshes);
-    Json list = Json::array();
-    for (std::size_t i = 0; i < results.size(); ++i)
-    {
-      const ProximityResult& r = results[i];
-      Json item;
-      item["tip"] = PointJson(r.Tip, ras);
-      item["error_bound_mm"] = r.ErrorBoundMm;
-      const int nearest = r.NearestIndex();
-      if (nearest >= 0)
-      {
-        const ClassProximity& n = r.Classes[nearest];
-        item["nearest"] = { { "class", n.ClassName }, { "distance_mm", n.DistanceMm }, { "point", PointJson(n.ClosestPoint, ras) } };
-      }
-      else
-      {
-        item["nearest"] = nullptr;
-      }
-      Json classes = Json::object();
-      for (std::size_t k = 0; k < r.Classes.size(); ++k)
-      {
-        const ClassProximity& c = r.Classes[k];
-        Json entry;
-        entry["distance_mm"] = c.InRange ? Json(c.DistanceMm) : Json(nullptr);
-        entry["point"] = c.InRange ? PointJson(c.ClosestPoint, ras) : Json(nullptr);
-        entry["inside"] = c.Inside ? Json(*c.Inside) : Json(nullptr);
-        if (c.InsideUncertain)
-        {
-          entry["inside_uncertain"] = true; // the votes on a defective surface disagreed
-        }
-        entry["in_range"] = c.InRange;
-        entry["directional_mm"] = c.DirectionalMm ? Json(*c.DirectionalMm) : Json(nullptr);
-        if (reference)
-        {
-          const ClassProximity& e = exactResults[i].Classes[k];
-          entry["exact_mm"] = e.InRange ? Json(e.DistanceMm) : Json(nullptr);
-          entry["difference_mm"] = e.InRange && c.InRange ? Json(c.DistanceMm - e.DistanceMm) : Json(nullptr);
-          entry["within_bound"] = withinBound[i][k] != 0;
-        }
-        classes[c.ClassName] = entry;
-      }
-      item["classes"] = classes;
-      list.push_back(item);
-    }
-    out["results"] = list;
-    if (reference)
-    {
-      out["comparison"] = { { "reference", "exact" }, { "max_abs_difference_mm", maxDifference },
-        { "outside_bound", outsideBound } };
-    }
-    out["timing_ms"] = { { "load", loadMs }, { "build", engine->GetBuildTimeMs() },
-      { "query_median", Quantile(queryMs, 0.5) }, { "query_p95", Quantile(queryMs, 0.95) }, { "batch", batchMs },
-      { "tips_per_second", 1000.0 * static_cast<double>(tips.size()) / std::max(1e-9, batchMs) } };
-    std::cout << out.dump(2) << "\n";
-    return 0;
+    std::cout << TipDistanceReportJson(request, answer, ras, loadMs).dump(2) << "\n";
   }
-
-  std::printf("method %s on %s, range %.1f mm, error bound %.3f mm, space %s, %zu tip(s)\n", engine->GetMethodName(),
-    engine->GetDeviceDescription().c_str(), engine->GetRangeMm(), bound, space.c_str(), tips.size());
-  for (std::size_t i = 0; i < results.size(); ++i)
+  else
   {
-    const ProximityResult& r = results[i];
-    const auto tip = ConvertSpace({ r.Tip[0], r.Tip[1], r.Tip[2] }, ras);
-    const int nearest = r.NearestIndex();
-    std::printf("tip (%.2f, %.2f, %.2f)  nearest: %s\n", tip[0], tip[1], tip[2],
-      nearest >= 0 ? r.Classes[nearest].ClassName.c_str() : "none in range");
-    std::printf("  %-16s %12s  %-28s %-7s %-14s%s\n", "class", "distance mm", "closest point", "inside", "directional mm",
-      reference ? "  exact mm  within bound" : "");
-    for (std::size_t k = 0; k < r.Classes.size(); ++k)
-    {
-      const ClassProximity& c = r.Classes[k];
-      char check[64] = "";
-      if (reference)
-      {
-        const ClassProximity& e = exactResults[i].Classes[k];
-        const bool ok = withinBound[i][k] != 0;
-        if (e.InRange)
-        {
-          std::snprintf(check, sizeof(check), "  %8.3f  %s", e.DistanceMm, ok ? "yes" : "NO");
-        }
-        else
-        {
-          std::snprintf(check, sizeof(check), "  %8s  %s", "-", ok ? "yes" : "NO");
-        }
-      }
-      if (!c.InRange)
-      {
-        std::printf("  %-16s %12s  %-28s %-7s %-14s%s\n", c.ClassName.c_str(), "out of range", "", "", "", check);
-        continue;
-      }
-      const auto q = ConvertSpace({ c.ClosestPoint[0], c.ClosestPoint[1], c.ClosestPoint[2] }, ras);
-      char point[64];
-      std::snprintf(point, sizeof(point), "(%.2f, %.2f, %.2f)", q[0], q[1], q[2]);
-      char directional[32] = "-";
-      if (c.DirectionalMm)
-      {
-        std::snprintf(directional, sizeof(directional), "%.3f", *c.DirectionalMm);
-      }
-      std::printf("  %-16s %12.3f  %-28s %-7s %-14s%s\n", c.ClassName.c_str(), c.DistanceMm, point,
-        c.Inside ? (*c.Inside ? "yes" : "no") : "open", directional, check);
-    }
-  }
-  std::printf("load %.1f ms, build %.1f ms, query median %.4f ms, p95 %.4f ms\n", loadMs, engine->GetBuildTimeMs(),
-    Quantile(queryMs, 0.5), Quantile(queryMs, 0.95));
-  if (reference)
-  {
-    std::printf("against the exact engine: largest difference %.4f mm, %d answer(s) outside the bound\n", maxDifference,
-      outsideBound);
+    PrintTable(request, answer, ras, loadMs);
   }
   return 0;
 }

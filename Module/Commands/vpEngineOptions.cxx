@@ -2,13 +2,7 @@
 
 #include "vpInputError.h"
 #include "vpPointCsv.h"
-#include "vpVulkanContext.h"
-#include "vtkBruteForceVesselDistance.h"
-#include "vtkExactVesselDistance.h"
-#include "vtkZBufferVesselDistance.h"
 
-#include <algorithm>
-#include <cmath>
 #include <iostream>
 
 namespace vp
@@ -50,8 +44,8 @@ std::set<std::string> EngineValueOptions()
 std::string FlagOfParameter(const std::string& parameter)
 {
   static const std::pair<const char*, const char*> flags[] = { { "RangeMm", "--range" }, { "CellSizeMm", "--cell" },
-    { "ResolutionPx", "--resolution" }, { "LayerMode", "--layers" }, { "BoxMode", "--box" },
-    { "MovingBoxSizeMm", "--box-size" }, { "DistanceBins", "--bins" }, { "CellSizeMm/ResolutionPx", "--cell/--resolution" },
+    { "ResolutionPx", "--resolution" }, { "LayerMode", "--layers" }, { "BoxMode", "--box" }, { "MovingBoxSizeMm", "--box-size" },
+    { "DistanceBins", "--bins" }, { "CellSizeMm/ResolutionPx", "--cell/--resolution" }, { "Method", "--method" },
     { "Vessels", "--vessels" } };
   for (const auto& [name, flag] : flags)
   {
@@ -63,77 +57,38 @@ std::string FlagOfParameter(const std::string& parameter)
   return parameter;
 }
 
-namespace
+DistanceEngineSettings ParseEngineSettings(const std::string& method, const Arguments& args)
 {
-vtkSmartPointer<vtkZBufferVesselDistance> MakeZBuffer(const Arguments& args)
-{
-  auto z = vtkSmartPointer<vtkZBufferVesselDistance>::New();
-  z->SetDeviceSelector(args.Get("--device"));
+  DistanceEngineSettings s;
+  s.Method = method;
+  if (args.Has("--range"))
+  {
+    s.RangeMm = args.GetNumber("--range", 0.0);
+  }
+  s.DeviceSelector = args.Get("--device");
   if (args.Has("--cell"))
   {
-    z->SetCellSizeMm(args.GetNumber("--cell", z->GetCellSizeMm()));
+    s.CellSizeMm = args.GetNumber("--cell", 0.0);
   }
-  z->SetResolutionPx(args.GetInteger("--resolution", 0));
-  const std::string layers = args.Get("--layers", "exact");
-  if (layers != "exact" && layers != "paper")
-  {
-    throw InputError("--layers", "expected exact or paper, got '" + layers + "'");
-  }
-  z->SetLayerMode(layers == "paper" ? vtkZBufferVesselDistance::PaperNearFar : vtkZBufferVesselDistance::ExactIntervals);
-  const std::string box = args.Get("--box", "fixed");
-  if (box != "fixed" && box != "moving")
-  {
-    throw InputError("--box", "expected fixed or moving, got '" + box + "'");
-  }
-  z->SetBoxMode(box == "moving" ? vtkZBufferVesselDistance::MovingWithTip : vtkZBufferVesselDistance::FixedAroundVessels);
+  s.ResolutionPx = args.GetInteger("--resolution", 0);
+  s.LayerMode = args.Get("--layers", "exact");
+  s.BoxMode = args.Get("--box", "fixed");
   if (args.Has("--box-size"))
   {
-    const auto size = ParsePoint(args.Get("--box-size"), "--box-size");
-    z->SetMovingBoxSizeMm(size[0], size[1], size[2]);
+    s.MovingBoxSizeMm = ParsePoint(args.Get("--box-size"), "--box-size");
   }
-  z->SetDistanceBins(args.GetInteger("--bins", 0, 0)); // 0: off, as the help says
-  // Open the device now: a missing one is reported before any file is read.
-  z->GetDeviceName();
-  return z;
+  s.DistanceBins = args.GetInteger("--bins", 0, 0); // 0: off, as the help says
+  return s;
 }
-} // namespace
 
 vtkSmartPointer<vtkVesselDistanceEngine> MakeDistanceEngine(const std::string& method, const Arguments& args)
 {
-  vtkSmartPointer<vtkVesselDistanceEngine> engine;
-  if (method == "exact")
+  std::string note;
+  auto engine = MakeDistanceEngine(ParseEngineSettings(method, args), &note);
+  if (!note.empty())
   {
-    engine = vtkSmartPointer<vtkExactVesselDistance>::New();
-  }
-  else if (method == "brute")
-  {
-    engine = vtkSmartPointer<vtkBruteForceVesselDistance>::New();
-  }
-  else if (method == "zbuffer" || method == "both")
-  {
-    engine = MakeZBuffer(args);
-  }
-  else if (method == "auto")
-  {
-    try
-    {
-      engine = MakeZBuffer(args);
-    }
-    catch (const DeviceError& e)
-    {
-      std::cerr << "vesselproximity: note: " << e.what() << "; --method auto uses the exact engine\n";
-      engine = vtkSmartPointer<vtkExactVesselDistance>::New();
-    }
-  }
-  else
-  {
-    throw InputError("--method", "unknown method '" + method + "' (exact, zbuffer, both, brute or auto)");
-  }
-  if (args.Has("--range"))
-  {
-    engine->SetRangeMm(args.GetNumber("--range", engine->GetRangeMm()));
+    std::cerr << "vesselproximity: note: " << note << "; --method auto uses the exact engine\n";
   }
   return engine;
 }
-
 } // namespace vp

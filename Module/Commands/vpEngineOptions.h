@@ -2,6 +2,7 @@
 #define vpEngineOptions_h
 
 #include "vpArguments.h"
+#include "vpDistanceEngineSettings.h"
 #include "vpExactComparison.h"
 #include "vtkVesselDistanceEngine.h"
 
@@ -22,6 +23,9 @@ std::set<std::string> EngineValueOptions();
 /// The flag that sets a parameter of the logic (ParameterError's name: "RangeMm" -> "--range"),
 /// or the name itself when no command has a flag for it.
 std::string FlagOfParameter(const std::string& parameter);
+
+/// The engine settings the options give (--range and the z-buffer's), for the given method.
+DistanceEngineSettings ParseEngineSettings(const std::string& method, const Arguments& args);
 
 /// The engine --method names, configured from the z-buffer options. "auto" is the z-buffer
 /// engine when a Vulkan device opens, else the exact engine, with a note on stderr saying why.

@@ -1,0 +1,40 @@
+#ifndef vpDistanceEngineSettings_h
+#define vpDistanceEngineSettings_h
+
+#include "vtkVesselDistanceEngine.h"
+
+#include <vtkSmartPointer.h>
+
+#include <array>
+#include <optional>
+#include <string>
+
+namespace vp
+{
+/// Which engine answers and how it is set up: what a front end asks for, in the logic's names.
+/// Unset optionals keep the engine's own defaults.
+struct DistanceEngineSettings
+{
+  /// exact (Embree BVH), zbuffer (Vulkan depth layers), both (the z-buffer engine; the caller
+  /// checks it against the exact one), brute (the paper's CPU algorithm), or auto (the z-buffer
+  /// engine when a Vulkan device opens, else the exact one).
+  std::string Method = "exact";
+  std::optional<double> RangeMm;
+  // The z-buffer engine's (vtkZBufferVesselDistance's Set/Get of the same names):
+  std::string DeviceSelector;
+  std::optional<double> CellSizeMm;
+  int ResolutionPx = 0;
+  std::string LayerMode = "exact"; ///< exact or paper
+  std::string BoxMode = "fixed";   ///< fixed or moving
+  std::optional<std::array<double, 3>> MovingBoxSizeMm;
+  int DistanceBins = 0;
+};
+
+/// The engine the settings describe, its Vulkan device opened (a missing one is reported before
+/// any file is read). Throws ParameterError naming the setting for a bad value, and DeviceError
+/// when the z-buffer engine was asked for and there is no device. With Method auto and no device,
+/// the exact engine, and *note (when given) says why.
+vtkSmartPointer<vtkVesselDistanceEngine> MakeDistanceEngine(const DistanceEngineSettings& settings, std::string* note = nullptr);
+} // namespace vp
+
+#endif

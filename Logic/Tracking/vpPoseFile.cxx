@@ -183,8 +183,9 @@ std::array<double, 16> PoseFromQuaternion(const std::array<double, 3>& p, const 
     0, 0, 0, 1 };
 }
 
-PoseStream::PoseStream(const std::string& fileName)
+PoseStream::PoseStream(const std::string& fileName, std::size_t expected)
   : Name(fileName)
+  , Expected(expected)
 {
   if (EndsWith(fileName, ".json"))
   {
@@ -197,6 +198,15 @@ PoseStream::PoseStream(const std::string& fileName)
 }
 
 PoseStream::~PoseStream() = default;
+
+std::size_t PoseStream::CountPoses(const std::string& fileName)
+{
+  PoseStream check(fileName);
+  for (TrackedPose pose; check.Next(pose);)
+  {
+  }
+  return check.PosesRead();
+}
 
 bool PoseStream::Next(TrackedPose& pose)
 {

@@ -31,31 +31,82 @@ std::vector<TrackedPose> ReadPoseFile(const std::string& fileName);
 
 class NumericCsvReader;
 
+/// Where a tracking session's poses come from, one at a time: a recorded file (PoseStream), and
+/// later a live stream. Next() throws vp::InputError naming the source on a bad pose.
+class PoseSource
+{
+public:
+  virtual ~PoseSource() = default;
+  /// The next pose; false after the last.
+  virtual bool Next(TrackedPose& pose) = 0;
+  /// The poses returned so far.
+  virtual std::size_t PosesRead() const = 0;
+  /// The poses there will be in all, for progress; 0 when unknown (a live stream).
+  virtual std::size_t PosesExpected() const { return 0; }
+  /// The source as reports name it (the file name).
+  virtual const std::string& GetName() const = 0;
+};
+
 /// The poses of a pose file one at a time, with ReadPoseFile's checks and messages: a CSV file
 /// is read a line at a time, so an hour of tracking need not fit in memory; a JSON file is read
 /// whole (it is one document). A caller that must refuse a bad file before computing anything
 /// reads it through once first.
-class PoseStream
+class PoseStream : public PoseSource
 {
 public:
-  /// Opens the file; throws vp::InputError naming it when it cannot be read.
-  explicit PoseStream(const std::string& fileName);
-  ~PoseStream();
+  /// Opens the file; throws vp::InputError naming it when it cannot be read. expected: the
+  /// poses it holds when the caller counted them (PosesExpected()).
+  explicit PoseStream(const std::string& fileName, std::size_t expected = 0);
+  ~PoseStream() override;
   PoseStream(const PoseStream&) = delete;
   PoseStream& operator=(const PoseStream&) = delete;
   /// The next pose; false after the last. Throws vp::InputError on a bad line or pose, and on a
   /// file without poses.
-  bool Next(TrackedPose& pose);
-  /// The poses returned so far.
-  std::size_t PosesRead() const { return this->Read; }
+  bool Next(TrackedPose& pose) override;
+  std::size_t PosesRead() const override { return this->Read; }
+  std::size_t PosesExpected() const override { return this->Expected; }
+  const std::string& GetName() const override { return this->Name; }
+  /// Reads a file through once, with every check, and returns how many poses it holds: a bad
+  /// file is refused before anything is computed.
+  static std::size_t CountPoses(const std::string& fileName);
 
 private:
   std::string Name;
   std::unique_ptr<NumericCsvReader> Csv;
   std::vector<TrackedPose> Poses; // a JSON file's
   std::size_t Read = 0;
+  std::size_t Expected = 0;
   std::size_t Columns = 0;
   TrackedPose Previous;
+};
+
+/// Poses already in memory (a designed trajectory), as a session's source.
+class PoseListSource : public PoseSource
+{
+public:
+  /// name: what reports call the poses (the file they were also written to, if any).
+  PoseListSource(const std::vector<TrackedPose>& poses, std::string name)
+    : Poses(poses)
+    , Name(std::move(name))
+  {
+  }
+  bool Next(TrackedPose& pose) override
+  {
+    if (this->Read == this->Poses.size())
+    {
+      return false;
+    }
+    pose = this->Poses[this->Read++];
+    return true;
+  }
+  std::size_t PosesRead() const override { return this->Read; }
+  std::size_t PosesExpected() const override { return this->Poses.size(); }
+  const std::string& GetName() const override { return this->Name; }
+
+private:
+  const std::vector<TrackedPose>& Poses;
+  std::string Name;
+  std::size_t Read = 0;
 };
 
 /// The CSV form ReadPoseFile reads, `time,m00,...,m33` with a header line, each number to 17

@@ -2,14 +2,13 @@
 // labelmap volume (a temporary .nrrd); the program writes one closed surface per vessel class
 // into the output folder and returns how many it wrote.
 #include "vpCliDescription.h"
-#include "vpCommands.h"
 #include "vpInputError.h"
-#include "vpJsonFile.h"
+#include "vpRunFolder.h"
+#include "vpVesselModelSet.h"
 
 #include <vtkObject.h>
 
-#include <nlohmann/json.hpp>
-
+#include <iostream>
 
 #ifndef VP_VERSION
 #define VP_VERSION "0.1.0"
@@ -62,6 +61,7 @@ vp::cli::ModuleDescription Describe()
                                             "when missing. Nothing is written when the run fails. Required."));
   io.Parameters.push_back(Parameter(ParameterType::File, "labelTable")
                             .SetLongFlag("labelTable")
+                                 .SetLogicName("LabelTableFile")
                             .SetFileExtensions(".json")
                             .SetChannel(Channel::Input)
                             .SetLabel("Label table")
@@ -74,6 +74,7 @@ vp::cli::ModuleDescription Describe()
   vp::cli::ParameterGroup surface{ "Surface", "Smoothing, decimation and coordinate system of the models", {} };
   surface.Parameters.push_back(Parameter(ParameterType::Float, "smoothing")
                                  .SetLongFlag("smoothing")
+                                 .SetLogicName("SmoothingFactor")
                                  .SetLabel("Smoothing")
                                  .SetDescription("Windowed-sinc smoothing factor as Slicer codes it: pass band "
                                                  "10^(-4 x factor). 0 keeps the voxel steps.")
@@ -81,12 +82,14 @@ vp::cli::ModuleDescription Describe()
                                  .SetRange(0.0, 1.0, 0.05));
   surface.Parameters.push_back(Parameter(ParameterType::Integer, "smoothingIterations")
                                  .SetLongFlag("smoothingIterations")
+                                 .SetLogicName("SmoothingIterations")
                                  .SetLabel("Smoothing iterations")
                                  .SetDescription("Windowed-sinc iterations (Slicer uses 20; more shrink thin vessels).")
                                  .SetDefault("20")
                                  .SetRange(1, 1000, 1));
   surface.Parameters.push_back(Parameter(ParameterType::Float, "decimation")
                                  .SetLongFlag("decimation")
+                                 .SetLogicName("DecimationFactor")
                                  .SetLabel("Decimation")
                                  .SetDescription("Fraction of triangles removed, keeping topology (0: none).")
                                  .SetDefault("0")
@@ -117,38 +120,22 @@ vp::cli::ModuleDescription Describe()
 
 void Run(const vp::cli::ParsedArguments& args, vp::cli::ReturnValues& results)
 {
-  std::string input = args.GetString("inputVolume");
-  if (input[0] == '-')
-  {
-    input = "./" + input; // the models command would take it for an option
-  }
-  const std::string outDir = args.GetString("outputDirectory");
-  std::vector<std::string> command = { input, "-o", outDir, "--smoothing", args.GetString("smoothing"),
-    "--smoothing-iterations", args.GetString("smoothingIterations"), "--decimation", args.GetString("decimation"),
-    "--space", args.GetString("space") };
-  if (args.IsSet("labelTable"))
-  {
-    command.insert(command.end(), { "--labels", args.GetString("labelTable") });
-  }
-  const int code = vp::RunModelsCommand(command);
-  if (code != 0)
-  {
-    throw vp::cli::ExitError(code, "models: failed (exit code " + std::to_string(code) + ")");
-  }
-
-  // The command's own record of what it wrote, rather than a second guess at file names.
-  const std::string record = outDir + "/models.json";
-  const nlohmann::json doc = vp::ReadJsonFile(record, "the models list");
-  if (!doc.contains("structures"))
-  {
-    throw vp::InputError(record, "no \"structures\" after the run");
-  }
+  vp::RunFolder run(args.GetString("outputDirectory"), "models.json");
+  vp::VesselModelParameters parameters;
+  parameters.SmoothingFactor = args.GetNumber("smoothing");
+  parameters.SmoothingIterations = args.GetInteger("smoothingIterations");
+  parameters.DecimationFactor = args.GetNumber("decimation");
+  parameters.FileSpace = args.GetString("space") == "RAS" ? vp::MeshSpace::RAS : vp::MeshSpace::LPS;
+  parameters.LabelTableFile = args.IsSet("labelTable") ? args.GetString("labelTable") : std::string();
+  const vp::VesselModelSet set = vp::BuildVesselModels({ args.GetString("inputVolume") }, parameters,
+    [](const std::string& line) { std::cerr << "models: " << line << "\n"; });
+  vp::WriteVesselModels(set, run);
   std::string classes;
-  for (const auto& s : doc["structures"])
+  for (const vp::VesselClassModel& m : set.Models)
   {
-    classes += (classes.empty() ? "" : ",") + s.at("class").get<std::string>();
+    classes += (classes.empty() ? "" : ",") + m.ClassName;
   }
-  results.Set("numberOfModels", static_cast<int>(doc["structures"].size()));
+  results.Set("numberOfModels", static_cast<int>(set.Models.size()));
   results.Set("modelClasses", classes);
 }
 } // namespace

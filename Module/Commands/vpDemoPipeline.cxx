@@ -2,14 +2,15 @@
 
 #include "vpCommandSupport.h"
 #include "vpDangerLevels.h"
-#include "vpCommands.h"
+#include "vpDistanceEngineSettings.h"
 #include "vpDefaultScalpel.h"
 #include "vpDemoTrajectory.h"
 #include "vpInputError.h"
-#include "vpJsonFile.h"
 #include "vpLiverPhantom.h"
 #include "vpPoseFile.h"
 #include "vpScalpelLoader.h"
+#include "vpTrackingSession.h"
+#include "vpVesselModelSet.h"
 #include "vpVirtualDisplay.h"
 #include "vpVulkanContext.h"
 #include "vtkScalpelModel.h"
@@ -25,6 +26,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -136,6 +138,45 @@ void RenderKeyFrames(DemoReport& report, const std::vector<TrackedPose>& poses)
     }
   }
 }
+
+/// Both engines on every frame: the z-buffer engine answers, the exact engine checks; the exact
+/// engine alone without a Vulkan device.
+void TrackDemo(DemoReport& report, const std::vector<NamedMesh>& vessels, double frameBudgetMs)
+{
+  auto logic = vtkSmartPointer<vtkVesselProximityLogic>::New();
+  DistanceEngineSettings settings;
+  settings.Method = "zbuffer";
+  report.Method = "both";
+  try
+  {
+    logic->SetDistanceEngine(MakeDistanceEngine(settings));
+  }
+  catch (const DeviceError& e)
+  {
+    report.Method = "exact";
+    report.MethodNote = std::string("no Vulkan device, exact engine only: ") + e.what();
+    std::cerr << "demo: " << report.MethodNote << "\n";
+    settings.Method = "exact";
+    logic->SetDistanceEngine(MakeDistanceEngine(settings));
+  }
+  logic->SetCompareWithExact(report.Method == "both");
+  logic->SetScalpel(LoadScalpel(report.ScalpelFile, {}));
+  for (const NamedMesh& m : vessels)
+  {
+    logic->AddVessel(m.ClassName, m.Mesh);
+  }
+  logic->Build();
+  logic->GetTrackingLogic()->SetFrameBudgetMs(frameBudgetMs);
+  logic->GetTrackingLogic()->ValidateSettings();
+  RunFolder run(report.OutDir, "summary.json");
+  TrackingSession session(logic, vessels);
+  PoseListSource poses(report.Trajectory.Poses, report.PosesFile);
+  if (!session.Run(poses, run))
+  {
+    throw InputError(report.OutDir, "interrupted");
+  }
+  report.Summary = session.GetReport();
+}
 } // namespace
 
 vtkSmartPointer<vtkVesselProximityLogic> MakeDemoTipLogic(const DemoReport& report)
@@ -165,23 +206,26 @@ DemoReport RunDemoPipeline(const std::string& outDir, bool screenshots, double f
     phantom = MakeLiverPhantom();
     WriteLiverPhantomDicom(phantom, report.DicomFolder);
   }
+  std::vector<NamedMesh> vessels;
   {
     Stage stage(report, "models: DICOM series -> vessel surface models");
-    if (RunModelsCommand({ report.DicomFolder, "-o", outDir + "/models" }) != 0)
+    RunFolder run(outDir + "/models", "models.json");
+    const VesselModelSet set = BuildVesselModels(
+      { report.DicomFolder }, VesselModelParameters(), [](const std::string& line) { std::cerr << "models: " << line << "\n"; });
+    WriteVesselModels(set, run);
+    for (const VesselClassModel& m : set.Models)
     {
-      throw InputError(report.DicomFolder, "the models command failed");
-    }
-    const nlohmann::json models = ReadJsonFile(outDir + "/models/models.json", "the models list");
-    for (const auto& s : models.at("structures"))
-    {
-      report.ModelFiles[s.at("class").get<std::string>()] = outDir + "/models/" + s.at("file").get<std::string>();
+      report.ModelFiles[m.ClassName] = run.Target() + "/" + m.ClassName + ".stl";
     }
     for (const char* c : VesselClasses)
     {
-      if (!report.ModelFiles.count(c))
+      const auto model = std::find_if(
+        set.Models.begin(), set.Models.end(), [&](const VesselClassModel& m) { return m.ClassName == c; });
+      if (model == set.Models.end())
       {
         throw InputError(report.DicomFolder, std::string("no model was built for ") + c);
       }
+      vessels.push_back({ c, report.ModelFiles[c], model->Surface, std::nullopt });
     }
   }
   {
@@ -194,36 +238,12 @@ DemoReport RunDemoPipeline(const std::string& outDir, bool screenshots, double f
   }
   {
     Stage stage(report, "track: every frame through the z-buffer engine, checked by the exact engine");
-    std::string vessels;
-    for (const char* c : VesselClasses)
-    {
-      vessels += (vessels.empty() ? "" : ",") + std::string(c) + "=" + report.ModelFiles.at(c);
-    }
-    std::vector<std::string> args{ "--vessels", vessels, "--scalpel", report.ScalpelFile, "--poses", report.PosesFile, "-o",
-      outDir, "--frame-budget-ms", NumberText(frameBudgetMs), "--method", "both" };
-    report.Method = "both";
-    int status = 0;
-    try
-    {
-      status = RunTrackCommand(args);
-    }
-    catch (const DeviceError& e)
-    {
-      report.Method = "exact";
-      report.MethodNote = std::string("no Vulkan device, exact engine only: ") + e.what();
-      std::cerr << "demo: " << report.MethodNote << "\n";
-      args.back() = "exact";
-      status = RunTrackCommand(args);
-    }
-    if (status != 0)
-    {
-      throw InputError(report.PosesFile, "the track command failed");
-    }
+    TrackDemo(report, vessels, frameBudgetMs);
   }
   if (screenshots)
   {
     Stage stage(report, "screenshots of the key frames");
-    RenderKeyFrames(report, ReadPoseFile(report.PosesFile));
+    RenderKeyFrames(report, report.Trajectory.Poses);
   }
   return report;
 }

@@ -30,16 +30,16 @@ struct DemoReport
   std::string Method; ///< "both" (z-buffer checked by exact) or "exact" without a Vulkan device
   std::string MethodNote;
   int Frames = 0;
+  nlohmann::ordered_json Summary; ///< the track stage's summary.json
   std::vector<std::string> Screenshots;
   std::string ScreenshotProblem; ///< why there are none, when there are none
 };
 
 /// The demo's pipeline, end to end, into outDir: the procedural liver phantom written as DICOM
-/// series; vessel models built from those series by the `models` command; the built-in CUSA
-/// handpiece; the demo trajectory as a pose file; the `track` command with both engines on every
-/// frame (frames.csv, summary.json, distance.png); screenshots of the key frames rendered
-/// off-screen (a virtual display is started when there is none). Progress goes to stderr and the
-/// commands' own reports to stdout. Throws vp::InputError when something cannot be written.
+/// series; vessel models built from those series (vp::BuildVesselModels, into models/); the
+/// built-in CUSA handpiece; the demo trajectory, also written as a pose file; a tracking session
+/// with both engines on every frame (frames.csv, summary.json, distance.png); screenshots of the key frames rendered
+/// off-screen (a virtual display is started when there is none). Progress goes to stderr. Throws vp::InputError when something cannot be written.
 /// frameBudgetMs goes to the track stage (--frame-budget-ms).
 DemoReport RunDemoPipeline(const std::string& outDir, bool screenshots, double frameBudgetMs = 16.7);
 

@@ -46,7 +46,8 @@ std::string FlagOfParameter(const std::string& parameter)
   static const std::pair<const char*, const char*> flags[] = { { "RangeMm", "--range" }, { "CellSizeMm", "--cell" },
     { "ResolutionPx", "--resolution" }, { "LayerMode", "--layers" }, { "BoxMode", "--box" }, { "MovingBoxSizeMm", "--box-size" },
     { "DistanceBins", "--bins" }, { "CellSizeMm/ResolutionPx", "--cell/--resolution" }, { "Method", "--method" },
-    { "Vessels", "--vessels" } };
+    { "Vessels", "--vessels" }, { "Axis", "--axis" }, { "SmoothingFactor", "--smoothing" },
+    { "SmoothingIterations", "--smoothing-iterations" }, { "DecimationFactor", "--decimation" } };
   for (const auto& [name, flag] : flags)
   {
     if (parameter == name)

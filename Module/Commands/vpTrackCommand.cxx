@@ -4,43 +4,24 @@
 #include "vpCommandSupport.h"
 #include "vpRunFolder.h"
 #include "vpCommands.h"
-#include "vpDangerBands.h"
 #include "vpDangerLevels.h"
-#include "vpDistancePlotRecorder.h"
-#include "vpFramesCsv.h"
 #include "vpEngineOptions.h"
 #include "vpInputError.h"
-#include "vpPointCsv.h"
 #include "vpPoseFile.h"
 #include "vpScalpelLoader.h"
 #include "vpTrackingOptions.h"
-#include "vpTrackingSummary.h"
+#include "vpTrackingSession.h"
+#include "vtkScalpelPenetration.h"
 #include "vtkScalpelTrackingLogic.h"
 #include "vtkVesselProximityLogic.h"
-#include "vtkVesselMeshWriter.h"
 
-#include <vtkCallbackCommand.h>
-#include <vtkNew.h>
-
-#include <nlohmann/json.hpp>
-
-#include <cerrno>
-#include <cmath>
 #include <cstdio>
-#include <cstring>
-#include <fstream>
-#include <memory>
-#include <sys/resource.h>
-#include <filesystem>
 #include <iostream>
-#include <limits>
 
 namespace vp
 {
 namespace
 {
-using Json = nlohmann::ordered_json;
-
 const char* Usage =
   "usage: vesselproximity track --vessels CLASS=FILE[,CLASS=FILE...] --scalpel FILE.stl --poses FILE\n"
   "         [--tip X,Y,Z] [--axis X,Y,Z] [--method exact|zbuffer|both] [--danger-mm C,W,D]\n"
@@ -61,85 +42,70 @@ const char* Usage =
   "  --frame-budget-ms: the time one frame may take (default 16.7, 60 Hz; 0: no budget); the\n"
   "    frames over it are counted in summary.json and on the terminal.\n";
 
-Json MinimumJson(const ClassMinimum& m)
+/// The module logic over the vessels and the scalpel, built: the engine, and beside it the exact
+/// engine when --method both's check or the whole surface needs one.
+/// The options are checked before any file is read, the engine's device opened too.
+vtkSmartPointer<vtkVesselProximityLogic> ConfigureLogic(const Arguments& args, const std::string& method)
 {
-  if (!m.Seen)
-  {
-    return nullptr;
-  }
-  return { { "distance_mm", m.DistanceMm }, { "error_bound_mm", m.ErrorBoundMm }, { "inside", m.Inside }, { "frame", m.Frame },
-    { "time", m.TimeS }, { "point", { m.PointMm[0], m.PointMm[1], m.PointMm[2] } } };
+  auto proximity = vtkSmartPointer<vtkVesselProximityLogic>::New();
+  proximity->SetDangerThresholds(ParseDangerThresholds(args));
+  proximity->GetTrackingLogic()->SetFrameBudgetMs(ParseFrameBudgetMs(args));
+  proximity->GetTrackingLogic()->SetHysteresisMm(ParseHysteresisMm(args));
+  proximity->SetComputeSurfaceDistance(!args.Has("--no-surface"));
+  proximity->SetCompareWithExact(method == "both");
+  proximity->SetDistanceEngine(MakeDistanceEngine(method, args));
+  return proximity;
 }
 
-Json SummaryJson(const TrackingSummary& s, vtkScalpelTrackingLogic* logic, vtkVesselDistanceEngine* engine,
-  const std::vector<NamedMesh>& meshes, const std::string& posesFile, bool surface, const Json& comparison)
+void BuildLogic(vtkVesselProximityLogic* proximity, const std::vector<NamedMesh>& meshes, vtkScalpelModel* scalpel)
 {
-  Json out;
-  out["poses"] = posesFile;
-  out["frames"] = s.GetNumberOfFrames();
-  out["duration_s"] = s.GetDurationS();
-  out["method"] = engine->GetMethodName();
-  out["device"] = engine->GetDeviceDescription();
-  out["range_mm"] = engine->GetRangeMm();
-  out["error_bound_mm"] = engine->GetErrorBoundMm();
-  out["surfaces"] = SurfacesJson(engine, meshes);
-  vtkScalpelModel* scalpel = logic->GetScalpel();
-  out["scalpel"] = { { "tip_mm", { scalpel->GetTipMm()[0], scalpel->GetTipMm()[1], scalpel->GetTipMm()[2] } },
-    { "axis", { scalpel->GetAxis()[0], scalpel->GetAxis()[1], scalpel->GetAxis()[2] } },
-    { "tip_source", scalpel->GetTipSource() } };
-  const DangerThresholds& t = logic->GetDangerThresholds();
-  out["danger_thresholds_mm"] = { { "caution", t.CautionMm }, { "warning", t.WarningMm }, { "danger", t.DangerMm } };
-  out["hysteresis_mm"] = logic->GetHysteresisMm();
-  Json classes = Json::object();
-  for (std::size_t c = 0; c < s.GetClassNames().size(); ++c)
+  proximity->SetScalpel(scalpel);
+  for (const auto& m : meshes)
   {
-    Json entry;
-    entry["tip_minimum"] = MinimumJson(s.GetTipMinimum()[c]);
-    entry["frames_inside_uncertain"] = s.GetFramesInsideUncertain()[c];
-    if (surface)
-    {
-      entry["surface_minimum"] = MinimumJson(s.GetSurfaceMinimum()[c]);
-      if (c < s.GetPenetrationMaximum().size())
-      {
-        const ClassPenetration& p = s.GetPenetrationMaximum()[c];
-        entry["penetration_maximum"] = !p.Known ? Json(nullptr)
-                                                : Json{ { "depth_mm", p.DepthMm }, { "depth_bound_mm", p.DepthBoundMm },
-                                                    { "depth_frame", p.DepthFrame }, { "volume_mm3", p.VolumeMm3 },
-                                                    { "volume_bound_mm3", p.VolumeBoundMm3 }, { "volume_frame", p.VolumeFrame },
-                                                    { "frames_inside", p.FramesInside } };
-      }
-    }
-    classes[s.GetClassNames()[c]] = entry;
+    proximity->AddVessel(m.ClassName, m.Mesh);
   }
-  out["classes"] = classes;
-  Json levels = Json::object();
+  proximity->Build();
+  proximity->GetTrackingLogic()->ValidateSettings();
+}
+
+void PrintSummary(const TrackingSession& session, vtkVesselProximityLogic* proximity, const std::string& outDir)
+{
+  const TrackingSummary& summary = session.GetSummary();
+  vtkVesselDistanceEngine* engine = proximity->GetDistanceEngine();
+  const bool surface = proximity->GetComputeSurfaceDistance();
+  const double budgetMs = proximity->GetTrackingLogic()->GetFrameBudgetMs();
+  const std::vector<std::string>& classes = summary.GetClassNames();
+  const std::size_t frameCount = static_cast<std::size_t>(summary.GetNumberOfFrames());
+  std::printf("%zu frames over %.2f s, method %s on %s, error bound %.3f mm\n", frameCount, summary.GetDurationS(),
+    engine->GetMethodName(), engine->GetDeviceDescription().c_str(), engine->GetErrorBoundMm());
+  std::printf("  %-16s %16s %10s %20s\n", "class", "tip minimum mm", "at time", surface ? "whole surface mm" : "");
+  for (std::size_t c = 0; c < classes.size(); ++c)
+  {
+    const ClassMinimum& m = summary.GetTipMinimum()[c];
+    const ClassMinimum& s = summary.GetSurfaceMinimum()[c];
+    std::printf("  %-16s %16s %10s %20s\n", classes[c].c_str(),
+      m.Seen ? (FixedText(m.DistanceMm, "%.3f") + (m.Inside ? " inside" : "")).c_str() : "out of range",
+      m.Seen ? FixedText(m.TimeS, "%.3f").c_str() : "", surface ? (s.Seen ? FixedText(s.DistanceMm, "%.3f").c_str() : "out of range") : "");
+  }
+  std::printf("  time at each level:");
   for (int l = 0; l < NumberOfDangerLevels; ++l)
   {
-    levels[DangerLevelName(static_cast<DangerLevel>(l))] = { { "time_s", s.GetTimeInLevelS()[l] },
-      { "frames", s.GetFramesInLevel()[l] } };
+    std::printf(" %s %.2f s", DangerLevelName(static_cast<DangerLevel>(l)), summary.GetTimeInLevelS()[l]);
   }
-  out["time_in_level"] = levels;
-  out["worst_level"] = DangerLevelName(s.GetWorstLevel());
-  Json events = Json::array();
-  for (const DangerLevelChange& e : s.GetChanges())
+  std::printf("\n  %zu level change(s), worst level %s\n", summary.GetChanges().size(), DangerLevelName(summary.GetWorstLevel()));
+  std::printf("  frame median %.4f ms, p95 %.4f ms, max %.4f ms; %s\n", summary.GetFrameMsQuantile(0.5),
+    summary.GetFrameMsQuantile(0.95), summary.GetFrameMsQuantile(1.0),
+    budgetMs > 0 ? (std::to_string(summary.GetFramesOverBudget()) + " of " + std::to_string(frameCount) +
+                     " frames over the " + FixedText(budgetMs, "%g") + " ms budget")
+                     .c_str()
+                 : "no frame budget");
+  if (const auto& check = session.GetComparison())
   {
-    events.push_back({ { "frame", e.Frame }, { "time", e.TimeS }, { "from", DangerLevelName(e.From) },
-      { "to", DangerLevelName(e.To) }, { "class", e.ClassName.empty() ? Json(nullptr) : Json(e.ClassName) },
-      { "distance_mm", e.ClassName.empty() ? Json(nullptr) : Json(e.DistanceMm) } });
+    std::printf("  against the exact engine: largest difference %.4f mm, %d answer(s) outside the bound\n",
+      check->MaxAbsDifferenceMm, check->OutsideBound);
   }
-  out["level_changes"] = events;
-  out["frame_ms"] = { { "median", s.GetFrameMsQuantile(0.5) }, { "p95", s.GetFrameMsQuantile(0.95) },
-    { "max", s.GetFrameMsQuantile(1.0) }, { "budget", logic->GetFrameBudgetMs() } };
-  out["frames_over_budget"] = s.GetFramesOverBudget();
-  out["timing_ms"] = { { "frame_median", s.GetFrameMsQuantile(0.5) }, { "frame_p95", s.GetFrameMsQuantile(0.95) },
-    { "frame_max", s.GetFrameMsQuantile(1.0) } };
-  if (!comparison.is_null())
-  {
-    out["comparison"] = comparison;
-  }
-  return out;
+  std::printf("wrote %s/frames.csv, summary.json, distance.png\n", outDir.c_str());
 }
-
 } // namespace
 
 int RunTrackCommand(const std::vector<std::string>& argv)
@@ -168,11 +134,7 @@ int RunTrackCommand(const std::vector<std::string>& argv)
   {
     throw InputError("--method", "expected exact, zbuffer or both for tracking, got '" + method + "'");
   }
-  const DangerThresholds thresholds = ParseDangerThresholds(args);
   const ScalpelTipDefinition tip = ParseTipDefinition(args);
-  const double budgetMs = ParseFrameBudgetMs(args);
-  const double hysteresisMm = ParseHysteresisMm(args);
-  const bool surface = !args.Has("--no-surface");
   const std::string outDir = args.Get("-o");
   RunFolder run(outDir, "summary.json");
 
@@ -181,161 +143,40 @@ int RunTrackCommand(const std::vector<std::string>& argv)
   // frames are computed: an hour of tracking never has to fit in memory.
   const double start = NowMs();
   const std::string posesFile = args.Get("--poses");
-  std::size_t poseCount = 0;
-  {
-    PoseStream check(posesFile);
-    for (TrackedPose pose; check.Next(pose);)
-    {
-      ++poseCount;
-    }
-  }
-  auto engine = MakeDistanceEngine(method, args);
+  const std::size_t poseCount = PoseStream::CountPoses(posesFile);
+  vtkSmartPointer<vtkVesselProximityLogic> proximity = ConfigureLogic(args, method);
   auto meshes = LoadVesselMeshes(ParsePairs(args.Get("--vessels"), "--vessels"));
   if (args.Has("--repair"))
   {
     RepairVesselMeshes(meshes);
   }
   auto scalpel = LoadScalpel(args.Get("--scalpel"), tip);
-  // The module logic builds the engine, and beside it the exact engine when the check of
-  // --method both or the whole surface needs one.
-  vtkNew<vtkVesselProximityLogic> proximity;
-  proximity->SetDistanceEngine(engine);
-  proximity->SetScalpel(scalpel);
-  proximity->SetDangerThresholds(thresholds);
-  proximity->SetComputeSurfaceDistance(surface);
-  proximity->SetCompareWithExact(method == "both");
-  for (const auto& m : meshes)
-  {
-    proximity->AddVessel(m.ClassName, m.Mesh);
-  }
-  proximity->Build();
-  const double buildMs = NowMs() - start;
-  vtkScalpelTrackingLogic* logic = proximity->GetTrackingLogic();
-  logic->SetFrameBudgetMs(budgetMs);
-  logic->SetHysteresisMm(hysteresisMm);
-  logic->ValidateSettings();
+  BuildLogic(proximity, meshes, scalpel);
   // Said once everything is built and checked: a line before a refusal would make its one line two.
   std::cerr << "track: " << scalpel->GetTipSource() << "\n";
-  ReportSurfaceDefects("track", engine, meshes);
-  if (logic->GetPenetration() && !logic->GetPenetration()->IsToolClosed())
+  ReportSurfaceDefects("track", proximity->GetDistanceEngine(), meshes);
+  if (proximity->GetTrackingLogic()->GetPenetration() && !proximity->GetTrackingLogic()->GetPenetration()->IsToolClosed())
   {
     std::cerr << "track: " << args.Get("--scalpel")
               << ": the surface is not closed, so the instrument's penetration depth and volume cannot be known (left empty)\n";
   }
-  TrackingSummary summary;
-  vtkNew<vtkCallbackCommand> onChange;
-  onChange->SetClientData(&summary);
-  onChange->SetCallback([](vtkObject*, unsigned long, void* client, void* call) {
-    static_cast<TrackingSummary*>(client)->AddChange(*static_cast<DangerLevelChange*>(call));
+  TrackingSession session(proximity, meshes);
+  session.SetLoadAndBuildMs(NowMs() - start);
+  session.SetProgress([](std::size_t done, std::size_t expected) {
+    std::fprintf(stderr, "track: frame %zu of %zu (%.0f%%)\n", done, expected, 100.0 * done / expected);
   });
-  logic->AddObserver(vtkScalpelTrackingLogic::DangerLevelChangedEvent, onChange);
-
-  // The frames stream into frames.csv in the run's staging folder as they are computed, and the
-  // summary and the plot keep what they need in memory that does not grow with the run.
-  run.Begin();
-  std::ofstream framesCsv(run.File("frames.csv"), std::ios::binary | std::ios::trunc);
-  const auto writeFailed = [&]() {
-    return InputError(run.Target() + "/frames.csv", std::string("write failed: ") + std::strerror(errno));
-  };
-  if (!framesCsv)
+  PoseStream poses(posesFile, poseCount);
+  if (!session.Run(poses, run))
   {
-    throw writeFailed();
+    return 1; // the RunFolder removes what was written, then the signal acts
   }
-  std::unique_ptr<DistancePlotRecorder> plot;
-  ExactComparison check;
-  double lastReport = NowMs();
-  PoseStream poses(posesFile);
-  for (TrackedPose pose; poses.Next(pose);)
+  if (session.GetComparison() && session.GetComparison()->OutsideBound > 0)
   {
-    if (RunFolder::SignalPending())
-    {
-      return 1; // the RunFolder removes what was written, then the signal acts
-    }
-    const TrackedFrame& frame = proximity->ProcessPose(pose); // valid until the next pose
-    summary.Add(frame);
-    if (!plot)
-    {
-      plot = std::make_unique<DistancePlotRecorder>(summary.GetClassNames(), surface);
-      framesCsv << FramesCsvHeader(summary.GetClassNames(), surface);
-    }
-    plot->Add(frame);
-    framesCsv << FramesCsvRow(frame, surface);
-    if (!framesCsv)
-    {
-      throw writeFailed();
-    }
-    if (method == "both")
-    {
-      check.Add(frame.Proximity, proximity->GetLastExactProximity(), engine->GetRangeMm(), engine->GetErrorBoundMm());
-    }
-    if (NowMs() - lastReport > 1000.0)
-    {
-      lastReport = NowMs();
-      const std::size_t done = poses.PosesRead();
-      std::fprintf(stderr, "track: frame %zu of %zu (%.0f%%)\n", done, poseCount, 100.0 * done / poseCount);
-    }
+    std::cerr << "vesselproximity: warning: " << session.GetComparison()->OutsideBound
+              << " answer(s) of the z-buffer engine outside its error bound of "
+              << proximity->GetDistanceEngine()->GetErrorBoundMm() << " mm\n";
   }
-  framesCsv.flush();
-  if (!framesCsv)
-  {
-    throw writeFailed();
-  }
-  framesCsv.close();
-  Json comparison;
-  if (method == "both")
-  {
-    comparison = { { "reference", "exact" }, { "max_abs_difference_mm", check.MaxAbsDifferenceMm },
-      { "outside_bound", check.OutsideBound } };
-    if (check.OutsideBound > 0)
-    {
-      std::cerr << "vesselproximity: warning: " << check.OutsideBound << " answer(s) of the z-buffer engine outside its error bound of "
-                << engine->GetErrorBoundMm() << " mm\n";
-    }
-  }
-
-  std::vector<std::string> classes = summary.GetClassNames();
-  Json doc = SummaryJson(summary, logic, engine, meshes, posesFile, surface, comparison);
-  doc["timing_ms"]["load_and_build"] = buildMs;
-  doc["files"] = { "frames.csv", "summary.json", "distance.png" };
-  struct rusage usage = {};
-  getrusage(RUSAGE_SELF, &usage);
-  doc["peak_memory_mb"] = static_cast<double>(usage.ru_maxrss) / 1024.0; // Linux: kB
-
-  // The plot and the summary, then the folder holds this run whole, or the previous one as it was.
-  plot->Write(run.File("distance.png"), thresholds, engine->GetRangeMm());
-  WriteFileAtomically(run.File("summary.json"), doc.dump(2) + "\n");
-  run.Commit();
-
-  const std::size_t frameCount = static_cast<std::size_t>(summary.GetNumberOfFrames());
-  std::printf("%zu frames over %.2f s, method %s on %s, error bound %.3f mm\n", frameCount, summary.GetDurationS(),
-    engine->GetMethodName(), engine->GetDeviceDescription().c_str(), engine->GetErrorBoundMm());
-  std::printf("  %-16s %16s %10s %20s\n", "class", "tip minimum mm", "at time", surface ? "whole surface mm" : "");
-  for (std::size_t c = 0; c < classes.size(); ++c)
-  {
-    const ClassMinimum& m = summary.GetTipMinimum()[c];
-    const ClassMinimum& s = summary.GetSurfaceMinimum()[c];
-    std::printf("  %-16s %16s %10s %20s\n", classes[c].c_str(),
-      m.Seen ? (FixedText(m.DistanceMm, "%.3f") + (m.Inside ? " inside" : "")).c_str() : "out of range",
-      m.Seen ? FixedText(m.TimeS, "%.3f").c_str() : "", surface ? (s.Seen ? FixedText(s.DistanceMm, "%.3f").c_str() : "out of range") : "");
-  }
-  std::printf("  time at each level:");
-  for (int l = 0; l < NumberOfDangerLevels; ++l)
-  {
-    std::printf(" %s %.2f s", DangerLevelName(static_cast<DangerLevel>(l)), summary.GetTimeInLevelS()[l]);
-  }
-  std::printf("\n  %zu level change(s), worst level %s\n", summary.GetChanges().size(), DangerLevelName(summary.GetWorstLevel()));
-  std::printf("  frame median %.4f ms, p95 %.4f ms, max %.4f ms; %s\n", summary.GetFrameMsQuantile(0.5),
-    summary.GetFrameMsQuantile(0.95), summary.GetFrameMsQuantile(1.0),
-    budgetMs > 0 ? (std::to_string(summary.GetFramesOverBudget()) + " of " + std::to_string(frameCount) +
-                     " frames over the " + FixedText(budgetMs, "%g") + " ms budget")
-                     .c_str()
-                 : "no frame budget");
-  if (method == "both")
-  {
-    std::printf("  against the exact engine: largest difference %.4f mm, %d answer(s) outside the bound\n",
-      check.MaxAbsDifferenceMm, check.OutsideBound);
-  }
-  std::printf("wrote %s/frames.csv, summary.json, distance.png\n", outDir.c_str());
+  PrintSummary(session, proximity, outDir);
   return 0;
 }
 } // namespace vp

@@ -1,0 +1,81 @@
+#ifndef vpVesselModelSet_h
+#define vpVesselModelSet_h
+
+#include "vpLabelStructure.h"
+#include "vpStlFormat.h"
+
+#include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
+
+#include <nlohmann/json.hpp>
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace vp
+{
+class RunFolder;
+
+/// How segmentations become vessel models, in the logic's names (defaults as Slicer's).
+struct VesselModelParameters
+{
+  double SmoothingFactor = 0.5;  ///< windowed sinc, 0..1
+  int SmoothingIterations = 20;  ///< 1..1000
+  double DecimationFactor = 0.0; ///< fraction of triangles removed, 0..0.99
+  MeshSpace FileSpace = MeshSpace::LPS;
+  std::string LabelTableFile; ///< empty: the built-in Resources/VesselLabels.json
+  /// Throws ParameterError naming the first setting out of its range.
+  void Validate() const;
+};
+
+/// One vessel class's model, built from every structure the label table puts in the class.
+struct VesselClassModel
+{
+  std::string ClassName;
+  std::vector<const LabelStructure*> Structures; ///< into VesselModelSet::Imports
+  vtkSmartPointer<vtkPolyData> Surface;
+  vtkIdType Voxels = 0;
+  double VoxelVolumeMm3 = 0.0, VolumeMm3 = 0.0, AreaMm2 = 0.0, BuildMs = 0.0;
+};
+
+/// The models of one run of segmentations, in the label table's class order, with what was read
+/// and what was left out. Moves but does not copy: the models point into the imports.
+struct VesselModelSet
+{
+  VesselModelSet() = default;
+  VesselModelSet(VesselModelSet&&) = default;
+  VesselModelSet& operator=(VesselModelSet&&) = default;
+  VesselModelSet(const VesselModelSet&) = delete;
+  VesselModelSet& operator=(const VesselModelSet&) = delete;
+
+  std::vector<std::string> Inputs;
+  VesselModelParameters Parameters;
+  std::vector<LabelStructures> Imports; ///< per input
+  std::vector<VesselClassModel> Models;
+  std::vector<const LabelStructure*> Unmapped; ///< structures the table has no class for
+  double ReadMs = 0.0, TotalMs = 0.0;
+};
+
+/// What a long build says as it goes ("portal_vein: 1234 voxels -> 5678 triangles in 12 ms").
+using ProgressReporter = std::function<void(const std::string&)>;
+
+/// Reads each input (a folder of DICOM label series, a DICOM SEG, NRRD, .seg.nrrd or NIfTI
+/// labelmap), maps its structures to classes through the label table, and builds one closed
+/// surface per class (vtkVesselModelBuilder) with its volume and area. Nothing is written.
+/// Throws InputError naming the input when nothing in it is a vessel or the liver, and
+/// ParameterError for a setting out of range.
+VesselModelSet BuildVesselModels(
+  const std::vector<std::string>& inputs, const VesselModelParameters& parameters, const ProgressReporter& progress);
+
+/// models.json: the space, inputs, parameters, per structure its class, sources, voxels,
+/// triangles, volume, area, file and surface check, every file of the run, the unmapped
+/// structures and the times.
+nlohmann::json VesselModelsJson(const VesselModelSet& set);
+
+/// Writes <class>.stl for each model and models.json through the run's folder, which holds this
+/// run whole afterwards (or the previous one as it was, when this throws).
+void WriteVesselModels(const VesselModelSet& set, RunFolder& run);
+} // namespace vp
+
+#endif

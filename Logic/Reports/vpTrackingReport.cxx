@@ -1,0 +1,100 @@
+#include "vpTrackingReport.h"
+
+#include "vpDangerLevels.h"
+#include "vpSurfaceReport.h"
+#include "vtkScalpelModel.h"
+#include "vtkScalpelTrackingLogic.h"
+#include "vtkVesselDistanceEngine.h"
+#include "vtkVesselProximityLogic.h"
+
+namespace vp
+{
+namespace
+{
+using Json = nlohmann::ordered_json;
+
+Json MinimumJson(const ClassMinimum& m)
+{
+  if (!m.Seen)
+  {
+    return nullptr;
+  }
+  return { { "distance_mm", m.DistanceMm }, { "error_bound_mm", m.ErrorBoundMm }, { "inside", m.Inside }, { "frame", m.Frame },
+    { "time", m.TimeS }, { "point", { m.PointMm[0], m.PointMm[1], m.PointMm[2] } } };
+}
+
+} // namespace
+
+Json TrackingSummaryJson(const TrackingSummary& s, vtkVesselProximityLogic* proximity, const std::vector<NamedMesh>& meshes,
+  const std::string& posesFile, const ExactComparison* comparison)
+{
+  vtkScalpelTrackingLogic* logic = proximity->GetTrackingLogic();
+  vtkVesselDistanceEngine* engine = proximity->GetDistanceEngine();
+  const bool surface = proximity->GetComputeSurfaceDistance();
+  Json out;
+  out["poses"] = posesFile;
+  out["frames"] = s.GetNumberOfFrames();
+  out["duration_s"] = s.GetDurationS();
+  out["method"] = engine->GetMethodName();
+  out["device"] = engine->GetDeviceDescription();
+  out["range_mm"] = engine->GetRangeMm();
+  out["error_bound_mm"] = engine->GetErrorBoundMm();
+  out["surfaces"] = SurfacesJson(engine, meshes);
+  vtkScalpelModel* scalpel = logic->GetScalpel();
+  out["scalpel"] = { { "tip_mm", { scalpel->GetTipMm()[0], scalpel->GetTipMm()[1], scalpel->GetTipMm()[2] } },
+    { "axis", { scalpel->GetAxis()[0], scalpel->GetAxis()[1], scalpel->GetAxis()[2] } },
+    { "tip_source", scalpel->GetTipSource() } };
+  const DangerThresholds& t = logic->GetDangerThresholds();
+  out["danger_thresholds_mm"] = { { "caution", t.CautionMm }, { "warning", t.WarningMm }, { "danger", t.DangerMm } };
+  out["hysteresis_mm"] = logic->GetHysteresisMm();
+  Json classes = Json::object();
+  for (std::size_t c = 0; c < s.GetClassNames().size(); ++c)
+  {
+    Json entry;
+    entry["tip_minimum"] = MinimumJson(s.GetTipMinimum()[c]);
+    entry["frames_inside_uncertain"] = s.GetFramesInsideUncertain()[c];
+    if (surface)
+    {
+      entry["surface_minimum"] = MinimumJson(s.GetSurfaceMinimum()[c]);
+      if (c < s.GetPenetrationMaximum().size())
+      {
+        const ClassPenetration& p = s.GetPenetrationMaximum()[c];
+        entry["penetration_maximum"] = !p.Known ? Json(nullptr)
+                                                : Json{ { "depth_mm", p.DepthMm }, { "depth_bound_mm", p.DepthBoundMm },
+                                                    { "depth_frame", p.DepthFrame }, { "volume_mm3", p.VolumeMm3 },
+                                                    { "volume_bound_mm3", p.VolumeBoundMm3 }, { "volume_frame", p.VolumeFrame },
+                                                    { "frames_inside", p.FramesInside } };
+      }
+    }
+    classes[s.GetClassNames()[c]] = entry;
+  }
+  out["classes"] = classes;
+  Json levels = Json::object();
+  for (int l = 0; l < NumberOfDangerLevels; ++l)
+  {
+    levels[DangerLevelName(static_cast<DangerLevel>(l))] = { { "time_s", s.GetTimeInLevelS()[l] },
+      { "frames", s.GetFramesInLevel()[l] } };
+  }
+  out["time_in_level"] = levels;
+  out["worst_level"] = DangerLevelName(s.GetWorstLevel());
+  Json events = Json::array();
+  for (const DangerLevelChange& e : s.GetChanges())
+  {
+    events.push_back({ { "frame", e.Frame }, { "time", e.TimeS }, { "from", DangerLevelName(e.From) },
+      { "to", DangerLevelName(e.To) }, { "class", e.ClassName.empty() ? Json(nullptr) : Json(e.ClassName) },
+      { "distance_mm", e.ClassName.empty() ? Json(nullptr) : Json(e.DistanceMm) } });
+  }
+  out["level_changes"] = events;
+  out["frame_ms"] = { { "median", s.GetFrameMsQuantile(0.5) }, { "p95", s.GetFrameMsQuantile(0.95) },
+    { "max", s.GetFrameMsQuantile(1.0) }, { "budget", logic->GetFrameBudgetMs() } };
+  out["frames_over_budget"] = s.GetFramesOverBudget();
+  out["timing_ms"] = { { "frame_median", s.GetFrameMsQuantile(0.5) }, { "frame_p95", s.GetFrameMsQuantile(0.95) },
+    { "frame_max", s.GetFrameMsQuantile(1.0) } };
+  if (comparison)
+  {
+    out["comparison"] = { { "reference", "exact" }, { "max_abs_difference_mm", comparison->MaxAbsDifferenceMm },
+      { "outside_bound", comparison->OutsideBound } };
+  }
+  return out;
+}
+} // namespace vp

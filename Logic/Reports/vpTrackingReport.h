@@ -1,0 +1,25 @@
+#ifndef vpTrackingReport_h
+#define vpTrackingReport_h
+
+#include "vpExactComparison.h"
+#include "vpTrackingSummary.h"
+#include "vpVesselMeshSet.h"
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+#include <vector>
+
+class vtkVesselProximityLogic;
+
+namespace vp
+{
+/// summary.json of a tracking session: the poses' source, frames, engine and bound, surfaces,
+/// scalpel, thresholds, per class the tip's and the instrument's closest approach and the
+/// deepest penetration, time at each level, the level changes, frame times against the budget,
+/// and the comparison with the exact engine when there was one.
+nlohmann::ordered_json TrackingSummaryJson(const TrackingSummary& summary, vtkVesselProximityLogic* logic,
+  const std::vector<NamedMesh>& vessels, const std::string& posesName, const ExactComparison* comparison);
+} // namespace vp
+
+#endif

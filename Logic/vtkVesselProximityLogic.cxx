@@ -7,7 +7,9 @@
 #include "vtkZBufferVesselDistance.h"
 #include "vtkScalpelPenetration.h"
 #include "vtkVesselDistanceEngine.h"
+#include "vtkVesselProximityParameters.h"
 
+#include <vtkCommand.h>
 #include <vtkObjectFactory.h>
 #include <vtkPolyData.h>
 
@@ -17,45 +19,85 @@
 vtkStandardNewMacro(vtkVesselProximityLogic);
 
 vtkVesselProximityLogic::vtkVesselProximityLogic()
-  : Engine(vtkSmartPointer<vtkExactVesselDistance>::New())
-  , Tracking(vtkSmartPointer<vtkScalpelTrackingLogic>::New())
+  : Tracking(vtkSmartPointer<vtkScalpelTrackingLogic>::New())
 {
+  this->SetParameters(vtkSmartPointer<vtkVesselProximityParameters>::New());
 }
 
-vtkVesselProximityLogic::~vtkVesselProximityLogic() = default;
+vtkVesselProximityLogic::~vtkVesselProximityLogic()
+{
+  this->Parameters->RemoveObserver(this->ParametersObserver);
+}
+
+void vtkVesselProximityLogic::SetParameters(vtkVesselProximityParameters* parameters)
+{
+  if (!parameters)
+  {
+    throw std::invalid_argument("vtkVesselProximityLogic: the parameter set cannot be null");
+  }
+  if (parameters == this->Parameters)
+  {
+    return;
+  }
+  if (this->Parameters)
+  {
+    this->Parameters->RemoveObserver(this->ParametersObserver);
+  }
+  this->Parameters = parameters;
+  this->ParametersObserver =
+    parameters->AddObserver(vtkCommand::ModifiedEvent, this, &vtkVesselProximityLogic::ApplyParameters);
+  this->AppliedSceneMTime = 0;
+  this->AppliedSettingsMTime = 0;
+  this->ApplyParameters();
+}
+
+void vtkVesselProximityLogic::ApplyParameters()
+{
+  vtkVesselProximityParameters* p = this->Parameters;
+  if (p->GetSceneMTime() > this->AppliedSceneMTime)
+  {
+    this->AppliedSceneMTime = p->GetSceneMTime();
+    this->Tracking->SetScalpel(p->GetScalpel());
+    this->SceneChanged = true;
+  }
+  if (p->GetSettingsMTime() > this->AppliedSettingsMTime)
+  {
+    this->AppliedSettingsMTime = p->GetSettingsMTime();
+    this->Tracking->SetDangerThresholds(p->GetDangerThresholds());
+    this->Tracking->SetHysteresisMm(p->GetHysteresisMm());
+    this->Tracking->SetFrameBudgetMs(p->GetFrameBudgetMs());
+  }
+  this->Modified();
+}
 
 void vtkVesselProximityLogic::AddVessel(const std::string& className, vtkPolyData* surface)
 {
-  for (auto& vessel : this->Vessels)
-  {
-    if (vessel.first == className)
-    {
-      vessel.second = surface;
-      this->SceneChanged = true;
-      this->Modified();
-      return;
-    }
-  }
-  this->Vessels.emplace_back(className, surface);
-  this->SceneChanged = true;
-  this->Modified();
+  this->Parameters->SetVessel(className, surface);
 }
 
 void vtkVesselProximityLogic::RemoveAllVessels()
 {
-  this->Vessels.clear();
-  this->SceneChanged = true;
-  this->Modified();
+  this->Parameters->RemoveAllVessels();
+}
+
+int vtkVesselProximityLogic::GetNumberOfVessels() const
+{
+  return this->Parameters->GetNumberOfVessels();
+}
+
+const std::string& vtkVesselProximityLogic::GetVesselClassName(int i) const
+{
+  return this->Parameters->GetVesselClassName(i);
+}
+
+vtkPolyData* vtkVesselProximityLogic::GetVesselSurface(int i) const
+{
+  return this->Parameters->GetVesselSurface(i);
 }
 
 void vtkVesselProximityLogic::SetScalpel(vtkScalpelModel* scalpel)
 {
-  if (scalpel != this->Tracking->GetScalpel())
-  {
-    this->Tracking->SetScalpel(scalpel);
-    this->SceneChanged = true; // the surface-distance tree is built from its model
-    this->Modified();
-  }
+  this->Parameters->SetScalpel(scalpel);
 }
 
 vtkScalpelModel* vtkVesselProximityLogic::GetScalpel() const
@@ -65,22 +107,37 @@ vtkScalpelModel* vtkVesselProximityLogic::GetScalpel() const
 
 void vtkVesselProximityLogic::SetDistanceEngine(vtkVesselDistanceEngine* engine)
 {
-  if (!engine)
-  {
-    throw std::invalid_argument("vtkVesselProximityLogic: the distance engine cannot be null");
-  }
-  if (engine != this->Engine)
-  {
-    this->Engine = engine;
-    this->SceneChanged = true;
-    this->Modified();
-  }
+  this->Parameters->SetDistanceEngine(engine);
+}
+
+vtkVesselDistanceEngine* vtkVesselProximityLogic::GetDistanceEngine() const
+{
+  return this->Parameters->GetDistanceEngine();
+}
+
+void vtkVesselProximityLogic::SetCompareWithExact(bool compare)
+{
+  this->Parameters->SetCompareWithExact(compare);
+}
+
+bool vtkVesselProximityLogic::GetCompareWithExact() const
+{
+  return this->Parameters->GetCompareWithExact();
+}
+
+void vtkVesselProximityLogic::SetComputeSurfaceDistance(bool compute)
+{
+  this->Parameters->SetComputeSurfaceDistance(compute);
+}
+
+bool vtkVesselProximityLogic::GetComputeSurfaceDistance() const
+{
+  return this->Parameters->GetComputeSurfaceDistance();
 }
 
 void vtkVesselProximityLogic::SetDangerThresholds(const vp::DangerThresholds& thresholds)
 {
-  this->Tracking->SetDangerThresholds(thresholds);
-  this->Modified();
+  this->Parameters->SetDangerThresholds(thresholds);
 }
 
 const vp::DangerThresholds& vtkVesselProximityLogic::GetDangerThresholds() const
@@ -94,39 +151,41 @@ void vtkVesselProximityLogic::Build()
   {
     return;
   }
-  if (this->Vessels.empty())
+  vtkVesselDistanceEngine* engine = this->GetDistanceEngine();
+  const bool compareWithExact = this->GetCompareWithExact();
+  if (this->GetNumberOfVessels() == 0)
   {
     throw std::logic_error("vtkVesselProximityLogic: add at least one vessel before building");
   }
   // The exact engine serves the comparison and the whole surface; a second one, beside an
   // approximate engine, is built only when one of them is wanted.
   const bool surface = this->WantsSurfaceDistance();
-  this->Exact = vtkExactVesselDistance::SafeDownCast(this->Engine);
-  if (!this->Exact && (this->CompareWithExact || surface))
+  this->Exact = vtkExactVesselDistance::SafeDownCast(engine);
+  if (!this->Exact && (compareWithExact || surface))
   {
     this->Exact = vtkSmartPointer<vtkExactVesselDistance>::New();
-    this->Exact->SetRangeMm(this->Engine->GetRangeMm());
+    this->Exact->SetRangeMm(engine->GetRangeMm());
   }
-  std::vector<vtkVesselDistanceEngine*> engines{ this->Engine };
-  if (this->Exact && this->Exact != this->Engine)
+  std::vector<vtkVesselDistanceEngine*> engines{ engine };
+  if (this->Exact && this->Exact != engine)
   {
     engines.push_back(this->Exact);
   }
-  for (vtkVesselDistanceEngine* engine : engines)
+  for (vtkVesselDistanceEngine* e : engines)
   {
-    engine->RemoveAllVessels();
-    for (const auto& vessel : this->Vessels)
+    e->RemoveAllVessels();
+    for (int i = 0; i < this->GetNumberOfVessels(); ++i)
     {
-      engine->AddVessel(vessel.first, vessel.second);
+      e->AddVessel(this->GetVesselClassName(i), this->GetVesselSurface(i));
     }
-    engine->Build();
+    e->Build();
   }
-  this->Tracking->SetDistanceEngine(this->Engine);
+  this->Tracking->SetDistanceEngine(engine);
   if (surface)
   {
     // The z-buffer answers the whole instrument from its own layers (a distance field of them,
     // within a stated bound) when they stay put; otherwise FCL answers it exactly.
-    auto* layers = vtkZBufferVesselDistance::SafeDownCast(this->Engine);
+    auto* layers = vtkZBufferVesselDistance::SafeDownCast(engine);
     if (layers && layers->GetBoxMode() == vtkZBufferVesselDistance::FixedAroundVessels)
     {
       auto zbuffer = vtkSmartPointer<vtkZBufferSurfaceDistance>::New();
@@ -170,13 +229,13 @@ const vp::TrackedFrame& vtkVesselProximityLogic::ProcessPose(const vp::TrackedPo
   }
   // The surface tree and the exact engine follow their switches: turning one on or off is a
   // scene change.
-  if ((this->Surface != nullptr) != this->WantsSurfaceDistance() || (this->CompareWithExact && !this->Exact))
+  if ((this->Surface != nullptr) != this->WantsSurfaceDistance() || (this->GetCompareWithExact() && !this->Exact))
   {
     this->SceneChanged = true;
   }
   this->Build();
   const vp::TrackedFrame& frame = this->Tracking->ProcessPose(pose);
-  if (this->CompareWithExact && this->Exact != this->Engine)
+  if (this->GetCompareWithExact() && this->Exact != this->GetDistanceEngine())
   {
     this->Exact->ComputeProximity(frame.TipMm, frame.AxisWorld, this->LastExact);
   }
@@ -186,22 +245,22 @@ const vp::TrackedFrame& vtkVesselProximityLogic::ProcessPose(const vp::TrackedPo
 bool vtkVesselProximityLogic::WantsSurfaceDistance() const
 {
   vtkScalpelModel* scalpel = this->Tracking->GetScalpel();
-  return this->ComputeSurfaceDistance && scalpel && scalpel->GetModel();
+  return this->GetComputeSurfaceDistance() && scalpel && scalpel->GetModel();
 }
 
 bool vtkVesselProximityLogic::GetVesselBounds(double bounds[6]) const
 {
-  for (std::size_t i = 0; i < this->Vessels.size(); ++i)
+  for (int i = 0; i < this->GetNumberOfVessels(); ++i)
   {
     double b[6];
-    this->Vessels[i].second->GetBounds(b);
+    this->GetVesselSurface(i)->GetBounds(b);
     for (int a = 0; a < 3; ++a)
     {
       bounds[2 * a] = i == 0 ? b[2 * a] : std::min(bounds[2 * a], b[2 * a]);
       bounds[2 * a + 1] = i == 0 ? b[2 * a + 1] : std::max(bounds[2 * a + 1], b[2 * a + 1]);
     }
   }
-  return !this->Vessels.empty();
+  return this->GetNumberOfVessels() > 0;
 }
 
 const vp::TrackedFrame& vtkVesselProximityLogic::GetLastFrame() const
@@ -211,7 +270,8 @@ const vp::TrackedFrame& vtkVesselProximityLogic::GetLastFrame() const
 
 const vp::ProximityResult& vtkVesselProximityLogic::GetLastExactProximity() const
 {
-  return this->Exact == this->Engine || !this->CompareWithExact ? this->Tracking->GetLastFrame().Proximity : this->LastExact;
+  return this->Exact == this->GetDistanceEngine() || !this->GetCompareWithExact() ? this->Tracking->GetLastFrame().Proximity
+                                                                                 : this->LastExact;
 }
 
 void vtkVesselProximityLogic::ResetTracking()
@@ -222,15 +282,9 @@ void vtkVesselProximityLogic::ResetTracking()
 void vtkVesselProximityLogic::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "Vessels:";
-  for (const auto& vessel : this->Vessels)
-  {
-    os << " " << vessel.first;
-  }
-  os << "\n" << indent << "DistanceEngine: " << this->Engine->GetMethodName() << "\n";
-  os << indent << "CompareWithExact: " << this->CompareWithExact << "\n";
-  os << indent << "ComputeSurfaceDistance: " << this->ComputeSurfaceDistance << "\n";
   os << indent << "NumberOfBuilds: " << this->NumberOfBuilds << "\n";
+  os << indent << "Parameters:\n";
+  this->Parameters->PrintSelf(os, indent.GetNextIndent());
   os << indent << "TrackingLogic:\n";
   this->Tracking->PrintSelf(os, indent.GetNextIndent());
 }

@@ -3,6 +3,7 @@
 
 #include "vpProximityResult.h"
 #include "vtkScalpelTrackingLogic.h"
+#include "vtkVesselProximityParameters.h"
 
 #include <vtkObject.h>
 #include <vtkSmartPointer.h>
@@ -23,9 +24,12 @@ class vtkVesselDistanceEngine;
 /// or a command sets the scene, calls ProcessPose() per pose and reads the frame; observers of
 /// GetTrackingLogic() hear of each frame and of each change of danger level.
 ///
-/// Engines and locators are built once, in Build() (or on the first pose), and again only when
-/// the vessels, the scalpel model or the engine change; never because the scalpel moved. Unlike
-/// SlicerIGT's BreachWarning, which rebuilds its locator whenever the tool moves.
+/// What it computes from lives in its parameter set (vtkVesselProximityParameters, the part a
+/// MRML node plays in Slicer), which it observes; the setters below are shorthands that write
+/// there. Engines and locators are built once, in Build() (or on the first pose), and again only
+/// when the parameter set's scene changes (vessels, scalpel, engine, which engines are wanted);
+/// never because the scalpel moved, nor for a new threshold. Unlike SlicerIGT's BreachWarning,
+/// which rebuilds its locator whenever the tool moves.
 ///
 /// Defaults: the exact engine answers; the whole instrument surface is measured too (exactly, by
 /// FCL; from the layers, within their bound, when the engine is the z-buffer with its fixed box);
@@ -37,12 +41,17 @@ public:
   vtkTypeMacro(vtkVesselProximityLogic, vtkObject);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
+  /// The parameter set the logic computes from (one of its own until another is set), observed
+  /// for ModifiedEvent. Not null.
+  void SetParameters(vtkVesselProximityParameters* parameters);
+  vtkVesselProximityParameters* GetParameters() const { return this->Parameters; }
+
   /// Adds or replaces the surface of a vessel class (LPS mm, closed for inside/outside).
   void AddVessel(const std::string& className, vtkPolyData* surface);
   void RemoveAllVessels();
-  int GetNumberOfVessels() const { return static_cast<int>(this->Vessels.size()); }
-  const std::string& GetVesselClassName(int i) const { return this->Vessels[i].first; }
-  vtkPolyData* GetVesselSurface(int i) const { return this->Vessels[i].second; }
+  int GetNumberOfVessels() const;
+  const std::string& GetVesselClassName(int i) const;
+  vtkPolyData* GetVesselSurface(int i) const;
   /// The box around every vessel surface (xmin, xmax, ymin, ymax, zmin, zmax; LPS mm); false,
   /// with bounds untouched, when there is no vessel.
   bool GetVesselBounds(double bounds[6]) const;
@@ -52,18 +61,16 @@ public:
 
   /// The engine that answers every frame (default: a vtkExactVesselDistance made here).
   void SetDistanceEngine(vtkVesselDistanceEngine* engine);
-  vtkVesselDistanceEngine* GetDistanceEngine() const { return this->Engine; }
+  vtkVesselDistanceEngine* GetDistanceEngine() const;
 
   /// Whether every frame is also answered by the exact engine, for GetLastExactProximity() and
   /// the accuracy check (default false; pointless when the engine is the exact one).
-  vtkSetMacro(CompareWithExact, bool);
-  vtkGetMacro(CompareWithExact, bool);
-  vtkBooleanMacro(CompareWithExact, bool);
+  void SetCompareWithExact(bool compare);
+  bool GetCompareWithExact() const;
   /// Whether the whole instrument surface is measured beside the tip (default true), with the
   /// instrument's penetration volume and depth in each class.
-  vtkSetMacro(ComputeSurfaceDistance, bool);
-  vtkGetMacro(ComputeSurfaceDistance, bool);
-  vtkBooleanMacro(ComputeSurfaceDistance, bool);
+  void SetComputeSurfaceDistance(bool compute);
+  bool GetComputeSurfaceDistance() const;
 
   void SetDangerThresholds(const vp::DangerThresholds& thresholds);
   const vp::DangerThresholds& GetDangerThresholds() const;
@@ -93,14 +100,14 @@ protected:
   vtkVesselProximityLogic();
   ~vtkVesselProximityLogic() override;
 
-  std::vector<std::pair<std::string, vtkSmartPointer<vtkPolyData>>> Vessels;
-  vtkSmartPointer<vtkVesselDistanceEngine> Engine;
+  vtkSmartPointer<vtkVesselProximityParameters> Parameters;
+  unsigned long ParametersObserver = 0;
+  vtkMTimeType AppliedSceneMTime = 0;
+  vtkMTimeType AppliedSettingsMTime = 0;
   vtkSmartPointer<vtkExactVesselDistance> Exact;
   vtkSmartPointer<vtkScalpelSurfaceDistance> Surface;
   vtkSmartPointer<vtkScalpelPenetration> Penetration;
   vtkSmartPointer<vtkScalpelTrackingLogic> Tracking;
-  bool CompareWithExact = false;
-  bool ComputeSurfaceDistance = true;
   bool SceneChanged = true;
   int NumberOfBuilds = 0;
   vp::ProximityResult LastExact;
@@ -108,6 +115,9 @@ protected:
 private:
   vtkVesselProximityLogic(const vtkVesselProximityLogic&) = delete;
   bool WantsSurfaceDistance() const;
+  /// What a change of the parameter set invalidates: the built engines (scene), or only the
+  /// tracking logic's per-frame settings.
+  void ApplyParameters();
   void operator=(const vtkVesselProximityLogic&) = delete;
 };
 

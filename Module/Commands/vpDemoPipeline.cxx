@@ -166,7 +166,7 @@ void TrackDemo(DemoReport& report, const std::vector<NamedMesh>& vessels, double
     logic->AddVessel(m.ClassName, m.Mesh);
   }
   logic->Build();
-  logic->GetTrackingLogic()->SetFrameBudgetMs(frameBudgetMs);
+  logic->GetParameters()->SetFrameBudgetMs(frameBudgetMs);
   logic->GetTrackingLogic()->ValidateSettings();
   RunFolder run(report.OutDir, "summary.json");
   TrackingSession session(logic, vessels);

@@ -47,7 +47,8 @@ std::string FlagOfParameter(const std::string& parameter)
     { "ResolutionPx", "--resolution" }, { "LayerMode", "--layers" }, { "BoxMode", "--box" }, { "MovingBoxSizeMm", "--box-size" },
     { "DistanceBins", "--bins" }, { "CellSizeMm/ResolutionPx", "--cell/--resolution" }, { "Method", "--method" },
     { "Vessels", "--vessels" }, { "Axis", "--axis" }, { "SmoothingFactor", "--smoothing" },
-    { "SmoothingIterations", "--smoothing-iterations" }, { "DecimationFactor", "--decimation" } };
+    { "SmoothingIterations", "--smoothing-iterations" }, { "DecimationFactor", "--decimation" },
+    { "FrameBudgetMs", "--frame-budget-ms" }, { "HysteresisMm", "--hysteresis-mm" } };
   for (const auto& [name, flag] : flags)
   {
     if (parameter == name)

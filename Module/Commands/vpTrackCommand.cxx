@@ -49,8 +49,8 @@ vtkSmartPointer<vtkVesselProximityLogic> ConfigureLogic(const Arguments& args, c
 {
   auto proximity = vtkSmartPointer<vtkVesselProximityLogic>::New();
   proximity->SetDangerThresholds(ParseDangerThresholds(args));
-  proximity->GetTrackingLogic()->SetFrameBudgetMs(ParseFrameBudgetMs(args));
-  proximity->GetTrackingLogic()->SetHysteresisMm(ParseHysteresisMm(args));
+  proximity->GetParameters()->SetFrameBudgetMs(ParseFrameBudgetMs(args));
+  proximity->GetParameters()->SetHysteresisMm(ParseHysteresisMm(args));
   proximity->SetComputeSurfaceDistance(!args.Has("--no-surface"));
   proximity->SetCompareWithExact(method == "both");
   proximity->SetDistanceEngine(MakeDistanceEngine(method, args));

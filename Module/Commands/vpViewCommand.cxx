@@ -148,8 +148,8 @@ int RunViewCommand(const std::vector<std::string>& argv)
   logic->SetDistanceEngine(engine);
   logic->SetScalpel(scalpel);
   logic->SetDangerThresholds(thresholds);
-  logic->GetTrackingLogic()->SetFrameBudgetMs(ParseFrameBudgetMs(args));
-  logic->GetTrackingLogic()->SetHysteresisMm(ParseHysteresisMm(args));
+  logic->GetParameters()->SetFrameBudgetMs(ParseFrameBudgetMs(args));
+  logic->GetParameters()->SetHysteresisMm(ParseHysteresisMm(args));
   logic->SetComputeSurfaceDistance(!args.Has("--no-surface"));
   for (const auto& m : meshes)
   {

@@ -56,7 +56,7 @@ vtkSmartPointer<vtkVesselProximityLogic> MakePhantomLogic(const std::string& tmp
   logic->SetScalpel(vp::LoadScalpel(vp::WriteDefaultScalpel(tmp), {}));
   logic->SetComputeSurfaceDistance(false);
   // The pictures must not depend on the machine's speed: no frame-budget line in them.
-  logic->GetTrackingLogic()->SetFrameBudgetMs(0.0);
+  logic->GetParameters()->SetFrameBudgetMs(0.0);
   return logic;
 }
 
@@ -180,12 +180,12 @@ TEST(Overlays, AFrameOverItsBudgetIsShownAndCleared)
   const int last = readout->GetNumberOfLines() - 1;
   logic->ProcessPose(Pose(0.0, TipDownAt(16.0)));
   EXPECT_EQ(readout->GetLineText(last), "") << "budget off: nothing to say";
-  logic->GetTrackingLogic()->SetFrameBudgetMs(1e-9);
+  logic->GetParameters()->SetFrameBudgetMs(1e-9);
   const vp::TrackedFrame& late = logic->ProcessPose(Pose(0.02, TipDownAt(15.5)));
   ASSERT_TRUE(late.OverBudget);
   EXPECT_NE(readout->GetLineText(last).find("over the 0.0 ms budget"), std::string::npos) << readout->GetLineText(last);
   EXPECT_EQ(readout->GetLineText(last).find("frame "), 0u) << readout->GetLineText(last);
-  logic->GetTrackingLogic()->SetFrameBudgetMs(60000.0);
+  logic->GetParameters()->SetFrameBudgetMs(60000.0);
   EXPECT_FALSE(logic->ProcessPose(Pose(0.04, TipDownAt(15.0))).OverBudget);
   EXPECT_EQ(readout->GetLineText(last), "");
   std::filesystem::remove_all(tmp);

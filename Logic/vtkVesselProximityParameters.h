@@ -1,0 +1,92 @@
+#ifndef vtkVesselProximityParameters_h
+#define vtkVesselProximityParameters_h
+
+#include "vpDangerLevels.h"
+
+#include <vtkObject.h>
+#include <vtkSmartPointer.h>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+class vtkPolyData;
+class vtkScalpelModel;
+class vtkVesselDistanceEngine;
+
+/// Everything the module logic computes from, in one object: the part vtkMRMLBreachWarningNode
+/// plays for SlicerIGT's BreachWarning, and a Slicer parameter node plays for a scripted module.
+/// A front end (a command, a CLI, the viewer) fills it; vtkVesselProximityLogic observes it and
+/// rebuilds only what a change invalidates.
+///
+/// Every setter fires ModifiedEvent only when the value changes. Two clocks say what changed:
+/// GetSceneMTime() for what the engines are built from (vessels, scalpel, engine, which engines
+/// are wanted), GetSettingsMTime() for what is applied per frame (thresholds, hysteresis, frame
+/// budget), which never causes a rebuild.
+///
+/// Defaults: no vessel, no scalpel, the exact engine, the whole instrument measured, no
+/// comparison with the exact engine, thresholds 10/5/2 mm, hysteresis 0.3 mm, budget 16.7 ms.
+class vtkVesselProximityParameters : public vtkObject
+{
+public:
+  static vtkVesselProximityParameters* New();
+  vtkTypeMacro(vtkVesselProximityParameters, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// Adds or replaces the surface of a vessel class (LPS mm, closed for inside/outside).
+  void SetVessel(const std::string& className, vtkPolyData* surface);
+  void RemoveAllVessels();
+  int GetNumberOfVessels() const { return static_cast<int>(this->Vessels.size()); }
+  const std::string& GetVesselClassName(int i) const { return this->Vessels[i].first; }
+  vtkPolyData* GetVesselSurface(int i) const { return this->Vessels[i].second; }
+
+  void SetScalpel(vtkScalpelModel* scalpel);
+  vtkScalpelModel* GetScalpel() const { return this->Scalpel; }
+
+  /// The engine that answers every frame, with its own settings (not null).
+  void SetDistanceEngine(vtkVesselDistanceEngine* engine);
+  vtkVesselDistanceEngine* GetDistanceEngine() const { return this->DistanceEngine; }
+
+  /// Whether the whole instrument surface is measured beside the tip, with its penetration.
+  void SetComputeSurfaceDistance(bool compute);
+  bool GetComputeSurfaceDistance() const { return this->ComputeSurfaceDistance; }
+  /// Whether every frame is also answered by the exact engine, for the accuracy check.
+  void SetCompareWithExact(bool compare);
+  bool GetCompareWithExact() const { return this->CompareWithExact; }
+
+  /// Checked where they are used (vtkScalpelTrackingLogic::ValidateSettings).
+  void SetDangerThresholds(const vp::DangerThresholds& thresholds);
+  const vp::DangerThresholds& GetDangerThresholds() const { return this->DangerThresholds; }
+  /// Not negative: throws ParameterError("HysteresisMm").
+  void SetHysteresisMm(double hysteresisMm);
+  double GetHysteresisMm() const { return this->HysteresisMm; }
+  /// Not negative, 0: no budget. Throws ParameterError("FrameBudgetMs").
+  void SetFrameBudgetMs(double budgetMs);
+  double GetFrameBudgetMs() const { return this->FrameBudgetMs; }
+
+  vtkMTimeType GetSceneMTime() const { return this->SceneTime.GetMTime(); }
+  vtkMTimeType GetSettingsMTime() const { return this->SettingsTime.GetMTime(); }
+
+protected:
+  vtkVesselProximityParameters();
+  ~vtkVesselProximityParameters() override;
+
+private:
+  vtkVesselProximityParameters(const vtkVesselProximityParameters&) = delete;
+  void operator=(const vtkVesselProximityParameters&) = delete;
+  void SceneModified();
+  void SettingsModified();
+
+  std::vector<std::pair<std::string, vtkSmartPointer<vtkPolyData>>> Vessels;
+  vtkSmartPointer<vtkScalpelModel> Scalpel;
+  vtkSmartPointer<vtkVesselDistanceEngine> DistanceEngine;
+  bool ComputeSurfaceDistance = true;
+  bool CompareWithExact = false;
+  vp::DangerThresholds DangerThresholds;
+  double HysteresisMm = 0.3;
+  double FrameBudgetMs = 16.7;
+  vtkTimeStamp SceneTime;
+  vtkTimeStamp SettingsTime;
+};
+
+#endif

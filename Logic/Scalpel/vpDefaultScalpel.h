@@ -1,6 +1,8 @@
 #ifndef vpDefaultScalpel_h
 #define vpDefaultScalpel_h
 
+#include "vpScalpelLoader.h"
+
 #include <string>
 
 namespace vp
@@ -13,6 +15,11 @@ namespace vp
 /// the usual loader (vp::LoadScalpel) reads it as it reads any instrument. Throws vp::InputError
 /// naming the folder when it cannot write there.
 std::string WriteDefaultScalpel(const std::string& folder);
+
+/// The default scalpel itself, read from the compiled-in bytes (nothing is written): the same
+/// model, tip and axis LoadScalpel gives for the written files, the given tip and axis winning
+/// as they do there.
+vtkSmartPointer<vtkScalpelModel> MakeDefaultScalpel(const ScalpelTipDefinition& given = {});
 } // namespace vp
 
 #endif

@@ -51,7 +51,11 @@ std::string ScalpelDefinitionFileFor(const std::string& modelFile)
 
 ScalpelTipDefinition ReadScalpelDefinition(const std::string& jsonFile)
 {
-  const nlohmann::json root = ReadJsonFile(jsonFile, "a scalpel tip definition");
+  return ParseScalpelDefinition(ReadJsonFile(jsonFile, "a scalpel tip definition"), jsonFile);
+}
+
+ScalpelTipDefinition ParseScalpelDefinition(const nlohmann::json& root, const std::string& jsonFile)
+{
   if (!root.is_object() || !root.contains("tip_mm"))
   {
     throw InputError(jsonFile, "no \"tip_mm\" in it (expected {\"tip_mm\": [x, y, z], \"axis\": [x, y, z]})");
@@ -77,19 +81,31 @@ vtkSmartPointer<vtkScalpelModel> LoadScalpel(const std::string& modelFile, const
   reader->Read();
   auto scalpel = vtkSmartPointer<vtkScalpelModel>::New();
   scalpel->SetModel(reader->GetOutput());
-
-  ScalpelTipDefinition definition = given;
-  std::string source = given.Source;
   const std::string besideFile = ScalpelDefinitionFileFor(modelFile);
   std::error_code ec;
-  if (!definition.TipMm && std::filesystem::is_regular_file(besideFile, ec))
+  std::optional<ScalpelTipDefinition> beside;
+  if (!given.TipMm && std::filesystem::is_regular_file(besideFile, ec))
   {
-    definition = ReadScalpelDefinition(besideFile);
+    beside = ReadScalpelDefinition(besideFile);
+    beside->Source = std::filesystem::path(besideFile).filename().string();
+  }
+  DefineScalpelTip(scalpel, given, beside, modelFile);
+  return scalpel;
+}
+
+void DefineScalpelTip(vtkScalpelModel* scalpel, const ScalpelTipDefinition& given,
+  const std::optional<ScalpelTipDefinition>& beside, const std::string& modelName)
+{
+  ScalpelTipDefinition definition = given;
+  std::string source = given.Source;
+  if (!definition.TipMm && beside)
+  {
+    definition = *beside;
     if (given.Axis)
     {
       definition.Axis = given.Axis;
     }
-    source = std::filesystem::path(besideFile).filename().string();
+    source = beside->Source;
   }
   if (definition.TipMm && definition.Axis)
   {
@@ -97,17 +113,17 @@ vtkSmartPointer<vtkScalpelModel> LoadScalpel(const std::string& modelFile, const
     scalpel->SetTipMm(definition.TipMm->data());
     scalpel->SetAxis(a[0], a[1], a[2]);
     scalpel->SetTipSource("tip " + PointText(*definition.TipMm) + " and axis from " + source);
-    return scalpel;
+    return;
   }
   // The finder gives the tip, or the principal axis that a tip given without an axis needs.
-  const ScalpelTipEstimate estimate = FindScalpelTip(scalpel->GetModel(), modelFile);
+  const ScalpelTipEstimate estimate = FindScalpelTip(scalpel->GetModel(), modelName);
   if (!definition.TipMm)
   {
     scalpel->SetTipMm(estimate.TipMm.data());
     const auto& a = definition.Axis ? *definition.Axis : estimate.Axis;
     scalpel->SetAxis(a[0], a[1], a[2]);
     scalpel->SetTipSource(estimate.Description);
-    return scalpel;
+    return;
   }
   const auto& tip = *definition.TipMm;
   scalpel->SetTipMm(tip.data());
@@ -123,6 +139,5 @@ vtkSmartPointer<vtkScalpelModel> LoadScalpel(const std::string& modelFile, const
   scalpel->GetAxis(axis.data());
   scalpel->SetTipSource("tip " + PointText(tip) + " from " + source + ", axis " + PointText(axis) +
     " along the model's principal axis towards the tip");
-  return scalpel;
 }
 } // namespace vp

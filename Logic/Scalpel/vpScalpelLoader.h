@@ -3,6 +3,8 @@
 
 #include "vtkScalpelModel.h"
 
+#include <nlohmann/json.hpp>
+
 #include <array>
 #include <optional>
 #include <string>
@@ -27,6 +29,8 @@ std::string ScalpelDefinitionFileFor(const std::string& modelFile);
 /// calibration report `vesselproximity register pivot` writes around them, are ignored). Throws
 /// vp::InputError naming the file for anything else.
 ScalpelTipDefinition ReadScalpelDefinition(const std::string& jsonFile);
+/// The same from a parsed document; jsonFile names it in messages.
+ScalpelTipDefinition ParseScalpelDefinition(const nlohmann::json& root, const std::string& jsonFile);
 
 /// Reads an instrument model (STL, VTK, VTP, PLY, OBJ) and defines its tip, in this order: the
 /// given tip; else the definition file beside the model; else the automatic finder (the narrow
@@ -34,6 +38,12 @@ ScalpelTipDefinition ReadScalpelDefinition(const std::string& jsonFile);
 /// centre towards the tip. The choice is recorded in the scalpel's TipSource. Throws
 /// vp::InputError naming the file on any problem.
 vtkSmartPointer<vtkScalpelModel> LoadScalpel(const std::string& modelFile, const ScalpelTipDefinition& given);
+
+/// LoadScalpel's choice of tip and axis for a model already read: the given tip, else the
+/// definition that came with the model (beside, its Source naming it), else the finder.
+/// modelName names the model in the finder's messages.
+void DefineScalpelTip(vtkScalpelModel* scalpel, const ScalpelTipDefinition& given,
+  const std::optional<ScalpelTipDefinition>& beside, const std::string& modelName);
 } // namespace vp
 
 #endif

@@ -160,7 +160,7 @@ void TrackDemo(DemoReport& report, const std::vector<NamedMesh>& vessels, double
     logic->SetDistanceEngine(MakeDistanceEngine(settings));
   }
   logic->SetCompareWithExact(report.Method == "both");
-  logic->SetScalpel(LoadScalpel(report.ScalpelFile, {}));
+  logic->SetScalpel(MakeDefaultScalpel());
   for (const NamedMesh& m : vessels)
   {
     logic->AddVessel(m.ClassName, m.Mesh);
@@ -189,7 +189,7 @@ vtkSmartPointer<vtkVesselProximityLogic> MakeDemoTipLogic(const DemoReport& repo
     reader->Read();
     logic->AddVessel(c, reader->GetOutput());
   }
-  logic->SetScalpel(LoadScalpel(report.ScalpelFile, {}));
+  logic->SetScalpel(MakeDefaultScalpel());
   logic->SetComputeSurfaceDistance(false);
   return logic;
 }

@@ -138,10 +138,7 @@ int RunViewCommand(const std::vector<std::string>& argv)
   }
   else
   {
-    const std::filesystem::path folder = std::filesystem::temp_directory_path() / ("vesselproximity-view-" + std::to_string(getpid()));
-    scalpel = LoadScalpel(WriteDefaultScalpel(folder.string()), tip);
-    std::error_code ec;
-    std::filesystem::remove_all(folder, ec);
+    scalpel = MakeDefaultScalpel(tip);
   }
 
   vtkNew<vtkVesselProximityLogic> logic;

@@ -1,6 +1,7 @@
 // The scalpel model: its tip found automatically on real instrument models, given in a JSON file
 // beside the model or on the command line, and placed in the world by a pose.
 #include "vpAnalyticShapes.h"
+#include "vpDefaultScalpel.h"
 #include "vpInputError.h"
 #include "vpScalpelLoader.h"
 #include "vpScalpelTipFinder.h"
@@ -167,4 +168,31 @@ TEST_F(ScalpelLoader, BadDefinitionFilesAreRefusedByName)
       EXPECT_NE(std::string(e.what()).find("Toy.json"), std::string::npos) << e.what();
     }
   }
+}
+
+// The built-in handpiece from memory is the handpiece its written files give, point for point.
+TEST(DefaultScalpel, FromMemoryIsTheWrittenOneReadBack)
+{
+  const auto written = vp::LoadScalpel(vp::WriteDefaultScalpel(vp::test::MakeTempDir("default-scalpel")), {});
+  const auto inMemory = vp::MakeDefaultScalpel();
+  vtkPolyData* a = written->GetModel();
+  vtkPolyData* b = inMemory->GetModel();
+  ASSERT_EQ(a->GetNumberOfPoints(), b->GetNumberOfPoints());
+  ASSERT_EQ(a->GetNumberOfPolys(), b->GetNumberOfPolys());
+  EXPECT_EQ(b->GetNumberOfPolys(), 1824);
+  for (vtkIdType i = 0; i < a->GetNumberOfPoints(); ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      ASSERT_EQ(a->GetPoint(i)[c], b->GetPoint(i)[c]) << "point " << i;
+    }
+  }
+  EXPECT_EQ(written->GetTipSource(), inMemory->GetTipSource());
+  EXPECT_EQ(inMemory->GetAxis()[2], 1.0);
+  vp::ScalpelTipDefinition given;
+  given.TipMm = std::array<double, 3>{ 0, 0, -10 };
+  given.Axis = std::array<double, 3>{ 0, 1, 0 };
+  const auto moved = vp::MakeDefaultScalpel(given);
+  EXPECT_EQ(moved->GetTipMm()[2], -10.0);
+  EXPECT_EQ(moved->GetAxis()[1], 1.0);
 }

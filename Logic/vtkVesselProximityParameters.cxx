@@ -12,6 +12,31 @@
 
 vtkStandardNewMacro(vtkVesselProximityParameters);
 
+namespace
+{
+/// Assigns, and says whether the value changed: a setter fires its event only then.
+template <typename T>
+bool Assign(T& field, const T& value)
+{
+  if (field == value)
+  {
+    return false;
+  }
+  field = value;
+  return true;
+}
+
+/// A length or a time that may be 0 but not negative (nor NaN, nor infinite).
+double NotNegative(double value, const char* parameter, const char* problem)
+{
+  if (!(value >= 0.0) || !std::isfinite(value))
+  {
+    throw vp::ParameterError(parameter, problem);
+  }
+  return value;
+}
+} // namespace
+
 vtkVesselProximityParameters::vtkVesselProximityParameters()
   : DistanceEngine(vtkSmartPointer<vtkExactVesselDistance>::New())
 {
@@ -62,9 +87,8 @@ void vtkVesselProximityParameters::RemoveAllVessels()
 
 void vtkVesselProximityParameters::SetScalpel(vtkScalpelModel* scalpel)
 {
-  if (scalpel != this->Scalpel)
+  if (Assign(this->Scalpel, vtkSmartPointer<vtkScalpelModel>(scalpel)))
   {
-    this->Scalpel = scalpel;
     this->SceneModified(); // the whole-instrument trees are built from its model
   }
 }
@@ -75,27 +99,24 @@ void vtkVesselProximityParameters::SetDistanceEngine(vtkVesselDistanceEngine* en
   {
     throw std::invalid_argument("vtkVesselProximityParameters: the distance engine cannot be null");
   }
-  if (engine != this->DistanceEngine)
+  if (Assign(this->DistanceEngine, vtkSmartPointer<vtkVesselDistanceEngine>(engine)))
   {
-    this->DistanceEngine = engine;
     this->SceneModified();
   }
 }
 
 void vtkVesselProximityParameters::SetComputeSurfaceDistance(bool compute)
 {
-  if (compute != this->ComputeSurfaceDistance)
+  if (Assign(this->ComputeSurfaceDistance, compute))
   {
-    this->ComputeSurfaceDistance = compute;
     this->SceneModified();
   }
 }
 
 void vtkVesselProximityParameters::SetCompareWithExact(bool compare)
 {
-  if (compare != this->CompareWithExact)
+  if (Assign(this->CompareWithExact, compare))
   {
-    this->CompareWithExact = compare;
     this->SceneModified();
   }
 }
@@ -112,26 +133,16 @@ void vtkVesselProximityParameters::SetDangerThresholds(const vp::DangerThreshold
 
 void vtkVesselProximityParameters::SetHysteresisMm(double hysteresisMm)
 {
-  if (!(hysteresisMm >= 0.0) || !std::isfinite(hysteresisMm))
+  if (Assign(this->HysteresisMm, NotNegative(hysteresisMm, "HysteresisMm", "must be a distance in mm, 0 or more (0: none)")))
   {
-    throw vp::ParameterError("HysteresisMm", "must be a distance in mm, 0 or more (0: none)");
-  }
-  if (hysteresisMm != this->HysteresisMm)
-  {
-    this->HysteresisMm = hysteresisMm;
     this->SettingsModified();
   }
 }
 
 void vtkVesselProximityParameters::SetFrameBudgetMs(double budgetMs)
 {
-  if (!(budgetMs >= 0.0) || !std::isfinite(budgetMs))
+  if (Assign(this->FrameBudgetMs, NotNegative(budgetMs, "FrameBudgetMs", "must be a time in ms, 0 or more (0: no budget)")))
   {
-    throw vp::ParameterError("FrameBudgetMs", "must be a time in ms, 0 or more (0: no budget)");
-  }
-  if (budgetMs != this->FrameBudgetMs)
-  {
-    this->FrameBudgetMs = budgetMs;
     this->SettingsModified();
   }
 }

@@ -46,26 +46,8 @@ const VesselClass Vessels[] = {
 /// number fields show -1 where NaN would show as garbage or be clamped.
 const char* NoDistance = "-1";
 
-/// The one table: the XML, --help and the parser all come from it.
-vp::cli::ModuleDescription Describe()
+vp::cli::ParameterGroup ModelsGroup()
 {
-  vp::cli::ModuleDescription d;
-  d.Program = "VesselProximityDistance";
-  d.Category = "IGT";
-  d.Title = "Vessel Proximity Distance";
-  d.Description =
-    "Distance from a scalpel tip to the nearest surface point of each vessel system (portal vein, "
-    "hepatic artery, hepatic vein), for liver surgery navigation. The exact engine answers from a "
-    "BVH in double precision; the z-buffer engine (the GPU method of Noborio et al., on Vulkan) "
-    "answers within a stated error bound. Coordinates are LPS millimetres. A class whose model is not "
-    "given, or that lies beyond the range, returns -1. Exit codes: 0 success, 1 bad input, 2 bad usage, "
-    "3 internal error, 4 no usable Vulkan device (zbuffer, both). Same as `vesselproximity distance`.";
-  d.Version = VP_VERSION;
-  d.Contributor = "VesselProximity developers";
-  d.Acknowledgements =
-    "Implements and extends Noborio et al., \"Comparison of GPU-based and CPU-based Algorithms for "
-    "Determining the Minimum Distance between a CUSA Scalpel and Blood Vessels\".";
-
   vp::cli::ParameterGroup models{ "Vessel models", "Surface models of the vessel systems; give at least one", {} };
   for (const VesselClass& v : Vessels)
   {
@@ -80,8 +62,11 @@ vp::cli::ModuleDescription Describe()
                                     "): STL, VTK, VTP or OBJ; a SPACE=RAS/LPS header tag is honoured, untagged "
                                     "files are LPS."));
   }
-  d.Groups.push_back(models);
+  return models;
+}
 
+vp::cli::ParameterGroup ScalpelGroup()
+{
   vp::cli::ParameterGroup scalpel{ "Scalpel", "Tip position and direction of the scalpel", {} };
   scalpel.Parameters.push_back(Parameter(ParameterType::Point, "tip")
                                  .SetCoordinateSystem("lps")
@@ -95,8 +80,11 @@ vp::cli::ModuleDescription Describe()
                                  .SetLabel("Scalpel axis")
                                  .SetDescription("Direction the scalpel points, x,y,z in LPS (need not be unit "
                                                  "length), for the directional distance along it. Optional."));
-  d.Groups.push_back(scalpel);
+  return scalpel;
+}
 
+vp::cli::ParameterGroup EngineGroup()
+{
   vp::cli::ParameterGroup engine{ "Distance engine", "Which engine answers, and how far it looks", {} };
   engine.Parameters.push_back(Parameter(ParameterType::StringEnumeration, "method")
                                 .SetLongFlag("method")
@@ -121,8 +109,11 @@ vp::cli::ModuleDescription Describe()
                                 .SetLabel("JSON report")
                                 .SetDescription("Writes the distance command's JSON (per class: distance, closest "
                                                 "point, inside, in range, directional distance; timing). Optional."));
-  d.Groups.push_back(engine);
+  return engine;
+}
 
+vp::cli::ParameterGroup ResultsGroup()
+{
   vp::cli::ParameterGroup out{ "Results", "Distances from the tip (-1: model not given, or beyond the range)", {} };
   auto result = [&](ParameterType type, const char* name, const char* label, const std::string& text,
                   const char* value) {
@@ -152,11 +143,37 @@ vp::cli::ModuleDescription Describe()
     "0");
   result(ParameterType::String, "methodUsed", "Engine used",
     "The engine that answered (auto resolves to zbuffer or exact).", "");
-  d.Groups.push_back(out);
+  return out;
+}
+
+/// The one table: the XML, --help and the parser all come from it.
+vp::cli::ModuleDescription Describe()
+{
+  vp::cli::ModuleDescription d;
+  d.Program = "VesselProximityDistance";
+  d.Category = "IGT";
+  d.Title = "Vessel Proximity Distance";
+  d.Description =
+    "Distance from a scalpel tip to the nearest surface point of each vessel system (portal vein, "
+    "hepatic artery, hepatic vein), for liver surgery navigation. The exact engine answers from a "
+    "BVH in double precision; the z-buffer engine (the GPU method of Noborio et al., on Vulkan) "
+    "answers within a stated error bound. Coordinates are LPS millimetres. A class whose model is not "
+    "given, or that lies beyond the range, returns -1. Exit codes: 0 success, 1 bad input, 2 bad usage, "
+    "3 internal error, 4 no usable Vulkan device (zbuffer, both). Same as `vesselproximity distance`.";
+  d.Version = VP_VERSION;
+  d.Contributor = "VesselProximity developers";
+  d.Acknowledgements =
+    "Implements and extends Noborio et al., \"Comparison of GPU-based and CPU-based Algorithms for "
+    "Determining the Minimum Distance between a CUSA Scalpel and Blood Vessels\".";
+
+  d.Groups.push_back(ModelsGroup());
+  d.Groups.push_back(ScalpelGroup());
+  d.Groups.push_back(EngineGroup());
+  d.Groups.push_back(ResultsGroup());
   return d;
 }
 
-void Run(const vp::cli::ParsedArguments& args, vp::cli::ReturnValues& results)
+vp::TipDistanceRequest ParseRequest(const vp::cli::ParsedArguments& args)
 {
   vp::TipDistanceRequest request;
   vp::DistanceEngineSettings settings;
@@ -181,6 +198,12 @@ void Run(const vp::cli::ParsedArguments& args, vp::cli::ReturnValues& results)
     }
     request.Axis = std::array<double, 3>{ axis[0], axis[1], axis[2] };
   }
+  return request;
+}
+
+/// The models given, each from its own parameter: file names are names, commas and all.
+std::vector<std::pair<std::string, std::string>> GivenModels(const vp::cli::ParsedArguments& args)
+{
   std::vector<std::pair<std::string, std::string>> vessels;
   for (const VesselClass& v : Vessels)
   {
@@ -193,16 +216,11 @@ void Run(const vp::cli::ParsedArguments& args, vp::cli::ReturnValues& results)
   {
     throw vp::cli::UsageError("--portalVein/--hepaticArtery/--hepaticVein", "give at least one vessel model");
   }
-  const double loadStart = vp::NowMs();
-  request.Vessels = vp::LoadVesselMeshes(vessels);
-  const double loadMs = vp::NowMs() - loadStart;
-  const vp::TipDistanceAnswer answer = vp::ComputeTipDistances(request);
-  if (args.IsSet("report"))
-  {
-    vp::WriteFileAtomically(args.GetString("report"), vp::TipDistanceReportJson(request, answer, false, loadMs).dump(2) + "\n");
-  }
+  return vessels;
+}
 
-  const vp::ProximityResult& r = answer.Results.at(0);
+void SetResults(const vp::ProximityResult& r, double rangeMm, vp::cli::ReturnValues& results)
+{
   const int nearest = r.NearestIndex();
   if (nearest >= 0)
   {
@@ -217,22 +235,33 @@ void Run(const vp::cli::ParsedArguments& args, vp::cli::ReturnValues& results)
   {
     for (const vp::ClassProximity& c : r.Classes)
     {
-      if (c.ClassName != v.ClassName)
-      {
-        continue;
-      }
-      if (c.InRange)
+      if (c.ClassName == v.ClassName && c.InRange)
       {
         results.Set(v.DistanceResult, c.DistanceMm);
       }
-      directional = c.DirectionalMm ? std::min(directional, *c.DirectionalMm) : directional;
+      directional = c.ClassName == v.ClassName && c.DirectionalMm ? std::min(directional, *c.DirectionalMm) : directional;
     }
   }
-  if (directional <= request.Engine->GetRangeMm())
+  if (directional <= rangeMm)
   {
     results.Set("directionalDistanceMm", directional);
   }
   results.Set("errorBoundMm", r.ErrorBoundMm);
+}
+
+void Run(const vp::cli::ParsedArguments& args, vp::cli::ReturnValues& results)
+{
+  const std::vector<std::pair<std::string, std::string>> models = GivenModels(args);
+  vp::TipDistanceRequest request = ParseRequest(args);
+  const double loadStart = vp::NowMs();
+  request.Vessels = vp::LoadVesselMeshes(models);
+  const double loadMs = vp::NowMs() - loadStart;
+  const vp::TipDistanceAnswer answer = vp::ComputeTipDistances(request);
+  if (args.IsSet("report"))
+  {
+    vp::WriteFileAtomically(args.GetString("report"), vp::TipDistanceReportJson(request, answer, false, loadMs).dump(2) + "\n");
+  }
+  SetResults(answer.Results.at(0), request.Engine->GetRangeMm(), results);
   results.Set("methodUsed", std::string(request.Engine->GetMethodName()));
 }
 } // namespace

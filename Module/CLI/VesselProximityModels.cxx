@@ -20,28 +20,8 @@ using vp::cli::Channel;
 using vp::cli::Parameter;
 using vp::cli::ParameterType;
 
-/// The one table: the XML, --help and the parser all come from it.
-vp::cli::ModuleDescription Describe()
+vp::cli::ParameterGroup IoGroup()
 {
-  vp::cli::ModuleDescription d;
-  d.Program = "VesselProximityModels";
-  d.Category = "IGT";
-  d.Title = "Vessel Proximity Models";
-  d.Description =
-    "Builds closed vessel surface models from a labelmap for scalpel-to-vessel distance "
-    "measurement in liver surgery: one STL per vessel class found (portal_vein, hepatic_artery, "
-    "hepatic_vein; liver too when present) and models.json, written to the output folder. "
-    "Structures map to classes through a label table; in an unnamed labelmap (as Slicer passes "
-    "one) only by label value, so give a table unless the values are TotalSegmentator's. "
-    "Surfaces follow Slicer's closed-surface conversion: discrete flying edges, windowed-sinc "
-    "smoothing, optional decimation. Same as `vesselproximity models`.";
-  d.Version = VP_VERSION;
-  d.Contributor = "VesselProximity developers";
-  d.Acknowledgements =
-    "Method after Noborio et al., \"Comparison of GPU-based and CPU-based Algorithms for Determining "
-    "the Minimum Distance between a CUSA Scalpel and Blood Vessels\". Surface generation follows 3D "
-    "Slicer's labelmap-to-closed-surface conversion.";
-
   vp::cli::ParameterGroup io{ "IO", "Input labelmap, label table and output folder", {} };
   io.Parameters.push_back(Parameter(ParameterType::Image, "inputVolume")
                             .SetTypeAttribute("label")
@@ -61,7 +41,7 @@ vp::cli::ModuleDescription Describe()
                                             "when missing. Nothing is written when the run fails. Required."));
   io.Parameters.push_back(Parameter(ParameterType::File, "labelTable")
                             .SetLongFlag("labelTable")
-                                 .SetLogicName("LabelTableFile")
+                            .SetLogicName("LabelTableFile")
                             .SetFileExtensions(".json")
                             .SetChannel(Channel::Input)
                             .SetLabel("Label table")
@@ -69,8 +49,11 @@ vp::cli::ModuleDescription Describe()
                                             "class its names, codes and label values. Default: the built-in table "
                                             "(IRCADb names, SNOMED codes, TotalSegmentator values 5 liver, 63 "
                                             "inferior vena cava as hepatic_vein, 64 portal vein)."));
-  d.Groups.push_back(io);
+  return io;
+}
 
+vp::cli::ParameterGroup SurfaceGroup()
+{
   vp::cli::ParameterGroup surface{ "Surface", "Smoothing, decimation and coordinate system of the models", {} };
   surface.Parameters.push_back(Parameter(ParameterType::Float, "smoothing")
                                  .SetLongFlag("smoothing")
@@ -101,8 +84,11 @@ vp::cli::ModuleDescription Describe()
                                                  "does: LPS (the DICOM frame, Slicer's default for files) or RAS.")
                                  .SetDefault("LPS")
                                  .SetElements({ "LPS", "RAS" }));
-  d.Groups.push_back(surface);
+  return surface;
+}
 
+vp::cli::ParameterGroup ResultsGroup()
+{
   vp::cli::ParameterGroup outputs{ "Results", "What the run wrote", {} };
   outputs.Parameters.push_back(Parameter(ParameterType::Integer, "numberOfModels")
                                  .SetChannel(Channel::Output)
@@ -114,7 +100,34 @@ vp::cli::ModuleDescription Describe()
                                  .SetLabel("Classes")
                                  .SetDescription("The classes modelled, comma separated (each is <class>.stl in the "
                                                  "output folder)."));
-  d.Groups.push_back(outputs);
+  return outputs;
+}
+
+/// The one table: the XML, --help and the parser all come from it.
+vp::cli::ModuleDescription Describe()
+{
+  vp::cli::ModuleDescription d;
+  d.Program = "VesselProximityModels";
+  d.Category = "IGT";
+  d.Title = "Vessel Proximity Models";
+  d.Description =
+    "Builds closed vessel surface models from a labelmap for scalpel-to-vessel distance "
+    "measurement in liver surgery: one STL per vessel class found (portal_vein, hepatic_artery, "
+    "hepatic_vein; liver too when present) and models.json, written to the output folder. "
+    "Structures map to classes through a label table; in an unnamed labelmap (as Slicer passes "
+    "one) only by label value, so give a table unless the values are TotalSegmentator's. "
+    "Surfaces follow Slicer's closed-surface conversion: discrete flying edges, windowed-sinc "
+    "smoothing, optional decimation. Same as `vesselproximity models`.";
+  d.Version = VP_VERSION;
+  d.Contributor = "VesselProximity developers";
+  d.Acknowledgements =
+    "Method after Noborio et al., \"Comparison of GPU-based and CPU-based Algorithms for Determining "
+    "the Minimum Distance between a CUSA Scalpel and Blood Vessels\". Surface generation follows 3D "
+    "Slicer's labelmap-to-closed-surface conversion.";
+
+  d.Groups.push_back(IoGroup());
+  d.Groups.push_back(SurfaceGroup());
+  d.Groups.push_back(ResultsGroup());
   return d;
 }
 

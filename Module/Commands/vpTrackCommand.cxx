@@ -68,6 +68,43 @@ void BuildLogic(vtkVesselProximityLogic* proximity, const std::vector<NamedMesh>
   proximity->GetTrackingLogic()->ValidateSettings();
 }
 
+Arguments ParseTrackArguments(const std::vector<std::string>& argv)
+{
+  std::set<std::string> options = EngineValueOptions();
+  options.insert({ "--vessels", "--scalpel", "--poses", "--tip", "--axis", "--danger-mm", "--frame-budget-ms", "--hysteresis-mm", "-o" });
+  Arguments args(argv, options, { "--no-surface", "--repair" });
+  if (!args.Positional().empty())
+  {
+    throw InputError(args.Positional()[0], "unexpected argument (see vesselproximity track --help)");
+  }
+  for (const char* required : { "--vessels", "--scalpel", "--poses", "-o" })
+  {
+    if (!args.Has(required))
+    {
+      throw InputError(required, "is required (see vesselproximity track --help)");
+    }
+  }
+  const std::string method = args.Get("--method", "exact");
+  if (method != "exact" && method != "zbuffer" && method != "both")
+  {
+    throw InputError("--method", "expected exact, zbuffer or both for tracking, got '" + method + "'");
+  }
+  return args;
+}
+
+/// Said once everything is built and checked: a line before a refusal would make its one line two.
+void ReportBuiltScene(vtkVesselProximityLogic* proximity, const std::vector<NamedMesh>& meshes, const std::string& scalpelFile)
+{
+  std::cerr << "track: " << proximity->GetScalpel()->GetTipSource() << "\n";
+  ReportSurfaceDefects("track", proximity->GetDistanceEngine(), meshes);
+  vtkScalpelPenetration* penetration = proximity->GetTrackingLogic()->GetPenetration();
+  if (penetration && !penetration->IsToolClosed())
+  {
+    std::cerr << "track: " << scalpelFile
+              << ": the surface is not closed, so the instrument's penetration depth and volume cannot be known (left empty)\n";
+  }
+}
+
 void PrintSummary(const TrackingSession& session, vtkVesselProximityLogic* proximity, const std::string& outDir)
 {
   const TrackingSummary& summary = session.GetSummary();
@@ -115,25 +152,8 @@ int RunTrackCommand(const std::vector<std::string>& argv)
     std::cout << Usage << EngineOptionsUsage({ "exact", "zbuffer", "both" });
     return 0;
   }
-  std::set<std::string> options = EngineValueOptions();
-  options.insert({ "--vessels", "--scalpel", "--poses", "--tip", "--axis", "--danger-mm", "--frame-budget-ms", "--hysteresis-mm", "-o" });
-  const Arguments args(argv, options, { "--no-surface", "--repair" });
-  if (!args.Positional().empty())
-  {
-    throw InputError(args.Positional()[0], "unexpected argument (see vesselproximity track --help)");
-  }
-  for (const char* required : { "--vessels", "--scalpel", "--poses", "-o" })
-  {
-    if (!args.Has(required))
-    {
-      throw InputError(required, "is required (see vesselproximity track --help)");
-    }
-  }
+  const Arguments args = ParseTrackArguments(argv);
   const std::string method = args.Get("--method", "exact");
-  if (method != "exact" && method != "zbuffer" && method != "both")
-  {
-    throw InputError("--method", "expected exact, zbuffer or both for tracking, got '" + method + "'");
-  }
   const ScalpelTipDefinition tip = ParseTipDefinition(args);
   const std::string outDir = args.Get("-o");
   RunFolder run(outDir, "summary.json");
@@ -152,14 +172,7 @@ int RunTrackCommand(const std::vector<std::string>& argv)
   }
   auto scalpel = LoadScalpel(args.Get("--scalpel"), tip);
   BuildLogic(proximity, meshes, scalpel);
-  // Said once everything is built and checked: a line before a refusal would make its one line two.
-  std::cerr << "track: " << scalpel->GetTipSource() << "\n";
-  ReportSurfaceDefects("track", proximity->GetDistanceEngine(), meshes);
-  if (proximity->GetTrackingLogic()->GetPenetration() && !proximity->GetTrackingLogic()->GetPenetration()->IsToolClosed())
-  {
-    std::cerr << "track: " << args.Get("--scalpel")
-              << ": the surface is not closed, so the instrument's penetration depth and volume cannot be known (left empty)\n";
-  }
+  ReportBuiltScene(proximity, meshes, args.Get("--scalpel"));
   TrackingSession session(proximity, meshes);
   session.SetLoadAndBuildMs(NowMs() - start);
   session.SetProgress([](std::size_t done, std::size_t expected) {

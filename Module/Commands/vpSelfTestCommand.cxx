@@ -89,7 +89,7 @@ std::vector<DangerLevel> ExactLevels(const DemoReport& report, std::vector<Dange
   });
   logic->GetTrackingLogic()->AddObserver(vtkScalpelTrackingLogic::DangerLevelChangedEvent, onChange);
   std::vector<DangerLevel> levels;
-  for (const TrackedPose& pose : ReadPoseFile(report.PosesFile))
+  for (const TrackedPose& pose : ReadPoseFile(report.PosesFile)) // the poses as written
   {
     levels.push_back(logic->ProcessPose(pose).Level);
   }
@@ -143,6 +143,111 @@ int LevelOfName(const std::string& name)
   }
   return -1;
 }
+/// Every model read back from its file: closed, and more than a token of triangles.
+void CheckModels(const DemoReport& report, Checks& checks)
+{
+  for (const auto& [name, file] : report.ModelFiles)
+  {
+    vtkNew<vtkVesselMeshReader> reader;
+    reader->SetFileName(file);
+    reader->Read();
+    const long long open = OpenEdges(reader->GetOutput());
+    checks.Check("model " + name, open == 0 && reader->GetOutput()->GetNumberOfPolys() > 100,
+      std::to_string(reader->GetOutput()->GetNumberOfPolys()) + " triangles, " + std::to_string(open) + " open edges");
+  }
+}
+
+/// The level changes of the exact engine on the built models against those of the analytic design
+/// the phantom was drawn from: the surfaces built from its voxels must tell the same story.
+void CheckLevelOrder(const DemoReport& report, const std::vector<DangerLevel>& changes, Checks& checks)
+{
+  std::vector<DangerLevel> expected;
+  DangerLevel previous = DangerLevel::Safe;
+  for (const TrackedPose& pose : report.Trajectory.Poses)
+  {
+    const auto& m = pose.ModelToWorld; // the tip is the model's origin
+    const DangerLevel level = AnalyticProximityAt(report.Phantom, { m[3], m[7], m[11] }).Level;
+    if (level != previous)
+    {
+      expected.push_back(level);
+      previous = level;
+    }
+  }
+  checks.Check("level order", changes == expected && expected.size() >= 8,
+    "exact engine on the built models [" + Names(changes) + "], analytic design [" + Names(expected) + "]");
+}
+
+/// The z-buffer's answers within their bound of the exact ones, and the contract's consequence for
+/// the surgeon: its level (frames.csv) never below the exact level.
+void CheckEngines(const DemoReport& report, const nlohmann::json& summary, const std::vector<DangerLevel>& exactLevels,
+  Checks& checks)
+{
+  if (report.Method != "both")
+  {
+    checks.Skip("engines agree", report.MethodNote);
+    return;
+  }
+  const auto& comparison = summary.at("comparison");
+  const double bound = summary.at("error_bound_mm").get<double>();
+  const double worst = comparison.at("max_abs_difference_mm").get<double>();
+  checks.Check("engines agree", comparison.at("outside_bound").get<int>() == 0 && worst <= bound + 1e-9,
+    "largest |z-buffer - exact| " + Text(worst) + " mm within the bound " + Text(bound) + " mm, " +
+      std::to_string(comparison.at("outside_bound").get<int>()) + " answers outside it");
+  const std::vector<std::string> zLevels = CsvLevels(report.OutDir + "/frames.csv");
+  int understated = 0, overstated = 0;
+  for (std::size_t i = 0; i < zLevels.size() && i < exactLevels.size(); ++i)
+  {
+    const int z = LevelOfName(zLevels[i]), e = static_cast<int>(exactLevels[i]);
+    understated += z < e ? 1 : 0;
+    overstated += z > e ? 1 : 0;
+  }
+  checks.Check("danger never understated", understated == 0,
+    std::to_string(understated) + " frames below the exact level, " + std::to_string(overstated) +
+      " above it (allowed: the bound is subtracted)");
+}
+
+void CheckTimeAtEveryLevel(const nlohmann::json& summary, Checks& checks)
+{
+  const auto& time = summary.at("time_in_level");
+  std::string times;
+  bool everyLevel = true;
+  for (int l = 0; l < NumberOfDangerLevels; ++l)
+  {
+    const double s = time.at(DangerLevelName(static_cast<DangerLevel>(l))).at("time_s").get<double>();
+    everyLevel = everyLevel && s > 0;
+    times += std::string(times.empty() ? "" : ", ") + DangerLevelName(static_cast<DangerLevel>(l)) + " " + Text(s) + " s";
+  }
+  checks.Check("time at every level", everyLevel, times);
+}
+
+/// distance.png is there, and no screenshot is blank.
+void CheckPictures(const DemoReport& report, bool screenshotsWanted, Checks& checks)
+{
+  std::error_code ec;
+  const auto plotBytes = std::filesystem::file_size(report.OutDir + "/distance.png", ec);
+  checks.Check("distance.png", !ec && plotBytes > 10000, ec ? ec.message() : std::to_string(plotBytes) + " bytes");
+  if (screenshotsWanted && report.Screenshots.empty())
+  {
+    checks.Check("screenshots", false, report.ScreenshotProblem);
+    return;
+  }
+  if (report.Screenshots.empty())
+  {
+    return;
+  }
+  int blank = 0;
+  for (const std::string& file : report.Screenshots)
+  {
+    vtkNew<vtkPNGReader> png;
+    png->SetFileName(file.c_str());
+    png->Update();
+    double range[2];
+    png->GetOutput()->GetScalarRange(range);
+    blank += range[1] - range[0] < 50 ? 1 : 0;
+  }
+  checks.Check("screenshots", blank == 0,
+    std::to_string(report.Screenshots.size()) + " key frames, " + std::to_string(blank) + " blank");
+}
 } // namespace
 
 int RunSelfTestCommand(const std::vector<std::string>& argv)
@@ -162,106 +267,24 @@ int RunSelfTestCommand(const std::vector<std::string>& argv)
     ? (std::filesystem::temp_directory_path() / ("vesselproximity-selftest-" + std::to_string(getpid()))).string()
     : args.Get("-o");
   const DemoReport report = RunDemoPipeline(outDir, !args.Has("--no-screenshots"));
+  // The self-test checks what the run left on disk, as a user would find it.
   const nlohmann::json summary = ReadJsonFile(outDir + "/summary.json", "the track summary");
   PrintDemoTable(report, summary);
   std::printf("\nself-test:\n");
   Checks checks;
-
-  for (const auto& [name, file] : report.ModelFiles)
-  {
-    vtkNew<vtkVesselMeshReader> reader;
-    reader->SetFileName(file);
-    reader->Read();
-    const long long open = OpenEdges(reader->GetOutput());
-    checks.Check("model " + name, open == 0 && reader->GetOutput()->GetNumberOfPolys() > 100,
-      std::to_string(reader->GetOutput()->GetNumberOfPolys()) + " triangles, " + std::to_string(open) + " open edges");
-  }
+  CheckModels(report, checks);
   const int frames = summary.at("frames").get<int>();
   checks.Check("frames", frames == report.Frames && CsvLevels(outDir + "/frames.csv").size() == static_cast<std::size_t>(frames),
     std::to_string(frames) + " in summary.json and frames.csv, " + std::to_string(report.Frames) + " poses");
-
-  // The exact engine's levels, recomputed here, must follow the trajectory's design.
   std::vector<DangerLevel> changes;
   const std::vector<DangerLevel> exactLevels = ExactLevels(report, changes);
-  // The design's levels, from the analytic vessels the phantom was drawn from: the engine on the
-  // surfaces built from its voxels must tell the same story.
-  std::vector<DangerLevel> expected;
-  DangerLevel previous = DangerLevel::Safe;
-  for (const TrackedPose& pose : report.Trajectory.Poses)
-  {
-    const auto& m = pose.ModelToWorld; // the tip is the model's origin
-    const DangerLevel level = AnalyticProximityAt(report.Phantom, { m[3], m[7], m[11] }).Level;
-    if (level != previous)
-    {
-      expected.push_back(level);
-      previous = level;
-    }
-  }
-  checks.Check("level order", changes == expected && expected.size() >= 8,
-    "exact engine on the built models [" + Names(changes) + "], analytic design [" + Names(expected) + "]");
-
-  if (report.Method == "both")
-  {
-    const auto& comparison = summary.at("comparison");
-    const double bound = summary.at("error_bound_mm").get<double>();
-    const double worst = comparison.at("max_abs_difference_mm").get<double>();
-    checks.Check("engines agree", comparison.at("outside_bound").get<int>() == 0 && worst <= bound + 1e-9,
-      "largest |z-buffer - exact| " + Text(worst) + " mm within the bound " + Text(bound) + " mm, " +
-        std::to_string(comparison.at("outside_bound").get<int>()) + " answers outside it");
-    // The contract's consequence for the surgeon: the z-buffer's level is never below the exact one.
-    const std::vector<std::string> zLevels = CsvLevels(outDir + "/frames.csv");
-    int understated = 0, overstated = 0;
-    for (std::size_t i = 0; i < zLevels.size() && i < exactLevels.size(); ++i)
-    {
-      const int z = LevelOfName(zLevels[i]), e = static_cast<int>(exactLevels[i]);
-      understated += z < e ? 1 : 0;
-      overstated += z > e ? 1 : 0;
-    }
-    checks.Check("danger never understated", understated == 0,
-      std::to_string(understated) + " frames below the exact level, " + std::to_string(overstated) +
-        " above it (allowed: the bound is subtracted)");
-  }
-  else
-  {
-    checks.Skip("engines agree", report.MethodNote);
-  }
-
-  const auto& time = summary.at("time_in_level");
-  std::string times;
-  bool everyLevel = true;
-  for (int l = 0; l < NumberOfDangerLevels; ++l)
-  {
-    const double s = time.at(DangerLevelName(static_cast<DangerLevel>(l))).at("time_s").get<double>();
-    everyLevel = everyLevel && s > 0;
-    times += std::string(times.empty() ? "" : ", ") + DangerLevelName(static_cast<DangerLevel>(l)) + " " + Text(s) + " s";
-  }
-  checks.Check("time at every level", everyLevel, times);
-
-  std::error_code ec;
-  const auto plotBytes = std::filesystem::file_size(outDir + "/distance.png", ec);
-  checks.Check("distance.png", !ec && plotBytes > 10000, ec ? ec.message() : std::to_string(plotBytes) + " bytes");
-
-  if (!args.Has("--no-screenshots") && report.Screenshots.empty())
-  {
-    checks.Check("screenshots", false, report.ScreenshotProblem);
-  }
-  else if (!report.Screenshots.empty())
-  {
-    int blank = 0;
-    for (const std::string& file : report.Screenshots)
-    {
-      vtkNew<vtkPNGReader> png;
-      png->SetFileName(file.c_str());
-      png->Update();
-      double range[2];
-      png->GetOutput()->GetScalarRange(range);
-      blank += range[1] - range[0] < 50 ? 1 : 0;
-    }
-    checks.Check("screenshots", blank == 0,
-      std::to_string(report.Screenshots.size()) + " key frames, " + std::to_string(blank) + " blank");
-  }
+  CheckLevelOrder(report, changes, checks);
+  CheckEngines(report, summary, exactLevels, checks);
+  CheckTimeAtEveryLevel(summary, checks);
+  CheckPictures(report, !args.Has("--no-screenshots"), checks);
 
   std::printf("%s: %d check(s) failed\n", checks.Failed ? "SELF-TEST FAILED" : "self-test passed", checks.Failed);
+  std::error_code ec;
   if (temporary && !checks.Failed)
   {
     std::filesystem::remove_all(outDir, ec);

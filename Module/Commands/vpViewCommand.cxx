@@ -21,9 +21,7 @@
 #include <vtkPolyData.h>
 
 #include <cstdlib>
-#include <filesystem>
 #include <iostream>
-#include <unistd.h>
 
 namespace vp
 {
@@ -78,19 +76,12 @@ std::array<double, 16> StartingPose(vtkVesselProximityLogic* logic)
   const double cx = 0.5 * (bounds[0] + bounds[1]), cy = bounds[2] - 30.0, cz = 0.5 * (bounds[4] + bounds[5]);
   return { 1, 0, 0, cx, 0, 0, 1, cy, 0, -1, 0, cz, 0, 0, 0, 1 };
 }
-} // namespace
-
-int RunViewCommand(const std::vector<std::string>& argv)
+Arguments ParseViewArguments(const std::vector<std::string>& argv)
 {
-  if (WantsHelp(argv))
-  {
-    std::cout << Usage << EngineOptionsUsage({ "exact", "zbuffer" }) << vtkVesselProximityView::KeyHelp();
-    return 0;
-  }
   std::set<std::string> options = EngineValueOptions();
   options.insert({ "--vessels", "--scalpel", "--tip", "--axis", "--poses", "--pose", "--liver", "--danger-mm", "--size",
     "--keys", "--screenshot", "--frame-budget-ms", "--hysteresis-mm" });
-  const Arguments args(argv, options, { "--no-surface" });
+  Arguments args(argv, options, { "--no-surface" });
   if (!args.Positional().empty())
   {
     throw InputError(args.Positional()[0], "unexpected argument (see vesselproximity view --help)");
@@ -104,12 +95,69 @@ int RunViewCommand(const std::vector<std::string>& argv)
   {
     throw InputError("--method", "expected exact or zbuffer for the view, got '" + method + "'");
   }
-  const DangerThresholds thresholds = ParseDangerThresholds(args);
+  return args;
+}
+
+/// The options that need no file, checked first: the logic's settings and its engine.
+vtkSmartPointer<vtkVesselProximityLogic> ConfigureLogic(const Arguments& args)
+{
+  auto logic = vtkSmartPointer<vtkVesselProximityLogic>::New();
+  vtkVesselProximityParameters* parameters = logic->GetParameters();
+  parameters->SetDangerThresholds(ParseDangerThresholds(args));
+  parameters->SetFrameBudgetMs(ParseFrameBudgetMs(args));
+  parameters->SetHysteresisMm(ParseHysteresisMm(args));
+  parameters->SetComputeSurfaceDistance(!args.Has("--no-surface"));
+  parameters->SetDistanceEngine(MakeDistanceEngine(args.Get("--method", "exact"), args));
+  return logic;
+}
+
+/// The vessels, the scalpel (the built-in handpiece unless one is given) and the liver.
+vtkSmartPointer<vtkPolyData> ReadScene(const Arguments& args, const ScalpelTipDefinition& tip, vtkVesselProximityLogic* logic)
+{
+  for (const auto& m : LoadVesselMeshes(ParsePairs(args.Get("--vessels"), "--vessels")))
+  {
+    logic->AddVessel(m.ClassName, m.Mesh);
+  }
+  vtkSmartPointer<vtkPolyData> liver;
+  if (args.Has("--liver"))
+  {
+    vtkNew<vtkVesselMeshReader> reader;
+    reader->SetFileName(args.Get("--liver"));
+    reader->Read();
+    liver = reader->GetOutput();
+  }
+  logic->SetScalpel(args.Has("--scalpel") ? LoadScalpel(args.Get("--scalpel"), tip) : MakeDefaultScalpel(tip));
+  logic->Build();
+  return liver;
+}
+
+void PrintScreenshotLine(const std::string& screenshot, vtkVesselProximityLogic* logic)
+{
+  const vp::TrackedFrame& f = logic->GetLastFrame();
+  const int nearest = f.Proximity.NearestIndex();
+  std::cout << "wrote " << screenshot << ": tip " << f.TipMm[0] << ", " << f.TipMm[1] << ", " << f.TipMm[2] << " mm, level "
+            << DangerLevelName(f.Level);
+  if (nearest >= 0)
+  {
+    std::cout << ", nearest " << f.Proximity.Classes[nearest].ClassName << " " << f.Proximity.Classes[nearest].DistanceMm << " mm";
+  }
+  std::cout << "\n";
+}
+} // namespace
+
+int RunViewCommand(const std::vector<std::string>& argv)
+{
+  if (WantsHelp(argv))
+  {
+    std::cout << Usage << EngineOptionsUsage({ "exact", "zbuffer" }) << vtkVesselProximityView::KeyHelp();
+    return 0;
+  }
+  const Arguments args = ParseViewArguments(argv);
   const ScalpelTipDefinition tip = ParseTipDefinition(args);
   const auto size = ParseSize(args.Get("--size", "1280x800"));
   const std::vector<std::string> keys = SplitKeys(args.Get("--keys"));
   const std::string screenshot = args.Get("--screenshot");
-
+  vtkSmartPointer<vtkVesselProximityLogic> logic = ConfigureLogic(args);
   // Everything that can be refused is read before a window opens.
   std::vector<TrackedPose> poses;
   if (args.Has("--poses"))
@@ -121,39 +169,7 @@ int RunViewCommand(const std::vector<std::string>& argv)
   {
     throw InputError("--pose", "no pose " + std::to_string(first) + " (the pose file has " + std::to_string(poses.size()) + ")");
   }
-  auto engine = MakeDistanceEngine(method, args);
-  const auto meshes = LoadVesselMeshes(ParsePairs(args.Get("--vessels"), "--vessels"));
-  vtkSmartPointer<vtkPolyData> liver;
-  if (args.Has("--liver"))
-  {
-    vtkNew<vtkVesselMeshReader> reader;
-    reader->SetFileName(args.Get("--liver"));
-    reader->Read();
-    liver = reader->GetOutput();
-  }
-  vtkSmartPointer<vtkScalpelModel> scalpel;
-  if (args.Has("--scalpel"))
-  {
-    scalpel = LoadScalpel(args.Get("--scalpel"), tip);
-  }
-  else
-  {
-    scalpel = MakeDefaultScalpel(tip);
-  }
-
-  vtkNew<vtkVesselProximityLogic> logic;
-  logic->SetDistanceEngine(engine);
-  logic->SetScalpel(scalpel);
-  logic->SetDangerThresholds(thresholds);
-  logic->GetParameters()->SetFrameBudgetMs(ParseFrameBudgetMs(args));
-  logic->GetParameters()->SetHysteresisMm(ParseHysteresisMm(args));
-  logic->SetComputeSurfaceDistance(!args.Has("--no-surface"));
-  for (const auto& m : meshes)
-  {
-    logic->AddVessel(m.ClassName, m.Mesh);
-  }
-  logic->Build();
-
+  vtkSmartPointer<vtkPolyData> liver = ReadScene(args, tip, logic);
   const char* displayName = std::getenv("DISPLAY");
   if (screenshot.empty() && !(displayName && *displayName))
   {
@@ -172,15 +188,12 @@ int RunViewCommand(const std::vector<std::string>& argv)
   {
     view->SetLiverSurface(liver);
   }
-  if (!poses.empty())
+  view->SetPoses(poses);
+  for (int i = 0; i <= first && !poses.empty(); ++i)
   {
-    view->SetPoses(poses);
-    for (int i = 0; i <= first; ++i)
-    {
-      view->ShowPose(i); // the plot shows the way there
-    }
+    view->ShowPose(i); // the plot shows the way there
   }
-  else
+  if (poses.empty())
   {
     view->SetScalpelPose(StartingPose(logic));
   }
@@ -188,15 +201,7 @@ int RunViewCommand(const std::vector<std::string>& argv)
   if (!screenshot.empty())
   {
     view->SaveScreenshot(screenshot);
-    const vp::TrackedFrame& f = logic->GetLastFrame();
-    const int nearest = f.Proximity.NearestIndex();
-    std::cout << "wrote " << screenshot << ": tip " << f.TipMm[0] << ", " << f.TipMm[1] << ", " << f.TipMm[2] << " mm, level "
-              << DangerLevelName(f.Level);
-    if (nearest >= 0)
-    {
-      std::cout << ", nearest " << f.Proximity.Classes[nearest].ClassName << " " << f.Proximity.Classes[nearest].DistanceMm << " mm";
-    }
-    std::cout << "\n";
+    PrintScreenshotLine(screenshot, logic);
     return 0;
   }
   std::cout << vtkVesselProximityView::KeyHelp();

@@ -131,6 +131,20 @@ vtkSmartPointer<vtkPolyData> ReadScene(const Arguments& args, const ScalpelTipDe
   return liver;
 }
 
+/// A window needs the user's display; a screenshot takes a virtual one when there is none.
+void RequireDisplay(const std::string& screenshot, VirtualDisplay& display)
+{
+  const char* displayName = std::getenv("DISPLAY");
+  if (screenshot.empty() && !(displayName && *displayName))
+  {
+    throw InputError("view", "no display to open a window on (DISPLAY is unset); use --screenshot for an image");
+  }
+  if (!screenshot.empty() && !display.Ensure())
+  {
+    throw InputError("--screenshot", display.GetProblem());
+  }
+}
+
 void PrintScreenshotLine(const std::string& screenshot, vtkVesselProximityLogic* logic)
 {
   const vp::TrackedFrame& f = logic->GetLastFrame();
@@ -170,16 +184,8 @@ int RunViewCommand(const std::vector<std::string>& argv)
     throw InputError("--pose", "no pose " + std::to_string(first) + " (the pose file has " + std::to_string(poses.size()) + ")");
   }
   vtkSmartPointer<vtkPolyData> liver = ReadScene(args, tip, logic);
-  const char* displayName = std::getenv("DISPLAY");
-  if (screenshot.empty() && !(displayName && *displayName))
-  {
-    throw InputError("view", "no display to open a window on (DISPLAY is unset); use --screenshot for an image");
-  }
   VirtualDisplay display;
-  if (!screenshot.empty() && !display.Ensure())
-  {
-    throw InputError("--screenshot", display.GetProblem());
-  }
+  RequireDisplay(screenshot, display);
   vtkNew<vtkVesselProximityView> view;
   view->SetOffScreen(!screenshot.empty());
   view->SetSizePx(size.first, size.second);

@@ -149,10 +149,8 @@ vp::cli::ParameterGroup ResultsGroup()
 /// The one table: the XML, --help and the parser all come from it.
 vp::cli::ModuleDescription Describe()
 {
-  vp::cli::ModuleDescription d;
-  d.Program = "VesselProximityDistance";
-  d.Category = "IGT";
-  d.Title = "Vessel Proximity Distance";
+  auto d = vp::cli::ModuleDescription::VesselProximity(
+    "VesselProximityDistance", "Vessel Proximity Distance", VP_VERSION, { ModelsGroup(), ScalpelGroup(), EngineGroup(), ResultsGroup() });
   d.Description =
     "Distance from a scalpel tip to the nearest surface point of each vessel system (portal vein, "
     "hepatic artery, hepatic vein), for liver surgery navigation. The exact engine answers from a "
@@ -160,16 +158,9 @@ vp::cli::ModuleDescription Describe()
     "answers within a stated error bound. Coordinates are LPS millimetres. A class whose model is not "
     "given, or that lies beyond the range, returns -1. Exit codes: 0 success, 1 bad input, 2 bad usage, "
     "3 internal error, 4 no usable Vulkan device (zbuffer, both). Same as `vesselproximity distance`.";
-  d.Version = VP_VERSION;
-  d.Contributor = "VesselProximity developers";
   d.Acknowledgements =
     "Implements and extends Noborio et al., \"Comparison of GPU-based and CPU-based Algorithms for "
     "Determining the Minimum Distance between a CUSA Scalpel and Blood Vessels\".";
-
-  d.Groups.push_back(ModelsGroup());
-  d.Groups.push_back(ScalpelGroup());
-  d.Groups.push_back(EngineGroup());
-  d.Groups.push_back(ResultsGroup());
   return d;
 }
 

@@ -106,10 +106,8 @@ vp::cli::ParameterGroup ResultsGroup()
 /// The one table: the XML, --help and the parser all come from it.
 vp::cli::ModuleDescription Describe()
 {
-  vp::cli::ModuleDescription d;
-  d.Program = "VesselProximityModels";
-  d.Category = "IGT";
-  d.Title = "Vessel Proximity Models";
+  auto d = vp::cli::ModuleDescription::VesselProximity(
+    "VesselProximityModels", "Vessel Proximity Models", VP_VERSION, { IoGroup(), SurfaceGroup(), ResultsGroup() });
   d.Description =
     "Builds closed vessel surface models from a labelmap for scalpel-to-vessel distance "
     "measurement in liver surgery: one STL per vessel class found (portal_vein, hepatic_artery, "
@@ -118,16 +116,10 @@ vp::cli::ModuleDescription Describe()
     "one) only by label value, so give a table unless the values are TotalSegmentator's. "
     "Surfaces follow Slicer's closed-surface conversion: discrete flying edges, windowed-sinc "
     "smoothing, optional decimation. Same as `vesselproximity models`.";
-  d.Version = VP_VERSION;
-  d.Contributor = "VesselProximity developers";
   d.Acknowledgements =
     "Method after Noborio et al., \"Comparison of GPU-based and CPU-based Algorithms for Determining "
     "the Minimum Distance between a CUSA Scalpel and Blood Vessels\". Surface generation follows 3D "
     "Slicer's labelmap-to-closed-surface conversion.";
-
-  d.Groups.push_back(IoGroup());
-  d.Groups.push_back(SurfaceGroup());
-  d.Groups.push_back(ResultsGroup());
   return d;
 }
 

@@ -501,6 +501,19 @@ std::string Parameter::DisplayName() const
   return this->Name;
 }
 
+ModuleDescription ModuleDescription::VesselProximity(
+  std::string program, std::string title, std::string version, std::vector<ParameterGroup> groups)
+{
+  ModuleDescription d;
+  d.Program = std::move(program);
+  d.Category = "IGT";
+  d.Title = std::move(title);
+  d.Version = std::move(version);
+  d.Contributor = "VesselProximity developers";
+  d.Groups = std::move(groups);
+  return d;
+}
+
 const Parameter& ModuleDescription::Find(const std::string& name) const
 {
   for (const auto& group : this->Groups)

@@ -157,6 +157,10 @@ struct ModuleDescription
 
   /// The parameter of that name; std::logic_error when none is declared (a programming error).
   const Parameter& Find(const std::string& name) const;
+
+  /// One of this project's programs: category IGT, our contributor line, the given groups.
+  static ModuleDescription VesselProximity(
+    std::string program, std::string title, std::string version, std::vector<ParameterGroup> groups);
 };
 
 /// Checks the table itself: names unique C identifiers, flags unique and not the built-in ones,

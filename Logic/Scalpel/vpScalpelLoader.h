@@ -16,7 +16,7 @@ struct ScalpelTipDefinition
 {
   std::optional<std::array<double, 3>> TipMm;
   std::optional<std::array<double, 3>> Axis;
-  /// Where the given tip came from, in the words of the front end that took it ("--tip" for a
+  /// Where the given tip came from, in the words of the front end that took it (its flag, for a
   /// command), for the scalpel's TipSource.
   std::string Source = "the given tip";
 };

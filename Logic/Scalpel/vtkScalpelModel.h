@@ -34,7 +34,7 @@ public:
   vtkGetVector3Macro(Axis, double);
 
   /// Where the tip definition came from, in words, for reports ("Scalpel.json", the given
-  /// tip as the front end names it ("--tip"), or the automatic finder's reasoning).
+  /// tip as the front end names it (a command: its flag), or the automatic finder's reasoning).
   void SetTipSource(const std::string& source) { this->TipSource = source; }
   const std::string& GetTipSource() const { return this->TipSource; }
 

@@ -462,25 +462,9 @@ Json BenchZBuffer(vtkVesselDistanceEngine* engine, const std::vector<NamedMesh>&
   entry["error_bound_mm"] = bound;
   return entry;
 }
-} // namespace
-
-int RunBenchCommand(const std::vector<std::string>& argv)
+/// --engines: a list of exact, zbuffer and replay.
+std::set<std::string> ParseBenchEngines(const Arguments& args)
 {
-  if (WantsHelp(argv))
-  {
-    std::cout << Usage;
-    return 0;
-  }
-  std::set<std::string> options = EngineValueOptions();
-  options.insert({ "--vessels", "--sizes", "--queries", "--brute-queries", "--seed", "--engines", "-o", "--scalpel", "--tip", "--poses",
-    "--fine-cell" });
-  const Arguments args(argv, options, { "--json" });
-  // Checked before any work: a bad value must not surface after minutes of benchmarks.
-  const double fineCellMm = args.GetNumber("--fine-cell", 0.0);
-  if (args.Has("--fine-cell") && !(fineCellMm > 0.0 && std::isfinite(fineCellMm)))
-  {
-    throw InputError("--fine-cell", "must be a positive number of millimetres");
-  }
   std::set<std::string> engineNames;
   std::istringstream engineList(args.Get("--engines", "exact,zbuffer"));
   for (std::string name; std::getline(engineList, name, ',');)
@@ -495,43 +479,41 @@ int RunBenchCommand(const std::vector<std::string>& argv)
   {
     throw InputError("--engines", "expected a list of exact, zbuffer and replay");
   }
-  const bool benchExact = engineNames.count("exact") > 0;
-  const bool benchZBuffer = engineNames.count("zbuffer") > 0;
-  const bool benchReplay = engineNames.count("replay") > 0;
-  // Open the Vulkan device before the long work, so that a missing one fails at once.
-  vtkSmartPointer<vtkVesselDistanceEngine> zbufferEngine;
-  if (benchZBuffer)
-  {
-    zbufferEngine = MakeDistanceEngine("zbuffer", args);
-  }
-  vtkSmartPointer<vtkScalpelModel> scalpel;
-  if (benchReplay)
-  {
-    ScalpelTipDefinition tip;
-    if (args.Has("--tip"))
-    {
-      tip.TipMm = ParsePoint(args.Get("--tip"), "--tip");
-    }
-    if (args.Has("--scalpel"))
-    {
-      scalpel = LoadScalpel(args.Get("--scalpel"), tip);
-    }
-    else
-    {
-      scalpel = vtkSmartPointer<vtkScalpelModel>::New();
-      const double z[3] = { 0, 0, 1 };
-      const double centre[3] = { 0, 0, -60 };
-      scalpel->SetModel(MakeCappedCylinder(centre, z, 1.5, 120.0, 24));
-      scalpel->SetTipSource("built-in shaft: tip (0, 0, 0), axis +z");
-    }
-  }
-  const std::vector<std::size_t> sizes = ParseSizes(args.Get("--sizes", "50000,400000,1500000"));
-  const int queries = args.GetInteger("--queries", 2000);
-  const int bruteQueries = std::min(queries, args.GetInteger("--brute-queries", 30));
-  const unsigned seed = static_cast<unsigned>(args.GetInteger("--seed", 1));
-  const std::vector<NamedMesh> vessels =
-    args.Has("--vessels") ? LoadVesselMeshes(ParsePairs(args.Get("--vessels"), "--vessels")) : BuiltInVessels();
+  return engineNames;
+}
 
+/// The replay's instrument: --scalpel (tip from --tip, its JSON or the finder), else a plain shaft.
+vtkSmartPointer<vtkScalpelModel> ReplayScalpel(const Arguments& args)
+{
+  vtkSmartPointer<vtkScalpelModel> scalpel;
+  ScalpelTipDefinition tip;
+  if (args.Has("--tip"))
+  {
+    tip.TipMm = ParsePoint(args.Get("--tip"), "--tip");
+  }
+  if (args.Has("--scalpel"))
+  {
+    scalpel = LoadScalpel(args.Get("--scalpel"), tip);
+  }
+  else
+  {
+    scalpel = vtkSmartPointer<vtkScalpelModel>::New();
+    const double z[3] = { 0, 0, 1 };
+    const double centre[3] = { 0, 0, -60 };
+    scalpel->SetModel(MakeCappedCylinder(centre, z, 1.5, 120.0, 24));
+    scalpel->SetTipSource("built-in shaft: tip (0, 0, 0), axis +z");
+  }
+  return scalpel;
+}
+
+/// Random tips in the vessels' box, and a tracked tip's random walk through it.
+struct BenchTips
+{
+  std::vector<std::array<double, 3>> Random, Track;
+};
+
+BenchTips MakeBenchTips(const std::vector<NamedMesh>& vessels, int queries, unsigned seed)
+{
   // Tips: uniform in the vessels' joint bounding box grown by 10 mm (where a scalpel works).
   double bounds[6] = { 1e300, -1e300, 1e300, -1e300, 1e300, -1e300 };
   for (const auto& v : vessels)
@@ -570,100 +552,45 @@ int RunBenchCommand(const std::vector<std::string>& argv)
       track[i][a] = x;
     }
   }
+  return { tips, track };
+}
 
-  Json report;
-  report["benchmark"] = "distance engines vs the paper's brute-force CPU algorithm";
-  report["hardware_threads"] = std::thread::hardware_concurrency();
-  report["source"] = args.Has("--vessels") ? "files" : "built-in analytic vessels";
-  report["queries"] = queries;
-  report["brute_queries"] = bruteQueries;
-  report["tracked_step_mm"] = 0.5;
-  Json sizeList = Json::array();
-  Json zbufferSizes = Json::array();
-  std::vector<NamedMesh> smallest, largest; // for the z-buffer side by side
-  std::size_t smallestTarget = 0, largestTarget = 0;
-  for (std::size_t target : benchExact || benchZBuffer ? sizes : std::vector<std::size_t>())
-  {
-    std::vector<NamedMesh> refined;
-    for (const NamedMesh& vessel : vessels)
-    {
-      std::fprintf(stderr, "bench: refining %s to %zu triangles\n", vessel.ClassName.c_str(), target);
-      refined.push_back({ vessel.ClassName, vessel.FileName, RefineToTriangleCount(vessel.Mesh, target), std::nullopt });
-    }
-    if (benchExact)
-    {
-      sizeList.push_back(BenchExact(refined, target, tips, track, bruteQueries));
-    }
-    if (benchZBuffer)
-    {
-      zbufferSizes.push_back(BenchZBuffer(zbufferEngine, refined, target, tips, track, bruteQueries));
-      if (smallest.empty() || target < smallestTarget)
-      {
-        smallest = refined;
-        smallestTarget = target;
-      }
-      if (largest.empty() || target > largestTarget)
-      {
-        largest = refined;
-        largestTarget = target;
-      }
-    }
-  }
-  if (benchExact)
-  {
-    report["sizes"] = sizeList;
-  }
-  if (benchZBuffer)
-  {
-    Json z;
-    auto* engine = vtkZBufferVesselDistance::SafeDownCast(zbufferEngine);
-    z["device"] = engine->GetDeviceName();
-    z["range_mm"] = engine->GetRangeMm();
-    z["cell_mm"] = engine->GetGrid().PixelMm;
-    z["error_bound_mm"] = engine->GetErrorBoundMm();
-    z["sizes"] = zbufferSizes;
-    const double first = zbufferSizes.front()["cached"]["median_ms"].get<double>();
-    const double last = zbufferSizes.back()["cached"]["median_ms"].get<double>();
-    z["cached_query_ratio_largest_to_smallest"] = last / std::max(1e-9, first);
-    if (largestTarget != smallestTarget)
-    {
-      std::fprintf(stderr, "bench: z-buffer, smallest and largest size side by side\n");
-      z["largest_beside_smallest"] = SideBySide(smallest, largest, 0.0, tips, args);
-    }
-    if (args.Has("--fine-cell"))
-    {
-      std::fprintf(stderr, "bench: z-buffer, the smallest size at %s mm cells beside the set cell\n", args.Get("--fine-cell").c_str());
-      z["fine_cell_beside_cell"] = SideBySide(smallest, smallest, fineCellMm, tips, args);
-    }
-    report["zbuffer"] = z;
-  }
+using SizedVessels = std::pair<std::vector<NamedMesh>, std::size_t>; // refined, to this many triangles a class
 
-  if (benchReplay)
-  {
-    vtkSmartPointer<vtkVesselDistanceEngine> replayZBuffer;
-    if (benchZBuffer)
-    {
-      replayZBuffer = MakeDistanceEngine("zbuffer", args);
-    }
-    const std::vector<TrackedPose> poses = args.Has("--poses") ? ReadPoseFile(args.Get("--poses")) : std::vector<TrackedPose>();
-    report["replay"] = BenchReplay(vessels, static_cast<std::size_t>(queries), seed, scalpel, replayZBuffer, bruteQueries, poses);
-    report["replay"]["scalpel"] = scalpel->GetTipSource();
-  }
+/// The z-buffer's sizes with its settings, the cached query's growth from the smallest size to
+/// the largest, and the side-by-side runs (largest beside smallest, --fine-cell beside the cell).
 
-  if (args.Has("-o"))
+Json ZBufferReport(vtkVesselDistanceEngine* zbufferEngine, const Json& zbufferSizes, const SizedVessels& smallest,
+  const SizedVessels& largest, const std::vector<std::array<double, 3>>& tips, const Arguments& args)
+{
+  Json z;
+  auto* engine = vtkZBufferVesselDistance::SafeDownCast(zbufferEngine);
+  z["device"] = engine->GetDeviceName();
+  z["range_mm"] = engine->GetRangeMm();
+  z["cell_mm"] = engine->GetGrid().PixelMm;
+  z["error_bound_mm"] = engine->GetErrorBoundMm();
+  z["sizes"] = zbufferSizes;
+  const double first = zbufferSizes.front()["cached"]["median_ms"].get<double>();
+  const double last = zbufferSizes.back()["cached"]["median_ms"].get<double>();
+  z["cached_query_ratio_largest_to_smallest"] = last / std::max(1e-9, first);
+  if (largest.second != smallest.second)
   {
-    WriteFileAtomically(args.Get("-o"), report.dump(2) + "\n");
+    std::fprintf(stderr, "bench: z-buffer, smallest and largest size side by side\n");
+    z["largest_beside_smallest"] = SideBySide(smallest.first, largest.first, 0.0, tips, args);
   }
-  if (args.Has("--json"))
+  if (args.Has("--fine-cell"))
   {
-    std::cout << report.dump(2) << "\n";
-    return 0;
+    std::fprintf(stderr, "bench: z-buffer, the smallest size at %s mm cells beside the set cell\n", args.Get("--fine-cell").c_str());
+    z["fine_cell_beside_cell"] = SideBySide(smallest.first, smallest.first, args.GetNumber("--fine-cell", 0.0), tips, args);
   }
-  if (benchExact)
-  {
+  return z;
+}
+
+void PrintExactTable(const Json& sizes)
+{
   std::printf("%-15s %9s | %9s %10s %10s %10s | %9s %10s | %10s | %9s %9s\n", "class", "triangles", "build ms",
     "exact med", "exact p95", "tracked", "vtk build", "vtk med", "brute med", "speedup", "diff mm");
-  for (const Json& s : report["sizes"])
+  for (const Json& s : sizes)
   {
     for (const Json& c : s["classes"])
     {
@@ -682,110 +609,240 @@ int RunBenchCommand(const std::vector<std::string>& argv)
       }
     }
   }
-  }
-  if (benchZBuffer)
+}
+
+void PrintZBufferTimes(const Json& z)
+{
+  std::printf("\nz-buffer on %s, cell %.3f mm, error bound %.3f mm, range %.0f mm (times per query, all classes)\n",
+    z["device"].get<std::string>().c_str(), z["cell_mm"].get<double>(), z["error_bound_mm"].get<double>(),
+    z["range_mm"].get<double>());
+  std::printf("%10s %10s | %9s %9s | %10s %10s %10s | %10s %7s | %10s %10s | %9s %8s\n", "tris/class", "total",
+    "build ms", "render ms", "cached med", "cached p95", "paper med", "moving med", "renders", "exact med", "brute med",
+    "max diff", "outside");
+  for (const Json& s : z["sizes"])
   {
-    const Json& z = report["zbuffer"];
-    std::printf("\nz-buffer on %s, cell %.3f mm, error bound %.3f mm, range %.0f mm (times per query, all classes)\n",
-      z["device"].get<std::string>().c_str(), z["cell_mm"].get<double>(), z["error_bound_mm"].get<double>(),
-      z["range_mm"].get<double>());
-    std::printf("%10s %10s | %9s %9s | %10s %10s %10s | %10s %7s | %10s %10s | %9s %8s\n", "tris/class", "total",
-      "build ms", "render ms", "cached med", "cached p95", "paper med", "moving med", "renders", "exact med", "brute med",
-      "max diff", "outside");
-    for (const Json& s : z["sizes"])
+    std::printf("%10zu %10zu | %9.1f %9.1f | %10.3f %10.3f %10.3f | %10.3f %7d | %10.4f %10.2f | %9.4f %8d\n",
+      s["triangles_per_class"].get<std::size_t>(), s["triangles"].get<std::size_t>(), s["build_ms"].get<double>(),
+      s["render"]["median_ms"].get<double>(), s["cached"]["median_ms"].get<double>(),
+      s["cached"]["p95_ms"].get<double>(), s["paper_mode"]["median_ms"].get<double>(),
+      s["moving_box"]["median_ms"].get<double>(), s["moving_box"]["renders"].get<int>(),
+      s["exact_all_classes"]["median_ms"].get<double>(), s["brute_all_classes"]["median_ms"].get<double>(),
+      s["max_abs_diff_vs_exact_mm"].get<double>(), s["outside_bound"].get<int>());
+  }
+  std::printf("cached query time, largest size / smallest: %.2f\n", z["cached_query_ratio_largest_to_smallest"].get<double>());
+  for (const char* key : { "largest_beside_smallest", "fine_cell_beside_cell" })
+  {
+    if (z.contains(key))
     {
-      std::printf("%10zu %10zu | %9.1f %9.1f | %10.3f %10.3f %10.3f | %10.3f %7d | %10.4f %10.2f | %9.4f %8d\n",
-        s["triangles_per_class"].get<std::size_t>(), s["triangles"].get<std::size_t>(), s["build_ms"].get<double>(),
-        s["render"]["median_ms"].get<double>(), s["cached"]["median_ms"].get<double>(),
-        s["cached"]["p95_ms"].get<double>(), s["paper_mode"]["median_ms"].get<double>(),
-        s["moving_box"]["median_ms"].get<double>(), s["moving_box"]["renders"].get<int>(),
-        s["exact_all_classes"]["median_ms"].get<double>(), s["brute_all_classes"]["median_ms"].get<double>(),
-        s["max_abs_diff_vs_exact_mm"].get<double>(), s["outside_bound"].get<int>());
+      const Json& c = z[key];
+      std::printf("side by side (%s): %zu triangles at %.3f mm cells %.4f / %.4f ms (device %.4f), %zu at %.3f mm "
+                  "%.4f / %.4f ms (device %.4f): ratio %.2f median, %.2f p95, %.2f on the device\n",
+        key, c["first"]["triangles"].get<std::size_t>(), c["first"]["cell_mm"].get<double>(),
+        c["first"]["cached"]["median_ms"].get<double>(), c["first"]["cached"]["p95_ms"].get<double>(),
+        c["first"]["cached_device"]["median_ms"].get<double>(), c["second"]["triangles"].get<std::size_t>(),
+        c["second"]["cell_mm"].get<double>(), c["second"]["cached"]["median_ms"].get<double>(),
+        c["second"]["cached"]["p95_ms"].get<double>(), c["second"]["cached_device"]["median_ms"].get<double>(),
+        c["ratio_median"].get<double>(), c["ratio_p95"].get<double>(), c["ratio_device_median"].get<double>());
     }
-    std::printf("cached query time, largest size / smallest: %.2f\n", z["cached_query_ratio_largest_to_smallest"].get<double>());
-    for (const char* key : { "largest_beside_smallest", "fine_cell_beside_cell" })
+  }
+}
+
+void PrintZBufferQueries(const Json& z)
+{
+  std::printf("%10s | %14s %14s | %14s %14s %14s %14s\n", "tris/class", "query med ms", "on device med",
+    "axis med ms", "axis p95 ms", "on device med", "on device p95");
+  for (const Json& s : z["sizes"])
+  {
+    std::printf("%10zu | %14.4f %14.4f | %14.4f %14.4f %14.4f %14.4f\n", s["triangles_per_class"].get<std::size_t>(),
+      s["cached"]["median_ms"].get<double>(), s["cached_device"]["median_ms"].get<double>(),
+      s["cached_with_axis"]["median_ms"].get<double>(), s["cached_with_axis"]["p95_ms"].get<double>(),
+      s["cached_with_axis_device"]["median_ms"].get<double>(), s["cached_with_axis_device"]["p95_ms"].get<double>());
+  }
+  std::printf("%10s | %14s %14s %16s | %14s\n", "tris/class", "batch med ms", "batch p95 ms", "z-buffer tips/s",
+    "exact tips/s");
+  for (const Json& s : z["sizes"])
+  {
+    std::printf("%10zu | %14.2f %14.2f %16.0f | %14.0f   (%zu tips, %zu a submission, %d answers differ from single queries)\n",
+      s["triangles_per_class"].get<std::size_t>(), s["batched"]["median_ms"].get<double>(),
+      s["batched"]["p95_ms"].get<double>(), s["batched"]["tips_per_second"].get<double>(),
+      s["exact_batched"]["tips_per_second"].get<double>(), s["batched"]["tips"].get<std::size_t>(),
+      s["batch_capacity"].get<std::size_t>(), s["batched"]["answers_differing_from_single_queries"].get<int>());
+  }
+}
+
+void PrintReplayTable(const Json& r)
+{
+  std::printf("\nreplay: %zu poses, %zu classes, %zu triangles, scalpel of %lld triangles\n",
+    r["poses"].get<std::size_t>(), r["classes"].get<std::size_t>(), r["triangles"].get<std::size_t>(),
+    r["tool_triangles"].get<long long>());
+  std::printf("  %-36s %8s %14s %12s %12s\n", "engine", "frames", "frames/s", "median ms", "p95 ms");
+  for (const char* key :
+    { "exact_tip", "exact_tip_and_surface", "fcl_surface", "spheres_tip_and_surface", "exact_tip_and_surface_within_caution",
+      "zbuffer_cached", "zbuffer_tip_and_surface", "zbuffer_full_frame", "brute_tip" })
+  {
+    if (r.contains(key))
     {
-      if (z.contains(key))
+      std::printf("  %-36s %8zu %14.0f %12.4f %12.4f\n", key, r[key]["frames"].get<std::size_t>(),
+        r[key]["frames_per_second"].get<double>(), r[key]["frame_median_ms"].get<double>(), r[key]["frame_p95_ms"].get<double>());
+    }
+  }
+  for (const char* key : { "fcl_surface", "spheres_tip_and_surface" })
+  {
+    std::printf("  %s against exact_tip_and_surface: largest difference %.2e mm, %d in/out of range disagreements\n", key,
+      r[key]["vs_exact_tip_and_surface"]["max_abs_diff_mm"].get<double>(),
+      r[key]["vs_exact_tip_and_surface"]["in_range_disagreements"].get<int>());
+  }
+  if (r.contains("zbuffer_cached"))
+  {
+    std::printf("  z-buffer on %s: layers %.0f ms once; largest |zbuffer - exact| %.4f mm, bound %.3f mm, %d outside\n",
+      r["zbuffer_cached"]["device"].get<std::string>().c_str(), r["zbuffer_cached"]["build_and_render_ms"].get<double>(),
+      r["zbuffer_cached"]["max_abs_diff_vs_exact_mm"].get<double>(), r["zbuffer_cached"]["error_bound_mm"].get<double>(),
+      r["zbuffer_cached"]["outside_bound"].get<int>());
+  }
+  if (r.contains("zbuffer_tip_and_surface"))
+  {
+    const Json& w = r["zbuffer_tip_and_surface"];
+    const Json& v = w["vs_exact_tip_and_surface"];
+    std::printf("  z-buffer whole instrument: field and samples %.0f ms once (%.0f MB); against exact: bound %.3f mm "
+                "(%.3f where exact < 5 mm), %d outside it, %d farther than exact\n",
+      w["build_ms"].get<double>(), w["field_memory_mb"].get<double>(), v["max_error_bound_mm"].get<double>(),
+      v["max_error_bound_within_5mm"].get<double>(), v["outside_bound"].get<int>(), v["farther_than_reference"].get<int>());
+  }
+  if (r.contains("zbuffer_full_frame"))
+  {
+    const Json& v = r["zbuffer_full_frame"]["vs_exact_penetration"];
+    std::printf("  z-buffer penetration against exact: %d overlapping answers, largest depth difference %.3f mm, volume %.1f "
+                "mm3, %d outside the bounds\n",
+      v["answers_with_exact_overlap"].get<int>(), v["max_depth_diff_mm"].get<double>(), v["max_volume_diff_mm3"].get<double>(),
+      v["outside_bounds"].get<int>());
+  }
+}
+
+void PrintBenchReport(Json& report)
+{
+  if (report.contains("sizes"))
+  {
+    PrintExactTable(report["sizes"]);
+  }
+  if (report.contains("zbuffer"))
+  {
+    PrintZBufferTimes(report["zbuffer"]);
+    PrintZBufferQueries(report["zbuffer"]);
+  }
+  if (report.contains("replay"))
+  {
+    PrintReplayTable(report["replay"]);
+  }
+}
+
+/// The exact and z-buffer engines on the vessels refined to each size: report["sizes"] and
+/// report["zbuffer"].
+void BenchSizes(const std::set<std::string>& engines, vtkVesselDistanceEngine* zbufferEngine,
+  const std::vector<NamedMesh>& vessels, const BenchTips& tips, int bruteQueries, const Arguments& args, Json& report)
+{
+  if (!engines.count("exact") && !engines.count("zbuffer"))
+  {
+    return;
+  }
+  const std::vector<std::size_t> sizes = ParseSizes(args.Get("--sizes", "50000,400000,1500000"));
+  Json sizeList = Json::array();
+  Json zbufferSizes = Json::array();
+  std::vector<NamedMesh> smallest, largest; // for the z-buffer side by side
+  std::size_t smallestTarget = 0, largestTarget = 0;
+  for (std::size_t target : sizes)
+  {
+    std::vector<NamedMesh> refined;
+    for (const NamedMesh& vessel : vessels)
+    {
+      std::fprintf(stderr, "bench: refining %s to %zu triangles\n", vessel.ClassName.c_str(), target);
+      refined.push_back({ vessel.ClassName, vessel.FileName, RefineToTriangleCount(vessel.Mesh, target), std::nullopt });
+    }
+    if (engines.count("exact"))
+    {
+      sizeList.push_back(BenchExact(refined, target, tips.Random, tips.Track, bruteQueries));
+    }
+    if (engines.count("zbuffer"))
+    {
+      zbufferSizes.push_back(BenchZBuffer(zbufferEngine, refined, target, tips.Random, tips.Track, bruteQueries));
+      if (smallest.empty() || target < smallestTarget)
       {
-        const Json& c = z[key];
-        std::printf("side by side (%s): %zu triangles at %.3f mm cells %.4f / %.4f ms (device %.4f), %zu at %.3f mm "
-                    "%.4f / %.4f ms (device %.4f): ratio %.2f median, %.2f p95, %.2f on the device\n",
-          key, c["first"]["triangles"].get<std::size_t>(), c["first"]["cell_mm"].get<double>(),
-          c["first"]["cached"]["median_ms"].get<double>(), c["first"]["cached"]["p95_ms"].get<double>(),
-          c["first"]["cached_device"]["median_ms"].get<double>(), c["second"]["triangles"].get<std::size_t>(),
-          c["second"]["cell_mm"].get<double>(), c["second"]["cached"]["median_ms"].get<double>(),
-          c["second"]["cached"]["p95_ms"].get<double>(), c["second"]["cached_device"]["median_ms"].get<double>(),
-          c["ratio_median"].get<double>(), c["ratio_p95"].get<double>(), c["ratio_device_median"].get<double>());
+        smallest = refined;
+        smallestTarget = target;
+      }
+      if (largest.empty() || target > largestTarget)
+      {
+        largest = refined;
+        largestTarget = target;
       }
     }
-    std::printf("%10s | %14s %14s | %14s %14s %14s %14s\n", "tris/class", "query med ms", "on device med",
-      "axis med ms", "axis p95 ms", "on device med", "on device p95");
-    for (const Json& s : z["sizes"])
-    {
-      std::printf("%10zu | %14.4f %14.4f | %14.4f %14.4f %14.4f %14.4f\n", s["triangles_per_class"].get<std::size_t>(),
-        s["cached"]["median_ms"].get<double>(), s["cached_device"]["median_ms"].get<double>(),
-        s["cached_with_axis"]["median_ms"].get<double>(), s["cached_with_axis"]["p95_ms"].get<double>(),
-        s["cached_with_axis_device"]["median_ms"].get<double>(), s["cached_with_axis_device"]["p95_ms"].get<double>());
-    }
-    std::printf("%10s | %14s %14s %16s | %14s\n", "tris/class", "batch med ms", "batch p95 ms", "z-buffer tips/s",
-      "exact tips/s");
-    for (const Json& s : z["sizes"])
-    {
-      std::printf("%10zu | %14.2f %14.2f %16.0f | %14.0f   (%zu tips, %zu a submission, %d answers differ from single queries)\n",
-        s["triangles_per_class"].get<std::size_t>(), s["batched"]["median_ms"].get<double>(),
-        s["batched"]["p95_ms"].get<double>(), s["batched"]["tips_per_second"].get<double>(),
-        s["exact_batched"]["tips_per_second"].get<double>(), s["batched"]["tips"].get<std::size_t>(),
-        s["batch_capacity"].get<std::size_t>(), s["batched"]["answers_differing_from_single_queries"].get<int>());
-    }
   }
-  if (benchReplay)
+  if (engines.count("exact"))
   {
-    const Json& r = report["replay"];
-    std::printf("\nreplay: %zu poses, %zu classes, %zu triangles, scalpel of %lld triangles\n",
-      r["poses"].get<std::size_t>(), r["classes"].get<std::size_t>(), r["triangles"].get<std::size_t>(),
-      r["tool_triangles"].get<long long>());
-    std::printf("  %-36s %8s %14s %12s %12s\n", "engine", "frames", "frames/s", "median ms", "p95 ms");
-    for (const char* key :
-      { "exact_tip", "exact_tip_and_surface", "fcl_surface", "spheres_tip_and_surface", "exact_tip_and_surface_within_caution",
-        "zbuffer_cached", "zbuffer_tip_and_surface", "zbuffer_full_frame", "brute_tip" })
-    {
-      if (r.contains(key))
-      {
-        std::printf("  %-36s %8zu %14.0f %12.4f %12.4f\n", key, r[key]["frames"].get<std::size_t>(),
-          r[key]["frames_per_second"].get<double>(), r[key]["frame_median_ms"].get<double>(), r[key]["frame_p95_ms"].get<double>());
-      }
-    }
-    for (const char* key : { "fcl_surface", "spheres_tip_and_surface" })
-    {
-      std::printf("  %s against exact_tip_and_surface: largest difference %.2e mm, %d in/out of range disagreements\n", key,
-        r[key]["vs_exact_tip_and_surface"]["max_abs_diff_mm"].get<double>(),
-        r[key]["vs_exact_tip_and_surface"]["in_range_disagreements"].get<int>());
-    }
-    if (r.contains("zbuffer_cached"))
-    {
-      std::printf("  z-buffer on %s: layers %.0f ms once; largest |zbuffer - exact| %.4f mm, bound %.3f mm, %d outside\n",
-        r["zbuffer_cached"]["device"].get<std::string>().c_str(), r["zbuffer_cached"]["build_and_render_ms"].get<double>(),
-        r["zbuffer_cached"]["max_abs_diff_vs_exact_mm"].get<double>(), r["zbuffer_cached"]["error_bound_mm"].get<double>(),
-        r["zbuffer_cached"]["outside_bound"].get<int>());
-    }
-    if (r.contains("zbuffer_tip_and_surface"))
-    {
-      const Json& w = r["zbuffer_tip_and_surface"];
-      const Json& v = w["vs_exact_tip_and_surface"];
-      std::printf("  z-buffer whole instrument: field and samples %.0f ms once (%.0f MB); against exact: bound %.3f mm "
-                  "(%.3f where exact < 5 mm), %d outside it, %d farther than exact\n",
-        w["build_ms"].get<double>(), w["field_memory_mb"].get<double>(), v["max_error_bound_mm"].get<double>(),
-        v["max_error_bound_within_5mm"].get<double>(), v["outside_bound"].get<int>(), v["farther_than_reference"].get<int>());
-    }
-    if (r.contains("zbuffer_full_frame"))
-    {
-      const Json& v = r["zbuffer_full_frame"]["vs_exact_penetration"];
-      std::printf("  z-buffer penetration against exact: %d overlapping answers, largest depth difference %.3f mm, volume %.1f "
-                  "mm3, %d outside the bounds\n",
-        v["answers_with_exact_overlap"].get<int>(), v["max_depth_diff_mm"].get<double>(), v["max_volume_diff_mm3"].get<double>(),
-        v["outside_bounds"].get<int>());
-    }
+    report["sizes"] = sizeList;
   }
+  if (engines.count("zbuffer"))
+  {
+    report["zbuffer"] = ZBufferReport(zbufferEngine, zbufferSizes, { smallest, smallestTarget }, { largest, largestTarget },
+      tips.Random, args);
+  }
+}
+
+} // namespace
+
+int RunBenchCommand(const std::vector<std::string>& argv)
+{
+  if (WantsHelp(argv))
+  {
+    std::cout << Usage;
+    return 0;
+  }
+  std::set<std::string> options = EngineValueOptions();
+  options.insert({ "--vessels", "--sizes", "--queries", "--brute-queries", "--seed", "--engines", "-o", "--scalpel", "--tip", "--poses",
+    "--fine-cell" });
+  const Arguments args(argv, options, { "--json" });
+  // Checked before any work: a bad value must not surface after minutes of benchmarks.
+  const double fineCellMm = args.GetNumber("--fine-cell", 0.0);
+  if (args.Has("--fine-cell") && !(fineCellMm > 0.0 && std::isfinite(fineCellMm)))
+  {
+    throw InputError("--fine-cell", "must be a positive number of millimetres");
+  }
+  const std::set<std::string> engines = ParseBenchEngines(args);
+  ParseSizes(args.Get("--sizes", "50000,400000,1500000"));
+  // Open the Vulkan device before the long work, so that a missing one fails at once.
+  vtkSmartPointer<vtkVesselDistanceEngine> zbufferEngine = engines.count("zbuffer") ? MakeDistanceEngine("zbuffer", args) : nullptr;
+  vtkSmartPointer<vtkScalpelModel> scalpel = engines.count("replay") ? ReplayScalpel(args) : nullptr;
+  const int queries = args.GetInteger("--queries", 2000);
+  const int bruteQueries = std::min(queries, args.GetInteger("--brute-queries", 30));
+  const unsigned seed = static_cast<unsigned>(args.GetInteger("--seed", 1));
+  const std::vector<NamedMesh> vessels =
+    args.Has("--vessels") ? LoadVesselMeshes(ParsePairs(args.Get("--vessels"), "--vessels")) : BuiltInVessels();
+  const BenchTips tips = MakeBenchTips(vessels, queries, seed);
+
+  Json report;
+  report["benchmark"] = "distance engines vs the paper's brute-force CPU algorithm";
+  report["hardware_threads"] = std::thread::hardware_concurrency();
+  report["source"] = args.Has("--vessels") ? "files" : "built-in analytic vessels";
+  report["queries"] = queries;
+  report["brute_queries"] = bruteQueries;
+  report["tracked_step_mm"] = 0.5;
+  BenchSizes(engines, zbufferEngine, vessels, tips, bruteQueries, args, report);
+  if (scalpel)
+  {
+    const std::vector<TrackedPose> poses = args.Has("--poses") ? ReadPoseFile(args.Get("--poses")) : std::vector<TrackedPose>();
+    report["replay"] = BenchReplay(vessels, static_cast<std::size_t>(queries), seed, scalpel,
+      zbufferEngine ? MakeDistanceEngine("zbuffer", args) : nullptr, bruteQueries, poses);
+    report["replay"]["scalpel"] = scalpel->GetTipSource();
+  }
+  if (args.Has("-o"))
+  {
+    WriteFileAtomically(args.Get("-o"), report.dump(2) + "\n");
+  }
+  if (args.Has("--json"))
+  {
+    std::cout << report.dump(2) << "\n";
+    return 0;
+  }
+  PrintBenchReport(report);
   return 0;
 }
 } // namespace vp

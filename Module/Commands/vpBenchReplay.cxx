@@ -207,6 +207,86 @@ Json ComparePenetrations(const Replay& a, const Replay& b)
   return { { "answers_with_exact_overlap", overlapping }, { "max_depth_diff_mm", depth }, { "max_volume_diff_mm3", volume },
     { "outside_bounds", outside } };
 }
+
+void ReplayZBufferFullFrame(vtkScalpelTrackingLogic* logic, vtkZBufferSurfaceDistance* zsurface, vtkExactVesselDistance* exact,
+  vtkScalpelModel* scalpel, const std::vector<TrackedPose>& poses, const Replay& whole, Json& out)
+{
+  std::fprintf(stderr, ", z-buffer full frame");
+  vtkNew<vtkScalpelPenetration> zpenetration;
+  zpenetration->SetVesselDistance(exact); // which classes are closed
+  zpenetration->SetZBufferSurface(zsurface);
+  zpenetration->SetToolSurface(scalpel->GetModel());
+  zpenetration->Build();
+  logic->SetSurfaceDistance(zsurface);
+  logic->SetPenetration(zpenetration);
+  const Replay zfull = Run(logic, poses, poses.size());
+  logic->SetPenetration(nullptr);
+  logic->SetSurfaceDistance(nullptr);
+  Json f = Entry(zfull);
+  f["includes"] = "tip, whole-instrument distance, penetration depth and volume, all from the z-buffer's layers";
+  f["vs_exact_penetration"] = ComparePenetrations(zfull, whole);
+  out["zbuffer_full_frame"] = f;
+}
+
+/// The z-buffer engine's own tip answers over the same frames, against the exact ones.
+void ReplayZBufferTip(vtkScalpelTrackingLogic* logic, vtkVesselDistanceEngine* zbuffer, const std::vector<TrackedPose>& poses,
+  const Replay& tip, Json& out)
+{
+  std::fprintf(stderr, ", z-buffer (render");
+  const double renderStart = NowMs();
+  zbuffer->Build();
+  vp::ProximityResult warm;
+  const double origin[3] = { tip.Frames[0].TipMm[0], tip.Frames[0].TipMm[1], tip.Frames[0].TipMm[2] };
+  zbuffer->ComputeProximity(origin, nullptr, warm); // renders the layers
+  const double renderMs = NowMs() - renderStart;
+  std::fprintf(stderr, ", frames)");
+  logic->SetDistanceEngine(zbuffer);
+  const Replay cached = Run(logic, poses, poses.size());
+  ExactComparison check;
+  for (std::size_t i = 0; i < cached.Frames.size(); ++i)
+  {
+    check.Add(cached.Frames[i].Proximity, tip.Frames[i].Proximity, zbuffer->GetRangeMm(), zbuffer->GetErrorBoundMm());
+  }
+  Json z = Entry(cached);
+  z["device"] = zbuffer->GetDeviceDescription();
+  z["build_and_render_ms"] = renderMs;
+  z["error_bound_mm"] = zbuffer->GetErrorBoundMm();
+  z["max_abs_diff_vs_exact_mm"] = check.MaxAbsDifferenceMm;
+  z["outside_bound"] = check.OutsideBound;
+  out["zbuffer_cached"] = z;
+}
+
+/// The whole instrument on the z-buffer's layers, then with its penetration: the full frame.
+void ReplayZBufferInstrument(vtkScalpelTrackingLogic* logic, vtkZBufferVesselDistance* layers, vtkExactVesselDistance* exact,
+  vtkScalpelModel* scalpel, const std::vector<TrackedPose>& poses, const Replay& whole, Json& out)
+{
+  std::fprintf(stderr, ", z-buffer whole instrument");
+  vtkNew<vtkZBufferSurfaceDistance> zsurface;
+  zsurface->SetZBuffer(layers);
+  zsurface->SetToolSurface(scalpel->GetModel());
+  zsurface->Build();
+  logic->SetSurfaceDistance(zsurface);
+  std::vector<double> evaluated, submissions;
+  const Replay zwhole = Run(logic, poses, poses.size(), [&]() {
+    evaluated.push_back(static_cast<double>(zsurface->GetLastEvaluatedSamples()));
+    submissions.push_back(static_cast<double>(zsurface->GetLastSubmissions()));
+  });
+  logic->SetSurfaceDistance(nullptr);
+  Json w = Entry(zwhole);
+  w["includes"] = "tip and whole-instrument distance on the z-buffer's layers (no penetration)";
+  w["build_ms"] = zsurface->GetBuildTimeMs();
+  w["tool_samples"] = zsurface->GetNumberOfSamples();
+  w["error_bound_mm"] = zsurface->GetErrorBoundMm();
+  w["field_memory_mb"] = static_cast<double>(zsurface->GetFieldMemoryBytes()) / (1024.0 * 1024.0);
+  w["field_layer_cells_per_cell"] = zsurface->GetFieldLayerCellsPerCell();
+  w["samples_evaluated_median"] = Quantile(evaluated, 0.5);
+  w["samples_evaluated_p95"] = Quantile(evaluated, 0.95);
+  w["submissions_median"] = Quantile(submissions, 0.5);
+  w["submissions_p95"] = Quantile(submissions, 0.95);
+  w["vs_exact_tip_and_surface"] = CompareSurfaces(zwhole, whole);
+  out["zbuffer_tip_and_surface"] = w;
+  ReplayZBufferFullFrame(logic, zsurface, exact, scalpel, poses, whole, out);
+}
 } // namespace
 
 Json BenchReplay(const std::vector<NamedMesh>& vessels, std::size_t frames, unsigned seed, vtkScalpelModel* scalpel,
@@ -293,72 +373,10 @@ Json BenchReplay(const std::vector<NamedMesh>& vessels, std::size_t frames, unsi
   out["max_abs_diff_exact_vs_brute_mm"] = bruteCheck.MaxAbsDifferenceMm;
   if (zbuffer)
   {
-    std::fprintf(stderr, ", z-buffer (render");
-    const double renderStart = NowMs();
-    zbuffer->Build();
-    vp::ProximityResult warm;
-    const double origin[3] = { tip.Frames[0].TipMm[0], tip.Frames[0].TipMm[1], tip.Frames[0].TipMm[2] };
-    zbuffer->ComputeProximity(origin, nullptr, warm); // renders the layers
-    const double renderMs = NowMs() - renderStart;
-    std::fprintf(stderr, ", frames)");
-    logic->SetDistanceEngine(zbuffer);
-    const Replay cached = Run(logic, poses, poses.size());
-    ExactComparison check;
-    for (std::size_t i = 0; i < cached.Frames.size(); ++i)
-    {
-      check.Add(cached.Frames[i].Proximity, tip.Frames[i].Proximity, zbuffer->GetRangeMm(), zbuffer->GetErrorBoundMm());
-    }
-    Json z = Entry(cached);
-    z["device"] = zbuffer->GetDeviceDescription();
-    z["build_and_render_ms"] = renderMs;
-    z["error_bound_mm"] = zbuffer->GetErrorBoundMm();
-    z["max_abs_diff_vs_exact_mm"] = check.MaxAbsDifferenceMm;
-    z["outside_bound"] = check.OutsideBound;
-    out["zbuffer_cached"] = z;
-
+    ReplayZBufferTip(logic, zbuffer, poses, tip, out);
     if (auto* layers = vtkZBufferVesselDistance::SafeDownCast(zbuffer))
     {
-      std::fprintf(stderr, ", z-buffer whole instrument");
-      vtkNew<vtkZBufferSurfaceDistance> zsurface;
-      zsurface->SetZBuffer(layers);
-      zsurface->SetToolSurface(scalpel->GetModel());
-      zsurface->Build();
-      logic->SetSurfaceDistance(zsurface);
-      std::vector<double> evaluated, submissions;
-      const Replay zwhole = Run(logic, poses, poses.size(), [&]() {
-        evaluated.push_back(static_cast<double>(zsurface->GetLastEvaluatedSamples()));
-        submissions.push_back(static_cast<double>(zsurface->GetLastSubmissions()));
-      });
-      logic->SetSurfaceDistance(nullptr);
-      Json w = Entry(zwhole);
-      w["includes"] = "tip and whole-instrument distance on the z-buffer's layers (no penetration)";
-      w["build_ms"] = zsurface->GetBuildTimeMs();
-      w["tool_samples"] = zsurface->GetNumberOfSamples();
-      w["error_bound_mm"] = zsurface->GetErrorBoundMm();
-      w["field_memory_mb"] = static_cast<double>(zsurface->GetFieldMemoryBytes()) / (1024.0 * 1024.0);
-      w["field_layer_cells_per_cell"] = zsurface->GetFieldLayerCellsPerCell();
-      w["samples_evaluated_median"] = Quantile(evaluated, 0.5);
-      w["samples_evaluated_p95"] = Quantile(evaluated, 0.95);
-      w["submissions_median"] = Quantile(submissions, 0.5);
-      w["submissions_p95"] = Quantile(submissions, 0.95);
-      w["vs_exact_tip_and_surface"] = CompareSurfaces(zwhole, whole);
-      out["zbuffer_tip_and_surface"] = w;
-
-      std::fprintf(stderr, ", z-buffer full frame");
-      vtkNew<vtkScalpelPenetration> zpenetration;
-      zpenetration->SetVesselDistance(exact); // which classes are closed
-      zpenetration->SetZBufferSurface(zsurface);
-      zpenetration->SetToolSurface(scalpel->GetModel());
-      zpenetration->Build();
-      logic->SetSurfaceDistance(zsurface);
-      logic->SetPenetration(zpenetration);
-      const Replay zfull = Run(logic, poses, poses.size());
-      logic->SetPenetration(nullptr);
-      logic->SetSurfaceDistance(nullptr);
-      Json f = Entry(zfull);
-      f["includes"] = "tip, whole-instrument distance, penetration depth and volume, all from the z-buffer's layers";
-      f["vs_exact_penetration"] = ComparePenetrations(zfull, whole);
-      out["zbuffer_full_frame"] = f;
+      ReplayZBufferInstrument(logic, layers, exact, scalpel, poses, whole, out);
     }
   }
   std::fprintf(stderr, "\n");

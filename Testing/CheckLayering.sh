@@ -1,0 +1,29 @@
+#!/bin/bash
+# The layering rules of issue 15, checked on the sources so that they stay true:
+#  - the logic names its settings, never a front end's flags;
+#  - the logic includes nothing of the widgets, the module or the phantom generators;
+#  - a command's Run...Command is called only from the command table;
+#  - no front end captures stdout (the CLI harness's stderr-to-stdout for Slicer aside).
+# Prints each breach as file:line and exits 1 when there is one.
+set -u
+root="${1:?usage: CheckLayering.sh SOURCE_DIR}"
+cd "$root" || exit 2
+failed=0
+breach() {
+  if [ -n "$2" ]; then
+    echo "$1:"
+    echo "$2"
+    failed=1
+  fi
+}
+breach "command-line flag text in Logic/ (name the parameter: vp::ParameterError)" \
+  "$(grep -rn --include='*.h' --include='*.cxx' '"--' Logic)"
+breach "Logic/ includes a widget, module or phantom header" \
+  "$(grep -rnE --include='*.h' --include='*.cxx' '#include "(vtkVesselProximityView|vtkVesselProximityOverlays|vpCommand|vpCli|vpLiverPhantom|vpDemoTrajectory|vpAnalyticShapes|vpBuiltInPhantom|vpCusaHandpiece|vpMeshRefinement)' Logic)"
+breach "Run...Command called outside the command table" \
+  "$(grep -rnE --include='*.h' --include='*.cxx' '\bRun[A-Z][A-Za-z]*Command\(' Module Widgets Logic Phantom |
+     grep -vE '^Module/Commands/vpCommandTable\.cxx:|^Module/Commands/vpCommands\.h:|^Module/Commands/vp[A-Za-z]+Command\.cxx:[0-9]+:int Run')"
+breach "stdout captured outside the CLI harness" \
+  "$(grep -rn --include='*.h' --include='*.cxx' 'cout.rdbuf\|cout\.rdbuf(' Module Widgets Logic Phantom | grep -v '^Module/CLI/vpCliDescription\.cxx:')"
+[ "$failed" = 0 ] && echo "layering: every rule holds"
+exit "$failed"

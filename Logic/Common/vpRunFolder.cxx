@@ -80,12 +80,19 @@ std::set<std::string> PreviousRunFiles(const std::string& report)
   {
     return files;
   }
-  const auto add = [&](const nlohmann::json& name) {
-    // Only a plain name in the folder: a report is data we do not control.
-    if (name.is_string() && fs::path(name.get<std::string>()).filename() == name.get<std::string>() &&
-      name.get<std::string>() != "." && name.get<std::string>() != "..")
+  const auto add = [&](const nlohmann::json& entry) {
+    // Only a plain name in the folder, or a plain folder name with its slash ("dicom/"): a report
+    // is data we do not control.
+    if (!entry.is_string())
     {
-      files.insert(name.get<std::string>());
+      return;
+    }
+    const std::string text = entry.get<std::string>();
+    const bool folder = !text.empty() && text.back() == '/';
+    const std::string name = folder ? text.substr(0, text.size() - 1) : text;
+    if (!name.empty() && fs::path(name).filename() == name && name != "." && name != "..")
+    {
+      files.insert(text);
     }
   };
   if (doc.contains("files") && doc["files"].is_array())
@@ -173,6 +180,45 @@ std::string RunFolder::File(const std::string& name)
   return this->StagingPath + "/" + name;
 }
 
+std::string RunFolder::Folder(const std::string& name)
+{
+  if (!this->Begun)
+  {
+    return this->TargetPath + "/" + name;
+  }
+  const std::string entry = name + "/";
+  if (std::find(this->Names.begin(), this->Names.end(), entry) == this->Names.end())
+  {
+    this->Names.push_back(entry);
+  }
+  const std::string path = this->StagingPath + "/" + name;
+  std::error_code ec;
+  fs::create_directories(path, ec);
+  if (ec)
+  {
+    throw InputError(this->TargetPath + "/" + name, "cannot create folder: " + ec.message());
+  }
+  return path;
+}
+
+namespace
+{
+/// A run's entry in the target: a file is replaced by the rename; a folder of the previous run is
+/// removed first (a folder cannot be renamed onto one that is not empty).
+void PutInPlace(const std::string& staged, const std::string& target, bool folder)
+{
+  std::error_code ec;
+  if (folder && fs::is_directory(target, ec))
+  {
+    fs::remove_all(target, ec);
+  }
+  if (std::rename(staged.c_str(), target.c_str()) != 0)
+  {
+    throw InputError(target, std::string("cannot write: ") + std::strerror(errno));
+  }
+}
+} // namespace
+
 void RunFolder::Commit()
 {
   if (!this->Begun)
@@ -183,7 +229,19 @@ void RunFolder::Commit()
   const std::set<std::string> ours(this->Names.begin(), this->Names.end());
   for (const std::string& stale : PreviousRunFiles(this->TargetPath + "/" + this->ReportName))
   {
-    if (!ours.count(stale))
+    if (ours.count(stale))
+    {
+      continue;
+    }
+    if (stale.back() == '/')
+    {
+      const std::string folder = this->TargetPath + "/" + stale.substr(0, stale.size() - 1);
+      if (fs::is_directory(folder, ec) && !fs::is_symlink(folder, ec))
+      {
+        fs::remove_all(folder, ec);
+      }
+    }
+    else
     {
       fs::remove(this->TargetPath + "/" + stale, ec);
     }
@@ -191,16 +249,15 @@ void RunFolder::Commit()
   // The report last: whoever sees the new report sees every file it lists.
   std::vector<std::string> order = this->Names;
   std::stable_partition(order.begin(), order.end(), [&](const std::string& n) { return n != this->ReportName; });
-  for (const std::string& name : order)
+  for (const std::string& entry : order)
   {
+    const bool folder = entry.back() == '/';
+    const std::string name = folder ? entry.substr(0, entry.size() - 1) : entry;
     if (!fs::exists(this->StagingPath + "/" + name, ec))
     {
       continue; // named, never written (a writer that failed quietly is the writer's to report)
     }
-    if (std::rename((this->StagingPath + "/" + name).c_str(), (this->TargetPath + "/" + name).c_str()) != 0)
-    {
-      throw InputError(this->TargetPath + "/" + name, std::string("cannot write: ") + std::strerror(errno));
-    }
+    PutInPlace(this->StagingPath + "/" + name, this->TargetPath + "/" + name, folder);
   }
   this->CreatedTarget = false; // it holds the run now
   this->Release();

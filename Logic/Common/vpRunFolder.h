@@ -38,6 +38,10 @@ public:
   /// The path to write a file of this run to: inside the staging folder once begun, in the
   /// target otherwise (to name it in messages).
   std::string File(const std::string& name);
+  /// A folder of this run (created in the staging folder once begun; the target's path otherwise).
+  /// The report lists it as "name/"; a later run that does not write it again removes it whole,
+  /// one that does replaces it whole.
+  std::string Folder(const std::string& name);
   /// Puts the run's files in place; throws InputError(target, ...) when it cannot.
   void Commit();
 

@@ -154,19 +154,32 @@ nlohmann::json VesselModelsJson(const VesselModelSet& set)
   return doc;
 }
 
-void WriteVesselModels(const VesselModelSet& set, RunFolder& run)
+namespace
+{
+void WriteModelFiles(const VesselModelSet& set, const std::function<std::string(const std::string&)>& pathOf)
 {
   const nlohmann::json doc = VesselModelsJson(set);
-  run.Begin();
   for (const VesselClassModel& m : set.Models)
   {
     vtkNew<vtkVesselMeshWriter> writer;
-    writer->SetFileName(run.File(m.ClassName + ".stl"));
+    writer->SetFileName(pathOf(m.ClassName + ".stl"));
     writer->SetInputData(m.Surface);
     writer->SetFileSpace(set.Parameters.FileSpace);
     writer->Write();
   }
-  WriteFileAtomically(run.File("models.json"), doc.dump(2) + "\n");
+  WriteFileAtomically(pathOf("models.json"), doc.dump(2) + "\n");
+}
+} // namespace
+
+void WriteVesselModels(const VesselModelSet& set, RunFolder& run)
+{
+  run.Begin();
+  WriteModelFiles(set, [&](const std::string& name) { return run.File(name); });
   run.Commit();
+}
+
+void WriteVesselModelFiles(const VesselModelSet& set, const std::string& folder)
+{
+  WriteModelFiles(set, [&](const std::string& name) { return folder + "/" + name; });
 }
 } // namespace vp

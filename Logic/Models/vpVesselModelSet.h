@@ -76,6 +76,8 @@ nlohmann::json VesselModelsJson(const VesselModelSet& set);
 /// Writes <class>.stl for each model and models.json through the run's folder, which holds this
 /// run whole afterwards (or the previous one as it was, when this throws).
 void WriteVesselModels(const VesselModelSet& set, RunFolder& run);
+/// The same files into a folder that a larger run puts in place (the demo's models/).
+void WriteVesselModelFiles(const VesselModelSet& set, const std::string& folder);
 } // namespace vp
 
 #endif

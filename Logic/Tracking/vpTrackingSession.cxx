@@ -112,15 +112,17 @@ bool TrackingSession::Run(PoseSource& poses, RunFolder& run)
     this->Comparison ? &*this->Comparison : nullptr);
   doc["timing_ms"]["load_and_build"] = this->LoadAndBuildMs;
   doc["files"] = { "frames.csv", "summary.json", "distance.png" };
+  for (const std::string& name : this->OtherRunFiles)
+  {
+    doc["files"].push_back(name);
+  }
   struct rusage usage = {};
   getrusage(RUSAGE_SELF, &usage);
   this->PeakMemoryMb = static_cast<double>(usage.ru_maxrss) / 1024.0; // Linux: kB
   doc["peak_memory_mb"] = this->PeakMemoryMb;
 
-  // The plot and the summary, then the folder holds this run whole, or the previous one as it was.
   plot->Write(run.File("distance.png"), tracking->GetDangerThresholds(), engine->GetRangeMm());
   WriteFileAtomically(run.File("summary.json"), doc.dump(2) + "\n");
-  run.Commit();
   this->Report = std::move(doc);
   return true;
 }

@@ -20,8 +20,8 @@ namespace vp
 class RunFolder;
 
 /// A tracking session: poses from a source, through the module logic, to the run's report:
-/// frames.csv (a row per frame, written as it is computed), distance.png and summary.json, put
-/// in place together by the RunFolder. Memory does not grow with the number of frames. Observers
+/// frames.csv (a row per frame, written as it is computed), distance.png and summary.json, in
+/// the run's folder; the caller commits it (RunFolder::Commit) with whatever else the run wrote. Memory does not grow with the number of frames. Observers
 /// of the logic's tracking logic hear every frame and every level change as they happen.
 class TrackingSession
 {
@@ -35,8 +35,12 @@ public:
   /// Added to summary.json's timing_ms as load_and_build (the caller's time before Run()).
   void SetLoadAndBuildMs(double ms) { this->LoadAndBuildMs = ms; }
 
-  /// Runs every pose of the source and writes the report through run (Begin() to Commit()).
-  /// Returns false, having committed nothing, when a held signal came (RunFolder::SignalPending):
+  /// Other files and folders ("name/") the run writes beside the report, for summary.json's
+  /// "files" (the list a later run's RunFolder removes what it does not write again by).
+  void SetOtherRunFiles(std::vector<std::string> names) { this->OtherRunFiles = std::move(names); }
+
+  /// Runs every pose of the source and writes the report into run (begun here if it was not).
+  /// Returns false when a held signal came (RunFolder::SignalPending):
   /// the caller lets the RunFolder go and the signal acts. Throws InputError naming the file that
   /// could not be written, or the source's own error.
   bool Run(PoseSource& poses, RunFolder& run);
@@ -56,6 +60,7 @@ private:
   TrackingSummary Summary;
   std::optional<ExactComparison> Comparison;
   nlohmann::ordered_json Report;
+  std::vector<std::string> OtherRunFiles;
   double LoadAndBuildMs = 0.0;
   double PeakMemoryMb = 0.0;
 };

@@ -88,7 +88,7 @@ std::vector<std::pair<int, std::string>> KeyFrames(vtkVesselProximityLogic* logi
   return { keys.begin(), keys.end() };
 }
 
-void RenderKeyFrames(DemoReport& report, const std::vector<TrackedPose>& poses)
+void RenderKeyFrames(DemoReport& report, const std::vector<TrackedPose>& poses, const std::string& folder)
 {
   VirtualDisplay display;
   if (!display.Ensure())
@@ -102,12 +102,9 @@ void RenderKeyFrames(DemoReport& report, const std::vector<TrackedPose>& poses)
   view->SetOffScreen(true);
   view->SetSizePx(1280, 800);
   view->SetLogic(logic);
-  if (report.ModelFiles.count("liver"))
+  if (report.Surfaces.count("liver"))
   {
-    vtkNew<vtkVesselMeshReader> reader;
-    reader->SetFileName(report.ModelFiles.at("liver"));
-    reader->Read();
-    view->SetLiverSurface(reader->GetOutput());
+    view->SetLiverSurface(report.Surfaces.at("liver"));
   }
   // From anterior, turned a little to the patient's right and down from above: the scalpel
   // comes in at an angle, not end-on.
@@ -118,8 +115,6 @@ void RenderKeyFrames(DemoReport& report, const std::vector<TrackedPose>& poses)
   view->GetRenderer()->ResetCameraClippingRange();
   view->SetPoses(poses);
 
-  const std::string folder = report.OutDir + "/screenshots";
-  CreateOutputFolder(folder);
   std::size_t next = 0;
   const auto keys = KeyFrames(logic, poses);
   view->ShowPose(0); // back to the start: a new session, the plot cleared
@@ -133,7 +128,8 @@ void RenderKeyFrames(DemoReport& report, const std::vector<TrackedPose>& poses)
     {
       char name[96];
       std::snprintf(name, sizeof(name), "/frame%04d_%s.png", i, keys[next].second.c_str());
-      report.Screenshots.push_back(view->SaveScreenshot(folder + name));
+      view->SaveScreenshot(folder + name);
+      report.Screenshots.push_back(report.OutDir + "/screenshots" + name); // where the run puts it
       ++next;
     }
   }
@@ -141,7 +137,8 @@ void RenderKeyFrames(DemoReport& report, const std::vector<TrackedPose>& poses)
 
 /// Both engines on every frame: the z-buffer engine answers, the exact engine checks; the exact
 /// engine alone without a Vulkan device.
-void TrackDemo(DemoReport& report, const std::vector<NamedMesh>& vessels, double frameBudgetMs)
+void TrackDemo(DemoReport& report, const std::vector<NamedMesh>& vessels, double frameBudgetMs, RunFolder& run,
+  const std::vector<std::string>& otherFiles)
 {
   auto logic = vtkSmartPointer<vtkVesselProximityLogic>::New();
   DistanceEngineSettings settings;
@@ -168,14 +165,13 @@ void TrackDemo(DemoReport& report, const std::vector<NamedMesh>& vessels, double
   logic->Build();
   logic->GetParameters()->SetFrameBudgetMs(frameBudgetMs);
   logic->GetTrackingLogic()->ValidateSettings();
-  RunFolder run(report.OutDir, "summary.json");
   TrackingSession session(logic, vessels);
+  session.SetOtherRunFiles(otherFiles);
   PoseListSource poses(report.Trajectory.Poses, report.PosesFile);
-  if (!session.Run(poses, run))
+  if (session.Run(poses, run))
   {
-    throw InputError(report.OutDir, "interrupted");
+    report.Summary = session.GetReport();
   }
-  report.Summary = session.GetReport();
 }
 } // namespace
 
@@ -184,67 +180,107 @@ vtkSmartPointer<vtkVesselProximityLogic> MakeDemoTipLogic(const DemoReport& repo
   auto logic = vtkSmartPointer<vtkVesselProximityLogic>::New();
   for (const char* c : VesselClasses)
   {
-    vtkNew<vtkVesselMeshReader> reader;
-    reader->SetFileName(report.ModelFiles.at(c));
-    reader->Read();
-    logic->AddVessel(c, reader->GetOutput());
+    logic->AddVessel(c, report.Surfaces.at(c));
   }
   logic->SetScalpel(MakeDefaultScalpel());
   logic->SetComputeSurfaceDistance(false);
   return logic;
 }
 
+/// The phantom's DICOM series, read back and modelled as any patient's; the report keeps the
+/// surfaces and where their files will be, and the models name the series where they will be.
+std::vector<NamedMesh> BuildDemoModels(DemoReport& report, RunFolder& run)
+{
+  const std::string staged = run.Folder("dicom");
+  VesselModelSet set = BuildVesselModels(
+    { staged }, VesselModelParameters(), [](const std::string& line) { std::cerr << "models: " << line << "\n"; });
+  const auto retarget = [&](std::string& path) {
+    path = path.rfind(staged, 0) == 0 ? report.DicomFolder + path.substr(staged.size()) : path;
+  };
+  std::for_each(set.Inputs.begin(), set.Inputs.end(), retarget);
+  for (LabelStructures& structures : set.Imports)
+  {
+    std::for_each(structures.begin(), structures.end(), [&](LabelStructure& s) { retarget(s.Source); });
+  }
+  WriteVesselModelFiles(set, run.Folder("models"));
+  std::vector<NamedMesh> vessels;
+  for (const VesselClassModel& m : set.Models)
+  {
+    report.ModelFiles[m.ClassName] = report.OutDir + "/models/" + m.ClassName + ".stl";
+    report.Surfaces[m.ClassName] = m.Surface;
+  }
+  for (const char* c : VesselClasses)
+  {
+    if (!report.Surfaces.count(c))
+    {
+      throw InputError(report.DicomFolder, std::string("no model was built for ") + c);
+    }
+    vessels.push_back({ c, report.ModelFiles[c], report.Surfaces[c], std::nullopt });
+  }
+  return vessels;
+}
+
 DemoReport RunDemoPipeline(const std::string& outDir, bool screenshots, double frameBudgetMs)
 {
   DemoReport report;
   report.OutDir = outDir;
-  CreateOutputFolder(outDir);
   report.DicomFolder = outDir + "/dicom";
-  LiverPhantom& phantom = report.Phantom;
+  RunFolder run(outDir, "summary.json");
+  run.Begin();
   {
     Stage stage(report, "phantom: liver labelmap with three vessel trees, written as DICOM series");
-    phantom = MakeLiverPhantom();
-    WriteLiverPhantomDicom(phantom, report.DicomFolder);
+    report.Phantom = MakeLiverPhantom();
+    WriteLiverPhantomDicom(report.Phantom, run.Folder("dicom"));
+  }
+  if (RunFolder::SignalPending())
+  {
+    return report; // the run folder is let go, then the signal acts: the previous run stays
   }
   std::vector<NamedMesh> vessels;
   {
     Stage stage(report, "models: DICOM series -> vessel surface models");
-    RunFolder run(outDir + "/models", "models.json");
-    const VesselModelSet set = BuildVesselModels(
-      { report.DicomFolder }, VesselModelParameters(), [](const std::string& line) { std::cerr << "models: " << line << "\n"; });
-    WriteVesselModels(set, run);
-    for (const VesselClassModel& m : set.Models)
-    {
-      report.ModelFiles[m.ClassName] = run.Target() + "/" + m.ClassName + ".stl";
-    }
-    for (const char* c : VesselClasses)
-    {
-      const auto model = std::find_if(
-        set.Models.begin(), set.Models.end(), [&](const VesselClassModel& m) { return m.ClassName == c; });
-      if (model == set.Models.end())
-      {
-        throw InputError(report.DicomFolder, std::string("no model was built for ") + c);
-      }
-      vessels.push_back({ c, report.ModelFiles[c], model->Surface, std::nullopt });
-    }
+    vessels = BuildDemoModels(report, run);
+  }
+  if (RunFolder::SignalPending())
+  {
+    return report; // the run folder is let go, then the signal acts: the previous run stays
   }
   {
     Stage stage(report, "scalpel and trajectory");
-    report.ScalpelFile = WriteDefaultScalpel(outDir + "/scalpel");
+    WriteDefaultScalpel(run.Folder("scalpel"));
+    report.ScalpelFile = outDir + "/scalpel/CusaHandpiece.stl";
     report.PosesFile = outDir + "/poses.csv";
-    report.Trajectory = DesignDemoTrajectory(phantom);
-    WriteFileAtomically(report.PosesFile, FormatPoseCsv(report.Trajectory.Poses));
+    report.Trajectory = DesignDemoTrajectory(report.Phantom);
+    WriteFileAtomically(run.File("poses.csv"), FormatPoseCsv(report.Trajectory.Poses));
     report.Frames = static_cast<int>(report.Trajectory.Poses.size());
+  }
+  if (RunFolder::SignalPending())
+  {
+    return report; // the run folder is let go, then the signal acts: the previous run stays
+  }
+  std::vector<std::string> otherFiles{ "poses.csv", "dicom/", "models/", "scalpel/" };
+  if (screenshots)
+  {
+    otherFiles.push_back("screenshots/");
   }
   {
     Stage stage(report, "track: every frame through the z-buffer engine, checked by the exact engine");
-    TrackDemo(report, vessels, frameBudgetMs);
+    TrackDemo(report, vessels, frameBudgetMs, run, otherFiles);
+  }
+  if (RunFolder::SignalPending())
+  {
+    return report; // the run folder is let go, then the signal acts: the previous run stays
   }
   if (screenshots)
   {
     Stage stage(report, "screenshots of the key frames");
-    RenderKeyFrames(report, report.Trajectory.Poses);
+    RenderKeyFrames(report, report.Trajectory.Poses, run.Folder("screenshots"));
   }
+  if (RunFolder::SignalPending())
+  {
+    return report; // the run folder is let go, then the signal acts: the previous run stays
+  }
+  run.Commit();
   return report;
 }
 } // namespace vp

@@ -5,6 +5,7 @@
 
 #include "vtkVesselProximityLogic.h"
 
+#include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
 
 #include <nlohmann/json.hpp>
@@ -23,6 +24,7 @@ struct DemoReport
   std::vector<std::pair<std::string, double>> StageSeconds; ///< in the order they ran
   std::string DicomFolder;                                  ///< one series per structure
   std::map<std::string, std::string> ModelFiles;            ///< class -> STL (liver included)
+  std::map<std::string, vtkSmartPointer<vtkPolyData>> Surfaces; ///< class -> the model as built
   std::string ScalpelFile;
   std::string PosesFile;
   LiverPhantom Phantom;     ///< as generated (its analytic centrelines included)

@@ -183,6 +183,7 @@ int RunTrackCommand(const std::vector<std::string>& argv)
   {
     return 1; // the RunFolder removes what was written, then the signal acts
   }
+  run.Commit(); // the folder holds this run whole, or the previous one as it was
   if (session.GetComparison() && session.GetComparison()->OutsideBound > 0)
   {
     std::cerr << "vesselproximity: warning: " << session.GetComparison()->OutsideBound

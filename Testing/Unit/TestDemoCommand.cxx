@@ -1,8 +1,10 @@
-// vesselproximity demo and selftest refuse bad arguments with one line and write nothing. Their
-// full runs are the ctest ModuleSelfTest.
+// vesselproximity demo and selftest refuse bad arguments with one line and write nothing; the
+// demo's folder holds one run. Their full runs with screenshots are the ctest ModuleSelfTest.
 #include "vpTestSupport.h"
 
 #include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <filesystem>
@@ -25,5 +27,43 @@ TEST(DemoCommand, BadArgumentsGiveOneLineAndWriteNothing)
   {
     EXPECT_FALSE(vp::test::FileExists(tmp + folder)) << folder;
   }
+  std::filesystem::remove_all(tmp);
+}
+
+// The demo's folder is one run, as the commands' are: what the previous demo listed and this one
+// does not write goes (screenshots after --no-screenshots), a file the user put there stays, no
+// staging folder is left, and summary.json lists every file and folder of the run.
+TEST(DemoCommand, ItsFolderHoldsOneWholeRun)
+{
+  const std::string tmp = vp::test::MakeTempDir("demo_run");
+  const std::string out = tmp + "/out";
+  std::filesystem::create_directories(out + "/screenshots");
+  std::ofstream(out + "/screenshots/frame0000_start.png") << "an older run's picture";
+  std::ofstream(out + "/notes.txt") << "the user's own";
+  std::ofstream(out + "/summary.json") << R"({"files": ["frames.csv", "summary.json", "screenshots/", "poses.csv"]})";
+
+  const auto run = vp::test::RunTool(tmp, "demo --no-screenshots -o " + out);
+  ASSERT_EQ(run.ExitCode, 0) << run.Err;
+  EXPECT_FALSE(vp::test::FileExists(out + "/screenshots")) << "the older run's screenshots stayed";
+  EXPECT_TRUE(vp::test::FileExists(out + "/notes.txt")) << "a file no run of ours wrote was removed";
+  std::ifstream in(out + "/summary.json");
+  const nlohmann::json summary = nlohmann::json::parse(in);
+  std::vector<std::string> files = summary.at("files").get<std::vector<std::string>>();
+  std::sort(files.begin(), files.end());
+  EXPECT_EQ(files, (std::vector<std::string>{ "dicom/", "distance.png", "frames.csv", "models/", "poses.csv", "scalpel/",
+                     "summary.json" }));
+  for (const std::string& name : files)
+  {
+    EXPECT_TRUE(vp::test::FileExists(out + "/" + name)) << name;
+  }
+  EXPECT_TRUE(vp::test::FileExists(out + "/models/portal_vein.stl"));
+  EXPECT_TRUE(vp::test::FileExists(out + "/scalpel/CusaHandpiece.json"));
+  for (const auto& entry : std::filesystem::directory_iterator(out))
+  {
+    EXPECT_EQ(entry.path().filename().string().rfind(".vesselproximity-partial", 0), std::string::npos) << entry.path();
+  }
+  std::ifstream models(out + "/models/models.json");
+  const nlohmann::json modelsDoc = nlohmann::json::parse(models);
+  EXPECT_EQ(modelsDoc.at("inputs").at(0), out + "/dicom") << "the models name the series where the run put them";
   std::filesystem::remove_all(tmp);
 }

@@ -8,13 +8,11 @@
 #include "vpInputError.h"
 #include "vpLiverPhantom.h"
 #include "vpPoseFile.h"
-#include "vpScalpelLoader.h"
 #include "vpTrackingSession.h"
 #include "vpVesselModelSet.h"
 #include "vpVirtualDisplay.h"
 #include "vpVulkanContext.h"
 #include "vtkScalpelModel.h"
-#include "vtkVesselMeshReader.h"
 #include "vtkVesselMeshWriter.h"
 #include "vtkVesselProximityLogic.h"
 #include "vtkVesselProximityView.h"
@@ -28,7 +26,6 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <filesystem>
 #include <iostream>
 #include <set>
 

@@ -7,6 +7,7 @@
 #include "vpScalpelLoader.h"
 #include "vpPointCsv.h"
 #include "vpPoseFile.h"
+#include "vpTrackingOptions.h"
 #include "vtkScalpelModel.h"
 #include "vpCommandSupport.h"
 #include "vpCommands.h"
@@ -486,14 +487,9 @@ std::set<std::string> ParseBenchEngines(const Arguments& args)
 vtkSmartPointer<vtkScalpelModel> ReplayScalpel(const Arguments& args)
 {
   vtkSmartPointer<vtkScalpelModel> scalpel;
-  ScalpelTipDefinition tip;
-  if (args.Has("--tip"))
-  {
-    tip.TipMm = ParsePoint(args.Get("--tip"), "--tip");
-  }
   if (args.Has("--scalpel"))
   {
-    scalpel = LoadScalpel(args.Get("--scalpel"), tip);
+    scalpel = LoadScalpel(args.Get("--scalpel"), ParseTipDefinition(args));
   }
   else
   {
@@ -737,14 +733,14 @@ void PrintBenchReport(Json& report)
 
 /// The exact and z-buffer engines on the vessels refined to each size: report["sizes"] and
 /// report["zbuffer"].
-void BenchSizes(const std::set<std::string>& engines, vtkVesselDistanceEngine* zbufferEngine,
-  const std::vector<NamedMesh>& vessels, const BenchTips& tips, int bruteQueries, const Arguments& args, Json& report)
+void BenchSizes(const std::set<std::string>& engines, const std::vector<std::size_t>& sizes,
+  vtkVesselDistanceEngine* zbufferEngine, const std::vector<NamedMesh>& vessels, const BenchTips& tips, int bruteQueries,
+  const Arguments& args, Json& report)
 {
   if (!engines.count("exact") && !engines.count("zbuffer"))
   {
     return;
   }
-  const std::vector<std::size_t> sizes = ParseSizes(args.Get("--sizes", "50000,400000,1500000"));
   Json sizeList = Json::array();
   Json zbufferSizes = Json::array();
   std::vector<NamedMesh> smallest, largest; // for the z-buffer side by side
@@ -807,7 +803,7 @@ int RunBenchCommand(const std::vector<std::string>& argv)
     throw InputError("--fine-cell", "must be a positive number of millimetres");
   }
   const std::set<std::string> engines = ParseBenchEngines(args);
-  ParseSizes(args.Get("--sizes", "50000,400000,1500000"));
+  const std::vector<std::size_t> sizes = ParseSizes(args.Get("--sizes", "50000,400000,1500000"));
   // Open the Vulkan device before the long work, so that a missing one fails at once.
   vtkSmartPointer<vtkVesselDistanceEngine> zbufferEngine = engines.count("zbuffer") ? MakeDistanceEngine("zbuffer", args) : nullptr;
   vtkSmartPointer<vtkScalpelModel> scalpel = engines.count("replay") ? ReplayScalpel(args) : nullptr;
@@ -825,7 +821,7 @@ int RunBenchCommand(const std::vector<std::string>& argv)
   report["queries"] = queries;
   report["brute_queries"] = bruteQueries;
   report["tracked_step_mm"] = 0.5;
-  BenchSizes(engines, zbufferEngine, vessels, tips, bruteQueries, args, report);
+  BenchSizes(engines, sizes, zbufferEngine, vessels, tips, bruteQueries, args, report);
   if (scalpel)
   {
     const std::vector<TrackedPose> poses = args.Has("--poses") ? ReadPoseFile(args.Get("--poses")) : std::vector<TrackedPose>();

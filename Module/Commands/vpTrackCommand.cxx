@@ -44,19 +44,6 @@ const char* Usage =
 
 /// The module logic over the vessels and the scalpel, built: the engine, and beside it the exact
 /// engine when --method both's check or the whole surface needs one.
-/// The options are checked before any file is read, the engine's device opened too.
-vtkSmartPointer<vtkVesselProximityLogic> ConfigureLogic(const Arguments& args, const std::string& method)
-{
-  auto proximity = vtkSmartPointer<vtkVesselProximityLogic>::New();
-  proximity->SetDangerThresholds(ParseDangerThresholds(args));
-  proximity->GetParameters()->SetFrameBudgetMs(ParseFrameBudgetMs(args));
-  proximity->GetParameters()->SetHysteresisMm(ParseHysteresisMm(args));
-  proximity->SetComputeSurfaceDistance(!args.Has("--no-surface"));
-  proximity->SetCompareWithExact(method == "both");
-  proximity->SetDistanceEngine(MakeDistanceEngine(method, args));
-  return proximity;
-}
-
 void BuildLogic(vtkVesselProximityLogic* proximity, const std::vector<NamedMesh>& meshes, vtkScalpelModel* scalpel)
 {
   proximity->SetScalpel(scalpel);
@@ -164,7 +151,7 @@ int RunTrackCommand(const std::vector<std::string>& argv)
   const double start = NowMs();
   const std::string posesFile = args.Get("--poses");
   const std::size_t poseCount = PoseStream::CountPoses(posesFile);
-  vtkSmartPointer<vtkVesselProximityLogic> proximity = ConfigureLogic(args, method);
+  vtkSmartPointer<vtkVesselProximityLogic> proximity = ConfigureTrackingLogic(args, method);
   auto meshes = LoadVesselMeshes(ParsePairs(args.Get("--vessels"), "--vessels"));
   if (args.Has("--repair"))
   {

@@ -1,5 +1,6 @@
 #include "vpTrackingOptions.h"
 
+#include "vpEngineOptions.h"
 #include "vpInputError.h"
 #include "vpPointCsv.h"
 
@@ -50,5 +51,17 @@ double ParseHysteresisMm(const Arguments& args)
     throw InputError("--hysteresis-mm", "expected a distance in mm, 0 or more (0: none), got '" + args.Get("--hysteresis-mm") + "'");
   }
   return hysteresisMm;
+}
+vtkSmartPointer<vtkVesselProximityLogic> ConfigureTrackingLogic(const Arguments& args, const std::string& method)
+{
+  auto logic = vtkSmartPointer<vtkVesselProximityLogic>::New();
+  vtkVesselProximityParameters* parameters = logic->GetParameters();
+  parameters->SetDangerThresholds(ParseDangerThresholds(args));
+  parameters->SetFrameBudgetMs(ParseFrameBudgetMs(args));
+  parameters->SetHysteresisMm(ParseHysteresisMm(args));
+  parameters->SetComputeSurfaceDistance(!args.Has("--no-surface"));
+  parameters->SetCompareWithExact(method == "both");
+  parameters->SetDistanceEngine(MakeDistanceEngine(method, args));
+  return logic;
 }
 } // namespace vp

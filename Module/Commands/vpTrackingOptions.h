@@ -4,6 +4,11 @@
 #include "vpArguments.h"
 #include "vpDangerLevels.h"
 #include "vpScalpelLoader.h"
+#include "vtkVesselProximityLogic.h"
+
+#include <vtkSmartPointer.h>
+
+#include <string>
 
 namespace vp
 {
@@ -17,6 +22,11 @@ double ParseFrameBudgetMs(const Arguments& args);
 /// --hysteresis-mm MM (default 0.3; 0: none): how far past a threshold the distance must go to
 /// leave a level (vtkScalpelTrackingLogic::SetHysteresisMm); throws InputError naming the option.
 double ParseHysteresisMm(const Arguments& args);
+
+/// The module logic with what the tracking options set, checked before any file is read: the
+/// danger thresholds, the frame budget, the hysteresis, --no-surface, the engine of the given
+/// --method (its device opened) and, for "both", the comparison with the exact engine.
+vtkSmartPointer<vtkVesselProximityLogic> ConfigureTrackingLogic(const Arguments& args, const std::string& method);
 } // namespace vp
 
 #endif

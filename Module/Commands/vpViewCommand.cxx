@@ -98,19 +98,6 @@ Arguments ParseViewArguments(const std::vector<std::string>& argv)
   return args;
 }
 
-/// The options that need no file, checked first: the logic's settings and its engine.
-vtkSmartPointer<vtkVesselProximityLogic> ConfigureLogic(const Arguments& args)
-{
-  auto logic = vtkSmartPointer<vtkVesselProximityLogic>::New();
-  vtkVesselProximityParameters* parameters = logic->GetParameters();
-  parameters->SetDangerThresholds(ParseDangerThresholds(args));
-  parameters->SetFrameBudgetMs(ParseFrameBudgetMs(args));
-  parameters->SetHysteresisMm(ParseHysteresisMm(args));
-  parameters->SetComputeSurfaceDistance(!args.Has("--no-surface"));
-  parameters->SetDistanceEngine(MakeDistanceEngine(args.Get("--method", "exact"), args));
-  return logic;
-}
-
 /// The vessels, the scalpel (the built-in handpiece unless one is given) and the liver.
 vtkSmartPointer<vtkPolyData> ReadScene(const Arguments& args, const ScalpelTipDefinition& tip, vtkVesselProximityLogic* logic)
 {
@@ -171,7 +158,7 @@ int RunViewCommand(const std::vector<std::string>& argv)
   const auto size = ParseSize(args.Get("--size", "1280x800"));
   const std::vector<std::string> keys = SplitKeys(args.Get("--keys"));
   const std::string screenshot = args.Get("--screenshot");
-  vtkSmartPointer<vtkVesselProximityLogic> logic = ConfigureLogic(args);
+  vtkSmartPointer<vtkVesselProximityLogic> logic = ConfigureTrackingLogic(args, args.Get("--method", "exact"));
   // Everything that can be refused is read before a window opens.
   std::vector<TrackedPose> poses;
   if (args.Has("--poses"))

@@ -69,6 +69,19 @@ void ReleaseSignals()
   }
 }
 
+// A report's entry: a file's name, or a folder's with its slash ("dicom/").
+struct Entry
+{
+  std::string Name;
+  bool Folder;
+};
+
+Entry SplitEntry(const std::string& entry)
+{
+  const bool folder = !entry.empty() && entry.back() == '/';
+  return { folder ? entry.substr(0, entry.size() - 1) : entry, folder };
+}
+
 // The files the previous run's report says it wrote: "files", or a models.json's structures;
 // none when there is no readable report (then nothing is removed).
 std::set<std::string> PreviousRunFiles(const std::string& report)
@@ -88,8 +101,7 @@ std::set<std::string> PreviousRunFiles(const std::string& report)
       return;
     }
     const std::string text = entry.get<std::string>();
-    const bool folder = !text.empty() && text.back() == '/';
-    const std::string name = folder ? text.substr(0, text.size() - 1) : text;
+    const std::string name = SplitEntry(text).Name;
     if (!name.empty() && fs::path(name).filename() == name && name != "." && name != "..")
     {
       files.insert(text);
@@ -167,31 +179,32 @@ void RunFolder::Begin()
   }
 }
 
-std::string RunFolder::File(const std::string& name)
+std::string RunFolder::Register(const std::string& entry)
 {
+  const std::string name = SplitEntry(entry).Name;
   if (!this->Begun)
   {
     return this->TargetPath + "/" + name;
   }
-  if (std::find(this->Names.begin(), this->Names.end(), name) == this->Names.end())
-  {
-    this->Names.push_back(name);
-  }
-  return this->StagingPath + "/" + name;
-}
-
-std::string RunFolder::Folder(const std::string& name)
-{
-  if (!this->Begun)
-  {
-    return this->TargetPath + "/" + name;
-  }
-  const std::string entry = name + "/";
   if (std::find(this->Names.begin(), this->Names.end(), entry) == this->Names.end())
   {
     this->Names.push_back(entry);
   }
-  const std::string path = this->StagingPath + "/" + name;
+  return this->StagingPath + "/" + name;
+}
+
+std::string RunFolder::File(const std::string& name)
+{
+  return this->Register(name);
+}
+
+std::string RunFolder::Folder(const std::string& name)
+{
+  const std::string path = this->Register(name + "/");
+  if (!this->Begun)
+  {
+    return path;
+  }
   std::error_code ec;
   fs::create_directories(path, ec);
   if (ec)
@@ -233,31 +246,28 @@ void RunFolder::Commit()
     {
       continue;
     }
-    if (stale.back() == '/')
+    const Entry entry = SplitEntry(stale);
+    const std::string path = this->TargetPath + "/" + entry.Name;
+    if (!entry.Folder)
     {
-      const std::string folder = this->TargetPath + "/" + stale.substr(0, stale.size() - 1);
-      if (fs::is_directory(folder, ec) && !fs::is_symlink(folder, ec))
-      {
-        fs::remove_all(folder, ec);
-      }
+      fs::remove(path, ec);
     }
-    else
+    else if (fs::is_directory(path, ec) && !fs::is_symlink(path, ec))
     {
-      fs::remove(this->TargetPath + "/" + stale, ec);
+      fs::remove_all(path, ec);
     }
   }
   // The report last: whoever sees the new report sees every file it lists.
   std::vector<std::string> order = this->Names;
   std::stable_partition(order.begin(), order.end(), [&](const std::string& n) { return n != this->ReportName; });
-  for (const std::string& entry : order)
+  for (const std::string& name : order)
   {
-    const bool folder = entry.back() == '/';
-    const std::string name = folder ? entry.substr(0, entry.size() - 1) : entry;
-    if (!fs::exists(this->StagingPath + "/" + name, ec))
+    const Entry entry = SplitEntry(name);
+    if (!fs::exists(this->StagingPath + "/" + entry.Name, ec))
     {
       continue; // named, never written (a writer that failed quietly is the writer's to report)
     }
-    PutInPlace(this->StagingPath + "/" + name, this->TargetPath + "/" + name, folder);
+    PutInPlace(this->StagingPath + "/" + entry.Name, this->TargetPath + "/" + entry.Name, entry.Folder);
   }
   this->CreatedTarget = false; // it holds the run now
   this->Release();

@@ -53,10 +53,12 @@ private:
   std::string TargetPath;
   std::string ReportName;
   std::string StagingPath;
-  std::vector<std::string> Names; // the run's files, in the order given
+  std::vector<std::string> Names; // the run's files ("name") and folders ("name/"), in the order given
   bool Begun = false;
   bool CreatedTarget = false;
   void Release();
+  /// Notes an entry of the run ("name" or "name/") and returns its path: staged once begun.
+  std::string Register(const std::string& entry);
 };
 } // namespace vp
 

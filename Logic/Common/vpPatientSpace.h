@@ -5,11 +5,12 @@
 
 namespace vp
 {
-/// LPS (DICOM's patient frame, the logic's) <-> RAS (Slicer's view): x and y negated, so the
-/// conversion is its own inverse.
-inline std::array<double, 3> ConvertLpsRas(const std::array<double, 3>& p)
+/// LPS (DICOM's patient frame, the logic's) <-> RAS (Slicer's view) when ras, the point as it is
+/// otherwise: x and y negated, so the conversion is its own inverse (points given in RAS come in
+/// through it, answers go out through it).
+inline std::array<double, 3> ConvertSpace(const std::array<double, 3>& p, bool ras)
 {
-  return { -p[0], -p[1], p[2] };
+  return ras ? std::array<double, 3>{ -p[0], -p[1], p[2] } : p;
 }
 } // namespace vp
 

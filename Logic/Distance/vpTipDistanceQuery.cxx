@@ -18,8 +18,7 @@ using Json = nlohmann::ordered_json;
 
 Json PointJson(const double p[3], bool ras)
 {
-  std::array<double, 3> q{ p[0], p[1], p[2] };
-  q = ras ? ConvertLpsRas(q) : q;
+  const std::array<double, 3> q = ConvertSpace({ p[0], p[1], p[2] }, ras);
   return Json::array({ q[0], q[1], q[2] });
 }
 

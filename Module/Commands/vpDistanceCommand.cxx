@@ -36,11 +36,6 @@ const char* Usage =
   "  --tips: answered as one batch (the z-buffer engine: one GPU submission per 256 tips); the\n"
   "    query times are then the batch's time per tip.\n";
 
-std::array<double, 3> ConvertSpace(const std::array<double, 3>& p, bool ras)
-{
-  return ras ? ConvertLpsRas(p) : p;
-}
-
 TipDistanceRequest ParseRequest(const Arguments& args, bool ras)
 {
   TipDistanceRequest request;

@@ -227,9 +227,9 @@ const vp::TrackedFrame& vtkVesselProximityLogic::ProcessPose(const vp::TrackedPo
   {
     throw std::logic_error("vtkVesselProximityLogic: set the scalpel before processing poses");
   }
-  // The surface tree and the exact engine follow their switches: turning one on or off is a
-  // scene change.
-  if ((this->Surface != nullptr) != this->WantsSurfaceDistance() || (this->GetCompareWithExact() && !this->Exact))
+  // The switches are scene changes of the parameter set; a scalpel that was given its model after
+  // it was set is not, yet the surface tree needs that model.
+  if ((this->Surface != nullptr) != this->WantsSurfaceDistance())
   {
     this->SceneChanged = true;
   }

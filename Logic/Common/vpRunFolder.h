@@ -46,6 +46,9 @@ public:
   void Commit();
 
   const std::string& Target() const { return this->TargetPath; }
+  /// The run's files ("name") and folders ("name/") noted so far, in the order given: what its
+  /// report lists.
+  const std::vector<std::string>& GetEntries() const { return this->Names; }
   /// Whether a held signal came since Begin().
   static bool SignalPending();
 

@@ -14,6 +14,7 @@
 #include <vtkCallbackCommand.h>
 #include <vtkNew.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
@@ -111,11 +112,16 @@ bool TrackingSession::Run(PoseSource& poses, RunFolder& run)
   nlohmann::ordered_json doc = TrackingSummaryJson(this->Summary, proximity, this->Vessels, poses.GetName(),
     this->Comparison ? &*this->Comparison : nullptr);
   doc["timing_ms"]["load_and_build"] = this->LoadAndBuildMs;
-  doc["files"] = { "frames.csv", "summary.json", "distance.png" };
-  for (const std::string& name : this->OtherRunFiles)
+  // The session's own files, then whatever else the run has written beside them (the demo's).
+  std::vector<std::string> files{ "frames.csv", "summary.json", "distance.png" };
+  for (const std::string& entry : run.GetEntries())
   {
-    doc["files"].push_back(name);
+    if (std::find(files.begin(), files.end(), entry) == files.end())
+    {
+      files.push_back(entry);
+    }
   }
+  doc["files"] = files;
   struct rusage usage = {};
   getrusage(RUSAGE_SELF, &usage);
   this->PeakMemoryMb = static_cast<double>(usage.ru_maxrss) / 1024.0; // Linux: kB

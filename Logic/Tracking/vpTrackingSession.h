@@ -35,11 +35,9 @@ public:
   /// Added to summary.json's timing_ms as load_and_build (the caller's time before Run()).
   void SetLoadAndBuildMs(double ms) { this->LoadAndBuildMs = ms; }
 
-  /// Other files and folders ("name/") the run writes beside the report, for summary.json's
-  /// "files" (the list a later run's RunFolder removes what it does not write again by).
-  void SetOtherRunFiles(std::vector<std::string> names) { this->OtherRunFiles = std::move(names); }
-
   /// Runs every pose of the source and writes the report into run (begun here if it was not).
+  /// summary.json's "files" lists the session's files and every entry the run noted before it
+  /// (RunFolder::GetEntries): what a later run removes when it does not write them again.
   /// Returns false when a held signal came (RunFolder::SignalPending):
   /// the caller lets the RunFolder go and the signal acts. Throws InputError naming the file that
   /// could not be written, or the source's own error.
@@ -60,7 +58,6 @@ private:
   TrackingSummary Summary;
   std::optional<ExactComparison> Comparison;
   nlohmann::ordered_json Report;
-  std::vector<std::string> OtherRunFiles;
   double LoadAndBuildMs = 0.0;
   double PeakMemoryMb = 0.0;
 };

@@ -26,6 +26,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <functional>
 #include <iostream>
 #include <set>
 
@@ -134,8 +135,7 @@ void RenderKeyFrames(DemoReport& report, const std::vector<TrackedPose>& poses, 
 
 /// Both engines on every frame: the z-buffer engine answers, the exact engine checks; the exact
 /// engine alone without a Vulkan device.
-void TrackDemo(DemoReport& report, const std::vector<NamedMesh>& vessels, double frameBudgetMs, RunFolder& run,
-  const std::vector<std::string>& otherFiles)
+void TrackDemo(DemoReport& report, const std::vector<NamedMesh>& vessels, double frameBudgetMs, RunFolder& run)
 {
   auto logic = vtkSmartPointer<vtkVesselProximityLogic>::New();
   DistanceEngineSettings settings;
@@ -163,7 +163,6 @@ void TrackDemo(DemoReport& report, const std::vector<NamedMesh>& vessels, double
   logic->GetParameters()->SetFrameBudgetMs(frameBudgetMs);
   logic->GetTrackingLogic()->ValidateSettings();
   TrackingSession session(logic, vessels);
-  session.SetOtherRunFiles(otherFiles);
   PoseListSource poses(report.Trajectory.Poses, report.PosesFile);
   if (session.Run(poses, run))
   {
@@ -224,58 +223,46 @@ DemoReport RunDemoPipeline(const std::string& outDir, bool screenshots, double f
   report.DicomFolder = outDir + "/dicom";
   RunFolder run(outDir, "summary.json");
   run.Begin();
-  {
-    Stage stage(report, "phantom: liver labelmap with three vessel trees, written as DICOM series");
-    report.Phantom = MakeLiverPhantom();
-    WriteLiverPhantomDicom(report.Phantom, run.Folder("dicom"));
-  }
-  if (RunFolder::SignalPending())
-  {
-    return report; // the run folder is let go, then the signal acts: the previous run stays
-  }
+  // Noted before the track stage writes summary.json, which lists every entry of the run.
+  const std::string shots = screenshots ? run.Folder("screenshots") : std::string();
   std::vector<NamedMesh> vessels;
+  const std::vector<std::pair<const char*, std::function<void()>>> stages = {
+    { "phantom: liver labelmap with three vessel trees, written as DICOM series",
+      [&] {
+        report.Phantom = MakeLiverPhantom();
+        WriteLiverPhantomDicom(report.Phantom, run.Folder("dicom"));
+      } },
+    { "models: DICOM series -> vessel surface models", [&] { vessels = BuildDemoModels(report, run); } },
+    { "scalpel and trajectory",
+      [&] {
+        WriteDefaultScalpel(run.Folder("scalpel"));
+        report.ScalpelFile = outDir + "/scalpel/CusaHandpiece.stl";
+        report.PosesFile = outDir + "/poses.csv";
+        report.Trajectory = DesignDemoTrajectory(report.Phantom);
+        WriteFileAtomically(run.File("poses.csv"), FormatPoseCsv(report.Trajectory.Poses));
+        report.Frames = static_cast<int>(report.Trajectory.Poses.size());
+      } },
+    { "track: every frame through the z-buffer engine, checked by the exact engine",
+      [&] { TrackDemo(report, vessels, frameBudgetMs, run); } },
+    { "screenshots of the key frames",
+      screenshots ? std::function<void()>([&] { RenderKeyFrames(report, report.Trajectory.Poses, shots); }) : nullptr },
+  };
+  for (const auto& [name, work] : stages)
   {
-    Stage stage(report, "models: DICOM series -> vessel surface models");
-    vessels = BuildDemoModels(report, run);
+    if (RunFolder::SignalPending())
+    {
+      return report; // the run folder is let go, then the signal acts: the previous run stays
+    }
+    if (!work)
+    {
+      continue; // no screenshots asked for
+    }
+    Stage stage(report, name);
+    work();
   }
   if (RunFolder::SignalPending())
   {
-    return report; // the run folder is let go, then the signal acts: the previous run stays
-  }
-  {
-    Stage stage(report, "scalpel and trajectory");
-    WriteDefaultScalpel(run.Folder("scalpel"));
-    report.ScalpelFile = outDir + "/scalpel/CusaHandpiece.stl";
-    report.PosesFile = outDir + "/poses.csv";
-    report.Trajectory = DesignDemoTrajectory(report.Phantom);
-    WriteFileAtomically(run.File("poses.csv"), FormatPoseCsv(report.Trajectory.Poses));
-    report.Frames = static_cast<int>(report.Trajectory.Poses.size());
-  }
-  if (RunFolder::SignalPending())
-  {
-    return report; // the run folder is let go, then the signal acts: the previous run stays
-  }
-  std::vector<std::string> otherFiles{ "poses.csv", "dicom/", "models/", "scalpel/" };
-  if (screenshots)
-  {
-    otherFiles.push_back("screenshots/");
-  }
-  {
-    Stage stage(report, "track: every frame through the z-buffer engine, checked by the exact engine");
-    TrackDemo(report, vessels, frameBudgetMs, run, otherFiles);
-  }
-  if (RunFolder::SignalPending())
-  {
-    return report; // the run folder is let go, then the signal acts: the previous run stays
-  }
-  if (screenshots)
-  {
-    Stage stage(report, "screenshots of the key frames");
-    RenderKeyFrames(report, report.Trajectory.Poses, run.Folder("screenshots"));
-  }
-  if (RunFolder::SignalPending())
-  {
-    return report; // the run folder is let go, then the signal acts: the previous run stays
+    return report;
   }
   run.Commit();
   return report;

@@ -1,13 +1,14 @@
 #ifndef vpCliDescription_h
 #define vpCliDescription_h
 
-// The command-line contract of a Slicer CLI module (SlicerExecutionModel, "SEM"), declared once.
+// The command-line contract of a program, declared once: a Slicer CLI module (SlicerExecutionModel,
+// "SEM") or a subcommand of vesselproximity.
 //
 // A program lists its parameters in one ModuleDescription. Everything a caller sees is generated
 // from that table: the SEM XML printed on --xml (what 3D Slicer reads to build the module's panel
-// and its command line), the --help text, the argument parser, and the return-parameter file. So
-// the XML declares exactly the arguments the program accepts, and a parameter cannot be read
-// without having been declared.
+// and its command line; Slicer CLIs only), the --help text, the argument parser, and the
+// return-parameter file. So the XML and the help declare exactly the arguments the program
+// accepts, and a parameter cannot be read without having been declared.
 //
 // How 3D Slicer calls an executable CLI module (vtkSlicerCLIModuleLogic), which the parser
 // follows: `--returnparameterfile FILE` first when the module declares return parameters; then
@@ -93,6 +94,10 @@ public:
   /// The logic's name of the setting this parameter gives ("RangeMm"): a vp::ParameterError the
   /// logic raises for it is reported under this parameter's DisplayName().
   Parameter& SetLogicName(std::string name);
+  /// How --help shows the value ("CLASS=FILE[,CLASS=FILE...]"); default: a word for the type.
+  Parameter& SetPlaceholder(std::string text);
+  /// The last index parameter takes every remaining argument (SEM's multiple="true").
+  Parameter& SetMultiple(bool multiple = true);
 
   ParameterType GetType() const { return this->Type; }
   const std::string& GetName() const { return this->Name; }
@@ -113,6 +118,8 @@ public:
   const std::string& GetCoordinateSystem() const { return this->CoordinateSystem; }
   bool IsRequired() const { return this->Required; }
   const std::string& GetLogicName() const { return this->LogicName; }
+  const std::string& GetPlaceholder() const { return this->Placeholder; }
+  bool IsMultiple() const { return this->Multiple; }
 
   /// A simple output (number, boolean, string, enumeration, vector) with no flag and no index:
   /// Slicer does not pass it; the program reports it through the return-parameter file.
@@ -129,8 +136,9 @@ private:
   bool HasConstraints = false;
   double Minimum = 0.0, Maximum = 0.0, Step = 0.0;
   std::vector<std::string> Elements;
-  std::string TypeAttribute, FileExtensions, CoordinateSystem, LogicName;
+  std::string TypeAttribute, FileExtensions, CoordinateSystem, LogicName, Placeholder;
   bool Required = false;
+  bool Multiple = false;
 };
 
 /// A <parameters> group: one collapsible section of the module's panel in Slicer.
@@ -144,7 +152,16 @@ struct ParameterGroup
 /// Everything the program's --xml says: the module's metadata and its parameter table.
 struct ModuleDescription
 {
-  std::string Program; ///< executable name, for messages and --help
+  /// Who calls the program. A Slicer CLI follows SEM's rules (identifier longflags, a default for
+  /// every number, switch and enumeration) and prints --xml. A subcommand of vesselproximity takes
+  /// the same table and parser, and may also have dashed longflags and options with no default.
+  enum class Kind
+  {
+    SlicerCli,
+    Subcommand,
+  };
+  Kind Interface = Kind::SlicerCli;
+  std::string Program; ///< executable name ("vesselproximity track" for a subcommand), for messages and --help
   std::string Category;
   std::string Title;
   std::string Description;
@@ -161,6 +178,9 @@ struct ModuleDescription
   /// One of this project's programs: category IGT, our contributor line, the given groups.
   static ModuleDescription VesselProximity(
     std::string program, std::string title, std::string version, std::vector<ParameterGroup> groups);
+  /// A subcommand of the vesselproximity program: its title is the line the program's --help lists.
+  static ModuleDescription Subcommand(
+    std::string program, std::string title, std::string description, std::vector<ParameterGroup> groups);
 };
 
 /// Checks the table itself: names unique C identifiers, flags unique and not the built-in ones,
@@ -169,6 +189,10 @@ struct ModuleDescription
 /// among the elements. Throws std::logic_error naming the parameter: a broken table is a bug,
 /// caught by the first run of any test.
 void ValidateDescription(const ModuleDescription& description);
+
+/// How messages name the parameter that gives a logic setting (Parameter::SetLogicName): its
+/// DisplayName(), each side of "A/B" mapped alone; the setting's own name when none gives it.
+std::string DisplayNameOfSetting(const ModuleDescription& description, const std::string& setting);
 
 /// The SEM XML document, element order as Slicer's own modules write it, text escaped.
 std::string WriteXml(const ModuleDescription& description);
@@ -218,6 +242,8 @@ public:
   /// A vector or point parameter's numbers; empty when neither given nor defaulted.
   std::vector<double> GetNumbers(const std::string& name) const;
   std::array<double, 3> GetPoint(const std::string& name) const;
+  /// Every value of a multiple index parameter, in order (one value, or none, for any other).
+  std::vector<std::string> GetStrings(const std::string& name) const;
   /// The path after --returnparameterfile, empty when not given.
   const std::string& GetReturnParameterFile() const { return this->ReturnParameterFile; }
 
@@ -226,6 +252,7 @@ private:
   const Parameter& Declared(const std::string& name) const;
   const ModuleDescription* Description = nullptr;
   std::map<std::string, std::string> Values;
+  std::map<std::string, std::vector<std::string>> Multiple;
   std::string ReturnParameterFile;
 };
 

@@ -3,7 +3,8 @@
 #  - the logic names its settings, never a front end's flags;
 #  - the logic includes nothing of the widgets, the module or the phantom generators;
 #  - a command's Run...Command is called only from the command table;
-#  - no front end captures stdout (the CLI harness's stderr-to-stdout for Slicer aside).
+#  - no front end captures stdout (the CLI harness's stderr-to-stdout for Slicer aside);
+#  - a command's parser, --help and (for Slicer) XML come from its one description.
 # Prints each breach as file:line and exits 1 when there is one.
 set -u
 root="${1:?usage: CheckLayering.sh SOURCE_DIR}"
@@ -24,6 +25,8 @@ breach "Run...Command called outside the command table" \
   "$(grep -rnE --include='*.h' --include='*.cxx' '\bRun[A-Z][A-Za-z]*Command\(' Module Widgets Logic Phantom |
      grep -vE '^Module/Commands/vpCommandTable\.cxx:|^Module/Commands/vpCommands\.h:|^Module/Commands/vp[A-Za-z]+Command\.cxx:[0-9]+:int Run')"
 breach "stdout captured outside the CLI harness" \
-  "$(grep -rn --include='*.h' --include='*.cxx' 'cout.rdbuf\|cout\.rdbuf(' Module Widgets Logic Phantom | grep -v '^Module/CLI/vpCliDescription\.cxx:')"
+  "$(grep -rn --include='*.h' --include='*.cxx' 'cout.rdbuf\|cout\.rdbuf(' Module Widgets Logic Phantom | grep -v '^Module/CLI/vpCliProgram\.cxx:')"
+breach "a command's usage or options written by hand (declare them in its description: vpCliDescription.h)" \
+  "$(grep -rnE --include='*.h' --include='*.cxx' 'const char\* *Usage|std::set<std::string> options|Arguments args\(' Module/Commands)"
 [ "$failed" = 0 ] && echo "layering: every rule holds"
 exit "$failed"

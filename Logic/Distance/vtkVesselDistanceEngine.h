@@ -38,6 +38,7 @@ public:
 
   /// Distances beyond this are reported as out of range (null). Default: 50 mm, the paper's
   /// range of proximity bins; clinically, danger lies well inside it.
+  static constexpr double DefaultRangeMm = 50.0;
   void SetRangeMm(double range);
   double GetRangeMm() const { return this->RangeMm; }
 
@@ -85,7 +86,7 @@ protected:
 
   std::vector<std::pair<std::string, vtkSmartPointer<vtkPolyData>>> Meshes;
   std::vector<std::shared_ptr<const vp::VesselSurface>> Surfaces;
-  double RangeMm = 50.0;
+  double RangeMm = DefaultRangeMm;
   double BuildTimeMs = 0.0;
   bool Built = false;
 

@@ -184,7 +184,7 @@ std::string Parameter::DisplayName() const
   {
     return "-" + this->Flag;
   }
-  return this->Name;
+  return this->Index >= 0 && !this->Placeholder.empty() ? this->Placeholder : this->Name;
 }
 
 ModuleDescription ModuleDescription::VesselProximity(
@@ -354,6 +354,10 @@ void CheckDefault(const ModuleDescription& description, const Parameter& p)
 
 void ValidateDescription(const ModuleDescription& description)
 {
+  if (description.Program.empty() || description.Title.empty())
+  {
+    throw std::logic_error("a program's description needs its name and a title");
+  }
   TableNames seen;
   const Parameter* multiple = nullptr;
   for (const auto& group : description.Groups)

@@ -124,7 +124,8 @@ public:
   /// A simple output (number, boolean, string, enumeration, vector) with no flag and no index:
   /// Slicer does not pass it; the program reports it through the return-parameter file.
   bool IsReturnParameter() const;
-  /// How messages name the parameter: "--longflag", "-f", or the name of an index parameter.
+  /// How messages name the parameter: "--longflag", "-f", or an index parameter's placeholder
+  /// ("INPUT") or name.
   std::string DisplayName() const;
 
 private:

@@ -252,8 +252,8 @@ void CommandLineReader::CheckRequired() const
     {
       if (p.IsRequired() && !this->Values.count(p.GetName()))
       {
-        const std::string what = p.GetLabel().empty() ? p.GetPlaceholder() : p.GetLabel();
-        throw UsageError(p.DisplayName(), "is required (" + what + "; see " + this->Description.Program + " --help)");
+        throw UsageError(p.DisplayName(), "is required (" +
+            (p.GetLabel().empty() ? "see " + this->Description.Program + " --help" : p.GetLabel()) + ")");
       }
     }
   }

@@ -330,31 +330,42 @@ void WriteSubcommandParameterHelp(std::ostream& out, const Parameter& p)
   out << "  " << FlagHead(p) << "\n" << Wrap(text, "      ");
 }
 
-/// "usage: PROGRAM --required VALUE ... [options] INDEX [OPTIONAL]": a Slicer CLI names only its
-/// index parameters; a subcommand also its required options.
+/// The index parameters as the usage line names them: "INPUT...", "[NAME]".
+std::string IndexUsage(const ModuleDescription& description)
+{
+  std::string text;
+  for (const Parameter* p : IndexParameters(description))
+  {
+    const std::string name = FlagHead(*p) + (p->IsMultiple() ? "..." : "");
+    text += " " + (p->IsRequired() ? name : "[" + name + "]");
+  }
+  return text;
+}
+
+/// A Slicer CLI's usage names its index parameters after its options, as SEM's programs do:
+/// "usage: PROGRAM [options] INDEX [OPTIONAL]". A subcommand's names what it is given first,
+/// then the options it cannot run without: "usage: vesselproximity models INPUT... -o OUTDIR [options]".
 std::string UsageLine(const ModuleDescription& description)
 {
-  std::string line = "usage: " + description.Program;
+  if (description.Interface == ModuleDescription::Kind::SlicerCli)
+  {
+    return "usage: " + description.Program + " [options]" + IndexUsage(description) + "\n";
+  }
+  std::string line = "usage: " + description.Program + IndexUsage(description);
   bool optional = false;
   for (const auto& group : description.Groups)
   {
     for (const auto& p : group.Parameters)
     {
-      const bool option = p.GetIndex() < 0 && !p.IsReturnParameter();
-      if (option && p.IsRequired() && description.Interface == ModuleDescription::Kind::Subcommand)
+      if (p.GetIndex() < 0 && p.IsRequired())
       {
-        line += " " + FlagHead(p);
+        const std::string value = Placeholder(p);
+        line += " " + (p.GetFlag().empty() ? "--" + p.GetLongFlag() : "-" + p.GetFlag()) + (value.empty() ? "" : " " + value);
       }
-      optional = optional || (option && !p.IsRequired());
+      optional = optional || (p.GetIndex() < 0 && !p.IsRequired() && !p.IsReturnParameter());
     }
   }
-  line += optional || description.Interface == ModuleDescription::Kind::SlicerCli ? " [options]" : "";
-  for (const Parameter* p : IndexParameters(description))
-  {
-    const std::string name = FlagHead(*p) + (p->IsMultiple() ? "..." : "");
-    line += " " + (p->IsRequired() ? name : "[" + name + "]");
-  }
-  return line + "\n";
+  return line + (optional ? " [options]" : "") + "\n";
 }
 
 void WriteReturnParametersHelp(std::ostream& out, const ModuleDescription& description)
@@ -394,7 +405,9 @@ std::string WriteHelp(const ModuleDescription& description)
   }
   else
   {
-    out << Wrap(description.Title + ".", "  ") << Wrap(description.Description, "  ");
+    std::string title = description.Title;
+    title[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(title[0])));
+    out << Wrap(title + ".", "  ") << Wrap(description.Description, "  ");
   }
   for (const auto& group : description.Groups)
   {

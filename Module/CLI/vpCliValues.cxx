@@ -1,6 +1,7 @@
 // Values of the parameter kinds: how a command line's text is read and checked.
 #include "vpCliValues.h"
 
+#include "vpDecimal.h"
 #include "vpInputError.h"
 
 #include <algorithm>
@@ -58,9 +59,9 @@ bool ParseDouble(const std::string& text, double& value)
   {
     return false;
   }
-  char* end = nullptr;
-  value = std::strtod(text.c_str(), &end);
-  return *end == '\0' && std::isfinite(value);
+  // A plain decimal only: strtod would also read "0x10" as 16, which nobody means as a setting.
+  value = std::strtod(text.c_str(), nullptr);
+  return *ScanDecimal(text.c_str()) == '\0' && std::isfinite(value);
 }
 
 /// Numbers separated by commas and/or blanks ("1,2,3", "1 2 3"), as Slicer and people write them.

@@ -1,98 +1,65 @@
 #include "vpArguments.h"
 
-#include "vpDecimal.h"
 #include "vpInputError.h"
 
-#include <cmath>
-#include <cstdlib>
+#include <cctype>
 
 namespace vp
 {
-Arguments::Arguments(const std::vector<std::string>& args, const std::set<std::string>& valueOptions,
-  const std::set<std::string>& flagOptions)
+namespace
 {
-  for (std::size_t i = 0; i < args.size(); ++i)
+/// "frame-budget-ms" -> "frameBudgetMs": a parameter name (a C identifier) for a dashed flag.
+std::string CamelCase(const std::string& flag)
+{
+  std::string name;
+  bool upper = false;
+  for (char c : flag)
   {
-    std::string arg = args[i];
-    if (arg.size() < 2 || arg[0] != '-')
+    if (c == '-')
     {
-      this->Positionals.push_back(arg);
+      upper = true;
       continue;
     }
-    std::string value;
-    bool inlineValue = false;
-    const std::size_t eq = arg.find('=');
-    if (arg.rfind("--", 0) == 0 && eq != std::string::npos)
-    {
-      value = arg.substr(eq + 1);
-      arg = arg.substr(0, eq);
-      inlineValue = true;
-    }
-    if (flagOptions.count(arg))
-    {
-      if (inlineValue)
-      {
-        throw InputError(arg, "takes no value");
-      }
-      this->Values[arg] = "1";
-    }
-    else if (valueOptions.count(arg))
-    {
-      if (!inlineValue)
-      {
-        if (i + 1 >= args.size())
-        {
-          throw InputError(arg, "needs a value");
-        }
-        value = args[++i];
-      }
-      this->Values[arg] = value;
-    }
-    else
-    {
-      throw InputError(arg, "unknown option (see --help)");
-    }
+    name += upper ? static_cast<char>(std::toupper(static_cast<unsigned char>(c))) : c;
+    upper = false;
   }
+  return name;
+}
+} // namespace
+
+cli::Parameter Option(cli::ParameterType type, const std::string& longFlag, const std::string& description)
+{
+  return cli::Parameter(type, CamelCase(longFlag)).SetLongFlag(longFlag).SetDescription(description);
 }
 
-std::string Arguments::Get(const std::string& name, const std::string& fallback) const
+cli::Parameter Switch(const std::string& longFlag, const std::string& description)
 {
-  const auto it = this->Values.find(name);
-  return it == this->Values.end() ? fallback : it->second;
+  return Option(cli::ParameterType::Boolean, longFlag, description).SetDefault("false");
 }
 
-double Arguments::GetNumber(const std::string& name, double fallback) const
+cli::Parameter OutputFolderOption(const std::string& description)
 {
-  if (!this->Has(name))
-  {
-    return fallback;
-  }
-  const std::string text = this->Get(name);
-  const char* end = ScanDecimal(text.c_str());
-  const double v = std::strtod(text.c_str(), nullptr);
-  if (text.empty() || *end != '\0' || !std::isfinite(v))
-  {
-    throw InputError(name, "expected a number, got '" + text + "'");
-  }
-  return v;
+  return Option(cli::ParameterType::Directory, "output", description)
+    .SetFlag("o")
+    .SetChannel(cli::Channel::Output)
+    .SetPlaceholder("OUTDIR");
 }
 
-int Arguments::GetInteger(const std::string& name, int fallback, int minimum) const
+cli::Parameter VesselsOption()
 {
-  if (!this->Has(name))
-  {
-    return fallback;
-  }
-  const std::string text = this->Get(name);
-  char* end = nullptr;
-  const long v = std::strtol(text.c_str(), &end, 10);
-  if (text.empty() || *end != '\0' || v < minimum || v > 1000000000L)
-  {
-    throw InputError(name, (minimum == 1 ? std::string("expected a positive whole number")
-                                         : "expected a whole number of at least " + std::to_string(minimum)) +
-        ", got '" + text + "'");
-  }
-  return static_cast<int>(v);
+  return Option(cli::ParameterType::String, "vessels",
+    "The vessel surface models by class (portal_vein, hepatic_artery, hepatic_vein, or any name): STL, VTK, VTP or "
+    "OBJ; a SPACE=RAS/LPS header tag is honoured, untagged files are LPS.")
+    .SetPlaceholder("CLASS=FILE[,CLASS=FILE...]")
+    .SetLogicName("Vessels");
+}
+
+cli::Parameter RepairSwitch()
+{
+  return Switch("repair",
+    "Merge coincident points, drop duplicated triangles and fins, fill holes up to 30 mm and make the winding "
+    "consistent before building (vtkVesselSurfaceRepair; no point moves), saying per class on stderr what "
+    "changed; an open surface's inside is otherwise a vote of five rays.");
 }
 
 bool WantsHelp(const std::vector<std::string>& args)

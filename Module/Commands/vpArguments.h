@@ -1,32 +1,29 @@
 #ifndef vpArguments_h
 #define vpArguments_h
 
-#include <map>
-#include <set>
+// The pieces the subcommands' parameter tables are made of, and the text their values share.
+// Each command declares its parameters once (cli::ModuleDescription::Subcommand); the same table
+// gives its parser and its --help (vpCliDescription.h).
+
+#include "vpCliDescription.h"
+
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace vp
 {
-/// Minimal option parser for the subcommands: "--name value", "--name=value" and "--flag".
-/// Unknown options and missing values throw InputError naming the option.
-class Arguments
-{
-public:
-  Arguments(const std::vector<std::string>& args, const std::set<std::string>& valueOptions,
-    const std::set<std::string>& flagOptions);
-
-  bool Has(const std::string& name) const { return this->Values.count(name) > 0; }
-  std::string Get(const std::string& name, const std::string& fallback = std::string()) const;
-  double GetNumber(const std::string& name, double fallback) const;
-  /// A whole number of at least minimum (default 1); throws InputError naming the option.
-  int GetInteger(const std::string& name, int fallback, int minimum = 1) const;
-  const std::vector<std::string>& Positional() const { return this->Positionals; }
-
-private:
-  std::map<std::string, std::string> Values;
-  std::vector<std::string> Positionals;
-};
+/// An option --long-flag of the given type, named for the flag in camel case ("frame-budget-ms"
+/// is read as "frameBudgetMs"), with what it does. Chain the rest: .SetDefault("16.7").
+cli::Parameter Option(cli::ParameterType type, const std::string& longFlag, const std::string& description);
+/// A switch --long-flag: off unless given.
+cli::Parameter Switch(const std::string& longFlag, const std::string& description);
+/// -o DIR (also --output): the folder a command writes its run into.
+cli::Parameter OutputFolderOption(const std::string& description);
+/// --vessels CLASS=FILE[,CLASS=FILE...], read by LoadVesselMeshes(ParsePairs(...)).
+cli::Parameter VesselsOption();
+/// --repair: vtkVesselSurfaceRepair before building.
+cli::Parameter RepairSwitch();
 
 /// True when args ask for help (--help or -h anywhere).
 bool WantsHelp(const std::vector<std::string>& args);

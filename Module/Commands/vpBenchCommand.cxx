@@ -40,33 +40,6 @@ namespace
 {
 using Json = nlohmann::ordered_json;
 
-const char* Usage =
-  "usage: vesselproximity bench [--vessels CLASS=FILE,...] [--sizes N,N,...] [--queries N]\n"
-  "         [--brute-queries N] [--seed N] [--engines exact,zbuffer,replay] [--json] [-o FILE.json]\n"
-  "         [--scalpel FILE.stl [--tip X,Y,Z]] [--poses FILE.csv] [--fine-cell MM]\n"
-  "         [z-buffer settings: --device --cell --resolution --bins --range --box-size]\n"
-  "  Grows each vessel mesh to each size (longest-edge bisection: same surface, more triangles)\n"
-  "  and measures in one run:\n"
-  "  exact: per class, the exact engine (Embree BVH) on random tips and on a tracked tip (0.5 mm\n"
-  "    steps, the previous answer bounding the search), VTK's vtkStaticCellLocator, and the\n"
-  "    paper's brute-force CPU algorithm; the speed-up and the largest disagreement.\n"
-  "  zbuffer: all classes at once (range 50 mm), the Vulkan z-buffer engine: rendering the\n"
-  "    layers, per-query time with cached layers (exact-interval and paper's mode), the moving\n"
-  "    box on the tracked tip, beside the exact engine and brute force on the same tips; the\n"
-  "    largest |zbuffer - exact| against the error bound. Side by side, query by query (so that\n"
-  "    both see the device in the same state: a GPU's clock follows its load), the smallest and\n"
-  "    the largest size, and with --fine-cell the smallest size at that cell beside the set one.\n"
-  "  replay: the tracking pipeline (vtkScalpelTrackingLogic) on the vessels as given, all classes,\n"
-  "    a scalpel (--scalpel, default a 120 mm shaft of 1.5 mm radius) following the tracked tip:\n"
-  "    frames per second, exact (tip; tip and whole surface), FCL's whole surface on the same\n"
-  "    poses (its answers compared with ours), z-buffer on cached layers: tip, tip and whole\n"
-  "    instrument from its distance field, and the full frame with its penetration (with zbuffer\n"
-  "    among the engines), brute force on\n"
-  "    the first brute-queries frames. --poses replays a pose file (the\n"
-  "    demo's poses.csv, say) instead of the generated path.\n"
-  "  Defaults: the built-in analytic vessels, sizes 50000,400000,1500000, 2000 queries,\n"
-  "  30 brute-force queries, both engines. Progress goes to stderr.\n";
-
 std::vector<std::size_t> ParseSizes(const std::string& text)
 {
   std::vector<std::size_t> sizes;
@@ -273,7 +246,7 @@ void TimedQuery(vtkZBufferVesselDistance* zbuffer, const double* tip, const doub
 /// each turn is left out: each engine holds its own Vulkan device, and a GPU switching between
 /// two of them adds about 0.15 ms (H100) to the query after the switch.
 Json SideBySide(const std::vector<NamedMesh>& first, const std::vector<NamedMesh>& second, double secondCellMm,
-  const std::vector<std::array<double, 3>>& tips, const Arguments& args)
+  const std::vector<std::array<double, 3>>& tips, const cli::ParsedArguments& args)
 {
   vtkSmartPointer<vtkZBufferVesselDistance> engines[2];
   for (int e = 0; e < 2; ++e)
@@ -464,10 +437,10 @@ Json BenchZBuffer(vtkVesselDistanceEngine* engine, const std::vector<NamedMesh>&
   return entry;
 }
 /// --engines: a list of exact, zbuffer and replay.
-std::set<std::string> ParseBenchEngines(const Arguments& args)
+std::set<std::string> ParseBenchEngines(const cli::ParsedArguments& args)
 {
   std::set<std::string> engineNames;
-  std::istringstream engineList(args.Get("--engines", "exact,zbuffer"));
+  std::istringstream engineList(args.GetString("engines"));
   for (std::string name; std::getline(engineList, name, ',');)
   {
     if (name != "exact" && name != "zbuffer" && name != "replay")
@@ -484,12 +457,12 @@ std::set<std::string> ParseBenchEngines(const Arguments& args)
 }
 
 /// The replay's instrument: --scalpel (tip from --tip, its JSON or the finder), else a plain shaft.
-vtkSmartPointer<vtkScalpelModel> ReplayScalpel(const Arguments& args)
+vtkSmartPointer<vtkScalpelModel> ReplayScalpel(const cli::ParsedArguments& args)
 {
   vtkSmartPointer<vtkScalpelModel> scalpel;
-  if (args.Has("--scalpel"))
+  if (args.IsSet("scalpel"))
   {
-    scalpel = LoadScalpel(args.Get("--scalpel"), ParseTipDefinition(args));
+    scalpel = LoadScalpel(args.GetString("scalpel"), ParseTipDefinition(args));
   }
   else
   {
@@ -557,7 +530,7 @@ using SizedVessels = std::pair<std::vector<NamedMesh>, std::size_t>; // refined,
 /// the largest, and the side-by-side runs (largest beside smallest, --fine-cell beside the cell).
 
 Json ZBufferReport(vtkVesselDistanceEngine* zbufferEngine, const Json& zbufferSizes, const SizedVessels& smallest,
-  const SizedVessels& largest, const std::vector<std::array<double, 3>>& tips, const Arguments& args)
+  const SizedVessels& largest, const std::vector<std::array<double, 3>>& tips, const cli::ParsedArguments& args)
 {
   Json z;
   auto* engine = vtkZBufferVesselDistance::SafeDownCast(zbufferEngine);
@@ -574,10 +547,10 @@ Json ZBufferReport(vtkVesselDistanceEngine* zbufferEngine, const Json& zbufferSi
     std::fprintf(stderr, "bench: z-buffer, smallest and largest size side by side\n");
     z["largest_beside_smallest"] = SideBySide(smallest.first, largest.first, 0.0, tips, args);
   }
-  if (args.Has("--fine-cell"))
+  if (args.IsSet("fineCell"))
   {
-    std::fprintf(stderr, "bench: z-buffer, the smallest size at %s mm cells beside the set cell\n", args.Get("--fine-cell").c_str());
-    z["fine_cell_beside_cell"] = SideBySide(smallest.first, smallest.first, args.GetNumber("--fine-cell", 0.0), tips, args);
+    std::fprintf(stderr, "bench: z-buffer, the smallest size at %s mm cells beside the set cell\n", args.GetString("fineCell").c_str());
+    z["fine_cell_beside_cell"] = SideBySide(smallest.first, smallest.first, args.GetNumber("fineCell"), tips, args);
   }
   return z;
 }
@@ -735,7 +708,7 @@ void PrintBenchReport(Json& report)
 /// report["zbuffer"].
 void BenchSizes(const std::set<std::string>& engines, const std::vector<std::size_t>& sizes,
   vtkVesselDistanceEngine* zbufferEngine, const std::vector<NamedMesh>& vessels, const BenchTips& tips, int bruteQueries,
-  const Arguments& args, Json& report)
+  const cli::ParsedArguments& args, Json& report)
 {
   if (!engines.count("exact") && !engines.count("zbuffer"))
   {
@@ -785,55 +758,95 @@ void BenchSizes(const std::set<std::string>& engines, const std::vector<std::siz
 
 } // namespace
 
-int RunBenchCommand(const std::vector<std::string>& argv)
+cli::ModuleDescription DescribeBenchCommand()
 {
-  if (WantsHelp(argv))
+  using cli::ParameterType;
+  auto count = [](const char* flag, const char* def, const char* description) {
+    return Option(ParameterType::Integer, flag, description).SetPlaceholder("N").SetDefault(def).SetRange(1, 100000000, 1);
+  };
+  std::vector<cli::Parameter> replay = {
+    Option(ParameterType::File, "scalpel", "The replay's instrument (default: a 120 mm shaft of 1.5 mm radius).").SetChannel(cli::Channel::Input),
+    Option(ParameterType::File, "poses", "A pose file to replay (the demo's poses.csv, say) instead of the generated path.")
+      .SetChannel(cli::Channel::Input),
+  };
+  for (const cli::Parameter& p : ScalpelTipOptions())
   {
-    std::cout << Usage;
-    return 0;
+    replay.push_back(p);
   }
-  std::set<std::string> options = EngineValueOptions();
-  options.insert({ "--vessels", "--sizes", "--queries", "--brute-queries", "--seed", "--engines", "-o", "--scalpel", "--tip", "--poses",
-    "--fine-cell" });
-  const Arguments args(argv, options, { "--json" });
+  cli::ParameterGroup engine = EngineOptions({});
+  engine.Parameters.push_back(Option(ParameterType::Double, "fine-cell", "z-buffer: also the smallest size at this cell, beside the set one.").SetPlaceholder("MM"));
+  return cli::ModuleDescription::Subcommand("vesselproximity bench", "engines side by side with the brute-force reference, JSON with --json",
+    "Grows each vessel mesh to each size (longest-edge bisection: same surface, more triangles) and measures in one run:\n"
+    "exact: per class, the exact engine (Embree BVH) on random tips and on a tracked tip (0.5 mm steps, the previous "
+    "answer bounding the search), VTK's vtkStaticCellLocator, and the paper's brute-force CPU algorithm; the speed-up "
+    "and the largest disagreement.\n"
+    "zbuffer: all classes at once, the Vulkan z-buffer engine: rendering the layers, per-query time with cached layers "
+    "(exact-interval and paper's mode), the moving box on the tracked tip, beside the exact engine and brute force on "
+    "the same tips; the largest |zbuffer - exact| against the error bound. Side by side, query by query (so that both "
+    "see the device in the same state: a GPU's clock follows its load), the smallest and the largest size, and with "
+    "--fine-cell the smallest size at that cell beside the set one.\n"
+    "replay: the tracking pipeline (vtkScalpelTrackingLogic) on the vessels as given, all classes, a scalpel following "
+    "the tracked tip: frames per second, exact (tip; tip and whole surface), FCL's whole surface on the same poses (its "
+    "answers compared with ours), z-buffer on cached layers: tip, tip and whole instrument from its distance field, "
+    "and the full frame with its penetration (with zbuffer among the engines), brute force on the first brute-queries "
+    "frames. Progress goes to stderr.",
+    {
+      { "Workload", "",
+        { VesselsOption().SetDescription("The vessels (default: the built-in analytic vessels)."),
+          Option(ParameterType::String, "sizes", "Triangles per class to grow each mesh to.").SetPlaceholder("N,N,...").SetDefault("50000,400000,1500000"),
+          count("queries", "2000", "Random tips (and tracked steps, and replayed frames)."),
+          count("brute-queries", "30", "Of those, how many the brute-force reference answers."),
+          count("seed", "1", "The random seed."),
+          Option(ParameterType::String, "engines", "Which parts to run: a list of exact, zbuffer and replay.")
+            .SetPlaceholder("exact,zbuffer,replay")
+            .SetDefault("exact,zbuffer") } },
+      { "Replay", "", replay },
+      engine,
+      { "Output", "",
+        { Switch("json", "Print the report as JSON instead of a table."),
+          Option(ParameterType::File, "output", "Also write the JSON report to this file.").SetFlag("o").SetChannel(cli::Channel::Output).SetPlaceholder("FILE.json") } },
+    });
+}
+
+int RunBenchCommand(const cli::ParsedArguments& args)
+{
   // Checked before any work: a bad value must not surface after minutes of benchmarks.
-  const double fineCellMm = args.GetNumber("--fine-cell", 0.0);
-  if (args.Has("--fine-cell") && !(fineCellMm > 0.0 && std::isfinite(fineCellMm)))
+  if (args.IsSet("fineCell") && !(args.GetNumber("fineCell") > 0.0))
   {
     throw InputError("--fine-cell", "must be a positive number of millimetres");
   }
   const std::set<std::string> engines = ParseBenchEngines(args);
-  const std::vector<std::size_t> sizes = ParseSizes(args.Get("--sizes", "50000,400000,1500000"));
+  const std::vector<std::size_t> sizes = ParseSizes(args.GetString("sizes"));
   // Open the Vulkan device before the long work, so that a missing one fails at once.
   vtkSmartPointer<vtkVesselDistanceEngine> zbufferEngine = engines.count("zbuffer") ? MakeDistanceEngine("zbuffer", args) : nullptr;
   vtkSmartPointer<vtkScalpelModel> scalpel = engines.count("replay") ? ReplayScalpel(args) : nullptr;
-  const int queries = args.GetInteger("--queries", 2000);
-  const int bruteQueries = std::min(queries, args.GetInteger("--brute-queries", 30));
-  const unsigned seed = static_cast<unsigned>(args.GetInteger("--seed", 1));
+  const int queries = args.GetInteger("queries");
+  const int bruteQueries = std::min(queries, args.GetInteger("bruteQueries"));
+  const unsigned seed = static_cast<unsigned>(args.GetInteger("seed"));
   const std::vector<NamedMesh> vessels =
-    args.Has("--vessels") ? LoadVesselMeshes(ParsePairs(args.Get("--vessels"), "--vessels")) : BuiltInVessels();
+    args.IsSet("vessels") ? LoadVesselMeshes(ParsePairs(args.GetString("vessels"), "--vessels")) : BuiltInVessels();
   const BenchTips tips = MakeBenchTips(vessels, queries, seed);
 
   Json report;
   report["benchmark"] = "distance engines vs the paper's brute-force CPU algorithm";
   report["hardware_threads"] = std::thread::hardware_concurrency();
-  report["source"] = args.Has("--vessels") ? "files" : "built-in analytic vessels";
+  report["source"] = args.IsSet("vessels") ? "files" : "built-in analytic vessels";
   report["queries"] = queries;
   report["brute_queries"] = bruteQueries;
   report["tracked_step_mm"] = 0.5;
   BenchSizes(engines, sizes, zbufferEngine, vessels, tips, bruteQueries, args, report);
   if (scalpel)
   {
-    const std::vector<TrackedPose> poses = args.Has("--poses") ? ReadPoseFile(args.Get("--poses")) : std::vector<TrackedPose>();
+    const std::vector<TrackedPose> poses = args.IsSet("poses") ? ReadPoseFile(args.GetString("poses")) : std::vector<TrackedPose>();
     report["replay"] = BenchReplay(vessels, static_cast<std::size_t>(queries), seed, scalpel,
       zbufferEngine ? MakeDistanceEngine("zbuffer", args) : nullptr, bruteQueries, poses);
     report["replay"]["scalpel"] = scalpel->GetTipSource();
   }
-  if (args.Has("-o"))
+  if (args.IsSet("output"))
   {
-    WriteFileAtomically(args.Get("-o"), report.dump(2) + "\n");
+    WriteFileAtomically(args.GetString("output"), report.dump(2) + "\n");
   }
-  if (args.Has("--json"))
+  if (args.GetBoolean("json"))
   {
     std::cout << report.dump(2) << "\n";
     return 0;

@@ -1,7 +1,7 @@
 #include "vpCommandTable.h"
 
 #include "vpCommands.h"
-#include "vpEngineOptions.h"
+#include "vpArguments.h"
 #include "vpInputError.h"
 #include "vpVulkanContext.h"
 
@@ -16,31 +16,37 @@ namespace vp
 const std::vector<CommandEntry>& CommandTable()
 {
   static const std::vector<CommandEntry> table{
-    { "demo", "the main job on the built-in liver phantom: DICOM, models, tracked CUSA, both engines, report", RunDemoCommand },
-    { "view", "interactive window: vessels, scalpel moved by mouse and keys or replayed, live overlays", RunViewCommand },
-    { "selftest", "the module self-test: the demo's pipeline end to end with assertions", RunSelfTestCommand },
-    { "models", "segmented labelmaps (DICOM series, DICOM SEG, NRRD, .seg.nrrd, NIfTI) to vessel surface models",
-      RunModelsCommand },
-    { "distance", "distance from scalpel tip(s) to each vessel class (exact, zbuffer, both, brute, auto)", RunDistanceCommand },
-    { "track", "replay tracked scalpel poses: frames.csv, summary.json, distance.png, danger levels", RunTrackCommand },
-    { "register", "scalpel registration: landmarks, surface ICP, pivot calibration (JSON result)", RunRegisterCommand },
-    { "bench", "engines side by side with the brute-force reference, JSON with --json", RunBenchCommand },
-    { "phantom", "write the built-in analytic vessels (STL) for a first run", RunPhantomCommand },
+    { "demo", DescribeDemoCommand, RunDemoCommand },
+    { "view", DescribeViewCommand, RunViewCommand },
+    { "selftest", DescribeSelfTestCommand, RunSelfTestCommand },
+    { "models", DescribeModelsCommand, RunModelsCommand },
+    { "distance", DescribeDistanceCommand, RunDistanceCommand },
+    { "track", DescribeTrackCommand, RunTrackCommand },
+    { "register", DescribeRegisterCommand, RunRegisterCommand },
+    { "bench", DescribeBenchCommand, RunBenchCommand },
+    { "phantom", DescribePhantomCommand, RunPhantomCommand },
   };
   return table;
 }
 
-int RunCommandReportingErrors(const CommandEntry& command, const std::vector<std::string>& args)
+namespace
 {
-  // Our errors are reported as one line each; VTK's console chatter would break that.
-  vtkObject::GlobalWarningDisplayOff();
+/// The exception being handled, as one line on stderr and its exit code.
+int ReportFailure(const cli::ModuleDescription& description)
+{
   try
   {
-    return command.Run(args);
+    throw;
+  }
+  catch (const cli::UsageError& e)
+  {
+    std::cerr << "vesselproximity: error: " << e.what() << "\n";
+    return 2;
   }
   catch (const ParameterError& e)
   {
-    std::cerr << "vesselproximity: error: " << FlagOfParameter(e.GetParameter()) << ": " << e.GetProblem() << "\n";
+    std::cerr << "vesselproximity: error: " << cli::DisplayNameOfSetting(description, e.GetParameter()) << ": "
+              << e.GetProblem() << "\n";
     return 1;
   }
   catch (const InputError& e)
@@ -62,6 +68,28 @@ int RunCommandReportingErrors(const CommandEntry& command, const std::vector<std
   {
     std::cerr << "vesselproximity: internal error: " << e.what() << "\n";
     return 3;
+  }
+}
+} // namespace
+
+int RunCommandReportingErrors(const CommandEntry& command, const std::vector<std::string>& args)
+{
+  // Our errors are reported as one line each; VTK's console chatter would break that.
+  vtkObject::GlobalWarningDisplayOff();
+  const cli::ModuleDescription description = command.Describe();
+  try
+  {
+    cli::ValidateDescription(description);
+    if (WantsHelp(args))
+    {
+      std::cout << cli::WriteHelp(description);
+      return 0;
+    }
+    return command.Run(cli::ParseArguments(description, args));
+  }
+  catch (...)
+  {
+    return ReportFailure(description);
   }
 }
 } // namespace vp

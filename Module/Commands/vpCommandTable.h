@@ -1,6 +1,8 @@
 #ifndef vpCommandTable_h
 #define vpCommandTable_h
 
+#include "vpCliDescription.h"
+
 #include <string>
 #include <vector>
 
@@ -10,15 +12,17 @@ namespace vp
 struct CommandEntry
 {
   const char* Name;
-  const char* Summary;
-  int (*Run)(const std::vector<std::string>& args);
+  /// Its parameters, usage and one-line title (what the host lists).
+  cli::ModuleDescription (*Describe)();
+  int (*Run)(const cli::ParsedArguments& args);
 };
 
 /// Every command of the VesselProximity module, in the order --help lists them.
 const std::vector<CommandEntry>& CommandTable();
 
-/// Runs a command and turns what it throws into the documented exit codes with one line on
-/// stderr (1 bad input, 3 internal error, 4 no Vulkan device), so no exception crosses the
+/// Runs a command: --help from its description, else its command line parsed against it and the
+/// command called. What it throws becomes the documented exit code with one line on stderr (1 bad
+/// input, 2 bad usage, 3 internal error, 4 no Vulkan device), so no exception crosses the
 /// module's C boundary.
 int RunCommandReportingErrors(const CommandEntry& command, const std::vector<std::string>& args);
 } // namespace vp

@@ -1,22 +1,32 @@
 #ifndef vpCommands_h
 #define vpCommands_h
 
-#include <string>
-#include <vector>
+#include "vpCliDescription.h"
 
 namespace vp
 {
-/// Each subcommand takes the arguments after its name, writes its result to stdout (or files),
-/// and returns the process exit code. Bad input throws InputError, caught by main.
-int RunDistanceCommand(const std::vector<std::string>& args);
-int RunBenchCommand(const std::vector<std::string>& args);
-int RunPhantomCommand(const std::vector<std::string>& args);
-int RunModelsCommand(const std::vector<std::string>& args);
-int RunTrackCommand(const std::vector<std::string>& args);
-int RunRegisterCommand(const std::vector<std::string>& args);
-int RunDemoCommand(const std::vector<std::string>& args);
-int RunViewCommand(const std::vector<std::string>& args);
-int RunSelfTestCommand(const std::vector<std::string>& args);
+/// Each subcommand declares its parameters once (Describe…), and the command table parses its
+/// command line with them (and answers --help from them). Run… takes the parsed arguments, writes
+/// its result to stdout (or files), and returns the process exit code. Bad input throws
+/// InputError, caught by the table.
+cli::ModuleDescription DescribeDistanceCommand();
+int RunDistanceCommand(const cli::ParsedArguments& args);
+cli::ModuleDescription DescribeBenchCommand();
+int RunBenchCommand(const cli::ParsedArguments& args);
+cli::ModuleDescription DescribePhantomCommand();
+int RunPhantomCommand(const cli::ParsedArguments& args);
+cli::ModuleDescription DescribeModelsCommand();
+int RunModelsCommand(const cli::ParsedArguments& args);
+cli::ModuleDescription DescribeTrackCommand();
+int RunTrackCommand(const cli::ParsedArguments& args);
+cli::ModuleDescription DescribeRegisterCommand();
+int RunRegisterCommand(const cli::ParsedArguments& args);
+cli::ModuleDescription DescribeDemoCommand();
+int RunDemoCommand(const cli::ParsedArguments& args);
+cli::ModuleDescription DescribeViewCommand();
+int RunViewCommand(const cli::ParsedArguments& args);
+cli::ModuleDescription DescribeSelfTestCommand();
+int RunSelfTestCommand(const cli::ParsedArguments& args);
 } // namespace vp
 
 #endif

@@ -2,8 +2,8 @@
 #include "vpArguments.h"
 #include "vpCommands.h"
 #include "vpDemoPipeline.h"
-#include "vpTrackingOptions.h"
 #include "vpInputError.h"
+#include "vpTrackingOptions.h"
 #include "vpJsonFile.h"
 
 #include <nlohmann/json.hpp>
@@ -15,16 +15,6 @@ namespace vp
 {
 namespace
 {
-const char* Usage =
-  "usage: vesselproximity demo [-o OUTDIR] [--no-screenshots] [--frame-budget-ms MS]\n"
-  "  The main job on a built-in phantom, no data needed: a procedural liver labelmap with three\n"
-  "  vessel trees written as DICOM series, its vessel models, the built-in CUSA handpiece, a\n"
-  "  trajectory that approaches and passes the vessels, both distance engines on every frame,\n"
-  "  and the outputs in OUTDIR (default ./vesselproximity-demo): dicom/, models/, scalpel/,\n"
-  "  poses.csv, frames.csv, summary.json, distance.png and screenshots/ of the key frames\n"
-  "  (rendered off-screen; Xvfb is started when there is no display). --frame-budget-ms: the\n"
-  "  time one frame may take (default 16.7, 60 Hz; 0: none); frames over it are counted.\n";
-
 } // namespace
 
 void PrintDemoTable(const DemoReport& report, const nlohmann::json& summary)
@@ -81,20 +71,23 @@ void PrintDemoTable(const DemoReport& report, const nlohmann::json& summary)
   }
 }
 
-int RunDemoCommand(const std::vector<std::string>& argv)
+cli::ModuleDescription DescribeDemoCommand()
 {
-  if (WantsHelp(argv))
-  {
-    std::cout << Usage;
-    return 0;
-  }
-  const Arguments args(argv, { "-o", "--frame-budget-ms" }, { "--no-screenshots" });
-  if (!args.Positional().empty())
-  {
-    throw InputError(args.Positional()[0], "unexpected argument (see vesselproximity demo --help)");
-  }
-  const DemoReport report =
-    RunDemoPipeline(args.Get("-o", "vesselproximity-demo"), !args.Has("--no-screenshots"), ParseFrameBudgetMs(args));
+  return cli::ModuleDescription::Subcommand("vesselproximity demo",
+    "the main job on the built-in liver phantom: DICOM, models, tracked CUSA, both engines, report",
+    "The main job on a built-in phantom, no data needed: a procedural liver labelmap with three vessel trees written "
+    "as DICOM series, its vessel models, the built-in CUSA handpiece, a trajectory that approaches and passes the "
+    "vessels, both distance engines on every frame, and the outputs in OUTDIR: dicom/, models/, scalpel/, "
+    "poses.csv, frames.csv, summary.json, distance.png and screenshots/ of the key frames (rendered off-screen; Xvfb "
+    "is started when there is no display).",
+    { { "Options", "",
+      { OutputFolderOption("The run's folder.").SetDefault("vesselproximity-demo"),
+        Switch("no-screenshots", "Skip the screenshots."), FrameBudgetOption() } } });
+}
+
+int RunDemoCommand(const cli::ParsedArguments& args)
+{
+  const DemoReport report = RunDemoPipeline(args.GetString("output"), !args.GetBoolean("noScreenshots"), ParseFrameBudgetMs(args));
   PrintDemoTable(report, nlohmann::json(report.Summary)); // by class name, as the table lists them
   return 0;
 }

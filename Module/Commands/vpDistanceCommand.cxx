@@ -21,42 +21,27 @@ namespace vp
 namespace
 {
 
-const char* Usage =
-  "usage: vesselproximity distance --vessels CLASS=FILE[,CLASS=FILE...] (--tip X,Y,Z | --tips FILE.csv)\n"
-  "         [--axis X,Y,Z] [--method exact|zbuffer|both|brute|auto] [--range MM]\n"
-  "         [--device NAME] [--cell MM | --resolution PX] [--layers exact|paper] [--box fixed|moving]\n"
-  "         [--box-size X,Y,Z] [--bins N] [--space LPS|RAS] [--repair] [--json]\n"
-  "  Distance from each tip to the nearest surface point of every vessel class.\n"
-  "  --space RAS: tips are given and points reported in RAS (Slicer's view); default LPS.\n"
-  "  --axis: scalpel axis (unit or not), for the directional distance along it.\n"
-  "  --repair: merge coincident points, drop duplicated triangles and fins, fill holes up to\n"
-  "    30 mm and make the winding consistent before building (vtkVesselSurfaceRepair; no point\n"
-  "    moves), saying per class on stderr what changed; an open surface's inside is otherwise a\n"
-  "    vote of five rays.\n"
-  "  --tips: answered as one batch (the z-buffer engine: one GPU submission per 256 tips); the\n"
-  "    query times are then the batch's time per tip.\n";
-
-TipDistanceRequest ParseRequest(const Arguments& args, bool ras)
+TipDistanceRequest ParseRequest(const cli::ParsedArguments& args, bool ras)
 {
   TipDistanceRequest request;
-  const std::string method = args.Get("--method", "exact");
+  const std::string method = args.GetString("method");
   request.Engine = MakeDistanceEngine(method, args);
   request.CompareWithExact = method == "both";
-  if (args.Has("--tip"))
+  if (args.IsSet("tip"))
   {
-    request.TipsMm.push_back(ParsePoint(args.Get("--tip"), "--tip"));
+    request.TipsMm.push_back(ParsePoint(args.GetString("tip"), "--tip"));
   }
   else
   {
-    request.TipsMm = ReadPointCsv(args.Get("--tips"));
+    request.TipsMm = ReadPointCsv(args.GetString("tips"));
   }
   for (auto& t : request.TipsMm)
   {
     t = ConvertSpace(t, ras);
   }
-  if (args.Has("--axis"))
+  if (args.IsSet("axis"))
   {
-    request.Axis = ConvertSpace(ParsePoint(args.Get("--axis"), "--axis"), ras);
+    request.Axis = ConvertSpace(ParsePoint(args.GetString("axis"), "--axis"), ras);
   }
   return request;
 }
@@ -113,38 +98,48 @@ void PrintTable(const TipDistanceRequest& request, const TipDistanceAnswer& answ
 }
 } // namespace
 
-int RunDistanceCommand(const std::vector<std::string>& argv)
+cli::ModuleDescription DescribeDistanceCommand()
 {
-  if (WantsHelp(argv))
-  {
-    std::cout << Usage << EngineOptionsUsage({ "exact", "zbuffer", "both", "brute", "auto" });
-    return 0;
-  }
-  std::set<std::string> options = EngineValueOptions();
-  options.insert({ "--vessels", "--tip", "--tips", "--axis", "--space" });
-  const Arguments args(argv, options, { "--json", "--repair" });
-  if (!args.Positional().empty())
-  {
-    throw InputError(args.Positional()[0], "unexpected argument (see vesselproximity distance --help)");
-  }
-  if (!args.Has("--vessels"))
-  {
-    throw InputError("--vessels", "is required (CLASS=FILE[,CLASS=FILE...])");
-  }
-  if (args.Has("--tip") == args.Has("--tips"))
+  using cli::ParameterType;
+  return cli::ModuleDescription::Subcommand("vesselproximity distance",
+    "distance from scalpel tip(s) to each vessel class (exact, zbuffer, both, brute, auto)",
+    "Distance from each tip to the nearest surface point of every vessel class: the distance, the closest point, "
+    "whether the tip is inside, and the directional distance along --axis. Give exactly one of --tip and --tips.",
+    {
+      { "Inputs", "", { VesselsOption().SetRequired(), RepairSwitch() } },
+      { "Tips", "",
+        {
+          Option(ParameterType::String, "tip", "One tip.").SetPlaceholder("X,Y,Z"),
+          Option(ParameterType::File, "tips",
+            "Tips, one x,y,z per line, answered as one batch (the z-buffer engine: one GPU submission per 256 tips); "
+            "the query times are then the batch's time per tip.")
+            .SetChannel(cli::Channel::Input)
+            .SetPlaceholder("FILE.csv"),
+          Option(ParameterType::String, "axis", "The scalpel's axis (unit or not), for the directional distance along it.")
+            .SetPlaceholder("X,Y,Z")
+            .SetLogicName("Axis"),
+          Option(ParameterType::StringEnumeration, "space",
+            "The tips are given and the points reported in LPS (DICOM's frame) or RAS (Slicer's view).")
+            .SetElements({ "LPS", "RAS" })
+            .SetDefault("LPS"),
+        } },
+      EngineOptions({ "exact", "zbuffer", "both", "brute", "auto" }),
+      { "Output", "", { Switch("json", "Print the answer as JSON instead of a table.") } },
+    });
+}
+
+int RunDistanceCommand(const cli::ParsedArguments& args)
+{
+  if (args.IsSet("tip") == args.IsSet("tips"))
   {
     throw InputError("--tip/--tips", "give exactly one of --tip X,Y,Z or --tips FILE.csv");
   }
-  const std::string space = args.Get("--space", "LPS");
-  if (space != "LPS" && space != "RAS")
-  {
-    throw InputError("--space", "expected LPS or RAS, got '" + space + "'");
-  }
+  const std::string space = args.GetString("space");
   const bool ras = space == "RAS";
   TipDistanceRequest request = ParseRequest(args, ras);
   const double loadStart = NowMs();
-  request.Vessels = LoadVesselMeshes(ParsePairs(args.Get("--vessels"), "--vessels"));
-  if (args.Has("--repair"))
+  request.Vessels = LoadVesselMeshes(ParsePairs(args.GetString("vessels"), "--vessels"));
+  if (args.GetBoolean("repair"))
   {
     RepairVesselMeshes(request.Vessels);
   }
@@ -157,7 +152,7 @@ int RunDistanceCommand(const std::vector<std::string>& argv)
               << " answer(s) of the z-buffer engine outside its error bound of " << request.Engine->GetErrorBoundMm() << " mm\n";
   }
   // Everything is computed before anything is printed: a failure leaves no partial output.
-  if (args.Has("--json"))
+  if (args.GetBoolean("json"))
   {
     std::cout << TipDistanceReportJson(request, answer, ras, loadMs).dump(2) << "\n";
   }

@@ -7,83 +7,90 @@
 
 namespace vp
 {
-const char* EngineSettingsUsage =
-  "  --range MM: classes further than this are reported as null (default 50 mm).\n"
-  "  z-buffer settings: --device NAME|INDEX (default: a GPU if any, else lavapipe),\n"
-  "    --cell MM (cell edge, default 0.4: bound 0.35 mm), --resolution PX (pixels across the\n"
-  "    box instead), --layers exact|paper (paper: nearest and farthest depth only),\n"
-  "    --box fixed|moving, --box-size X,Y,Z (moving box, default 106,106,213 mm),\n"
-  "    --bins N (the paper's distance bits: N bins over the range, a multiple of 16; 0, the\n"
-  "    default, off).\n";
-
-std::string EngineOptionsUsage(const std::set<std::string>& methods)
+namespace
+{
+/// What --method's help says of each method.
+const char* MethodHelp(const std::string& method)
 {
   static const std::pair<const char*, const char*> all[] = {
-    { "exact", "exact (default; Embree BVH, exact)" },
-    { "zbuffer", "zbuffer (Vulkan depth layers, within error_bound_mm)" },
-    { "both", "both (z-buffer, checked against exact)" },
-    { "brute", "brute (the paper's CPU algorithm)" },
-    { "auto", "auto (z-buffer when a Vulkan device opens, else exact)" },
+    { "exact", "exact: Embree BVH, exact" },
+    { "zbuffer", "zbuffer: Vulkan depth layers, within the error bound" },
+    { "both", "both: the z-buffer, checked against exact" },
+    { "brute", "brute: the paper's CPU algorithm" },
+    { "auto", "auto: the z-buffer when a Vulkan device opens, else exact" },
   };
-  std::string text = "  --method, one of:\n";
-  for (const auto& [name, description] : all)
+  for (const auto& [name, help] : all)
   {
-    if (methods.count(name))
+    if (method == name)
     {
-      text += "    " + std::string(description) + "\n";
+      return help;
     }
   }
-  return text + EngineSettingsUsage;
+  return "";
 }
+} // namespace
 
-std::set<std::string> EngineValueOptions()
+cli::ParameterGroup EngineOptions(const std::vector<std::string>& methods)
 {
-  return { "--method", "--range", "--device", "--cell", "--resolution", "--layers", "--box", "--box-size", "--bins" };
-}
-
-std::string FlagOfParameter(const std::string& parameter)
-{
-  static const std::pair<const char*, const char*> flags[] = { { "RangeMm", "--range" }, { "CellSizeMm", "--cell" },
-    { "ResolutionPx", "--resolution" }, { "LayerMode", "--layers" }, { "BoxMode", "--box" }, { "MovingBoxSizeMm", "--box-size" },
-    { "DistanceBins", "--bins" }, { "CellSizeMm/ResolutionPx", "--cell/--resolution" }, { "Method", "--method" },
-    { "Vessels", "--vessels" }, { "Axis", "--axis" }, { "SmoothingFactor", "--smoothing" },
-    { "SmoothingIterations", "--smoothing-iterations" }, { "DecimationFactor", "--decimation" },
-    { "FrameBudgetMs", "--frame-budget-ms" }, { "HysteresisMm", "--hysteresis-mm" } };
-  for (const auto& [name, flag] : flags)
+  using cli::ParameterType;
+  const DistanceEngineSettings defaults;
+  cli::ParameterGroup group{ "Distance engine", "", {} };
+  if (!methods.empty())
   {
-    if (parameter == name)
+    std::string help;
+    for (const std::string& method : methods)
     {
-      return flag;
+      help += std::string(help.empty() ? "" : "; ") + MethodHelp(method);
     }
+    group.Parameters.push_back(
+      Option(ParameterType::StringEnumeration, "method", help + ".").SetElements(methods).SetDefault(defaults.Method).SetLogicName("Method"));
   }
-  return parameter;
+  group.Parameters.push_back(Option(ParameterType::Double, "range", "Classes further than this are reported as out of range (null).")
+                               .SetPlaceholder("MM")
+                               .SetDefault(cli::FormatNumber(vtkVesselDistanceEngine::DefaultRangeMm))
+                               .SetLogicName("RangeMm"));
+  const std::vector<cli::Parameter> zbuffer = {
+    Option(ParameterType::String, "device", "z-buffer: the Vulkan device by name or index (default: a GPU if any, else lavapipe).")
+      .SetPlaceholder("NAME|INDEX"),
+    Option(ParameterType::Double, "cell", "z-buffer: the cell edge (default 0.4 mm: error bound 0.35 mm).").SetPlaceholder("MM").SetLogicName("CellSizeMm"),
+    Option(ParameterType::Integer, "resolution", "z-buffer: pixels across the box, instead of --cell.").SetPlaceholder("PX").SetLogicName("ResolutionPx"),
+    Option(ParameterType::StringEnumeration, "layers", "z-buffer: exact intervals, or the paper's nearest and farthest depth only.")
+      .SetElements({ "exact", "paper" }).SetDefault(defaults.LayerMode).SetLogicName("LayerMode"),
+    Option(ParameterType::StringEnumeration, "box", "z-buffer: a box fixed around the vessels, or moving with the tip.")
+      .SetElements({ "fixed", "moving" }).SetDefault(defaults.BoxMode).SetLogicName("BoxMode"),
+    Option(ParameterType::String, "box-size", "z-buffer: the moving box's size (default 106,106,213 mm).").SetPlaceholder("X,Y,Z").SetLogicName("MovingBoxSizeMm"),
+    Option(ParameterType::Integer, "bins", "z-buffer: the paper's distance bits, N bins over the range, a multiple of 16 (0: off).")
+      .SetPlaceholder("N").SetDefault("0").SetLogicName("DistanceBins"),
+  };
+  group.Parameters.insert(group.Parameters.end(), zbuffer.begin(), zbuffer.end());
+  return group;
 }
 
-DistanceEngineSettings ParseEngineSettings(const std::string& method, const Arguments& args)
+DistanceEngineSettings ParseEngineSettings(const std::string& method, const cli::ParsedArguments& args)
 {
   DistanceEngineSettings s;
   s.Method = method;
-  if (args.Has("--range"))
+  if (args.IsSet("range"))
   {
-    s.RangeMm = args.GetNumber("--range", 0.0);
+    s.RangeMm = args.GetNumber("range");
   }
-  s.DeviceSelector = args.Get("--device");
-  if (args.Has("--cell"))
+  s.DeviceSelector = args.GetString("device");
+  if (args.IsSet("cell"))
   {
-    s.CellSizeMm = args.GetNumber("--cell", 0.0);
+    s.CellSizeMm = args.GetNumber("cell");
   }
-  s.ResolutionPx = args.GetInteger("--resolution", 0);
-  s.LayerMode = args.Get("--layers", "exact");
-  s.BoxMode = args.Get("--box", "fixed");
-  if (args.Has("--box-size"))
+  s.ResolutionPx = args.IsSet("resolution") ? args.GetInteger("resolution") : 0;
+  s.LayerMode = args.GetString("layers");
+  s.BoxMode = args.GetString("box");
+  if (args.IsSet("boxSize"))
   {
-    s.MovingBoxSizeMm = ParsePoint(args.Get("--box-size"), "--box-size");
+    s.MovingBoxSizeMm = ParsePoint(args.GetString("boxSize"), "--box-size");
   }
-  s.DistanceBins = args.GetInteger("--bins", 0, 0); // 0: off, as the help says
+  s.DistanceBins = args.GetInteger("bins"); // 0: off, as the help says
   return s;
 }
 
-vtkSmartPointer<vtkVesselDistanceEngine> MakeDistanceEngine(const std::string& method, const Arguments& args)
+vtkSmartPointer<vtkVesselDistanceEngine> MakeDistanceEngine(const std::string& method, const cli::ParsedArguments& args)
 {
   std::string note;
   auto engine = MakeDistanceEngine(ParseEngineSettings(method, args), &note);

@@ -13,21 +13,6 @@ namespace vp
 {
 namespace
 {
-const char* Usage =
-  "usage: vesselproximity models INPUT... -o OUTDIR [--labels TABLE.json] [--smoothing F]\n"
-  "                              [--smoothing-iterations N] [--decimation F] [--space LPS|RAS]\n"
-  "  INPUT: a folder of DICOM label series (one sub-folder per structure, as 3D-IRCADb's\n"
-  "         MASKS_DICOM, or one series of several label values), a .nrrd, .seg.nrrd, .nii or\n"
-  "         .nii.gz labelmap.\n"
-  "  Writes OUTDIR/<class>.stl for each vessel class found (portal_vein, hepatic_vein,\n"
-  "  hepatic_artery; liver too when present) and OUTDIR/models.json. Structures map to classes\n"
-  "  through the label table (default: the built-in Resources/VesselLabels.json); structures it\n"
-  "  does not know are listed on stderr and in models.json, not modelled.\n"
-  "  --smoothing F              windowed-sinc smoothing factor 0..1 (default 0.5, as Slicer)\n"
-  "  --smoothing-iterations N   default 20, as Slicer\n"
-  "  --decimation F             fraction of triangles removed, 0..0.99 (default 0)\n"
-  "  --space LPS|RAS            coordinates of the STL files (default LPS, the DICOM frame)\n";
-
 void PrintModels(const VesselModelSet& set, const std::string& outDir)
 {
   std::cout << std::left << std::setw(16) << "class" << std::right << std::setw(10) << "voxels" << std::setw(12)
@@ -41,39 +26,65 @@ void PrintModels(const VesselModelSet& set, const std::string& outDir)
 }
 } // namespace
 
-int RunModelsCommand(const std::vector<std::string>& argv)
+cli::ModuleDescription DescribeModelsCommand()
 {
-  if (WantsHelp(argv))
-  {
-    std::cout << Usage;
-    return 0;
-  }
-  const Arguments args(argv,
-    { "-o", "--output", "--labels", "--smoothing", "--smoothing-iterations", "--decimation", "--space" }, {});
-  const std::string outDir = args.Has("-o") ? args.Get("-o") : args.Get("--output");
-  if (args.Positional().empty())
-  {
-    throw InputError("models", "give at least one INPUT labelmap (see --help)");
-  }
-  if (outDir.empty())
-  {
-    throw InputError("-o", "an output folder is required");
-  }
+  using cli::FormatNumber;
+  using cli::ParameterType;
+  const VesselModelParameters defaults;
+  return cli::ModuleDescription::Subcommand("vesselproximity models",
+    "segmented labelmaps (DICOM series, DICOM SEG, NRRD, .seg.nrrd, NIfTI) to vessel surface models",
+    "Writes OUTDIR/<class>.stl for each vessel class found (portal_vein, hepatic_vein, hepatic_artery; liver too "
+    "when present) and OUTDIR/models.json. Structures map to classes through the label table; structures it does "
+    "not know are listed on stderr and in models.json, not modelled.",
+    {
+      { "Inputs", "",
+        {
+          cli::Parameter(ParameterType::String, "inputs")
+            .SetIndex(0)
+            .SetMultiple()
+            .SetRequired()
+            .SetPlaceholder("INPUT")
+            .SetDescription("A folder of DICOM label series (one sub-folder per structure, as 3D-IRCADb's MASKS_DICOM, "
+                            "or one series of several label values), a DICOM SEG, a .nrrd, .seg.nrrd, .nii or .nii.gz labelmap."),
+          Option(ParameterType::File, "labels", "The label table (default: the built-in Resources/VesselLabels.json).")
+            .SetChannel(cli::Channel::Input)
+            .SetPlaceholder("TABLE.json"),
+          OutputFolderOption("The run's folder: one STL per class and models.json.").SetRequired(),
+        } },
+      { "Surfaces", "",
+        {
+          Option(ParameterType::Double, "smoothing", "Windowed-sinc smoothing factor, 0 to 1, as Slicer.")
+            .SetPlaceholder("F")
+            .SetDefault(FormatNumber(defaults.SmoothingFactor))
+            .SetLogicName("SmoothingFactor"),
+          Option(ParameterType::Integer, "smoothing-iterations", "Smoothing iterations, as Slicer.")
+            .SetPlaceholder("N")
+            .SetDefault(std::to_string(defaults.SmoothingIterations))
+            .SetLogicName("SmoothingIterations"),
+          Option(ParameterType::Double, "decimation", "The fraction of triangles removed, 0 to 0.99.")
+            .SetPlaceholder("F")
+            .SetDefault(FormatNumber(defaults.DecimationFactor))
+            .SetLogicName("DecimationFactor"),
+          Option(ParameterType::StringEnumeration, "space", "The coordinates of the STL files (LPS: the DICOM frame).")
+            .SetElements({ "LPS", "RAS" })
+            .SetDefault("LPS"),
+        } },
+    });
+}
+
+int RunModelsCommand(const cli::ParsedArguments& args)
+{
+  const std::string outDir = args.GetString("output");
   RunFolder run(outDir, "models.json");
-  const std::string spaceName = args.Get("--space", "LPS");
-  if (spaceName != "LPS" && spaceName != "RAS")
-  {
-    throw InputError("--space", "must be LPS or RAS, not '" + spaceName + "'");
-  }
   VesselModelParameters parameters;
-  parameters.FileSpace = spaceName == "RAS" ? MeshSpace::RAS : MeshSpace::LPS;
-  parameters.SmoothingFactor = args.GetNumber("--smoothing", parameters.SmoothingFactor);
-  parameters.DecimationFactor = args.GetNumber("--decimation", parameters.DecimationFactor);
-  parameters.SmoothingIterations = args.GetInteger("--smoothing-iterations", parameters.SmoothingIterations);
-  parameters.LabelTableFile = args.Get("--labels");
+  parameters.FileSpace = args.GetString("space") == "RAS" ? MeshSpace::RAS : MeshSpace::LPS;
+  parameters.SmoothingFactor = args.GetNumber("smoothing");
+  parameters.DecimationFactor = args.GetNumber("decimation");
+  parameters.SmoothingIterations = args.GetInteger("smoothingIterations");
+  parameters.LabelTableFile = args.GetString("labels");
   // Every line is said once its step is done: a line before a refusal would make its one line two.
   const VesselModelSet set = BuildVesselModels(
-    args.Positional(), parameters, [](const std::string& line) { std::cerr << "models: " << line << "\n"; });
+    args.GetStrings("inputs"), parameters, [](const std::string& line) { std::cerr << "models: " << line << "\n"; });
   WriteVesselModels(set, run);
   PrintModels(set, outDir);
   std::cerr << "models: done in " << FixedText(set.TotalMs, "%.0f") << " ms\n";

@@ -3,7 +3,6 @@
 #include "vpArguments.h"
 #include "vpCommandSupport.h"
 #include "vpCommands.h"
-#include "vpInputError.h"
 #include "vtkVesselMeshWriter.h"
 
 #include <vtkNew.h>
@@ -13,23 +12,19 @@
 
 namespace vp
 {
-int RunPhantomCommand(const std::vector<std::string>& argv)
+cli::ModuleDescription DescribePhantomCommand()
 {
-  if (WantsHelp(argv))
-  {
-    std::cout << "usage: vesselproximity phantom -o OUTDIR\n"
-                 "  Writes three closed analytic vessels in LPS mm, named for the vessel classes:\n"
-                 "  portal_vein.stl (a torus: ring 30 mm, tube 6 mm, centre 0,0,0, axis S),\n"
-                 "  hepatic_artery.stl (a capped cylinder: radius 2.5 mm, length 80 mm, centre 0,0,25, axis L),\n"
-                 "  hepatic_vein.stl (a sphere: radius 10 mm, centre 45,30,-10).\n";
-    return 0;
-  }
-  const Arguments args(argv, { "-o", "--output" }, {});
-  const std::string out = args.Has("-o") ? args.Get("-o") : args.Get("--output");
-  if (out.empty())
-  {
-    throw InputError("-o", "an output folder is required");
-  }
+  return cli::ModuleDescription::Subcommand("vesselproximity phantom", "write the built-in analytic vessels (STL) for a first run",
+    "Writes three closed analytic vessels in LPS mm, named for the vessel classes:\n"
+    "  portal_vein.stl (a torus: ring 30 mm, tube 6 mm, centre 0,0,0, axis S),\n"
+    "  hepatic_artery.stl (a capped cylinder: radius 2.5 mm, length 80 mm, centre 0,0,25, axis L),\n"
+    "  hepatic_vein.stl (a sphere: radius 10 mm, centre 45,30,-10).",
+    { { "Output", "", { OutputFolderOption("The folder the three STL files are written into.").SetRequired() } } });
+}
+
+int RunPhantomCommand(const cli::ParsedArguments& args)
+{
+  const std::string out = args.GetString("output");
   CreateOutputFolder(out);
   for (const auto& shape : MakeBuiltInVessels())
   {

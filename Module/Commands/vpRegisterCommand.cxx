@@ -27,24 +27,6 @@ namespace
 {
 using Json = nlohmann::ordered_json;
 
-const char* Usage =
-  "usage: vesselproximity register landmarks --model-points M.csv --world-points W.csv -o RESULT.json\n"
-  "       vesselproximity register icp --model FILE.stl --points W.csv\n"
-  "                                    [--initial T.json | --model-points M.csv --world-points W.csv] -o RESULT.json\n"
-  "       vesselproximity register pivot --poses FILE [--min-poses N] [--min-rotation-deg D] -o RESULT.json\n"
-  "  landmarks: rigid least-squares fit of the same points in model and world coordinates (one\n"
-  "    x,y,z per line, same order); reports each point's error and their RMS (FRE).\n"
-  "  icp: fits the model surface to points measured on it (world), from --initial (a RESULT.json\n"
-  "    with \"model_to_world\"), from landmarks, or from identity; 25 starts around it (turned 10\n"
-  "    and 20 degrees, shifted 5 and 10 mm), then hops to neighbouring minima (2 and 4 degrees,\n"
-  "    1.5 and 3 mm) while the fit improves; reports the residuals, and refuses a\n"
-  "    fit whose median residual exceeds 1 mm or that leaves more than 3.75% of the points\n"
-  "    farther than 4 times it (not noise: a wrong minimum, or points of another instrument).\n"
-  "  pivot: the tip offset in tool coordinates from tool-to-world poses pivoting about the tip\n"
-  "    (pose file as for track); reports the RMSE. The result, with \"tip_mm\", serves as the\n"
-  "    scalpel's tip definition (FILE.json beside the model, or read by --tip's caller).\n"
-  "  RESULT.json: {\"method\", \"model_to_world\": [16, row-major], error fields, ...}.\n";
-
 Json MatrixJson(const std::array<double, 16>& m)
 {
   return Json(std::vector<double>(m.begin(), m.end()));
@@ -76,19 +58,19 @@ std::array<double, 16> ReadInitialTransform(const std::string& file)
   return m;
 }
 
-RigidRegistration Landmarks(const Arguments& args)
+RigidRegistration Landmarks(const cli::ParsedArguments& args)
 {
-  const auto model = ReadPointCsv(args.Get("--model-points"));
-  const auto world = ReadPointCsv(args.Get("--world-points"));
+  const auto model = ReadPointCsv(args.GetString("modelPoints"));
+  const auto world = ReadPointCsv(args.GetString("worldPoints"));
   if (model.size() != world.size())
   {
-    throw InputError(args.Get("--world-points"), std::to_string(world.size()) + " points, but " +
-        args.Get("--model-points") + " has " + std::to_string(model.size()) + ": the lists must pair up");
+    throw InputError(args.GetString("worldPoints"), std::to_string(world.size()) + " points, but " +
+        args.GetString("modelPoints") + " has " + std::to_string(model.size()) + ": the lists must pair up");
   }
   return RegisterPairedPoints(model, world);
 }
 
-Json RunLandmarks(const Arguments& args)
+Json RunLandmarks(const cli::ParsedArguments& args)
 {
   const RigidRegistration r = Landmarks(args);
   std::printf("landmarks: %zu points, FRE (RMS) %.3f mm\n", r.PointErrorsMm.size(), r.RmsErrorMm);
@@ -100,20 +82,20 @@ Json RunLandmarks(const Arguments& args)
     { "point_errors_mm", r.PointErrorsMm } };
 }
 
-Json RunIcp(const Arguments& args)
+Json RunIcp(const cli::ParsedArguments& args)
 {
   vtkNew<vtkVesselMeshReader> reader;
-  reader->SetFileName(args.Get("--model"));
+  reader->SetFileName(args.GetString("model"));
   reader->Read();
-  const auto points = ReadPointCsv(args.Get("--points"));
+  const auto points = ReadPointCsv(args.GetString("points"));
   std::array<double, 16> initial{ 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
   std::string start = "identity";
-  if (args.Has("--initial"))
+  if (args.IsSet("initial"))
   {
-    initial = ReadInitialTransform(args.Get("--initial"));
-    start = args.Get("--initial");
+    initial = ReadInitialTransform(args.GetString("initial"));
+    start = args.GetString("initial");
   }
-  else if (args.Has("--model-points") || args.Has("--world-points"))
+  else if (args.IsSet("modelPoints") || args.IsSet("worldPoints"))
   {
     const RigidRegistration guess = Landmarks(args);
     initial = guess.ModelToWorld;
@@ -129,7 +111,7 @@ Json RunIcp(const Arguments& args)
       "(landmarks: --model-points, --world-points; or --initial), or check that the points were measured on this model",
       start.c_str(), r.Starts, r.MedianResidualMm, 100.0 * r.FarFraction, SurfaceRegistration::FarResidualFactor,
       SurfaceRegistration::MaximumMedianResidualMm, 100.0 * SurfaceRegistration::MaximumFarFraction);
-    throw InputError(args.Get("--points"), why);
+    throw InputError(args.GetString("points"), why);
   }
   std::printf("icp: %zu points from %s, best of %d starts, %d iterations, mean residual %.3f mm (median %.3f, p95 %.3f)\n",
     points.size(), start.c_str(), r.Starts, r.Iterations, r.MeanResidualMm, r.MedianResidualMm, r.P95ResidualMm);
@@ -138,21 +120,16 @@ Json RunIcp(const Arguments& args)
     { "iterations", r.Iterations }, { "starts", r.Starts }, { "points", points.size() }, { "initial", start } };
 }
 
-Json RunPivot(const Arguments& args)
+Json RunPivot(const cli::ParsedArguments& args)
 {
-  const auto poses = ReadPoseFile(args.Get("--poses"));
+  const auto poses = ReadPoseFile(args.GetString("poses"));
   std::vector<std::array<double, 16>> matrices;
   for (const auto& p : poses)
   {
     matrices.push_back(p.ModelToWorld);
   }
-  const int minPoses = args.GetInteger("--min-poses", 6);
-  if (minPoses < 3)
-  {
-    throw InputError("--min-poses", "must be at least 3");
-  }
-  const PivotCalibration r =
-    CalibratePivot(matrices, static_cast<std::size_t>(minPoses), args.GetNumber("--min-rotation-deg", 10.0));
+  const PivotCalibration r = CalibratePivot(
+    matrices, static_cast<std::size_t>(args.GetInteger("minPoses")), args.GetNumber("minRotationDeg"));
   std::printf("pivot: %zu poses turning up to %.1f deg, tip (%.3f, %.3f, %.3f) mm in tool coordinates, RMSE %.3f mm\n",
     poses.size(), r.RotationSpreadDeg, r.TipInToolMm[0], r.TipInToolMm[1], r.TipInToolMm[2], r.RmseMm);
   // A translation to the tip: placing the model by it puts its origin at the tip.
@@ -164,53 +141,80 @@ Json RunPivot(const Arguments& args)
 }
 } // namespace
 
-int RunRegisterCommand(const std::vector<std::string>& argv)
+cli::ModuleDescription DescribeRegisterCommand()
 {
-  if (WantsHelp(argv) || argv.empty())
-  {
-    std::cout << Usage;
-    return argv.empty() ? 2 : 0;
-  }
-  const std::string method = argv[0];
-  const Arguments args(std::vector<std::string>(argv.begin() + 1, argv.end()),
-    { "--model-points", "--world-points", "--model", "--points", "--initial", "--poses", "--min-poses",
-      "--min-rotation-deg", "-o" },
-    {});
-  if (!args.Positional().empty())
-  {
-    throw InputError(args.Positional()[0], "unexpected argument (see vesselproximity register --help)");
-  }
-  auto require = [&](std::initializer_list<const char*> names) {
-    for (const char* name : names)
+  using cli::ParameterType;
+  auto input = [](const char* flag, const char* placeholder, const char* description) {
+    return Option(ParameterType::File, flag, description).SetChannel(cli::Channel::Input).SetPlaceholder(placeholder);
+  };
+  return cli::ModuleDescription::Subcommand("vesselproximity register",
+    "scalpel registration: landmarks, surface ICP, pivot calibration (JSON result)",
+    "landmarks (needs --model-points, --world-points): rigid least-squares fit of the same points in model and "
+    "world coordinates (one x,y,z per line, same order); reports each point's error and their RMS (FRE).\n"
+    "icp (needs --model, --points): fits the model surface to points measured on it (world), from --initial, from "
+    "landmarks, or from identity; 25 starts around it (turned 10 and 20 degrees, shifted 5 and 10 mm), then hops "
+    "to neighbouring minima (2 and 4 degrees, 1.5 and 3 mm) while the fit improves; reports the residuals, and "
+    "refuses a fit whose median residual exceeds 1 mm or that leaves more than 3.75% of the points farther than 4 "
+    "times it (not noise: a wrong minimum, or points of another instrument).\n"
+    "pivot (needs --poses): the tip offset in tool coordinates from tool-to-world poses pivoting about the tip "
+    "(pose file as for track); reports the RMSE. The result, with \"tip_mm\", serves as the scalpel's tip "
+    "definition (FILE.json beside the model, or read by --tip's caller).\n"
+    "RESULT.json: {\"method\", \"model_to_world\": [16, row-major], error fields, ...}.",
     {
-      if (!args.Has(name))
+      { "Registration", "",
+        {
+          cli::Parameter(ParameterType::StringEnumeration, "method")
+            .SetIndex(0)
+            .SetRequired()
+            .SetElements({ "landmarks", "icp", "pivot" })
+            .SetPlaceholder("METHOD")
+            .SetDescription("The registration: landmarks, icp or pivot."),
+          Option(ParameterType::File, "output", "The result.").SetFlag("o").SetChannel(cli::Channel::Output).SetPlaceholder("RESULT.json").SetRequired(),
+        } },
+      { "landmarks (also icp's start)", "",
+        { input("model-points", "M.csv", "Points in model coordinates."),
+          input("world-points", "W.csv", "The same points in world coordinates.") } },
+      { "icp", "",
+        { input("model", "FILE.stl", "The model surface."), input("points", "W.csv", "Points measured on it, in world coordinates."),
+          input("initial", "T.json", "The start: a RESULT.json with \"model_to_world\".") } },
+      { "pivot", "",
+        { input("poses", "FILE", "Tool-to-world poses pivoting about the tip."),
+          Option(ParameterType::Integer, "min-poses", "The fewest poses accepted.").SetPlaceholder("N").SetDefault("6").SetRange(3, 1000000000, 1),
+          Option(ParameterType::Double, "min-rotation-deg", "The least rotation the poses must span.").SetPlaceholder("D").SetDefault("10") } },
+    });
+}
+
+int RunRegisterCommand(const cli::ParsedArguments& args)
+{
+  const std::string method = args.GetString("method");
+  // Which options a registration needs depends on which it is: beyond what a table can say.
+  auto require = [&](std::initializer_list<std::pair<const char*, const char*>> options) {
+    for (const auto& [name, flag] : options)
+    {
+      if (!args.IsSet(name))
       {
-        throw InputError(name, "is required for register " + method + " (see vesselproximity register --help)");
+        throw InputError(flag, "is required for register " + method + " (see vesselproximity register --help)");
       }
     }
   };
   Json result;
   if (method == "landmarks")
   {
-    require({ "--model-points", "--world-points", "-o" });
+    require({ { "modelPoints", "--model-points" }, { "worldPoints", "--world-points" } });
     result = RunLandmarks(args);
   }
   else if (method == "icp")
   {
-    require({ "--model", "--points", "-o" });
+    require({ { "model", "--model" }, { "points", "--points" } });
     result = RunIcp(args);
   }
-  else if (method == "pivot")
+  else // pivot: the parser accepts only the three
   {
-    require({ "--poses", "-o" });
+    require({ { "poses", "--poses" } });
     result = RunPivot(args);
   }
-  else
-  {
-    throw InputError(method, "unknown registration (landmarks, icp or pivot)");
-  }
-  WriteFileAtomically(args.Get("-o"), result.dump(2) + "\n");
-  std::printf("wrote %s\n", args.Get("-o").c_str());
+  WriteFileAtomically(args.GetString("output"), result.dump(2) + "\n");
+  std::printf("wrote %s\n", args.GetString("output").c_str());
   return 0;
 }
 } // namespace vp

@@ -30,12 +30,6 @@ namespace vp
 {
 namespace
 {
-const char* Usage = "usage: vesselproximity selftest [-o OUTDIR] [--no-screenshots]\n"
-                    "  Runs the demo's pipeline into OUTDIR (default: a temporary folder, removed on success) and\n"
-                    "  checks it: models exist and are closed, both engines agree within the error bound, the\n"
-                    "  z-buffer never understates the danger, the danger levels change in the expected order,\n"
-                    "  the reports and screenshots are there. Prints PASS or FAIL per check; exit 0 when all pass.\n";
-
 class Checks
 {
 public:
@@ -250,23 +244,24 @@ void CheckPictures(const DemoReport& report, bool screenshotsWanted, Checks& che
 }
 } // namespace
 
-int RunSelfTestCommand(const std::vector<std::string>& argv)
+cli::ModuleDescription DescribeSelfTestCommand()
 {
-  if (WantsHelp(argv))
-  {
-    std::cout << Usage;
-    return 0;
-  }
-  const Arguments args(argv, { "-o" }, { "--no-screenshots" });
-  if (!args.Positional().empty())
-  {
-    throw InputError(args.Positional()[0], "unexpected argument (see vesselproximity selftest --help)");
-  }
-  const bool temporary = !args.Has("-o");
+  return cli::ModuleDescription::Subcommand("vesselproximity selftest", "the module self-test: the demo's pipeline end to end with assertions",
+    "Runs the demo's pipeline and checks it: models exist and are closed, both engines agree within the error bound, "
+    "the z-buffer never understates the danger, the danger levels change in the expected order, the reports and "
+    "screenshots are there. Prints PASS or FAIL per check; exit 0 when all pass.",
+    { { "Options", "",
+      { OutputFolderOption("Where the run goes (default: a temporary folder, removed on success)."),
+        Switch("no-screenshots", "Skip the screenshots.") } } });
+}
+
+int RunSelfTestCommand(const cli::ParsedArguments& args)
+{
+  const bool temporary = !args.IsSet("output");
   const std::string outDir = temporary
     ? (std::filesystem::temp_directory_path() / ("vesselproximity-selftest-" + std::to_string(getpid()))).string()
-    : args.Get("-o");
-  const DemoReport report = RunDemoPipeline(outDir, !args.Has("--no-screenshots"));
+    : args.GetString("output");
+  const DemoReport report = RunDemoPipeline(outDir, !args.GetBoolean("noScreenshots"));
   // The self-test checks what the run left on disk, as a user would find it.
   const nlohmann::json summary = ReadJsonFile(outDir + "/summary.json", "the track summary");
   PrintDemoTable(report, summary);
@@ -281,7 +276,7 @@ int RunSelfTestCommand(const std::vector<std::string>& argv)
   CheckLevelOrder(report, changes, checks);
   CheckEngines(report, summary, exactLevels, checks);
   CheckTimeAtEveryLevel(summary, checks);
-  CheckPictures(report, !args.Has("--no-screenshots"), checks);
+  CheckPictures(report, !args.GetBoolean("noScreenshots"), checks);
 
   std::printf("%s: %d check(s) failed\n", checks.Failed ? "SELF-TEST FAILED" : "self-test passed", checks.Failed);
   std::error_code ec;

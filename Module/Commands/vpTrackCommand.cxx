@@ -22,26 +22,6 @@ namespace vp
 {
 namespace
 {
-const char* Usage =
-  "usage: vesselproximity track --vessels CLASS=FILE[,CLASS=FILE...] --scalpel FILE.stl --poses FILE\n"
-  "         [--tip X,Y,Z] [--axis X,Y,Z] [--method exact|zbuffer|both] [--danger-mm C,W,D]\n"
-  "         [--no-surface] [--frame-budget-ms MS] [--hysteresis-mm MM] [--repair] [engine options] -o OUTDIR\n"
-  "  Replays tracked scalpel poses (model-to-world; CSV `time,m00..m33` or `time,x,y,z,qw,qx,qy,qz`,\n"
-  "  or JSON) and writes OUTDIR/frames.csv (one row per pose), summary.json and distance.png.\n"
-  "  The tip and axis (model coordinates): --tip/--axis, else FILE.json beside the model\n"
-  "  ({\"tip_mm\": [x,y,z], \"axis\": [x,y,z]}), else found automatically (reported).\n"
-  "  --danger-mm: caution, warning and danger thresholds (default 10,5,2 mm); a tip inside a\n"
-  "    vessel is a breach. The level uses distance minus the engine's error bound.\n"
-  "  --hysteresis-mm: a level is entered at once but left only when the distance exceeds its\n"
-  "    threshold by this much (default 0.3; 0: none), so tracking noise does not flicker it.\n"
-  "  --repair: merge coincident points, drop duplicated triangles and fins, fill holes up to\n"
-  "    30 mm and make the winding consistent before building (no point moves), saying per class\n"
-  "    on stderr what changed; an open surface's inside is otherwise a vote of five rays.\n"
-  "  --no-surface: skip the whole-instrument distance (the closest approach of any point of the\n"
-  "    scalpel surface, computed exactly beside the tip's).\n"
-  "  --frame-budget-ms: the time one frame may take (default 16.7, 60 Hz; 0: no budget); the\n"
-  "    frames over it are counted in summary.json and on the terminal.\n";
-
 /// The module logic over the vessels and the scalpel, built: the engine, and beside it the exact
 /// engine when --method both's check or the whole surface needs one.
 void BuildLogic(vtkVesselProximityLogic* proximity, const std::vector<NamedMesh>& meshes, vtkScalpelModel* scalpel)
@@ -53,30 +33,6 @@ void BuildLogic(vtkVesselProximityLogic* proximity, const std::vector<NamedMesh>
   }
   proximity->Build();
   proximity->GetTrackingLogic()->ValidateSettings();
-}
-
-Arguments ParseTrackArguments(const std::vector<std::string>& argv)
-{
-  std::set<std::string> options = EngineValueOptions();
-  options.insert({ "--vessels", "--scalpel", "--poses", "--tip", "--axis", "--danger-mm", "--frame-budget-ms", "--hysteresis-mm", "-o" });
-  Arguments args(argv, options, { "--no-surface", "--repair" });
-  if (!args.Positional().empty())
-  {
-    throw InputError(args.Positional()[0], "unexpected argument (see vesselproximity track --help)");
-  }
-  for (const char* required : { "--vessels", "--scalpel", "--poses", "-o" })
-  {
-    if (!args.Has(required))
-    {
-      throw InputError(required, "is required (see vesselproximity track --help)");
-    }
-  }
-  const std::string method = args.Get("--method", "exact");
-  if (method != "exact" && method != "zbuffer" && method != "both")
-  {
-    throw InputError("--method", "expected exact, zbuffer or both for tracking, got '" + method + "'");
-  }
-  return args;
 }
 
 /// Said once everything is built and checked: a line before a refusal would make its one line two.
@@ -132,34 +88,57 @@ void PrintSummary(const TrackingSession& session, vtkVesselProximityLogic* proxi
 }
 } // namespace
 
-int RunTrackCommand(const std::vector<std::string>& argv)
+cli::ModuleDescription DescribeTrackCommand()
 {
-  if (WantsHelp(argv))
+  using cli::ParameterType;
+  std::vector<cli::Parameter> scalpel = {
+    Option(ParameterType::File, "scalpel", "The scalpel's surface model (STL, VTK, VTP or OBJ), in model coordinates.")
+      .SetChannel(cli::Channel::Input)
+      .SetRequired(),
+  };
+  for (const cli::Parameter& p : ScalpelTipOptions())
   {
-    std::cout << Usage << EngineOptionsUsage({ "exact", "zbuffer", "both" });
-    return 0;
+    scalpel.push_back(p);
   }
-  const Arguments args = ParseTrackArguments(argv);
-  const std::string method = args.Get("--method", "exact");
+  return cli::ModuleDescription::Subcommand("vesselproximity track",
+    "replay tracked scalpel poses: frames.csv, summary.json, distance.png, danger levels",
+    "Replays tracked scalpel poses against the vessels and writes OUTDIR/frames.csv (one row per pose), "
+    "summary.json and distance.png; the folder then holds this run whole, or the previous one as it was.",
+    {
+      { "Inputs", "",
+        { VesselsOption().SetRequired(), RepairSwitch(),
+          Option(ParameterType::File, "poses",
+            "Tracked poses, model-to-world: CSV `time,m00..m33` or `time,x,y,z,qw,qx,qy,qz`, or JSON.")
+            .SetChannel(cli::Channel::Input)
+            .SetRequired(),
+          OutputFolderOption("The run's folder: frames.csv, summary.json, distance.png.").SetRequired() } },
+      { "Scalpel", "", scalpel },
+      EngineOptions({ "exact", "zbuffer", "both" }),
+      TrackingOptions(),
+    });
+}
+
+int RunTrackCommand(const cli::ParsedArguments& args)
+{
   const ScalpelTipDefinition tip = ParseTipDefinition(args);
-  const std::string outDir = args.Get("-o");
+  const std::string outDir = args.GetString("output");
   RunFolder run(outDir, "summary.json");
 
   // Everything that can be refused is read before any computing: poses first, they are cheap.
   // They are read through once to be checked and counted, and again, a pose at a time, as the
   // frames are computed: an hour of tracking never has to fit in memory.
   const double start = NowMs();
-  const std::string posesFile = args.Get("--poses");
+  const std::string posesFile = args.GetString("poses");
   const std::size_t poseCount = PoseStream::CountPoses(posesFile);
-  vtkSmartPointer<vtkVesselProximityLogic> proximity = ConfigureTrackingLogic(args, method);
-  auto meshes = LoadVesselMeshes(ParsePairs(args.Get("--vessels"), "--vessels"));
-  if (args.Has("--repair"))
+  vtkSmartPointer<vtkVesselProximityLogic> proximity = ConfigureTrackingLogic(args);
+  auto meshes = LoadVesselMeshes(ParsePairs(args.GetString("vessels"), "--vessels"));
+  if (args.GetBoolean("repair"))
   {
     RepairVesselMeshes(meshes);
   }
-  auto scalpel = LoadScalpel(args.Get("--scalpel"), tip);
+  auto scalpel = LoadScalpel(args.GetString("scalpel"), tip);
   BuildLogic(proximity, meshes, scalpel);
-  ReportBuiltScene(proximity, meshes, args.Get("--scalpel"));
+  ReportBuiltScene(proximity, meshes, args.GetString("scalpel"));
   TrackingSession session(proximity, meshes);
   session.SetLoadAndBuildMs(NowMs() - start);
   session.SetProgress([](std::size_t done, std::size_t expected) {

@@ -1,65 +1,120 @@
 #include "vpTrackingOptions.h"
 
+#include "vpArguments.h"
 #include "vpEngineOptions.h"
 #include "vpInputError.h"
 #include "vpPointCsv.h"
 
+
 namespace vp
 {
-DangerThresholds ParseDangerThresholds(const Arguments& args)
+namespace
 {
-  DangerThresholds thresholds;
-  if (args.Has("--danger-mm"))
-  {
-    const auto d = ParsePoint(args.Get("--danger-mm"), "--danger-mm");
-    thresholds = { d[0], d[1], d[2] };
-  }
+/// The defaults the help shows are the parameter set's own.
+vtkSmartPointer<vtkVesselProximityParameters> Defaults()
+{
+  return vtkSmartPointer<vtkVesselProximityParameters>::New();
+}
+} // namespace
+
+std::vector<cli::Parameter> ScalpelTipOptions()
+{
+  return {
+    Option(cli::ParameterType::String, "tip",
+      "The scalpel's tip in model coordinates; else FILE.json beside the model ({\"tip_mm\": [x,y,z], \"axis\": "
+      "[x,y,z]}), else found automatically (reported).")
+      .SetPlaceholder("X,Y,Z"),
+    Option(cli::ParameterType::String, "axis", "The direction the scalpel points, in model coordinates (need not be unit length).")
+      .SetPlaceholder("X,Y,Z")
+      .SetLogicName("Axis"),
+  };
+}
+
+cli::Parameter FrameBudgetOption()
+{
+  return Option(cli::ParameterType::Double, "frame-budget-ms",
+    "The time one frame may take (60 Hz by default; 0: no budget); the frames over it are counted and shown.")
+    .SetPlaceholder("MS")
+    .SetDefault(cli::FormatNumber(Defaults()->GetFrameBudgetMs()))
+    .SetLogicName("FrameBudgetMs");
+}
+
+cli::ParameterGroup TrackingOptions()
+{
+  const DangerThresholds d = Defaults()->GetDangerThresholds();
+  using cli::FormatNumber;
+  return { "Tracking", "",
+    {
+      Option(cli::ParameterType::String, "danger-mm",
+        "Caution, warning and danger thresholds; a tip inside a vessel is a breach. The level uses the distance "
+        "minus the engine's error bound.")
+        .SetPlaceholder("C,W,D")
+        .SetDefault(FormatNumber(d.CautionMm) + "," + FormatNumber(d.WarningMm) + "," + FormatNumber(d.DangerMm)),
+      Option(cli::ParameterType::Double, "hysteresis-mm",
+        "A level is entered at once but left only when the distance exceeds its threshold by this much (0: none), so "
+        "tracking noise does not flicker it.")
+        .SetPlaceholder("MM")
+        .SetDefault(FormatNumber(Defaults()->GetHysteresisMm()))
+        .SetLogicName("HysteresisMm"),
+      FrameBudgetOption(),
+      Switch("no-surface",
+        "Skip the whole-instrument distance (the closest approach of any point of the scalpel surface, computed "
+        "beside the tip's)."),
+    } };
+}
+
+DangerThresholds ParseDangerThresholds(const cli::ParsedArguments& args)
+{
+  const auto d = ParsePoint(args.GetString("dangerMm"), "--danger-mm");
+  const DangerThresholds thresholds{ d[0], d[1], d[2] };
   thresholds.Validate("--danger-mm");
   return thresholds;
 }
 
-ScalpelTipDefinition ParseTipDefinition(const Arguments& args)
+ScalpelTipDefinition ParseTipDefinition(const cli::ParsedArguments& args)
 {
   ScalpelTipDefinition tip;
   tip.Source = "--tip";
-  if (args.Has("--tip"))
+  if (args.IsSet("tip"))
   {
-    tip.TipMm = ParsePoint(args.Get("--tip"), "--tip");
+    tip.TipMm = ParsePoint(args.GetString("tip"), "--tip");
   }
-  if (args.Has("--axis"))
+  if (args.IsSet("axis"))
   {
-    tip.Axis = ParsePoint(args.Get("--axis"), "--axis");
+    tip.Axis = ParsePoint(args.GetString("axis"), "--axis");
   }
   return tip;
 }
 
-double ParseFrameBudgetMs(const Arguments& args)
+double ParseFrameBudgetMs(const cli::ParsedArguments& args)
 {
-  const double budgetMs = args.GetNumber("--frame-budget-ms", 16.7);
-  if (budgetMs < 0.0) // GetNumber refuses what is not a finite number
+  const double budgetMs = args.GetNumber("frameBudgetMs"); // the parser refuses what is not a finite number
+  if (budgetMs < 0.0)
   {
-    throw InputError("--frame-budget-ms", "expected a time in ms, 0 or more (0: no budget), got '" + args.Get("--frame-budget-ms") + "'");
+    throw InputError("--frame-budget-ms", "expected a time in ms, 0 or more (0: no budget), got '" + args.GetString("frameBudgetMs") + "'");
   }
   return budgetMs;
 }
 
-double ParseHysteresisMm(const Arguments& args)
+double ParseHysteresisMm(const cli::ParsedArguments& args)
 {
-  const double hysteresisMm = args.GetNumber("--hysteresis-mm", 0.3);
+  const double hysteresisMm = args.GetNumber("hysteresisMm");
   if (hysteresisMm < 0.0)
   {
-    throw InputError("--hysteresis-mm", "expected a distance in mm, 0 or more (0: none), got '" + args.Get("--hysteresis-mm") + "'");
+    throw InputError("--hysteresis-mm", "expected a distance in mm, 0 or more (0: none), got '" + args.GetString("hysteresisMm") + "'");
   }
   return hysteresisMm;
 }
-vtkSmartPointer<vtkVesselProximityLogic> ConfigureTrackingLogic(const Arguments& args, const std::string& method)
+
+vtkSmartPointer<vtkVesselProximityLogic> ConfigureTrackingLogic(const cli::ParsedArguments& args)
 {
+  const std::string method = args.GetString("method");
   auto logic = vtkSmartPointer<vtkVesselProximityLogic>::New();
   vtkVesselProximityParameters* parameters = logic->GetParameters();
   parameters->SetDangerThresholds(ParseDangerThresholds(args));
   parameters->SetFrameBudgetMs(ParseFrameBudgetMs(args));
   parameters->SetHysteresisMm(ParseHysteresisMm(args));
-  parameters->SetComputeSurfaceDistance(!args.Has("--no-surface"));
+  parameters->SetComputeSurfaceDistance(!args.GetBoolean("noSurface"));
   parameters->SetCompareWithExact(method == "both");
   parameters->SetDistanceEngine(MakeDistanceEngine(method, args));
   return logic;

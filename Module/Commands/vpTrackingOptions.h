@@ -1,7 +1,7 @@
 #ifndef vpTrackingOptions_h
 #define vpTrackingOptions_h
 
-#include "vpArguments.h"
+#include "vpCliDescription.h"
 #include "vpDangerLevels.h"
 #include "vpScalpelLoader.h"
 #include "vtkVesselProximityLogic.h"
@@ -12,21 +12,27 @@
 
 namespace vp
 {
-/// --danger-mm C,W,D (default 10,5,2), validated: throws InputError naming the option.
-DangerThresholds ParseDangerThresholds(const Arguments& args);
-/// --tip X,Y,Z and --axis X,Y,Z in model coordinates, each optional.
-ScalpelTipDefinition ParseTipDefinition(const Arguments& args);
-/// --frame-budget-ms MS (default 16.7, one refresh at 60 Hz; 0 switches the check off): a finite
-/// number, not negative; throws InputError naming the option.
-double ParseFrameBudgetMs(const Arguments& args);
-/// --hysteresis-mm MM (default 0.3; 0: none): how far past a threshold the distance must go to
-/// leave a level (vtkScalpelTrackingLogic::SetHysteresisMm); throws InputError naming the option.
-double ParseHysteresisMm(const Arguments& args);
+/// --tip X,Y,Z and --axis X,Y,Z: the scalpel's tip and axis in model coordinates.
+std::vector<cli::Parameter> ScalpelTipOptions();
+/// --frame-budget-ms MS, default the parameter set's (16.7, one refresh at 60 Hz; 0: no budget).
+cli::Parameter FrameBudgetOption();
+/// What tracking shares (track, view): --danger-mm, --hysteresis-mm, --frame-budget-ms and
+/// --no-surface, with the parameter set's defaults.
+cli::ParameterGroup TrackingOptions();
+
+/// --danger-mm C,W,D, validated: throws InputError naming the option.
+DangerThresholds ParseDangerThresholds(const cli::ParsedArguments& args);
+/// --tip and --axis, each optional.
+ScalpelTipDefinition ParseTipDefinition(const cli::ParsedArguments& args);
+/// --frame-budget-ms, not negative; throws InputError naming the option.
+double ParseFrameBudgetMs(const cli::ParsedArguments& args);
+/// --hysteresis-mm, not negative (vtkScalpelTrackingLogic::SetHysteresisMm); throws InputError.
+double ParseHysteresisMm(const cli::ParsedArguments& args);
 
 /// The module logic with what the tracking options set, checked before any file is read: the
-/// danger thresholds, the frame budget, the hysteresis, --no-surface, the engine of the given
-/// --method (its device opened) and, for "both", the comparison with the exact engine.
-vtkSmartPointer<vtkVesselProximityLogic> ConfigureTrackingLogic(const Arguments& args, const std::string& method);
+/// danger thresholds, the frame budget, the hysteresis, --no-surface, the engine of --method (its
+/// device opened) and, for "both", the comparison with the exact engine.
+vtkSmartPointer<vtkVesselProximityLogic> ConfigureTrackingLogic(const cli::ParsedArguments& args);
 } // namespace vp
 
 #endif

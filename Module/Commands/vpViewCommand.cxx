@@ -27,22 +27,6 @@ namespace vp
 {
 namespace
 {
-const char* Usage =
-  "usage: vesselproximity view --vessels CLASS=FILE[,CLASS=FILE...] [--scalpel FILE.stl [--tip X,Y,Z] [--axis X,Y,Z]]\n"
-  "         [--poses FILE] [--pose N] [--liver FILE] [--method exact|zbuffer] [--danger-mm C,W,D] [--no-surface]\n"
-  "         [--size WxH] [--keys K,K,...] [--screenshot FILE.png] [--frame-budget-ms MS]\n"
-  "         [--hysteresis-mm MM] [engine options]\n"
-  "  Opens the 3D view: vessels coloured by class, the scalpel coloured by danger level, a line to\n"
-  "  the closest vessel point, a readout per class and the distance over time; a frame that took\n"
-  "  longer than --frame-budget-ms (default 16.7, 60 Hz; 0: none) says so under the readout.\n"
-  "  --hysteresis-mm: a level is left only this far past its threshold (default 0.3; 0: none).\n"
-  "  --scalpel: default the built-in CUSA handpiece. Without --poses it starts 30 mm anterior of\n"
-  "    the vessels' centre, pointing posterior (into the patient).\n"
-  "  --poses: recorded poses to replay (space plays, n/b step); --pose N shows pose N first.\n"
-  "  --keys: keys pressed before the window opens (VTK key names: Left, Up, Prior, i, n, ...).\n"
-  "  --screenshot: render off-screen, save the PNG and exit (no window; Xvfb is started when\n"
-  "    there is no display).\n";
-
 std::pair<int, int> ParseSize(const std::string& text)
 {
   int w = 0, h = 0;
@@ -67,6 +51,17 @@ std::vector<std::string> SplitKeys(const std::string& text)
   return keys;
 }
 
+/// The view's key help as the command's help lists it: each line kept as written.
+std::string KeysAsListed()
+{
+  std::string listed;
+  for (const std::string& line : SplitList(vtkVesselProximityView::KeyHelp(), '\n'))
+  {
+    listed += line.empty() ? "" : "  " + line + "\n";
+  }
+  return listed;
+}
+
 /// Tip 30 mm anterior (-y in LPS) of the vessels' centre, the model's +z axis turned to +y: the
 /// scalpel points into the patient from the front.
 std::array<double, 16> StartingPose(vtkVesselProximityLogic* logic)
@@ -76,44 +71,22 @@ std::array<double, 16> StartingPose(vtkVesselProximityLogic* logic)
   const double cx = 0.5 * (bounds[0] + bounds[1]), cy = bounds[2] - 30.0, cz = 0.5 * (bounds[4] + bounds[5]);
   return { 1, 0, 0, cx, 0, 0, 1, cy, 0, -1, 0, cz, 0, 0, 0, 1 };
 }
-Arguments ParseViewArguments(const std::vector<std::string>& argv)
-{
-  std::set<std::string> options = EngineValueOptions();
-  options.insert({ "--vessels", "--scalpel", "--tip", "--axis", "--poses", "--pose", "--liver", "--danger-mm", "--size",
-    "--keys", "--screenshot", "--frame-budget-ms", "--hysteresis-mm" });
-  Arguments args(argv, options, { "--no-surface" });
-  if (!args.Positional().empty())
-  {
-    throw InputError(args.Positional()[0], "unexpected argument (see vesselproximity view --help)");
-  }
-  if (!args.Has("--vessels"))
-  {
-    throw InputError("--vessels", "is required (see vesselproximity view --help)");
-  }
-  const std::string method = args.Get("--method", "exact");
-  if (method != "exact" && method != "zbuffer")
-  {
-    throw InputError("--method", "expected exact or zbuffer for the view, got '" + method + "'");
-  }
-  return args;
-}
-
 /// The vessels, the scalpel (the built-in handpiece unless one is given) and the liver.
-vtkSmartPointer<vtkPolyData> ReadScene(const Arguments& args, const ScalpelTipDefinition& tip, vtkVesselProximityLogic* logic)
+vtkSmartPointer<vtkPolyData> ReadScene(const cli::ParsedArguments& args, const ScalpelTipDefinition& tip, vtkVesselProximityLogic* logic)
 {
-  for (const auto& m : LoadVesselMeshes(ParsePairs(args.Get("--vessels"), "--vessels")))
+  for (const auto& m : LoadVesselMeshes(ParsePairs(args.GetString("vessels"), "--vessels")))
   {
     logic->AddVessel(m.ClassName, m.Mesh);
   }
   vtkSmartPointer<vtkPolyData> liver;
-  if (args.Has("--liver"))
+  if (args.IsSet("liver"))
   {
     vtkNew<vtkVesselMeshReader> reader;
-    reader->SetFileName(args.Get("--liver"));
+    reader->SetFileName(args.GetString("liver"));
     reader->Read();
     liver = reader->GetOutput();
   }
-  logic->SetScalpel(args.Has("--scalpel") ? LoadScalpel(args.Get("--scalpel"), tip) : MakeDefaultScalpel(tip));
+  logic->SetScalpel(args.IsSet("scalpel") ? LoadScalpel(args.GetString("scalpel"), tip) : MakeDefaultScalpel(tip));
   logic->Build();
   return liver;
 }
@@ -146,27 +119,59 @@ void PrintScreenshotLine(const std::string& screenshot, vtkVesselProximityLogic*
 }
 } // namespace
 
-int RunViewCommand(const std::vector<std::string>& argv)
+cli::ModuleDescription DescribeViewCommand()
 {
-  if (WantsHelp(argv))
+  using cli::ParameterType;
+  std::vector<cli::Parameter> scene = {
+    VesselsOption().SetRequired(),
+    Option(ParameterType::File, "scalpel", "The scalpel's surface model (default: the built-in CUSA handpiece).")
+      .SetChannel(cli::Channel::Input),
+  };
+  for (const cli::Parameter& p : ScalpelTipOptions())
   {
-    std::cout << Usage << EngineOptionsUsage({ "exact", "zbuffer" }) << vtkVesselProximityView::KeyHelp();
-    return 0;
+    scene.push_back(p);
   }
-  const Arguments args = ParseViewArguments(argv);
+  scene.push_back(Option(ParameterType::File, "liver", "A liver surface, shown translucent.").SetChannel(cli::Channel::Input));
+  return cli::ModuleDescription::Subcommand("vesselproximity view",
+    "interactive window: vessels, scalpel moved by mouse and keys or replayed, live overlays",
+    "Opens the 3D view: vessels coloured by class, the scalpel coloured by danger level, a line to the closest vessel "
+    "point, a readout per class and the distance over time; a frame that took longer than the frame budget says so "
+    "under the readout. Without --poses the scalpel starts 30 mm anterior of the vessels' centre, pointing "
+    "posterior (into the patient).\n" + KeysAsListed(),
+    {
+      { "Scene", "", scene },
+      { "Replay and window", "",
+        {
+          Option(ParameterType::File, "poses", "Recorded poses to replay (space plays, n/b step).").SetChannel(cli::Channel::Input),
+          Option(ParameterType::Integer, "pose", "The pose shown first, from 0.").SetPlaceholder("N").SetRange(0, 1000000000, 1),
+          Option(ParameterType::String, "size", "The window's size in pixels (64..8192 each).").SetPlaceholder("WxH").SetDefault("1280x800"),
+          Option(ParameterType::String, "keys", "Keys pressed before the window opens (VTK key names: Left, Up, Prior, i, n, ...).")
+            .SetPlaceholder("K,K,..."),
+          Option(ParameterType::File, "screenshot",
+            "Render off-screen, save the PNG and exit (no window; Xvfb is started when there is no display).")
+            .SetChannel(cli::Channel::Output)
+            .SetPlaceholder("FILE.png"),
+        } },
+      EngineOptions({ "exact", "zbuffer" }),
+      TrackingOptions(),
+    });
+}
+
+int RunViewCommand(const cli::ParsedArguments& args)
+{
   const ScalpelTipDefinition tip = ParseTipDefinition(args);
-  const auto size = ParseSize(args.Get("--size", "1280x800"));
-  const std::vector<std::string> keys = SplitKeys(args.Get("--keys"));
-  const std::string screenshot = args.Get("--screenshot");
-  vtkSmartPointer<vtkVesselProximityLogic> logic = ConfigureTrackingLogic(args, args.Get("--method", "exact"));
+  const auto size = ParseSize(args.GetString("size"));
+  const std::vector<std::string> keys = SplitKeys(args.GetString("keys"));
+  const std::string screenshot = args.GetString("screenshot");
+  vtkSmartPointer<vtkVesselProximityLogic> logic = ConfigureTrackingLogic(args);
   // Everything that can be refused is read before a window opens.
   std::vector<TrackedPose> poses;
-  if (args.Has("--poses"))
+  if (args.IsSet("poses"))
   {
-    poses = ReadPoseFile(args.Get("--poses"));
+    poses = ReadPoseFile(args.GetString("poses"));
   }
-  const int first = args.GetInteger("--pose", 0);
-  if (args.Has("--pose") && (first < 0 || first >= static_cast<int>(poses.size())))
+  const int first = args.IsSet("pose") ? args.GetInteger("pose") : 0;
+  if (args.IsSet("pose") && first >= static_cast<int>(poses.size()))
   {
     throw InputError("--pose", "no pose " + std::to_string(first) + " (the pose file has " + std::to_string(poses.size()) + ")");
   }

@@ -43,6 +43,7 @@ struct ModuleRecord
   std::string Name = Module.Name(), Title = Module.Title(), Categories = Joined(Module.Categories()),
               Contributors = Joined(Module.Contributors()), Help = Module.HelpText(),
               Acknowledgement = Module.AcknowledgementText(), Version = Module.Version();
+  std::vector<std::string> Summaries; // each command's title, from its description
   std::vector<vpModuleCommand> Commands;
   vpModuleDescriptor Descriptor{};
 
@@ -53,7 +54,11 @@ struct ModuleRecord
     const auto& table = vp::CommandTable();
     for (std::size_t i = 0; i < table.size() && i < MaxCommands; ++i)
     {
-      this->Commands.push_back({ table[i].Name, table[i].Summary, run[i] });
+      this->Summaries.push_back(table[i].Describe().Title);
+    }
+    for (std::size_t i = 0; i < this->Summaries.size(); ++i)
+    {
+      this->Commands.push_back({ table[i].Name, this->Summaries[i].c_str(), run[i] });
     }
     this->Descriptor = { VP_MODULE_API_VERSION, this->Name.c_str(), this->Title.c_str(), this->Categories.c_str(),
       this->Contributors.c_str(), this->Help.c_str(), this->Acknowledgement.c_str(), this->Version.c_str(),

@@ -296,7 +296,7 @@ TEST_F(TrackCommand, EachBadPoseFileGivesItsLineAndWritesNothing)
   const std::string out = this->Dir + "/never";
   const std::vector<std::pair<std::string, std::string>> options = {
     { " --danger-mm 5,10,2", "--danger-mm: danger thresholds must fall" },
-    { " --method brute", "--method: expected exact, zbuffer or both" },
+    { " --method brute", "--method: must be one of exact, zbuffer, both; got 'brute'" },
     { " --range 5", "--range: the range (5 mm) must reach the caution threshold" },
     // The z-buffer's null beyond the range may be its bound nearer: 10 mm cannot vouch for 10.
     { " --method zbuffer --range 10", "--range: the range (10 mm) must reach the caution threshold (10 mm) plus the engine's error bound" },
@@ -700,7 +700,7 @@ TEST_F(TrackCommand, RegisterRefusesBadInputInOneLineAndWritesNothing)
     { icp + shortMatrix, shortMatrix + ": expected \"model_to_world\"" },
     { icp + this->Dir + "/none.json", this->Dir + "/none.json: no such file" },
     { "register pivot --poses " + twoPoses, "pivot poses" },
-    { "register wobble", "wobble: unknown registration" },
+    { "register wobble", "METHOD: must be one of landmarks, icp, pivot; got 'wobble'" },
     { "register landmarks --model-points " + points, "--world-points: is required" },
   };
   const std::string out = this->Dir + "/result.json";

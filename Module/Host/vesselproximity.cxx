@@ -90,41 +90,61 @@ void PrintHelp(const std::vector<vp::LoadedModule>& modules)
   }
   std::cout << ExitCodes;
 }
+
+/// Takes a leading --module-path DIR (or --module-path=DIR) off args into modulePath; false
+/// (after saying why) when it names no folder.
+bool TakeModulePath(std::vector<std::string>& args, std::string& modulePath)
+{
+  if (args.empty() || !(args[0] == "--module-path" || args[0].rfind("--module-path=", 0) == 0))
+  {
+    return true;
+  }
+  const bool separate = args[0] == "--module-path";
+  if (separate && args.size() < 2)
+  {
+    std::cerr << "vesselproximity: error: --module-path: a folder is required\n";
+    return false;
+  }
+  modulePath = separate ? args[1] : args[0].substr(std::strlen("--module-path="));
+  args.erase(args.begin(), args.begin() + (separate ? 2 : 1));
+  if (modulePath.empty())
+  {
+    std::cerr << "vesselproximity: error: --module-path: a folder is required\n";
+    return false;
+  }
+  return true;
+}
+
+/// The command of that name in any loaded module, or null.
+const vpModuleCommand* FindCommand(const std::vector<vp::LoadedModule>& modules, const std::string& name)
+{
+  for (const vp::LoadedModule& m : modules)
+  {
+    for (int c = 0; c < m.Descriptor->NumberOfCommands; ++c)
+    {
+      if (name == m.Descriptor->Commands[c].Name)
+      {
+        return &m.Descriptor->Commands[c];
+      }
+    }
+  }
+  return nullptr;
+}
 } // namespace
 
 int main(int argc, char* argv[])
 {
   std::vector<std::string> args(argv + 1, argv + argc);
   std::string modulePath;
-  if (!args.empty() && (args[0] == "--module-path" || args[0].rfind("--module-path=", 0) == 0))
+  if (!TakeModulePath(args, modulePath))
   {
-    if (args[0] == "--module-path")
-    {
-      if (args.size() < 2)
-      {
-        std::cerr << "vesselproximity: error: --module-path: a folder is required\n";
-        return 2;
-      }
-      modulePath = args[1];
-      args.erase(args.begin(), args.begin() + 2);
-    }
-    else
-    {
-      modulePath = args[0].substr(std::strlen("--module-path="));
-      args.erase(args.begin());
-    }
-    if (modulePath.empty())
-    {
-      std::cerr << "vesselproximity: error: --module-path: a folder is required\n";
-      return 2;
-    }
+    return 2;
   }
   if (!args.empty() && args[0] == "--version")
   {
     std::cout << "vesselproximity " VP_VERSION "\n";
     return 0;
   }
-
   std::vector<vp::LoadedModule> modules;
   try
   {
@@ -135,28 +155,21 @@ int main(int argc, char* argv[])
     std::cerr << "vesselproximity: error: " << e.what() << "\n";
     return 5;
   }
-
   if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help")
   {
     PrintHelp(modules);
     return args.empty() ? 2 : 0;
   }
-  for (const vp::LoadedModule& m : modules)
+  const vpModuleCommand* command = FindCommand(modules, args[0]);
+  if (!command)
   {
-    for (int c = 0; c < m.Descriptor->NumberOfCommands; ++c)
-    {
-      const vpModuleCommand& command = m.Descriptor->Commands[c];
-      if (args[0] == command.Name)
-      {
-        std::vector<const char*> commandArgv;
-        for (const std::string& a : args)
-        {
-          commandArgv.push_back(a.c_str());
-        }
-        return command.Run(static_cast<int>(commandArgv.size()), commandArgv.data());
-      }
-    }
+    std::cerr << "vesselproximity: error: unknown command '" << args[0] << "' (see vesselproximity --help)\n";
+    return 2;
   }
-  std::cerr << "vesselproximity: error: unknown command '" << args[0] << "' (see vesselproximity --help)\n";
-  return 2;
+  std::vector<const char*> commandArgv;
+  for (const std::string& a : args)
+  {
+    commandArgv.push_back(a.c_str());
+  }
+  return command->Run(static_cast<int>(commandArgv.size()), commandArgv.data());
 }

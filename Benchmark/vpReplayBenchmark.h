@@ -1,11 +1,9 @@
-#ifndef vpBenchReplay_h
-#define vpBenchReplay_h
+#ifndef vpReplayBenchmark_h
+#define vpReplayBenchmark_h
 
-#include "vpCommandSupport.h"
+#include "vpBenchmarkSupport.h"
 #include "vpPoseFile.h"
 #include "vtkVesselDistanceEngine.h"
-
-#include <nlohmann/json.hpp>
 
 #include <array>
 #include <vector>
@@ -22,7 +20,7 @@ namespace vp
 /// Every z-buffer frame is checked against the exact one. FCL answers the whole instrument on the
 /// same poses beside our own, its answers compared with ours. givenPoses, when not empty, replace
 /// the generated path (the demo's trajectory, say).
-nlohmann::ordered_json BenchReplay(const std::vector<NamedMesh>& vessels, std::size_t frames, unsigned seed,
+BenchJson BenchReplay(const std::vector<NamedMesh>& vessels, std::size_t frames, unsigned seed,
   vtkScalpelModel* scalpel, vtkVesselDistanceEngine* zbuffer, int bruteFrames, const std::vector<TrackedPose>& givenPoses);
 } // namespace vp
 

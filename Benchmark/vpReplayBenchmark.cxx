@@ -1,6 +1,8 @@
-#include "vpBenchReplay.h"
+#include "vpReplayBenchmark.h"
 
-#include "vpEngineOptions.h"
+#include "vpClock.h"
+#include "vpExactComparison.h"
+#include "vpQuantile.h"
 #include "vpRigidTransform.h"
 #include "vtkBruteForceVesselDistance.h"
 #include "vtkExactVesselDistance.h"
@@ -23,7 +25,7 @@ namespace vp
 {
 namespace
 {
-using Json = nlohmann::ordered_json;
+using Json = BenchJson;
 
 /// A surgeon's path: straight 0.5 mm steps between waypoints that lie 1 to 15 mm off random
 /// vessel surface points, so the tip keeps approaching and leaving vessels, as in a resection.
@@ -287,6 +289,82 @@ void ReplayZBufferInstrument(vtkScalpelTrackingLogic* logic, vtkZBufferVesselDis
   out["zbuffer_tip_and_surface"] = w;
   ReplayZBufferFullFrame(logic, zsurface, exact, scalpel, poses, whole, out);
 }
+
+/// The exact pipeline's replays: the tip alone; tip, whole instrument (FCL, warm start) and
+/// penetration; plain FCL as MoveIt or Drake would call it; bounding spheres; the whole instrument
+/// within the caution distance; and the brute-force tip on the first frames.
+struct ExactReplays
+{
+  Replay Tip, Whole, Plain, Spheres, Near, Slow;
+  Json Sizes; ///< triangle counts and build times, for the report
+  double SurfaceRangeMm = 0.0;
+};
+
+ExactReplays RunExactReplays(vtkScalpelTrackingLogic* logic, vtkExactVesselDistance* exact, vtkBruteForceVesselDistance* brute,
+  vtkScalpelModel* scalpel, const std::vector<TrackedPose>& poses, int bruteFrames)
+{
+  ExactReplays r;
+  r.Tip = Run(logic, poses, poses.size());
+  std::fprintf(stderr, ", whole surface (FCL, warm start)");
+  vtkNew<vtkFclSurfaceDistance> surface;
+  surface->SetVesselDistance(exact);
+  surface->SetToolSurface(scalpel->GetModel());
+  surface->Build();
+  logic->SetSurfaceDistance(surface);
+  vtkNew<vtkScalpelPenetration> penetration;
+  penetration->SetVesselDistance(exact);
+  penetration->SetToolSurface(scalpel->GetModel());
+  penetration->Build();
+  logic->SetPenetration(penetration);
+  r.Whole = Run(logic, poses, poses.size());
+  logic->SetPenetration(nullptr); // the others measure the distance only, as FCL does
+  std::fprintf(stderr, ", plain FCL");
+  r.Plain = PlainFcl(exact, scalpel, poses);
+  std::fprintf(stderr, ", bounding spheres");
+  vtkNew<vtkScalpelSurfaceDistance> spheres;
+  spheres->SetVesselDistance(exact);
+  spheres->SetToolSurface(scalpel->GetModel());
+  logic->SetSurfaceDistance(spheres);
+  r.Spheres = Run(logic, poses, poses.size());
+  std::fprintf(stderr, ", whole surface within the caution distance");
+  logic->SetSurfaceDistance(surface);
+  surface->SetRangeMm(logic->GetDangerThresholds().CautionMm);
+  r.Near = Run(logic, poses, poses.size());
+  r.SurfaceRangeMm = surface->GetRangeMm();
+  logic->SetSurfaceDistance(nullptr);
+  std::fprintf(stderr, ", brute force");
+  brute->Build();
+  logic->SetDistanceEngine(brute);
+  r.Slow = Run(logic, poses, static_cast<std::size_t>(bruteFrames));
+  r.Sizes = { { "tool_triangles", surface->GetNumberOfToolTriangles() },
+    { "tool_triangles_split_for_spheres", spheres->GetNumberOfToolTriangles() },
+    { "surface_build_ms", surface->GetBuildTimeMs() }, { "penetration_build_ms", penetration->GetBuildTimeMs() } };
+  return r;
+}
+
+void AddExactReplays(const ExactReplays& r, double rangeMm, Json& out)
+{
+  out["tool_triangles"] = r.Sizes["tool_triangles"];
+  out["tool_triangles_split_for_spheres"] = r.Sizes["tool_triangles_split_for_spheres"];
+  out["exact_tip"] = Entry(r.Tip);
+  out["exact_tip_and_surface"] = Entry(r.Whole);
+  out["exact_tip_and_surface"]["surface_build_ms"] = r.Sizes["surface_build_ms"];
+  out["exact_tip_and_surface"]["penetration_build_ms"] = r.Sizes["penetration_build_ms"];
+  out["exact_tip_and_surface"]["includes"] = "tip, whole-instrument distance (FCL, warm start), penetration depth and volume";
+  out["fcl_surface"] = Entry(r.Plain);
+  out["fcl_surface"]["vs_exact_tip_and_surface"] = CompareSurfaces(r.Plain, r.Whole);
+  out["spheres_tip_and_surface"] = Entry(r.Spheres);
+  out["spheres_tip_and_surface"]["vs_exact_tip_and_surface"] = CompareSurfaces(r.Spheres, r.Whole);
+  out["exact_tip_and_surface_within_caution"] = Entry(r.Near);
+  out["surface_within_caution_mm"] = r.SurfaceRangeMm;
+  out["brute_tip"] = Entry(r.Slow);
+  ExactComparison bruteCheck;
+  for (std::size_t i = 0; i < r.Slow.Frames.size(); ++i)
+  {
+    bruteCheck.Add(r.Slow.Frames[i].Proximity, r.Tip.Frames[i].Proximity, rangeMm, 0.0);
+  }
+  out["max_abs_diff_exact_vs_brute_mm"] = bruteCheck.MaxAbsDifferenceMm;
+}
 } // namespace
 
 Json BenchReplay(const std::vector<NamedMesh>& vessels, std::size_t frames, unsigned seed, vtkScalpelModel* scalpel,
@@ -313,70 +391,18 @@ Json BenchReplay(const std::vector<NamedMesh>& vessels, std::size_t frames, unsi
   vtkNew<vtkScalpelTrackingLogic> logic;
   logic->SetScalpel(scalpel);
   logic->SetDistanceEngine(exact);
-  const Replay tip = Run(logic, poses, poses.size());
-
-  std::fprintf(stderr, ", whole surface (FCL, warm start)");
-  vtkNew<vtkFclSurfaceDistance> surface;
-  surface->SetVesselDistance(exact);
-  surface->SetToolSurface(scalpel->GetModel());
-  surface->Build();
-  logic->SetSurfaceDistance(surface);
-  vtkNew<vtkScalpelPenetration> penetration;
-  penetration->SetVesselDistance(exact);
-  penetration->SetToolSurface(scalpel->GetModel());
-  penetration->Build();
-  logic->SetPenetration(penetration);
-  const Replay whole = Run(logic, poses, poses.size());
-  logic->SetPenetration(nullptr); // the others measure the distance only, as FCL does
-  std::fprintf(stderr, ", plain FCL");
-  const Replay plain = PlainFcl(exact, scalpel, poses);
-  std::fprintf(stderr, ", bounding spheres");
-  vtkNew<vtkScalpelSurfaceDistance> spheres;
-  spheres->SetVesselDistance(exact);
-  spheres->SetToolSurface(scalpel->GetModel());
-  logic->SetSurfaceDistance(spheres);
-  const Replay sphereReplay = Run(logic, poses, poses.size());
-  std::fprintf(stderr, ", whole surface within the caution distance");
-  logic->SetSurfaceDistance(surface);
-  surface->SetRangeMm(logic->GetDangerThresholds().CautionMm);
-  const Replay near = Run(logic, poses, poses.size());
-  logic->SetSurfaceDistance(nullptr);
-
-  std::fprintf(stderr, ", brute force");
-  brute->Build();
-  logic->SetDistanceEngine(brute);
-  const Replay slow = Run(logic, poses, static_cast<std::size_t>(bruteFrames));
-
+  const ExactReplays replays = RunExactReplays(logic, exact, brute, scalpel, poses, bruteFrames);
   Json out;
   out["poses"] = poses.size();
   out["classes"] = vessels.size();
   out["triangles"] = triangles;
-  out["tool_triangles"] = surface->GetNumberOfToolTriangles();
-  out["tool_triangles_split_for_spheres"] = spheres->GetNumberOfToolTriangles();
-  out["exact_tip"] = Entry(tip);
-  out["exact_tip_and_surface"] = Entry(whole);
-  out["exact_tip_and_surface"]["surface_build_ms"] = surface->GetBuildTimeMs();
-  out["exact_tip_and_surface"]["penetration_build_ms"] = penetration->GetBuildTimeMs();
-  out["exact_tip_and_surface"]["includes"] = "tip, whole-instrument distance (FCL, warm start), penetration depth and volume";
-  out["fcl_surface"] = Entry(plain);
-  out["fcl_surface"]["vs_exact_tip_and_surface"] = CompareSurfaces(plain, whole);
-  out["spheres_tip_and_surface"] = Entry(sphereReplay);
-  out["spheres_tip_and_surface"]["vs_exact_tip_and_surface"] = CompareSurfaces(sphereReplay, whole);
-  out["exact_tip_and_surface_within_caution"] = Entry(near);
-  out["surface_within_caution_mm"] = surface->GetRangeMm();
-  out["brute_tip"] = Entry(slow);
-  ExactComparison bruteCheck;
-  for (std::size_t i = 0; i < slow.Frames.size(); ++i)
-  {
-    bruteCheck.Add(slow.Frames[i].Proximity, tip.Frames[i].Proximity, exact->GetRangeMm(), 0.0);
-  }
-  out["max_abs_diff_exact_vs_brute_mm"] = bruteCheck.MaxAbsDifferenceMm;
+  AddExactReplays(replays, exact->GetRangeMm(), out);
   if (zbuffer)
   {
-    ReplayZBufferTip(logic, zbuffer, poses, tip, out);
+    ReplayZBufferTip(logic, zbuffer, poses, replays.Tip, out);
     if (auto* layers = vtkZBufferVesselDistance::SafeDownCast(zbuffer))
     {
-      ReplayZBufferInstrument(logic, layers, exact, scalpel, poses, whole, out);
+      ReplayZBufferInstrument(logic, layers, exact, scalpel, poses, replays.Whole, out);
     }
   }
   std::fprintf(stderr, "\n");

@@ -1,0 +1,112 @@
+#include "vpBenchmarkSupport.h"
+
+#include "vpBuiltInPhantom.h"
+#include "vpClock.h"
+#include "vpQuantile.h"
+#include "vtkZBufferVesselDistance.h"
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+namespace vp
+{
+using Json = BenchJson;
+
+Json Timing(const std::vector<double>& ms)
+{
+  return { { "median_ms", Quantile(ms, 0.5) }, { "p95_ms", Quantile(ms, 0.95) }, { "queries", ms.size() } };
+}
+
+Json BenchBatch(vtkVesselDistanceEngine* engine, const BenchPoints& tips, const std::vector<ProximityResult>* singles)
+{
+  std::vector<double> ms;
+  std::vector<ProximityResult> batch;
+  for (int run = 0; run < 5; ++run)
+  {
+    const double start = NowMs();
+    engine->ComputeProximityBatch(tips, nullptr, batch);
+    ms.push_back(NowMs() - start);
+  }
+  Json out = Timing(ms);
+  out["tips"] = tips.size();
+  out["tips_per_second"] = 1000.0 * static_cast<double>(tips.size()) / std::max(1e-9, Quantile(ms, 0.5));
+  if (singles)
+  {
+    int differ = 0;
+    for (std::size_t i = 0; i < batch.size() && i < singles->size(); ++i)
+    {
+      for (std::size_t c = 0; c < batch[i].Classes.size(); ++c)
+      {
+        const ClassProximity& a = batch[i].Classes[c];
+        const ClassProximity& b = (*singles)[i].Classes[c];
+        differ += a.InRange != b.InRange || (a.InRange && (a.DistanceMm != b.DistanceMm || a.Inside != b.Inside)) ? 1 : 0;
+      }
+    }
+    out["answers_differing_from_single_queries"] = differ;
+  }
+  return out;
+}
+
+void TimedQuery(vtkZBufferVesselDistance* zbuffer, const double* tip, const double* axis, ProximityResult& result,
+  std::vector<double>& ms, std::vector<double>& deviceMs)
+{
+  const double start = NowMs();
+  zbuffer->ComputeProximity(tip, axis, result);
+  ms.push_back(NowMs() - start);
+  deviceMs.push_back(zbuffer->GetLastQueryDeviceMs());
+}
+
+BenchTips MakeBenchTips(const std::vector<NamedMesh>& vessels, int queries, unsigned seed)
+{
+  // Tips: uniform in the vessels' joint bounding box grown by 10 mm (where a scalpel works).
+  double bounds[6] = { 1e300, -1e300, 1e300, -1e300, 1e300, -1e300 };
+  for (const auto& v : vessels)
+  {
+    const double* b = v.Mesh->GetBounds();
+    for (int a = 0; a < 3; ++a)
+    {
+      bounds[2 * a] = std::min(bounds[2 * a], b[2 * a] - 10.0);
+      bounds[2 * a + 1] = std::max(bounds[2 * a + 1], b[2 * a + 1] + 10.0);
+    }
+  }
+  std::mt19937 random(seed);
+  std::vector<std::array<double, 3>> tips(static_cast<std::size_t>(queries));
+  for (auto& t : tips)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      t[a] = std::uniform_real_distribution<double>(bounds[2 * a], bounds[2 * a + 1])(random);
+    }
+  }
+  // A tracked tip: a random walk of 0.5 mm steps, reflected at the box.
+  std::vector<std::array<double, 3>> track(static_cast<std::size_t>(queries));
+  std::normal_distribution<double> normal;
+  track[0] = tips[0];
+  for (std::size_t i = 1; i < track.size(); ++i)
+  {
+    double step[3] = { normal(random), normal(random), normal(random) };
+    const double n = std::sqrt(step[0] * step[0] + step[1] * step[1] + step[2] * step[2]);
+    for (int a = 0; a < 3; ++a)
+    {
+      double x = track[i - 1][a] + 0.5 * step[a] / n;
+      if (x < bounds[2 * a] || x > bounds[2 * a + 1])
+      {
+        x = track[i - 1][a] - 0.5 * step[a] / n;
+      }
+      track[i][a] = x;
+    }
+  }
+  return { tips, track };
+}
+
+std::vector<NamedMesh> BuiltInVessels()
+{
+  std::vector<NamedMesh> vessels;
+  for (const auto& v : MakeBuiltInVessels())
+  {
+    vessels.push_back({ v.first, "built-in", v.second, std::nullopt });
+  }
+  return vessels;
+}
+} // namespace vp

@@ -1,0 +1,79 @@
+#include "vpEngineBenchmark.h"
+
+#include "vpExactBenchmark.h"
+#include "vpMeshRefinement.h"
+#include "vpReplayBenchmark.h"
+#include "vpZBufferBenchmark.h"
+
+#include <cstdio>
+#include <thread>
+
+namespace vp
+{
+namespace
+{
+using Json = BenchJson;
+
+/// The exact and z-buffer engines on the vessels refined to each size: report["sizes"] and
+/// report["zbuffer"].
+void BenchSizes(const BenchmarkRequest& request, const BenchTips& tips, Json& report)
+{
+  const bool exact = request.Parts.count("exact") > 0, zbuffer = request.Parts.count("zbuffer") > 0;
+  Json sizeList = Json::array(), zbufferSizes = Json::array();
+  SizedVessels smallest, largest; // for the z-buffer side by side
+  for (std::size_t target : request.SizesTriangles)
+  {
+    SizedVessels refined{ {}, target };
+    for (const NamedMesh& vessel : request.Vessels)
+    {
+      std::fprintf(stderr, "bench: refining %s to %zu triangles\n", vessel.ClassName.c_str(), target);
+      refined.Vessels.push_back({ vessel.ClassName, vessel.FileName, RefineToTriangleCount(vessel.Mesh, target), std::nullopt });
+    }
+    if (exact)
+    {
+      sizeList.push_back(BenchExact(refined.Vessels, target, tips.Random, tips.Track, request.BruteQueries));
+    }
+    if (zbuffer)
+    {
+      zbufferSizes.push_back(BenchZBuffer(request.ZBuffer, refined.Vessels, target, tips.Random, tips.Track, request.BruteQueries));
+      smallest = smallest.Vessels.empty() || target < smallest.Target ? refined : smallest;
+      largest = largest.Vessels.empty() || target > largest.Target ? refined : largest;
+    }
+  }
+  if (exact)
+  {
+    report["sizes"] = sizeList;
+  }
+  if (zbuffer)
+  {
+    report["zbuffer"] = ZBufferReport(request.ZBuffer, zbufferSizes, smallest, largest, tips.Random,
+      request.ZBufferSettings, request.FineCellMm);
+  }
+}
+} // namespace
+
+BenchJson RunBenchmark(const BenchmarkRequest& request)
+{
+  const BenchTips tips = MakeBenchTips(request.Vessels, request.Queries, request.Seed);
+  Json report;
+  report["benchmark"] = "distance engines vs the paper's brute-force CPU algorithm";
+  report["hardware_threads"] = std::thread::hardware_concurrency();
+  report["source"] = request.Source;
+  report["queries"] = request.Queries;
+  report["brute_queries"] = request.BruteQueries;
+  report["tracked_step_mm"] = 0.5;
+  if (request.Parts.count("exact") || request.Parts.count("zbuffer"))
+  {
+    BenchSizes(request, tips, report);
+  }
+  if (request.Parts.count("replay"))
+  {
+    vtkSmartPointer<vtkVesselDistanceEngine> zbuffer =
+      request.Parts.count("zbuffer") ? MakeDistanceEngine(request.ZBufferSettings) : nullptr;
+    report["replay"] = BenchReplay(request.Vessels, static_cast<std::size_t>(request.Queries), request.Seed, request.Scalpel,
+      zbuffer, request.BruteQueries, request.Poses);
+    report["replay"]["scalpel"] = request.Scalpel->GetTipSource();
+  }
+  return report;
+}
+} // namespace vp

@@ -1,0 +1,46 @@
+#ifndef vpEngineBenchmark_h
+#define vpEngineBenchmark_h
+
+#include "vpBenchmarkSupport.h"
+#include "vpDistanceEngineSettings.h"
+#include "vpPoseFile.h"
+#include "vtkScalpelModel.h"
+#include "vtkZBufferVesselDistance.h"
+
+#include <vtkSmartPointer.h>
+
+#include <optional>
+#include <set>
+#include <string>
+
+namespace vp
+{
+/// What `vesselproximity bench` measures, typed.
+struct BenchmarkRequest
+{
+  /// exact, zbuffer and/or replay.
+  std::set<std::string> Parts;
+  /// Triangles per class each vessel is grown to (longest-edge bisection: same surface).
+  std::vector<std::size_t> SizesTriangles;
+  int Queries = 2000;
+  int BruteQueries = 30;
+  unsigned Seed = 1;
+  std::vector<NamedMesh> Vessels;
+  std::string Source; ///< said in the report: "files" or "built-in analytic vessels"
+  /// The z-buffer part's engine, its device already opened (so a missing one fails before the
+  /// long work), and the settings it was made from (the side-by-side runs make more of them).
+  vtkSmartPointer<vtkZBufferVesselDistance> ZBuffer;
+  DistanceEngineSettings ZBufferSettings;
+  std::optional<double> FineCellMm;
+  /// The replay's instrument, and poses to replay instead of the generated path (may be empty).
+  vtkSmartPointer<vtkScalpelModel> Scalpel;
+  std::vector<TrackedPose> Poses;
+};
+
+/// The engines side by side in one run: report["sizes"] (BenchExact per size), report["zbuffer"]
+/// (BenchZBuffer per size and ZBufferReport) and report["replay"] (BenchReplay), each when its
+/// part is asked for. Progress on stderr.
+BenchJson RunBenchmark(const BenchmarkRequest& request);
+} // namespace vp
+
+#endif

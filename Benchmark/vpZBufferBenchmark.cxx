@@ -1,0 +1,283 @@
+#include "vpZBufferBenchmark.h"
+
+#include "vpClock.h"
+#include "vpExactComparison.h"
+#include "vpQuantile.h"
+#include "vtkBruteForceVesselDistance.h"
+#include "vtkExactVesselDistance.h"
+#include "vtkZBufferVesselDistance.h"
+
+#include <vtkPolyData.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace vp
+{
+namespace
+{
+using Json = BenchJson;
+
+/// The references beside the z-buffer: the exact engine and brute force, same range, same classes.
+struct References
+{
+  vtkSmartPointer<vtkExactVesselDistance> Exact = vtkSmartPointer<vtkExactVesselDistance>::New();
+  vtkSmartPointer<vtkBruteForceVesselDistance> Brute = vtkSmartPointer<vtkBruteForceVesselDistance>::New();
+  std::size_t Triangles = 0;
+};
+
+References BuildAll(vtkZBufferVesselDistance* zbuffer, const std::vector<NamedMesh>& refined)
+{
+  zbuffer->RemoveAllVessels();
+  zbuffer->SetLayerMode(vtkZBufferVesselDistance::ExactIntervals);
+  zbuffer->SetBoxMode(vtkZBufferVesselDistance::FixedAroundVessels);
+  References r;
+  r.Exact->SetRangeMm(zbuffer->GetRangeMm());
+  r.Brute->SetRangeMm(zbuffer->GetRangeMm());
+  for (const NamedMesh& vessel : refined)
+  {
+    zbuffer->AddVessel(vessel.ClassName, vessel.Mesh);
+    r.Exact->AddVessel(vessel.ClassName, vessel.Mesh);
+    r.Brute->AddVessel(vessel.ClassName, vessel.Mesh);
+    r.Triangles += static_cast<std::size_t>(vessel.Mesh->GetNumberOfPolys());
+  }
+  zbuffer->Build();
+  r.Exact->Build();
+  r.Brute->Build();
+  return r;
+}
+
+/// Single queries on cached layers: the z-buffer (without and with an axis, host and device
+/// time), the exact engine and brute force, the z-buffer checked against exact.
+struct QueryTimes
+{
+  std::vector<double> Cached, CachedDevice, Axis, AxisDevice, Exact, Brute;
+  ExactComparison Check;
+  std::vector<ProximityResult> Singles;
+};
+
+QueryTimes TimeQueries(vtkZBufferVesselDistance* zbuffer, const References& refs, const BenchPoints& tips, int bruteQueries)
+{
+  QueryTimes t;
+  ProximityResult z, e;
+  for (const auto& tip : tips)
+  {
+    TimedQuery(zbuffer, tip.data(), nullptr, z, t.Cached, t.CachedDevice);
+    t.Singles.push_back(z);
+    const double start = NowMs();
+    refs.Exact->ComputeProximity(tip.data(), nullptr, e);
+    t.Exact.push_back(NowMs() - start);
+    t.Check.Add(z, e, zbuffer->GetRangeMm(), zbuffer->GetErrorBoundMm());
+  }
+  for (int i = 0; i < bruteQueries; ++i)
+  {
+    const double start = NowMs();
+    refs.Brute->ComputeProximity(tips[i].data(), nullptr, e);
+    t.Brute.push_back(NowMs() - start);
+  }
+  // With an axis, as tracking asks: the directional distance walks the cells along it.
+  for (std::size_t i = 0; i < tips.size(); ++i)
+  {
+    const double axis[3] = { std::cos(0.37 * i), std::sin(0.37 * i), 0.3 };
+    TimedQuery(zbuffer, tips[i].data(), axis, z, t.Axis, t.AxisDevice);
+  }
+  return t;
+}
+
+/// On a GPU, the pass the device did not choose, over the same tips: single tips per tile (a
+/// GPU's choice is per pixel), the batch per pixel (its choice is per tile). Empty on lavapipe.
+Json OtherPass(vtkZBufferVesselDistance* zbuffer, const BenchPoints& tips, const std::vector<ProximityResult>& singles)
+{
+  Json other;
+  if (zbuffer->GetDeviceDescription().find("llvmpipe") != std::string::npos)
+  {
+    return other;
+  }
+  std::vector<double> tileMs, tileDeviceMs;
+  ProximityResult z;
+  zbuffer->SetQueryPass(vtkZBufferVesselDistance::QueryPassPerTile);
+  for (const auto& tip : tips)
+  {
+    TimedQuery(zbuffer, tip.data(), nullptr, z, tileMs, tileDeviceMs);
+  }
+  other["cached_per_tile"] = Timing(tileMs);
+  other["cached_per_tile_device"] = Timing(tileDeviceMs);
+  zbuffer->SetQueryPass(vtkZBufferVesselDistance::QueryPassPerPixel);
+  other["batched_per_pixel"] = BenchBatch(zbuffer, tips, &singles);
+  zbuffer->SetQueryPass(vtkZBufferVesselDistance::QueryPassByDevice);
+  return other;
+}
+
+/// The paper's layers (nearest and farthest depth only) on the same tips.
+Json PaperMode(vtkZBufferVesselDistance* zbuffer, const BenchPoints& tips)
+{
+  std::vector<double> ms;
+  ProximityResult z;
+  zbuffer->SetLayerMode(vtkZBufferVesselDistance::PaperNearFar);
+  for (const auto& tip : tips)
+  {
+    const double start = NowMs();
+    zbuffer->ComputeProximity(tip.data(), nullptr, z);
+    ms.push_back(NowMs() - start);
+  }
+  zbuffer->SetLayerMode(vtkZBufferVesselDistance::ExactIntervals);
+  return Timing(ms);
+}
+
+/// The box moving with the tracked tip (up to 300 steps): each query re-renders when it leaves.
+Json MovingBox(vtkZBufferVesselDistance* zbuffer, const BenchPoints& track)
+{
+  zbuffer->SetBoxMode(vtkZBufferVesselDistance::MovingWithTip);
+  zbuffer->Build();
+  const int rendersBefore = zbuffer->GetNumberOfRenders();
+  std::vector<double> ms;
+  ProximityResult z;
+  for (std::size_t i = 0; i < std::min<std::size_t>(track.size(), 300); ++i)
+  {
+    const double start = NowMs();
+    zbuffer->ComputeProximity(track[i].data(), nullptr, z);
+    ms.push_back(NowMs() - start);
+  }
+  Json out = Timing(ms);
+  out["renders"] = zbuffer->GetNumberOfRenders() - rendersBefore;
+  out["last_render_ms"] = zbuffer->GetLastRenderTimeMs();
+  zbuffer->SetBoxMode(vtkZBufferVesselDistance::FixedAroundVessels);
+  return out;
+}
+
+Json QueryEntries(const QueryTimes& t, double boundMm)
+{
+  Json entry;
+  entry["cached"] = Timing(t.Cached);
+  // The device's own time for the same queries (its timestamps; negative: none kept): what is
+  // left of a query's time is the host's round trip.
+  entry["cached_device"] = Timing(t.CachedDevice);
+  entry["cached_with_axis"] = Timing(t.Axis);
+  entry["cached_with_axis_device"] = Timing(t.AxisDevice);
+  entry["exact_all_classes"] = Timing(t.Exact);
+  entry["brute_all_classes"] = Timing(t.Brute);
+  entry["answers_compared"] = t.Check.Compared;
+  entry["max_abs_diff_vs_exact_mm"] = t.Check.MaxAbsDifferenceMm;
+  entry["outside_bound"] = t.Check.OutsideBound;
+  entry["error_bound_mm"] = boundMm;
+  return entry;
+}
+} // namespace
+
+BenchJson BenchZBuffer(vtkZBufferVesselDistance* zbuffer, const std::vector<NamedMesh>& refined, std::size_t target,
+  const BenchPoints& tips, const BenchPoints& track, int bruteQueries)
+{
+  std::fprintf(stderr, "bench: z-buffer, %zu classes at %zu triangles: build", refined.size(), target);
+  const References refs = BuildAll(zbuffer, refined);
+  const DepthLayerGrid fixedGrid = zbuffer->GetGrid();
+  Json entry;
+  entry["triangles_per_class"] = target;
+  entry["triangles"] = refs.Triangles;
+  entry["raster_triangles"] = zbuffer->GetNumberOfRasterTriangles();
+  entry["grid"] = { fixedGrid.Nx, fixedGrid.Ny, fixedGrid.Nz };
+  entry["build_ms"] = zbuffer->GetBuildTimeMs(); // upload and the first rendering
+  std::fprintf(stderr, ", render");
+  std::vector<double> renderMs;
+  for (int i = 0; i < 5; ++i)
+  {
+    zbuffer->RenderLayers();
+    renderMs.push_back(zbuffer->GetLastRenderTimeMs());
+  }
+  entry["render"] = Timing(renderMs);
+  std::fprintf(stderr, ", queries");
+  const QueryTimes queries = TimeQueries(zbuffer, refs, tips, bruteQueries);
+  entry.update(QueryEntries(queries, zbuffer->GetErrorBoundMm()));
+  std::fprintf(stderr, ", batches");
+  entry["batch_capacity"] = zbuffer->GetBatchCapacity();
+  entry["batched"] = BenchBatch(zbuffer, tips, &queries.Singles);
+  const Json other = OtherPass(zbuffer, tips, queries.Singles);
+  if (!other.empty())
+  {
+    entry["other_pass"] = other;
+  }
+  entry["exact_batched"] = BenchBatch(refs.Exact, tips, nullptr);
+  entry["paper_mode"] = PaperMode(zbuffer, tips);
+  std::fprintf(stderr, ", moving box");
+  entry["moving_box"] = MovingBox(zbuffer, track);
+  std::fprintf(stderr, "\n");
+  return entry;
+}
+
+BenchJson SideBySide(const std::vector<NamedMesh>& first, const std::vector<NamedMesh>& second, double secondCellMm,
+  const BenchPoints& tips, const DistanceEngineSettings& settings)
+{
+  vtkSmartPointer<vtkZBufferVesselDistance> engines[2];
+  for (int e = 0; e < 2; ++e)
+  {
+    engines[e] = vtkZBufferVesselDistance::SafeDownCast(MakeDistanceEngine(settings));
+    if (e == 1 && secondCellMm > 0.0)
+    {
+      engines[e]->SetCellSizeMm(secondCellMm);
+    }
+    for (const NamedMesh& vessel : e == 0 ? first : second)
+    {
+      engines[e]->AddVessel(vessel.ClassName, vessel.Mesh);
+    }
+    engines[e]->Build();
+  }
+  constexpr std::size_t SideBySideTurn = 20;
+  std::vector<double> ms[2], deviceMs[2];
+  ProximityResult r;
+  for (std::size_t first = 0; first < tips.size(); first += SideBySideTurn)
+  {
+    for (int e = 0; e < 2; ++e)
+    {
+      engines[e]->ComputeProximity(tips[first].data(), nullptr, r); // the query after the switch
+      for (std::size_t i = first + 1; i < std::min(tips.size(), first + SideBySideTurn); ++i)
+      {
+        TimedQuery(engines[e], tips[i].data(), nullptr, r, ms[e], deviceMs[e]);
+      }
+    }
+  }
+  Json out;
+  for (int e = 0; e < 2; ++e)
+  {
+    std::size_t triangles = 0;
+    for (const NamedMesh& vessel : e == 0 ? first : second)
+    {
+      triangles += static_cast<std::size_t>(vessel.Mesh->GetNumberOfPolys());
+    }
+    Json side = { { "triangles", triangles }, { "cell_mm", engines[e]->GetCellSizeMm() },
+      { "error_bound_mm", engines[e]->GetErrorBoundMm() } };
+    side["cached"] = Timing(ms[e]);
+    side["cached_device"] = Timing(deviceMs[e]);
+    out[e == 0 ? "first" : "second"] = side;
+  }
+  out["ratio_median"] = Quantile(ms[1], 0.5) / std::max(1e-9, Quantile(ms[0], 0.5));
+  out["ratio_p95"] = Quantile(ms[1], 0.95) / std::max(1e-9, Quantile(ms[0], 0.95));
+  out["ratio_device_median"] = Quantile(deviceMs[1], 0.5) / std::max(1e-9, Quantile(deviceMs[0], 0.5));
+  return out;
+}
+
+BenchJson ZBufferReport(vtkZBufferVesselDistance* zbuffer, const BenchJson& sizes, const SizedVessels& smallest,
+  const SizedVessels& largest, const BenchPoints& tips, const DistanceEngineSettings& settings,
+  std::optional<double> fineCellMm)
+{
+  Json z;
+  z["device"] = zbuffer->GetDeviceName();
+  z["range_mm"] = zbuffer->GetRangeMm();
+  z["cell_mm"] = zbuffer->GetGrid().PixelMm;
+  z["error_bound_mm"] = zbuffer->GetErrorBoundMm();
+  z["sizes"] = sizes;
+  const double first = sizes.front()["cached"]["median_ms"].get<double>();
+  const double last = sizes.back()["cached"]["median_ms"].get<double>();
+  z["cached_query_ratio_largest_to_smallest"] = last / std::max(1e-9, first);
+  if (largest.Target != smallest.Target)
+  {
+    std::fprintf(stderr, "bench: z-buffer, smallest and largest size side by side\n");
+    z["largest_beside_smallest"] = SideBySide(smallest.Vessels, largest.Vessels, 0.0, tips, settings);
+  }
+  if (fineCellMm)
+  {
+    std::fprintf(stderr, "bench: z-buffer, the smallest size at %g mm cells beside the set cell\n", *fineCellMm);
+    z["fine_cell_beside_cell"] = SideBySide(smallest.Vessels, smallest.Vessels, *fineCellMm, tips, settings);
+  }
+  return z;
+}
+} // namespace vp

@@ -4,7 +4,8 @@
 #  - the logic includes nothing of the widgets, the module or the phantom generators;
 #  - a command's Run...Command is called only from the command table;
 #  - no front end captures stdout (the CLI harness's stderr-to-stdout for Slicer aside);
-#  - a command's parser, --help and (for Slicer) XML come from its one description.
+#  - a command's parser, --help and (for Slicer) XML come from its one description;
+#  - commands take their logic and overlays from the module class, as Slicer's widgets do.
 # Prints each breach as file:line and exits 1 when there is one.
 set -u
 root="${1:?usage: CheckLayering.sh SOURCE_DIR}"
@@ -28,5 +29,7 @@ breach "stdout captured outside the CLI harness" \
   "$(grep -rn --include='*.h' --include='*.cxx' 'cout.rdbuf\|cout\.rdbuf(' Module Widgets Logic Phantom | grep -v '^Module/CLI/vpCliProgram\.cxx:')"
 breach "a command's usage or options written by hand (declare them in its description: vpCliDescription.h)" \
   "$(grep -rnE --include='*.h' --include='*.cxx' 'const char\* *Usage|std::set<std::string> options|Arguments args\(' Module/Commands)"
+breach "a command makes its own logic or overlays (take them from the module: ModuleServices)" \
+  "$(grep -rnE --include='*.h' --include='*.cxx' 'vtkVesselProximity(Logic|Overlays)>::New|vtkNew<vtkVesselProximity(Logic|Overlays)>' Module/Commands)"
 [ "$failed" = 0 ] && echo "layering: every rule holds"
 exit "$failed"

@@ -296,7 +296,7 @@ cli::ModuleDescription DescribeBenchCommand()
     });
 }
 
-int RunBenchCommand(const cli::ParsedArguments& args)
+int RunBenchCommand(const cli::ParsedArguments& args, const ModuleServices&)
 {
   // Everything is read and checked before any work: a bad value must not surface after minutes.
   BenchmarkRequest request;

@@ -72,7 +72,7 @@ int ReportFailure(const cli::ModuleDescription& description)
 }
 } // namespace
 
-int RunCommandReportingErrors(const CommandEntry& command, const std::vector<std::string>& args)
+int RunCommandReportingErrors(const CommandEntry& command, const std::vector<std::string>& args, const ModuleServices& module)
 {
   // Our errors are reported as one line each; VTK's console chatter would break that.
   vtkObject::GlobalWarningDisplayOff();
@@ -85,7 +85,7 @@ int RunCommandReportingErrors(const CommandEntry& command, const std::vector<std
       std::cout << cli::WriteHelp(description);
       return 0;
     }
-    return command.Run(cli::ParseArguments(description, args));
+    return command.Run(cli::ParseArguments(description, args), module);
   }
   catch (...)
   {

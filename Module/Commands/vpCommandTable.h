@@ -2,6 +2,7 @@
 #define vpCommandTable_h
 
 #include "vpCliDescription.h"
+#include "vpModuleServices.h"
 
 #include <string>
 #include <vector>
@@ -14,17 +15,17 @@ struct CommandEntry
   const char* Name;
   /// Its parameters, usage and one-line title (what the host lists).
   cli::ModuleDescription (*Describe)();
-  int (*Run)(const cli::ParsedArguments& args);
+  int (*Run)(const cli::ParsedArguments& args, const ModuleServices& module);
 };
 
 /// Every command of the VesselProximity module, in the order --help lists them.
 const std::vector<CommandEntry>& CommandTable();
 
-/// Runs a command: --help from its description, else its command line parsed against it and the
-/// command called. What it throws becomes the documented exit code with one line on stderr (1 bad
+/// Runs a command in its module: --help from its description, else its command line parsed
+/// against it and the command called with the module (which creates its logic and overlays). What it throws becomes the documented exit code with one line on stderr (1 bad
 /// input, 2 bad usage, 3 internal error, 4 no Vulkan device), so no exception crosses the
 /// module's C boundary.
-int RunCommandReportingErrors(const CommandEntry& command, const std::vector<std::string>& args);
+int RunCommandReportingErrors(const CommandEntry& command, const std::vector<std::string>& args, const ModuleServices& module);
 } // namespace vp
 
 #endif

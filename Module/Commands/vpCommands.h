@@ -2,6 +2,7 @@
 #define vpCommands_h
 
 #include "vpCliDescription.h"
+#include "vpModuleServices.h"
 
 namespace vp
 {
@@ -10,23 +11,23 @@ namespace vp
 /// its result to stdout (or files), and returns the process exit code. Bad input throws
 /// InputError, caught by the table.
 cli::ModuleDescription DescribeDistanceCommand();
-int RunDistanceCommand(const cli::ParsedArguments& args);
+int RunDistanceCommand(const cli::ParsedArguments& args, const ModuleServices& module);
 cli::ModuleDescription DescribeBenchCommand();
-int RunBenchCommand(const cli::ParsedArguments& args);
+int RunBenchCommand(const cli::ParsedArguments& args, const ModuleServices& module);
 cli::ModuleDescription DescribePhantomCommand();
-int RunPhantomCommand(const cli::ParsedArguments& args);
+int RunPhantomCommand(const cli::ParsedArguments& args, const ModuleServices& module);
 cli::ModuleDescription DescribeModelsCommand();
-int RunModelsCommand(const cli::ParsedArguments& args);
+int RunModelsCommand(const cli::ParsedArguments& args, const ModuleServices& module);
 cli::ModuleDescription DescribeTrackCommand();
-int RunTrackCommand(const cli::ParsedArguments& args);
+int RunTrackCommand(const cli::ParsedArguments& args, const ModuleServices& module);
 cli::ModuleDescription DescribeRegisterCommand();
-int RunRegisterCommand(const cli::ParsedArguments& args);
+int RunRegisterCommand(const cli::ParsedArguments& args, const ModuleServices& module);
 cli::ModuleDescription DescribeDemoCommand();
-int RunDemoCommand(const cli::ParsedArguments& args);
+int RunDemoCommand(const cli::ParsedArguments& args, const ModuleServices& module);
 cli::ModuleDescription DescribeViewCommand();
-int RunViewCommand(const cli::ParsedArguments& args);
+int RunViewCommand(const cli::ParsedArguments& args, const ModuleServices& module);
 cli::ModuleDescription DescribeSelfTestCommand();
-int RunSelfTestCommand(const cli::ParsedArguments& args);
+int RunSelfTestCommand(const cli::ParsedArguments& args, const ModuleServices& module);
 } // namespace vp
 
 #endif

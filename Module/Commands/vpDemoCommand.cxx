@@ -85,9 +85,9 @@ cli::ModuleDescription DescribeDemoCommand()
         Switch("no-screenshots", "Skip the screenshots."), FrameBudgetOption() } } });
 }
 
-int RunDemoCommand(const cli::ParsedArguments& args)
+int RunDemoCommand(const cli::ParsedArguments& args, const ModuleServices& module)
 {
-  const DemoReport report = RunDemoPipeline(args.GetString("output"), !args.GetBoolean("noScreenshots"), ParseFrameBudgetMs(args));
+  const DemoReport report = RunDemoPipeline(module, args.GetString("output"), !args.GetBoolean("noScreenshots"), ParseFrameBudgetMs(args));
   PrintDemoTable(report, nlohmann::json(report.Summary)); // by class name, as the table lists them
   return 0;
 }

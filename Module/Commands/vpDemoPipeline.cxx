@@ -86,7 +86,7 @@ std::vector<std::pair<int, std::string>> KeyFrames(vtkVesselProximityLogic* logi
   return { keys.begin(), keys.end() };
 }
 
-void RenderKeyFrames(DemoReport& report, const std::vector<TrackedPose>& poses, const std::string& folder)
+void RenderKeyFrames(const ModuleServices& module, DemoReport& report, const std::vector<TrackedPose>& poses, const std::string& folder)
 {
   VirtualDisplay display;
   if (!display.Ensure())
@@ -95,8 +95,9 @@ void RenderKeyFrames(DemoReport& report, const std::vector<TrackedPose>& poses, 
     std::cerr << "demo: no screenshots: " << report.ScreenshotProblem << "\n";
     return;
   }
-  vtkSmartPointer<vtkVesselProximityLogic> logic = MakeDemoTipLogic(report);
+  vtkSmartPointer<vtkVesselProximityLogic> logic = MakeDemoTipLogic(module, report);
   vtkNew<vtkVesselProximityView> view;
+  view->SetOverlays(module.CreateWidgetRepresentation());
   view->SetOffScreen(true);
   view->SetSizePx(1280, 800);
   view->SetLogic(logic);
@@ -135,9 +136,9 @@ void RenderKeyFrames(DemoReport& report, const std::vector<TrackedPose>& poses, 
 
 /// Both engines on every frame: the z-buffer engine answers, the exact engine checks; the exact
 /// engine alone without a Vulkan device.
-void TrackDemo(DemoReport& report, const std::vector<NamedMesh>& vessels, double frameBudgetMs, RunFolder& run)
+void TrackDemo(const ModuleServices& module, DemoReport& report, const std::vector<NamedMesh>& vessels, double frameBudgetMs, RunFolder& run)
 {
-  auto logic = vtkSmartPointer<vtkVesselProximityLogic>::New();
+  vtkSmartPointer<vtkVesselProximityLogic> logic = module.CreateLogic();
   DistanceEngineSettings settings;
   settings.Method = "zbuffer";
   report.Method = "both";
@@ -171,9 +172,9 @@ void TrackDemo(DemoReport& report, const std::vector<NamedMesh>& vessels, double
 }
 } // namespace
 
-vtkSmartPointer<vtkVesselProximityLogic> MakeDemoTipLogic(const DemoReport& report)
+vtkSmartPointer<vtkVesselProximityLogic> MakeDemoTipLogic(const ModuleServices& module, const DemoReport& report)
 {
-  auto logic = vtkSmartPointer<vtkVesselProximityLogic>::New();
+  vtkSmartPointer<vtkVesselProximityLogic> logic = module.CreateLogic();
   for (const char* c : VesselClasses)
   {
     logic->AddVessel(c, report.Surfaces.at(c));
@@ -216,7 +217,7 @@ std::vector<NamedMesh> BuildDemoModels(DemoReport& report, RunFolder& run)
   return vessels;
 }
 
-DemoReport RunDemoPipeline(const std::string& outDir, bool screenshots, double frameBudgetMs)
+DemoReport RunDemoPipeline(const ModuleServices& module, const std::string& outDir, bool screenshots, double frameBudgetMs)
 {
   DemoReport report;
   report.OutDir = outDir;
@@ -243,9 +244,9 @@ DemoReport RunDemoPipeline(const std::string& outDir, bool screenshots, double f
         report.Frames = static_cast<int>(report.Trajectory.Poses.size());
       } },
     { "track: every frame through the z-buffer engine, checked by the exact engine",
-      [&] { TrackDemo(report, vessels, frameBudgetMs, run); } },
+      [&] { TrackDemo(module, report, vessels, frameBudgetMs, run); } },
     { "screenshots of the key frames",
-      screenshots ? std::function<void()>([&] { RenderKeyFrames(report, report.Trajectory.Poses, shots); }) : nullptr },
+      screenshots ? std::function<void()>([&] { RenderKeyFrames(module, report, report.Trajectory.Poses, shots); }) : nullptr },
   };
   for (const auto& [name, work] : stages)
   {

@@ -1,6 +1,7 @@
 #ifndef vpDemoPipeline_h
 #define vpDemoPipeline_h
 
+#include "vpModuleServices.h"
 #include "vpDemoTrajectory.h"
 
 #include "vtkVesselProximityLogic.h"
@@ -42,12 +43,14 @@ struct DemoReport
 /// built-in CUSA handpiece; the demo trajectory, also written as a pose file; a tracking session
 /// with both engines on every frame (frames.csv, summary.json, distance.png); screenshots of the key frames rendered
 /// off-screen (a virtual display is started when there is none). Progress goes to stderr. Throws vp::InputError when something cannot be written.
-/// frameBudgetMs goes to the track stage (--frame-budget-ms).
-DemoReport RunDemoPipeline(const std::string& outDir, bool screenshots, double frameBudgetMs = 16.7);
+/// frameBudgetMs goes to the track stage (--frame-budget-ms). The module creates the logic of
+/// every stage and the overlays of the screenshots.
+DemoReport RunDemoPipeline(
+  const ModuleServices& module, const std::string& outDir, bool screenshots, double frameBudgetMs = 16.7);
 
-/// The module logic over the demo's built vessel models and scalpel, with the exact engine and
+/// The module's logic over the demo's built vessel models and scalpel, with the exact engine and
 /// the tip only (the whole surface off): what the screenshots show and the self-test checks.
-vtkSmartPointer<vtkVesselProximityLogic> MakeDemoTipLogic(const DemoReport& report);
+vtkSmartPointer<vtkVesselProximityLogic> MakeDemoTipLogic(const ModuleServices& module, const DemoReport& report);
 
 /// The demo's terminal table: stage times, each class's closest approach, the level changes,
 /// the engines' agreement and where the outputs are.

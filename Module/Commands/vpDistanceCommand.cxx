@@ -128,7 +128,7 @@ cli::ModuleDescription DescribeDistanceCommand()
     });
 }
 
-int RunDistanceCommand(const cli::ParsedArguments& args)
+int RunDistanceCommand(const cli::ParsedArguments& args, const ModuleServices&)
 {
   if (args.IsSet("tip") == args.IsSet("tips"))
   {

@@ -72,7 +72,7 @@ cli::ModuleDescription DescribeModelsCommand()
     });
 }
 
-int RunModelsCommand(const cli::ParsedArguments& args)
+int RunModelsCommand(const cli::ParsedArguments& args, const ModuleServices&)
 {
   const std::string outDir = args.GetString("output");
   RunFolder run(outDir, "models.json");

@@ -22,7 +22,7 @@ cli::ModuleDescription DescribePhantomCommand()
     { { "Output", "", { OutputFolderOption("The folder the three STL files are written into.").SetRequired() } } });
 }
 
-int RunPhantomCommand(const cli::ParsedArguments& args)
+int RunPhantomCommand(const cli::ParsedArguments& args, const ModuleServices&)
 {
   const std::string out = args.GetString("output");
   CreateOutputFolder(out);

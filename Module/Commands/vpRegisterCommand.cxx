@@ -184,7 +184,7 @@ cli::ModuleDescription DescribeRegisterCommand()
     });
 }
 
-int RunRegisterCommand(const cli::ParsedArguments& args)
+int RunRegisterCommand(const cli::ParsedArguments& args, const ModuleServices&)
 {
   const std::string method = args.GetString("method");
   // Which options a registration needs depends on which it is: beyond what a table can say.

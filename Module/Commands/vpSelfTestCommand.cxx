@@ -73,9 +73,9 @@ std::string Text(double value)
 
 /// The exact engine's level at every frame and its changes, computed here, independently of the
 /// track command's run.
-std::vector<DangerLevel> ExactLevels(const DemoReport& report, std::vector<DangerLevel>& changes)
+std::vector<DangerLevel> ExactLevels(const ModuleServices& module, const DemoReport& report, std::vector<DangerLevel>& changes)
 {
-  vtkSmartPointer<vtkVesselProximityLogic> logic = MakeDemoTipLogic(report);
+  vtkSmartPointer<vtkVesselProximityLogic> logic = MakeDemoTipLogic(module, report);
   vtkNew<vtkCallbackCommand> onChange;
   onChange->SetClientData(&changes);
   onChange->SetCallback([](vtkObject*, unsigned long, void* list, void* change) {
@@ -255,13 +255,13 @@ cli::ModuleDescription DescribeSelfTestCommand()
         Switch("no-screenshots", "Skip the screenshots.") } } });
 }
 
-int RunSelfTestCommand(const cli::ParsedArguments& args)
+int RunSelfTestCommand(const cli::ParsedArguments& args, const ModuleServices& module)
 {
   const bool temporary = !args.IsSet("output");
   const std::string outDir = temporary
     ? (std::filesystem::temp_directory_path() / ("vesselproximity-selftest-" + std::to_string(getpid()))).string()
     : args.GetString("output");
-  const DemoReport report = RunDemoPipeline(outDir, !args.GetBoolean("noScreenshots"));
+  const DemoReport report = RunDemoPipeline(module, outDir, !args.GetBoolean("noScreenshots"));
   // The self-test checks what the run left on disk, as a user would find it.
   const nlohmann::json summary = ReadJsonFile(outDir + "/summary.json", "the track summary");
   PrintDemoTable(report, summary);
@@ -272,7 +272,7 @@ int RunSelfTestCommand(const cli::ParsedArguments& args)
   checks.Check("frames", frames == report.Frames && CsvLevels(outDir + "/frames.csv").size() == static_cast<std::size_t>(frames),
     std::to_string(frames) + " in summary.json and frames.csv, " + std::to_string(report.Frames) + " poses");
   std::vector<DangerLevel> changes;
-  const std::vector<DangerLevel> exactLevels = ExactLevels(report, changes);
+  const std::vector<DangerLevel> exactLevels = ExactLevels(module, report, changes);
   CheckLevelOrder(report, changes, checks);
   CheckEngines(report, summary, exactLevels, checks);
   CheckTimeAtEveryLevel(summary, checks);

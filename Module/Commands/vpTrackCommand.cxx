@@ -118,7 +118,7 @@ cli::ModuleDescription DescribeTrackCommand()
     });
 }
 
-int RunTrackCommand(const cli::ParsedArguments& args)
+int RunTrackCommand(const cli::ParsedArguments& args, const ModuleServices& module)
 {
   const ScalpelTipDefinition tip = ParseTipDefinition(args);
   const std::string outDir = args.GetString("output");
@@ -130,7 +130,7 @@ int RunTrackCommand(const cli::ParsedArguments& args)
   const double start = NowMs();
   const std::string posesFile = args.GetString("poses");
   const std::size_t poseCount = PoseStream::CountPoses(posesFile);
-  vtkSmartPointer<vtkVesselProximityLogic> proximity = ConfigureTrackingLogic(args);
+  vtkSmartPointer<vtkVesselProximityLogic> proximity = ConfigureTrackingLogic(args, module);
   auto meshes = LoadVesselMeshes(ParsePairs(args.GetString("vessels"), "--vessels"));
   if (args.GetBoolean("repair"))
   {

@@ -106,10 +106,10 @@ double ParseHysteresisMm(const cli::ParsedArguments& args)
   return hysteresisMm;
 }
 
-vtkSmartPointer<vtkVesselProximityLogic> ConfigureTrackingLogic(const cli::ParsedArguments& args)
+vtkSmartPointer<vtkVesselProximityLogic> ConfigureTrackingLogic(const cli::ParsedArguments& args, const ModuleServices& module)
 {
   const std::string method = args.GetString("method");
-  auto logic = vtkSmartPointer<vtkVesselProximityLogic>::New();
+  vtkSmartPointer<vtkVesselProximityLogic> logic = module.CreateLogic();
   vtkVesselProximityParameters* parameters = logic->GetParameters();
   parameters->SetDangerThresholds(ParseDangerThresholds(args));
   parameters->SetFrameBudgetMs(ParseFrameBudgetMs(args));

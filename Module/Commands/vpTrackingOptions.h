@@ -3,6 +3,7 @@
 
 #include "vpCliDescription.h"
 #include "vpDangerLevels.h"
+#include "vpModuleServices.h"
 #include "vpScalpelLoader.h"
 #include "vtkVesselProximityLogic.h"
 
@@ -29,10 +30,10 @@ double ParseFrameBudgetMs(const cli::ParsedArguments& args);
 /// --hysteresis-mm, not negative (vtkScalpelTrackingLogic::SetHysteresisMm); throws InputError.
 double ParseHysteresisMm(const cli::ParsedArguments& args);
 
-/// The module logic with what the tracking options set, checked before any file is read: the
+/// The module's logic (ModuleServices::CreateLogic) with what the tracking options set, checked before any file is read: the
 /// danger thresholds, the frame budget, the hysteresis, --no-surface, the engine of --method (its
 /// device opened) and, for "both", the comparison with the exact engine.
-vtkSmartPointer<vtkVesselProximityLogic> ConfigureTrackingLogic(const cli::ParsedArguments& args);
+vtkSmartPointer<vtkVesselProximityLogic> ConfigureTrackingLogic(const cli::ParsedArguments& args, const ModuleServices& module);
 } // namespace vp
 
 #endif

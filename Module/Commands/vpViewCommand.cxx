@@ -157,13 +157,13 @@ cli::ModuleDescription DescribeViewCommand()
     });
 }
 
-int RunViewCommand(const cli::ParsedArguments& args)
+int RunViewCommand(const cli::ParsedArguments& args, const ModuleServices& module)
 {
   const ScalpelTipDefinition tip = ParseTipDefinition(args);
   const auto size = ParseSize(args.GetString("size"));
   const std::vector<std::string> keys = SplitKeys(args.GetString("keys"));
   const std::string screenshot = args.GetString("screenshot");
-  vtkSmartPointer<vtkVesselProximityLogic> logic = ConfigureTrackingLogic(args);
+  vtkSmartPointer<vtkVesselProximityLogic> logic = ConfigureTrackingLogic(args, module);
   // Everything that can be refused is read before a window opens.
   std::vector<TrackedPose> poses;
   if (args.IsSet("poses"))
@@ -179,6 +179,7 @@ int RunViewCommand(const cli::ParsedArguments& args)
   VirtualDisplay display;
   RequireDisplay(screenshot, display);
   vtkNew<vtkVesselProximityView> view;
+  view->SetOverlays(module.CreateWidgetRepresentation());
   view->SetOffScreen(!screenshot.empty());
   view->SetSizePx(size.first, size.second);
   view->SetLogic(logic);

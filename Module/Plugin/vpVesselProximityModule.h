@@ -1,20 +1,20 @@
 #ifndef vpVesselProximityModule_h
 #define vpVesselProximityModule_h
 
+#include "vpModuleServices.h"
+
 #include <vtkSmartPointer.h>
 
 #include <string>
 #include <vector>
 
-class vtkVesselProximityLogic;
-class vtkVesselProximityOverlays;
-
 /// The VesselProximity loadable module, as qSlicerVesselProximityModule would be in Slicer: it
 /// declares the module's metadata and creates its logic and its widget representation, nothing
-/// more. The computation lives in the logic (Logic/), the drawing in the overlays (Widgets/),
+/// more. Every command runs in it: the entry point hands it to the command table, and the
+/// commands take their logic and overlays from it. The computation lives in the logic (Logic/), the drawing in the overlays (Widgets/),
 /// the commands in Module/Commands; the C entry point (vpVesselProximityModulePlugin.cxx) hands
 /// all of it to the host.
-class vpVesselProximityModule
+class vpVesselProximityModule : public vp::ModuleServices
 {
 public:
   std::string Name() const { return "VesselProximity"; }
@@ -25,8 +25,8 @@ public:
   std::string AcknowledgementText() const;
   std::string Version() const;
 
-  vtkSmartPointer<vtkVesselProximityLogic> CreateLogic() const;
-  vtkSmartPointer<vtkVesselProximityOverlays> CreateWidgetRepresentation() const;
+  vtkSmartPointer<vtkVesselProximityLogic> CreateLogic() const override;
+  vtkSmartPointer<vtkVesselProximityOverlays> CreateWidgetRepresentation() const override;
 };
 
 #endif

@@ -21,14 +21,13 @@ std::string Joined(const std::vector<std::string>& items)
   return out;
 }
 
+struct ModuleRecord;
+const ModuleRecord& Record();
+
 /// One C trampoline per command: the table index is a template argument, since a C function
-/// pointer cannot carry state.
+/// pointer cannot carry state. The command runs in the module, which creates its logic.
 template <std::size_t Index>
-int RunCommand(int argc, const char* const* argv)
-{
-  const std::vector<std::string> args(argv + 1, argv + argc);
-  return vp::RunCommandReportingErrors(vp::CommandTable()[Index], args);
-}
+int RunCommand(int argc, const char* const* argv);
 
 template <std::size_t... Index>
 std::vector<vpModuleCommandFunction> Trampolines(std::index_sequence<Index...>)
@@ -65,10 +64,21 @@ struct ModuleRecord
       this->Commands.data(), static_cast<int>(this->Commands.size()) };
   }
 };
+const ModuleRecord& Record()
+{
+  static const ModuleRecord record;
+  return record;
+}
+
+template <std::size_t Index>
+int RunCommand(int argc, const char* const* argv)
+{
+  const std::vector<std::string> args(argv + 1, argv + argc);
+  return vp::RunCommandReportingErrors(vp::CommandTable()[Index], args, Record().Module);
+}
 } // namespace
 
 extern "C" __attribute__((visibility("default"))) const vpModuleDescriptor* vpGetLoadableModule(void)
 {
-  static const ModuleRecord record;
-  return &record.Descriptor;
+  return &Record().Descriptor;
 }

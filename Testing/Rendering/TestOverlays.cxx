@@ -26,6 +26,7 @@
 #include <vtkLineSource.h>
 #include <vtkNew.h>
 #include <vtkPolyData.h>
+#include <vtkPropCollection.h>
 #include <vtkProperty.h>
 #include <vtkRenderer.h>
 
@@ -224,6 +225,36 @@ TEST(Overlays, ThePlotIsDrawnOnlyWhenARenderShowsIt)
   logic->ProcessPose(Pose(0.6, TipDownAt(5.0)));
   ASSERT_NE(plot->GetImage(), nullptr); // asking for the picture draws it
   EXPECT_EQ(plot->GetNumberOfRedraws(), before + 2);
+  std::filesystem::remove_all(tmp);
+}
+
+// A module hands the view its widget representation (issue 15): the view draws with those overlays,
+// hands them the logic it already shows, and the ones it had leave the renderer.
+TEST(Overlays, AViewTakesTheModulesOverlays)
+{
+  vp::VirtualDisplay display;
+  if (!display.Ensure())
+  {
+    GTEST_SKIP() << "no display for rendering: " << display.GetProblem();
+  }
+  const std::string tmp = vp::test::MakeTempDir("overlays_given");
+  auto logic = MakePhantomLogic(tmp);
+  vtkNew<vtkVesselProximityView> view;
+  view->SetOffScreen(true);
+  view->SetSizePx(400, 300);
+  view->SetLogic(logic);
+  view->Render();
+  const int propsWithOne = view->GetRenderer()->GetViewProps()->GetNumberOfItems();
+  vtkSmartPointer<vtkVesselProximityOverlays> first = view->GetOverlays();
+  vtkNew<vtkVesselProximityOverlays> given;
+  view->SetOverlays(given);
+  EXPECT_EQ(view->GetOverlays(), given.GetPointer());
+  EXPECT_EQ(given->GetLogic(), logic.GetPointer()) << "the logic already shown is handed on";
+  EXPECT_EQ(first->GetRenderer(), nullptr) << "the overlays it had leave the renderer";
+  logic->ProcessPose(Pose(0.0, TipDownAt(5.0)));
+  view->Render();
+  EXPECT_EQ(view->GetRenderer()->GetViewProps()->GetNumberOfItems(), propsWithOne) << "one set of overlays drawn";
+  EXPECT_EQ(given->GetPlot()->GetNumberOfSamples(), 1) << "the given overlays follow the logic";
   std::filesystem::remove_all(tmp);
 }
 

@@ -61,6 +61,25 @@ void vtkVesselProximityView::SetLogic(vtkVesselProximityLogic* logic)
   this->Modified();
 }
 
+void vtkVesselProximityView::SetOverlays(vtkVesselProximityOverlays* overlays)
+{
+  if (!overlays || overlays == this->Overlays)
+  {
+    return;
+  }
+  vtkVesselProximityLogic* logic = this->Overlays->GetLogic();
+  this->Overlays->SetRenderer(nullptr);
+  this->Overlays = overlays;
+  this->Overlays->SetRenderer(this->Renderer);
+  if (logic)
+  {
+    this->Overlays->SetLogic(logic);
+  }
+  const int* size = this->Window->GetSize();
+  this->SetSizePx(size[0], size[1]); // the plot's size follows the window's
+  this->Modified();
+}
+
 vtkVesselProximityLogic* vtkVesselProximityView::GetLogic() const
 {
   return this->Overlays->GetLogic();

@@ -36,6 +36,10 @@ public:
   void SetLogic(vtkVesselProximityLogic* logic);
   vtkVesselProximityLogic* GetLogic() const;
   void SetLiverSurface(vtkPolyData* liver);
+  /// The overlays that draw the logic (default: new ones). A module hands in its widget
+  /// representation here (vpVesselProximityModule::CreateWidgetRepresentation); the logic already
+  /// set is handed on to them.
+  void SetOverlays(vtkVesselProximityOverlays* overlays);
   vtkVesselProximityOverlays* GetOverlays() const;
   vtkRenderer* GetRenderer() const;
   vtkRenderWindow* GetRenderWindow() const;

@@ -1,0 +1,24 @@
+#ifndef vpModuleServices_h
+#define vpModuleServices_h
+
+#include "vtkVesselProximityLogic.h"
+#include "vtkVesselProximityOverlays.h"
+
+#include <vtkSmartPointer.h>
+
+namespace vp
+{
+/// What a command asks of the module it runs in, as a Slicer module's widget asks its module:
+/// the logic, and the widget representation that draws it. The module class
+/// (vpVesselProximityModule) is the one that creates them; the entry point hands it to every
+/// command through the command table.
+class ModuleServices
+{
+public:
+  virtual ~ModuleServices() = default;
+  virtual vtkSmartPointer<vtkVesselProximityLogic> CreateLogic() const = 0;
+  virtual vtkSmartPointer<vtkVesselProximityOverlays> CreateWidgetRepresentation() const = 0;
+};
+} // namespace vp
+
+#endif

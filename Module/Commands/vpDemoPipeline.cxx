@@ -13,10 +13,12 @@
 #include "vpVirtualDisplay.h"
 #include "vpVulkanContext.h"
 #include "vtkScalpelModel.h"
+#include "vtkScalpelTrackingLogic.h"
 #include "vtkVesselMeshWriter.h"
 #include "vtkVesselProximityLogic.h"
 #include "vtkVesselProximityView.h"
 
+#include <vtkCallbackCommand.h>
 #include <vtkCamera.h>
 #include <vtkNew.h>
 #include <vtkPolyData.h>
@@ -128,6 +130,9 @@ void RenderKeyFrames(const ModuleServices& module, DemoReport& report, const std
       char name[96];
       std::snprintf(name, sizeof(name), "/frame%04d_%s.png", i, keys[next].second.c_str());
       view->SaveScreenshot(folder + name);
+      double range[2];
+      view->GetLastScreenshot()->GetScalarRange(range);
+      report.ScreenshotContrast.push_back(range[1] - range[0]);
       report.Screenshots.push_back(report.OutDir + "/screenshots" + name); // where the run puts it
       ++next;
     }
@@ -163,6 +168,12 @@ void TrackDemo(const ModuleServices& module, DemoReport& report, const std::vect
   logic->Build();
   logic->GetParameters()->SetFrameBudgetMs(frameBudgetMs);
   logic->GetTrackingLogic()->ValidateSettings();
+  vtkNew<vtkCallbackCommand> onFrame;
+  onFrame->SetClientData(&report.FrameLevels);
+  onFrame->SetCallback([](vtkObject*, unsigned long, void* levels, void* frame) {
+    static_cast<std::vector<DangerLevel>*>(levels)->push_back(static_cast<const TrackedFrame*>(frame)->Level);
+  });
+  logic->GetTrackingLogic()->AddObserver(vtkScalpelTrackingLogic::FrameProcessedEvent, onFrame);
   TrackingSession session(logic, vessels);
   PoseListSource poses(report.Trajectory.Poses, report.PosesFile);
   if (session.Run(poses, run))

@@ -1,6 +1,7 @@
 #ifndef vpDemoPipeline_h
 #define vpDemoPipeline_h
 
+#include "vpDangerLevels.h"
 #include "vpModuleServices.h"
 #include "vpDemoTrajectory.h"
 
@@ -33,8 +34,13 @@ struct DemoReport
   std::string Method; ///< "both" (z-buffer checked by exact) or "exact" without a Vulkan device
   std::string MethodNote;
   int Frames = 0;
+  /// The level of every frame the track stage computed, as its frames.csv records it (heard from
+  /// the tracking logic's FrameProcessedEvent, so the self-test need not read the file back).
+  std::vector<DangerLevel> FrameLevels;
   nlohmann::ordered_json Summary; ///< the track stage's summary.json
   std::vector<std::string> Screenshots;
+  /// Per screenshot, the spread of its pixel values (0: a blank picture).
+  std::vector<double> ScreenshotContrast;
   std::string ScreenshotProblem; ///< why there are none, when there are none
 };
 

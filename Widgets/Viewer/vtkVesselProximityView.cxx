@@ -251,6 +251,7 @@ std::string vtkVesselProximityView::SaveScreenshot(const std::string& requested)
   grab->SetInputBufferTypeToRGB();
   grab->ReadFrontBufferOff();
   grab->Update();
+  this->LastScreenshot = grab->GetOutput();
   const std::string temporary = file + ".partial";
   vtkNew<vtkPNGWriter> writer;
   writer->SetFileName(temporary.c_str());

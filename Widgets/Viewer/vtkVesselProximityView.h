@@ -3,6 +3,7 @@
 
 #include "vpPoseFile.h"
 
+#include <vtkImageData.h>
 #include <vtkObject.h>
 #include <vtkSmartPointer.h>
 
@@ -71,6 +72,9 @@ public:
   /// naming the file when it cannot be written. Screenshots are numbered when file is empty:
   /// <ScreenshotPrefix>NNN.png.
   std::string SaveScreenshot(const std::string& file = std::string());
+  /// The picture the last SaveScreenshot wrote (RGB), or null: what a caller checks without
+  /// reading the file back.
+  vtkImageData* GetLastScreenshot() const { return this->LastScreenshot; }
   void SetScreenshotPrefix(const std::string& prefix) { this->ScreenshotPrefix = prefix; }
 
   /// Hands the window to the user until it is closed.
@@ -96,6 +100,7 @@ protected:
   bool Playing = false;
   int TimerId = -1;
   int ScreenshotCount = 0;
+  vtkSmartPointer<vtkImageData> LastScreenshot;
   std::string ScreenshotPrefix = "vesselproximity-screenshot-";
 
 private:

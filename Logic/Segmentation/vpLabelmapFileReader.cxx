@@ -126,35 +126,67 @@ std::map<int, SegmentKeys> ReadSegmentKeys(const itk::MetaDataDictionary& dictio
   return segments;
 }
 
-// Whether the voxels are stored uncompressed in the file itself (a .nii, or a .nrrd with
-// "encoding: raw" and no separate data file), so that the file's size bounds what the header may
-// claim.
-bool HoldsRawVoxels(const std::string& fileName)
+// How the voxels are stored in the file itself, which bounds what its header may claim: raw (a
+// .nii, or a .nrrd with "encoding: raw"), gzip (a .nii.gz, or a .nrrd with "encoding: gzip"), or
+// beyond what the file's size can tell (a separate data file, bzip2, text).
+enum class VoxelStorage
 {
-  if (EndsWith(fileName, ".nii"))
+  Raw,
+  Gzip,
+  Unbounded,
+};
+
+VoxelStorage StorageOf(const std::string& fileName)
+{
+  if (EndsWith(fileName, ".nii") || EndsWith(fileName, ".nii.gz"))
   {
-    return true;
+    return EndsWith(fileName, ".nii") ? VoxelStorage::Raw : VoxelStorage::Gzip;
   }
   if (!EndsWith(fileName, ".nrrd"))
   {
-    return false;
+    return VoxelStorage::Unbounded;
   }
   std::ifstream in(fileName, std::ios::binary);
-  bool raw = false;
+  VoxelStorage storage = VoxelStorage::Unbounded;
   for (std::string line; std::getline(in, line) && !line.empty() && line != "\r";)
   {
     std::string lower = line;
     std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
     if (lower.rfind("data file:", 0) == 0 || lower.rfind("datafile:", 0) == 0)
     {
-      return false;
+      return VoxelStorage::Unbounded;
     }
     if (lower.rfind("encoding:", 0) == 0)
     {
-      raw = lower.find("raw") != std::string::npos;
+      storage = lower.find("raw") != std::string::npos ? VoxelStorage::Raw
+        : lower.find("gz") != std::string::npos       ? VoxelStorage::Gzip
+                                                      : VoxelStorage::Unbounded;
     }
   }
-  return raw;
+  return storage;
+}
+
+// Deflate (gzip) gives at most 1032 bytes out per byte in (zlib's technical details): a header
+// claiming more than that of its file is refused before ITK allocates the image.
+constexpr double GzipMaximumRatio = 1032.0;
+
+void CheckClaimAgainstFile(const std::string& fileName, double claimed, double claimedBytes)
+{
+  std::error_code ec;
+  const auto fileBytes = std::filesystem::file_size(fileName, ec);
+  const VoxelStorage storage = ec ? VoxelStorage::Unbounded : StorageOf(fileName);
+  if (storage == VoxelStorage::Raw && claimedBytes > static_cast<double>(fileBytes))
+  {
+    throw InputError(fileName, "the header claims " + std::to_string(static_cast<long long>(claimed)) + " voxels (" +
+        std::to_string(static_cast<long long>(claimedBytes)) + " bytes, uncompressed), but the file is only " +
+        std::to_string(fileBytes) + " bytes");
+  }
+  if (storage == VoxelStorage::Gzip && claimedBytes > GzipMaximumRatio * static_cast<double>(fileBytes))
+  {
+    throw InputError(fileName, "the header claims " + std::to_string(static_cast<long long>(claimed)) + " voxels (" +
+        std::to_string(static_cast<long long>(claimedBytes)) + " bytes), more than gzip can hold in a file of " +
+        std::to_string(fileBytes) + " bytes (at most 1032 to 1)");
+  }
 }
 } // namespace
 
@@ -198,17 +230,9 @@ LabelStructures LabelmapFileReader::Read(const std::string& fileName, std::size_
       throw InputError(fileName, "the header claims " + std::to_string(static_cast<long long>(claimed)) +
           " voxels, more than the " + std::to_string(maximumVoxels) + " this reader takes");
     }
-    // Uncompressed voxels must be in the file: a header claiming more is refused before the
-    // image is allocated (a 100-byte file claiming 600^3 voxels took 256 MB first).
-    std::error_code ec;
-    const auto fileBytes = std::filesystem::file_size(fileName, ec);
-    const double claimedBytes = claimed * static_cast<double>(io->GetComponentSize());
-    if (!ec && HoldsRawVoxels(fileName) && claimedBytes > static_cast<double>(fileBytes))
-    {
-      throw InputError(fileName, "the header claims " + std::to_string(static_cast<long long>(claimed)) + " voxels (" +
-          std::to_string(static_cast<long long>(claimedBytes)) + " bytes, uncompressed), but the file is only " +
-          std::to_string(fileBytes) + " bytes");
-    }
+    // The voxels must fit in the file: a header claiming more is refused before the image is
+    // allocated (a 100-byte file claiming 600^3 voxels took 256 MB first).
+    CheckClaimAgainstFile(fileName, claimed, claimed * static_cast<double>(io->GetComponentSize()));
     auto reader = itk::ImageFileReader<Image>::New();
     reader->SetImageIO(io);
     reader->SetFileName(fileName);

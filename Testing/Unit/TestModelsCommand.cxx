@@ -17,6 +17,7 @@
 #include <dcmtk/dcmdata/dcfilefo.h>
 
 #include <algorithm>
+#include <cstring>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -25,6 +26,7 @@
 #include <sstream>
 
 #include <fcntl.h>
+#include <zlib.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -180,6 +182,57 @@ TEST_F(ModelsCommand, ARawLabelmapClaimingMoreVoxelsThanItHoldsIsRefusedBeforeAl
   struct rusage usage = {};
   getrusage(RUSAGE_CHILDREN, &usage);
   EXPECT_LT(usage.ru_maxrss, 200L * 1024L) << "kB at most, of the command (256 MB and more before)";
+}
+
+namespace
+{
+/// bytes gzip-compressed into file (zlib's gzip writer, as .nii.gz and NRRD's gzip encoding store).
+void WriteGzip(const std::string& file, const std::string& bytes, const char* mode = "wb")
+{
+  gzFile out = gzopen(file.c_str(), mode);
+  ASSERT_NE(out, nullptr);
+  ASSERT_EQ(gzwrite(out, bytes.data(), static_cast<unsigned>(bytes.size())), static_cast<int>(bytes.size()));
+  ASSERT_EQ(gzclose(out), Z_OK);
+}
+
+/// A NIfTI-1 header (348 bytes and the 4-byte extension flag) claiming n^3 unsigned bytes.
+std::string NiftiHeader(short n)
+{
+  std::string h(352, '\0');
+  auto put = [&](std::size_t at, const auto& value) { std::memcpy(&h[at], &value, sizeof(value)); };
+  put(0, std::int32_t(348));
+  const std::int16_t dim[8] = { 3, n, n, n, 1, 1, 1, 1 };
+  std::memcpy(&h[40], dim, sizeof(dim));
+  put(70, std::int16_t(2)); // DT_UNSIGNED_CHAR
+  put(72, std::int16_t(8));
+  const float pixdim[8] = { 1, 1, 1, 1, 1, 1, 1, 1 };
+  std::memcpy(&h[76], pixdim, sizeof(pixdim));
+  put(108, 352.0f); // vox_offset
+  std::memcpy(&h[344], "n+1\0", 4);
+  return h;
+}
+} // namespace
+
+// The same for gzip-compressed voxels (issue 16): deflate gives at most 1032 bytes per byte, so a
+// small .nii.gz or gzip NRRD claiming 600^3 voxels is refused from its size, before ITK allocates.
+TEST_F(ModelsCommand, ACompressedLabelmapClaimingMoreThanGzipCanHoldIsRefusedBeforeAllocating)
+{
+  const std::string nii = this->Dir + "/claims.nii.gz";
+  WriteGzip(nii, NiftiHeader(600) + std::string(64, '\1'));
+  this->ExpectRefused(nii, nii, "the header claims 216000000 voxels (216000000 bytes), more than gzip can hold in a file of");
+  const std::string nrrd = this->Dir + "/claims_gz.nrrd";
+  std::ofstream(nrrd, std::ios::binary) << "NRRD0004\ntype: unsigned char\ndimension: 3\nsizes: 600 600 600\n"
+                                           "spacings: 1 1 1\nencoding: gzip\n\n";
+  WriteGzip(nrrd, std::string(1000, '\1'), "ab");
+  this->ExpectRefused(nrrd, nrrd, "more than gzip can hold in a file of");
+  struct rusage usage = {};
+  getrusage(RUSAGE_CHILDREN, &usage);
+  EXPECT_LT(usage.ru_maxrss, 200L * 1024L) << "kB at most, of the command";
+  // What gzip can hold is still read: 40^3 voxels in a few hundred bytes.
+  const std::string small = this->Dir + "/small.nii.gz";
+  WriteGzip(small, NiftiHeader(40) + std::string(40 * 40 * 40, '\0'));
+  const ToolRun r = RunTool(this->Dir, "models " + small + " -o " + this->Dir + "/out_small");
+  EXPECT_EQ(r.Err.find("more than gzip can hold"), std::string::npos) << r.Err;
 }
 
 TEST_F(ModelsCommand, EachBadSeriesGetsItsOneLineAndWritesNothing)

@@ -9,6 +9,11 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <map>
+
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 TEST(DemoCommand, BadArgumentsGiveOneLineAndWriteNothing)
 {
@@ -66,5 +71,50 @@ TEST(DemoCommand, ItsFolderHoldsOneWholeRun)
   std::ifstream models(out + "/models/models.json");
   const nlohmann::json modelsDoc = nlohmann::json::parse(models);
   EXPECT_EQ(modelsDoc.at("inputs").at(0), out + "/dicom") << "the models name the series where the run put them";
+  std::filesystem::remove_all(tmp);
+}
+
+namespace
+{
+/// The names in a folder, and each file's bytes ("name/" for a folder).
+std::map<std::string, std::string> FolderContents(const std::string& folder)
+{
+  std::map<std::string, std::string> contents;
+  for (const auto& entry : std::filesystem::directory_iterator(folder))
+  {
+    const std::string name = entry.path().filename().string();
+    contents[entry.is_directory() ? name + "/" : name] = entry.is_directory() ? "" : vp::test::Slurp(entry.path().string());
+  }
+  return contents;
+}
+} // namespace
+
+// SIGINT at several moments of a real demo (issue 16): the folder keeps the previous run exactly
+// as it was (or, when the signal came after the end, holds the new run whole), and no staging
+// folder is left. The moments fall in the phantom, the models and the track stages.
+TEST(DemoCommand, AnInterruptedDemoLeavesThePreviousRunAsItWas)
+{
+  const std::string tmp = vp::test::MakeTempDir("demo_interrupt");
+  const std::string out = tmp + "/out";
+  std::filesystem::create_directories(out);
+  std::ofstream(out + "/notes.txt") << "the user's own";
+  std::ofstream(out + "/frames.csv") << "an older run's frames\n";
+  std::ofstream(out + "/summary.json") << R"({"files": ["frames.csv", "summary.json"]})";
+  const std::map<std::string, std::string> before = FolderContents(out);
+  for (const int ms : { 200, 1200, 2500, 4000 })
+  {
+    const pid_t child = vp::test::StartTool({ "demo", "--no-screenshots", "-o", out });
+    ASSERT_GE(child, 0);
+    usleep(static_cast<useconds_t>(1000 * ms));
+    kill(child, SIGINT);
+    int status = 0;
+    waitpid(child, &status, 0);
+    if (WIFEXITED(status) && WEXITSTATUS(status) == 0)
+    {
+      GTEST_SKIP() << "the demo ended within " << ms << " ms; the later moments say nothing more";
+    }
+    EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGINT) << "after " << ms << " ms, status " << status;
+    EXPECT_EQ(FolderContents(out), before) << "after " << ms << " ms: the previous run, exactly, and nothing else";
+  }
   std::filesystem::remove_all(tmp);
 }

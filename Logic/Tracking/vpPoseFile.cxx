@@ -1,10 +1,8 @@
 #include "vpPoseFile.h"
 
 #include "vpInputError.h"
-#include "vpJsonFile.h"
+#include "vpJsonPoseReader.h"
 #include "vpNumericCsv.h"
-
-#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -109,69 +107,6 @@ TrackedPose CsvPose(const NumericRow& row, std::size_t columns, const TrackedPos
 
 constexpr const char* CsvWhat = "a pose list (time,m00..m33 or time,x,y,z,qw,qx,qy,qz per line)";
 
-std::vector<double> Numbers(const nlohmann::json& value, std::size_t count, const std::string& what)
-{
-  if (!value.is_array() || value.size() != count)
-  {
-    throw std::runtime_error("\"" + what + "\" is not an array of " + std::to_string(count) + " numbers");
-  }
-  std::vector<double> out;
-  for (const auto& v : value)
-  {
-    if (!v.is_number() || !std::isfinite(v.get<double>()))
-    {
-      throw std::runtime_error("\"" + what + "\" holds something other than a finite number");
-    }
-    out.push_back(v.get<double>());
-  }
-  return out;
-}
-
-std::vector<TrackedPose> ReadJson(const std::string& fileName)
-{
-  nlohmann::json document = ReadJsonFile(fileName, "a pose list");
-  const nlohmann::json* list = document.is_object() && document.contains("poses") ? &document["poses"] : nullptr;
-  if (!list || !list->is_array() || list->empty())
-  {
-    throw InputError(fileName, "no poses: expected {\"poses\": [{\"time\": ..., \"matrix\": [...]}, ...]}");
-  }
-  std::vector<TrackedPose> poses;
-  for (std::size_t i = 0; i < list->size(); ++i)
-  {
-    const nlohmann::json& item = (*list)[i];
-    const std::string where = "pose " + std::to_string(i + 1) + ": ";
-    double time = 0.0;
-    std::vector<double> values;
-    try
-    {
-      if (!item.is_object() || !item.contains("time"))
-      {
-        throw std::runtime_error("no \"time\"");
-      }
-      time = Numbers(nlohmann::json::array({ item["time"] }), 1, "time")[0];
-      if (item.contains("matrix"))
-      {
-        values = Numbers(item["matrix"], 16, "matrix");
-      }
-      else if (item.contains("position") && item.contains("quaternion"))
-      {
-        values = Numbers(item["position"], 3, "position");
-        const auto q = Numbers(item["quaternion"], 4, "quaternion");
-        values.insert(values.end(), q.begin(), q.end());
-      }
-      else
-      {
-        throw std::runtime_error("neither \"matrix\" nor \"position\" and \"quaternion\"");
-      }
-    }
-    catch (const std::runtime_error& e)
-    {
-      throw InputError(fileName, where + e.what());
-    }
-    poses.push_back(CheckedPose(time, values.data(), values.size(), poses.empty() ? nullptr : &poses.back(), fileName, where));
-  }
-  return poses;
-}
 } // namespace
 
 std::array<double, 16> PoseFromQuaternion(const std::array<double, 3>& p, const std::array<double, 4>& q)
@@ -189,7 +124,7 @@ PoseStream::PoseStream(const std::string& fileName, std::size_t expected)
 {
   if (EndsWith(fileName, ".json"))
   {
-    this->Poses = ReadJson(fileName);
+    this->Json = std::make_unique<JsonPoseReader>(fileName);
   }
   else
   {
@@ -210,13 +145,17 @@ std::size_t PoseStream::CountPoses(const std::string& fileName)
 
 bool PoseStream::Next(TrackedPose& pose)
 {
-  if (!this->Csv)
+  if (this->Json)
   {
-    if (this->Read == this->Poses.size())
+    JsonPoseReader::Item item;
+    if (!this->Json->Next(item))
     {
       return false;
     }
-    pose = this->Poses[this->Read++];
+    const std::string where = "pose " + std::to_string(this->Read + 1) + ": ";
+    pose = CheckedPose(item.Time, item.Values.data(), item.Values.size(), this->Read ? &this->Previous : nullptr, this->Name, where);
+    this->Previous = pose;
+    ++this->Read;
     return true;
   }
   NumericRow row;

@@ -30,6 +30,7 @@ struct TrackedPose
 std::vector<TrackedPose> ReadPoseFile(const std::string& fileName);
 
 class NumericCsvReader;
+class JsonPoseReader;
 
 /// Where a tracking session's poses come from, one at a time: a recorded file (PoseStream), and
 /// later a live stream. Next() throws vp::InputError naming the source on a bad pose.
@@ -73,7 +74,7 @@ public:
 private:
   std::string Name;
   std::unique_ptr<NumericCsvReader> Csv;
-  std::vector<TrackedPose> Poses; // a JSON file's
+  std::unique_ptr<JsonPoseReader> Json;
   std::size_t Read = 0;
   std::size_t Expected = 0;
   std::size_t Columns = 0;

@@ -24,12 +24,7 @@
 
 namespace
 {
-std::string WriteBytes(const std::string& dir, const std::string& name, const std::string& bytes)
-{
-  const std::string path = dir + "/" + name;
-  std::ofstream(path, std::ios::binary).write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-  return path;
-}
+using vp::test::WriteBytes;
 
 std::string ReadError(const std::string& path)
 {

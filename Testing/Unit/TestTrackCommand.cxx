@@ -27,12 +27,6 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#if defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define VP_UNDER_ASAN 1
-#endif
-#endif
-
 namespace
 {
 using vp::test::RunTool;

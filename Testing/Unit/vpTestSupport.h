@@ -11,6 +11,14 @@
 #include <string>
 #include <sys/stat.h>
 
+// VP_UNDER_ASAN: AddressSanitizer's shadow and quarantine make a process's memory say nothing of
+// the program's own, so memory bounds are not compared under it.
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define VP_UNDER_ASAN 1
+#endif
+#endif
+
 namespace vp
 {
 namespace test
@@ -73,6 +81,14 @@ inline std::string MakeTempDir(const std::string& name)
     std::abort();
   }
   return dir;
+}
+
+/// bytes written to dir/name as they are; the path.
+inline std::string WriteBytes(const std::string& dir, const std::string& name, const std::string& bytes)
+{
+  const std::string path = dir + "/" + name;
+  std::ofstream(path, std::ios::binary).write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  return path;
 }
 
 struct ToolRun

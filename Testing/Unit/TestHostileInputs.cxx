@@ -37,23 +37,8 @@ struct BoundedRun
 BoundedRun RunBounded(const std::string& dir, const std::string& program, const std::vector<std::string>& arguments, double limitS)
 {
   const std::string out = dir + "/bounded_out.txt", err = dir + "/bounded_err.txt";
-  std::vector<std::string> argv{ program };
-  argv.insert(argv.end(), arguments.begin(), arguments.end());
-  std::vector<char*> pointers;
-  for (std::string& a : argv)
-  {
-    pointers.push_back(&a[0]);
-  }
-  pointers.push_back(nullptr);
   const auto start = std::chrono::steady_clock::now();
-  const pid_t child = fork();
-  if (child == 0)
-  {
-    dup2(open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600), 1);
-    dup2(open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600), 2);
-    execv(program.c_str(), pointers.data());
-    _exit(127);
-  }
+  const pid_t child = vp::test::StartProgram(program, arguments, out, err);
   BoundedRun run;
   int status = 0;
   struct rusage usage = {};

@@ -106,13 +106,12 @@ inline std::string Slurp(const std::string& path)
   return s.str();
 }
 
-#ifdef VP_EXECUTABLE
-/// Runs the tool with arguments; environment ("NAME=value ...") is set for it alone.
-/// Starts the vesselproximity executable with arguments, its output silenced, and returns its
-/// process id at once (for tests that interrupt it); -1 when it cannot be started.
-inline pid_t StartTool(const std::vector<std::string>& arguments)
+/// Starts program with arguments, its stdout and stderr going to the given files, and returns
+/// its process id at once; -1 when it cannot be started.
+inline pid_t StartProgram(const std::string& program, const std::vector<std::string>& arguments,
+  const std::string& outFile = "/dev/null", const std::string& errFile = "/dev/null")
 {
-  std::vector<std::string> argv{ VP_EXECUTABLE };
+  std::vector<std::string> argv{ program };
   argv.insert(argv.end(), arguments.begin(), arguments.end());
   std::vector<char*> pointers;
   for (std::string& a : argv)
@@ -123,15 +122,23 @@ inline pid_t StartTool(const std::vector<std::string>& arguments)
   const pid_t child = fork();
   if (child == 0)
   {
-    const int null = open("/dev/null", O_WRONLY);
-    dup2(null, 1);
-    dup2(null, 2);
-    execv(VP_EXECUTABLE, pointers.data());
+    dup2(open(outFile.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600), 1);
+    dup2(open(errFile.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600), 2);
+    execv(program.c_str(), pointers.data());
     _exit(127);
   }
   return child;
 }
 
+#ifdef VP_EXECUTABLE
+/// Starts the vesselproximity executable with arguments, its output silenced, and returns its
+/// process id at once (for tests that interrupt it); -1 when it cannot be started.
+inline pid_t StartTool(const std::vector<std::string>& arguments)
+{
+  return StartProgram(VP_EXECUTABLE, arguments);
+}
+
+/// Runs the tool with arguments; environment ("NAME=value ...") is set for it alone.
 inline ToolRun RunTool(const std::string& dir, const std::string& arguments, const std::string& environment = std::string())
 {
   const std::string out = dir + "/stdout.txt", err = dir + "/stderr.txt";

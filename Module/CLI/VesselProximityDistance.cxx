@@ -7,7 +7,6 @@
 #include "vpDistanceEngineSettings.h"
 #include "vpInputError.h"
 #include "vpTipDistanceQuery.h"
-#include "vpVulkanContext.h"
 #include "vtkVesselMeshWriter.h"
 
 #include <vtkObject.h>
@@ -170,14 +169,7 @@ vp::TipDistanceRequest ParseRequest(const vp::cli::ParsedArguments& args)
   vp::DistanceEngineSettings settings;
   settings.Method = args.GetString("method");
   settings.RangeMm = args.GetNumber("rangeMm");
-  try
-  {
-    request.Engine = vp::MakeDistanceEngine(settings);
-  }
-  catch (const vp::DeviceError& e)
-  {
-    throw vp::cli::ExitError(4, e.what());
-  }
+  request.Engine = vp::MakeDistanceEngine(settings); // no device: exit 4 (ReportFailure)
   request.CompareWithExact = settings.Method == "both";
   request.TipsMm.push_back(args.GetPoint("tip"));
   if (args.IsSet("axis"))

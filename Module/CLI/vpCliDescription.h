@@ -213,22 +213,6 @@ public:
   }
 };
 
-/// A failure with its own exit code and one-line message (the program maps the exceptions of
-/// the code it wraps onto these, e.g. no Vulkan device -> 4).
-class ExitError : public std::runtime_error
-{
-public:
-  ExitError(int exitCode, const std::string& message)
-    : std::runtime_error(message)
-    , ExitCode(exitCode)
-  {
-  }
-  int GetExitCode() const { return this->ExitCode; }
-
-private:
-  int ExitCode;
-};
-
 /// The values of one command line, checked against the table. Every getter takes a declared
 /// name (std::logic_error otherwise) and falls back on the declared default.
 class ParsedArguments
@@ -295,15 +279,21 @@ private:
 /// "0.35", "-1").
 std::string FormatNumber(double value);
 
+/// The exception being handled (call it inside a catch), as one line on stderr, "WHO: error: ...",
+/// and its exit code: 2 usage (UsageError), 1 bad input (vp::InputError; a
+/// vp::ParameterError under the parameter that gives the setting, DisplayNameOfSetting), 4 no
+/// usable Vulkan device (vp::DeviceError), 3 out of memory or an internal error.
+int ReportFailure(const ModuleDescription& description, const std::string& who);
+
 /// What a program does once its arguments are parsed: fill results, or throw.
 using ProgramBody = std::function<void(const ParsedArguments& args, ReturnValues& results)>;
 
 /// The whole life of a CLI program: --xml, --help, --version; parse; run the body; print the
 /// return values to stdout and write them to the --returnparameterfile; map failures to one line
 /// on stderr ("PROGRAM: error: ...") and the exit code: 0 success, 1 bad input (vp::InputError),
-/// 2 usage (UsageError), ExitError's own code, 3 internal error. While the body runs, std::cerr
-/// is routed to stdout: Slicer logs anything on a CLI's stderr as an error, so progress and
-/// warnings belong on stdout and stderr carries only the error line.
+/// 2 usage (UsageError), 4 no Vulkan device, 3 internal error (ReportFailure).
+/// While the body runs, std::cerr is routed to stdout: Slicer logs anything on a CLI's stderr as
+/// an error, so progress and warnings belong on stdout and stderr carries only the error line.
 int RunProgram(const ModuleDescription& description, int argc, const char* const* argv, const ProgramBody& body);
 } // namespace cli
 } // namespace vp

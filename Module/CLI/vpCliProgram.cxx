@@ -4,6 +4,7 @@
 #include "vpCliValues.h"
 
 #include "vpInputError.h"
+#include "vpVulkanContext.h"
 #include "vtkVesselMeshWriter.h"
 
 #include <algorithm>
@@ -141,47 +142,45 @@ bool AnswerBuiltInFlag(const ModuleDescription& description, const std::vector<s
   return false;
 }
 
-/// The exception being handled, as one line on stderr and the exit code RunProgram documents.
-int ReportFailure(const ModuleDescription& description)
+} // namespace
+
+int ReportFailure(const ModuleDescription& description, const std::string& who)
 {
-  const std::string& program = description.Program;
   try
   {
     throw;
   }
   catch (const UsageError& e)
   {
-    std::cerr << program << ": error: " << e.what() << "\n";
+    std::cerr << who << ": error: " << e.what() << "\n";
     return 2;
-  }
-  catch (const ExitError& e)
-  {
-    std::cerr << program << ": error: " << e.what() << "\n";
-    return e.GetExitCode();
   }
   catch (const ParameterError& e)
   {
-    std::cerr << program << ": error: " << DisplayNameOfSetting(description, e.GetParameter()) << ": " << e.GetProblem()
-              << "\n";
+    std::cerr << who << ": error: " << DisplayNameOfSetting(description, e.GetParameter()) << ": " << e.GetProblem() << "\n";
     return 1;
   }
   catch (const InputError& e)
   {
-    std::cerr << program << ": error: " << e.what() << "\n";
+    std::cerr << who << ": error: " << e.what() << "\n";
     return 1;
+  }
+  catch (const DeviceError& e)
+  {
+    std::cerr << who << ": error: " << e.what() << "\n";
+    return 4;
   }
   catch (const std::bad_alloc&)
   {
-    std::cerr << program << ": error: out of memory\n";
+    std::cerr << who << ": error: out of memory\n";
     return 3;
   }
   catch (const std::exception& e)
   {
-    std::cerr << program << ": internal error: " << e.what() << "\n";
+    std::cerr << who << ": internal error: " << e.what() << "\n";
     return 3;
   }
 }
-} // namespace
 
 int RunProgram(const ModuleDescription& description, int argc, const char* const* argv, const ProgramBody& body)
 {
@@ -208,7 +207,7 @@ int RunProgram(const ModuleDescription& description, int argc, const char* const
   }
   catch (...)
   {
-    return ReportFailure(description);
+    return ReportFailure(description, description.Program);
   }
 }
 } // namespace cli

@@ -2,14 +2,10 @@
 
 #include "vpCommands.h"
 #include "vpArguments.h"
-#include "vpInputError.h"
-#include "vpVulkanContext.h"
 
 #include <vtkObject.h>
 
-#include <exception>
 #include <iostream>
-#include <new>
 
 namespace vp
 {
@@ -29,49 +25,6 @@ const std::vector<CommandEntry>& CommandTable()
   return table;
 }
 
-namespace
-{
-/// The exception being handled, as one line on stderr and its exit code.
-int ReportFailure(const cli::ModuleDescription& description)
-{
-  try
-  {
-    throw;
-  }
-  catch (const cli::UsageError& e)
-  {
-    std::cerr << "vesselproximity: error: " << e.what() << "\n";
-    return 2;
-  }
-  catch (const ParameterError& e)
-  {
-    std::cerr << "vesselproximity: error: " << cli::DisplayNameOfSetting(description, e.GetParameter()) << ": "
-              << e.GetProblem() << "\n";
-    return 1;
-  }
-  catch (const InputError& e)
-  {
-    std::cerr << "vesselproximity: error: " << e.what() << "\n";
-    return 1;
-  }
-  catch (const DeviceError& e)
-  {
-    std::cerr << "vesselproximity: error: " << e.what() << "\n";
-    return 4;
-  }
-  catch (const std::bad_alloc&)
-  {
-    std::cerr << "vesselproximity: error: out of memory\n";
-    return 3;
-  }
-  catch (const std::exception& e)
-  {
-    std::cerr << "vesselproximity: internal error: " << e.what() << "\n";
-    return 3;
-  }
-}
-} // namespace
-
 int RunCommandReportingErrors(const CommandEntry& command, const std::vector<std::string>& args, const ModuleServices& module)
 {
   // Our errors are reported as one line each; VTK's console chatter would break that.
@@ -89,7 +42,7 @@ int RunCommandReportingErrors(const CommandEntry& command, const std::vector<std
   }
   catch (...)
   {
-    return ReportFailure(description);
+    return cli::ReportFailure(description, "vesselproximity");
   }
 }
 } // namespace vp

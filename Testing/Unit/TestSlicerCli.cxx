@@ -772,6 +772,16 @@ TEST_F(SlicerCli, BadInputIsOneLineAndWritesNothing)
     EXPECT_FALSE(fs::exists(report)) << "no report after a failure";
     EXPECT_FALSE(fs::exists(out)) << "no output folder after a failure";
   }
+  // No Vulkan device for the z-buffer (a loader pointed at a driver file that does not exist):
+  // exit 4 with one line, as the help says, and nothing written.
+  const ToolRun noDevice = RunCli(this->Dir, "/usr/bin/env",
+    { "VK_ICD_FILENAMES=" + this->Dir + "/no-such-icd.json", DistanceProgram, "--returnparameterfile", params, "--report",
+      report, "--portalVein", pv, "--tip", "1,2,3", "--method", "zbuffer" });
+  EXPECT_EQ(noDevice.ExitCode, 4) << noDevice.Err;
+  EXPECT_EQ(Lines(noDevice.Err), 1) << noDevice.Err;
+  EXPECT_NE(noDevice.Err.find("no Vulkan device"), std::string::npos) << noDevice.Err;
+  EXPECT_FALSE(fs::exists(params));
+  EXPECT_FALSE(fs::exists(report));
 }
 
 // ---------------------------------------------------------------------------------------------

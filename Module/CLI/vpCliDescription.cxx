@@ -212,6 +212,23 @@ ModuleDescription ModuleDescription::Subcommand(
   return d;
 }
 
+std::vector<const Parameter*> ModuleDescription::IndexParameters() const
+{
+  std::vector<const Parameter*> indexed;
+  for (const auto& group : this->Groups)
+  {
+    for (const auto& p : group.Parameters)
+    {
+      if (p.GetIndex() >= 0)
+      {
+        indexed.push_back(&p);
+      }
+    }
+  }
+  std::sort(indexed.begin(), indexed.end(), [](const Parameter* a, const Parameter* b) { return a->GetIndex() < b->GetIndex(); });
+  return indexed;
+}
+
 const Parameter& ModuleDescription::Find(const std::string& name) const
 {
   for (const auto& group : this->Groups)

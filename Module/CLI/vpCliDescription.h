@@ -175,6 +175,8 @@ struct ModuleDescription
 
   /// The parameter of that name; std::logic_error when none is declared (a programming error).
   const Parameter& Find(const std::string& name) const;
+  /// The index (positional) parameters, in index order.
+  std::vector<const Parameter*> IndexParameters() const;
 
   /// One of this project's programs: category IGT, our contributor line, the given groups.
   static ModuleDescription VesselProximity(

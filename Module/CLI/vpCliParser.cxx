@@ -130,6 +130,7 @@ private:
 
 CommandLineReader::CommandLineReader(const ModuleDescription& description)
   : Description(description)
+  , Indexed(description.IndexParameters())
 {
   for (const auto& group : description.Groups)
   {
@@ -143,14 +144,8 @@ CommandLineReader::CommandLineReader(const ModuleDescription& description)
       {
         this->ByFlag["--" + p.GetLongFlag()] = &p;
       }
-      if (p.GetIndex() >= 0)
-      {
-        this->Indexed.push_back(&p);
-      }
     }
   }
-  std::sort(this->Indexed.begin(), this->Indexed.end(),
-    [](const Parameter* a, const Parameter* b) { return a->GetIndex() < b->GetIndex(); });
 }
 
 void CommandLineReader::Read(const std::vector<std::string>& args)

@@ -129,11 +129,6 @@ std::string TypeWords(const Parameter& p)
   return words;
 }
 
-} // namespace
-
-//----------------------------------------------------------------------------
-namespace
-{
 /// The opening tag of a parameter with its attributes: <point multiple="false" coordinateSystem="lps">.
 void WriteParameterTag(std::ostream& out, const Parameter& p)
 {
@@ -234,23 +229,6 @@ std::string WriteXml(const ModuleDescription& description)
 //----------------------------------------------------------------------------
 namespace
 {
-std::vector<const Parameter*> IndexParameters(const ModuleDescription& description)
-{
-  std::vector<const Parameter*> indexed;
-  for (const auto& group : description.Groups)
-  {
-    for (const auto& p : group.Parameters)
-    {
-      if (p.GetIndex() >= 0)
-      {
-        indexed.push_back(&p);
-      }
-    }
-  }
-  std::sort(indexed.begin(), indexed.end(), [](const Parameter* a, const Parameter* b) { return a->GetIndex() < b->GetIndex(); });
-  return indexed;
-}
-
 /// Text wrapped at 96 columns under an indent; a line that starts with a blank is kept as written
 /// (a table, a list of keys).
 std::string Wrap(const std::string& text, const std::string& indent)
@@ -334,7 +312,7 @@ void WriteSubcommandParameterHelp(std::ostream& out, const Parameter& p)
 std::string IndexUsage(const ModuleDescription& description)
 {
   std::string text;
-  for (const Parameter* p : IndexParameters(description))
+  for (const Parameter* p : description.IndexParameters())
   {
     const std::string name = FlagHead(*p) + (p->IsMultiple() ? "..." : "");
     text += " " + (p->IsRequired() ? name : "[" + name + "]");

@@ -310,7 +310,7 @@ int RunBenchCommand(const cli::ParsedArguments& args, const ModuleServices&)
   request.ZBufferSettings = ParseEngineSettings("zbuffer", args);
   if (request.Parts.count("zbuffer")) // the device opened now: a missing one fails at once
   {
-    request.ZBuffer = vtkZBufferVesselDistance::SafeDownCast(MakeDistanceEngine("zbuffer", args));
+    request.ZBuffer = vtkZBufferVesselDistance::SafeDownCast(MakeDistanceEngine(request.ZBufferSettings));
   }
   if (request.Parts.count("replay"))
   {

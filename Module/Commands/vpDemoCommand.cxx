@@ -17,8 +17,9 @@ namespace
 {
 } // namespace
 
-void PrintDemoTable(const DemoReport& report, const nlohmann::json& summary)
+void PrintDemoTable(const DemoReport& report)
 {
+  const nlohmann::json summary(report.Summary); // by class name, as the table lists them
   std::printf("\nVesselProximity demo: %d frames, method %s\n", report.Frames, report.Method.c_str());
   if (!report.MethodNote.empty())
   {
@@ -88,7 +89,7 @@ cli::ModuleDescription DescribeDemoCommand()
 int RunDemoCommand(const cli::ParsedArguments& args, const ModuleServices& module)
 {
   const DemoReport report = RunDemoPipeline(module, args.GetString("output"), !args.GetBoolean("noScreenshots"), ParseFrameBudgetMs(args));
-  PrintDemoTable(report, nlohmann::json(report.Summary)); // by class name, as the table lists them
+  PrintDemoTable(report);
   return 0;
 }
 } // namespace vp

@@ -196,7 +196,7 @@ vtkSmartPointer<vtkVesselProximityLogic> MakeDemoTipLogic(const ModuleServices& 
 }
 
 /// The phantom's DICOM series, read back and modelled as any patient's; the report keeps the
-/// surfaces and where their files will be, and the models name the series where they will be.
+/// surfaces, the vessels name their files where they will be, and the models the series.
 std::vector<NamedMesh> BuildDemoModels(DemoReport& report, RunFolder& run)
 {
   const std::string staged = run.Folder("dicom");
@@ -214,7 +214,6 @@ std::vector<NamedMesh> BuildDemoModels(DemoReport& report, RunFolder& run)
   std::vector<NamedMesh> vessels;
   for (const VesselClassModel& m : set.Models)
   {
-    report.ModelFiles[m.ClassName] = report.OutDir + "/models/" + m.ClassName + ".stl";
     report.Surfaces[m.ClassName] = m.Surface;
   }
   for (const char* c : VesselClasses)
@@ -223,7 +222,7 @@ std::vector<NamedMesh> BuildDemoModels(DemoReport& report, RunFolder& run)
     {
       throw InputError(report.DicomFolder, std::string("no model was built for ") + c);
     }
-    vessels.push_back({ c, report.ModelFiles[c], report.Surfaces[c], std::nullopt });
+    vessels.push_back({ c, report.OutDir + "/models/" + c + ".stl", report.Surfaces[c], std::nullopt });
   }
   return vessels;
 }
@@ -248,7 +247,6 @@ DemoReport RunDemoPipeline(const ModuleServices& module, const std::string& outD
     { "scalpel and trajectory",
       [&] {
         WriteDefaultScalpel(run.Folder("scalpel"));
-        report.ScalpelFile = outDir + "/scalpel/CusaHandpiece.stl";
         report.PosesFile = outDir + "/poses.csv";
         report.Trajectory = DesignDemoTrajectory(report.Phantom);
         WriteFileAtomically(run.File("poses.csv"), FormatPoseCsv(report.Trajectory.Poses));

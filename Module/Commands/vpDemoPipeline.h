@@ -25,9 +25,7 @@ struct DemoReport
   std::string OutDir;
   std::vector<std::pair<std::string, double>> StageSeconds; ///< in the order they ran
   std::string DicomFolder;                                  ///< one series per structure
-  std::map<std::string, std::string> ModelFiles;            ///< class -> STL (liver included)
   std::map<std::string, vtkSmartPointer<vtkPolyData>> Surfaces; ///< class -> the model as built
-  std::string ScalpelFile;
   std::string PosesFile;
   LiverPhantom Phantom;     ///< as generated (its analytic centrelines included)
   DemoTrajectory Trajectory; ///< the designed path and its key points
@@ -60,7 +58,7 @@ vtkSmartPointer<vtkVesselProximityLogic> MakeDemoTipLogic(const ModuleServices& 
 
 /// The demo's terminal table: stage times, each class's closest approach, the level changes,
 /// the engines' agreement and where the outputs are.
-void PrintDemoTable(const DemoReport& report, const nlohmann::json& summary);
+void PrintDemoTable(const DemoReport& report);
 } // namespace vp
 
 #endif

@@ -79,7 +79,7 @@ std::vector<DangerLevel> ExactLevels(const ModuleServices& module, const DemoRep
   });
   logic->GetTrackingLogic()->AddObserver(vtkScalpelTrackingLogic::DangerLevelChangedEvent, onChange);
   std::vector<DangerLevel> levels;
-  for (const TrackedPose& pose : ReadPoseFile(report.PosesFile)) // the poses as written
+  for (const TrackedPose& pose : report.Trajectory.Poses) // the poses the track stage ran
   {
     levels.push_back(logic->ProcessPose(pose).Level);
   }
@@ -232,7 +232,7 @@ int RunSelfTestCommand(const cli::ParsedArguments& args, const ModuleServices& m
   const DemoReport report = RunDemoPipeline(module, outDir, !args.GetBoolean("noScreenshots"));
   // The checks read what the run returned, typed; of its files they check only that each is there.
   const nlohmann::json summary(report.Summary);
-  PrintDemoTable(report, summary);
+  PrintDemoTable(report);
   std::printf("\nself-test:\n");
   Checks checks;
   CheckModels(report, checks);

@@ -5,10 +5,50 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
-#include <tuple>
 
 namespace vp
 {
+namespace
+{
+/// The bits of v (below 2^21) spread to every third bit.
+std::uint64_t Spread(std::uint64_t v)
+{
+  v &= 0x1FFFFF;
+  v = (v | v << 32) & 0x1F00000000FFFFull;
+  v = (v | v << 16) & 0x1F0000FF0000FFull;
+  v = (v | v << 8) & 0x100F00F00F00F00Full;
+  v = (v | v << 4) & 0x10C30C30C30C30C3ull;
+  v = (v | v << 2) & 0x1249249249249249ull;
+  return v;
+}
+
+/// The node's sphere: the centre of its points' box, and the farthest of them from it.
+void Enclose(SurfaceSamples::Node& node, const std::vector<std::array<double, 3>>& points)
+{
+  std::array<double, 3> lo = points[node.First], hi = lo;
+  for (std::size_t j = node.First; j < node.First + node.Count; ++j)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      lo[k] = std::min(lo[k], points[j][k]);
+      hi[k] = std::max(hi[k], points[j][k]);
+    }
+  }
+  double r2 = 0.0;
+  for (int k = 0; k < 3; ++k)
+  {
+    node.CentreMm[k] = 0.5 * (lo[k] + hi[k]);
+  }
+  for (std::size_t j = node.First; j < node.First + node.Count; ++j)
+  {
+    const auto& p = points[j];
+    const double dx = p[0] - node.CentreMm[0], dy = p[1] - node.CentreMm[1], dz = p[2] - node.CentreMm[2];
+    r2 = std::max(r2, dx * dx + dy * dy + dz * dz);
+  }
+  node.RadiusMm = std::sqrt(r2) + 1e-9; // rounding of the transform must not put a point outside
+}
+} // namespace
+
 SurfaceSamples SurfaceSamples::Of(std::vector<std::array<double, 3>> points,
   std::vector<std::array<std::int32_t, 3>> triangles, double spacingMm, double clusterMm)
 {
@@ -25,65 +65,110 @@ SurfaceSamples SurfaceSamples::Of(std::vector<std::array<double, 3>> points,
       used[static_cast<std::size_t>(i)] = 1;
     }
   }
-  // Clusters: the cubes of clusterMm the points fall in, in a stable order (sorted by cube, then
-  // by point: a million points sort in a fraction of what a tree of cubes takes).
+  std::array<long long, 3> lowest{ { 0, 0, 0 } };
+  bool any = false;
+  auto cubeOf = [clusterMm](const std::array<double, 3>& p, int k) { return static_cast<long long>(std::floor(p[k] / clusterMm)); };
+  for (std::size_t i = 0; i < points.size(); ++i)
+  {
+    for (int k = 0; used[i] && k < 3; ++k)
+    {
+      lowest[k] = any ? std::min(lowest[k], cubeOf(points[i], k)) : cubeOf(points[i], k);
+    }
+    any = any || used[i];
+  }
+  if (!any)
+  {
+    throw std::invalid_argument("vp::SurfaceSamples: the surface has no triangles");
+  }
+  // Points sorted by their leaf's Morton code, then by point (a stable order): every cube of any
+  // level is then one run.
   struct Keyed
   {
-    std::array<long long, 3> Cube;
+    std::uint64_t Code;
     std::size_t Point;
-    bool operator<(const Keyed& o) const { return std::tie(this->Cube, this->Point) < std::tie(o.Cube, o.Point); }
+    bool operator<(const Keyed& o) const { return this->Code != o.Code ? this->Code < o.Code : this->Point < o.Point; }
   };
   std::vector<Keyed> keyed;
   keyed.reserve(points.size());
   for (std::size_t i = 0; i < points.size(); ++i)
   {
-    if (used[i])
+    if (!used[i])
     {
-      const auto& p = points[i];
-      keyed.push_back({ { static_cast<long long>(std::floor(p[0] / clusterMm)), static_cast<long long>(std::floor(p[1] / clusterMm)),
-                          static_cast<long long>(std::floor(p[2] / clusterMm)) },
-        i });
+      continue;
     }
+    std::uint64_t code = 0;
+    for (int k = 0; k < 3; ++k)
+    {
+      const long long cube = cubeOf(points[i], k) - lowest[k];
+      if (cube >= (1 << 21))
+      {
+        throw std::invalid_argument("vp::SurfaceSamples: the surface spans more than 2^21 clusters along an axis");
+      }
+      code |= Spread(static_cast<std::uint64_t>(cube)) << k;
+    }
+    keyed.push_back({ code, i });
   }
   std::sort(keyed.begin(), keyed.end());
+
   SurfaceSamples out;
   out.SpacingMm = spacingMm;
   out.Points.reserve(keyed.size());
+  struct Placed
+  {
+    std::uint64_t Code; // the node's cube at the level being built
+    std::uint32_t Node;
+  };
+  std::vector<Placed> level;
   for (std::size_t first = 0; first < keyed.size();)
   {
     std::size_t last = first;
-    while (last < keyed.size() && keyed[last].Cube == keyed[first].Cube)
+    Node leaf;
+    leaf.First = static_cast<std::uint32_t>(out.Points.size());
+    for (; last < keyed.size() && keyed[last].Code == keyed[first].Code; ++last)
     {
-      ++last;
+      out.Points.push_back(points[keyed[last].Point]);
     }
-    Cluster c;
-    c.First = static_cast<std::uint32_t>(out.Points.size());
-    c.Count = static_cast<std::uint32_t>(last - first);
-    std::array<double, 3> lo = points[keyed[first].Point], hi = lo;
-    for (std::size_t j = first; j < last; ++j)
-    {
-      const auto& p = points[keyed[j].Point];
-      out.Points.push_back(p);
-      for (int k = 0; k < 3; ++k)
-      {
-        lo[k] = std::min(lo[k], p[k]);
-        hi[k] = std::max(hi[k], p[k]);
-      }
-    }
-    for (int k = 0; k < 3; ++k)
-    {
-      c.CentreMm[k] = 0.5 * (lo[k] + hi[k]);
-    }
-    for (std::size_t j = c.First; j < out.Points.size(); ++j)
-    {
-      const auto& p = out.Points[j];
-      const double dx = p[0] - c.CentreMm[0], dy = p[1] - c.CentreMm[1], dz = p[2] - c.CentreMm[2];
-      c.RadiusMm = std::max(c.RadiusMm, std::sqrt(dx * dx + dy * dy + dz * dz));
-    }
-    c.RadiusMm += 1e-9; // rounding of the transform must not put a point outside
-    out.Clusters.push_back(c);
+    leaf.Count = static_cast<std::uint32_t>(last - first);
+    Enclose(leaf, out.Points);
+    level.push_back({ keyed[first].Code, static_cast<std::uint32_t>(out.Nodes.size()) });
+    out.Nodes.push_back(leaf);
     first = last;
   }
-  return out;
+  out.NumberOfLeaves = out.Nodes.size();
+  while (level.size() > 1)
+  {
+    std::vector<Placed> above;
+    for (std::size_t first = 0; first < level.size();)
+    {
+      const std::uint64_t code = level[first].Code >> 3;
+      std::size_t last = first;
+      while (last < level.size() && level[last].Code >> 3 == code)
+      {
+        ++last;
+      }
+      if (last - first == 1)
+      {
+        above.push_back({ code, level[first].Node }); // a cube holding one cube: that cube
+      }
+      else
+      {
+        Node node;
+        node.First = out.Nodes[level[first].Node].First;
+        node.FirstChild = static_cast<std::uint32_t>(out.Children.size());
+        node.ChildCount = static_cast<std::uint32_t>(last - first);
+        for (std::size_t j = first; j < last; ++j)
+        {
+          out.Children.push_back(level[j].Node);
+          node.Count += out.Nodes[level[j].Node].Count;
+        }
+        Enclose(node, out.Points);
+        above.push_back({ code, static_cast<std::uint32_t>(out.Nodes.size()) });
+        out.Nodes.push_back(node);
+      }
+      first = last;
+    }
+    level.swap(above);
+  }
+  return out; // the last node made is the root (a single leaf when there is one)
 }
 } // namespace vp

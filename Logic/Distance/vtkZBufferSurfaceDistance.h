@@ -24,12 +24,13 @@ class CellDistanceField;
 /// rebuilt when the tool moves, and no sample costs a GPU round trip.
 ///
 /// The instrument is sampled once (vp::SurfaceSamples: every surface point within
-/// SampleSpacingMm of a sample, grouped in clusters of 2 mm). After each rendering of the layers,
+/// SampleSpacingMm of a sample, in a tree of spheres). After each rendering of the layers,
 /// a distance field of the marked cells is built on the host from the layers' occupancy
 /// (vp::CellDistanceField: a byte per cell, exact distances between cell centres, in linear
 /// time), which bounds the distance from any point from below and above in constant time. Per
-/// pose, each cluster is bounded from below at its centre, and only the clusters that can still
-/// hold the nearest sample are opened, nearest first, after the previous frame's closest samples.
+/// pose, after the previous frame's closest samples, the tree is walked best first: a node is
+/// bounded from below at its centre, and opened only while it can still hold the nearest sample,
+/// so the parts of the instrument far from every vessel cost a bound each, not one per sample.
 ///
 /// Bound: with the samples' least lower and upper bounds lo and hi, the truth lies in
 /// [lo - SampleSpacingMm, hi]. The answer is the lower end, never above the truth (it may

@@ -11,6 +11,8 @@
 #include "vtkVesselMeshReader.h"
 #include "vpBlockDistanceField.h"
 #include "vpCellDistanceField.h"
+#include "vpSurfaceSamples.h"
+#include "vpVesselSurface.h"
 #include "vtkZBufferSurfaceDistance.h"
 #include "vtkZBufferVesselDistance.h"
 #include "vpVulkanTestSupport.h"
@@ -21,6 +23,7 @@
 #include <vtkPolyData.h>
 #include <vtkSTLReader.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -359,6 +362,75 @@ TEST(CellDistanceField, BoundsTheDistanceToAnySurfaceThroughTheMarkedCells)
       EXPECT_GT(beyondReach, 20);
     }
     EXPECT_GT(descended, 500) << "k " << k;
+  }
+}
+
+// The instrument's samples as the whole-instrument search walks them: every sample in exactly one
+// leaf, each leaf one cube of the leaf edge, each node's points one run made of its children's
+// runs in order, at least two children above a leaf, and every point of a node inside its sphere
+// (a point outside would let the search set aside the nearest sample).
+TEST(SurfaceSamples, ATreeOfSpheresHoldsEverySampleOnce)
+{
+  const vp::VesselSurface tool("shaft", ToolShaft());
+  const double spacing = 0.2, leafMm = 0.5;
+  const vp::SurfaceSamples s = vp::SurfaceSamples::Of(tool.PointArray(), tool.TriangleArray(), spacing, leafMm);
+  ASSERT_GT(s.Points.size(), 1000u);
+  ASSERT_GT(s.NumberOfLeaves, 100u);
+  ASSERT_GT(s.Nodes.size(), s.NumberOfLeaves);
+  const vp::SurfaceSamples::Node& root = s.Nodes[s.Root()];
+  EXPECT_EQ(root.First, 0u);
+  EXPECT_EQ(root.Count, s.Points.size());
+  std::vector<int> leafSeen(s.NumberOfLeaves, 0);
+  std::vector<std::uint32_t> stack{ s.Root() };
+  std::size_t internal = 0;
+  while (!stack.empty())
+  {
+    const std::uint32_t n = stack.back();
+    stack.pop_back();
+    const vp::SurfaceSamples::Node& node = s.Nodes[n];
+    ASSERT_GT(node.Count, 0u);
+    for (std::uint32_t i = node.First; i < node.First + node.Count; ++i)
+    {
+      const auto& p = s.Points[i];
+      const double d = std::sqrt(std::pow(p[0] - node.CentreMm[0], 2) + std::pow(p[1] - node.CentreMm[1], 2) +
+        std::pow(p[2] - node.CentreMm[2], 2));
+      ASSERT_LE(d, node.RadiusMm) << "node " << n << ", point " << i;
+    }
+    if (node.ChildCount == 0)
+    {
+      ASSERT_LT(n, s.NumberOfLeaves);
+      ++leafSeen[n];
+      EXPECT_LE(node.RadiusMm, std::sqrt(3.0) / 2.0 * leafMm + 1e-6) << "leaf " << n;
+      const auto& first = s.Points[node.First];
+      for (std::uint32_t i = node.First; i < node.First + node.Count; ++i)
+      {
+        for (int k = 0; k < 3; ++k)
+        {
+          ASSERT_EQ(std::floor(s.Points[i][k] / leafMm), std::floor(first[k] / leafMm)) << "leaf " << n;
+        }
+      }
+      continue;
+    }
+    ++internal;
+    ASSERT_GE(node.ChildCount, 2u) << "node " << n;
+    std::uint32_t next = node.First;
+    for (std::uint32_t j = 0; j < node.ChildCount; ++j)
+    {
+      const std::uint32_t child = s.Children[node.FirstChild + j];
+      ASSERT_LT(child, n) << "children are made before their parent";
+      ASSERT_EQ(s.Nodes[child].First, next) << "node " << n << ", child " << j;
+      next += s.Nodes[child].Count;
+      stack.push_back(child);
+    }
+    ASSERT_EQ(next, node.First + node.Count) << "node " << n;
+  }
+  EXPECT_EQ(internal + s.NumberOfLeaves, s.Nodes.size()) << "every node is reached from the root";
+  EXPECT_EQ(std::count(leafSeen.begin(), leafSeen.end(), 1), static_cast<std::ptrdiff_t>(s.NumberOfLeaves));
+  // Every sample lies on the surface's triangles' vertices after splitting: the corners stay.
+  for (const auto& corner : tool.PointArray())
+  {
+    const bool kept = std::any_of(s.Points.begin(), s.Points.end(), [&](const std::array<double, 3>& p) { return p == corner; });
+    ASSERT_TRUE(kept);
   }
 }
 

@@ -19,7 +19,7 @@ layout(local_size_x = 64) in;
 
 void main()
 {
-  uint cls = gl_WorkGroupID.y;
+  uint cls = gl_WorkGroupID.y + uint(P.FirstClass);
   uint point = gl_WorkGroupID.z;
   uint index = gl_GlobalInvocationID.x + uint(P.FirstEntry);
   if (index >= uint(P.EndEntry))
@@ -35,6 +35,7 @@ void main()
     return;
   }
 
+  BeginAnswer(answer);
   ivec2 tile = TileToVisit(cls, stateBase, index);
   if (tile.x < 0)
   {

@@ -25,6 +25,11 @@ layout(std430, binding = 7) readonly buffer Points { vec4 Point[]; };
 // and, among equal ones, the lowest-numbered record, the one the host once found by scanning
 // them all. All ones before any record is offered (ReduceProximity.comp resets it).
 layout(std430, binding = 8) buffer Choices { uint64_t Choice[]; };
+// Per point and class, a distance the answer is known not to exceed (mm; +infinity when none is
+// known): the host's bound from the vessels' coarse blocks or from the answer before. Tiles
+// farther than it are skipped from the start, as they would be once the best was found; on a GPU,
+// where a dispatch's tiles all start at once, they would otherwise all do their work.
+layout(std430, binding = 9) readonly buffer Ceilings { float CeilingMm[]; };
 
 layout(push_constant) uniform Parameters
 {
@@ -49,11 +54,16 @@ layout(push_constant) uniform Parameters
   // visits the tiles nearest each tip, then the rest, which the best found so far mostly skips.
   int FirstEntry;
   int EndEntry;
+  // This dispatch's first class (workgroup y counts from it): the tiles are dispatched class by
+  // class, each as far as its own ceilings reach.
+  int FirstClass;
 } P;
 
-// This invocation's point (set first thing in main).
+// This invocation's point (set first thing in main), and the least of the range and its answer's
+// ceiling (BeginAnswer).
 vec3 Tip;
 vec3 AxisMm;
+float Ceiling;
 
 // glslang 12 rejects a global const initialised from uintBitsToFloat.
 #define Inf uintBitsToFloat(0x7F800000u)
@@ -254,10 +264,18 @@ void AnswerLane(uint cls, uint stateBase, int lane)
   }
 }
 
-// The least distance offered so far, or the range when none is (the state starts at infinity).
+// The answer this invocation works on (point x classes + class): its ceiling.
+void BeginAnswer(uint answer)
+{
+  Ceiling = min(P.RangeMm, CeilingMm[answer]);
+}
+
+// The least distance offered so far, or the range (or the answer's ceiling, when lower) when none
+// is (the state starts at infinity). Answers do not depend on the ceiling as long as it is not
+// below the answer: no pixel that gives the answer is ever cut off.
 float BestSoFar(uint stateBase)
 {
-  return min(uintBitsToFloat(State[stateBase]), P.RangeMm);
+  return min(uintBitsToFloat(State[stateBase]), Ceiling);
 }
 
 // The tile of the order table's entry, or ivec2(-1) when no pixel of it can be nearer than the

@@ -23,7 +23,7 @@ shared float CandidateDepth[64];
 
 void main()
 {
-  uint cls = gl_WorkGroupID.y;
+  uint cls = gl_WorkGroupID.y + uint(P.FirstClass);
   uint point = gl_WorkGroupID.z;
   uint entry = gl_WorkGroupID.x + uint(P.FirstEntry); // EndEntry: this dispatch's workgroups end it
   uint k = gl_LocalInvocationID.x;
@@ -37,6 +37,7 @@ void main()
     return;
   }
 
+  BeginAnswer(answer);
   ivec2 tile = TileToVisit(cls, stateBase, entry);
   float d = Inf;
   float depth = 0.0;

@@ -1,5 +1,6 @@
 #include "vtkZBufferVesselDistance.h"
 
+#include "vpBlockDistanceField.h"
 #include "vpComputeKernel.h"
 #include "vpEdgeSplitting.h"
 #include "vpGpuBuffer.h"
@@ -70,8 +71,9 @@ struct QueryParameters
   std::int32_t Classes;
   std::int32_t DirectionalLanes;
   std::int32_t FirstEntry, EndEntry;
+  std::int32_t FirstClass;
 };
-static_assert(sizeof(QueryParameters) == 76, "push constant layout of QueryProximity.comp");
+static_assert(sizeof(QueryParameters) == 80, "push constant layout of QueryProximity.comp");
 
 // Lanes that share the directional walk on a GPU (see QueryProximity.comp).
 constexpr std::int32_t GpuDirectionalLanes = 64;
@@ -144,6 +146,24 @@ struct vtkZBufferVesselDistance::Internals
   // tile (mm), ascending: the tiles a shorter search needs are a prefix of the table.
   std::vector<double> OrderGapMm;
   std::unique_ptr<vp::GpuBuffer> Order, State, Choices, Records, HostState, Points;
+  // Per point and class the answer's ceiling (mm), and per class the sizes of its two tile
+  // dispatches (VkDispatchIndirectCommand: the near tiles of a batch for every class, then the
+  // rest for every class), written by the host before every submission.
+  std::unique_ptr<vp::GpuBuffer> Ceilings, DispatchSizes;
+  // The ceilings' sources: the coarse blocks of the current rendering, and per class the latest
+  // answer (tip, and the distance to its nearest marked cell) on the rendering it was made on.
+  std::unique_ptr<vp::BlockDistanceField> CeilingBlocks;
+  int CeilingBlocksRender = -1;
+  double CeilingBuildMs = 0.0;
+  struct LastAnswer
+  {
+    bool Known = false;
+    double TipMm[3] = { 0, 0, 0 };
+    double CellMm = 0.0;
+  };
+  std::vector<LastAnswer> Last;
+  int LastRender = -1;
+  std::uint32_t LastTiles = 0, LastTilesInRange = 0;
   // Tips per submission for the current order table (PrepareOrder).
   std::uint32_t Capacity = 0;
 
@@ -204,12 +224,62 @@ struct vtkZBufferVesselDistance::Internals
     this->Choices.reset();
     this->Records.reset();
     this->HostState.reset();
+    this->Ceilings.reset();
+    this->DispatchSizes.reset();
+    this->CeilingBlocks.reset();
+    this->CeilingBlocksRender = -1;
+    this->Last.clear();
+    this->LastRender = -1;
     this->Rendered = false;
     this->OrderRangeMm = -1.0;
     this->Capacity = 0;
   }
 
   std::uint32_t Classes() const { return static_cast<std::uint32_t>(this->FirstTriangle.size()); }
+
+  // The occupancy or the crossings, copied to the host (lock held).
+  void CopyLayer(bool crossings, std::vector<std::uint32_t>& words)
+  {
+    words.clear();
+    const vp::GpuBuffer* layer = crossings ? this->Crossings.get() : this->Occupancy.get();
+    if (!this->Rendered || !layer)
+    {
+      return;
+    }
+    const VkDeviceSize bytes = layer->Size();
+    vp::GpuBuffer host(*this->Context, bytes, vp::GpuBuffer::Placement::Host);
+    this->Context->Submit([&](VkCommandBuffer cmd) {
+      VkBufferCopy region{ 0, 0, bytes };
+      vkCmdCopyBuffer(cmd, layer->Handle(), host.Handle(), 1, &region);
+      vp::ComputeKernel::Barrier(cmd);
+    });
+    words.resize(static_cast<std::size_t>(bytes / 4));
+    std::memcpy(words.data(), host.Mapped(), words.size() * 4);
+  }
+
+  // The ceilings' blocks for the current rendering, and no answer remembered from an older one.
+  void PrepareCeilings()
+  {
+    if (this->LastRender != this->Renders)
+    {
+      this->Last.assign(this->Classes(), LastAnswer{});
+      this->LastRender = this->Renders;
+    }
+    if (this->CeilingBlocks && this->CeilingBlocksRender == this->Renders)
+    {
+      return;
+    }
+    const auto start = std::chrono::steady_clock::now();
+    std::vector<std::uint32_t> occupancy;
+    this->CopyLayer(false, occupancy);
+    // Blocks of 4 cells, at least 1.6 mm: about a 64th of the cells (a few MB at 0.4 mm), and
+    // the bound a few millimetres above the truth, which leaves a tip a few hundred tiles of
+    // a 50 mm range's thousands.
+    this->CeilingBlocks = std::make_unique<vp::BlockDistanceField>(
+      this->Grid, static_cast<int>(this->Classes()), occupancy, std::max(1.6, 4.0 * this->Grid.PixelMm));
+    this->CeilingBlocksRender = this->Renders;
+    this->CeilingBuildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  }
 
   void Render()
   {
@@ -306,11 +376,14 @@ struct vtkZBufferVesselDistance::Internals
     this->HostState = std::make_unique<vp::GpuBuffer>(*this->Context, stateBytes, Placement::Host);
     this->Points =
       std::make_unique<vp::GpuBuffer>(*this->Context, sizeof(PointRecord) * this->Capacity, Placement::HostToDevice);
+    this->Ceilings = std::make_unique<vp::GpuBuffer>(*this->Context, 4ull * classes * this->Capacity, Placement::HostToDevice);
+    this->DispatchSizes = std::make_unique<vp::GpuBuffer>(
+      *this->Context, 2ull * classes * sizeof(VkDispatchIndirectCommand), Placement::HostToDevice);
     for (vp::ComputeKernel* query : { this->Query.get(), this->QueryPerPixel.get() })
     {
       query->BindBuffers({ this->Occupancy->Handle(), this->Crossings->Handle(), this->DepthRanges->Handle(),
         this->TileRanges->Handle(), this->Order->Handle(), this->State->Handle(), this->Records->Handle(),
-        this->Points->Handle(), this->Choices->Handle() });
+        this->Points->Handle(), this->Choices->Handle(), this->Ceilings->Handle() });
     }
     this->Reduce->BindBuffers(
       { this->State->Handle(), this->Records->Handle(), this->HostState->Handle(), this->Choices->Handle() });
@@ -510,6 +583,31 @@ double vtkZBufferVesselDistance::GetLastQueryDeviceMs() const
   return this->Impl->Context && this->Impl->Capacity > 0 ? this->Impl->Context->DeviceMs() : -1.0;
 }
 
+std::size_t vtkZBufferVesselDistance::GetLastQueryTiles() const
+{
+  std::lock_guard<std::mutex> lock(this->Impl->Lock);
+  return this->Impl->LastTiles;
+}
+
+std::size_t vtkZBufferVesselDistance::GetLastQueryTilesInRange() const
+{
+  std::lock_guard<std::mutex> lock(this->Impl->Lock);
+  return this->Impl->LastTilesInRange;
+}
+
+double vtkZBufferVesselDistance::GetCeilingBuildTimeMs() const
+{
+  std::lock_guard<std::mutex> lock(this->Impl->Lock);
+  return this->Impl->CeilingBuildMs;
+}
+
+void vtkZBufferVesselDistance::SetQueryCeilings(bool on)
+{
+  // No Modified(): no answer changes, and what is built on the layers (the whole instrument's
+  // field) must not be built again.
+  this->QueryCeilings = on;
+}
+
 std::size_t vtkZBufferVesselDistance::GetNumberOfRasterTriangles() const
 {
   return this->Impl->RasterTriangles;
@@ -651,13 +749,13 @@ void vtkZBufferVesselDistance::BuildInternal()
     context, SummarizeTiles_comp, SummarizeTiles_comp_size, 2, static_cast<std::uint32_t>(sizeof(TileParameters)));
   s.Tiles->BindBuffers({ s.DepthRanges->Handle(), s.TileRanges->Handle() });
   s.Query = std::make_unique<vp::ComputeKernel>(
-    context, QueryProximity_comp, QueryProximity_comp_size, 9, static_cast<std::uint32_t>(sizeof(QueryParameters)));
+    context, QueryProximity_comp, QueryProximity_comp_size, 10, static_cast<std::uint32_t>(sizeof(QueryParameters)));
   s.QueryPerPixel = std::make_unique<vp::ComputeKernel>(context, QueryProximityPerPixel_comp,
-    QueryProximityPerPixel_comp_size, 9, static_cast<std::uint32_t>(sizeof(QueryParameters)));
+    QueryProximityPerPixel_comp_size, 10, static_cast<std::uint32_t>(sizeof(QueryParameters)));
   s.Reduce = std::make_unique<vp::ComputeKernel>(
     context, ReduceProximity_comp, ReduceProximity_comp_size, 4, static_cast<std::uint32_t>(sizeof(ReduceParameters)));
 
-  s.Renders = 0;
+  s.Renders = 0; // Release() dropped the ceilings of the renderings before
   if (!moving && classes > 0)
   {
     s.Render();
@@ -748,22 +846,51 @@ void vtkZBufferVesselDistance::CopyCrossings(std::vector<std::uint32_t>& words) 
 void vtkZBufferVesselDistance::CopyLayer(bool crossings, std::vector<std::uint32_t>& words) const
 {
   std::lock_guard<std::mutex> lock(this->Impl->Lock);
+  this->Impl->CopyLayer(crossings, words);
+}
+
+void vtkZBufferVesselDistance::WriteCeilings(
+  const std::array<double, 3>* tips, std::size_t count, double searchMm, std::vector<std::uint32_t>& tiles) const
+{
   Internals& s = *this->Impl;
-  words.clear();
-  const vp::GpuBuffer* layer = crossings ? s.Crossings.get() : s.Occupancy.get();
-  if (!s.Rendered || !layer)
+  const std::uint32_t classes = s.Classes();
+  const std::uint32_t orderCount = s.OrderCountWithin(searchMm);
+  auto* ceiling = static_cast<float*>(s.Ceilings->Mapped());
+  constexpr float None = std::numeric_limits<float>::infinity();
+  tiles.assign(classes, orderCount);
+  if (!this->QueryCeilings || this->BoxMode != FixedAroundVessels)
   {
+    std::fill(ceiling, ceiling + count * classes, None);
     return;
   }
-  const VkDeviceSize bytes = layer->Size();
-  vp::GpuBuffer host(*s.Context, bytes, vp::GpuBuffer::Placement::Host);
-  s.Context->Submit([&](VkCommandBuffer cmd) {
-    VkBufferCopy region{ 0, 0, bytes };
-    vkCmdCopyBuffer(cmd, layer->Handle(), host.Handle(), 1, &region);
-    vp::ComputeKernel::Barrier(cmd);
-  });
-  words.resize(static_cast<std::size_t>(bytes / 4));
-  std::memcpy(words.data(), host.Mapped(), words.size() * 4);
+  s.PrepareCeilings();
+  // The device's distances are floats from float coordinates: margins far above their rounding.
+  auto above = [](double mm) { return mm * (1.0 + 1e-5) + 1e-3; };
+  for (std::uint32_t c = 0; c < classes; ++c)
+  {
+    double highest = -1.0; // the farthest any tip of the class needs to look (none: below 0)
+    for (std::size_t i = 0; i < count; ++i)
+    {
+      const double* tip = tips[i].data();
+      double bound = s.CeilingBlocks->UpperBoundMm(static_cast<int>(c), tip);
+      const Internals::LastAnswer& last = s.Last[c];
+      if (last.Known)
+      {
+        const double moved = std::sqrt((tip[0] - last.TipMm[0]) * (tip[0] - last.TipMm[0]) +
+          (tip[1] - last.TipMm[1]) * (tip[1] - last.TipMm[1]) + (tip[2] - last.TipMm[2]) * (tip[2] - last.TipMm[2]));
+        bound = std::min(bound, last.CellMm + moved);
+      }
+      bound = above(bound);
+      ceiling[i * classes + c] = bound < searchMm ? std::nextafter(static_cast<float>(bound), None) : None;
+      // Every marked cell farther than the search: nothing to look for (out of range, as the
+      // tiles would have found).
+      if (s.CeilingBlocks->LowerBoundMm(static_cast<int>(c), tip) <= above(searchMm))
+      {
+        highest = std::max(highest, std::min(bound, searchMm));
+      }
+    }
+    tiles[c] = highest < 0.0 ? 0 : std::min(orderCount, s.OrderCountWithin(highest));
+  }
 }
 
 void vtkZBufferVesselDistance::AnswerBatch(const std::array<double, 3>* tips, std::size_t count,
@@ -823,6 +950,21 @@ void vtkZBufferVesselDistance::AnswerBatch(const std::array<double, 3>* tips, st
       (this->QueryPass == QueryPassByDevice && !s.Context->IsCpuDevice() && count <= PerPixelMaxTips)) &&
     orderCount + laneGroups <= s.Context->Limits().maxComputeWorkGroupCount[0];
   const std::uint32_t n = static_cast<std::uint32_t>(count);
+  const std::uint32_t nearEntries =
+    n > PerPixelMaxTips ? std::min(orderCount, s.OrderCountWithin(NearTiles * 8.0 * g.PixelMm)) : 0;
+  std::vector<std::uint32_t> tiles;
+  this->WriteCeilings(tips, count, searchMm, tiles);
+  auto groups = [perPixel](std::uint32_t entries) { return perPixel ? entries : (entries + 63) / 64; };
+  auto* sizes = static_cast<VkDispatchIndirectCommand*>(s.DispatchSizes->Mapped());
+  s.LastTiles = 0;
+  for (std::uint32_t c = 0; c < classes; ++c)
+  {
+    sizes[c] = { groups(std::min(nearEntries, tiles[c])), 1, n };
+    sizes[classes + c] = { groups(tiles[c] > nearEntries ? tiles[c] - nearEntries : 0), 1, n };
+    s.LastTiles += tiles[c];
+  }
+  s.LastTilesInRange = orderCount * classes;
+
   auto prepared = std::find_if(s.Prepared.begin(), s.Prepared.end(), [&](const Internals::PreparedQuery& p) {
     return p.Points == n && p.PerPixel == perPixel && std::memcmp(&p.Parameters, &q, sizeof q) == 0;
   });
@@ -841,29 +983,33 @@ void vtkZBufferVesselDistance::AnswerBatch(const std::array<double, 3>* tips, st
     entry.Commands = std::make_unique<vp::PreparedCommands>(*s.Context, [&](VkCommandBuffer cmd) {
       s.Context->ResetStamps(cmd);
       s.Context->Stamp(cmd, 0);
-      // Entries: a workgroup per tile (per pixel) or an invocation per tile (per tile), then the lanes.
-      const std::uint32_t end = orderCount + (perPixel ? laneGroups : lanes);
-      auto visit = [&](std::uint32_t first, std::uint32_t last) {
-        QueryParameters part = q;
-        part.FirstEntry = static_cast<std::int32_t>(first);
-        part.EndEntry = static_cast<std::int32_t>(last);
-        if (perPixel)
+      // Entries: a workgroup per tile (per pixel) or an invocation per tile (per tile); after the
+      // tiles, the lanes, in a dispatch of their own beside the tiles' (no barrier between: they
+      // write other words of the state), since the tiles' dispatches are cut to the ceilings.
+      auto part = [&](std::uint32_t first, std::uint32_t last, std::uint32_t firstClass) {
+        QueryParameters p = q;
+        p.FirstEntry = static_cast<std::int32_t>(first);
+        p.EndEntry = static_cast<std::int32_t>(last);
+        p.FirstClass = static_cast<std::int32_t>(firstClass);
+        return p;
+      };
+      const vp::ComputeKernel& pass = perPixel ? *s.QueryPerPixel : *s.Query;
+      const QueryParameters laneEntries = part(orderCount, orderCount + lanes, 0);
+      pass.Record(cmd, &laneEntries, perPixel ? laneGroups : (lanes + 63) / 64, classes, n);
+      // The tiles class by class, each dispatch as large as the host writes before the submission.
+      auto visit = [&](std::uint32_t first, std::uint32_t last, std::uint32_t sizesAt) {
+        for (std::uint32_t c = 0; c < classes; ++c)
         {
-          s.QueryPerPixel->Record(cmd, &part, last - first, classes, n);
-        }
-        else
-        {
-          s.Query->Record(cmd, &part, (last - first + 63) / 64, classes, n);
+          const QueryParameters tileEntries = part(first, last, c);
+          pass.RecordIndirect(cmd, &tileEntries, s.DispatchSizes->Handle(), (sizesAt + c) * sizeof(VkDispatchIndirectCommand));
         }
         vp::ComputeKernel::Barrier(cmd);
       };
-      const std::uint32_t nearEntries =
-        n > PerPixelMaxTips ? std::min(orderCount, s.OrderCountWithin(NearTiles * 8.0 * g.PixelMm)) : 0;
       if (nearEntries > 0)
       {
-        visit(0, nearEntries);
+        visit(0, nearEntries, 0);
       }
-      visit(nearEntries, end);
+      visit(nearEntries, orderCount, classes);
       s.Reduce->Record(cmd, &copy, (answers + 63) / 64); // into the host-visible answers, and resets
       vp::ComputeKernel::Barrier(cmd);
       s.Context->Stamp(cmd, 1);
@@ -899,6 +1045,14 @@ void vtkZBufferVesselDistance::AnswerBatch(const std::array<double, 3>* tips, st
       {
         out.InRange = false; // as the exact engine: no distance, no point, no inside answer
         continue;
+      }
+      if (c < s.Last.size())
+      {
+        // That cell stays marked until the next rendering: no later answer is farther than it.
+        Internals::LastAnswer& last = s.Last[c];
+        last.Known = true;
+        std::copy(tip, tip + 3, last.TipMm);
+        last.CellMm = best;
       }
       // The nearest marked cell is at most a cell diagonal nearer than the surface it holds:
       // its distance plus half a diagonal is within half a diagonal of the truth.

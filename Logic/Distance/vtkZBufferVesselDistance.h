@@ -97,6 +97,18 @@ public:
   /// time, and 1 on a CPU device, where the lanes run one after another anyway.
   void SetDirectionalLanes(int lanes);
   int GetDirectionalLanes() const { return this->DirectionalLanes; }
+  /// Whether each query starts from a ceiling on its answer (default on, with the fixed box): per
+  /// tip and class, the least of an upper bound from the vessels' coarse blocks
+  /// (vp::BlockDistanceField over the layers' occupancy, blocks of 4 cells and at least 1.6 mm,
+  /// built once per rendering) and the class's previous answer plus how far the tip moved since.
+  /// The submission dispatches, class by class, only the tiles within the highest ceiling of its
+  /// tips (an indirect dispatch whose size the host writes; none for a class whose marked cells
+  /// the blocks put beyond the search for every tip), and each tip's tiles beyond its own are
+  /// skipped from the start: a query's work follows the tip's distance, not the range, even on a GPU where all
+  /// of a dispatch's tiles start at once. The answers are the same, bit for bit, on or off (no
+  /// pixel that gives an answer lies beyond its ceiling); off is for tests and benchmarks.
+  void SetQueryCeilings(bool on);
+  bool GetQueryCeilings() const { return this->QueryCeilings; }
   /// Which Vulkan device (see vp::VulkanContext): empty (default) for the best one, an index, or
   /// part of a name.
   void SetDeviceSelector(const std::string& selector);
@@ -147,6 +159,13 @@ public:
   /// device's timestamps), in ms; negative when the device keeps no timestamps or before the
   /// first query. Beside the host's time, it tells what a query's round trip costs.
   double GetLastQueryDeviceMs() const;
+  /// Tiles per tip the latest submission dispatched (summed over the classes), and the tiles of
+  /// the order table within its search times the classes (what it dispatched without ceilings).
+  std::size_t GetLastQueryTiles() const;
+  std::size_t GetLastQueryTilesInRange() const;
+  /// Time to build the ceilings' blocks after the latest rendering (copying the occupancy to the
+  /// host included), ms; 0 before the first query with ceilings.
+  double GetCeilingBuildTimeMs() const;
   const char* GetMethodName() const override { return "zbuffer"; }
   /// The device's name and "(Vulkan)".
   std::string GetDeviceDescription() override { return this->GetDeviceName() + " (Vulkan)"; }
@@ -168,6 +187,9 @@ private:
   void CheckMovingBox(double cellMm) const;
   /// Every tip within searchMm; bins: whether the distance bins apply.
   void AnswerAll(const Points& tips, const Points* axes, double searchMm, bool bins, std::vector<vp::ProximityResult>& results) const;
+  /// Writes each tip's ceilings for the next submission (lock held), and per class the tiles of
+  /// the order table its tips need (none when every one's marked cells all lie beyond the search).
+  void WriteCeilings(const std::array<double, 3>* tips, std::size_t count, double searchMm, std::vector<std::uint32_t>& tiles) const;
   /// One submission for up to GetBatchCapacity() tips on the current layers (lock held, results begun).
   void AnswerBatch(const std::array<double, 3>* tips, std::size_t count, const std::array<double, 3>* axes, double searchMm,
     double binWidthMm, vp::ProximityResult* results) const;
@@ -180,6 +202,7 @@ private:
   int DistanceBins = 0;
   int DirectionalLanes = 0;
   int QueryPass = QueryPassByDevice;
+  bool QueryCeilings = true;
   std::string DeviceSelector;
 
   struct Internals;

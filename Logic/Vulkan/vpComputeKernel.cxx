@@ -100,8 +100,7 @@ void ComputeKernel::BindBuffers(const std::vector<VkBuffer>& buffers)
   vkUpdateDescriptorSets(this->Context.Handle(), static_cast<std::uint32_t>(writes.size()), writes.data(), 0, nullptr);
 }
 
-void ComputeKernel::Record(VkCommandBuffer cmd, const void* pushConstants, std::uint32_t x, std::uint32_t y,
-  std::uint32_t z) const
+void ComputeKernel::Bind(VkCommandBuffer cmd, const void* pushConstants) const
 {
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, this->Pipeline);
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, this->Layout, 0, 1, &this->Set, 0, nullptr);
@@ -109,10 +108,22 @@ void ComputeKernel::Record(VkCommandBuffer cmd, const void* pushConstants, std::
   {
     vkCmdPushConstants(cmd, this->Layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, this->PushBytes, pushConstants);
   }
+}
+
+void ComputeKernel::Record(VkCommandBuffer cmd, const void* pushConstants, std::uint32_t x, std::uint32_t y,
+  std::uint32_t z) const
+{
+  this->Bind(cmd, pushConstants);
   if (x && y && z)
   {
     vkCmdDispatch(cmd, x, y, z);
   }
+}
+
+void ComputeKernel::RecordIndirect(VkCommandBuffer cmd, const void* pushConstants, VkBuffer buffer, VkDeviceSize offset) const
+{
+  this->Bind(cmd, pushConstants);
+  vkCmdDispatchIndirect(cmd, buffer, offset);
 }
 
 void ComputeKernel::Barrier(VkCommandBuffer cmd)

@@ -25,10 +25,17 @@ public:
   void Record(VkCommandBuffer cmd, const void* pushConstants, std::uint32_t groupsX, std::uint32_t groupsY = 1,
     std::uint32_t groupsZ = 1) const;
 
+  /// Records a dispatch whose workgroup counts are read, when it runs, from the
+  /// VkDispatchIndirectCommand at offset in buffer (so that a recorded submission can change its
+  /// size: the host writes the counts before each submission).
+  void RecordIndirect(VkCommandBuffer cmd, const void* pushConstants, VkBuffer buffer, VkDeviceSize offset) const;
   /// Makes the shader writes recorded so far visible to later shaders and transfers.
   static void Barrier(VkCommandBuffer cmd);
 
 private:
+  /// Binds the pipeline and the descriptor set, and pushes the constants.
+  void Bind(VkCommandBuffer cmd, const void* pushConstants) const;
+
   VulkanContext& Context;
   int Buffers = 0;
   std::uint32_t PushBytes = 0;

@@ -12,7 +12,9 @@ GpuBuffer::GpuBuffer(VulkanContext& context, VkDeviceSize bytes, Placement place
   VkBufferCreateInfo info{};
   info.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO;
   info.size = bytes > 0 ? bytes : 4;
-  info.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+  // Any buffer may also hold the sizes of an indirect dispatch (the query's, written by the host).
+  info.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
+    VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
   info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
   VulkanContext::Check(vkCreateBuffer(context.Handle(), &info, nullptr, &this->Buffer), "vkCreateBuffer");
   VkMemoryRequirements req;

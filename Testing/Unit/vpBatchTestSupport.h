@@ -22,6 +22,48 @@ inline bool SameBits(double a, double b)
   return std::memcmp(&a, &b, sizeof a) == 0;
 }
 
+/// Every field of every class of two answers for the same tip equal, bit for bit. Returns how many
+/// class answers were in range in both.
+inline int ExpectSameAnswer(const ProximityResult& b, const ProximityResult& single, const std::string& what)
+{
+  EXPECT_TRUE(SameBits(b.ErrorBoundMm, single.ErrorBoundMm)) << what;
+  EXPECT_EQ(b.Classes.size(), single.Classes.size()) << what;
+  int inRange = 0;
+  for (std::size_t c = 0; c < single.Classes.size() && c < b.Classes.size(); ++c)
+  {
+    const ClassProximity& x = b.Classes[c];
+    const ClassProximity& y = single.Classes[c];
+    const std::string where = what + " class " + y.ClassName;
+    EXPECT_EQ(x.ClassName, y.ClassName) << where;
+    EXPECT_EQ(x.InRange, y.InRange) << where;
+    EXPECT_EQ(x.Inside, y.Inside) << where;
+    EXPECT_EQ(x.DirectionalMm.has_value(), y.DirectionalMm.has_value()) << where;
+    if (x.DirectionalMm && y.DirectionalMm)
+    {
+      EXPECT_TRUE(SameBits(*x.DirectionalMm, *y.DirectionalMm)) << where;
+    }
+    if (!y.InRange || !x.InRange)
+    {
+      continue;
+    }
+    ++inRange;
+    EXPECT_TRUE(SameBits(x.DistanceMm, y.DistanceMm)) << where << ": " << x.DistanceMm << " vs " << y.DistanceMm;
+    for (int k = 0; k < 3; ++k)
+    {
+      EXPECT_TRUE(SameBits(x.ClosestPoint[k], y.ClosestPoint[k])) << where;
+    }
+    EXPECT_EQ(x.TriangleId, y.TriangleId) << where;
+  }
+  return inRange;
+}
+
+/// A turning axis for tip i.
+inline std::array<double, 3> TurningAxis(std::size_t i)
+{
+  const double a = 0.37 * static_cast<double>(i);
+  return { std::cos(a), std::sin(a), 0.5 };
+}
+
 /// Every tip through ComputeProximityBatch at once and through ComputeProximity one by one, each
 /// with its own axis (a turning one): every field of every class equal, bit for bit. Returns how
 /// many class answers were in range (a test can insist that there were some).
@@ -31,8 +73,7 @@ inline int ExpectBatchEqualsSingles(vtkVesselDistanceEngine* engine, const std::
   std::vector<std::array<double, 3>> axes;
   for (std::size_t i = 0; i < tips.size(); ++i)
   {
-    const double a = 0.37 * static_cast<double>(i);
-    axes.push_back({ std::cos(a), std::sin(a), 0.5 });
+    axes.push_back(TurningAxis(i));
   }
   std::vector<ProximityResult> batch;
   engine->ComputeProximityBatch(tips, &axes, batch);
@@ -42,34 +83,7 @@ inline int ExpectBatchEqualsSingles(vtkVesselDistanceEngine* engine, const std::
   {
     ProximityResult single;
     engine->ComputeProximity(tips[i].data(), axes[i].data(), single);
-    const ProximityResult& b = batch[i];
-    EXPECT_TRUE(SameBits(b.ErrorBoundMm, single.ErrorBoundMm)) << what << " tip " << i;
-    EXPECT_EQ(b.Classes.size(), single.Classes.size()) << what << " tip " << i;
-    for (std::size_t c = 0; c < single.Classes.size() && c < b.Classes.size(); ++c)
-    {
-      const ClassProximity& x = b.Classes[c];
-      const ClassProximity& y = single.Classes[c];
-      const std::string where = what + " tip " + std::to_string(i) + " class " + y.ClassName;
-      EXPECT_EQ(x.ClassName, y.ClassName) << where;
-      EXPECT_EQ(x.InRange, y.InRange) << where;
-      EXPECT_EQ(x.Inside, y.Inside) << where;
-      EXPECT_EQ(x.DirectionalMm.has_value(), y.DirectionalMm.has_value()) << where;
-      if (x.DirectionalMm && y.DirectionalMm)
-      {
-        EXPECT_TRUE(SameBits(*x.DirectionalMm, *y.DirectionalMm)) << where;
-      }
-      if (!y.InRange || !x.InRange)
-      {
-        continue;
-      }
-      ++inRange;
-      EXPECT_TRUE(SameBits(x.DistanceMm, y.DistanceMm)) << where << ": " << x.DistanceMm << " vs " << y.DistanceMm;
-      for (int k = 0; k < 3; ++k)
-      {
-        EXPECT_TRUE(SameBits(x.ClosestPoint[k], y.ClosestPoint[k])) << where;
-      }
-      EXPECT_EQ(x.TriangleId, y.TriangleId) << where;
-    }
+    inRange += ExpectSameAnswer(batch[i], single, what + " tip " + std::to_string(i));
   }
   return inRange;
 }

@@ -109,6 +109,64 @@ Json OtherPass(vtkZBufferVesselDistance* zbuffer, const BenchPoints& tips, const
   return other;
 }
 
+/// The query's ceilings off and on (SetQueryCeilings), taking turns of 20 queries on the same
+/// engine so that both see the same clock: the random tips, and the tracked walk (where the
+/// answer before sets the ceiling). Host and device time, the share of the range's tiles
+/// dispatched, the batch off and on, and the answers that differ (none may).
+Json Ceilings(vtkZBufferVesselDistance* zbuffer, const BenchPoints& tips, const BenchPoints& track)
+{
+  constexpr std::size_t Turn = 20;
+  Json out;
+  int differ = 0;
+  for (const auto& [name, points] : { std::make_pair("random", &tips), std::make_pair("tracked", &track) })
+  {
+    std::vector<double> ms[2], deviceMs[2], share;
+    std::vector<ProximityResult> answers[2];
+    for (std::size_t first = 0; first < points->size(); first += Turn)
+    {
+      for (int on = 0; on < 2; ++on)
+      {
+        zbuffer->SetQueryCeilings(on == 1);
+        for (std::size_t i = first; i < std::min(points->size(), first + Turn); ++i)
+        {
+          ProximityResult r;
+          TimedQuery(zbuffer, (*points)[i].data(), nullptr, r, ms[on], deviceMs[on]);
+          answers[on].push_back(r);
+          if (on == 1)
+          {
+            share.push_back(static_cast<double>(zbuffer->GetLastQueryTiles()) /
+              static_cast<double>(std::max<std::size_t>(1, zbuffer->GetLastQueryTilesInRange())));
+          }
+        }
+      }
+    }
+    for (std::size_t i = 0; i < answers[0].size(); ++i)
+    {
+      for (std::size_t c = 0; c < answers[0][i].Classes.size(); ++c)
+      {
+        const ClassProximity& a = answers[0][i].Classes[c];
+        const ClassProximity& b = answers[1][i].Classes[c];
+        differ += a.InRange != b.InRange || (a.InRange && (a.DistanceMm != b.DistanceMm || a.Inside != b.Inside)) ? 1 : 0;
+      }
+    }
+    Json entry;
+    entry["off"] = Timing(ms[0]);
+    entry["on"] = Timing(ms[1]);
+    entry["off_device"] = Timing(deviceMs[0]);
+    entry["on_device"] = Timing(deviceMs[1]);
+    entry["tiles_share_median"] = Quantile(share, 0.5);
+    entry["tiles_share_p95"] = Quantile(share, 0.95);
+    out[name] = entry;
+  }
+  zbuffer->SetQueryCeilings(false);
+  out["batched_off"] = BenchBatch(zbuffer, tips, nullptr);
+  zbuffer->SetQueryCeilings(true);
+  out["batched_on"] = BenchBatch(zbuffer, tips, nullptr);
+  out["build_ms"] = zbuffer->GetCeilingBuildTimeMs();
+  out["answers_differing"] = differ;
+  return out;
+}
+
 /// The paper's layers (nearest and farthest depth only) on the same tips.
 Json PaperMode(vtkZBufferVesselDistance* zbuffer, const BenchPoints& tips)
 {
@@ -198,6 +256,8 @@ BenchJson BenchZBuffer(vtkZBufferVesselDistance* zbuffer, const std::vector<Name
   }
   entry["exact_batched"] = BenchBatch(refs.Exact, tips, nullptr);
   entry["paper_mode"] = PaperMode(zbuffer, tips);
+  std::fprintf(stderr, ", ceilings");
+  entry["ceilings"] = Ceilings(zbuffer, tips, track);
   std::fprintf(stderr, ", moving box");
   entry["moving_box"] = MovingBox(zbuffer, track);
   std::fprintf(stderr, "\n");

@@ -5,11 +5,12 @@
 // surface that is off by at most one cell diagonal; the smallest over all pixels, per class, is
 // the answer. A running best per class (atomicMin on the float's bits) lets far tiles and pixels
 // skip their work, which keeps the cost to the pixels near the vessel nearest the tip.
-// The DirectionalLanes invocations after the last tile answer "is the tip inside" and the
-// directional distance, each walking its share of the axis (one lane on a CPU device).
-// One dispatch answers a batch of points (workgroup z: the point), each with its own state and
-// records; a 64-bit minimum picks each answer's record as the tiles offer theirs, and
-// ReduceProximity.comp hands it to the host.
+// The DirectionalLanes invocations before the tiles of the last dispatch (LaneSlots) answer "is
+// the tip inside" and the directional distance, each walking its share of the axis (one lane on a
+// CPU device); the dispatch's size after them follows the answers' ceilings. A dispatch answers a
+// batch of points (workgroup z: the point), each with its own state and records; a 64-bit minimum
+// picks each answer's record as the tiles offer theirs, and ReduceProximity.comp hands it to the
+// host.
 // No shared memory and no barriers: lavapipe runs a workgroup with a barrier as coroutines, which
 // cost more than the whole query.
 #extension GL_GOOGLE_include_directive : require
@@ -19,19 +20,22 @@ layout(local_size_x = 64) in;
 
 void main()
 {
-  uint cls = gl_WorkGroupID.y + uint(P.FirstClass);
+  uint cls = gl_WorkGroupID.y;
   uint point = gl_WorkGroupID.z;
-  uint index = gl_GlobalInvocationID.x + uint(P.FirstEntry);
-  if (index >= uint(P.EndEntry))
+  // The dispatch's first LaneSlots invocations are the lanes, the rest its tiles.
+  uint slot = gl_GlobalInvocationID.x;
+  bool lane = slot < uint(P.LaneSlots);
+  uint index = slot - uint(P.LaneSlots) + uint(P.FirstEntry);
+  if (!lane && index >= uint(P.EndEntry))
   {
     return;
   }
   BeginPoint(point);
   uint answer = point * uint(P.Classes) + cls;
   uint stateBase = answer * StateStride;
-  if (index >= uint(P.OrderCount))
+  if (lane)
   {
-    AnswerLane(cls, stateBase, int(index) - P.OrderCount);
+    AnswerLane(cls, stateBase, int(slot));
     return;
   }
 

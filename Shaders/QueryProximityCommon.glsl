@@ -54,9 +54,10 @@ layout(push_constant) uniform Parameters
   // visits the tiles nearest each tip, then the rest, which the best found so far mostly skips.
   int FirstEntry;
   int EndEntry;
-  // This dispatch's first class (workgroup y counts from it): the tiles are dispatched class by
-  // class, each as far as its own ceilings reach.
-  int FirstClass;
+  // The directional lanes this dispatch runs before its tiles (invocations per tile, workgroups
+  // per pixel; 0 in a batch's first dispatch): the tiles after them are as many as the host
+  // writes for this submission.
+  int LaneSlots;
 } P;
 
 // This invocation's point (set first thing in main), and the least of the range and its answer's

@@ -23,19 +23,20 @@ shared float CandidateDepth[64];
 
 void main()
 {
-  uint cls = gl_WorkGroupID.y + uint(P.FirstClass);
+  uint cls = gl_WorkGroupID.y;
   uint point = gl_WorkGroupID.z;
-  uint entry = gl_WorkGroupID.x + uint(P.FirstEntry); // EndEntry: this dispatch's workgroups end it
+  uint group = gl_WorkGroupID.x;
   uint k = gl_LocalInvocationID.x;
   BeginPoint(point);
   uint answer = point * uint(P.Classes) + cls;
   uint stateBase = answer * StateStride;
-  if (entry >= uint(P.OrderCount))
+  if (group < uint(P.LaneSlots))
   {
-    // The workgroups after the last tile: the lanes of "inside" and the directional walk.
-    AnswerLane(cls, stateBase, int((entry - uint(P.OrderCount)) * 64u + k));
+    // The dispatch's first workgroups: the lanes of "inside" and the directional walk.
+    AnswerLane(cls, stateBase, int(group * 64u + k));
     return;
   }
+  uint entry = group - uint(P.LaneSlots) + uint(P.FirstEntry); // this dispatch's workgroups end it
 
   BeginAnswer(answer);
   ivec2 tile = TileToVisit(cls, stateBase, entry);

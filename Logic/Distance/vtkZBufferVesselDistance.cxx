@@ -71,7 +71,7 @@ struct QueryParameters
   std::int32_t Classes;
   std::int32_t DirectionalLanes;
   std::int32_t FirstEntry, EndEntry;
-  std::int32_t FirstClass;
+  std::int32_t LaneSlots;
 };
 static_assert(sizeof(QueryParameters) == 80, "push constant layout of QueryProximity.comp");
 
@@ -146,9 +146,9 @@ struct vtkZBufferVesselDistance::Internals
   // tile (mm), ascending: the tiles a shorter search needs are a prefix of the table.
   std::vector<double> OrderGapMm;
   std::unique_ptr<vp::GpuBuffer> Order, State, Choices, Records, HostState, Points;
-  // Per point and class the answer's ceiling (mm), and per class the sizes of its two tile
-  // dispatches (VkDispatchIndirectCommand: the near tiles of a batch for every class, then the
-  // rest for every class), written by the host before every submission.
+  // Per point and class the answer's ceiling (mm), and the sizes of the query's two dispatches
+  // (VkDispatchIndirectCommand: the near tiles of a batch, then the lanes and the rest), written
+  // by the host before every submission.
   std::unique_ptr<vp::GpuBuffer> Ceilings, DispatchSizes;
   // The ceilings' sources: the coarse blocks of the current rendering, and per class the latest
   // answer (tip, and the distance to its nearest marked cell) on the rendering it was made on.
@@ -377,8 +377,8 @@ struct vtkZBufferVesselDistance::Internals
     this->Points =
       std::make_unique<vp::GpuBuffer>(*this->Context, sizeof(PointRecord) * this->Capacity, Placement::HostToDevice);
     this->Ceilings = std::make_unique<vp::GpuBuffer>(*this->Context, 4ull * classes * this->Capacity, Placement::HostToDevice);
-    this->DispatchSizes = std::make_unique<vp::GpuBuffer>(
-      *this->Context, 2ull * classes * sizeof(VkDispatchIndirectCommand), Placement::HostToDevice);
+    this->DispatchSizes =
+      std::make_unique<vp::GpuBuffer>(*this->Context, 2 * sizeof(VkDispatchIndirectCommand), Placement::HostToDevice);
     for (vp::ComputeKernel* query : { this->Query.get(), this->QueryPerPixel.get() })
     {
       query->BindBuffers({ this->Occupancy->Handle(), this->Crossings->Handle(), this->DepthRanges->Handle(),
@@ -849,29 +849,28 @@ void vtkZBufferVesselDistance::CopyLayer(bool crossings, std::vector<std::uint32
   this->Impl->CopyLayer(crossings, words);
 }
 
-void vtkZBufferVesselDistance::WriteCeilings(
-  const std::array<double, 3>* tips, std::size_t count, double searchMm, std::vector<std::uint32_t>& tiles) const
+std::uint32_t vtkZBufferVesselDistance::WriteCeilings(
+  const std::array<double, 3>* tips, std::size_t count, double searchMm) const
 {
   Internals& s = *this->Impl;
   const std::uint32_t classes = s.Classes();
   const std::uint32_t orderCount = s.OrderCountWithin(searchMm);
   auto* ceiling = static_cast<float*>(s.Ceilings->Mapped());
   constexpr float None = std::numeric_limits<float>::infinity();
-  tiles.assign(classes, orderCount);
   if (!this->QueryCeilings || this->BoxMode != FixedAroundVessels)
   {
     std::fill(ceiling, ceiling + count * classes, None);
-    return;
+    return orderCount;
   }
   s.PrepareCeilings();
   // The device's distances are floats from float coordinates: margins far above their rounding.
   auto above = [](double mm) { return mm * (1.0 + 1e-5) + 1e-3; };
-  for (std::uint32_t c = 0; c < classes; ++c)
+  double highest = -1.0; // the farthest any answer needs to look (none: below 0)
+  for (std::size_t i = 0; i < count; ++i)
   {
-    double highest = -1.0; // the farthest any tip of the class needs to look (none: below 0)
-    for (std::size_t i = 0; i < count; ++i)
+    const double* tip = tips[i].data();
+    for (std::uint32_t c = 0; c < classes; ++c)
     {
-      const double* tip = tips[i].data();
       double bound = s.CeilingBlocks->UpperBoundMm(static_cast<int>(c), tip);
       const Internals::LastAnswer& last = s.Last[c];
       if (last.Known)
@@ -882,15 +881,15 @@ void vtkZBufferVesselDistance::WriteCeilings(
       }
       bound = above(bound);
       ceiling[i * classes + c] = bound < searchMm ? std::nextafter(static_cast<float>(bound), None) : None;
-      // Every marked cell farther than the search: nothing to look for (out of range, as the
-      // tiles would have found).
+      // A class whose marked cells all lie beyond the search needs no tile (it is out of range,
+      // as the tiles would have found): its ceiling does not size the dispatch.
       if (s.CeilingBlocks->LowerBoundMm(static_cast<int>(c), tip) <= above(searchMm))
       {
         highest = std::max(highest, std::min(bound, searchMm));
       }
     }
-    tiles[c] = highest < 0.0 ? 0 : std::min(orderCount, s.OrderCountWithin(highest));
   }
+  return highest < 0.0 ? 0 : std::min(orderCount, s.OrderCountWithin(highest));
 }
 
 void vtkZBufferVesselDistance::AnswerBatch(const std::array<double, 3>* tips, std::size_t count,
@@ -952,17 +951,14 @@ void vtkZBufferVesselDistance::AnswerBatch(const std::array<double, 3>* tips, st
   const std::uint32_t n = static_cast<std::uint32_t>(count);
   const std::uint32_t nearEntries =
     n > PerPixelMaxTips ? std::min(orderCount, s.OrderCountWithin(NearTiles * 8.0 * g.PixelMm)) : 0;
-  std::vector<std::uint32_t> tiles;
-  this->WriteCeilings(tips, count, searchMm, tiles);
-  auto groups = [perPixel](std::uint32_t entries) { return perPixel ? entries : (entries + 63) / 64; };
+  const std::uint32_t tiles = this->WriteCeilings(tips, count, searchMm);
+  // Lanes first in the last dispatch: invocations per tile, workgroups per pixel.
+  const std::uint32_t laneSlots = perPixel ? laneGroups : lanes;
+  auto groups = [perPixel](std::uint32_t slots) { return perPixel ? slots : (slots + 63) / 64; };
   auto* sizes = static_cast<VkDispatchIndirectCommand*>(s.DispatchSizes->Mapped());
-  s.LastTiles = 0;
-  for (std::uint32_t c = 0; c < classes; ++c)
-  {
-    sizes[c] = { groups(std::min(nearEntries, tiles[c])), 1, n };
-    sizes[classes + c] = { groups(tiles[c] > nearEntries ? tiles[c] - nearEntries : 0), 1, n };
-    s.LastTiles += tiles[c];
-  }
+  sizes[0] = { groups(std::min(nearEntries, tiles)), classes, n };
+  sizes[1] = { groups(laneSlots + (tiles > nearEntries ? tiles - nearEntries : 0)), classes, n };
+  s.LastTiles = tiles * classes;
   s.LastTilesInRange = orderCount * classes;
 
   auto prepared = std::find_if(s.Prepared.begin(), s.Prepared.end(), [&](const Internals::PreparedQuery& p) {
@@ -986,30 +982,19 @@ void vtkZBufferVesselDistance::AnswerBatch(const std::array<double, 3>* tips, st
       // Entries: a workgroup per tile (per pixel) or an invocation per tile (per tile); after the
       // tiles, the lanes, in a dispatch of their own beside the tiles' (no barrier between: they
       // write other words of the state), since the tiles' dispatches are cut to the ceilings.
-      auto part = [&](std::uint32_t first, std::uint32_t last, std::uint32_t firstClass) {
-        QueryParameters p = q;
-        p.FirstEntry = static_cast<std::int32_t>(first);
-        p.EndEntry = static_cast<std::int32_t>(last);
-        p.FirstClass = static_cast<std::int32_t>(firstClass);
-        return p;
-      };
-      const vp::ComputeKernel& pass = perPixel ? *s.QueryPerPixel : *s.Query;
-      const QueryParameters laneEntries = part(orderCount, orderCount + lanes, 0);
-      pass.Record(cmd, &laneEntries, perPixel ? laneGroups : (lanes + 63) / 64, classes, n);
-      // The tiles class by class, each dispatch as large as the host writes before the submission.
-      auto visit = [&](std::uint32_t first, std::uint32_t last, std::uint32_t sizesAt) {
-        for (std::uint32_t c = 0; c < classes; ++c)
-        {
-          const QueryParameters tileEntries = part(first, last, c);
-          pass.RecordIndirect(cmd, &tileEntries, s.DispatchSizes->Handle(), (sizesAt + c) * sizeof(VkDispatchIndirectCommand));
-        }
+      auto visit = [&](std::uint32_t first, std::uint32_t last, std::uint32_t slots, VkDeviceSize sizesAt) {
+        QueryParameters part = q;
+        part.FirstEntry = static_cast<std::int32_t>(first);
+        part.EndEntry = static_cast<std::int32_t>(last);
+        part.LaneSlots = static_cast<std::int32_t>(slots);
+        (perPixel ? *s.QueryPerPixel : *s.Query).RecordIndirect(cmd, &part, s.DispatchSizes->Handle(), sizesAt);
         vp::ComputeKernel::Barrier(cmd);
       };
       if (nearEntries > 0)
       {
-        visit(0, nearEntries, 0);
+        visit(0, nearEntries, 0, 0);
       }
-      visit(nearEntries, orderCount, classes);
+      visit(nearEntries, orderCount, laneSlots, sizeof(VkDispatchIndirectCommand));
       s.Reduce->Record(cmd, &copy, (answers + 63) / 64); // into the host-visible answers, and resets
       vp::ComputeKernel::Barrier(cmd);
       s.Context->Stamp(cmd, 1);

@@ -101,9 +101,9 @@ public:
   /// tip and class, the least of an upper bound from the vessels' coarse blocks
   /// (vp::BlockDistanceField over the layers' occupancy, blocks of 4 cells and at least 1.6 mm,
   /// built once per rendering) and the class's previous answer plus how far the tip moved since.
-  /// The submission dispatches, class by class, only the tiles within the highest ceiling of its
-  /// tips (an indirect dispatch whose size the host writes; none for a class whose marked cells
-  /// the blocks put beyond the search for every tip), and each tip's tiles beyond its own are
+  /// The submission dispatches only the tiles within the highest ceiling of its answers (an
+  /// indirect dispatch whose size the host writes; a class whose marked cells the blocks put
+  /// beyond the search does not count), and each answer's tiles beyond its own ceiling are
   /// skipped from the start: a query's work follows the tip's distance, not the range, even on a GPU where all
   /// of a dispatch's tiles start at once. The answers are the same, bit for bit, on or off (no
   /// pixel that gives an answer lies beyond its ceiling); off is for tests and benchmarks.
@@ -187,9 +187,9 @@ private:
   void CheckMovingBox(double cellMm) const;
   /// Every tip within searchMm; bins: whether the distance bins apply.
   void AnswerAll(const Points& tips, const Points* axes, double searchMm, bool bins, std::vector<vp::ProximityResult>& results) const;
-  /// Writes each tip's ceilings for the next submission (lock held), and per class the tiles of
-  /// the order table its tips need (none when every one's marked cells all lie beyond the search).
-  void WriteCeilings(const std::array<double, 3>* tips, std::size_t count, double searchMm, std::vector<std::uint32_t>& tiles) const;
+  /// Writes each tip's ceilings for the next submission (lock held); returns the tiles of the
+  /// order table they need (those within the highest ceiling of a class not wholly beyond the search).
+  std::uint32_t WriteCeilings(const std::array<double, 3>* tips, std::size_t count, double searchMm) const;
   /// One submission for up to GetBatchCapacity() tips on the current layers (lock held, results begun).
   void AnswerBatch(const std::array<double, 3>* tips, std::size_t count, const std::array<double, 3>* axes, double searchMm,
     double binWidthMm, vp::ProximityResult* results) const;

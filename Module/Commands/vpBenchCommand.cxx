@@ -177,6 +177,23 @@ void PrintZBufferQueries(const Json& z)
       s["exact_batched"]["tips_per_second"].get<double>(), s["batched"]["tips"].get<std::size_t>(),
       s["batch_capacity"].get<std::size_t>(), s["batched"]["answers_differing_from_single_queries"].get<int>());
   }
+  std::printf("%10s | %-8s %22s %22s %22s %12s\n", "tris/class", "ceilings", "off med / p95 ms", "on med / p95 ms",
+    "device off / on med", "tiles (med)");
+  for (const Json& s : z["sizes"])
+  {
+    const Json& c = s["ceilings"];
+    for (const char* walk : { "random", "tracked" })
+    {
+      const Json& w = c[walk];
+      std::printf("%10zu | %-8s %10.4f / %9.4f %10.4f / %9.4f %10.4f / %9.4f %11.0f%%\n",
+        s["triangles_per_class"].get<std::size_t>(), walk, w["off"]["median_ms"].get<double>(), w["off"]["p95_ms"].get<double>(),
+        w["on"]["median_ms"].get<double>(), w["on"]["p95_ms"].get<double>(), w["off_device"]["median_ms"].get<double>(),
+        w["on_device"]["median_ms"].get<double>(), 100.0 * w["tiles_share_median"].get<double>());
+    }
+    std::printf("%10zu | batched: %.0f tips/s off, %.0f on; blocks built in %.1f ms; %d answers differ\n",
+      s["triangles_per_class"].get<std::size_t>(), c["batched_off"]["tips_per_second"].get<double>(),
+      c["batched_on"]["tips_per_second"].get<double>(), c["build_ms"].get<double>(), c["answers_differing"].get<int>());
+  }
 }
 
 void PrintReplayTable(const Json& r)

@@ -163,6 +163,7 @@ struct vtkZBufferVesselDistance::Internals
   };
   std::vector<LastAnswer> Last;
   int LastRender = -1;
+  int SubmissionsOnRender = 0;
   std::uint32_t LastTiles = 0, LastTilesInRange = 0;
   // Tips per submission for the current order table (PrepareOrder).
   std::uint32_t Capacity = 0;
@@ -228,6 +229,7 @@ struct vtkZBufferVesselDistance::Internals
     this->DispatchSizes.reset();
     this->CeilingBlocks.reset();
     this->CeilingBlocksRender = -1;
+    this->CeilingBuildMs = 0.0;
     this->Last.clear();
     this->LastRender = -1;
     this->Rendered = false;
@@ -258,16 +260,23 @@ struct vtkZBufferVesselDistance::Internals
   }
 
   // The ceilings' blocks for the current rendering, and no answer remembered from an older one.
-  void PrepareCeilings()
+  // None for a rendering's first submission: a one-shot query (`distance --tip`) does not wait
+  // the tenths of a second they take on large layers.
+  const vp::BlockDistanceField* PrepareCeilings()
   {
     if (this->LastRender != this->Renders)
     {
       this->Last.assign(this->Classes(), LastAnswer{});
       this->LastRender = this->Renders;
+      this->SubmissionsOnRender = 0;
     }
     if (this->CeilingBlocks && this->CeilingBlocksRender == this->Renders)
     {
-      return;
+      return this->CeilingBlocks.get();
+    }
+    if (this->SubmissionsOnRender++ == 0)
+    {
+      return nullptr;
     }
     const auto start = std::chrono::steady_clock::now();
     std::vector<std::uint32_t> occupancy;
@@ -279,6 +288,7 @@ struct vtkZBufferVesselDistance::Internals
       this->Grid, static_cast<int>(this->Classes()), occupancy, std::max(1.6, 4.0 * this->Grid.PixelMm));
     this->CeilingBlocksRender = this->Renders;
     this->CeilingBuildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return this->CeilingBlocks.get();
   }
 
   void Render()
@@ -862,7 +872,8 @@ std::uint32_t vtkZBufferVesselDistance::WriteCeilings(
     std::fill(ceiling, ceiling + count * classes, None);
     return orderCount;
   }
-  s.PrepareCeilings();
+  const vp::BlockDistanceField* blocks = s.PrepareCeilings();
+  constexpr double Unknown = std::numeric_limits<double>::infinity();
   // The device's distances are floats from float coordinates: margins far above their rounding.
   auto above = [](double mm) { return mm * (1.0 + 1e-5) + 1e-3; };
   double highest = -1.0; // the farthest any answer needs to look (none: below 0)
@@ -871,7 +882,7 @@ std::uint32_t vtkZBufferVesselDistance::WriteCeilings(
     const double* tip = tips[i].data();
     for (std::uint32_t c = 0; c < classes; ++c)
     {
-      double bound = s.CeilingBlocks->UpperBoundMm(static_cast<int>(c), tip);
+      double bound = blocks ? blocks->UpperBoundMm(static_cast<int>(c), tip) : Unknown;
       const Internals::LastAnswer& last = s.Last[c];
       if (last.Known)
       {
@@ -883,7 +894,7 @@ std::uint32_t vtkZBufferVesselDistance::WriteCeilings(
       ceiling[i * classes + c] = bound < searchMm ? std::nextafter(static_cast<float>(bound), None) : None;
       // A class whose marked cells all lie beyond the search needs no tile (it is out of range,
       // as the tiles would have found): its ceiling does not size the dispatch.
-      if (s.CeilingBlocks->LowerBoundMm(static_cast<int>(c), tip) <= above(searchMm))
+      if (!blocks || blocks->LowerBoundMm(static_cast<int>(c), tip) <= above(searchMm))
       {
         highest = std::max(highest, std::min(bound, searchMm));
       }

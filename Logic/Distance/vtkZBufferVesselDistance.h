@@ -100,7 +100,8 @@ public:
   /// Whether each query starts from a ceiling on its answer (default on, with the fixed box): per
   /// tip and class, the least of an upper bound from the vessels' coarse blocks
   /// (vp::BlockDistanceField over the layers' occupancy, blocks of 4 cells and at least 1.6 mm,
-  /// built once per rendering) and the class's previous answer plus how far the tip moved since.
+  /// built once per rendering, at its second submission, so that a one-shot query does not wait
+  /// for them) and the class's previous answer plus how far the tip moved since.
   /// The submission dispatches only the tiles within the highest ceiling of its answers (an
   /// indirect dispatch whose size the host writes; a class whose marked cells the blocks put
   /// beyond the search does not count), and each answer's tiles beyond its own ceiling are
@@ -164,7 +165,7 @@ public:
   std::size_t GetLastQueryTiles() const;
   std::size_t GetLastQueryTilesInRange() const;
   /// Time to build the ceilings' blocks after the latest rendering (copying the occupancy to the
-  /// host included), ms; 0 before the first query with ceilings.
+  /// host included), ms; 0 until they are built.
   double GetCeilingBuildTimeMs() const;
   const char* GetMethodName() const override { return "zbuffer"; }
   /// The device's name and "(Vulkan)".

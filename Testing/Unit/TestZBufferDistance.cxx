@@ -289,6 +289,11 @@ TEST(ZBufferDistance, CeilingsCutTheDispatchAndChangeNoAnswer)
   // One class: a tip a few millimetres from a sphere dispatches a few tiles of the range's.
   const double centre[3] = { 5, -3, 2 };
   auto sphere = Make<vtkZBufferVesselDistance>({ { "hepatic_vein", vp::MakeSphere(centre, 10.0, 48, 96) } }, 50.0);
+  vp::ProximityResult first;
+  const double away[3] = { centre[0] - 30.0, centre[1], centre[2] };
+  sphere->ComputeProximity(away, nullptr, first); // a rendering's first query builds no blocks
+  EXPECT_EQ(sphere->GetLastQueryTiles(), sphere->GetLastQueryTilesInRange());
+  EXPECT_EQ(sphere->GetCeilingBuildTimeMs(), 0.0);
   for (double gap : { 0.5, 2.0, 5.0 })
   {
     const double tip[3] = { centre[0] + 10.0 + gap, centre[1] + 0.3, centre[2] - 0.2 };

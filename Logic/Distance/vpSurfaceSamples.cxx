@@ -47,16 +47,19 @@ void Enclose(SurfaceSamples::Node& node, const std::vector<std::array<double, 3>
   }
   node.RadiusMm = std::sqrt(r2) + 1e-9; // rounding of the transform must not put a point outside
 }
-} // namespace
-
-SurfaceSamples SurfaceSamples::Of(std::vector<std::array<double, 3>> points,
-  std::vector<std::array<std::int32_t, 3>> triangles, double spacingMm, double clusterMm)
+/// A used point and its leaf's Morton code.
+struct Keyed
 {
-  if (!(spacingMm > 0.0) || !(clusterMm > 0.0))
-  {
-    throw std::invalid_argument("vp::SurfaceSamples: the spacing and the cluster size must be positive");
-  }
-  SplitLongEdges(points, triangles, spacingMm * std::sqrt(3.0));
+  std::uint64_t Code;
+  std::size_t Point;
+  bool operator<(const Keyed& o) const { return this->Code != o.Code ? this->Code < o.Code : this->Point < o.Point; }
+};
+
+/// The points some triangle uses, sorted by their leaf's Morton code, then by point (a stable
+/// order): every cube of any level is then one run.
+std::vector<Keyed> InLeafOrder(const std::vector<std::array<double, 3>>& points,
+  const std::vector<std::array<std::int32_t, 3>>& triangles, double clusterMm)
+{
   std::vector<char> used(points.size(), 0);
   for (const auto& t : triangles)
   {
@@ -65,9 +68,9 @@ SurfaceSamples SurfaceSamples::Of(std::vector<std::array<double, 3>> points,
       used[static_cast<std::size_t>(i)] = 1;
     }
   }
+  auto cubeOf = [clusterMm](const std::array<double, 3>& p, int k) { return static_cast<long long>(std::floor(p[k] / clusterMm)); };
   std::array<long long, 3> lowest{ { 0, 0, 0 } };
   bool any = false;
-  auto cubeOf = [clusterMm](const std::array<double, 3>& p, int k) { return static_cast<long long>(std::floor(p[k] / clusterMm)); };
   for (std::size_t i = 0; i < points.size(); ++i)
   {
     for (int k = 0; used[i] && k < 3; ++k)
@@ -80,16 +83,7 @@ SurfaceSamples SurfaceSamples::Of(std::vector<std::array<double, 3>> points,
   {
     throw std::invalid_argument("vp::SurfaceSamples: the surface has no triangles");
   }
-  // Points sorted by their leaf's Morton code, then by point (a stable order): every cube of any
-  // level is then one run.
-  struct Keyed
-  {
-    std::uint64_t Code;
-    std::size_t Point;
-    bool operator<(const Keyed& o) const { return this->Code != o.Code ? this->Code < o.Code : this->Point < o.Point; }
-  };
   std::vector<Keyed> keyed;
-  keyed.reserve(points.size());
   for (std::size_t i = 0; i < points.size(); ++i)
   {
     if (!used[i])
@@ -109,20 +103,25 @@ SurfaceSamples SurfaceSamples::Of(std::vector<std::array<double, 3>> points,
     keyed.push_back({ code, i });
   }
   std::sort(keyed.begin(), keyed.end());
+  return keyed;
+}
 
-  SurfaceSamples out;
-  out.SpacingMm = spacingMm;
-  out.Points.reserve(keyed.size());
-  struct Placed
-  {
-    std::uint64_t Code; // the node's cube at the level being built
-    std::uint32_t Node;
-  };
+/// A node of the level being built: its cube's code at that level, and its place in Nodes.
+struct Placed
+{
+  std::uint64_t Code;
+  std::uint32_t Node;
+};
+
+/// The leaves, one per run of equal codes, with their points in that order.
+std::vector<Placed> AddLeaves(SurfaceSamples& out, const std::vector<std::array<double, 3>>& points, const std::vector<Keyed>& keyed)
+{
   std::vector<Placed> level;
+  out.Points.reserve(keyed.size());
   for (std::size_t first = 0; first < keyed.size();)
   {
     std::size_t last = first;
-    Node leaf;
+    SurfaceSamples::Node leaf;
     leaf.First = static_cast<std::uint32_t>(out.Points.size());
     for (; last < keyed.size() && keyed[last].Code == keyed[first].Code; ++last)
     {
@@ -135,6 +134,12 @@ SurfaceSamples SurfaceSamples::Of(std::vector<std::array<double, 3>> points,
     first = last;
   }
   out.NumberOfLeaves = out.Nodes.size();
+  return level;
+}
+
+/// The levels above, each of cubes twice as large, up to a single node: the root, made last.
+void AddLevels(SurfaceSamples& out, std::vector<Placed> level)
+{
   while (level.size() > 1)
   {
     std::vector<Placed> above;
@@ -152,7 +157,7 @@ SurfaceSamples SurfaceSamples::Of(std::vector<std::array<double, 3>> points,
       }
       else
       {
-        Node node;
+        SurfaceSamples::Node node;
         node.First = out.Nodes[level[first].Node].First;
         node.FirstChild = static_cast<std::uint32_t>(out.Children.size());
         node.ChildCount = static_cast<std::uint32_t>(last - first);
@@ -169,6 +174,20 @@ SurfaceSamples SurfaceSamples::Of(std::vector<std::array<double, 3>> points,
     }
     level.swap(above);
   }
+}
+} // namespace
+
+SurfaceSamples SurfaceSamples::Of(std::vector<std::array<double, 3>> points,
+  std::vector<std::array<std::int32_t, 3>> triangles, double spacingMm, double clusterMm)
+{
+  if (!(spacingMm > 0.0) || !(clusterMm > 0.0))
+  {
+    throw std::invalid_argument("vp::SurfaceSamples: the spacing and the cluster size must be positive");
+  }
+  SplitLongEdges(points, triangles, spacingMm * std::sqrt(3.0));
+  SurfaceSamples out;
+  out.SpacingMm = spacingMm;
+  AddLevels(out, AddLeaves(out, points, InLeafOrder(points, triangles, clusterMm)));
   return out; // the last node made is the root (a single leaf when there is one)
 }
 } // namespace vp

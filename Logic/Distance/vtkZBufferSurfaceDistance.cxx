@@ -27,6 +27,150 @@ std::array<double, 3> Transform(const std::array<double, 16>& m, const std::arra
   return { m[0] * p[0] + m[1] * p[1] + m[2] * p[2] + m[3], m[4] * p[0] + m[5] * p[1] + m[6] * p[2] + m[7],
     m[8] * p[0] + m[9] * p[1] + m[10] * p[2] + m[11] };
 }
+
+/// The instrument's samples nearest each class at one pose, as the field bounds them: per class
+/// the least lower bound of any sample, the least upper bound of the samples evaluated (the
+/// distance is at most it), and the sample holding the upper one.
+class NearestSamples
+{
+public:
+  NearestSamples(const vp::SurfaceSamples& samples, const vp::CellDistanceField& field, const std::array<double, 16>& m,
+    int classes, double rangeMm)
+    : Low(classes, Inf)
+    , High(classes, Inf)
+    , BestSample(classes, -1)
+    , BestPoint(classes)
+    , S(samples)
+    , Field(field)
+    , M(m)
+    , Classes(classes)
+    , RangeMm(rangeMm)
+  {
+  }
+
+  /// Sample i, for the classes nodeBound (its node's bounds; null: every class) does not rule out.
+  void Evaluate(std::size_t i, const double* nodeBound)
+  {
+    const std::array<double, 3> p = Transform(this->M, this->S.Points[i]);
+    ++this->Evaluated;
+    for (int c = 0; c < this->Classes; ++c)
+    {
+      if (nodeBound && nodeBound[c] >= this->Limit(c))
+      {
+        continue;
+      }
+      double lo, hi;
+      this->Field.Bounds(c, p.data(), lo, hi);
+      this->Low[c] = std::min(this->Low[c], lo);
+      if (hi < this->High[c])
+      {
+        this->High[c] = hi;
+        this->BestSample[c] = static_cast<std::int64_t>(i);
+        this->BestPoint[c] = p;
+      }
+    }
+  }
+
+  /// Best first down the samples' tree. Per node and class, a lower bound on every sample of the
+  /// node (the distance moves no faster than the point; never below its parent's), or infinity
+  /// once the class is set aside higher up; a node is opened while it can still hold a nearer
+  /// sample for some class, so a part of the instrument far from every vessel costs one bound.
+  void Walk()
+  {
+    this->Consider(this->S.Root(), NoParent);
+    while (!this->Open.empty())
+    {
+      std::pop_heap(this->Open.begin(), this->Open.end(), std::greater<Opened>());
+      const Opened o = this->Open.back();
+      this->Open.pop_back();
+      bool wanted = false;
+      for (int c = 0; c < this->Classes && !wanted; ++c)
+      {
+        wanted = this->Bounds[o.Bounds + c] < this->Limit(c);
+      }
+      if (!wanted)
+      {
+        // Taken by its least bound over the classes; a later one may still serve a class whose
+        // best is farther, so go on rather than stop.
+        continue;
+      }
+      const vp::SurfaceSamples::Node& node = this->S.Nodes[o.Node];
+      if (node.ChildCount == 0)
+      {
+        for (std::size_t i = node.First; i < node.First + node.Count; ++i)
+        {
+          this->Evaluate(i, this->Bounds.data() + o.Bounds);
+        }
+      }
+      for (std::uint32_t j = 0; j < node.ChildCount; ++j)
+      {
+        this->Consider(this->S.Children[node.FirstChild + j], o.Bounds);
+      }
+    }
+  }
+
+  std::vector<double> Low, High;
+  std::vector<std::int64_t> BestSample;
+  std::vector<std::array<double, 3>> BestPoint;
+  long long Evaluated = 0;
+
+private:
+  static constexpr std::size_t NoParent = std::numeric_limits<std::size_t>::max();
+  struct Opened
+  {
+    double Key; // the least bound of the classes it is opened for
+    std::uint32_t Node;
+    std::size_t Bounds; // its bounds: Bounds[Bounds, Bounds + classes)
+    bool operator>(const Opened& o) const { return this->Key != o.Key ? this->Key > o.Key : this->Node > o.Node; }
+  };
+
+  /// A node whose bound is not below the least lower bound found cannot lower it, and the
+  /// interval stays within twice the field's bound: the sample holding the least lower bound has
+  /// an upper one at most that much above it.
+  double Limit(int c) const { return std::min(this->Low[c], this->RangeMm); }
+
+  /// Bounds node n (parent: where its parent's bounds are) and opens it when some class wants it.
+  void Consider(std::uint32_t n, std::size_t parent)
+  {
+    const vp::SurfaceSamples::Node& node = this->S.Nodes[n];
+    const auto centre = Transform(this->M, node.CentreMm);
+    const std::size_t at = this->Bounds.size();
+    this->Bounds.resize(at + this->Classes, Inf);
+    double key = Inf;
+    for (int c = 0; c < this->Classes; ++c)
+    {
+      const double above = parent == NoParent ? 0.0 : this->Bounds[parent + c];
+      if (above < this->Limit(c))
+      {
+        double lo, hi;
+        this->Field.Bounds(c, centre.data(), lo, hi);
+        const double b = std::max(above, lo - node.RadiusMm);
+        this->Bounds[at + c] = b;
+        if (b < this->Limit(c))
+        {
+          key = std::min(key, b);
+        }
+      }
+    }
+    if (key < Inf)
+    {
+      this->Open.push_back({ key, n, at });
+      std::push_heap(this->Open.begin(), this->Open.end(), std::greater<Opened>());
+    }
+    else
+    {
+      this->Bounds.resize(at);
+    }
+  }
+
+  const vp::SurfaceSamples& S;
+  const vp::CellDistanceField& Field;
+  const std::array<double, 16>& M;
+  const int Classes;
+  const double RangeMm;
+  std::vector<double> Bounds;
+  std::vector<Opened> Open;
+};
 } // namespace
 
 struct vtkZBufferSurfaceDistance::Internals
@@ -173,38 +317,7 @@ void vtkZBufferSurfaceDistance::ComputeSurfaceProximity(
   const vp::CellDistanceField& field = *fieldHeld;
   const int classes = this->ZBuffer->GetNumberOfVessels();
   const double range = this->RangeMm > 0.0 ? std::min(this->RangeMm, this->ZBuffer->GetRangeMm()) : this->ZBuffer->GetRangeMm();
-
-  // Per class: the least lower bound of any sample, the least upper bound of the samples
-  // evaluated (the distance is at most it), and the sample holding the upper one.
-  std::vector<double> high(classes, Inf), low(classes, Inf);
-  std::vector<std::int64_t> bestSample(classes, -1);
-  std::vector<std::array<double, 3>> bestPoint(classes);
-  long long evaluated = 0;
-  // A node whose bound is not below the least lower bound found cannot lower it, and the
-  // interval stays within twice the field's bound: the sample holding the least lower bound has
-  // an upper one at most that much above it.
-  auto limit = [&](int c) { return std::min(low[c], range); };
-  auto evaluate = [&](std::size_t i, const double* nodeBound) {
-    const std::array<double, 3> p = Transform(m, S.Points[i]);
-    ++evaluated;
-    for (int c = 0; c < classes; ++c)
-    {
-      if (nodeBound && nodeBound[c] >= limit(c))
-      {
-        continue;
-      }
-      double lo, hi;
-      field.Bounds(c, p.data(), lo, hi);
-      low[c] = std::min(low[c], lo);
-      if (hi < high[c])
-      {
-        high[c] = hi;
-        bestSample[c] = static_cast<std::int64_t>(i);
-        bestPoint[c] = p;
-      }
-    }
-  };
-
+  NearestSamples search(S, field, m, classes, range);
   // Seeds: the previous frame's closest samples set a tight upper bound before any node.
   if (previous && static_cast<int>(previous->size()) == classes)
   {
@@ -212,85 +325,15 @@ void vtkZBufferSurfaceDistance::ComputeSurfaceProximity(
     {
       if (r.InRange && r.ToolTriangle >= 0 && static_cast<std::size_t>(r.ToolTriangle) < S.Points.size())
       {
-        evaluate(static_cast<std::size_t>(r.ToolTriangle), nullptr);
+        search.Evaluate(static_cast<std::size_t>(r.ToolTriangle), nullptr);
       }
     }
   }
-  // Best first down the samples' tree. Per node and class, a lower bound on every sample of the
-  // node (the distance moves no faster than the point; never below its parent's), or infinity
-  // once the class is set aside higher up; a node is opened while it can still hold a nearer
-  // sample for some class, so a part of the instrument far from every vessel costs one bound.
-  struct Open
-  {
-    double Key; // the least bound of the classes it is opened for
-    std::uint32_t Node;
-    std::size_t Bounds; // its bounds: bounds[Bounds, Bounds + classes)
-    bool operator>(const Open& o) const { return this->Key != o.Key ? this->Key > o.Key : this->Node > o.Node; }
-  };
-  constexpr std::size_t NoParent = std::numeric_limits<std::size_t>::max();
-  std::vector<double> bounds;
-  std::vector<Open> open;
-  auto consider = [&](std::uint32_t n, std::size_t parent) {
-    const vp::SurfaceSamples::Node& node = S.Nodes[n];
-    const auto centre = Transform(m, node.CentreMm);
-    const std::size_t at = bounds.size();
-    bounds.resize(at + classes, Inf);
-    double key = Inf;
-    for (int c = 0; c < classes; ++c)
-    {
-      const double above = parent == NoParent ? 0.0 : bounds[parent + c];
-      if (above < limit(c))
-      {
-        double lo, hi;
-        field.Bounds(c, centre.data(), lo, hi);
-        const double b = std::max(above, lo - node.RadiusMm);
-        bounds[at + c] = b;
-        if (b < limit(c))
-        {
-          key = std::min(key, b);
-        }
-      }
-    }
-    if (key < Inf)
-    {
-      open.push_back({ key, n, at });
-      std::push_heap(open.begin(), open.end(), std::greater<Open>());
-    }
-    else
-    {
-      bounds.resize(at);
-    }
-  };
-  consider(S.Root(), NoParent);
-  while (!open.empty())
-  {
-    std::pop_heap(open.begin(), open.end(), std::greater<Open>());
-    const Open o = open.back();
-    open.pop_back();
-    bool wanted = false;
-    for (int c = 0; c < classes && !wanted; ++c)
-    {
-      wanted = bounds[o.Bounds + c] < limit(c);
-    }
-    if (!wanted)
-    {
-      // Taken by its least bound over the classes; a later one may still serve a class whose
-      // best is farther, so go on rather than stop.
-      continue;
-    }
-    const vp::SurfaceSamples::Node& node = S.Nodes[o.Node];
-    if (node.ChildCount == 0)
-    {
-      for (std::size_t i = node.First; i < node.First + node.Count; ++i)
-      {
-        evaluate(i, bounds.data() + o.Bounds);
-      }
-    }
-    for (std::uint32_t j = 0; j < node.ChildCount; ++j)
-    {
-      consider(S.Children[node.FirstChild + j], o.Bounds);
-    }
-  }
+  search.Walk();
+  const std::vector<double>& low = search.Low;
+  const std::vector<double>& high = search.High;
+  const std::vector<std::int64_t>& bestSample = search.BestSample;
+  const std::vector<std::array<double, 3>>& bestPoint = search.BestPoint;
 
   // The samples' least distance is within the spacing above the surface's: the true distance
   // lies in [low - spacing, high]. Reported at its lower end, with the width as its bound: the
@@ -333,7 +376,7 @@ void vtkZBufferSurfaceDistance::ComputeSurfaceProximity(
     r.ToolTriangle = bestSample[c];
     r.VesselTriangle = -1;
   }
-  this->LastEvaluated = evaluated;
+  this->LastEvaluated = search.Evaluated;
   this->LastSubmissions = submissions;
 }
 

@@ -114,6 +114,30 @@ float Bits(std::uint32_t u)
   return f;
 }
 
+QueryParameters MakeQueryParameters(const vp::DepthLayerGrid& g, double searchMm, double binWidth, int bins,
+  std::uint32_t orderCount, bool paper, std::uint32_t classes, int directionalLanes)
+{
+  QueryParameters q{};
+  q.PixelMm = static_cast<float>(g.PixelMm);
+  q.SliceMm = static_cast<float>(g.SliceMm);
+  q.RangeMm = static_cast<float>(searchMm);
+  q.HalfDiagonalMm = static_cast<float>(g.HalfDiagonalMm());
+  q.BinWidthMm = static_cast<float>(binWidth);
+  q.Bins = binWidth > 0.0 ? bins : 0;
+  q.Nx = g.Nx;
+  q.Ny = g.Ny;
+  q.Nz = g.Nz;
+  q.Words = g.Words();
+  q.TilesX = g.TilesX();
+  q.TilesY = g.TilesY();
+  q.OrderCount = static_cast<std::int32_t>(orderCount);
+  q.PaperMode = paper ? 1 : 0;
+  q.RangeStride = static_cast<std::uint32_t>(g.Pixels()) * classes;
+  q.Classes = static_cast<std::int32_t>(classes);
+  q.DirectionalLanes = directionalLanes;
+  return q;
+}
+
 double Clamp(double x, double lo, double hi)
 {
   return std::min(std::max(x, lo), hi);
@@ -289,6 +313,80 @@ struct vtkZBufferVesselDistance::Internals
     this->CeilingBlocksRender = this->Renders;
     this->CeilingBuildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return this->CeilingBlocks.get();
+  }
+
+  // Each tip in grid units and its unit axis (or zero), where the query reads them.
+  void WritePoints(const std::array<double, 3>* tips, std::size_t count, const std::array<double, 3>* axes)
+  {
+    const vp::DepthLayerGrid& g = this->Grid;
+    auto* points = static_cast<PointRecord*>(this->Points->Mapped());
+    for (std::size_t i = 0; i < count; ++i)
+    {
+      const double* tip = tips[i].data();
+      PointRecord& p = points[i];
+      p = PointRecord{};
+      p.Tip[0] = static_cast<float>((tip[0] - g.OriginMm[0]) / g.PixelMm);
+      p.Tip[1] = static_cast<float>((tip[1] - g.OriginMm[1]) / g.PixelMm);
+      p.Tip[2] = static_cast<float>((tip[2] - g.OriginMm[2]) / g.SliceMm);
+      if (axes)
+      {
+        const double* axis = axes[i].data();
+        const double n = std::sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
+        for (int k = 0; k < 3 && n > 0.0; ++k)
+        {
+          p.Axis[k] = static_cast<float>(axis[k] / n);
+        }
+      }
+    }
+  }
+
+  // The query's submission for these parameters, batch size and pass, recorded once: the two
+  // dispatches of tiles (their sizes read from DispatchSizes when it runs), then the answers.
+  vp::PreparedCommands& PreparedQueryFor(
+    const QueryParameters& q, std::uint32_t n, bool perPixel, std::uint32_t nearEntries, std::uint32_t laneSlots)
+  {
+    const std::uint32_t orderCount = static_cast<std::uint32_t>(q.OrderCount);
+    auto prepared = std::find_if(this->Prepared.begin(), this->Prepared.end(), [&](const PreparedQuery& p) {
+      return p.Points == n && p.PerPixel == perPixel && std::memcmp(&p.Parameters, &q, sizeof q) == 0;
+    });
+    if (prepared == this->Prepared.end())
+    {
+      if (this->Prepared.size() >= MaxPrepared)
+      {
+        this->Prepared.clear();
+      }
+      const std::uint32_t answers = n * this->Classes();
+      const ReduceParameters copy{ 1, answers, orderCount };
+      PreparedQuery entry;
+      entry.Points = n;
+      entry.PerPixel = perPixel;
+      entry.Parameters = q;
+      entry.Commands = std::make_unique<vp::PreparedCommands>(*this->Context, [&](VkCommandBuffer cmd) {
+        this->Context->ResetStamps(cmd);
+        this->Context->Stamp(cmd, 0);
+        // Entries: a workgroup per tile (per pixel) or an invocation per tile (per tile); the
+        // lanes come first in the last dispatch, whose size after them follows the ceilings.
+        auto visit = [&](std::uint32_t first, std::uint32_t last, std::uint32_t slots, VkDeviceSize sizesAt) {
+          QueryParameters part = q;
+          part.FirstEntry = static_cast<std::int32_t>(first);
+          part.EndEntry = static_cast<std::int32_t>(last);
+          part.LaneSlots = static_cast<std::int32_t>(slots);
+          (perPixel ? *this->QueryPerPixel : *this->Query).RecordIndirect(cmd, &part, this->DispatchSizes->Handle(), sizesAt);
+          vp::ComputeKernel::Barrier(cmd);
+        };
+        if (nearEntries > 0)
+        {
+          visit(0, nearEntries, 0, 0);
+        }
+        visit(nearEntries, orderCount, laneSlots, sizeof(VkDispatchIndirectCommand));
+        this->Reduce->Record(cmd, &copy, (answers + 63) / 64); // into the host-visible answers, and resets
+        vp::ComputeKernel::Barrier(cmd);
+        this->Context->Stamp(cmd, 1);
+      });
+      this->Prepared.push_back(std::move(entry));
+      prepared = this->Prepared.end() - 1;
+    }
+    return *prepared->Commands;
   }
 
   void Render()
@@ -911,46 +1009,10 @@ void vtkZBufferVesselDistance::AnswerBatch(const std::array<double, 3>* tips, st
   s.PrepareOrder(this->RangeMm);
   const vp::DepthLayerGrid& g = s.Grid;
   const std::uint32_t orderCount = s.OrderCountWithin(searchMm);
-
-  auto* points = static_cast<PointRecord*>(s.Points->Mapped());
-  for (std::size_t i = 0; i < count; ++i)
-  {
-    const double* tip = tips[i].data();
-    PointRecord& p = points[i];
-    p = PointRecord{};
-    p.Tip[0] = static_cast<float>((tip[0] - g.OriginMm[0]) / g.PixelMm);
-    p.Tip[1] = static_cast<float>((tip[1] - g.OriginMm[1]) / g.PixelMm);
-    p.Tip[2] = static_cast<float>((tip[2] - g.OriginMm[2]) / g.SliceMm);
-    if (axes)
-    {
-      const double* axis = axes[i].data();
-      const double n = std::sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
-      for (int k = 0; k < 3 && n > 0.0; ++k)
-      {
-        p.Axis[k] = static_cast<float>(axis[k] / n);
-      }
-    }
-  }
-
-  QueryParameters q{};
-  q.PixelMm = static_cast<float>(g.PixelMm);
-  q.SliceMm = static_cast<float>(g.SliceMm);
-  q.RangeMm = static_cast<float>(searchMm);
-  q.HalfDiagonalMm = static_cast<float>(g.HalfDiagonalMm());
-  q.BinWidthMm = static_cast<float>(binWidth);
-  q.Bins = binWidth > 0.0 ? this->DistanceBins : 0;
-  q.Nx = g.Nx;
-  q.Ny = g.Ny;
-  q.Nz = g.Nz;
-  q.Words = g.Words();
-  q.TilesX = g.TilesX();
-  q.TilesY = g.TilesY();
-  q.OrderCount = static_cast<std::int32_t>(orderCount);
-  q.PaperMode = this->LayerMode == PaperNearFar ? 1 : 0;
-  q.RangeStride = static_cast<std::uint32_t>(g.Pixels()) * classes;
-  q.Classes = static_cast<std::int32_t>(classes);
-  q.DirectionalLanes = this->DirectionalLanes > 0 ? this->DirectionalLanes
-                                                  : (s.Context->IsCpuDevice() ? 1 : GpuDirectionalLanes);
+  s.WritePoints(tips, count, axes);
+  const QueryParameters q = MakeQueryParameters(g, searchMm, binWidth, this->DistanceBins, orderCount,
+    this->LayerMode == PaperNearFar, classes,
+    this->DirectionalLanes > 0 ? this->DirectionalLanes : (s.Context->IsCpuDevice() ? 1 : GpuDirectionalLanes));
 
   // A workgroup per tile: the per-pixel pass needs the device to take that many in one dispatch.
   const std::uint32_t lanes = static_cast<std::uint32_t>(q.DirectionalLanes);
@@ -971,50 +1033,16 @@ void vtkZBufferVesselDistance::AnswerBatch(const std::array<double, 3>* tips, st
   sizes[1] = { groups(laneSlots + (tiles > nearEntries ? tiles - nearEntries : 0)), classes, n };
   s.LastTiles = tiles * classes;
   s.LastTilesInRange = orderCount * classes;
+  s.PreparedQueryFor(q, n, perPixel, nearEntries, laneSlots).Submit();
+  this->ReadAnswers(tips, count, axes != nullptr, searchMm, q.Bins, binWidth, results);
+}
 
-  auto prepared = std::find_if(s.Prepared.begin(), s.Prepared.end(), [&](const Internals::PreparedQuery& p) {
-    return p.Points == n && p.PerPixel == perPixel && std::memcmp(&p.Parameters, &q, sizeof q) == 0;
-  });
-  if (prepared == s.Prepared.end())
-  {
-    if (s.Prepared.size() >= Internals::MaxPrepared)
-    {
-      s.Prepared.clear();
-    }
-    const std::uint32_t answers = n * classes;
-    const ReduceParameters copy{ 1, answers, orderCount };
-    Internals::PreparedQuery entry;
-    entry.Points = n;
-    entry.PerPixel = perPixel;
-    entry.Parameters = q;
-    entry.Commands = std::make_unique<vp::PreparedCommands>(*s.Context, [&](VkCommandBuffer cmd) {
-      s.Context->ResetStamps(cmd);
-      s.Context->Stamp(cmd, 0);
-      // Entries: a workgroup per tile (per pixel) or an invocation per tile (per tile); after the
-      // tiles, the lanes, in a dispatch of their own beside the tiles' (no barrier between: they
-      // write other words of the state), since the tiles' dispatches are cut to the ceilings.
-      auto visit = [&](std::uint32_t first, std::uint32_t last, std::uint32_t slots, VkDeviceSize sizesAt) {
-        QueryParameters part = q;
-        part.FirstEntry = static_cast<std::int32_t>(first);
-        part.EndEntry = static_cast<std::int32_t>(last);
-        part.LaneSlots = static_cast<std::int32_t>(slots);
-        (perPixel ? *s.QueryPerPixel : *s.Query).RecordIndirect(cmd, &part, s.DispatchSizes->Handle(), sizesAt);
-        vp::ComputeKernel::Barrier(cmd);
-      };
-      if (nearEntries > 0)
-      {
-        visit(0, nearEntries, 0, 0);
-      }
-      visit(nearEntries, orderCount, laneSlots, sizeof(VkDispatchIndirectCommand));
-      s.Reduce->Record(cmd, &copy, (answers + 63) / 64); // into the host-visible answers, and resets
-      vp::ComputeKernel::Barrier(cmd);
-      s.Context->Stamp(cmd, 1);
-    });
-    s.Prepared.push_back(std::move(entry));
-    prepared = s.Prepared.end() - 1;
-  }
-  prepared->Commands->Submit();
-
+void vtkZBufferVesselDistance::ReadAnswers(const std::array<double, 3>* tips, std::size_t count, bool axes,
+  double searchMm, int bins, double binWidth, vp::ProximityResult* results) const
+{
+  Internals& s = *this->Impl;
+  const std::uint32_t classes = s.Classes();
+  const vp::DepthLayerGrid& g = s.Grid;
   const auto* hostState = static_cast<const std::uint32_t*>(s.HostState->Mapped());
   struct Vote
   {
@@ -1053,9 +1081,9 @@ void vtkZBufferVesselDistance::AnswerBatch(const std::array<double, 3>* tips, st
       // The nearest marked cell is at most a cell diagonal nearer than the surface it holds:
       // its distance plus half a diagonal is within half a diagonal of the truth.
       double distance = best + g.HalfDiagonalMm();
-      if (q.Bins > 0)
+      if (bins > 0)
       {
-        for (int bin = 0; bin < q.Bins; ++bin)
+        for (int bin = 0; bin < bins; ++bin)
         {
           if (cs[8 + bin / 32] & (1u << (bin % 32)))
           {

@@ -191,6 +191,10 @@ private:
   /// Writes each tip's ceilings for the next submission (lock held); returns the tiles of the
   /// order table they need (those within the highest ceiling of a class not wholly beyond the search).
   std::uint32_t WriteCeilings(const std::array<double, 3>* tips, std::size_t count, double searchMm) const;
+  /// The answers the latest submission left in host-visible memory, into results (lock held),
+  /// with the exact engine's inside vote on the surfaces that are not closed.
+  void ReadAnswers(const std::array<double, 3>* tips, std::size_t count, bool axes, double searchMm, int bins,
+    double binWidthMm, vp::ProximityResult* results) const;
   /// One submission for up to GetBatchCapacity() tips on the current layers (lock held, results begun).
   void AnswerBatch(const std::array<double, 3>* tips, std::size_t count, const std::array<double, 3>* axes, double searchMm,
     double binWidthMm, vp::ProximityResult* results) const;

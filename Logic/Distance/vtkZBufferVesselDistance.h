@@ -110,6 +110,10 @@ public:
   /// pixel that gives an answer lies beyond its ceiling); off is for tests and benchmarks.
   void SetQueryCeilings(bool on);
   bool GetQueryCeilings() const { return this->QueryCeilings; }
+  /// Builds the ceilings' blocks for the current layers now (with the fixed box and ceilings
+  /// on), where a query would at the rendering's second submission: for a tracker, so that no
+  /// frame pays the tens to hundreds of milliseconds they take.
+  void BuildQueryCeilings();
   /// Which Vulkan device (see vp::VulkanContext): empty (default) for the best one, an index, or
   /// part of a name.
   void SetDeviceSelector(const std::string& selector);

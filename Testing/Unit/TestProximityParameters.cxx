@@ -6,6 +6,8 @@
 #include "vtkScalpelModel.h"
 #include "vtkVesselProximityLogic.h"
 #include "vtkVesselProximityParameters.h"
+#include "vtkZBufferVesselDistance.h"
+#include "vpVulkanTestSupport.h"
 
 #include <gtest/gtest.h>
 
@@ -126,5 +128,19 @@ TEST_F(ProximityParameters, TheLogicRebuildsForTheSceneAndNeverForASetting)
   this->Logic->ProcessPose(TipAt(15.0));
   EXPECT_EQ(this->Logic->GetNumberOfBuilds(), 4);
   EXPECT_EQ(this->Logic->GetTrackingLogic()->GetHysteresisMm(), 0.3);
+}
+
+// With the z-buffer engine, the logic builds the query's ceilings when it builds the engines, so
+// that no frame pays for them (tens to hundreds of milliseconds on large layers): the first
+// frame's query already starts from them and dispatches a few of the range's tiles.
+TEST_F(ProximityParameters, TheLogicBuildsTheZBuffersCeilingsBeforeAnyFrame)
+{
+  VP_REQUIRE_VULKAN();
+  auto zbuffer = vtkSmartPointer<vtkZBufferVesselDistance>::New();
+  this->Parameters->SetDistanceEngine(zbuffer);
+  this->Logic->ProcessPose(TipAt(12.0));
+  EXPECT_NEAR(this->Logic->GetLastFrame().Proximity.Classes[0].DistanceMm, 2.0, zbuffer->GetErrorBoundMm() + 0.05);
+  EXPECT_GT(zbuffer->GetCeilingBuildTimeMs(), 0.0);
+  EXPECT_LT(zbuffer->GetLastQueryTiles() * 5, zbuffer->GetLastQueryTilesInRange());
 }
 } // namespace

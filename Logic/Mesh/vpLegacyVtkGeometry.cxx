@@ -193,6 +193,22 @@ private:
     const std::size_t end = this->Bytes.find('\n', this->Pos);
     this->Pos = end == std::string::npos ? this->Bytes.size() : end + 1;
   }
+  /// The end of a binary section's header line. VTK's reader takes the rest of the line (up to
+  /// 255 characters) and then the values; with anything else on that line, or no line break at
+  /// all, its stream failed and the reader went on to read a keyword from the stream it had just
+  /// closed (a null pointer: found by fuzz_vtk_reader, "POLYGONS 0 0 vtkCompos..." at the end).
+  void EndHeaderLine(const std::string& section)
+  {
+    const std::size_t end = this->Bytes.find('\n', this->Pos);
+    const bool blank = end != std::string::npos && end - this->Pos < 200 &&
+      std::all_of(this->Bytes.begin() + static_cast<std::ptrdiff_t>(this->Pos),
+        this->Bytes.begin() + static_cast<std::ptrdiff_t>(end), [](char c) { return c == ' ' || c == '\t' || c == '\r'; });
+    if (!blank)
+    {
+      this->Fail(section + ": its header line does not end before its binary values");
+    }
+    this->Pos = end + 1;
+  }
   std::string_view Token()
   {
     this->SkipSpace();
@@ -244,7 +260,7 @@ private:
     }
     if (this->Binary)
     {
-      this->SkipLine();
+      this->EndHeaderLine(section);
       if (values * typeSize > this->Bytes.size() - this->Pos)
       {
         this->Fail(section + " ends past the end of the file");
@@ -327,7 +343,7 @@ private:
       const std::size_t offsetSize = this->TypeOf(section + " OFFSETS");
       if (this->Binary)
       {
-        this->SkipLine();
+        this->EndHeaderLine(section + " OFFSETS");
       }
       std::int64_t previous = 0;
       for (std::uint64_t i = 0; i < n; ++i)
@@ -364,7 +380,7 @@ private:
     this->Pos = mark;
     if (this->Binary)
     {
-      this->SkipLine();
+      this->EndHeaderLine(section);
     }
     // Classic: per cell its point count, then the points; the counts fill the section exactly.
     std::uint64_t used = 0;

@@ -210,6 +210,11 @@ TEST(MeshReader, EachBadInputGivesOneLineNamingTheFileAndTheProblem)
       "POINTS: value 13 of 24 is 'POLYGONS', not a number" },
     { WriteBytes(dir, "shortpoints.vtk", "# vtk DataFile Version 3.0\nx\nBINARY\nDATASET POLYDATA\nPOINTS 3 float\n\0\0\0\0"),
       "POINTS ends past the end of the file" },
+    // fuzz_vtk_reader: a binary section whose header line runs on to the end of the file made
+    // VTK's reader read from the stream it had closed (a null pointer).
+    { WriteBytes(dir, "runon.vtk", std::string("# vtk DataFile Version 3.0\nx\nBINARY\nDATASET POLYDATA\nPOINTS 1 float\n") +
+        std::string(12, '\0') + "\nPOLYGONS 0 0 vtkCompos" + std::string(6, '\0') + "# vtk?"),
+      "POLYGONS: its header line does not end before its binary values" },
     { WriteBytes(dir, "field.vtk", "# vtk DataFile Version 3.0\nx\nASCII\nDATASET POLYDATA\nFIELD FieldData 1\nw 1 1 float\n1\nPOINTS 3 float\n0 0 0 1 0 0 0 1 0\n"),
       "field data before the geometry is not read" },
     // Not regular files: /dev/zero never ends, a FIFO with no writer never opens.

@@ -33,19 +33,24 @@ Json BenchBatch(vtkVesselDistanceEngine* engine, const BenchPoints& tips, const 
   out["tips_per_second"] = 1000.0 * static_cast<double>(tips.size()) / std::max(1e-9, Quantile(ms, 0.5));
   if (singles)
   {
-    int differ = 0;
-    for (std::size_t i = 0; i < batch.size() && i < singles->size(); ++i)
-    {
-      for (std::size_t c = 0; c < batch[i].Classes.size(); ++c)
-      {
-        const ClassProximity& a = batch[i].Classes[c];
-        const ClassProximity& b = (*singles)[i].Classes[c];
-        differ += a.InRange != b.InRange || (a.InRange && (a.DistanceMm != b.DistanceMm || a.Inside != b.Inside)) ? 1 : 0;
-      }
-    }
-    out["answers_differing_from_single_queries"] = differ;
+    out["answers_differing_from_single_queries"] = CountDifferingAnswers(batch, *singles);
   }
   return out;
+}
+
+int CountDifferingAnswers(const std::vector<ProximityResult>& a, const std::vector<ProximityResult>& b)
+{
+  int differ = 0;
+  for (std::size_t i = 0; i < a.size() && i < b.size(); ++i)
+  {
+    for (std::size_t c = 0; c < a[i].Classes.size(); ++c)
+    {
+      const ClassProximity& x = a[i].Classes[c];
+      const ClassProximity& y = b[i].Classes[c];
+      differ += x.InRange != y.InRange || (x.InRange && (x.DistanceMm != y.DistanceMm || x.Inside != y.Inside)) ? 1 : 0;
+    }
+  }
+  return differ;
 }
 
 void TimedQuery(vtkZBufferVesselDistance* zbuffer, const double* tip, const double* axis, ProximityResult& result,

@@ -28,6 +28,9 @@ BenchJson Timing(const std::vector<double>& ms);
 /// (there must be none: a batch is the single queries, bit for bit).
 BenchJson BenchBatch(vtkVesselDistanceEngine* engine, const BenchPoints& tips, const std::vector<ProximityResult>* singles);
 
+/// Class answers of two runs over the same tips that differ in range, distance or inside.
+int CountDifferingAnswers(const std::vector<ProximityResult>& a, const std::vector<ProximityResult>& b);
+
 /// One z-buffer query, its host time in ms and its device time (the engine's timestamps).
 void TimedQuery(vtkZBufferVesselDistance* zbuffer, const double* tip, const double* axis, ProximityResult& result,
   std::vector<double>& ms, std::vector<double>& deviceMs);

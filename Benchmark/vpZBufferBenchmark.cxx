@@ -140,15 +140,7 @@ Json Ceilings(vtkZBufferVesselDistance* zbuffer, const BenchPoints& tips, const 
         }
       }
     }
-    for (std::size_t i = 0; i < answers[0].size(); ++i)
-    {
-      for (std::size_t c = 0; c < answers[0][i].Classes.size(); ++c)
-      {
-        const ClassProximity& a = answers[0][i].Classes[c];
-        const ClassProximity& b = answers[1][i].Classes[c];
-        differ += a.InRange != b.InRange || (a.InRange && (a.DistanceMm != b.DistanceMm || a.Inside != b.Inside)) ? 1 : 0;
-      }
-    }
+    differ += CountDifferingAnswers(answers[0], answers[1]);
     Json entry;
     entry["off"] = Timing(ms[0]);
     entry["on"] = Timing(ms[1]);

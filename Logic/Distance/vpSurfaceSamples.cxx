@@ -84,6 +84,7 @@ std::vector<Keyed> InLeafOrder(const std::vector<std::array<double, 3>>& points,
     throw std::invalid_argument("vp::SurfaceSamples: the surface has no triangles");
   }
   std::vector<Keyed> keyed;
+  keyed.reserve(points.size());
   for (std::size_t i = 0; i < points.size(); ++i)
   {
     if (!used[i])

@@ -6,6 +6,7 @@
 #include "vpGpuBuffer.h"
 #include "vpInputError.h"
 #include "vpPreparedCommands.h"
+#include "vpTriangleGeometry.h"
 #include "vpVulkanContext.h"
 #include "vtkExactVesselDistance.h"
 
@@ -994,9 +995,7 @@ std::uint32_t vtkZBufferVesselDistance::WriteCeilings(
       const Internals::LastAnswer& last = s.Last[c];
       if (last.Known)
       {
-        const double moved = std::sqrt((tip[0] - last.TipMm[0]) * (tip[0] - last.TipMm[0]) +
-          (tip[1] - last.TipMm[1]) * (tip[1] - last.TipMm[1]) + (tip[2] - last.TipMm[2]) * (tip[2] - last.TipMm[2]));
-        bound = std::min(bound, last.CellMm + moved);
+        bound = std::min(bound, last.CellMm + std::sqrt(vp::Distance2(tip, last.TipMm)));
       }
       bound = above(bound);
       ceiling[i * classes + c] = bound < searchMm ? std::nextafter(static_cast<float>(bound), None) : None;

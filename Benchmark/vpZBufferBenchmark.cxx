@@ -159,6 +159,63 @@ Json Ceilings(vtkZBufferVesselDistance* zbuffer, const BenchPoints& tips, const 
   return out;
 }
 
+/// The batch's tiles listed before they are visited, or visited straight from the order table
+/// (SetTileListing), taking turns on the same engine: the batch of all tips five times each way,
+/// single tips in turns of 20, the tiles one submission lists and dispatches per tip, and the
+/// answers that differ (none may).
+Json TileListing(vtkZBufferVesselDistance* zbuffer, const BenchPoints& tips)
+{
+  constexpr std::size_t Turn = 20;
+  constexpr int Listings[2] = { vtkZBufferVesselDistance::TileListingOff, vtkZBufferVesselDistance::TileListingOn };
+  std::vector<double> batchMs[2], ms[2], deviceMs[2];
+  std::vector<ProximityResult> batch[2], single[2];
+  for (int run = 0; run < 5; ++run)
+  {
+    for (int on = 0; on < 2; ++on)
+    {
+      zbuffer->SetTileListing(Listings[on]);
+      const double start = NowMs();
+      zbuffer->ComputeProximityBatch(tips, nullptr, batch[on]);
+      batchMs[on].push_back(NowMs() - start);
+    }
+  }
+  for (std::size_t first = 0; first < tips.size(); first += Turn)
+  {
+    for (int on = 0; on < 2; ++on)
+    {
+      zbuffer->SetTileListing(Listings[on]);
+      for (std::size_t i = first; i < std::min(tips.size(), first + Turn); ++i)
+      {
+        ProximityResult r;
+        TimedQuery(zbuffer, tips[i].data(), nullptr, r, ms[on], deviceMs[on]);
+        single[on].push_back(r);
+      }
+    }
+  }
+  // One full submission, for what it dispatches and lists per tip.
+  const std::size_t n = std::min(tips.size(), zbuffer->GetBatchCapacity());
+  std::vector<ProximityResult> one;
+  zbuffer->SetTileListing(vtkZBufferVesselDistance::TileListingOn);
+  zbuffer->ComputeProximityBatch(BenchPoints(tips.begin(), tips.begin() + static_cast<std::ptrdiff_t>(n)), nullptr, one);
+  Json out;
+  for (int on = 0; on < 2; ++on)
+  {
+    Json side;
+    side["batched"] = Timing(batchMs[on]);
+    side["batched_tips_per_second"] =
+      1000.0 * static_cast<double>(tips.size()) / std::max(1e-9, Quantile(batchMs[on], 0.5));
+    side["single"] = Timing(ms[on]);
+    side["single_device"] = Timing(deviceMs[on]);
+    out[on == 1 ? "on" : "off"] = side;
+  }
+  out["tiles_dispatched_per_tip"] = zbuffer->GetLastQueryTiles();
+  out["tiles_listed_per_tip"] = static_cast<double>(zbuffer->GetLastQueryTilesListed()) / static_cast<double>(std::max<std::size_t>(1, n));
+  out["answers_differing"] = CountDifferingAnswers(batch[0], batch[1]) + CountDifferingAnswers(single[0], single[1]) +
+    CountDifferingAnswers(batch[1], single[1]);
+  zbuffer->SetTileListing(vtkZBufferVesselDistance::TileListingByBatch);
+  return out;
+}
+
 /// The paper's layers (nearest and farthest depth only) on the same tips.
 Json PaperMode(vtkZBufferVesselDistance* zbuffer, const BenchPoints& tips)
 {
@@ -251,6 +308,8 @@ BenchJson BenchZBuffer(vtkZBufferVesselDistance* zbuffer, const std::vector<Name
   entry["paper_mode"] = PaperMode(zbuffer, tips);
   std::fprintf(stderr, ", ceilings");
   entry["ceilings"] = Ceilings(zbuffer, tips, track);
+  std::fprintf(stderr, ", tile listing");
+  entry["tile_listing"] = TileListing(zbuffer, tips);
   std::fprintf(stderr, ", moving box");
   entry["moving_box"] = MovingBox(zbuffer, track);
   std::fprintf(stderr, "\n");

@@ -11,6 +11,8 @@
 // batch of points (workgroup z: the point), each with its own state and records; a 64-bit minimum
 // picks each answer's record as the tiles offer theirs, and ReduceProximity.comp hands it to the
 // host.
+// Stage SelectTiles runs the same invocations but only lists the tiles that have to be visited,
+// and stage VisitListedTiles visits those (see TileList in QueryProximityCommon.glsl).
 // No shared memory and no barriers: lavapipe runs a workgroup with a barrier as coroutines, which
 // cost more than the whole query.
 #extension GL_GOOGLE_include_directive : require
@@ -20,26 +22,46 @@ layout(local_size_x = 64) in;
 
 void main()
 {
-  uint cls = gl_WorkGroupID.y;
-  uint point = gl_WorkGroupID.z;
-  // The dispatch's first LaneSlots invocations are the lanes, the rest its tiles.
   uint slot = gl_GlobalInvocationID.x;
-  bool lane = slot < uint(P.LaneSlots);
-  uint index = slot - uint(P.LaneSlots) + uint(P.FirstEntry);
-  if (!lane && index >= uint(P.EndEntry))
+  uint cls, point, index;
+  if (P.Stage == VisitListedTiles)
   {
-    return;
+    if (slot >= ListSize[0])
+    {
+      return;
+    }
+    uvec2 listed = ListedTile[slot];
+    point = listed.x / uint(P.Classes);
+    cls = listed.x % uint(P.Classes);
+    index = listed.y;
+  }
+  else
+  {
+    cls = gl_WorkGroupID.y;
+    point = gl_WorkGroupID.z;
+    // The dispatch's first LaneSlots invocations are the lanes, the rest its tiles.
+    bool lane = slot < uint(P.LaneSlots);
+    index = slot - uint(P.LaneSlots) + uint(P.FirstEntry);
+    if (!lane && index >= uint(P.EndEntry))
+    {
+      return;
+    }
+    if (lane)
+    {
+      BeginPoint(point);
+      AnswerLane(cls, (point * uint(P.Classes) + cls) * StateStride, int(slot));
+      return;
+    }
   }
   BeginPoint(point);
   uint answer = point * uint(P.Classes) + cls;
   uint stateBase = answer * StateStride;
-  if (lane)
+  BeginAnswer(answer);
+  if (P.Stage == SelectTiles)
   {
-    AnswerLane(cls, stateBase, int(slot));
+    SelectTile(cls, answer, stateBase, index);
     return;
   }
-
-  BeginAnswer(answer);
   ivec2 tile = TileToVisit(cls, stateBase, index);
   if (tile.x < 0)
   {

@@ -30,6 +30,16 @@ layout(std430, binding = 8) buffer Choices { uint64_t Choice[]; };
 // farther than it are skipped from the start, as they would be once the best was found; on a GPU,
 // where a dispatch's tiles all start at once, they would otherwise all do their work.
 layout(std430, binding = 9) readonly buffer Ceilings { float CeilingMm[]; };
+// The tiles a batch still has to visit after its near tiles (stage SelectTiles writes them,
+// VisitListedTiles reads them): per listed tile its answer (point x classes + class) and its entry
+// in the order table. Packed, so that the visiting threads all have a tile's work to do: on a GPU
+// a dispatch over the whole order table starts a workgroup for every tile, nearly all of which
+// then find nothing to do; on a CPU device the SIMD lanes of a tile that has no work wait for
+// those that have.
+layout(std430, binding = 10) buffer TileList { uvec2 ListedTile[]; };
+// [0] tiles listed; [1..3] the visiting dispatch's VkDispatchIndirectCommand (x grows by one for
+// every ItemsPerGroup tiles listed; y = z = 1). ReduceProximity.comp resets it for the next query.
+layout(std430, binding = 11) buffer TileListSize { uint ListSize[]; };
 
 layout(push_constant) uniform Parameters
 {
@@ -58,7 +68,15 @@ layout(push_constant) uniform Parameters
   // per pixel; 0 in a batch's first dispatch): the tiles after them are as many as the host
   // writes for this submission.
   int LaneSlots;
+  // What this dispatch does (VisitOrderedTiles, SelectTiles, VisitListedTiles), and how many
+  // listed tiles one workgroup of the visiting dispatch takes (64 per tile, 1 per pixel).
+  int Stage;
+  int TilesPerGroup;
 } P;
+
+const int VisitOrderedTiles = 0; // the order table's entries FirstEntry..EndEntry, after the lanes
+const int SelectTiles = 1;       // the same entries, listed when they have to be visited
+const int VisitListedTiles = 2;  // the tiles listed
 
 // This invocation's point (set first thing in main), and the least of the range and its answer's
 // ceiling (BeginAnswer).
@@ -356,6 +374,22 @@ float PixelDistance(uint cls, ivec2 pix, float best, out float depth)
     return sqrt(dxy2 + dz * dz);
   }
   return Inf;
+}
+
+// Stage SelectTiles: the entry's tile goes on the list when it has to be visited. The best so far
+// only falls after this, so a tile left off could not have given the answer.
+void SelectTile(uint cls, uint answer, uint stateBase, uint entry)
+{
+  if (TileToVisit(cls, stateBase, entry).x < 0)
+  {
+    return;
+  }
+  uint item = atomicAdd(ListSize[0], 1u);
+  ListedTile[item] = uvec2(answer, entry);
+  if (item % uint(P.TilesPerGroup) == 0u)
+  {
+    atomicAdd(ListSize[1], 1u);
+  }
 }
 
 // A tile's record with a distance: written, and offered to its answer's choice. A record

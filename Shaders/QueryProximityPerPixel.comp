@@ -12,6 +12,8 @@
 // below it) and its distance does not depend on how far the search looked; every pixel of the
 // tile with that distance is offered, and the last wins. The distance bits are the same too: the
 // best distance's bit is raised in both, and the host reads only the first raised bit.
+// It visits the order table's tiles (stage VisitOrderedTiles) or the tiles a batch listed
+// (VisitListedTiles; the per-tile pass lists them).
 // Shared memory and barriers: fine on a GPU; lavapipe uses the per-tile pass.
 #extension GL_GOOGLE_include_directive : require
 #include "QueryProximityCommon.glsl"
@@ -23,20 +25,33 @@ shared float CandidateDepth[64];
 
 void main()
 {
-  uint cls = gl_WorkGroupID.y;
-  uint point = gl_WorkGroupID.z;
-  uint group = gl_WorkGroupID.x;
   uint k = gl_LocalInvocationID.x;
+  uint cls, point, entry;
+  uint group = gl_WorkGroupID.x;
+  if (P.Stage == VisitListedTiles)
+  {
+    // One workgroup per listed tile: the dispatch has exactly as many.
+    uvec2 listed = ListedTile[group];
+    point = listed.x / uint(P.Classes);
+    cls = listed.x % uint(P.Classes);
+    entry = listed.y;
+  }
+  else
+  {
+    cls = gl_WorkGroupID.y;
+    point = gl_WorkGroupID.z;
+    if (group < uint(P.LaneSlots))
+    {
+      // The dispatch's first workgroups: the lanes of "inside" and the directional walk.
+      BeginPoint(point);
+      AnswerLane(cls, (point * uint(P.Classes) + cls) * StateStride, int(group * 64u + k));
+      return;
+    }
+    entry = group - uint(P.LaneSlots) + uint(P.FirstEntry); // this dispatch's workgroups end it
+  }
   BeginPoint(point);
   uint answer = point * uint(P.Classes) + cls;
   uint stateBase = answer * StateStride;
-  if (group < uint(P.LaneSlots))
-  {
-    // The dispatch's first workgroups: the lanes of "inside" and the directional walk.
-    AnswerLane(cls, stateBase, int(group * 64u + k));
-    return;
-  }
-  uint entry = group - uint(P.LaneSlots) + uint(P.FirstEntry); // this dispatch's workgroups end it
 
   BeginAnswer(answer);
   ivec2 tile = TileToVisit(cls, stateBase, entry);

@@ -7,7 +7,8 @@
 //   1: copy the state, with the record the query's 64-bit minimum chose (its distance, pixel and
 //      depth), straight into the host-visible answers, so the host reads 32 words per answer and
 //      nothing else and no copy command follows; then reset the state for the next query, which
-//      so needs no reset dispatch of its own.
+//      so needs no reset dispatch of its own. The first answer's word 7 receives the number of
+//      tiles the submission listed (0 when it listed none), for the benchmarks.
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 layout(local_size_x = 64) in;
 
@@ -15,6 +16,9 @@ layout(std430, binding = 0) buffer QueryState { uint State[]; };
 layout(std430, binding = 1) readonly buffer Records { uvec4 Record[]; };
 layout(std430, binding = 2) writeonly buffer Answers { uint Answer[]; };
 layout(std430, binding = 3) buffer Choices { uint64_t Choice[]; };
+// The batch's list of tiles to visit (QueryProximityCommon.glsl): its size, and the visiting
+// dispatch's workgroup counts.
+layout(std430, binding = 4) buffer TileListSize { uint ListSize[]; };
 
 layout(push_constant) uniform Parameters
 {
@@ -48,6 +52,15 @@ void main()
     return;
   }
   uint base = i * StateStride;
+  uint listed = 0u;
+  if (i == 0u)
+  {
+    listed = ListSize[0];
+    ListSize[0] = 0u;
+    ListSize[1] = 0u;
+    ListSize[2] = 1u;
+    ListSize[3] = 1u;
+  }
   if (P.Step == 1u)
   {
     uint64_t choice = Choice[i];
@@ -57,6 +70,10 @@ void main()
       Answer[base + w] = State[base + w];
     }
     Answer[base + 3u] = chosen;
+    if (i == 0u)
+    {
+      Answer[7] = listed;
+    }
     if (chosen != NoRecord)
     {
       uvec4 r = Record[i * P.OrderCount + chosen];

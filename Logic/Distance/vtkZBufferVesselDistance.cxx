@@ -73,20 +73,24 @@ struct QueryParameters
   std::int32_t DirectionalLanes;
   std::int32_t FirstEntry, EndEntry;
   std::int32_t LaneSlots;
+  std::int32_t Stage, TilesPerGroup;
 };
-static_assert(sizeof(QueryParameters) == 80, "push constant layout of QueryProximity.comp");
+static_assert(sizeof(QueryParameters) == 88, "push constant layout of QueryProximity.comp");
 
 // Lanes that share the directional walk on a GPU (see QueryProximity.comp).
 constexpr std::int32_t GpuDirectionalLanes = 64;
-// Submissions of up to this many tips take the per-pixel pass on a GPU, larger ones the per-tile
-// pass. Measured on an H100: one tip 0.025 ms on the device per pixel, 0.042 per tile; 1,000 tips
-// 1.95 ms per pixel, 0.57 per tile (a batch's tiles already fill the device, and the per-pixel
-// pass pays a workgroup for every tile it then skips).
+// Submissions of up to this many tips take the per-pixel pass over the order table on a GPU;
+// larger ones list their tiles first (SetTileListing) and visit the listed ones per pixel.
+// Measured on an H100 before the list: one tip 0.025 ms on the device per pixel, 0.042 per tile;
+// 1,000 tips 1.95 ms per pixel, 0.57 per tile (the per-pixel pass paid a workgroup for every tile
+// of the order table, nearly all of which it then skipped: the list leaves only the others).
 constexpr std::uint32_t PerPixelMaxTips = 8;
-// A larger batch first visits, for every tip, the tiles within this many tiles of its own: on a
+// A larger batch without a list first visits, for every tip, the tiles within this many tiles of its own: on a
 // GPU all of a dispatch's tiles run at once, so a far tile would start before a near one had
 // lowered the best; after this first dispatch most far tiles are skipped at once.
 constexpr double NearTiles = 2.0;
+// The query's stages (QueryProximityCommon.glsl).
+constexpr std::int32_t VisitOrderedTiles = 0, SelectTiles = 1, VisitListedTiles = 2;
 // Tips per submission: as many as the records of a batch allow within RecordBudgetBytes, and at
 // most these (a CPU device answers a batch's tips one after another: larger batches only cost
 // memory there; a GPU answers them side by side, so larger batches spread a submission's fixed
@@ -175,6 +179,9 @@ struct vtkZBufferVesselDistance::Internals
   // (VkDispatchIndirectCommand: the near tiles of a batch, then the lanes and the rest), written
   // by the host before every submission.
   std::unique_ptr<vp::GpuBuffer> Ceilings, DispatchSizes;
+  // The tiles a batch lists after its near ones, and the list's size with the workgroup counts
+  // of the dispatch that visits them (written by the device; see TileList in the shaders).
+  std::unique_ptr<vp::GpuBuffer> TileList, TileListSize;
   // The ceilings' sources: the coarse blocks of the current rendering, and per class the latest
   // answer (tip, and the distance to its nearest marked cell) on the rendering it was made on.
   std::unique_ptr<vp::BlockDistanceField> CeilingBlocks;
@@ -189,7 +196,7 @@ struct vtkZBufferVesselDistance::Internals
   std::vector<LastAnswer> Last;
   int LastRender = -1;
   int SubmissionsOnRender = 0;
-  std::uint32_t LastTiles = 0, LastTilesInRange = 0;
+  std::uint32_t LastTiles = 0, LastTilesInRange = 0, LastTilesListed = 0;
   // Tips per submission for the current order table (PrepareOrder).
   std::uint32_t Capacity = 0;
 
@@ -200,6 +207,7 @@ struct vtkZBufferVesselDistance::Internals
   {
     std::uint32_t Points = 0;
     bool PerPixel = false;
+    int Listing = 0; // 0: no list; 1: listed tiles visited per tile; 2: per pixel
     QueryParameters Parameters{};
     std::unique_ptr<vp::PreparedCommands> Commands;
   };
@@ -252,6 +260,8 @@ struct vtkZBufferVesselDistance::Internals
     this->HostState.reset();
     this->Ceilings.reset();
     this->DispatchSizes.reset();
+    this->TileList.reset();
+    this->TileListSize.reset();
     this->CeilingBlocks.reset();
     this->CeilingBlocksRender = -1;
     this->CeilingBuildMs = 0.0;
@@ -341,14 +351,17 @@ struct vtkZBufferVesselDistance::Internals
     }
   }
 
-  // The query's submission for these parameters, batch size and pass, recorded once: the two
-  // dispatches of tiles (their sizes read from DispatchSizes when it runs), then the answers.
-  vp::PreparedCommands& PreparedQueryFor(
-    const QueryParameters& q, std::uint32_t n, bool perPixel, std::uint32_t nearEntries, std::uint32_t laneSlots)
+  // The query's submission for these parameters, batch size and passes, recorded once: the two
+  // dispatches over the order table (their sizes read from DispatchSizes when it runs), then the
+  // answers. With a list (listing 1: visited per tile, 2: per pixel), the second dispatch lists
+  // the tiles it would have visited and a third, sized by the device, visits them.
+  vp::PreparedCommands& PreparedQueryFor(const QueryParameters& q, std::uint32_t n, bool perPixel, int listing,
+    std::uint32_t nearEntries, std::uint32_t laneSlots)
   {
     const std::uint32_t orderCount = static_cast<std::uint32_t>(q.OrderCount);
     auto prepared = std::find_if(this->Prepared.begin(), this->Prepared.end(), [&](const PreparedQuery& p) {
-      return p.Points == n && p.PerPixel == perPixel && std::memcmp(&p.Parameters, &q, sizeof q) == 0;
+      return p.Points == n && p.PerPixel == perPixel && p.Listing == listing &&
+        std::memcmp(&p.Parameters, &q, sizeof q) == 0;
     });
     if (prepared == this->Prepared.end())
     {
@@ -361,25 +374,39 @@ struct vtkZBufferVesselDistance::Internals
       PreparedQuery entry;
       entry.Points = n;
       entry.PerPixel = perPixel;
+      entry.Listing = listing;
       entry.Parameters = q;
       entry.Commands = std::make_unique<vp::PreparedCommands>(*this->Context, [&](VkCommandBuffer cmd) {
         this->Context->ResetStamps(cmd);
         this->Context->Stamp(cmd, 0);
         // Entries: a workgroup per tile (per pixel) or an invocation per tile (per tile); the
         // lanes come first in the last dispatch, whose size after them follows the ceilings.
-        auto visit = [&](std::uint32_t first, std::uint32_t last, std::uint32_t slots, VkDeviceSize sizesAt) {
+        auto visit = [&](std::int32_t stage, bool pixels, std::uint32_t first, std::uint32_t last, std::uint32_t slots,
+                       const vp::GpuBuffer& sizes, VkDeviceSize sizesAt) {
           QueryParameters part = q;
           part.FirstEntry = static_cast<std::int32_t>(first);
           part.EndEntry = static_cast<std::int32_t>(last);
           part.LaneSlots = static_cast<std::int32_t>(slots);
-          (perPixel ? *this->QueryPerPixel : *this->Query).RecordIndirect(cmd, &part, this->DispatchSizes->Handle(), sizesAt);
+          part.Stage = stage;
+          part.TilesPerGroup = listing == 2 ? 1 : 64;
+          (pixels ? *this->QueryPerPixel : *this->Query).RecordIndirect(cmd, &part, sizes.Handle(), sizesAt);
           vp::ComputeKernel::Barrier(cmd);
         };
+        const VkDeviceSize second = sizeof(VkDispatchIndirectCommand);
         if (nearEntries > 0)
         {
-          visit(0, nearEntries, 0, 0);
+          visit(VisitOrderedTiles, perPixel, 0, nearEntries, 0, *this->DispatchSizes, 0);
         }
-        visit(nearEntries, orderCount, laneSlots, sizeof(VkDispatchIndirectCommand));
+        if (listing == 0)
+        {
+          visit(VisitOrderedTiles, perPixel, nearEntries, orderCount, laneSlots, *this->DispatchSizes, second);
+        }
+        else
+        {
+          // The listing runs an invocation per entry (the per-tile pass's layout, lanes included).
+          visit(SelectTiles, false, nearEntries, orderCount, laneSlots, *this->DispatchSizes, second);
+          visit(VisitListedTiles, listing == 2, 0, 0, 0, *this->TileListSize, 4);
+        }
         this->Reduce->Record(cmd, &copy, (answers + 63) / 64); // into the host-visible answers, and resets
         vp::ComputeKernel::Barrier(cmd);
         this->Context->Stamp(cmd, 1);
@@ -488,14 +515,18 @@ struct vtkZBufferVesselDistance::Internals
     this->Ceilings = std::make_unique<vp::GpuBuffer>(*this->Context, 4ull * classes * this->Capacity, Placement::HostToDevice);
     this->DispatchSizes =
       std::make_unique<vp::GpuBuffer>(*this->Context, 2 * sizeof(VkDispatchIndirectCommand), Placement::HostToDevice);
+    // At most one listed tile per answer and entry: half the records' bytes.
+    this->TileList = std::make_unique<vp::GpuBuffer>(*this->Context, recordBytesPerTip * this->Capacity / 2, Placement::Device);
+    this->TileListSize = std::make_unique<vp::GpuBuffer>(*this->Context, 16, Placement::Device);
     for (vp::ComputeKernel* query : { this->Query.get(), this->QueryPerPixel.get() })
     {
       query->BindBuffers({ this->Occupancy->Handle(), this->Crossings->Handle(), this->DepthRanges->Handle(),
         this->TileRanges->Handle(), this->Order->Handle(), this->State->Handle(), this->Records->Handle(),
-        this->Points->Handle(), this->Choices->Handle(), this->Ceilings->Handle() });
+        this->Points->Handle(), this->Choices->Handle(), this->Ceilings->Handle(), this->TileList->Handle(),
+        this->TileListSize->Handle() });
     }
-    this->Reduce->BindBuffers(
-      { this->State->Handle(), this->Records->Handle(), this->HostState->Handle(), this->Choices->Handle() });
+    this->Reduce->BindBuffers({ this->State->Handle(), this->Records->Handle(), this->HostState->Handle(),
+      this->Choices->Handle(), this->TileListSize->Handle() });
     // The state starts reset; every query leaves it so.
     const std::uint32_t answers = this->Capacity * classes;
     const ReduceParameters reset{ 0, answers, this->OrderCount };
@@ -623,6 +654,21 @@ void vtkZBufferVesselDistance::SetQueryPass(int pass)
   }
   this->QueryPass = pass;
   this->Modified();
+}
+
+void vtkZBufferVesselDistance::SetTileListing(int listing)
+{
+  if (listing != TileListingByBatch && listing != TileListingOff && listing != TileListingOn)
+  {
+    throw vp::InputError("tile listing", "must be by batch, off or on");
+  }
+  this->TileListing = listing; // no Modified(): the answers are the same
+}
+
+std::size_t vtkZBufferVesselDistance::GetLastQueryTilesListed() const
+{
+  std::lock_guard<std::mutex> lock(this->Impl->Lock);
+  return this->Impl->LastTilesListed;
 }
 
 void vtkZBufferVesselDistance::SetDirectionalLanes(int lanes)
@@ -868,11 +914,11 @@ void vtkZBufferVesselDistance::BuildInternal()
     context, SummarizeTiles_comp, SummarizeTiles_comp_size, 2, static_cast<std::uint32_t>(sizeof(TileParameters)));
   s.Tiles->BindBuffers({ s.DepthRanges->Handle(), s.TileRanges->Handle() });
   s.Query = std::make_unique<vp::ComputeKernel>(
-    context, QueryProximity_comp, QueryProximity_comp_size, 10, static_cast<std::uint32_t>(sizeof(QueryParameters)));
+    context, QueryProximity_comp, QueryProximity_comp_size, 12, static_cast<std::uint32_t>(sizeof(QueryParameters)));
   s.QueryPerPixel = std::make_unique<vp::ComputeKernel>(context, QueryProximityPerPixel_comp,
-    QueryProximityPerPixel_comp_size, 10, static_cast<std::uint32_t>(sizeof(QueryParameters)));
+    QueryProximityPerPixel_comp_size, 12, static_cast<std::uint32_t>(sizeof(QueryParameters)));
   s.Reduce = std::make_unique<vp::ComputeKernel>(
-    context, ReduceProximity_comp, ReduceProximity_comp_size, 4, static_cast<std::uint32_t>(sizeof(ReduceParameters)));
+    context, ReduceProximity_comp, ReduceProximity_comp_size, 5, static_cast<std::uint32_t>(sizeof(ReduceParameters)));
 
   s.Renders = 0; // Release() dropped the ceilings of the renderings before
   if (!moving && classes > 0)
@@ -1031,18 +1077,32 @@ void vtkZBufferVesselDistance::AnswerBatch(const std::array<double, 3>* tips, st
       (this->QueryPass == QueryPassByDevice && !s.Context->IsCpuDevice() && count <= PerPixelMaxTips)) &&
     orderCount + laneGroups <= s.Context->Limits().maxComputeWorkGroupCount[0];
   const std::uint32_t n = static_cast<std::uint32_t>(count);
-  const std::uint32_t nearEntries =
-    n > PerPixelMaxTips ? std::min(orderCount, s.OrderCountWithin(NearTiles * 8.0 * g.PixelMm)) : 0;
   const std::uint32_t tiles = this->WriteCeilings(tips, count, searchMm);
-  // Lanes first in the last dispatch: invocations per tile, workgroups per pixel.
-  const std::uint32_t laneSlots = perPixel ? laneGroups : lanes;
-  auto groups = [perPixel](std::uint32_t slots) { return perPixel ? slots : (slots + 63) / 64; };
+  // The listed tiles are visited per pixel where the order table would be: on a GPU, where a
+  // workgroup per listed tile is work for every invocation (and the device takes that many).
+  const bool listPerPixel = this->QueryPass != QueryPassPerTile &&
+    (this->QueryPass == QueryPassPerPixel || !s.Context->IsCpuDevice()) &&
+    static_cast<std::uint64_t>(s.Capacity) * classes * s.OrderCount <= s.Context->Limits().maxComputeWorkGroupCount[0];
+  const bool list = this->TileListing == TileListingOn || (this->TileListing == TileListingByBatch && n > PerPixelMaxTips);
+  const int listing = list ? (listPerPixel ? 2 : 1) : 0;
+  // Without a list, a batch first visits its near tiles, so that the best falls before the rest
+  // start. A list needs no such pass: the ceilings alone leave a few tiles per tip to list
+  // (IRCADb patient 1, 0.4 mm cells: 24 of 2,691 per tip, 20 after a near pass of 2 tiles,
+  // which made lavapipe no faster).
+  const std::uint32_t nearEntries =
+    n > PerPixelMaxTips && !list ? std::min(orderCount, s.OrderCountWithin(NearTiles * 8.0 * g.PixelMm)) : 0;
+  // Lanes first in the last dispatch over the order table: invocations per tile (and when
+  // listing), workgroups per pixel.
+  const bool lanesPerPixel = perPixel && !list;
+  const std::uint32_t laneSlots = lanesPerPixel ? laneGroups : lanes;
+  auto groups = [](bool pixels, std::uint32_t slots) { return pixels ? slots : (slots + 63) / 64; };
   auto* sizes = static_cast<VkDispatchIndirectCommand*>(s.DispatchSizes->Mapped());
-  sizes[0] = { groups(std::min(nearEntries, tiles)), classes, n };
-  sizes[1] = { groups(laneSlots + (tiles > nearEntries ? tiles - nearEntries : 0)), classes, n };
+  sizes[0] = { groups(perPixel, std::min(nearEntries, tiles)), classes, n };
+  sizes[1] = { groups(lanesPerPixel, laneSlots + (tiles > nearEntries ? tiles - nearEntries : 0)), classes, n };
   s.LastTiles = tiles * classes;
   s.LastTilesInRange = orderCount * classes;
-  s.PreparedQueryFor(q, n, perPixel, nearEntries, laneSlots).Submit();
+  s.PreparedQueryFor(q, n, perPixel, listing, nearEntries, laneSlots).Submit();
+  s.LastTilesListed = static_cast<const std::uint32_t*>(s.HostState->Mapped())[7];
   this->ReadAnswers(tips, count, axes != nullptr, searchMm, q.Bins, binWidth, results);
 }
 
@@ -1161,6 +1221,8 @@ void vtkZBufferVesselDistance::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "QueryPass: "
      << (this->QueryPass == QueryPassPerTile ? "PerTile" : this->QueryPass == QueryPassPerPixel ? "PerPixel" : "(by device)")
      << "\n";
+  os << indent << "TileListing: "
+     << (this->TileListing == TileListingOff ? "Off" : this->TileListing == TileListingOn ? "On" : "(by batch)") << "\n";
   os << indent << "DirectionalLanes: " << this->DirectionalLanes << (this->DirectionalLanes ? "" : " (by device)") << "\n";
   os << indent << "DeviceSelector: " << (this->DeviceSelector.empty() ? "(best)" : this->DeviceSelector) << "\n";
   const vp::DepthLayerGrid& g = this->Impl->Grid;

@@ -91,6 +91,21 @@ public:
   /// ones (whose tiles fill the device anyway), PerTile on a CPU device.
   void SetQueryPass(int pass);
   int GetQueryPass() const { return this->QueryPass; }
+  enum TileListings
+  {
+    TileListingByBatch = 0,
+    TileListingOff = 1,
+    TileListingOn = 2
+  };
+  /// Whether a submission lists the tiles it has to visit before visiting them. Off: one dispatch
+  /// over the order table (within the ceilings) visits them, and every tile of it starts, if only
+  /// to find that it has nothing to do. On: an invocation per entry of the table lists the tiles
+  /// that have to be visited, and a dispatch sized by the device visits those alone, per pixel
+  /// where the query pass would be. A batch's near tiles are visited first either way. The
+  /// answers are the same, bit for bit. Default TileListingByBatch: on for submissions of more
+  /// than 8 tips, off for fewer (a single tip's query is a dispatch shorter without).
+  void SetTileListing(int listing);
+  int GetTileListing() const { return this->TileListing; }
   /// Invocations that share the directional walk along the axis, each walking its share of the
   /// range (same answers for any number: every crossing is computed from its cell). Default 0:
   /// 64 on a GPU, where one walk of hundreds of cells in one thread was most of a tracked query's
@@ -168,6 +183,8 @@ public:
   /// the order table within its search times the classes (what it dispatched without ceilings).
   std::size_t GetLastQueryTiles() const;
   std::size_t GetLastQueryTilesInRange() const;
+  /// Tiles the latest submission listed (all its tips and classes; 0 when it listed none).
+  std::size_t GetLastQueryTilesListed() const;
   /// Time to build the ceilings' blocks after the latest rendering (copying the occupancy to the
   /// host included), ms; 0 until they are built.
   double GetCeilingBuildTimeMs() const;
@@ -211,6 +228,7 @@ private:
   int DistanceBins = 0;
   int DirectionalLanes = 0;
   int QueryPass = QueryPassByDevice;
+  int TileListing = TileListingByBatch;
   bool QueryCeilings = true;
   std::string DeviceSelector;
 

@@ -29,7 +29,8 @@ public:
   /// VkDispatchIndirectCommand at offset in buffer (so that a recorded submission can change its
   /// size: the host writes the counts before each submission).
   void RecordIndirect(VkCommandBuffer cmd, const void* pushConstants, VkBuffer buffer, VkDeviceSize offset) const;
-  /// Makes the shader writes recorded so far visible to later shaders and transfers.
+  /// Makes the shader writes recorded so far visible to later shaders, transfers and indirect
+  /// dispatches.
   static void Barrier(VkCommandBuffer cmd);
 
 private:

@@ -194,6 +194,23 @@ void PrintZBufferQueries(const Json& z)
       s["triangles_per_class"].get<std::size_t>(), c["batched_off"]["tips_per_second"].get<double>(),
       c["batched_on"]["tips_per_second"].get<double>(), c["build_ms"].get<double>(), c["answers_differing"].get<int>());
   }
+  std::printf("%10s | %-12s %16s %16s %22s %22s %10s\n", "tris/class", "tile listing", "batch tips/s", "tiles per tip",
+    "single med / p95 ms", "device med / p95 ms", "differing");
+  for (const Json& s : z["sizes"])
+  {
+    const Json& t = s["tile_listing"];
+    for (const char* side : { "off", "on" })
+    {
+      const Json& w = t[side];
+      const bool on = side[1] == 'n';
+      std::printf("%10zu | %-12s %16.0f %16.1f %10.4f / %9.4f %10.4f / %9.4f %10d\n",
+        s["triangles_per_class"].get<std::size_t>(), side, w["batched_tips_per_second"].get<double>(),
+        on ? t["tiles_listed_per_tip"].get<double>() : t["tiles_dispatched_per_tip"].get<double>(),
+        w["single"]["median_ms"].get<double>(), w["single"]["p95_ms"].get<double>(),
+        w["single_device"]["median_ms"].get<double>(), w["single_device"]["p95_ms"].get<double>(),
+        t["answers_differing"].get<int>());
+    }
+  }
 }
 
 void PrintReplayTable(const Json& r)

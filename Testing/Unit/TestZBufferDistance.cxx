@@ -305,6 +305,72 @@ TEST(ZBufferDistance, CeilingsCutTheDispatchAndChangeNoAnswer)
   }
 }
 
+// A batch lists the tiles it has to visit before visiting them (SetTileListing): the list holds
+// a few of the tiles the order table would dispatch, and the answers are those of the order
+// table, bit for bit, one by one and batched, listed tiles visited per tile and per pixel, and in
+// the paper's mode with its bins. A tile left off the list that held an answer would fail here.
+TEST(ZBufferDistance, ListedTilesAreFewAndChangeNoAnswer)
+{
+  VP_REQUIRE_VULKAN();
+  const Vessels vessels = vp::MakeBuiltInVessels();
+  double b[6];
+  VesselBounds(vessels, b);
+  auto listed = Make<vtkZBufferVesselDistance>(vessels, 50.0);
+  auto ordered = Make<vtkZBufferVesselDistance>(vessels, 50.0);
+  listed->SetTileListing(vtkZBufferVesselDistance::TileListingOn);
+  ordered->SetTileListing(vtkZBufferVesselDistance::TileListingOff);
+  EXPECT_THROW(listed->SetTileListing(3), vp::InputError);
+  const auto tips = RandomTips(b, 40.0, 300, 29);
+  std::vector<std::array<double, 3>> axes;
+  for (std::size_t i = 0; i < tips.size(); ++i)
+  {
+    axes.push_back(vp::test::TurningAxis(i));
+  }
+  int inRange = 0;
+  auto compare = [&](const std::string& what) {
+    std::vector<vp::ProximityResult> a, z;
+    listed->ComputeProximityBatch(tips, &axes, a);
+    ordered->ComputeProximityBatch(tips, &axes, z);
+    ASSERT_EQ(a.size(), z.size());
+    for (std::size_t i = 0; i < a.size(); ++i)
+    {
+      inRange += vp::test::ExpectSameAnswer(a[i], z[i], what + ", batched, tip " + std::to_string(i));
+    }
+    for (std::size_t i = 0; i < tips.size(); i += 7)
+    {
+      vp::ProximityResult one, other;
+      listed->ComputeProximity(tips[i].data(), axes[i].data(), one);
+      ordered->ComputeProximity(tips[i].data(), axes[i].data(), other);
+      inRange += vp::test::ExpectSameAnswer(one, other, what + ", one by one, tip " + std::to_string(i));
+    }
+  };
+  compare("per tile");
+  // One full submission: what it lists per tip against what the order table dispatches.
+  const std::size_t n = std::min(tips.size(), listed->GetBatchCapacity());
+  std::vector<vp::ProximityResult> some;
+  listed->ComputeProximityBatch(std::vector<std::array<double, 3>>(tips.begin(), tips.begin() + n), nullptr, some);
+  const double listedPerTip = static_cast<double>(listed->GetLastQueryTilesListed()) / static_cast<double>(n);
+  const std::size_t dispatchedPerTip = listed->GetLastQueryTiles();
+  ordered->ComputeProximityBatch(std::vector<std::array<double, 3>>(tips.begin(), tips.begin() + n), nullptr, some);
+  EXPECT_EQ(ordered->GetLastQueryTilesListed(), 0u);
+  EXPECT_GT(listedPerTip, 1.0);
+  // Measured: 30 listed per tip of 2,691 dispatched.
+  EXPECT_LT(listedPerTip * 20.0, static_cast<double>(dispatchedPerTip)) << listedPerTip << " listed per tip";
+  for (vtkZBufferVesselDistance* e : { listed.Get(), ordered.Get() })
+  {
+    e->SetQueryPass(vtkZBufferVesselDistance::QueryPassPerPixel);
+  }
+  compare("per pixel");
+  for (vtkZBufferVesselDistance* e : { listed.Get(), ordered.Get() })
+  {
+    e->SetQueryPass(vtkZBufferVesselDistance::QueryPassByDevice);
+    e->SetLayerMode(vtkZBufferVesselDistance::PaperNearFar);
+    e->SetDistanceBins(64);
+  }
+  compare("paper mode, 64 bins");
+  EXPECT_GT(inRange, 1000);
+}
+
 TEST(ZBufferDistance, StackedBranchesStayApartOnlyInTheExactIntervalMode)
 {
   VP_REQUIRE_VULKAN();

@@ -212,7 +212,7 @@ Json TileListing(vtkZBufferVesselDistance* zbuffer, const BenchPoints& tips)
   out["tiles_listed_per_tip"] = static_cast<double>(zbuffer->GetLastQueryTilesListed()) / static_cast<double>(std::max<std::size_t>(1, n));
   out["answers_differing"] = CountDifferingAnswers(batch[0], batch[1]) + CountDifferingAnswers(single[0], single[1]) +
     CountDifferingAnswers(batch[1], single[1]);
-  zbuffer->SetTileListing(vtkZBufferVesselDistance::TileListingByBatch);
+  zbuffer->SetTileListing(vtkZBufferVesselDistance::TileListingByDevice);
   return out;
 }
 

@@ -11,8 +11,8 @@
 // batch of points (workgroup z: the point), each with its own state and records; a 64-bit minimum
 // picks each answer's record as the tiles offer theirs, and ReduceProximity.comp hands it to the
 // host.
-// Stage SelectTiles runs the same invocations but only lists the tiles that have to be visited,
-// and stage VisitListedTiles visits those (see TileList in QueryProximityCommon.glsl).
+// Stage SelectTiles lists the tiles that have to be visited (and runs the lanes), and stage
+// VisitListedTiles visits those (see TileList in QueryProximityCommon.glsl).
 // No shared memory and no barriers: lavapipe runs a workgroup with a barrier as coroutines, which
 // cost more than the whole query.
 #extension GL_GOOGLE_include_directive : require
@@ -24,6 +24,30 @@ void main()
 {
   uint slot = gl_GlobalInvocationID.x;
   uint cls, point, index;
+  if (P.Stage == SelectTiles)
+  {
+    // The answer's workgroups (gl_NumWorkGroups.x of them: one for a batch, where the answers
+    // fill the device) share its lanes and its entries up to its own end: lavapipe pays for
+    // every workgroup it starts, and a dispatch as far as the batch's highest ceiling started
+    // thousands per tip that had nothing to do.
+    cls = gl_WorkGroupID.y;
+    point = gl_WorkGroupID.z;
+    BeginPoint(point);
+    uint answer = point * uint(P.Classes) + cls;
+    uint stateBase = answer * StateStride;
+    BeginAnswer(answer);
+    uint stride = gl_NumWorkGroups.x * 64u;
+    for (uint lane = slot; lane < uint(P.DirectionalLanes); lane += stride)
+    {
+      AnswerLane(cls, stateBase, int(lane));
+    }
+    uint end = min(uint(P.EndEntry), EntryEnd);
+    for (uint entry = uint(P.FirstEntry) + slot; entry < end; entry += stride)
+    {
+      SelectTile(cls, answer, stateBase, entry);
+    }
+    return;
+  }
   if (P.Stage == VisitListedTiles)
   {
     if (slot >= ListSize[0])
@@ -57,11 +81,6 @@ void main()
   uint answer = point * uint(P.Classes) + cls;
   uint stateBase = answer * StateStride;
   BeginAnswer(answer);
-  if (P.Stage == SelectTiles)
-  {
-    SelectTile(cls, answer, stateBase, index);
-    return;
-  }
   ivec2 tile = TileToVisit(cls, stateBase, index);
   if (tile.x < 0)
   {

@@ -25,11 +25,14 @@ layout(std430, binding = 7) readonly buffer Points { vec4 Point[]; };
 // and, among equal ones, the lowest-numbered record, the one the host once found by scanning
 // them all. All ones before any record is offered (ReduceProximity.comp resets it).
 layout(std430, binding = 8) buffer Choices { uint64_t Choice[]; };
-// Per point and class, a distance the answer is known not to exceed (mm; +infinity when none is
-// known): the host's bound from the vessels' coarse blocks or from the answer before. Tiles
-// farther than it are skipped from the start, as they would be once the best was found; on a GPU,
-// where a dispatch's tiles all start at once, they would otherwise all do their work.
-layout(std430, binding = 9) readonly buffer Ceilings { float CeilingMm[]; };
+// Per point and class, a distance the answer is known not to exceed (float bits, mm; +infinity
+// when none is known): the host's bound from the vessels' coarse blocks or from the answer before;
+// and the entries of the order table within it (the tiles after them are farther from every tip
+// of the centre tile). Tiles farther than it are skipped from the start, as they would be once
+// the best was found; on a GPU, where a dispatch's tiles all start at once, they would otherwise
+// all do their work. The entries after an answer's end leave at once: the dispatch reaches as far
+// as the batch's highest ceiling, most answers' ends come long before it.
+layout(std430, binding = 9) readonly buffer Ceilings { uvec2 AnswerCeiling[]; };
 // The tiles a batch still has to visit after its near tiles (stage SelectTiles writes them,
 // VisitListedTiles reads them): per listed tile its answer (point x classes + class) and its entry
 // in the order table. Packed, so that the visiting threads all have a tile's work to do: on a GPU
@@ -78,11 +81,12 @@ const int VisitOrderedTiles = 0; // the order table's entries FirstEntry..EndEnt
 const int SelectTiles = 1;       // the same entries, listed when they have to be visited
 const int VisitListedTiles = 2;  // the tiles listed
 
-// This invocation's point (set first thing in main), and the least of the range and its answer's
-// ceiling (BeginAnswer).
+// This invocation's point (set first thing in main), the least of the range and its answer's
+// ceiling, and the end of its entries (BeginAnswer).
 vec3 Tip;
 vec3 AxisMm;
 float Ceiling;
+uint EntryEnd;
 
 // glslang 12 rejects a global const initialised from uintBitsToFloat.
 #define Inf uintBitsToFloat(0x7F800000u)
@@ -286,7 +290,9 @@ void AnswerLane(uint cls, uint stateBase, int lane)
 // The answer this invocation works on (point x classes + class): its ceiling.
 void BeginAnswer(uint answer)
 {
-  Ceiling = min(P.RangeMm, CeilingMm[answer]);
+  uvec2 ceiling = AnswerCeiling[answer];
+  Ceiling = min(P.RangeMm, uintBitsToFloat(ceiling.x));
+  EntryEnd = ceiling.y;
 }
 
 // The least distance offered so far, or the range (or the answer's ceiling, when lower) when none
@@ -301,6 +307,10 @@ float BestSoFar(uint stateBase)
 // best so far (outside the grid, empty, or further than the best).
 ivec2 TileToVisit(uint cls, uint stateBase, uint entry)
 {
+  if (entry >= EntryEnd)
+  {
+    return ivec2(-1);
+  }
   // Offsets from the grid's tile nearest the tip: a tip beyond the grid (or any --range) needs
   // no longer table than the grid is wide, and every tile within reach of the tip is within
   // the same reach of that tile.

@@ -112,6 +112,15 @@ struct PointRecord
 };
 static_assert(sizeof(PointRecord) == 32, "Points layout of QueryProximity.comp");
 
+/// Per point and class, the answer's ceiling and the order table's entries within it (Ceilings
+/// in QueryProximityCommon.glsl).
+struct AnswerCeiling
+{
+  float Mm;
+  std::uint32_t Entries;
+};
+static_assert(sizeof(AnswerCeiling) == 8, "Ceilings layout of QueryProximity.comp");
+
 float Bits(std::uint32_t u)
 {
   float f;
@@ -403,8 +412,9 @@ struct vtkZBufferVesselDistance::Internals
         }
         else
         {
-          // The listing runs an invocation per entry (the per-tile pass's layout, lanes included).
-          visit(SelectTiles, false, nearEntries, orderCount, laneSlots, *this->DispatchSizes, second);
+          // The listing: workgroups per answer (DispatchSizes' second), each looping over its
+          // share of the answer's lanes and entries.
+          visit(SelectTiles, false, nearEntries, orderCount, 0, *this->DispatchSizes, second);
           visit(VisitListedTiles, listing == 2, 0, 0, 0, *this->TileListSize, 4);
         }
         this->Reduce->Record(cmd, &copy, (answers + 63) / 64); // into the host-visible answers, and resets
@@ -512,7 +522,8 @@ struct vtkZBufferVesselDistance::Internals
     this->HostState = std::make_unique<vp::GpuBuffer>(*this->Context, stateBytes, Placement::Host);
     this->Points =
       std::make_unique<vp::GpuBuffer>(*this->Context, sizeof(PointRecord) * this->Capacity, Placement::HostToDevice);
-    this->Ceilings = std::make_unique<vp::GpuBuffer>(*this->Context, 4ull * classes * this->Capacity, Placement::HostToDevice);
+    this->Ceilings = std::make_unique<vp::GpuBuffer>(
+      *this->Context, sizeof(AnswerCeiling) * classes * this->Capacity, Placement::HostToDevice);
     this->DispatchSizes =
       std::make_unique<vp::GpuBuffer>(*this->Context, 2 * sizeof(VkDispatchIndirectCommand), Placement::HostToDevice);
     // At most one listed tile per answer and entry: half the records' bytes.
@@ -658,9 +669,9 @@ void vtkZBufferVesselDistance::SetQueryPass(int pass)
 
 void vtkZBufferVesselDistance::SetTileListing(int listing)
 {
-  if (listing != TileListingByBatch && listing != TileListingOff && listing != TileListingOn)
+  if (listing != TileListingByDevice && listing != TileListingOff && listing != TileListingOn)
   {
-    throw vp::InputError("tile listing", "must be by batch, off or on");
+    throw vp::InputError("tile listing", "must be by device, off or on");
   }
   this->TileListing = listing; // no Modified(): the answers are the same
 }
@@ -1020,11 +1031,11 @@ std::uint32_t vtkZBufferVesselDistance::WriteCeilings(
   Internals& s = *this->Impl;
   const std::uint32_t classes = s.Classes();
   const std::uint32_t orderCount = s.OrderCountWithin(searchMm);
-  auto* ceiling = static_cast<float*>(s.Ceilings->Mapped());
+  auto* ceiling = static_cast<AnswerCeiling*>(s.Ceilings->Mapped());
   constexpr float None = std::numeric_limits<float>::infinity();
   if (!this->QueryCeilings || this->BoxMode != FixedAroundVessels)
   {
-    std::fill(ceiling, ceiling + count * classes, None);
+    std::fill(ceiling, ceiling + count * classes, AnswerCeiling{ None, orderCount });
     return orderCount;
   }
   const vp::BlockDistanceField* blocks = s.PrepareCeilings();
@@ -1044,7 +1055,8 @@ std::uint32_t vtkZBufferVesselDistance::WriteCeilings(
         bound = std::min(bound, last.CellMm + std::sqrt(vp::Distance2(tip, last.TipMm)));
       }
       bound = above(bound);
-      ceiling[i * classes + c] = bound < searchMm ? std::nextafter(static_cast<float>(bound), None) : None;
+      const float mm = bound < searchMm ? std::nextafter(static_cast<float>(bound), None) : None;
+      ceiling[i * classes + c] = { mm, std::min(orderCount, s.OrderCountWithin(mm)) };
       // A class whose marked cells all lie beyond the search needs no tile (it is out of range,
       // as the tiles would have found): its ceiling does not size the dispatch.
       if (!blocks || blocks->LowerBoundMm(static_cast<int>(c), tip) <= above(searchMm))
@@ -1083,7 +1095,8 @@ void vtkZBufferVesselDistance::AnswerBatch(const std::array<double, 3>* tips, st
   const bool listPerPixel = this->QueryPass != QueryPassPerTile &&
     (this->QueryPass == QueryPassPerPixel || !s.Context->IsCpuDevice()) &&
     static_cast<std::uint64_t>(s.Capacity) * classes * s.OrderCount <= s.Context->Limits().maxComputeWorkGroupCount[0];
-  const bool list = this->TileListing == TileListingOn || (this->TileListing == TileListingByBatch && n > PerPixelMaxTips);
+  const bool list = this->TileListing == TileListingOn ||
+    (this->TileListing == TileListingByDevice && (n > PerPixelMaxTips || s.Context->IsCpuDevice()));
   const int listing = list ? (listPerPixel ? 2 : 1) : 0;
   // Without a list, a batch first visits its near tiles, so that the best falls before the rest
   // start. A list needs no such pass: the ceilings alone leave a few tiles per tip to list
@@ -1091,14 +1104,25 @@ void vtkZBufferVesselDistance::AnswerBatch(const std::array<double, 3>* tips, st
   // which made lavapipe no faster).
   const std::uint32_t nearEntries =
     n > PerPixelMaxTips && !list ? std::min(orderCount, s.OrderCountWithin(NearTiles * 8.0 * g.PixelMm)) : 0;
-  // Lanes first in the last dispatch over the order table: invocations per tile (and when
-  // listing), workgroups per pixel.
-  const bool lanesPerPixel = perPixel && !list;
-  const std::uint32_t laneSlots = lanesPerPixel ? laneGroups : lanes;
   auto groups = [](bool pixels, std::uint32_t slots) { return pixels ? slots : (slots + 63) / 64; };
   auto* sizes = static_cast<VkDispatchIndirectCommand*>(s.DispatchSizes->Mapped());
   sizes[0] = { groups(perPixel, std::min(nearEntries, tiles)), classes, n };
-  sizes[1] = { groups(lanesPerPixel, laneSlots + (tiles > nearEntries ? tiles - nearEntries : 0)), classes, n };
+  std::uint32_t laneSlots = 0;
+  if (list)
+  {
+    // The listing's workgroups per answer: one for a batch (its answers fill the device) and on
+    // a CPU device (which runs them one after another anyway); for a few tips on a GPU enough
+    // that no invocation loops over more than 4 entries.
+    const bool one = n > PerPixelMaxTips || s.Context->IsCpuDevice();
+    sizes[1] = { one ? 1u : std::max(1u, (tiles + 255) / 256), classes, n };
+  }
+  else
+  {
+    // Lanes first in the last dispatch over the order table: invocations per tile, workgroups
+    // per pixel.
+    laneSlots = perPixel ? laneGroups : lanes;
+    sizes[1] = { groups(perPixel, laneSlots + (tiles > nearEntries ? tiles - nearEntries : 0)), classes, n };
+  }
   s.LastTiles = tiles * classes;
   s.LastTilesInRange = orderCount * classes;
   s.PreparedQueryFor(q, n, perPixel, listing, nearEntries, laneSlots).Submit();
@@ -1222,7 +1246,7 @@ void vtkZBufferVesselDistance::PrintSelf(ostream& os, vtkIndent indent)
      << (this->QueryPass == QueryPassPerTile ? "PerTile" : this->QueryPass == QueryPassPerPixel ? "PerPixel" : "(by device)")
      << "\n";
   os << indent << "TileListing: "
-     << (this->TileListing == TileListingOff ? "Off" : this->TileListing == TileListingOn ? "On" : "(by batch)") << "\n";
+     << (this->TileListing == TileListingOff ? "Off" : this->TileListing == TileListingOn ? "On" : "(by device)") << "\n";
   os << indent << "DirectionalLanes: " << this->DirectionalLanes << (this->DirectionalLanes ? "" : " (by device)") << "\n";
   os << indent << "DeviceSelector: " << (this->DeviceSelector.empty() ? "(best)" : this->DeviceSelector) << "\n";
   const vp::DepthLayerGrid& g = this->Impl->Grid;

@@ -93,17 +93,20 @@ public:
   int GetQueryPass() const { return this->QueryPass; }
   enum TileListings
   {
-    TileListingByBatch = 0,
+    TileListingByDevice = 0,
     TileListingOff = 1,
     TileListingOn = 2
   };
   /// Whether a submission lists the tiles it has to visit before visiting them. Off: one dispatch
-  /// over the order table (within the ceilings) visits them, and every tile of it starts, if only
-  /// to find that it has nothing to do. On: an invocation per entry of the table lists the tiles
-  /// that have to be visited, and a dispatch sized by the device visits those alone, per pixel
-  /// where the query pass would be. A batch's near tiles are visited first either way. The
-  /// answers are the same, bit for bit. Default TileListingByBatch: on for submissions of more
-  /// than 8 tips, off for fewer (a single tip's query is a dispatch shorter without).
+  /// over the order table (as far as the submission's highest ceiling) visits them, and every
+  /// tile of it starts, if only to find that it has nothing to do. On: a workgroup per answer
+  /// (a few for a single tip on a GPU) loops over the order table's entries within the answer's
+  /// own ceiling and lists the tiles that have to be visited; a dispatch sized by the device
+  /// then visits those alone, per pixel where the query pass would be. A batch's near tiles
+  /// are visited first only without a list. The answers are the same, bit for bit. Default
+  /// TileListingByDevice: on for submissions of more than 8 tips, and for every submission on a
+  /// CPU device (where it made a single tip faster too); off for a few tips on a GPU (the list
+  /// is a dispatch more: to be measured there).
   void SetTileListing(int listing);
   int GetTileListing() const { return this->TileListing; }
   /// Invocations that share the directional walk along the axis, each walking its share of the
@@ -179,8 +182,9 @@ public:
   /// device's timestamps), in ms; negative when the device keeps no timestamps or before the
   /// first query. Beside the host's time, it tells what a query's round trip costs.
   double GetLastQueryDeviceMs() const;
-  /// Tiles per tip the latest submission dispatched (summed over the classes), and the tiles of
-  /// the order table within its search times the classes (what it dispatched without ceilings).
+  /// Tiles per tip within the latest submission's highest ceiling (summed over the classes: what
+  /// it dispatched without a list), and the tiles of the order table within its search times the
+  /// classes (what it dispatched without ceilings).
   std::size_t GetLastQueryTiles() const;
   std::size_t GetLastQueryTilesInRange() const;
   /// Tiles the latest submission listed (all its tips and classes; 0 when it listed none).
@@ -228,7 +232,7 @@ private:
   int DistanceBins = 0;
   int DirectionalLanes = 0;
   int QueryPass = QueryPassByDevice;
-  int TileListing = TileListingByBatch;
+  int TileListing = TileListingByDevice;
   bool QueryCeilings = true;
   std::string DeviceSelector;
 

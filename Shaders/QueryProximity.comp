@@ -50,6 +50,7 @@ void main()
   }
   if (P.Stage == VisitListedTiles)
   {
+    slot = ListedGroup() * 64u + gl_LocalInvocationID.x;
     if (slot >= ListSize[0])
     {
       return;

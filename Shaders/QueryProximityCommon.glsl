@@ -40,9 +40,13 @@ layout(std430, binding = 9) readonly buffer Ceilings { uvec2 AnswerCeiling[]; };
 // then find nothing to do; on a CPU device the SIMD lanes of a tile that has no work wait for
 // those that have.
 layout(std430, binding = 10) buffer TileList { uvec2 ListedTile[]; };
-// [0] tiles listed; [1..3] the visiting dispatch's VkDispatchIndirectCommand (x grows by one for
-// every ItemsPerGroup tiles listed; y = z = 1). ReduceProximity.comp resets it for the next query.
+// [0] tiles listed; [1..3] the visiting dispatch's VkDispatchIndirectCommand: a workgroup for
+// every TilesPerGroup tiles listed, in rows of ListRowGroups (a device need take no more than
+// 65,535 workgroups along x; short rows waste little in the last one, and a batch of the
+// phantom's tips fills several, which the tests so cover). ReduceProximity.comp resets it to no
+// workgroups for the next query.
 layout(std430, binding = 11) buffer TileListSize { uint ListSize[]; };
+const uint ListRowGroups = 1024u;
 
 layout(push_constant) uniform Parameters
 {
@@ -398,8 +402,16 @@ void SelectTile(uint cls, uint answer, uint stateBase, uint entry)
   ListedTile[item] = uvec2(answer, entry);
   if (item % uint(P.TilesPerGroup) == 0u)
   {
-    atomicAdd(ListSize[1], 1u);
+    uint group = item / uint(P.TilesPerGroup); // the first tile of a workgroup
+    atomicMax(ListSize[1], min(group + 1u, ListRowGroups));
+    atomicMax(ListSize[2], group / ListRowGroups + 1u);
   }
+}
+
+// The visiting dispatch's workgroup, counted along its rows.
+uint ListedGroup()
+{
+  return gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
 }
 
 // A tile's record with a distance: written, and offered to its answer's choice. A record

@@ -30,7 +30,13 @@ void main()
   uint group = gl_WorkGroupID.x;
   if (P.Stage == VisitListedTiles)
   {
-    // One workgroup per listed tile: the dispatch has exactly as many.
+    // One workgroup per listed tile (the last row of the dispatch may run past them: all of a
+    // workgroup leaves together, before its barrier).
+    group = ListedGroup();
+    if (group >= ListSize[0])
+    {
+      return;
+    }
     uvec2 listed = ListedTile[group];
     point = listed.x / uint(P.Classes);
     cls = listed.x % uint(P.Classes);

@@ -57,8 +57,8 @@ void main()
   {
     listed = ListSize[0];
     ListSize[0] = 0u;
-    ListSize[1] = 0u;
-    ListSize[2] = 1u;
+    ListSize[1] = 0u; // no workgroups
+    ListSize[2] = 0u;
     ListSize[3] = 1u;
   }
   if (P.Step == 1u)

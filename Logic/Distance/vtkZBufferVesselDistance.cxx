@@ -1091,10 +1091,9 @@ void vtkZBufferVesselDistance::AnswerBatch(const std::array<double, 3>* tips, st
   const std::uint32_t n = static_cast<std::uint32_t>(count);
   const std::uint32_t tiles = this->WriteCeilings(tips, count, searchMm);
   // The listed tiles are visited per pixel where the order table would be: on a GPU, where a
-  // workgroup per listed tile is work for every invocation (and the device takes that many).
+  // workgroup per listed tile is work for every invocation.
   const bool listPerPixel = this->QueryPass != QueryPassPerTile &&
-    (this->QueryPass == QueryPassPerPixel || !s.Context->IsCpuDevice()) &&
-    static_cast<std::uint64_t>(s.Capacity) * classes * s.OrderCount <= s.Context->Limits().maxComputeWorkGroupCount[0];
+    (this->QueryPass == QueryPassPerPixel || !s.Context->IsCpuDevice());
   const bool list = this->TileListing == TileListingOn ||
     (this->TileListing == TileListingByDevice && (n > PerPixelMaxTips || s.Context->IsCpuDevice()));
   const int listing = list ? (listPerPixel ? 2 : 1) : 0;

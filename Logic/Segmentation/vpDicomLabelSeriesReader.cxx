@@ -82,14 +82,18 @@ OFCondition GetPixels(DcmDataset* data, const Uint16*& pixels, unsigned long* co
 
 // Stored values, widened; signed ones (PixelRepresentation 1) keep their sign.
 template <typename Stored, typename Signed>
-void CopyPixels(DcmDataset* data, bool isSigned, std::vector<std::int32_t>& values, const std::string& where)
+void CopyPixels(
+  DcmDataset* data, bool isSigned, std::size_t count, std::vector<std::int32_t>& values, const std::string& where)
 {
   const Stored* pixels = nullptr;
   unsigned long length = 0;
-  if (GetPixels(data, pixels, &length).bad() || !pixels || length < values.size())
+  // Checked before anything is allocated: Rows x Columns of a hostile header asked for 17 GB
+  // (fuzz_dicom_label_series).
+  if (GetPixels(data, pixels, &length).bad() || !pixels || length < count)
   {
     throw InputError(where, "pixel data missing or shorter than Rows x Columns");
   }
+  values.resize(count);
   for (std::size_t i = 0; i < values.size(); ++i)
   {
     values[i] = isSigned ? static_cast<Signed>(pixels[i]) : pixels[i];
@@ -154,14 +158,13 @@ Slice ReadSlice(const std::string& folder, const fs::path& path)
   s.Rows = rows;
   s.Columns = columns;
   const std::size_t count = static_cast<std::size_t>(rows) * columns;
-  s.Values.resize(count);
   if (bitsAllocated == 8)
   {
-    CopyPixels<Uint8, std::int8_t>(data, representation != 0, s.Values, where);
+    CopyPixels<Uint8, std::int8_t>(data, representation != 0, count, s.Values, where);
   }
   else if (bitsAllocated == 16)
   {
-    CopyPixels<Uint16, std::int16_t>(data, representation != 0, s.Values, where);
+    CopyPixels<Uint16, std::int16_t>(data, representation != 0, count, s.Values, where);
   }
   else
   {

@@ -23,19 +23,37 @@ layout(local_size_x = 64) in;
 void main()
 {
   uint slot = gl_GlobalInvocationID.x;
-  uint cls, point, index;
+  uint cls = gl_WorkGroupID.y;
+  uint point = gl_WorkGroupID.z;
+  uint index = 0u;
+  if (P.Stage == VisitListedTiles)
+  {
+    slot = ListedGroup() * 64u + gl_LocalInvocationID.x;
+    if (slot >= ListSize[0])
+    {
+      return;
+    }
+    index = ReadListedTile(slot, point, cls);
+  }
+  else if (P.Stage == VisitOrderedTiles)
+  {
+    // The dispatch's first LaneSlots invocations are the lanes, the rest its tiles.
+    index = slot - uint(P.LaneSlots) + uint(P.FirstEntry);
+    if (slot >= uint(P.LaneSlots) && index >= uint(P.EndEntry))
+    {
+      return;
+    }
+  }
+  BeginPoint(point);
+  uint answer = point * uint(P.Classes) + cls;
+  uint stateBase = answer * StateStride;
+  BeginAnswer(answer);
   if (P.Stage == SelectTiles)
   {
     // The answer's workgroups (gl_NumWorkGroups.x of them: one for a batch, where the answers
     // fill the device) share its lanes and its entries up to its own end: lavapipe pays for
     // every workgroup it starts, and a dispatch as far as the batch's highest ceiling started
     // thousands per tip that had nothing to do.
-    cls = gl_WorkGroupID.y;
-    point = gl_WorkGroupID.z;
-    BeginPoint(point);
-    uint answer = point * uint(P.Classes) + cls;
-    uint stateBase = answer * StateStride;
-    BeginAnswer(answer);
     uint stride = gl_NumWorkGroups.x * 64u;
     for (uint lane = slot; lane < uint(P.DirectionalLanes); lane += stride)
     {
@@ -48,40 +66,11 @@ void main()
     }
     return;
   }
-  if (P.Stage == VisitListedTiles)
+  if (P.Stage == VisitOrderedTiles && slot < uint(P.LaneSlots))
   {
-    slot = ListedGroup() * 64u + gl_LocalInvocationID.x;
-    if (slot >= ListSize[0])
-    {
-      return;
-    }
-    uvec2 listed = ListedTile[slot];
-    point = listed.x / uint(P.Classes);
-    cls = listed.x % uint(P.Classes);
-    index = listed.y;
+    AnswerLane(cls, stateBase, int(slot));
+    return;
   }
-  else
-  {
-    cls = gl_WorkGroupID.y;
-    point = gl_WorkGroupID.z;
-    // The dispatch's first LaneSlots invocations are the lanes, the rest its tiles.
-    bool lane = slot < uint(P.LaneSlots);
-    index = slot - uint(P.LaneSlots) + uint(P.FirstEntry);
-    if (!lane && index >= uint(P.EndEntry))
-    {
-      return;
-    }
-    if (lane)
-    {
-      BeginPoint(point);
-      AnswerLane(cls, (point * uint(P.Classes) + cls) * StateStride, int(slot));
-      return;
-    }
-  }
-  BeginPoint(point);
-  uint answer = point * uint(P.Classes) + cls;
-  uint stateBase = answer * StateStride;
-  BeginAnswer(answer);
   ivec2 tile = TileToVisit(cls, stateBase, index);
   if (tile.x < 0)
   {

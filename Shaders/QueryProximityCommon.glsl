@@ -33,8 +33,8 @@ layout(std430, binding = 8) buffer Choices { uint64_t Choice[]; };
 // all do their work. The entries after an answer's end leave at once: the dispatch reaches as far
 // as the batch's highest ceiling, most answers' ends come long before it.
 layout(std430, binding = 9) readonly buffer Ceilings { uvec2 AnswerCeiling[]; };
-// The tiles a batch still has to visit after its near tiles (stage SelectTiles writes them,
-// VisitListedTiles reads them): per listed tile its answer (point x classes + class) and its entry
+// The tiles a submission has to visit (stage SelectTiles writes them, VisitListedTiles reads
+// them): per listed tile its answer (point x classes + class) and its entry
 // in the order table. Packed, so that the visiting threads all have a tile's work to do: on a GPU
 // a dispatch over the whole order table starts a workgroup for every tile, nearly all of which
 // then find nothing to do; on a CPU device the SIMD lanes of a tile that has no work wait for
@@ -412,6 +412,15 @@ void SelectTile(uint cls, uint answer, uint stateBase, uint entry)
 uint ListedGroup()
 {
   return gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
+}
+
+// The listed tile item: its point and class, and its entry in the order table (returned).
+uint ReadListedTile(uint item, out uint point, out uint cls)
+{
+  uvec2 listed = ListedTile[item];
+  point = listed.x / uint(P.Classes);
+  cls = listed.x % uint(P.Classes);
+  return listed.y;
 }
 
 // A tile's record with a distance: written, and offered to its answer's choice. A record

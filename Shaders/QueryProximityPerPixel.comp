@@ -26,8 +26,10 @@ shared float CandidateDepth[64];
 void main()
 {
   uint k = gl_LocalInvocationID.x;
-  uint cls, point, entry;
+  uint cls = gl_WorkGroupID.y;
+  uint point = gl_WorkGroupID.z;
   uint group = gl_WorkGroupID.x;
+  uint entry;
   if (P.Stage == VisitListedTiles)
   {
     // One workgroup per listed tile (the last row of the dispatch may run past them: all of a
@@ -37,28 +39,21 @@ void main()
     {
       return;
     }
-    uvec2 listed = ListedTile[group];
-    point = listed.x / uint(P.Classes);
-    cls = listed.x % uint(P.Classes);
-    entry = listed.y;
+    entry = ReadListedTile(group, point, cls);
   }
   else
   {
-    cls = gl_WorkGroupID.y;
-    point = gl_WorkGroupID.z;
-    if (group < uint(P.LaneSlots))
-    {
-      // The dispatch's first workgroups: the lanes of "inside" and the directional walk.
-      BeginPoint(point);
-      AnswerLane(cls, (point * uint(P.Classes) + cls) * StateStride, int(group * 64u + k));
-      return;
-    }
     entry = group - uint(P.LaneSlots) + uint(P.FirstEntry); // this dispatch's workgroups end it
   }
   BeginPoint(point);
   uint answer = point * uint(P.Classes) + cls;
   uint stateBase = answer * StateStride;
-
+  if (P.Stage != VisitListedTiles && group < uint(P.LaneSlots))
+  {
+    // The dispatch's first workgroups: the lanes of "inside" and the directional walk.
+    AnswerLane(cls, stateBase, int(group * 64u + k));
+    return;
+  }
   BeginAnswer(answer);
   ivec2 tile = TileToVisit(cls, stateBase, entry);
   float d = Inf;

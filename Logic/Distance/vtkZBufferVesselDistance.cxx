@@ -188,8 +188,8 @@ struct vtkZBufferVesselDistance::Internals
   // (VkDispatchIndirectCommand: the near tiles of a batch, then the lanes and the rest), written
   // by the host before every submission.
   std::unique_ptr<vp::GpuBuffer> Ceilings, DispatchSizes;
-  // The tiles a batch lists after its near ones, and the list's size with the workgroup counts
-  // of the dispatch that visits them (written by the device; see TileList in the shaders).
+  // The tiles a submission lists, and the list's size with the workgroup counts of the
+  // dispatch that visits them (written by the device; see TileList in the shaders).
   std::unique_ptr<vp::GpuBuffer> TileList, TileListSize;
   // The ceilings' sources: the coarse blocks of the current rendering, and per class the latest
   // answer (tip, and the distance to its nearest marked cell) on the rendering it was made on.

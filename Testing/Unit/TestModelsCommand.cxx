@@ -287,6 +287,11 @@ TEST_F(ModelsCommand, EachBadSeriesGetsItsOneLineAndWritesNothing)
   const std::string spaced = copy("spaced");
   edit(spaced + "/image_3", DCM_PixelSpacing, "0.9\\0.9");
   this->ExpectRefused(spaced, spaced, "different pixel spacings");
+  // Rows x Columns far beyond the pixel data (the fuzzer's: the reader once allocated them first).
+  const std::string huge = copy("huge");
+  edit(huge + "/image_3", DCM_Rows, "65535");
+  edit(huge + "/image_3", DCM_Columns, "65535");
+  this->ExpectRefused(huge, "image_3", "pixel data missing or shorter than Rows x Columns");
 
   // An empty structure among good ones.
   this->WriteMask("portalvein1", [](const double*) { return 0; });

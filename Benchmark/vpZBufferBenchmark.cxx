@@ -334,7 +334,7 @@ BenchJson SideBySide(const std::vector<NamedMesh>& first, const std::vector<Name
     engines[e]->Build();
   }
   constexpr std::size_t SideBySideTurn = 20;
-  std::vector<double> ms[2], deviceMs[2];
+  std::vector<double> ms[2], deviceMs[2], dispatched[2], listed[2];
   ProximityResult r;
   for (std::size_t first = 0; first < tips.size(); first += SideBySideTurn)
   {
@@ -344,6 +344,8 @@ BenchJson SideBySide(const std::vector<NamedMesh>& first, const std::vector<Name
       for (std::size_t i = first + 1; i < std::min(tips.size(), first + SideBySideTurn); ++i)
       {
         TimedQuery(engines[e], tips[i].data(), nullptr, r, ms[e], deviceMs[e]);
+        dispatched[e].push_back(static_cast<double>(engines[e]->GetLastQueryTiles()));
+        listed[e].push_back(static_cast<double>(engines[e]->GetLastQueryTilesListed()));
       }
     }
   }
@@ -359,6 +361,9 @@ BenchJson SideBySide(const std::vector<NamedMesh>& first, const std::vector<Name
       { "error_bound_mm", engines[e]->GetErrorBoundMm() } };
     side["cached"] = Timing(ms[e]);
     side["cached_device"] = Timing(deviceMs[e]);
+    // What the time follows: the tiles each query started, and those it listed (0 unlisted).
+    side["tiles_dispatched_median"] = Quantile(dispatched[e], 0.5);
+    side["tiles_listed_median"] = Quantile(listed[e], 0.5);
     out[e == 0 ? "first" : "second"] = side;
   }
   out["ratio_median"] = Quantile(ms[1], 0.5) / std::max(1e-9, Quantile(ms[0], 0.5));

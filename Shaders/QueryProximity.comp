@@ -62,6 +62,10 @@ void main()
     uint end = min(uint(P.EndEntry), EntryEnd);
     for (uint entry = uint(P.FirstEntry) + slot; entry < end; entry += stride)
     {
+      if (EntryGapMm(entry) > BestSoFar(stateBase))
+      {
+        break; // and so are all the entries after it
+      }
       SelectTile(cls, answer, stateBase, entry);
     }
     return;
@@ -71,7 +75,7 @@ void main()
     AnswerLane(cls, stateBase, int(slot));
     return;
   }
-  ivec2 tile = TileToVisit(cls, stateBase, index);
+  ivec2 tile = TileToVisit(cls, stateBase, index, true);
   if (tile.x < 0)
   {
     return;

@@ -307,9 +307,37 @@ float BestSoFar(uint stateBase)
   return min(uintBitsToFloat(State[stateBase]), Ceiling);
 }
 
+// At least the distance from the tip to one of the tile's occupied cells, as PixelDistance
+// measures it: the tile's lowest occupied slice (and its highest) is occupied in one of its
+// pixels, which is no farther along x and y than the tile's farthest pixel column. Computed as
+// PixelDistance computes a distance, and raised above the rounding of either.
+float TileCeilingMm(ivec2 tile, float tileLo, float tileHi)
+{
+  ivec2 lo = tile * 8;
+  ivec2 hi = min(lo + 8, ivec2(P.Nx, P.Ny)); // the tile's last pixel + 1
+  float dx = max(AxisGap(Tip.x, float(lo.x), float(lo.x + 1)), AxisGap(Tip.x, float(hi.x - 1), float(hi.x))) * P.PixelMm;
+  float dy = max(AxisGap(Tip.y, float(lo.y), float(lo.y + 1)), AxisGap(Tip.y, float(hi.y - 1), float(hi.y))) * P.PixelMm;
+  float dz = min(AxisGap(Tip.z, tileLo, tileLo + 1.0), AxisGap(Tip.z, tileHi, tileHi + 1.0)) * P.SliceMm;
+  float mm = sqrt(dx * dx + dy * dy + dz * dz);
+  return mm + mm * 1e-5 + 1e-4;
+}
+
+// The least distance from any tip of the centre tile to the order table's entry's tile along x
+// and y (the order table is sorted by it), lowered below its rounding.
+float EntryGapMm(uint entry)
+{
+  ivec2 gap = max(abs(Order[entry]) - 1, ivec2(0));
+  float mm = sqrt(float(gap.x * gap.x + gap.y * gap.y)) * 8.0 * P.PixelMm;
+  return mm - mm * 1e-5;
+}
+
 // The tile of the order table's entry, or ivec2(-1) when no pixel of it can be nearer than the
-// best so far (outside the grid, empty, or further than the best).
-ivec2 TileToVisit(uint cls, uint stateBase, uint entry)
+// best so far (outside the grid, empty, or further than the best). A tile that may be visited
+// lowers the best to its ceiling (with lower set): a distance some pixel of it gives, so no
+// answer changes, and the tiles after it, nearest first, are held to what the nearest tiles
+// already promise rather than to the host's coarse ceiling (at 0.1 mm cells a tile is 0.8 mm
+// across, and the blocks' bound 5.5 mm above the truth would leave hundreds to visit).
+ivec2 TileToVisit(uint cls, uint stateBase, uint entry, bool lower)
 {
   if (entry >= EntryEnd)
   {
@@ -335,9 +363,18 @@ ivec2 TileToVisit(uint cls, uint stateBase, uint entry)
   float dx = AxisGap(Tip.x, lo.x, lo.x + 8.0) * P.PixelMm;
   float dy = AxisGap(Tip.y, lo.y, lo.y + 8.0) * P.PixelMm;
   float dz = AxisGap(Tip.z, floor(tileLo), floor(tileHi) + 1.0) * P.SliceMm;
-  if (sqrt(dx * dx + dy * dy + dz * dz) > BestSoFar(stateBase))
+  float best = BestSoFar(stateBase);
+  if (sqrt(dx * dx + dy * dy + dz * dz) > best)
   {
     return ivec2(-1);
+  }
+  if (lower)
+  {
+    float ceiling = TileCeilingMm(tile, floor(tileLo), floor(tileHi));
+    if (ceiling < best)
+    {
+      atomicMin(State[stateBase], floatBitsToUint(ceiling));
+    }
   }
   return tile;
 }
@@ -394,7 +431,7 @@ float PixelDistance(uint cls, ivec2 pix, float best, out float depth)
 // only falls after this, so a tile left off could not have given the answer.
 void SelectTile(uint cls, uint answer, uint stateBase, uint entry)
 {
-  if (TileToVisit(cls, stateBase, entry).x < 0)
+  if (TileToVisit(cls, stateBase, entry, true).x < 0)
   {
     return;
   }

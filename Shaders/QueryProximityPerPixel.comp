@@ -55,7 +55,7 @@ void main()
     return;
   }
   BeginAnswer(answer);
-  ivec2 tile = TileToVisit(cls, stateBase, entry);
+  ivec2 tile = TileToVisit(cls, stateBase, entry, k == 0u); // one lowering per tile
   float d = Inf;
   float depth = 0.0;
   if (tile.x >= 0)

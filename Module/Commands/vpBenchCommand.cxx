@@ -152,6 +152,10 @@ void PrintZBufferTimes(const Json& z)
         c["second"]["cell_mm"].get<double>(), c["second"]["cached"]["median_ms"].get<double>(),
         c["second"]["cached"]["p95_ms"].get<double>(), c["second"]["cached_device"]["median_ms"].get<double>(),
         c["ratio_median"].get<double>(), c["ratio_p95"].get<double>(), c["ratio_device_median"].get<double>());
+      std::printf("  tiles per query (median, all classes): %.0f dispatched, %.0f listed at %.3f mm; %.0f, %.0f at %.3f mm\n",
+        c["first"]["tiles_dispatched_median"].get<double>(), c["first"]["tiles_listed_median"].get<double>(),
+        c["first"]["cell_mm"].get<double>(), c["second"]["tiles_dispatched_median"].get<double>(),
+        c["second"]["tiles_listed_median"].get<double>(), c["second"]["cell_mm"].get<double>());
     }
   }
 }

@@ -51,22 +51,21 @@ void main()
   if (P.Stage == SelectTiles)
   {
     // The answer's workgroups (gl_NumWorkGroups.x of them: one for a batch, where the answers
-    // fill the device) share its lanes and its entries up to its own end: lavapipe pays for
-    // every workgroup it starts, and a dispatch as far as the batch's highest ceiling started
-    // thousands per tip that had nothing to do.
+    // fill the device) share its lanes and the coarse tiles over its entries up to its own end:
+    // lavapipe pays for every workgroup it starts, and a dispatch as far as the batch's highest
+    // ceiling started thousands per tip that had nothing to do.
     uint stride = gl_NumWorkGroups.x * 64u;
     for (uint lane = slot; lane < uint(P.DirectionalLanes); lane += stride)
     {
       AnswerLane(cls, stateBase, int(lane));
     }
     uint end = min(uint(P.EndEntry), EntryEnd);
-    for (uint entry = uint(P.FirstEntry) + slot; entry < end; entry += stride)
+    for (uint c = slot; c < uint(P.CoarseCount); c += stride)
     {
-      if (EntryGapMm(entry) > BestSoFar(stateBase))
+      if (!SelectCoarseTile(cls, answer, stateBase, c, uint(P.FirstEntry), end))
       {
-        break; // and so are all the entries after it
+        break;
       }
-      SelectTile(cls, answer, stateBase, entry);
     }
     return;
   }

@@ -47,6 +47,16 @@ layout(std430, binding = 10) buffer TileList { uvec2 ListedTile[]; };
 // workgroups for the next query.
 layout(std430, binding = 11) buffer TileListSize { uint ListSize[]; };
 const uint ListRowGroups = 1024u;
+// The listing walks coarse tiles of CoarseTiles x CoarseTiles tiles, nearest first, and looks
+// into those that can hold the answer: at 0.1 mm cells a tile is 0.8 mm across, and a tip 20 mm
+// from a class had some two thousand tiles of empty space between it and the vessel to test one
+// by one (the coarse tiles' ranges follow the fine ones in TileRanges). CoarseOffset: the order
+// table of the coarse tiles, offsets from the one holding the centre tile; EntryOf: per offset
+// from the centre tile within OrderReach, its entry in the order table (the records and their
+// ties are numbered by entry, whichever way a tile is found).
+layout(std430, binding = 12) readonly buffer CoarseOrder { ivec2 CoarseOffset[]; };
+layout(std430, binding = 13) readonly buffer EntryIndex { uint EntryOf[]; };
+const int CoarseTiles = 4;
 
 layout(push_constant) uniform Parameters
 {
@@ -79,6 +89,9 @@ layout(push_constant) uniform Parameters
   // listed tiles one workgroup of the visiting dispatch takes (64 per tile, 1 per pixel).
   int Stage;
   int TilesPerGroup;
+  // The order table's reach (tiles from the centre tile) and the coarse order table's length.
+  int OrderReach;
+  int CoarseCount;
 } P;
 
 const int VisitOrderedTiles = 0; // the order table's entries FirstEntry..EndEntry, after the lanes
@@ -307,6 +320,23 @@ float BestSoFar(uint stateBase)
   return min(uintBitsToFloat(State[stateBase]), Ceiling);
 }
 
+// The order table's offsets start at the grid's tile nearest the tip: a tip beyond the grid (or
+// any --range) needs no longer table than the grid is wide, and every tile within reach of the
+// tip is within the same reach of that tile.
+ivec2 CentreTile()
+{
+  return ivec2(clamp(floor(Tip.xy / 8.0), vec2(0.0), vec2(P.TilesX - 1, P.TilesY - 1)));
+}
+
+// The least distance from any tip of the centre tile to a tile offset by these many tiles of
+// edgePx pixels along x and y (the order tables are sorted by it), lowered below its rounding.
+float GapMm(ivec2 offset, int edgePx)
+{
+  ivec2 gap = max(abs(offset) - 1, ivec2(0));
+  float mm = sqrt(float(gap.x * gap.x + gap.y * gap.y)) * float(edgePx) * P.PixelMm;
+  return mm - mm * 1e-5;
+}
+
 // At least the distance from the tip to one of the tile's occupied cells, as PixelDistance
 // measures it: the tile's lowest occupied slice (and its highest) is occupied in one of its
 // pixels, which is no farther along x and y than the tile's farthest pixel column. Computed as
@@ -322,15 +352,6 @@ float TileCeilingMm(ivec2 tile, float tileLo, float tileHi)
   return mm + mm * 1e-5 + 1e-4;
 }
 
-// The least distance from any tip of the centre tile to the order table's entry's tile along x
-// and y (the order table is sorted by it), lowered below its rounding.
-float EntryGapMm(uint entry)
-{
-  ivec2 gap = max(abs(Order[entry]) - 1, ivec2(0));
-  float mm = sqrt(float(gap.x * gap.x + gap.y * gap.y)) * 8.0 * P.PixelMm;
-  return mm - mm * 1e-5;
-}
-
 // The tile of the order table's entry, or ivec2(-1) when no pixel of it can be nearer than the
 // best so far (outside the grid, empty, or further than the best). A tile that may be visited
 // lowers the best to its ceiling (with lower set): a distance some pixel of it gives, so no
@@ -343,11 +364,7 @@ ivec2 TileToVisit(uint cls, uint stateBase, uint entry, bool lower)
   {
     return ivec2(-1);
   }
-  // Offsets from the grid's tile nearest the tip: a tip beyond the grid (or any --range) needs
-  // no longer table than the grid is wide, and every tile within reach of the tip is within
-  // the same reach of that tile.
-  ivec2 base = ivec2(clamp(floor(Tip.xy / 8.0), vec2(0.0), vec2(P.TilesX - 1, P.TilesY - 1)));
-  ivec2 tile = base + Order[entry];
+  ivec2 tile = CentreTile() + Order[entry];
   if (tile.x < 0 || tile.y < 0 || tile.x >= P.TilesX || tile.y >= P.TilesY)
   {
     return ivec2(-1);
@@ -443,6 +460,55 @@ void SelectTile(uint cls, uint answer, uint stateBase, uint entry)
     atomicMax(ListSize[1], min(group + 1u, ListRowGroups));
     atomicMax(ListSize[2], group / ListRowGroups + 1u);
   }
+}
+
+// Stage SelectTiles, coarse entry c of an answer whose order table entries first..end are its
+// own: when the coarse tile can hold a cell nearer than the best, each of its tiles is selected
+// (SelectTile tests it). False when c and every coarse entry after it are farther than the best.
+bool SelectCoarseTile(uint cls, uint answer, uint stateBase, uint c, uint first, uint end)
+{
+  if (GapMm(CoarseOffset[c], 8 * CoarseTiles) > BestSoFar(stateBase))
+  {
+    return false;
+  }
+  ivec2 centre = CentreTile();
+  ivec2 coarse = centre / CoarseTiles + CoarseOffset[c];
+  ivec2 across = (ivec2(P.TilesX, P.TilesY) + CoarseTiles - 1) / CoarseTiles;
+  if (any(lessThan(coarse, ivec2(0))) || any(greaterThanEqual(coarse, across)))
+  {
+    return true;
+  }
+  uint fineWords = 2u * uint(P.Classes * P.TilesX * P.TilesY);
+  uint t = fineWords + 2u * (cls * uint(across.x * across.y) + uint(coarse.y * across.x + coarse.x));
+  float lo = uintBitsToFloat(TileRange[t]);
+  float hi = uintBitsToFloat(TileRange[t + 1u]);
+  if (lo > hi)
+  {
+    return true; // empty
+  }
+  // Its box holds every box of its tiles: no tile of it is nearer than the box.
+  vec2 corner = vec2(coarse * (8 * CoarseTiles));
+  float dx = AxisGap(Tip.x, corner.x, corner.x + float(8 * CoarseTiles)) * P.PixelMm;
+  float dy = AxisGap(Tip.y, corner.y, corner.y + float(8 * CoarseTiles)) * P.PixelMm;
+  float dz = AxisGap(Tip.z, floor(lo), floor(hi) + 1.0) * P.SliceMm;
+  if (sqrt(dx * dx + dy * dy + dz * dz) > BestSoFar(stateBase))
+  {
+    return true;
+  }
+  int width = 2 * P.OrderReach + 1;
+  for (int k = 0; k < CoarseTiles * CoarseTiles; ++k)
+  {
+    ivec2 offset = coarse * CoarseTiles + ivec2(k % CoarseTiles, k / CoarseTiles) - centre;
+    if (all(lessThanEqual(abs(offset), ivec2(P.OrderReach)))) // beyond it: beyond the range
+    {
+      uint entry = EntryOf[(offset.y + P.OrderReach) * width + offset.x + P.OrderReach];
+      if (entry >= first && entry < end)
+      {
+        SelectTile(cls, answer, stateBase, entry);
+      }
+    }
+  }
+  return true;
 }
 
 // The visiting dispatch's workgroup, counted along its rows.

@@ -58,7 +58,43 @@ struct TileParameters
 {
   std::int32_t Nx, Ny, TilesX, TilesY;
   std::uint32_t Classes, RangeStride;
+  std::int32_t TilePx;
+  std::uint32_t Offset;
 };
+
+// Tiles per coarse tile along x and y, as CoarseTiles in QueryProximityCommon.glsl.
+constexpr int CoarseTiles = 4;
+
+int CoarseAcross(int tiles)
+{
+  return (tiles + CoarseTiles - 1) / CoarseTiles;
+}
+
+// Offsets from a centre tile within reach along x and y, nearest first: by the least distance
+// from any point of the centre tile (in tiles: the square root of the first of the pair), then
+// from the centre.
+std::vector<std::array<std::int32_t, 2>> OffsetsNearestFirst(int reach, std::vector<double>& gapTiles)
+{
+  std::vector<std::array<std::int32_t, 2>> order;
+  for (int dy = -reach; dy <= reach; ++dy)
+  {
+    for (int dx = -reach; dx <= reach; ++dx)
+    {
+      order.push_back({ dx, dy });
+    }
+  }
+  auto gap = [](const std::array<std::int32_t, 2>& o) {
+    const int gx = std::max(0, std::abs(o[0]) - 1), gy = std::max(0, std::abs(o[1]) - 1);
+    return std::make_pair(gx * gx + gy * gy, o[0] * o[0] + o[1] * o[1]);
+  };
+  std::stable_sort(order.begin(), order.end(), [&](const auto& a, const auto& b) { return gap(a) < gap(b); });
+  gapTiles.clear();
+  for (const auto& o : order)
+  {
+    gapTiles.push_back(std::sqrt(static_cast<double>(gap(o).first)));
+  }
+  return order;
+}
 
 struct QueryParameters
 {
@@ -74,8 +110,9 @@ struct QueryParameters
   std::int32_t FirstEntry, EndEntry;
   std::int32_t LaneSlots;
   std::int32_t Stage, TilesPerGroup;
+  std::int32_t OrderReach, CoarseCount;
 };
-static_assert(sizeof(QueryParameters) == 88, "push constant layout of QueryProximity.comp");
+static_assert(sizeof(QueryParameters) == 96, "push constant layout of QueryProximity.comp");
 
 // Lanes that share the directional walk on a GPU (see QueryProximity.comp).
 constexpr std::int32_t GpuDirectionalLanes = 64;
@@ -184,6 +221,11 @@ struct vtkZBufferVesselDistance::Internals
   // tile (mm), ascending: the tiles a shorter search needs are a prefix of the table.
   std::vector<double> OrderGapMm;
   std::unique_ptr<vp::GpuBuffer> Order, State, Choices, Records, HostState, Points;
+  // The coarse tiles' order table and each offset's entry in the order table (see CoarseOrder in
+  // QueryProximityCommon.glsl), the order table's reach, and the coarse table's gaps (as OrderGapMm).
+  std::unique_ptr<vp::GpuBuffer> CoarseOrder, EntryIndex;
+  int OrderReach = 0;
+  std::vector<double> CoarseGapMm;
   // Per point and class the answer's ceiling (mm), and the sizes of the query's two dispatches
   // (VkDispatchIndirectCommand: the near tiles of a batch, then the lanes and the rest), written
   // by the host before every submission.
@@ -234,6 +276,13 @@ struct vtkZBufferVesselDistance::Internals
       std::upper_bound(this->OrderGapMm.begin(), this->OrderGapMm.end(), searchMm) - this->OrderGapMm.begin());
   }
 
+  // The coarse tiles within searchMm of any tip in the centre tile.
+  std::uint32_t CoarseCountWithin(double searchMm) const
+  {
+    return static_cast<std::uint32_t>(
+      std::upper_bound(this->CoarseGapMm.begin(), this->CoarseGapMm.end(), searchMm) - this->CoarseGapMm.begin());
+  }
+
   vp::VulkanContext& Device(const std::string& selector)
   {
     if (!this->Context || this->ContextSelector != selector)
@@ -263,6 +312,8 @@ struct vtkZBufferVesselDistance::Internals
     this->DepthRanges.reset();
     this->TileRanges.reset();
     this->Order.reset();
+    this->CoarseOrder.reset();
+    this->EntryIndex.reset();
     this->State.reset();
     this->Choices.reset();
     this->Records.reset();
@@ -446,8 +497,11 @@ struct vtkZBufferVesselDistance::Internals
     raster.Words = g.Words();
     const std::uint32_t pixels = static_cast<std::uint32_t>(g.Pixels());
     ColumnParameters columns{ pixels, classes, static_cast<std::uint32_t>(g.Words()), rangeStride };
-    TileParameters tiles{ g.Nx, g.Ny, g.TilesX(), g.TilesY(), classes, rangeStride };
+    TileParameters tiles{ g.Nx, g.Ny, g.TilesX(), g.TilesY(), classes, rangeStride, 8, 0 };
     const std::uint32_t tileCount = static_cast<std::uint32_t>(g.TilesX() * g.TilesY()) * classes;
+    TileParameters coarse{ g.Nx, g.Ny, CoarseAcross(g.TilesX()), CoarseAcross(g.TilesY()), classes, rangeStride,
+      8 * CoarseTiles, 2 * tileCount };
+    const std::uint32_t coarseCount = static_cast<std::uint32_t>(coarse.TilesX * coarse.TilesY) * classes;
 
     this->Context->Submit([&](VkCommandBuffer cmd) {
       vkCmdFillBuffer(cmd, this->Occupancy->Handle(), 0, VK_WHOLE_SIZE, 0u);
@@ -464,6 +518,7 @@ struct vtkZBufferVesselDistance::Internals
       this->Columns->Record(cmd, &columns, (pixels * classes + 63) / 64);
       vp::ComputeKernel::Barrier(cmd);
       this->Tiles->Record(cmd, &tiles, (tileCount + 63) / 64);
+      this->Tiles->Record(cmd, &coarse, (coarseCount + 63) / 64);
       vp::ComputeKernel::Barrier(cmd);
     });
     this->Rendered = true;
@@ -481,37 +536,46 @@ struct vtkZBufferVesselDistance::Internals
     {
       return;
     }
-    const double tilesAcross = std::max(this->Grid.TilesX(), this->Grid.TilesY());
-    const int reach = static_cast<int>(std::min(std::ceil(rangeMm / (8.0 * this->Grid.PixelMm)) + 1.0, tilesAcross));
-    std::vector<std::array<std::int32_t, 2>> order;
-    for (int dy = -reach; dy <= reach; ++dy)
+    const vp::DepthLayerGrid& g = this->Grid;
+    const double tilesAcross = std::max(g.TilesX(), g.TilesY());
+    const int reach = static_cast<int>(std::min(std::ceil(rangeMm / (8.0 * g.PixelMm)) + 1.0, tilesAcross));
+    const std::vector<std::array<std::int32_t, 2>> order = OffsetsNearestFirst(reach, this->OrderGapMm);
+    const double coarseAcross = std::max(CoarseAcross(g.TilesX()), CoarseAcross(g.TilesY()));
+    const int coarseReach =
+      static_cast<int>(std::min(std::ceil(rangeMm / (8.0 * CoarseTiles * g.PixelMm)) + 1.0, coarseAcross));
+    const std::vector<std::array<std::int32_t, 2>> coarse = OffsetsNearestFirst(coarseReach, this->CoarseGapMm);
+    for (double& mm : this->OrderGapMm)
     {
-      for (int dx = -reach; dx <= reach; ++dx)
-      {
-        order.push_back({ dx, dy });
-      }
+      mm = mm * 8.0 * g.PixelMm;
     }
-    auto gap = [](const std::array<std::int32_t, 2>& o) {
-      const int gx = std::max(0, std::abs(o[0]) - 1), gy = std::max(0, std::abs(o[1]) - 1);
-      return std::make_pair(gx * gx + gy * gy, o[0] * o[0] + o[1] * o[1]);
-    };
-    std::stable_sort(order.begin(), order.end(), [&](const auto& a, const auto& b) { return gap(a) < gap(b); });
+    for (double& mm : this->CoarseGapMm)
+    {
+      mm = mm * (8.0 * CoarseTiles) * g.PixelMm;
+    }
+    const int width = 2 * reach + 1;
+    std::vector<std::uint32_t> entryOf(order.size());
+    for (std::size_t e = 0; e < order.size(); ++e)
+    {
+      entryOf[static_cast<std::size_t>((order[e][1] + reach) * width + order[e][0] + reach)] = static_cast<std::uint32_t>(e);
+    }
     this->Prepared.clear(); // it names the buffers replaced here
     this->OrderCount = static_cast<std::uint32_t>(order.size());
-    this->OrderGapMm.clear();
-    for (const auto& o : order)
-    {
-      this->OrderGapMm.push_back(std::sqrt(static_cast<double>(gap(o).first)) * 8.0 * this->Grid.PixelMm);
-    }
-    this->Order = std::make_unique<vp::GpuBuffer>(*this->Context, order.size() * 8, vp::GpuBuffer::Placement::Device);
-    this->Order->Upload(order.data(), order.size() * 8);
+    this->OrderReach = reach;
+    using Placement = vp::GpuBuffer::Placement;
+    auto upload = [&](const void* data, std::size_t bytes) {
+      auto buffer = std::make_unique<vp::GpuBuffer>(*this->Context, bytes, Placement::Device);
+      buffer->Upload(data, bytes);
+      return buffer;
+    };
+    this->Order = upload(order.data(), order.size() * 8);
+    this->CoarseOrder = upload(coarse.data(), coarse.size() * 8);
+    this->EntryIndex = upload(entryOf.data(), entryOf.size() * 4);
     const std::uint32_t classes = std::max(this->Classes(), 1u);
     const VkDeviceSize recordBytesPerTip = static_cast<VkDeviceSize>(this->OrderCount) * classes * 16;
     const VkDeviceSize budget =
       std::min<VkDeviceSize>(RecordBudgetBytes, this->Context->Limits().maxStorageBufferRange);
     this->Capacity = static_cast<std::uint32_t>(std::clamp<VkDeviceSize>(budget / recordBytesPerTip, 1,
       this->Context->IsCpuDevice() ? CpuBatchCapacity : GpuBatchCapacity));
-    using Placement = vp::GpuBuffer::Placement;
     this->Records = std::make_unique<vp::GpuBuffer>(*this->Context, recordBytesPerTip * this->Capacity, Placement::Device);
     const VkDeviceSize stateBytes = StateStride * 4ull * classes * this->Capacity;
     this->State = std::make_unique<vp::GpuBuffer>(*this->Context, stateBytes, Placement::Device);
@@ -534,7 +598,7 @@ struct vtkZBufferVesselDistance::Internals
       query->BindBuffers({ this->Occupancy->Handle(), this->Crossings->Handle(), this->DepthRanges->Handle(),
         this->TileRanges->Handle(), this->Order->Handle(), this->State->Handle(), this->Records->Handle(),
         this->Points->Handle(), this->Choices->Handle(), this->Ceilings->Handle(), this->TileList->Handle(),
-        this->TileListSize->Handle() });
+        this->TileListSize->Handle(), this->CoarseOrder->Handle(), this->EntryIndex->Handle() });
     }
     this->Reduce->BindBuffers({ this->State->Handle(), this->Records->Handle(), this->HostState->Handle(),
       this->Choices->Handle(), this->TileListSize->Handle() });
@@ -908,8 +972,10 @@ void vtkZBufferVesselDistance::BuildInternal()
   s.Indices->Upload(indices.data(), indices.size() * 4);
 
   const VkDeviceSize rangeBytes = 2ull * s.Grid.Pixels() * std::max(classes, 1u) * 4ull;
-  const VkDeviceSize tileBytes =
-    2ull * static_cast<VkDeviceSize>(s.Grid.TilesX() * s.Grid.TilesY()) * std::max(classes, 1u) * 4ull;
+  // The tiles' ranges, then the coarse tiles'.
+  const VkDeviceSize tileBytes = 2ull *
+    static_cast<VkDeviceSize>(s.Grid.TilesX() * s.Grid.TilesY() + CoarseAcross(s.Grid.TilesX()) * CoarseAcross(s.Grid.TilesY())) *
+    std::max(classes, 1u) * 4ull;
   s.Occupancy = std::make_unique<vp::GpuBuffer>(context, layerBytes, Placement::Device);
   s.Crossings = std::make_unique<vp::GpuBuffer>(context, layerBytes, Placement::Device);
   s.DepthRanges = std::make_unique<vp::GpuBuffer>(context, rangeBytes, Placement::Device);
@@ -925,9 +991,9 @@ void vtkZBufferVesselDistance::BuildInternal()
     context, SummarizeTiles_comp, SummarizeTiles_comp_size, 2, static_cast<std::uint32_t>(sizeof(TileParameters)));
   s.Tiles->BindBuffers({ s.DepthRanges->Handle(), s.TileRanges->Handle() });
   s.Query = std::make_unique<vp::ComputeKernel>(
-    context, QueryProximity_comp, QueryProximity_comp_size, 12, static_cast<std::uint32_t>(sizeof(QueryParameters)));
+    context, QueryProximity_comp, QueryProximity_comp_size, 14, static_cast<std::uint32_t>(sizeof(QueryParameters)));
   s.QueryPerPixel = std::make_unique<vp::ComputeKernel>(context, QueryProximityPerPixel_comp,
-    QueryProximityPerPixel_comp_size, 12, static_cast<std::uint32_t>(sizeof(QueryParameters)));
+    QueryProximityPerPixel_comp_size, 14, static_cast<std::uint32_t>(sizeof(QueryParameters)));
   s.Reduce = std::make_unique<vp::ComputeKernel>(
     context, ReduceProximity_comp, ReduceProximity_comp_size, 5, static_cast<std::uint32_t>(sizeof(ReduceParameters)));
 
@@ -1025,7 +1091,7 @@ void vtkZBufferVesselDistance::CopyLayer(bool crossings, std::vector<std::uint32
   this->Impl->CopyLayer(crossings, words);
 }
 
-std::uint32_t vtkZBufferVesselDistance::WriteCeilings(
+double vtkZBufferVesselDistance::WriteCeilings(
   const std::array<double, 3>* tips, std::size_t count, double searchMm) const
 {
   Internals& s = *this->Impl;
@@ -1036,7 +1102,7 @@ std::uint32_t vtkZBufferVesselDistance::WriteCeilings(
   if (!this->QueryCeilings || this->BoxMode != FixedAroundVessels)
   {
     std::fill(ceiling, ceiling + count * classes, AnswerCeiling{ None, orderCount });
-    return orderCount;
+    return searchMm;
   }
   const vp::BlockDistanceField* blocks = s.PrepareCeilings();
   constexpr double Unknown = std::numeric_limits<double>::infinity();
@@ -1065,7 +1131,7 @@ std::uint32_t vtkZBufferVesselDistance::WriteCeilings(
       }
     }
   }
-  return highest < 0.0 ? 0 : std::min(orderCount, s.OrderCountWithin(highest));
+  return highest;
 }
 
 void vtkZBufferVesselDistance::AnswerBatch(const std::array<double, 3>* tips, std::size_t count,
@@ -1077,9 +1143,11 @@ void vtkZBufferVesselDistance::AnswerBatch(const std::array<double, 3>* tips, st
   const vp::DepthLayerGrid& g = s.Grid;
   const std::uint32_t orderCount = s.OrderCountWithin(searchMm);
   s.WritePoints(tips, count, axes);
-  const QueryParameters q = MakeQueryParameters(g, searchMm, binWidth, this->DistanceBins, orderCount,
+  QueryParameters q = MakeQueryParameters(g, searchMm, binWidth, this->DistanceBins, orderCount,
     this->LayerMode == PaperNearFar, classes,
     this->DirectionalLanes > 0 ? this->DirectionalLanes : (s.Context->IsCpuDevice() ? 1 : GpuDirectionalLanes));
+  q.OrderReach = s.OrderReach;
+  q.CoarseCount = static_cast<std::int32_t>(s.CoarseCountWithin(searchMm));
 
   // A workgroup per tile: the per-pixel pass needs the device to take that many in one dispatch.
   const std::uint32_t lanes = static_cast<std::uint32_t>(q.DirectionalLanes);
@@ -1089,7 +1157,8 @@ void vtkZBufferVesselDistance::AnswerBatch(const std::array<double, 3>* tips, st
       (this->QueryPass == QueryPassByDevice && !s.Context->IsCpuDevice() && count <= PerPixelMaxTips)) &&
     orderCount + laneGroups <= s.Context->Limits().maxComputeWorkGroupCount[0];
   const std::uint32_t n = static_cast<std::uint32_t>(count);
-  const std::uint32_t tiles = this->WriteCeilings(tips, count, searchMm);
+  const double reachMm = this->WriteCeilings(tips, count, searchMm);
+  const std::uint32_t tiles = reachMm < 0.0 ? 0 : std::min(orderCount, s.OrderCountWithin(reachMm));
   // The listed tiles are visited per pixel where the order table would be: on a GPU, where a
   // workgroup per listed tile is work for every invocation.
   const bool listPerPixel = this->QueryPass != QueryPassPerTile &&
@@ -1111,9 +1180,10 @@ void vtkZBufferVesselDistance::AnswerBatch(const std::array<double, 3>* tips, st
   {
     // The listing's workgroups per answer: one for a batch (its answers fill the device) and on
     // a CPU device (which runs them one after another anyway); for a few tips on a GPU enough
-    // that no invocation loops over more than 4 entries.
+    // that no invocation loops over more than 4 coarse tiles.
     const bool one = n > PerPixelMaxTips || s.Context->IsCpuDevice();
-    sizes[1] = { one ? 1u : std::max(1u, (tiles + 255) / 256), classes, n };
+    const std::uint32_t coarse = reachMm < 0.0 ? 0 : s.CoarseCountWithin(reachMm);
+    sizes[1] = { one ? 1u : std::max(1u, (coarse + 255) / 256), classes, n };
   }
   else
   {

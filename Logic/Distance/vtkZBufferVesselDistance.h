@@ -213,9 +213,10 @@ private:
   void CheckMovingBox(double cellMm) const;
   /// Every tip within searchMm; bins: whether the distance bins apply.
   void AnswerAll(const Points& tips, const Points* axes, double searchMm, bool bins, std::vector<vp::ProximityResult>& results) const;
-  /// Writes each tip's ceilings for the next submission (lock held); returns the tiles of the
-  /// order table they need (those within the highest ceiling of a class not wholly beyond the search).
-  std::uint32_t WriteCeilings(const std::array<double, 3>* tips, std::size_t count, double searchMm) const;
+  /// Writes each tip's ceilings for the next submission (lock held); returns how far from its tile
+  /// the submission has to look, mm (the highest ceiling of a class not wholly beyond the search;
+  /// below 0: nowhere).
+  double WriteCeilings(const std::array<double, 3>* tips, std::size_t count, double searchMm) const;
   /// The answers the latest submission left in host-visible memory, into results (lock held),
   /// with the exact engine's inside vote on the surfaces that are not closed.
   void ReadAnswers(const std::array<double, 3>* tips, std::size_t count, bool axes, double searchMm, int bins,

@@ -365,6 +365,29 @@ TEST(ZBufferDistance, ListedTilesAreFewAndChangeNoAnswer)
   EXPECT_GT(inRange, 1000);
 }
 
+TEST(ZBufferDistance, ListedTilesAtFineCellsChangeNoAnswer)
+{
+  // The listing finds its tiles through coarse tiles of 4 x 4: at 0.15 mm cells these are 4.8 mm
+  // across, and with a 30 mm range the order table reaches less far than the grid is wide, so
+  // some coarse tiles run past the table's reach and tips beyond the grid past its edge.
+  VP_REQUIRE_VULKAN();
+  const Vessels vessels = vp::MakeBuiltInVessels();
+  double b[6];
+  VesselBounds(vessels, b);
+  auto listed = Make<vtkZBufferVesselDistance>(vessels, 30.0);
+  auto ordered = Make<vtkZBufferVesselDistance>(vessels, 30.0);
+  for (vtkZBufferVesselDistance* e : { listed.Get(), ordered.Get() })
+  {
+    e->SetCellSizeMm(0.15);
+  }
+  listed->SetTileListing(vtkZBufferVesselDistance::TileListingOn);
+  ordered->SetTileListing(vtkZBufferVesselDistance::TileListingOff);
+  const auto tips = RandomTips(b, 30.0, 400, 31);
+  EXPECT_GT(ExpectSameBatches(listed, ordered, tips, "0.15 mm cells, batched"), 150);
+  const vp::DepthLayerGrid g = listed->GetGrid();
+  EXPECT_LT(30.0 / (8.0 * g.PixelMm) + 1.0, std::max(g.TilesX(), g.TilesY())) << "the table must reach less far than the grid";
+}
+
 TEST(ZBufferDistance, StackedBranchesStayApartOnlyInTheExactIntervalMode)
 {
   VP_REQUIRE_VULKAN();

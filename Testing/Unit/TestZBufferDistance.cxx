@@ -325,16 +325,32 @@ TEST(ZBufferDistance, CeilingsCutTheDispatchAndChangeNoAnswer)
 // a few of the tiles the order table would dispatch, and the answers are those of the order
 // table, bit for bit, one by one and batched, listed tiles visited per tile and per pixel, and in
 // the paper's mode with its bins. A tile left off the list that held an answer would fail here.
+// Two engines on the same vessels (at cellMm, or the default cell when 0): the first lists the
+// tiles it visits, the second visits the order table.
+std::pair<vtkSmartPointer<vtkZBufferVesselDistance>, vtkSmartPointer<vtkZBufferVesselDistance>> ListedAndOrdered(
+  const Vessels& vessels, double rangeMm, double cellMm)
+{
+  auto listed = Make<vtkZBufferVesselDistance>(vessels, rangeMm);
+  auto ordered = Make<vtkZBufferVesselDistance>(vessels, rangeMm);
+  for (vtkZBufferVesselDistance* e : { listed.Get(), ordered.Get() })
+  {
+    if (cellMm > 0.0)
+    {
+      e->SetCellSizeMm(cellMm);
+    }
+  }
+  listed->SetTileListing(vtkZBufferVesselDistance::TileListingOn);
+  ordered->SetTileListing(vtkZBufferVesselDistance::TileListingOff);
+  return { listed, ordered };
+}
+
 TEST(ZBufferDistance, ListedTilesAreFewAndChangeNoAnswer)
 {
   VP_REQUIRE_VULKAN();
   const Vessels vessels = vp::MakeBuiltInVessels();
   double b[6];
   VesselBounds(vessels, b);
-  auto listed = Make<vtkZBufferVesselDistance>(vessels, 50.0);
-  auto ordered = Make<vtkZBufferVesselDistance>(vessels, 50.0);
-  listed->SetTileListing(vtkZBufferVesselDistance::TileListingOn);
-  ordered->SetTileListing(vtkZBufferVesselDistance::TileListingOff);
+  auto [listed, ordered] = ListedAndOrdered(vessels, 50.0, 0.0);
   EXPECT_THROW(listed->SetTileListing(3), vp::InputError);
   const auto tips = RandomTips(b, 40.0, 300, 29);
   // One full submission: what it lists per tip against what the order table dispatches.
@@ -374,14 +390,7 @@ TEST(ZBufferDistance, ListedTilesAtFineCellsChangeNoAnswer)
   const Vessels vessels = vp::MakeBuiltInVessels();
   double b[6];
   VesselBounds(vessels, b);
-  auto listed = Make<vtkZBufferVesselDistance>(vessels, 30.0);
-  auto ordered = Make<vtkZBufferVesselDistance>(vessels, 30.0);
-  for (vtkZBufferVesselDistance* e : { listed.Get(), ordered.Get() })
-  {
-    e->SetCellSizeMm(0.15);
-  }
-  listed->SetTileListing(vtkZBufferVesselDistance::TileListingOn);
-  ordered->SetTileListing(vtkZBufferVesselDistance::TileListingOff);
+  auto [listed, ordered] = ListedAndOrdered(vessels, 30.0, 0.15);
   const auto tips = RandomTips(b, 30.0, 400, 31);
   EXPECT_GT(ExpectSameBatches(listed, ordered, tips, "0.15 mm cells, batched"), 150);
   const vp::DepthLayerGrid g = listed->GetGrid();

@@ -350,7 +350,10 @@ TEST(ZBufferDistance, ListedTilesAreFewAndChangeNoAnswer)
   const Vessels vessels = vp::MakeBuiltInVessels();
   double b[6];
   VesselBounds(vessels, b);
-  auto [listed, ordered] = ListedAndOrdered(vessels, 50.0, 0.0);
+  // Not a structured binding: C++17 lambdas cannot capture one (clang refuses).
+  const auto engines = ListedAndOrdered(vessels, 50.0, 0.0);
+  vtkZBufferVesselDistance* listed = engines.first;
+  vtkZBufferVesselDistance* ordered = engines.second;
   EXPECT_THROW(listed->SetTileListing(3), vp::InputError);
   const auto tips = RandomTips(b, 40.0, 300, 29);
   // One full submission: what it lists per tip against what the order table dispatches.
@@ -390,7 +393,9 @@ TEST(ZBufferDistance, ListedTilesAtFineCellsChangeNoAnswer)
   const Vessels vessels = vp::MakeBuiltInVessels();
   double b[6];
   VesselBounds(vessels, b);
-  auto [listed, ordered] = ListedAndOrdered(vessels, 30.0, 0.15);
+  const auto engines = ListedAndOrdered(vessels, 30.0, 0.15);
+  vtkZBufferVesselDistance* listed = engines.first;
+  vtkZBufferVesselDistance* ordered = engines.second;
   const auto tips = RandomTips(b, 30.0, 400, 31);
   EXPECT_GT(ExpectSameBatches(listed, ordered, tips, "0.15 mm cells, batched"), 150);
   const vp::DepthLayerGrid g = listed->GetGrid();

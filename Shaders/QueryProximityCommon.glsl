@@ -337,6 +337,17 @@ float GapMm(ivec2 offset, int edgePx)
   return mm - mm * 1e-5;
 }
 
+// The least distance from the tip to a box of edgePx x edgePx pixels from firstPixel, between
+// slices lo and hi (a tile's or a coarse tile's occupied slices): no cell in it is nearer.
+float BoxGapMm(ivec2 firstPixel, int edgePx, float lo, float hi)
+{
+  vec2 corner = vec2(firstPixel);
+  float dx = AxisGap(Tip.x, corner.x, corner.x + float(edgePx)) * P.PixelMm;
+  float dy = AxisGap(Tip.y, corner.y, corner.y + float(edgePx)) * P.PixelMm;
+  float dz = AxisGap(Tip.z, floor(lo), floor(hi) + 1.0) * P.SliceMm;
+  return sqrt(dx * dx + dy * dy + dz * dz);
+}
+
 // At least the distance from the tip to one of the tile's occupied cells, as PixelDistance
 // measures it: the tile's lowest occupied slice (and its highest) is occupied in one of its
 // pixels, which is no farther along x and y than the tile's farthest pixel column. Computed as
@@ -376,12 +387,8 @@ ivec2 TileToVisit(uint cls, uint stateBase, uint entry, bool lower)
   {
     return ivec2(-1); // empty tile
   }
-  vec2 lo = vec2(tile * 8);
-  float dx = AxisGap(Tip.x, lo.x, lo.x + 8.0) * P.PixelMm;
-  float dy = AxisGap(Tip.y, lo.y, lo.y + 8.0) * P.PixelMm;
-  float dz = AxisGap(Tip.z, floor(tileLo), floor(tileHi) + 1.0) * P.SliceMm;
   float best = BestSoFar(stateBase);
-  if (sqrt(dx * dx + dy * dy + dz * dz) > best)
+  if (BoxGapMm(tile * 8, 8, tileLo, tileHi) > best)
   {
     return ivec2(-1);
   }
@@ -487,11 +494,7 @@ bool SelectCoarseTile(uint cls, uint answer, uint stateBase, uint c, uint first,
     return true; // empty
   }
   // Its box holds every box of its tiles: no tile of it is nearer than the box.
-  vec2 corner = vec2(coarse * (8 * CoarseTiles));
-  float dx = AxisGap(Tip.x, corner.x, corner.x + float(8 * CoarseTiles)) * P.PixelMm;
-  float dy = AxisGap(Tip.y, corner.y, corner.y + float(8 * CoarseTiles)) * P.PixelMm;
-  float dz = AxisGap(Tip.z, floor(lo), floor(hi) + 1.0) * P.SliceMm;
-  if (sqrt(dx * dx + dy * dy + dz * dz) > BestSoFar(stateBase))
+  if (BoxGapMm(coarse * (8 * CoarseTiles), 8 * CoarseTiles, lo, hi) > BestSoFar(stateBase))
   {
     return true;
   }

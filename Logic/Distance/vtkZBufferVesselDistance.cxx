@@ -70,28 +70,37 @@ int CoarseAcross(int tiles)
   return (tiles + CoarseTiles - 1) / CoarseTiles;
 }
 
-// Offsets from a centre tile within reach along x and y, nearest first: by the least distance
-// from any point of the centre tile (in tiles: the square root of the first of the pair), then
-// from the centre.
-std::vector<std::array<std::int32_t, 2>> OffsetsNearestFirst(int reach, std::vector<double>& gapTiles)
+// Offsets from a centre tile, nearest first: by the least distance from any point of the centre
+// tile (the square root of the first of the pair, in tiles), then from the centre. Reach: the
+// tiles within rangeMm, and no more than the grid is wide (so --range 1e9 asks for no more);
+// GapMm: each offset's least distance, ascending, so that a shorter search needs a prefix.
+struct TileOrder
 {
-  std::vector<std::array<std::int32_t, 2>> order;
-  for (int dy = -reach; dy <= reach; ++dy)
+  std::vector<std::array<std::int32_t, 2>> Offsets;
+  std::vector<double> GapMm;
+  int Reach = 0;
+};
+
+TileOrder NearestFirst(double rangeMm, double edgePx, double pixelMm, int tilesAcross)
+{
+  TileOrder order;
+  order.Reach = static_cast<int>(std::min(std::ceil(rangeMm / (edgePx * pixelMm)) + 1.0, static_cast<double>(tilesAcross)));
+  for (int dy = -order.Reach; dy <= order.Reach; ++dy)
   {
-    for (int dx = -reach; dx <= reach; ++dx)
+    for (int dx = -order.Reach; dx <= order.Reach; ++dx)
     {
-      order.push_back({ dx, dy });
+      order.Offsets.push_back({ dx, dy });
     }
   }
   auto gap = [](const std::array<std::int32_t, 2>& o) {
     const int gx = std::max(0, std::abs(o[0]) - 1), gy = std::max(0, std::abs(o[1]) - 1);
     return std::make_pair(gx * gx + gy * gy, o[0] * o[0] + o[1] * o[1]);
   };
-  std::stable_sort(order.begin(), order.end(), [&](const auto& a, const auto& b) { return gap(a) < gap(b); });
-  gapTiles.clear();
-  for (const auto& o : order)
+  std::stable_sort(
+    order.Offsets.begin(), order.Offsets.end(), [&](const auto& a, const auto& b) { return gap(a) < gap(b); });
+  for (const auto& o : order.Offsets)
   {
-    gapTiles.push_back(std::sqrt(static_cast<double>(gap(o).first)));
+    order.GapMm.push_back(std::sqrt(static_cast<double>(gap(o).first)) * edgePx * pixelMm);
   }
   return order;
 }
@@ -529,7 +538,8 @@ struct vtkZBufferVesselDistance::Internals
   // The tiles within rangeMm of the tip's tile, nearest first: the query visits them in this
   // order so that the running best shrinks early and far tiles skip their work. The offsets
   // start at the grid's tile nearest the tip, so the table is never wider than the grid,
-  // whatever the range (--range 1e9 asked for gigabytes before).
+  // whatever the range (--range 1e9 asked for gigabytes before). Beside it the coarse tiles'
+  // table, which the listing walks, and each offset's entry in the order table.
   void PrepareOrder(double rangeMm)
   {
     if (this->OrderRangeMm == rangeMm)
@@ -537,21 +547,11 @@ struct vtkZBufferVesselDistance::Internals
       return;
     }
     const vp::DepthLayerGrid& g = this->Grid;
-    const double tilesAcross = std::max(g.TilesX(), g.TilesY());
-    const int reach = static_cast<int>(std::min(std::ceil(rangeMm / (8.0 * g.PixelMm)) + 1.0, tilesAcross));
-    const std::vector<std::array<std::int32_t, 2>> order = OffsetsNearestFirst(reach, this->OrderGapMm);
-    const double coarseAcross = std::max(CoarseAcross(g.TilesX()), CoarseAcross(g.TilesY()));
-    const int coarseReach =
-      static_cast<int>(std::min(std::ceil(rangeMm / (8.0 * CoarseTiles * g.PixelMm)) + 1.0, coarseAcross));
-    const std::vector<std::array<std::int32_t, 2>> coarse = OffsetsNearestFirst(coarseReach, this->CoarseGapMm);
-    for (double& mm : this->OrderGapMm)
-    {
-      mm = mm * 8.0 * g.PixelMm;
-    }
-    for (double& mm : this->CoarseGapMm)
-    {
-      mm = mm * (8.0 * CoarseTiles) * g.PixelMm;
-    }
+    TileOrder fine = NearestFirst(rangeMm, 8.0, g.PixelMm, std::max(g.TilesX(), g.TilesY()));
+    TileOrder coarse = NearestFirst(
+      rangeMm, 8.0 * CoarseTiles, g.PixelMm, std::max(CoarseAcross(g.TilesX()), CoarseAcross(g.TilesY())));
+    const std::vector<std::array<std::int32_t, 2>>& order = fine.Offsets;
+    const int reach = fine.Reach;
     const int width = 2 * reach + 1;
     std::vector<std::uint32_t> entryOf(order.size());
     for (std::size_t e = 0; e < order.size(); ++e)
@@ -561,6 +561,8 @@ struct vtkZBufferVesselDistance::Internals
     this->Prepared.clear(); // it names the buffers replaced here
     this->OrderCount = static_cast<std::uint32_t>(order.size());
     this->OrderReach = reach;
+    this->OrderGapMm = std::move(fine.GapMm);
+    this->CoarseGapMm = std::move(coarse.GapMm);
     using Placement = vp::GpuBuffer::Placement;
     auto upload = [&](const void* data, std::size_t bytes) {
       auto buffer = std::make_unique<vp::GpuBuffer>(*this->Context, bytes, Placement::Device);
@@ -568,7 +570,7 @@ struct vtkZBufferVesselDistance::Internals
       return buffer;
     };
     this->Order = upload(order.data(), order.size() * 8);
-    this->CoarseOrder = upload(coarse.data(), coarse.size() * 8);
+    this->CoarseOrder = upload(coarse.Offsets.data(), coarse.Offsets.size() * 8);
     this->EntryIndex = upload(entryOf.data(), entryOf.size() * 4);
     const std::uint32_t classes = std::max(this->Classes(), 1u);
     const VkDeviceSize recordBytesPerTip = static_cast<VkDeviceSize>(this->OrderCount) * classes * 16;

@@ -321,10 +321,6 @@ TEST(ZBufferDistance, CeilingsCutTheDispatchAndChangeNoAnswer)
   }
 }
 
-// A batch lists the tiles it has to visit before visiting them (SetTileListing): the list holds
-// a few of the tiles the order table would dispatch, and the answers are those of the order
-// table, bit for bit, one by one and batched, listed tiles visited per tile and per pixel, and in
-// the paper's mode with its bins. A tile left off the list that held an answer would fail here.
 // Two engines on the same vessels (at cellMm, or the default cell when 0): the first lists the
 // tiles it visits, the second visits the order table.
 std::pair<vtkSmartPointer<vtkZBufferVesselDistance>, vtkSmartPointer<vtkZBufferVesselDistance>> ListedAndOrdered(
@@ -344,6 +340,10 @@ std::pair<vtkSmartPointer<vtkZBufferVesselDistance>, vtkSmartPointer<vtkZBufferV
   return { listed, ordered };
 }
 
+// A batch lists the tiles it has to visit before visiting them (SetTileListing): the list holds
+// a few of the tiles the order table would dispatch, and the answers are those of the order
+// table, bit for bit, one by one and batched, listed tiles visited per tile and per pixel, and in
+// the paper's mode with its bins. A tile left off the list that held an answer would fail here.
 TEST(ZBufferDistance, ListedTilesAreFewAndChangeNoAnswer)
 {
   VP_REQUIRE_VULKAN();

@@ -202,6 +202,51 @@ double Clamp(double x, double lo, double hi)
 {
   return std::min(std::max(x, lo), hi);
 }
+
+// A point and class's answer, as the query leaves it in its State words (QueryProximityCommon.glsl):
+// [1] the ray's parity, [2] the directional distance, [3] the chosen record (all ones: none within
+// the search), [4] its cell's distance, [5] its pixel, [6] its depth in slices, [8...] the
+// paper's distance bits.
+
+/// The chosen cell's distance, mm; infinite when nothing lies within the search.
+double ChosenCellMm(const std::uint32_t* state)
+{
+  return state[3] == 0xFFFFFFFFu ? std::numeric_limits<double>::infinity() : Bits(state[4]);
+}
+
+/// The distance the answer reports: the nearest marked cell is at most a cell diagonal nearer
+/// than the surface it holds, so its distance plus half a diagonal is within half a diagonal of
+/// the truth; with the paper's bits on, the middle of the first bin set instead.
+double ReportedDistanceMm(const std::uint32_t* state, double cellMm, double halfDiagonalMm, int bins, double binWidthMm)
+{
+  for (int bin = 0; bin < bins; ++bin)
+  {
+    if (state[8 + bin / 32] & (1u << (bin % 32)))
+    {
+      return (bin + 0.5) * binWidthMm;
+    }
+  }
+  return cellMm + halfDiagonalMm;
+}
+
+/// The point of the chosen cell nearest the tip across its pixel, at the cell's depth.
+void ClosestPointInChosenCell(const vp::DepthLayerGrid& g, const double* tip, const std::uint32_t* state, double point[3])
+{
+  const std::uint32_t pixel = state[5];
+  const int px = static_cast<int>(pixel % static_cast<std::uint32_t>(g.Nx));
+  const int py = static_cast<int>(pixel / static_cast<std::uint32_t>(g.Nx));
+  point[0] = Clamp(tip[0], g.OriginMm[0] + px * g.PixelMm, g.OriginMm[0] + (px + 1) * g.PixelMm);
+  point[1] = Clamp(tip[1], g.OriginMm[1] + py * g.PixelMm, g.OriginMm[1] + (py + 1) * g.PixelMm);
+  point[2] = g.OriginMm[2] + Bits(state[6]) * g.SliceMm;
+}
+
+/// An inside answer the exact engine's vote decides: on a surface that is not closed.
+struct InsideVote
+{
+  std::size_t Tip;
+  std::uint32_t Class;
+  double DistanceMm;
+};
 } // namespace
 
 struct vtkZBufferVesselDistance::Internals
@@ -277,6 +322,28 @@ struct vtkZBufferVesselDistance::Internals
   vtkSmartPointer<vtkExactVesselDistance> Votes;
   std::vector<int> ExactIndex;
   static constexpr std::size_t MaxPrepared = 64;
+
+  // The votes run on the host, five rays each: a batch's on all cores (Embree's queries are
+  // thread-safe), so that a batch on a defective surface does not wait for them one by one.
+  void VoteInside(const std::vector<InsideVote>& votes, const std::array<double, 3>* tips, vp::ProximityResult* results) const
+  {
+    auto vote = [&](vtkIdType begin, vtkIdType end) {
+      for (vtkIdType k = begin; k < end; ++k)
+      {
+        const InsideVote& v = votes[static_cast<std::size_t>(k)];
+        vp::ClassProximity& out = results[v.Tip].Classes[v.Class];
+        out.Inside = this->Votes->VoteInside(this->ExactIndex[v.Class], tips[v.Tip].data(), v.DistanceMm, out.InsideUncertain);
+      }
+    };
+    if (votes.size() >= 64)
+    {
+      vtkSMPTools::For(0, static_cast<vtkIdType>(votes.size()), vote);
+    }
+    else
+    {
+      vote(0, static_cast<vtkIdType>(votes.size()));
+    }
+  }
 
   // The tiles of the order table within searchMm of any tip in the centre tile.
   std::uint32_t OrderCountWithin(double searchMm) const
@@ -1208,13 +1275,7 @@ void vtkZBufferVesselDistance::ReadAnswers(const std::array<double, 3>* tips, st
   const std::uint32_t classes = s.Classes();
   const vp::DepthLayerGrid& g = s.Grid;
   const auto* hostState = static_cast<const std::uint32_t*>(s.HostState->Mapped());
-  struct Vote
-  {
-    std::size_t Tip;
-    std::uint32_t Class;
-    double DistanceMm;
-  };
-  std::vector<Vote> votes; // the answers on surfaces that are not closed
+  std::vector<InsideVote> votes; // the answers on surfaces that are not closed
   for (std::size_t i = 0; i < count; ++i)
   {
     const double* tip = tips[i].data();
@@ -1227,9 +1288,8 @@ void vtkZBufferVesselDistance::ReadAnswers(const std::array<double, 3>* tips, st
       {
         out.DirectionalMm = directional;
       }
-      // cs[3]: the record the device chose (none: nothing within range).
-      const float best = cs[3] == 0xFFFFFFFFu ? std::numeric_limits<float>::infinity() : Bits(cs[4]);
-      if (!(best <= searchMm))
+      const double cellMm = ChosenCellMm(cs);
+      if (!(cellMm <= searchMm))
       {
         out.InRange = false; // as the exact engine: no distance, no point, no inside answer
         continue;
@@ -1240,22 +1300,9 @@ void vtkZBufferVesselDistance::ReadAnswers(const std::array<double, 3>* tips, st
         Internals::LastAnswer& last = s.Last[c];
         last.Known = true;
         std::copy(tip, tip + 3, last.TipMm);
-        last.CellMm = best;
+        last.CellMm = cellMm;
       }
-      // The nearest marked cell is at most a cell diagonal nearer than the surface it holds:
-      // its distance plus half a diagonal is within half a diagonal of the truth.
-      double distance = best + g.HalfDiagonalMm();
-      if (bins > 0)
-      {
-        for (int bin = 0; bin < bins; ++bin)
-        {
-          if (cs[8 + bin / 32] & (1u << (bin % 32)))
-          {
-            distance = (bin + 0.5) * binWidth;
-            break;
-          }
-        }
-      }
+      const double distance = ReportedDistanceMm(cs, cellMm, g.HalfDiagonalMm(), bins, binWidth);
       if (distance > this->RangeMm)
       {
         out.InRange = false; // beyond the range, as the exact engine reports what lies there
@@ -1270,37 +1317,14 @@ void vtkZBufferVesselDistance::ReadAnswers(const std::array<double, 3>* tips, st
       }
       else
       {
-        votes.push_back({ i, c, best + g.HalfDiagonalMm() });
+        votes.push_back({ i, c, cellMm + g.HalfDiagonalMm() });
       }
       out.DistanceMm = distance;
-      const std::uint32_t bestPixel = cs[5];
-      const float bestDepth = Bits(cs[6]);
-      const int px = static_cast<int>(bestPixel % static_cast<std::uint32_t>(g.Nx));
-      const int py = static_cast<int>(bestPixel / static_cast<std::uint32_t>(g.Nx));
-      out.ClosestPoint[0] = Clamp(tip[0], g.OriginMm[0] + px * g.PixelMm, g.OriginMm[0] + (px + 1) * g.PixelMm);
-      out.ClosestPoint[1] = Clamp(tip[1], g.OriginMm[1] + py * g.PixelMm, g.OriginMm[1] + (py + 1) * g.PixelMm);
-      out.ClosestPoint[2] = g.OriginMm[2] + bestDepth * g.SliceMm;
+      ClosestPointInChosenCell(g, tip, cs, out.ClosestPoint);
       out.TriangleId = -1;
     }
   }
-  // The votes run on the host, five rays each: a batch's on all cores (Embree's queries are
-  // thread-safe), so that a batch on a defective surface does not wait for them one by one.
-  auto vote = [&](vtkIdType begin, vtkIdType end) {
-    for (vtkIdType k = begin; k < end; ++k)
-    {
-      const Vote& v = votes[static_cast<std::size_t>(k)];
-      vp::ClassProximity& out = results[v.Tip].Classes[v.Class];
-      out.Inside = s.Votes->VoteInside(s.ExactIndex[v.Class], tips[v.Tip].data(), v.DistanceMm, out.InsideUncertain);
-    }
-  };
-  if (votes.size() >= 64)
-  {
-    vtkSMPTools::For(0, static_cast<vtkIdType>(votes.size()), vote);
-  }
-  else
-  {
-    vote(0, static_cast<vtkIdType>(votes.size()));
-  }
+  s.VoteInside(votes, tips, results);
 }
 
 void vtkZBufferVesselDistance::PrintSelf(ostream& os, vtkIndent indent)

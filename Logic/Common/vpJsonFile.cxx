@@ -1,19 +1,15 @@
 #include "vpJsonFile.h"
 
 #include "vpInputError.h"
+#include "vpRegularFile.h"
 
-#include <filesystem>
 #include <fstream>
 
 namespace vp
 {
 std::ifstream OpenJsonFile(const std::string& fileName, const std::string& what)
 {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(fileName, ec))
-  {
-    throw InputError(fileName, std::filesystem::exists(fileName, ec) ? "cannot open as " + what : "no such file");
-  }
+  RegularFileSize(fileName, "cannot open as " + what, "cannot open as " + what);
   std::ifstream in(fileName);
   if (!in)
   {

@@ -3,6 +3,7 @@
 #include "vpIndexedMesh.h"
 #include "vpLegacyVtkGeometry.h"
 #include "vpObjIndices.h"
+#include "vpRegularFile.h"
 #include "vpStlFormat.h"
 
 #include <vtkAlgorithm.h>
@@ -29,7 +30,6 @@
 #include <cstring>
 #include <fstream>
 #include <sstream>
-#include <sys/stat.h>
 
 vtkStandardNewMacro(vtkVesselMeshReader);
 
@@ -49,26 +49,6 @@ std::string LowerExtension(const std::string& fileName)
 }
 
 constexpr std::uint64_t StartBytes = 1 << 20;
-
-// The file's size, refusing what is not a regular file.
-std::uint64_t RegularFileSize(const std::string& fileName)
-{
-  struct stat info;
-  if (stat(fileName.c_str(), &info) != 0)
-  {
-    throw vp::InputError(fileName, errno == ENOENT ? "no such file" : std::strerror(errno));
-  }
-  if (S_ISDIR(info.st_mode))
-  {
-    throw vp::InputError(fileName, "is a folder, not a mesh file");
-  }
-  if (!S_ISREG(info.st_mode))
-  {
-    // A device or a pipe has no end to wait for (/dev/zero) or may never open (a FIFO).
-    throw vp::InputError(fileName, "is not a regular file (a device, pipe or socket): save the mesh to a file");
-  }
-  return static_cast<std::uint64_t>(info.st_size);
-}
 
 // The file's bytes, read straight into one string. An STL's first StartBytes are checked
 // before the rest is read (vp::CheckStlStart): a gigabyte of zeros or of text is refused at once.
@@ -259,7 +239,9 @@ void vtkVesselMeshReader::Read()
     throw vp::InputError("(no file name)", "no mesh file given");
   }
   const std::string ext = LowerExtension(fileName);
-  const std::string bytes = ReadMeshFile(fileName, RegularFileSize(fileName), ext == ".stl");
+  const std::string bytes = ReadMeshFile(fileName,
+    vp::RegularFileSize(fileName, "is a folder, not a mesh file", "is not a regular file (a device, pipe or socket): save the mesh to a file"),
+    ext == ".stl");
   if (bytes.empty())
   {
     throw vp::InputError(fileName, "file is empty");

@@ -2,13 +2,13 @@
 
 #include "vpDecimal.h"
 #include "vpInputError.h"
+#include "vpRegularFile.h"
 
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
-#include <sys/stat.h>
 
 namespace vp
 {
@@ -63,17 +63,7 @@ NumericCsvReader::NumericCsvReader(const std::string& fileName, const std::strin
   : Name(fileName)
   , What(what)
 {
-  struct stat info;
-  if (stat(fileName.c_str(), &info) != 0)
-  {
-    throw InputError(fileName, errno == ENOENT ? "no such file" : std::strerror(errno));
-  }
-  if (!S_ISREG(info.st_mode))
-  {
-    // Checked before opening: a FIFO with no writer would block the open, /dev/zero never ends.
-    throw InputError(fileName, S_ISDIR(info.st_mode) ? "cannot open as " + what
-                                                     : "is not a regular file (a device, pipe or socket), cannot open as " + what);
-  }
+  RegularFileSize(fileName, "cannot open as " + what, "is not a regular file (a device, pipe or socket), cannot open as " + what);
   this->In.open(fileName);
   if (!this->In)
   {

@@ -73,12 +73,7 @@ void PrintSummary(const TrackingSession& session, vtkVesselProximityLogic* proxi
     std::printf(" %s %.2f s", DangerLevelName(static_cast<DangerLevel>(l)), summary.GetTimeInLevelS()[l]);
   }
   std::printf("\n  %zu level change(s), worst level %s\n", summary.GetChanges().size(), DangerLevelName(summary.GetWorstLevel()));
-  std::printf("  frame median %.4f ms, p95 %.4f ms, max %.4f ms; %s\n", summary.GetFrameMsQuantile(0.5),
-    summary.GetFrameMsQuantile(0.95), summary.GetFrameMsQuantile(1.0),
-    budgetMs > 0 ? (std::to_string(summary.GetFramesOverBudget()) + " of " + std::to_string(frameCount) +
-                     " frames over the " + FixedText(budgetMs, "%g") + " ms budget")
-                     .c_str()
-                 : "no frame budget");
+  std::printf("  %s\n", FrameTimesText(summary, budgetMs).c_str());
   if (const auto& check = session.GetComparison())
   {
     std::printf("  against the exact engine: largest difference %.4f mm, %d answer(s) outside the bound\n",

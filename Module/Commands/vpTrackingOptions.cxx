@@ -5,6 +5,7 @@
 #include "vpInputError.h"
 #include "vpPointCsv.h"
 
+#include <cstdio>
 
 namespace vp
 {
@@ -104,6 +105,17 @@ double ParseHysteresisMm(const cli::ParsedArguments& args)
     throw InputError("--hysteresis-mm", "expected a distance in mm, 0 or more (0: none), got '" + args.GetString("hysteresisMm") + "'");
   }
   return hysteresisMm;
+}
+
+std::string FrameTimesText(const TrackingSummary& summary, double budgetMs)
+{
+  char times[160];
+  std::snprintf(times, sizeof times, "frame median %.4f ms, p95 %.4f ms, max %.4f ms; ", summary.GetFrameMsQuantile(0.5),
+    summary.GetFrameMsQuantile(0.95), summary.GetFrameMsQuantile(1.0));
+  return times +
+    (budgetMs > 0 ? std::to_string(summary.GetFramesOverBudget()) + " of " + std::to_string(summary.GetNumberOfFrames()) +
+          " frames over the " + FixedText(budgetMs, "%g") + " ms budget"
+                  : std::string("no frame budget"));
 }
 
 vtkSmartPointer<vtkVesselProximityLogic> ConfigureTrackingLogic(const cli::ParsedArguments& args, const ModuleServices& module)

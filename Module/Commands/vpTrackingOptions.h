@@ -5,6 +5,7 @@
 #include "vpDangerLevels.h"
 #include "vpModuleServices.h"
 #include "vpScalpelLoader.h"
+#include "vpTrackingSummary.h"
 #include "vtkVesselProximityLogic.h"
 
 #include <vtkSmartPointer.h>
@@ -29,6 +30,10 @@ ScalpelTipDefinition ParseTipDefinition(const cli::ParsedArguments& args);
 double ParseFrameBudgetMs(const cli::ParsedArguments& args);
 /// --hysteresis-mm, not negative (vtkScalpelTrackingLogic::SetHysteresisMm); throws InputError.
 double ParseHysteresisMm(const cli::ParsedArguments& args);
+
+/// "frame median X ms, p95 Y ms, max Z ms; K of N frames over the B ms budget" (or "no frame
+/// budget"): how track and view report the frames' computing times.
+std::string FrameTimesText(const TrackingSummary& summary, double budgetMs);
 
 /// The module's logic (ModuleServices::CreateLogic) with what the tracking options set, checked before any file is read: the
 /// danger thresholds, the frame budget, the hysteresis, --no-surface, the engine of --method (its

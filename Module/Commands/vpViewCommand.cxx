@@ -13,10 +13,12 @@
 #include "vpTrackingOptions.h"
 #include "vpVirtualDisplay.h"
 #include "vtkScalpelModel.h"
+#include "vtkScalpelTrackingLogic.h"
 #include "vtkVesselMeshReader.h"
 #include "vtkVesselProximityLogic.h"
 #include "vtkVesselProximityView.h"
 
+#include <vtkCallbackCommand.h>
 #include <vtkNew.h>
 #include <vtkPolyData.h>
 
@@ -176,6 +178,15 @@ int RunViewCommand(const cli::ParsedArguments& args, const ModuleServices& modul
     throw InputError("--pose", "no pose " + std::to_string(first) + " (the pose file has " + std::to_string(poses.size()) + ")");
   }
   vtkSmartPointer<vtkPolyData> liver = ReadScene(args, tip, logic);
+  // Every frame the window shows, for the frame times said when it closes.
+  TrackingSummary frames;
+  vtkNew<vtkCallbackCommand> onFrame;
+  onFrame->SetClientData(&frames);
+  onFrame->SetCallback([](vtkObject*, unsigned long, void* client, void* call) {
+    static_cast<TrackingSummary*>(client)->Add(*static_cast<const TrackedFrame*>(call));
+  });
+  logic->GetTrackingLogic()->AddObserver(vtkScalpelTrackingLogic::FrameProcessedEvent, onFrame);
+  const double budgetMs = logic->GetTrackingLogic()->GetFrameBudgetMs();
   VirtualDisplay display;
   RequireDisplay(screenshot, display);
   vtkNew<vtkVesselProximityView> view;
@@ -201,10 +212,12 @@ int RunViewCommand(const cli::ParsedArguments& args, const ModuleServices& modul
   {
     view->SaveScreenshot(screenshot);
     PrintScreenshotLine(screenshot, logic);
+    std::cout << FrameTimesText(frames, budgetMs) << "\n";
     return 0;
   }
   std::cout << vtkVesselProximityView::KeyHelp();
   view->Start();
+  std::cout << FrameTimesText(frames, budgetMs) << "\n";
   return 0;
 }
 } // namespace vp

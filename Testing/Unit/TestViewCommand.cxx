@@ -63,3 +63,42 @@ TEST(ViewCommand, BadInputGivesOneLineAndNoScreenshot)
   EXPECT_NE(run.Err.find("no display"), std::string::npos) << run.Err;
   std::filesystem::remove_all(tmp);
 }
+
+TEST(ViewCommand, SaysTheFrameTimesAndTheFramesOverTheBudget)
+{
+  const std::string tmp = vp::test::MakeTempDir("view_budget");
+  ASSERT_EQ(vp::test::RunTool(tmp, "phantom -o " + tmp).ExitCode, 0);
+  std::string poses = "time,x,y,z,qw,qx,qy,qz\n";
+  for (int i = 0; i < 12; ++i)
+  {
+    poses += std::to_string(0.1 * i) + ",0,-40," + std::to_string(i) + ",1,0,0,0\n";
+  }
+  const std::string file = vp::test::WriteBytes(tmp, "poses.csv", poses);
+  // --pose 7 shows poses 0 to 7 on the way: 8 frames. A budget no frame meets counts them all.
+  auto over = vp::test::RunTool(tmp, "view " + PhantomVessels(tmp) + " --poses " + file +
+      " --pose 7 --frame-budget-ms 0.000001 --size 320x240 --screenshot " + tmp + "/a.png");
+  ASSERT_EQ(over.ExitCode, 0) << over.Err;
+  double median = -1, p95 = -1, max = -1;
+  int late = -1, frames = -1;
+  const std::size_t line = over.Out.find("frame median");
+  ASSERT_NE(line, std::string::npos) << over.Out;
+  ASSERT_EQ(std::sscanf(over.Out.c_str() + line, "frame median %lf ms, p95 %lf ms, max %lf ms; %d of %d frames over the 1e-06 ms budget",
+              &median, &p95, &max, &late, &frames),
+    5)
+    << over.Out;
+  EXPECT_EQ(frames, 8);
+  EXPECT_EQ(late, 8);
+  EXPECT_GT(median, 0.0);
+  EXPECT_LE(median, p95);
+  EXPECT_LE(p95, max);
+  // The default budget (16.7 ms) and none at all.
+  auto normal = vp::test::RunTool(tmp, "view " + PhantomVessels(tmp) + " --poses " + file + " --pose 3 --size 320x240 --screenshot " +
+      tmp + "/b.png");
+  ASSERT_EQ(normal.ExitCode, 0) << normal.Err;
+  EXPECT_NE(normal.Out.find(" of 4 frames over the 16.7 ms budget"), std::string::npos) << normal.Out;
+  auto none = vp::test::RunTool(tmp, "view " + PhantomVessels(tmp) + " --poses " + file +
+      " --pose 3 --frame-budget-ms 0 --size 320x240 --screenshot " + tmp + "/c.png");
+  ASSERT_EQ(none.ExitCode, 0) << none.Err;
+  EXPECT_NE(none.Out.find("; no frame budget"), std::string::npos) << none.Out;
+  std::filesystem::remove_all(tmp);
+}

@@ -347,6 +347,35 @@ void DrawSeries(Canvas& canvas, const Canvas& bands, const std::vector<double>& 
   }
 }
 
+/// The series' note beside its lowest value below zero: under it when there is room in the plot
+/// area, else over it, kept inside the area, in black or white as the band there asks.
+void DrawDeepestNote(Canvas& canvas, const Canvas& bands, const std::vector<double>& timesS, const PlotSeries& s,
+  const DistancePlotFrame& frame, const Rect& plot)
+{
+  std::size_t deepest = timesS.size();
+  for (std::size_t i = 0; i < timesS.size(); ++i)
+  {
+    if (std::isfinite(timesS[i]) && std::isfinite(s.ValuesMm[i]) && s.ValuesMm[i] < 0 &&
+      (deepest == timesS.size() || s.ValuesMm[i] < s.ValuesMm[deepest]))
+    {
+      deepest = i;
+    }
+  }
+  if (s.DeepestNote.empty() || deepest == timesS.size())
+  {
+    return;
+  }
+  TextImage note = RenderText(s.DeepestNote, 12);
+  const double y = frame.YOf(s.ValuesMm[deepest]);
+  const double half = note.Width() / 2.0;
+  const double x = std::max(plot.X0 + half, std::min(frame.XOf(timesS[deepest]), plot.X1 - half));
+  const bool under = y - 4 - note.Height() >= plot.Y0;
+  const double textY = under ? y - 4 : y + 4;
+  note.Colour = RimColour(bands.At(static_cast<int>(std::lround(x)),
+    std::clamp(static_cast<int>(std::lround(under ? textY - note.Height() / 2.0 : textY + note.Height() / 2.0)), plot.Y0, plot.Y1)));
+  DrawText(canvas, note, x, textY, 0.5, under ? 1 : 0);
+}
+
 /// Where everything goes. The vertical layout comes first: it depends only on text heights and
 /// fixes how many y ticks fit, whose labels then fix the left margin.
 struct Layout
@@ -561,6 +590,10 @@ vtkSmartPointer<vtkImageData> RenderDistancePlot(const std::vector<double>& time
   for (const PlotSeries& s : series)
   {
     DrawSeries(canvas, bandsOnly, timesS, s, layout.Frame, layout.Plot);
+  }
+  for (const PlotSeries& s : series)
+  {
+    DrawDeepestNote(canvas, bandsOnly, timesS, s, layout.Frame, layout.Plot);
   }
   DrawAxes(canvas, layout);
   DrawLabels(canvas, layout, options.HeightPx);

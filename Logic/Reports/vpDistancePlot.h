@@ -22,6 +22,9 @@ struct PlotSeries
   /// One value per time. NaN (any non-finite value) means "no value" (vessel out of range, tool
   /// not tracked) and leaves a gap rather than a line through it.
   std::vector<double> ValuesMm;
+  /// Written beside the line's lowest value when that is below zero (the instrument's largest
+  /// penetration volume); empty: nothing.
+  std::string DeepestNote = {};
 };
 
 /// A horizontal background band (a danger level), drawn under the lines. ToMm may be +infinity

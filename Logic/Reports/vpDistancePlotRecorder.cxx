@@ -4,6 +4,7 @@
 #include "vpDistancePlot.h"
 #include "vpPlotValues.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace vp
@@ -33,6 +34,7 @@ void DistancePlotRecorder::Append(Bucket& into, const Bucket& later)
 DistancePlotRecorder::DistancePlotRecorder(const std::vector<std::string>& classes, bool surface)
   : Classes(classes)
   , Surface(surface)
+  , LargestVolumeMm3(classes.size(), 0.0)
 {
 }
 
@@ -49,6 +51,7 @@ void DistancePlotRecorder::Add(const TrackedFrame& frame)
     {
       const double instrument = InstrumentPlotValueMm(frame, c);
       one.Lines.push_back({ instrument, instrument, t, t });
+      this->LargestVolumeMm3[c] = std::max(this->LargestVolumeMm3[c], InstrumentVolumeMm3(frame, c));
     }
   }
   if (!this->Buckets.empty() && this->Buckets.back().Frames < this->Width)
@@ -85,7 +88,8 @@ void DistancePlotRecorder::Samples(std::vector<double>& times, std::vector<PlotS
     series.push_back({ this->Classes[c] + " (tip)", colour, {} });
     if (this->Surface)
     {
-      series.push_back({ this->Classes[c] + " (instrument)", InstrumentColour(colour), {} });
+      series.push_back(
+        { this->Classes[c] + " (instrument)", InstrumentColour(colour), {}, InstrumentVolumeNote(this->LargestVolumeMm3[c]) });
     }
   }
   for (const Bucket& b : this->Buckets)

@@ -13,7 +13,8 @@ namespace vp
 {
 /// distance.png of a tracking run, recorded frame by frame in memory that does not grow with
 /// the run: per class the tip's plot value and, with the whole surface, the instrument's
-/// (vp::TipPlotValueMm, InstrumentPlotValueMm).
+/// (vp::TipPlotValueMm, InstrumentPlotValueMm), the instrument's largest penetration volume
+/// written at its deepest point (vp::InstrumentVolumeNote).
 ///
 /// Up to MaximumBuckets frames each frame is kept, and the plot is the frames' own. Past that,
 /// neighbouring buckets of frames merge in pairs (a bucket then spans 2, 4, ... frames), and each
@@ -54,6 +55,7 @@ private:
   bool Surface;
   std::size_t Width = 1;
   std::vector<Bucket> Buckets;
+  std::vector<double> LargestVolumeMm3; ///< per class, over the run (the instrument's legend)
 };
 } // namespace vp
 

@@ -1,5 +1,6 @@
 #include "vpPlotValues.h"
 
+#include <cstdio>
 #include <limits>
 
 namespace vp
@@ -25,6 +26,22 @@ double InstrumentPlotValueMm(const TrackedFrame& frame, std::size_t c)
     return frame.Surface[c].DistanceMm;
   }
   return std::numeric_limits<double>::quiet_NaN();
+}
+
+double InstrumentVolumeMm3(const TrackedFrame& frame, std::size_t c)
+{
+  return c < frame.Penetrations.size() && frame.Penetrations[c].Known ? frame.Penetrations[c].VolumeMm3 : 0.0;
+}
+
+std::string InstrumentVolumeNote(double largestVolumeMm3)
+{
+  if (!(largestVolumeMm3 > 0.0))
+  {
+    return std::string();
+  }
+  char note[48];
+  std::snprintf(note, sizeof note, largestVolumeMm3 < 10.0 ? "up to %.1f mm3 in" : "up to %.0f mm3 in", largestVolumeMm3);
+  return note;
 }
 
 Rgb InstrumentColour(const Rgb& c)

@@ -5,6 +5,7 @@
 #include "vtkScalpelTrackingLogic.h"
 
 #include <cstddef>
+#include <string>
 
 namespace vp
 {
@@ -15,6 +16,13 @@ double TipPlotValueMm(const TrackedFrame& frame, std::size_t c);
 /// The whole instrument: minus its penetration depth when it is inside, else its distance; NaN
 /// out of range or when the instrument was not measured.
 double InstrumentPlotValueMm(const TrackedFrame& frame, std::size_t c);
+/// The instrument's penetration volume in class c (mm3): 0 when it is not inside, not measured
+/// or not known.
+double InstrumentVolumeMm3(const TrackedFrame& frame, std::size_t c);
+/// The instrument line's note at its deepest point (PlotSeries::DeepestNote): the largest
+/// penetration volume over the frames the line shows, "up to 3.7 mm3 in"; empty when none. The
+/// depth is the line itself, below zero.
+std::string InstrumentVolumeNote(double largestVolumeMm3);
 /// The instrument's line: the class's hue, lighter, beside the tip's.
 Rgb InstrumentColour(const Rgb& classColour);
 } // namespace vp

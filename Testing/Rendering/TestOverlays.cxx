@@ -5,6 +5,7 @@
 #include "vpDangerLevels.h"
 #include "vpDefaultScalpel.h"
 #include "vpImageComparison.h"
+#include "vpPlotValues.h"
 #include "vpScalpelLoader.h"
 #include "vpTestSupport.h"
 #include "vpVirtualDisplay.h"
@@ -286,6 +287,62 @@ TEST(Overlays, ReadoutShowsTheInstrumentBesideTheTip)
   // Without the whole instrument: the tip alone, as before.
   readout->ShowFrame(proximity, { vp::DangerLevel::Breach, vp::DangerLevel::Warning }, vp::DangerLevel::Breach);
   EXPECT_EQ(readout->GetLineText(1).find("tool"), std::string::npos) << readout->GetLineText(1);
+}
+
+// The live plot writes the instrument's largest penetration volume in its window at the line's
+// deepest point: two plots of the same lines, one with a volume and one without, differ there.
+TEST(Overlays, ThePlotWritesTheInstrumentsPenetrationVolumeAtItsDeepest)
+{
+  vtkNew<vtkDistancePlotRepresentation> plot;
+  auto image = [&](double volumeMm3) {
+    plot->SetClasses({ "portal_vein" });
+    for (int i = 0; i < 20; ++i)
+    {
+      vp::TrackedFrame f;
+      f.TimeS = 0.1 * i;
+      f.Proximity.Classes.resize(1);
+      f.Proximity.Classes[0].InRange = true;
+      f.Proximity.Classes[0].DistanceMm = 3.0;
+      f.Surface.resize(1);
+      f.Surface[0].InRange = true;
+      f.Penetrations.resize(1);
+      f.Penetrations[0].DepthMm = i >= 10 ? 1.0 : 0.0;
+      f.Penetrations[0].VolumeMm3 = i >= 10 ? volumeMm3 : 0.0;
+      plot->AddFrame(f);
+    }
+    vtkSmartPointer<vtkImageData> copy = vtkSmartPointer<vtkImageData>::New();
+    copy->DeepCopy(plot->GetImage());
+    return copy;
+  };
+  vtkSmartPointer<vtkImageData> with = image(3.7), without = image(0.0);
+  int dims[3];
+  with->GetDimensions(dims);
+  int differing = 0, lowest = dims[1], highest = -1, left = dims[0], right = -1;
+  for (int y = 0; y < dims[1]; ++y)
+  {
+    for (int x = 0; x < dims[0]; ++x)
+    {
+      const auto* a = static_cast<unsigned char*>(with->GetScalarPointer(x, y, 0));
+      const auto* b = static_cast<unsigned char*>(without->GetScalarPointer(x, y, 0));
+      if (a[0] != b[0] || a[1] != b[1] || a[2] != b[2])
+      {
+        ++differing;
+        lowest = std::min(lowest, y);
+        highest = std::max(highest, y);
+        left = std::min(left, x);
+        right = std::max(right, x);
+      }
+    }
+  }
+  EXPECT_EQ(vp::InstrumentVolumeNote(3.7), "up to 3.7 mm3 in");
+  EXPECT_EQ(vp::InstrumentVolumeNote(0.0), "");
+  EXPECT_GT(differing, 50) << "the volume is not written";
+  // Only a line of text differs, in the lower half (below the zero line, where the instrument's
+  // 1 mm penetration is drawn) and in the plot's left two thirds, not the legend.
+  EXPECT_LT(highest - lowest, 20);
+  EXPECT_LT(highest, dims[1] / 2);
+  EXPECT_LT(right, dims[0] * 2 / 3);
+  EXPECT_GT(left, 0);
 }
 
 TEST(Overlays, ZBufferLayersAreNotRebuiltWhenTheScalpelMoves)

@@ -95,3 +95,33 @@ TEST(DistancePlotRecorder, KeepsEveryFrameOfAShortRunAndEveryPeakAndDipOfALongOn
   }
 }
 } // namespace
+
+// distance.png writes each class's largest instrument volume of the run at the instrument line's
+// deepest point; a volume that could not be known (an open surface) is not one.
+TEST(DistancePlotRecorder, TheInstrumentLineCarriesTheRunsLargestVolume)
+{
+  vp::DistancePlotRecorder recorder({ "portal_vein", "hepatic_vein" }, true);
+  const double volumes[] = { 0.0, 2.0, 4.54, 1.0, 0.0 };
+  for (int i = 0; i < 5; ++i)
+  {
+    vp::TrackedFrame f = FrameAt(i, 1.0);
+    f.Proximity.Classes.resize(2);
+    f.Surface.resize(2);
+    f.Surface[0].InRange = f.Surface[1].InRange = true;
+    f.Penetrations.resize(2);
+    f.Penetrations[0].DepthMm = volumes[i] > 0 ? 0.5 : 0.0;
+    f.Penetrations[0].VolumeMm3 = volumes[i];
+    f.Penetrations[1].Known = false;
+    f.Penetrations[1].VolumeMm3 = 9.0;
+    recorder.Add(f);
+  }
+  std::vector<double> times;
+  std::vector<vp::PlotSeries> series;
+  recorder.Samples(times, series);
+  ASSERT_EQ(series.size(), 4u);
+  EXPECT_EQ(series[0].DeepestNote, "") << "the tip's line";
+  EXPECT_EQ(series[1].Name, "portal_vein (instrument)");
+  EXPECT_EQ(series[1].DeepestNote, "up to 4.5 mm3 in");
+  EXPECT_EQ(series[1].ValuesMm[2], -0.5);
+  EXPECT_EQ(series[3].DeepestNote, "") << "an unknown volume is no volume";
+}

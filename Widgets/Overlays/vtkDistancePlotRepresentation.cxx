@@ -83,6 +83,7 @@ void vtkDistancePlotRepresentation::ClearHistory()
   this->Times.clear();
   this->ValuesMm.assign(this->ClassNames.size(), {});
   this->InstrumentValuesMm.assign(this->ClassNames.size(), {});
+  this->VolumesMm3.assign(this->ClassNames.size(), {});
   this->ShowsInstrument = false;
   this->Invalidate();
 }
@@ -95,11 +96,12 @@ void vtkDistancePlotRepresentation::AddFrame(const vp::TrackedFrame& frame)
   {
     this->ValuesMm[c].push_back(vp::TipPlotValueMm(frame, c));
     this->InstrumentValuesMm[c].push_back(vp::InstrumentPlotValueMm(frame, c));
+    this->VolumesMm3[c].push_back(vp::InstrumentVolumeMm3(frame, c));
   }
   while (!this->Times.empty() && this->Times.front() < frame.TimeS - this->TimeWindowS)
   {
     this->Times.pop_front();
-    for (auto* history : { &this->ValuesMm, &this->InstrumentValuesMm })
+    for (auto* history : { &this->ValuesMm, &this->InstrumentValuesMm, &this->VolumesMm3 })
     {
       for (auto& values : *history)
       {
@@ -119,8 +121,10 @@ void vtkDistancePlotRepresentation::Redraw()
     series.push_back({ this->ClassNames[c], colour, { this->ValuesMm[c].begin(), this->ValuesMm[c].end() } });
     if (this->ShowsInstrument)
     {
+      const auto& volumes = this->VolumesMm3[c];
+      const double largest = volumes.empty() ? 0.0 : *std::max_element(volumes.begin(), volumes.end());
       series.push_back({ this->ClassNames[c] + " (instrument)", vp::InstrumentColour(colour),
-        { this->InstrumentValuesMm[c].begin(), this->InstrumentValuesMm[c].end() } });
+        { this->InstrumentValuesMm[c].begin(), this->InstrumentValuesMm[c].end() }, vp::InstrumentVolumeNote(largest) });
     }
   }
   vp::DistancePlotOptions options;

@@ -21,7 +21,8 @@ class vtkRenderer;
 /// The distance-over-time plot in the lower right corner of the view: the tip's distance to each
 /// vessel class over the last TimeWindowS seconds, and the whole instrument's when it is
 /// measured, on the danger bands; inside a vessel below zero (vp::TipPlotValueMm and
-/// vp::InstrumentPlotValueMm). Drawn by the same rasteriser and with the same values as the
+/// vp::InstrumentPlotValueMm), the instrument's largest penetration volume in the window written
+/// at its deepest point (vp::InstrumentVolumeNote). Drawn by the same rasteriser and with the same values as the
 /// report's distance.png, so the two look alike.
 /// Redrawn when the renderer it is in starts a render after a frame was added (or the settings
 /// changed), never when only the camera moves, and never for frames no render shows: a replay
@@ -62,6 +63,7 @@ protected:
   std::deque<double> Times;
   std::vector<std::deque<double>> ValuesMm;           ///< per class, the tip
   std::vector<std::deque<double>> InstrumentValuesMm; ///< per class, the whole instrument
+  std::vector<std::deque<double>> VolumesMm3;         ///< per class, the instrument's penetration volume
   bool ShowsInstrument = false; ///< a frame in the window carried the whole instrument
   vp::DangerThresholds Thresholds;
   double TimeWindowS = 20.0;

@@ -287,4 +287,5 @@ TEST(Penetration, TheZBufferLayersGiveTheKnownOverlapWithinTheirBounds)
   EXPECT_EQ(apart.VolumeMm3, 0.0);
   EXPECT_EQ(apart.VolumeBoundMm3, 0.0);
   EXPECT_EQ(apart.DepthMm, 0.0);
+  EXPECT_EQ(apart.DepthBoundMm, 0.0);
 }

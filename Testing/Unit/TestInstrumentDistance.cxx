@@ -514,8 +514,9 @@ TEST_F(InstrumentDistance, ZBufferSurfaceIsWithinItsBoundOfBruteForce)
 namespace
 {
 /// IRCADb's three vessel systems of a patient and a PLUS instrument tracked along 0.4 mm steps
-/// between points a few millimetres off the vessels: FCL (warm-started, as the module runs it)
-/// and our bounding-sphere search agree to 1e-6 mm on every pose and class.
+/// between points a few millimetres off the vessels: FCL warm-started (the module's exact path),
+/// FCL as it comes (no warm start) and our bounding-sphere search agree to 1e-6 mm on every pose
+/// and class.
 void CompareOnIrcadb(const std::string& patient, const std::string& instrument)
 {
   const std::string extracted = vp::test::ExtractedDataDir();
@@ -575,17 +576,21 @@ void CompareOnIrcadb(const std::string& patient, const std::string& instrument)
       {
         m[4 * a + 3] = from[a] + t * (to[a] - from[a]);
       }
-      std::vector<vp::SurfaceProximity> a, b;
+      std::vector<vp::SurfaceProximity> a, b, plain;
       fcl->ComputeSurfaceProximity(m, a, previous.empty() ? nullptr : &previous);
+      fcl->ComputeSurfaceProximity(m, plain);
       spheres->ComputeSurfaceProximity(m, b);
       previous = a;
       ASSERT_EQ(a.size(), b.size());
+      ASSERT_EQ(a.size(), plain.size());
       for (std::size_t c = 0; c < a.size(); ++c)
       {
         ASSERT_EQ(a[c].InRange, b[c].InRange) << patient << " leg " << leg << " step " << k << " class " << c;
+        ASSERT_EQ(a[c].InRange, plain[c].InRange) << patient << " leg " << leg << " step " << k << " class " << c;
         if (a[c].InRange)
         {
           ASSERT_NEAR(a[c].DistanceMm, b[c].DistanceMm, 1e-6) << patient << " leg " << leg << " step " << k << " class " << c;
+          ASSERT_NEAR(a[c].DistanceMm, plain[c].DistanceMm, 1e-6) << patient << " leg " << leg << " step " << k << " class " << c;
           ++compared;
           touching += a[c].DistanceMm == 0.0 ? 1 : 0;
         }

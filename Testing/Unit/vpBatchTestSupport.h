@@ -37,6 +37,7 @@ inline int ExpectSameAnswer(const ProximityResult& b, const ProximityResult& sin
     EXPECT_EQ(x.ClassName, y.ClassName) << where;
     EXPECT_EQ(x.InRange, y.InRange) << where;
     EXPECT_EQ(x.Inside, y.Inside) << where;
+    EXPECT_EQ(x.InsideUncertain, y.InsideUncertain) << where;
     EXPECT_EQ(x.DirectionalMm.has_value(), y.DirectionalMm.has_value()) << where;
     if (x.DirectionalMm && y.DirectionalMm)
     {

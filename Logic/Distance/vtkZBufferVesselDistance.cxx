@@ -79,6 +79,12 @@ struct TileOrder
   std::vector<std::array<std::int32_t, 2>> Offsets;
   std::vector<double> GapMm;
   int Reach = 0;
+
+  // The entries within searchMm of any tip in the centre tile: a prefix of the table.
+  std::uint32_t Within(double searchMm) const
+  {
+    return static_cast<std::uint32_t>(std::upper_bound(this->GapMm.begin(), this->GapMm.end(), searchMm) - this->GapMm.begin());
+  }
 };
 
 TileOrder NearestFirst(double rangeMm, double edgePx, double pixelMm, int tilesAcross)
@@ -271,15 +277,13 @@ struct vtkZBufferVesselDistance::Internals
   // Query.
   double OrderRangeMm = -1.0;
   std::uint32_t OrderCount = 0;
-  // Per entry of the order table, the least distance from any tip in the centre tile to that
-  // tile (mm), ascending: the tiles a shorter search needs are a prefix of the table.
-  std::vector<double> OrderGapMm;
+  // The order table of tiles and that of coarse tiles, as uploaded (their gaps say which
+  // entries a search needs).
+  TileOrder FineTable, CoarseTable;
   std::unique_ptr<vp::GpuBuffer> Order, State, Choices, Records, HostState, Points;
   // The coarse tiles' order table and each offset's entry in the order table (see CoarseOrder in
-  // QueryProximityCommon.glsl), the order table's reach, and the coarse table's gaps (as OrderGapMm).
+  // QueryProximityCommon.glsl).
   std::unique_ptr<vp::GpuBuffer> CoarseOrder, EntryIndex;
-  int OrderReach = 0;
-  std::vector<double> CoarseGapMm;
   // Per point and class the answer's ceiling (mm), and the sizes of the query's two dispatches
   // (VkDispatchIndirectCommand: the near tiles of a batch, then the lanes and the rest), written
   // by the host before every submission.
@@ -343,20 +347,6 @@ struct vtkZBufferVesselDistance::Internals
     {
       vote(0, static_cast<vtkIdType>(votes.size()));
     }
-  }
-
-  // The tiles of the order table within searchMm of any tip in the centre tile.
-  std::uint32_t OrderCountWithin(double searchMm) const
-  {
-    return static_cast<std::uint32_t>(
-      std::upper_bound(this->OrderGapMm.begin(), this->OrderGapMm.end(), searchMm) - this->OrderGapMm.begin());
-  }
-
-  // The coarse tiles within searchMm of any tip in the centre tile.
-  std::uint32_t CoarseCountWithin(double searchMm) const
-  {
-    return static_cast<std::uint32_t>(
-      std::upper_bound(this->CoarseGapMm.begin(), this->CoarseGapMm.end(), searchMm) - this->CoarseGapMm.begin());
   }
 
   vp::VulkanContext& Device(const std::string& selector)
@@ -614,11 +604,11 @@ struct vtkZBufferVesselDistance::Internals
       return;
     }
     const vp::DepthLayerGrid& g = this->Grid;
-    TileOrder fine = NearestFirst(rangeMm, 8.0, g.PixelMm, std::max(g.TilesX(), g.TilesY()));
-    TileOrder coarse = NearestFirst(
+    this->FineTable = NearestFirst(rangeMm, 8.0, g.PixelMm, std::max(g.TilesX(), g.TilesY()));
+    this->CoarseTable = NearestFirst(
       rangeMm, 8.0 * CoarseTiles, g.PixelMm, std::max(CoarseAcross(g.TilesX()), CoarseAcross(g.TilesY())));
-    const std::vector<std::array<std::int32_t, 2>>& order = fine.Offsets;
-    const int reach = fine.Reach;
+    const std::vector<std::array<std::int32_t, 2>>& order = this->FineTable.Offsets;
+    const int reach = this->FineTable.Reach;
     const int width = 2 * reach + 1;
     std::vector<std::uint32_t> entryOf(order.size());
     for (std::size_t e = 0; e < order.size(); ++e)
@@ -627,9 +617,6 @@ struct vtkZBufferVesselDistance::Internals
     }
     this->Prepared.clear(); // it names the buffers replaced here
     this->OrderCount = static_cast<std::uint32_t>(order.size());
-    this->OrderReach = reach;
-    this->OrderGapMm = std::move(fine.GapMm);
-    this->CoarseGapMm = std::move(coarse.GapMm);
     using Placement = vp::GpuBuffer::Placement;
     auto upload = [&](const void* data, std::size_t bytes) {
       auto buffer = std::make_unique<vp::GpuBuffer>(*this->Context, bytes, Placement::Device);
@@ -637,7 +624,7 @@ struct vtkZBufferVesselDistance::Internals
       return buffer;
     };
     this->Order = upload(order.data(), order.size() * 8);
-    this->CoarseOrder = upload(coarse.Offsets.data(), coarse.Offsets.size() * 8);
+    this->CoarseOrder = upload(this->CoarseTable.Offsets.data(), this->CoarseTable.Offsets.size() * 8);
     this->EntryIndex = upload(entryOf.data(), entryOf.size() * 4);
     const std::uint32_t classes = std::max(this->Classes(), 1u);
     const VkDeviceSize recordBytesPerTip = static_cast<VkDeviceSize>(this->OrderCount) * classes * 16;
@@ -1165,7 +1152,7 @@ double vtkZBufferVesselDistance::WriteCeilings(
 {
   Internals& s = *this->Impl;
   const std::uint32_t classes = s.Classes();
-  const std::uint32_t orderCount = s.OrderCountWithin(searchMm);
+  const std::uint32_t orderCount = s.FineTable.Within(searchMm);
   auto* ceiling = static_cast<AnswerCeiling*>(s.Ceilings->Mapped());
   constexpr float None = std::numeric_limits<float>::infinity();
   if (!this->QueryCeilings || this->BoxMode != FixedAroundVessels)
@@ -1191,7 +1178,7 @@ double vtkZBufferVesselDistance::WriteCeilings(
       }
       bound = above(bound);
       const float mm = bound < searchMm ? std::nextafter(static_cast<float>(bound), None) : None;
-      ceiling[i * classes + c] = { mm, std::min(orderCount, s.OrderCountWithin(mm)) };
+      ceiling[i * classes + c] = { mm, std::min(orderCount, s.FineTable.Within(mm)) };
       // A class whose marked cells all lie beyond the search needs no tile (it is out of range,
       // as the tiles would have found): its ceiling does not size the dispatch.
       if (!blocks || blocks->LowerBoundMm(static_cast<int>(c), tip) <= above(searchMm))
@@ -1210,13 +1197,13 @@ void vtkZBufferVesselDistance::AnswerBatch(const std::array<double, 3>* tips, st
   const std::uint32_t classes = s.Classes();
   s.PrepareOrder(this->RangeMm);
   const vp::DepthLayerGrid& g = s.Grid;
-  const std::uint32_t orderCount = s.OrderCountWithin(searchMm);
+  const std::uint32_t orderCount = s.FineTable.Within(searchMm);
   s.WritePoints(tips, count, axes);
   QueryParameters q = MakeQueryParameters(g, searchMm, binWidth, this->DistanceBins, orderCount,
     this->LayerMode == PaperNearFar, classes,
     this->DirectionalLanes > 0 ? this->DirectionalLanes : (s.Context->IsCpuDevice() ? 1 : GpuDirectionalLanes));
-  q.OrderReach = s.OrderReach;
-  q.CoarseCount = static_cast<std::int32_t>(s.CoarseCountWithin(searchMm));
+  q.OrderReach = s.FineTable.Reach;
+  q.CoarseCount = static_cast<std::int32_t>(s.CoarseTable.Within(searchMm));
 
   // A workgroup per tile: the per-pixel pass needs the device to take that many in one dispatch.
   const std::uint32_t lanes = static_cast<std::uint32_t>(q.DirectionalLanes);
@@ -1227,7 +1214,7 @@ void vtkZBufferVesselDistance::AnswerBatch(const std::array<double, 3>* tips, st
     orderCount + laneGroups <= s.Context->Limits().maxComputeWorkGroupCount[0];
   const std::uint32_t n = static_cast<std::uint32_t>(count);
   const double reachMm = this->WriteCeilings(tips, count, searchMm);
-  const std::uint32_t tiles = reachMm < 0.0 ? 0 : std::min(orderCount, s.OrderCountWithin(reachMm));
+  const std::uint32_t tiles = reachMm < 0.0 ? 0 : std::min(orderCount, s.FineTable.Within(reachMm));
   // The listed tiles are visited per pixel where the order table would be: on a GPU, where a
   // workgroup per listed tile is work for every invocation.
   const bool listPerPixel = this->QueryPass != QueryPassPerTile &&
@@ -1240,7 +1227,7 @@ void vtkZBufferVesselDistance::AnswerBatch(const std::array<double, 3>* tips, st
   // (IRCADb patient 1, 0.4 mm cells: 24 of 2,691 per tip, 20 after a near pass of 2 tiles,
   // which made lavapipe no faster).
   const std::uint32_t nearEntries =
-    n > PerPixelMaxTips && !list ? std::min(orderCount, s.OrderCountWithin(NearTiles * 8.0 * g.PixelMm)) : 0;
+    n > PerPixelMaxTips && !list ? std::min(orderCount, s.FineTable.Within(NearTiles * 8.0 * g.PixelMm)) : 0;
   auto groups = [](bool pixels, std::uint32_t slots) { return pixels ? slots : (slots + 63) / 64; };
   auto* sizes = static_cast<VkDispatchIndirectCommand*>(s.DispatchSizes->Mapped());
   sizes[0] = { groups(perPixel, std::min(nearEntries, tiles)), classes, n };
@@ -1251,7 +1238,7 @@ void vtkZBufferVesselDistance::AnswerBatch(const std::array<double, 3>* tips, st
     // a CPU device (which runs them one after another anyway); for a few tips on a GPU enough
     // that no invocation loops over more than 4 coarse tiles.
     const bool one = n > PerPixelMaxTips || s.Context->IsCpuDevice();
-    const std::uint32_t coarse = reachMm < 0.0 ? 0 : s.CoarseCountWithin(reachMm);
+    const std::uint32_t coarse = reachMm < 0.0 ? 0 : s.CoarseTable.Within(reachMm);
     sizes[1] = { one ? 1u : std::max(1u, (coarse + 255) / 256), classes, n };
   }
   else

@@ -370,9 +370,10 @@ void DrawDeepestNote(Canvas& canvas, const Canvas& bands, const std::vector<doub
   const double half = note.Width() / 2.0;
   const double x = std::max(plot.X0 + half, std::min(frame.XOf(timesS[deepest]), plot.X1 - half));
   const bool under = y - 4 - note.Height() >= plot.Y0;
-  const double textY = under ? y - 4 : y + 4;
-  note.Colour = RimColour(bands.At(static_cast<int>(std::lround(x)),
-    std::clamp(static_cast<int>(std::lround(under ? textY - note.Height() / 2.0 : textY + note.Height() / 2.0)), plot.Y0, plot.Y1)));
+  const double textY = under ? y - 4 : y + 4; // the text's top when under, its bottom when over
+  const double middleY = under ? textY - note.Height() / 2.0 : textY + note.Height() / 2.0;
+  note.Colour = RimColour(
+    bands.At(static_cast<int>(std::lround(x)), std::clamp(static_cast<int>(std::lround(middleY)), plot.Y0, plot.Y1)));
   DrawText(canvas, note, x, textY, 0.5, under ? 1 : 0);
 }
 

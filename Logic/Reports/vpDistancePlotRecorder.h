@@ -55,7 +55,7 @@ private:
   bool Surface;
   std::size_t Width = 1;
   std::vector<Bucket> Buckets;
-  std::vector<double> LargestVolumeMm3; ///< per class, over the run (the instrument's legend)
+  std::vector<double> LargestVolumeMm3; ///< per class, over the run (the instrument line's note)
 };
 } // namespace vp
 

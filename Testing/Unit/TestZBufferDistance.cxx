@@ -321,23 +321,31 @@ TEST(ZBufferDistance, CeilingsCutTheDispatchAndChangeNoAnswer)
   }
 }
 
-// Two engines on the same vessels (at cellMm, or the default cell when 0): the first lists the
-// tiles it visits, the second visits the order table.
-std::pair<vtkSmartPointer<vtkZBufferVesselDistance>, vtkSmartPointer<vtkZBufferVesselDistance>> ListedAndOrdered(
-  const Vessels& vessels, double rangeMm, double cellMm)
+// Two engines on the built-in phantom (at cellMm, or the default cell when 0): Listed lists the
+// tiles it visits, Ordered visits the order table; Bounds is the vessels' box.
+struct ListedAndOrdered
 {
-  auto listed = Make<vtkZBufferVesselDistance>(vessels, rangeMm);
-  auto ordered = Make<vtkZBufferVesselDistance>(vessels, rangeMm);
-  for (vtkZBufferVesselDistance* e : { listed.Get(), ordered.Get() })
+  vtkSmartPointer<vtkZBufferVesselDistance> Listed, Ordered;
+  double Bounds[6];
+};
+
+ListedAndOrdered MakeListedAndOrdered(double rangeMm, double cellMm)
+{
+  const Vessels vessels = vp::MakeBuiltInVessels();
+  ListedAndOrdered engines;
+  VesselBounds(vessels, engines.Bounds);
+  engines.Listed = Make<vtkZBufferVesselDistance>(vessels, rangeMm);
+  engines.Ordered = Make<vtkZBufferVesselDistance>(vessels, rangeMm);
+  for (vtkZBufferVesselDistance* e : { engines.Listed.Get(), engines.Ordered.Get() })
   {
     if (cellMm > 0.0)
     {
       e->SetCellSizeMm(cellMm);
     }
   }
-  listed->SetTileListing(vtkZBufferVesselDistance::TileListingOn);
-  ordered->SetTileListing(vtkZBufferVesselDistance::TileListingOff);
-  return { listed, ordered };
+  engines.Listed->SetTileListing(vtkZBufferVesselDistance::TileListingOn);
+  engines.Ordered->SetTileListing(vtkZBufferVesselDistance::TileListingOff);
+  return engines;
 }
 
 // A batch lists the tiles it has to visit before visiting them (SetTileListing): the list holds
@@ -347,15 +355,12 @@ std::pair<vtkSmartPointer<vtkZBufferVesselDistance>, vtkSmartPointer<vtkZBufferV
 TEST(ZBufferDistance, ListedTilesAreFewAndChangeNoAnswer)
 {
   VP_REQUIRE_VULKAN();
-  const Vessels vessels = vp::MakeBuiltInVessels();
-  double b[6];
-  VesselBounds(vessels, b);
-  // Not a structured binding: C++17 lambdas cannot capture one (clang refuses).
-  const auto engines = ListedAndOrdered(vessels, 50.0, 0.0);
-  vtkZBufferVesselDistance* listed = engines.first;
-  vtkZBufferVesselDistance* ordered = engines.second;
+  // Plain pointers, not a structured binding: C++17 lambdas cannot capture one (clang refuses).
+  const ListedAndOrdered engines = MakeListedAndOrdered(50.0, 0.0);
+  vtkZBufferVesselDistance* listed = engines.Listed;
+  vtkZBufferVesselDistance* ordered = engines.Ordered;
   EXPECT_THROW(listed->SetTileListing(3), vp::InputError);
-  const auto tips = RandomTips(b, 40.0, 300, 29);
+  const auto tips = RandomTips(engines.Bounds, 40.0, 300, 29);
   // One full submission: what it lists per tip against what the order table dispatches.
   vp::ProximityResult first;
   listed->ComputeProximity(tips.front().data(), nullptr, first); // sets the capacity for the device
@@ -390,13 +395,10 @@ TEST(ZBufferDistance, ListedTilesAtFineCellsChangeNoAnswer)
   // across, and with a 30 mm range the order table reaches less far than the grid is wide, so
   // some coarse tiles run past the table's reach and tips beyond the grid past its edge.
   VP_REQUIRE_VULKAN();
-  const Vessels vessels = vp::MakeBuiltInVessels();
-  double b[6];
-  VesselBounds(vessels, b);
-  const auto engines = ListedAndOrdered(vessels, 30.0, 0.15);
-  vtkZBufferVesselDistance* listed = engines.first;
-  vtkZBufferVesselDistance* ordered = engines.second;
-  const auto tips = RandomTips(b, 30.0, 400, 31);
+  const ListedAndOrdered engines = MakeListedAndOrdered(30.0, 0.15);
+  vtkZBufferVesselDistance* listed = engines.Listed;
+  vtkZBufferVesselDistance* ordered = engines.Ordered;
+  const auto tips = RandomTips(engines.Bounds, 30.0, 400, 31);
   EXPECT_GT(ExpectSameBatches(listed, ordered, tips, "0.15 mm cells, batched"), 150);
   const vp::DepthLayerGrid g = listed->GetGrid();
   EXPECT_LT(30.0 / (8.0 * g.PixelMm) + 1.0, std::max(g.TilesX(), g.TilesY())) << "the table must reach less far than the grid";

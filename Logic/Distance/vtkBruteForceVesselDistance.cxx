@@ -113,12 +113,7 @@ void vtkBruteForceVesselDistance::ComputeProximity(const double tip[3], const do
       }
     }
     out.DistanceMm = std::sqrt(best);
-    out.InRange = out.DistanceMm <= this->RangeMm;
-    if (!out.InRange)
-    {
-      out.TriangleId = -1;
-      continue;
-    }
+    out.InRange = true;
     if (surface.IsClosed())
     {
       out.Inside = surface.IsInside(tip, static_cast<std::size_t>(out.TriangleId), out.ClosestPoint, bestFeature);
@@ -148,6 +143,13 @@ void vtkBruteForceVesselDistance::ComputeProximity(const double tip[3], const do
         crossings[r] = vp::InsideVote::CountCrossings(along);
       }
       out.Inside = vp::InsideVote::Decide(crossings, out.InsideUncertain);
+    }
+    if (out.DistanceMm > this->RangeMm && !out.Inside.value_or(false) && !out.InsideUncertain)
+    {
+      // Beyond the range and outside: no answer. Inside is a breach however far the wall.
+      out = vp::ClassProximity{};
+      out.ClassName = surface.Name();
+      continue;
     }
     if (axis)
     {

@@ -200,6 +200,25 @@ QueryState FindNearestTriangle(const ClassTree& tree, const vp::VesselSurface& s
   }
 }
 
+/// The answer, in range, from a nearest-triangle search's state: distance, point, and inside
+/// (exact on a closed surface, voted on an open one when vote).
+void FillAnswer(const ClassTree& tree, const vp::VesselSurface& surface, bool vote, const double tip[3],
+  const QueryState& state, vp::ClassProximity& out)
+{
+  out.InRange = true;
+  out.DistanceMm = std::sqrt(state.Best2);
+  out.TriangleId = state.Triangle;
+  std::copy(state.Closest, state.Closest + 3, out.ClosestPoint);
+  if (surface.IsClosed())
+  {
+    out.Inside = surface.IsInside(tip, static_cast<std::size_t>(state.Triangle), state.Closest, state.Feature);
+  }
+  else if (vote)
+  {
+    out.Inside = VoteInsideTree(tree, tip, out.DistanceMm, out.InsideUncertain);
+  }
+}
+
 void OnEmbreeError(void* userPtr, RTCError code, const char* message)
 {
   auto* last = static_cast<std::string*>(userPtr);
@@ -310,25 +329,16 @@ void vtkExactVesselDistance::ComputeProximity(const double tip[3], const double*
       radius = std::min(radius, previous->Classes[c].DistanceMm + displacement);
     }
     const QueryState state = FindNearestTriangle(tree, surface, tip, radius);
-
     const double distance = std::sqrt(state.Best2);
     if (state.Triangle < 0 || distance > this->RangeMm)
     {
-      continue; // out of range: no distance is invented
+      // Out of range is no answer for a tip inside the class: its wall may lie farther than the
+      // range, and that is a breach, never "safe".
+      this->FindDepthBeyondRange(static_cast<int>(c), tip, out);
     }
-    out.InRange = true;
-    out.DistanceMm = distance;
-    out.TriangleId = state.Triangle;
-    out.ClosestPoint[0] = state.Closest[0];
-    out.ClosestPoint[1] = state.Closest[1];
-    out.ClosestPoint[2] = state.Closest[2];
-    if (surface.IsClosed())
+    else
     {
-      out.Inside = surface.IsInside(tip, static_cast<std::size_t>(state.Triangle), state.Closest, state.Feature);
-    }
-    else if (this->VoteOnOpenSurfaces)
-    {
-      out.Inside = VoteInsideTree(tree, tip, distance, out.InsideUncertain);
+      FillAnswer(tree, surface, this->VoteOnOpenSurfaces, tip, state, out);
     }
 
     if (axis)
@@ -350,6 +360,37 @@ void vtkExactVesselDistance::ComputeProximity(const double tip[3], const double*
       }
     }
   }
+}
+
+bool vtkExactVesselDistance::FindDepthBeyondRange(int classIndex, const double tip[3], vp::ClassProximity& out) const
+{
+  this->EnsureBuilt();
+  const auto c = static_cast<std::size_t>(classIndex);
+  const vp::VesselSurface& surface = *this->Surfaces.at(c);
+  const double* b = surface.Bounds();
+  for (int a = 0; a < 3; ++a)
+  {
+    if (!(tip[a] >= b[2 * a] && tip[a] <= b[2 * a + 1]))
+    {
+      return false; // outside the class's box: outside the class
+    }
+  }
+  const QueryState state =
+    FindNearestTriangle(this->Impl->Trees[c], surface, tip, std::numeric_limits<double>::infinity());
+  if (state.Triangle < 0)
+  {
+    return false;
+  }
+  vp::ClassProximity answer;
+  answer.ClassName = out.ClassName;
+  FillAnswer(this->Impl->Trees[c], surface, this->VoteOnOpenSurfaces, tip, state, answer);
+  if (!answer.Inside.value_or(false) && !answer.InsideUncertain)
+  {
+    return false; // outside, and the wall beyond the range: out of range
+  }
+  answer.DirectionalMm = out.DirectionalMm;
+  out = answer;
+  return true;
 }
 
 void vtkExactVesselDistance::VisitTrianglesNear(

@@ -58,6 +58,11 @@ public:
   /// engine that cannot decide inside on a surface that is not closed (the z-buffer's one ray).
   /// distanceMm is the point's distance to the surface (a point on it is outside).
   bool VoteInside(int classIndex, const double point[3], double distanceMm, bool& uncertain) const;
+  /// For a tip whose class has no surface within the range: whether the tip is inside the class
+  /// (or may be: the votes disagreed), and then out gets the whole answer, in range, with the
+  /// true depth however far the wall (the nearest triangle searched without a limit). A tip
+  /// inside a vessel is a breach whatever the range. out is left as it was otherwise.
+  bool FindDepthBeyondRange(int classIndex, const double tip[3], vp::ClassProximity& out) const;
 
 protected:
   bool VoteOnOpenSurfaces = true;

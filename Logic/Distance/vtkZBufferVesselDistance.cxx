@@ -325,6 +325,12 @@ struct vtkZBufferVesselDistance::Internals
   // vote (one ray along +z cannot vote), and ExactIndex maps a class to its place there (-1: closed).
   vtkSmartPointer<vtkExactVesselDistance> Votes;
   std::vector<int> ExactIndex;
+  // Every class in an exact engine, made when a tip is first found deeper inside a closed class
+  // than the range reaches (AnswerBeyondRange); none until then.
+  vtkSmartPointer<vtkExactVesselDistance> Deep;
+  // Whether the answers being read are tips' (ComputeProximityBatch), whose inside counts however
+  // deep, or the whole instrument's points within a search distance.
+  bool TipQuery = true;
   static constexpr std::size_t MaxPrepared = 64;
 
   // The votes run on the host, five rays each: a batch's on all cores (Embree's queries are
@@ -921,6 +927,7 @@ void vtkZBufferVesselDistance::BuildInternal()
       "' has no 64-bit buffer atomics (shaderBufferInt64Atomics), which the z-buffer query needs to pick its answers");
   }
   s.Votes = nullptr;
+  s.Deep = nullptr;
   s.ExactIndex.assign(this->Surfaces.size(), -1);
   for (std::size_t c = 0; c < this->Surfaces.size(); ++c)
   {
@@ -1098,6 +1105,7 @@ void vtkZBufferVesselDistance::AnswerAll(
   const std::array<double, 3>* axis = axes ? axes->data() : nullptr;
   std::lock_guard<std::mutex> lock(this->Impl->Lock);
   Internals& s = *this->Impl;
+  s.TipQuery = bins;
   const double binWidth = bins ? this->BinWidthMm() : 0.0;
   for (vp::ProximityResult& r : results)
   {
@@ -1278,7 +1286,7 @@ void vtkZBufferVesselDistance::ReadAnswers(const std::array<double, 3>* tips, st
       const double cellMm = ChosenCellMm(cs);
       if (!(cellMm <= searchMm))
       {
-        out.InRange = false; // as the exact engine: no distance, no point, no inside answer
+        this->AnswerBeyondRange(c, tip, cs[1] != 0u, out);
         continue;
       }
       if (c < s.Last.size())
@@ -1292,7 +1300,7 @@ void vtkZBufferVesselDistance::ReadAnswers(const std::array<double, 3>* tips, st
       const double distance = ReportedDistanceMm(cs, cellMm, g.HalfDiagonalMm(), bins, binWidth);
       if (distance > this->RangeMm)
       {
-        out.InRange = false; // beyond the range, as the exact engine reports what lies there
+        this->AnswerBeyondRange(c, tip, cs[1] != 0u, out);
         continue;
       }
       out.InRange = true;
@@ -1312,6 +1320,40 @@ void vtkZBufferVesselDistance::ReadAnswers(const std::array<double, 3>* tips, st
     }
   }
   s.VoteInside(votes, tips, results);
+}
+
+void vtkZBufferVesselDistance::AnswerBeyondRange(
+  std::uint32_t c, const double tip[3], bool centreRayInside, vp::ClassProximity& out) const
+{
+  // As the exact engine: no wall within the range is no distance, unless the tip is inside, which
+  // is a breach however far the wall. An open surface is voted on (its exact engine is at hand);
+  // on a closed one the tip's own ray says it, and an exact engine, made the first time a tip is
+  // that deep, measures the depth.
+  Internals& s = *this->Impl;
+  out.InRange = false;
+  if (!s.TipQuery)
+  {
+    return; // the whole instrument's search asks only what lies within its distance
+  }
+  if (s.ExactIndex[c] >= 0)
+  {
+    s.Votes->FindDepthBeyondRange(s.ExactIndex[c], tip, out);
+    return;
+  }
+  if (!centreRayInside)
+  {
+    return;
+  }
+  if (!s.Deep)
+  {
+    s.Deep = vtkSmartPointer<vtkExactVesselDistance>::New();
+    for (const auto& [name, mesh] : this->Meshes)
+    {
+      s.Deep->AddVessel(name, mesh);
+    }
+    s.Deep->Build();
+  }
+  s.Deep->FindDepthBeyondRange(static_cast<int>(c), tip, out);
 }
 
 void vtkZBufferVesselDistance::PrintSelf(ostream& os, vtkIndent indent)

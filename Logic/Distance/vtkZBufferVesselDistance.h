@@ -219,6 +219,8 @@ private:
   double WriteCeilings(const std::array<double, 3>* tips, std::size_t count, double searchMm) const;
   /// The answers the latest submission left in host-visible memory, into results (lock held),
   /// with the exact engine's inside vote on the surfaces that are not closed.
+  /// Class c of a tip with no wall within the search: out of range, or inside however deep.
+  void AnswerBeyondRange(std::uint32_t c, const double tip[3], bool centreRayInside, vp::ClassProximity& out) const;
   void ReadAnswers(const std::array<double, 3>* tips, std::size_t count, bool axes, double searchMm, int bins,
     double binWidthMm, vp::ProximityResult* results) const;
   /// One submission for up to GetBatchCapacity() tips on the current layers (lock held, results begun).

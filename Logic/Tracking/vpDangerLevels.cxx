@@ -72,14 +72,15 @@ DangerLevel ClassifyDistance(double distanceMm, const DangerThresholds& threshol
 
 DangerLevel ClassifyDanger(const ClassProximity& proximity, double errorBoundMm, const DangerThresholds& thresholds)
 {
-  if (!proximity.InRange)
-  {
-    return DangerLevel::Safe;
-  }
-  // Inside, or not certain that it is outside (the votes on a defective surface disagreed).
+  // Inside, or not certain that it is outside (the votes on a defective surface disagreed),
+  // whatever the distance: a tip deeper than the range is still a breach.
   if (proximity.Inside.value_or(false) || proximity.InsideUncertain)
   {
     return DangerLevel::Breach;
+  }
+  if (!proximity.InRange)
+  {
+    return DangerLevel::Safe;
   }
   // An approximate engine's "outside" cannot be trusted near a wall: the z-buffer decides inside
   // at its pixel centre, up to half a pixel diagonal from the tip, so a tip that close to a wall

@@ -71,9 +71,36 @@ NumericCsvReader::NumericCsvReader(const std::string& fileName, const std::strin
   }
 }
 
+bool NumericCsvReader::ReadLine()
+{
+  // A line of numbers is short: one far longer is refused when it passes the limit, before it
+  // takes the machine's memory (std::getline would hold a line of any length).
+  this->Line.clear();
+  std::streambuf* in = this->In.rdbuf();
+  int c = in->sbumpc();
+  if (c == std::char_traits<char>::eof())
+  {
+    return false;
+  }
+  for (; c != std::char_traits<char>::eof() && c != '\n'; c = in->sbumpc())
+  {
+    if (this->Line.size() >= MaxLineCharacters)
+    {
+      throw InputError(this->Name, "line " + std::to_string(this->LineNumber + 1) + ": longer than " +
+          std::to_string(MaxLineCharacters) + " characters, not " + this->What);
+    }
+    this->Line.push_back(static_cast<char>(c));
+  }
+  if (this->LineNumber == 0 && this->Line.compare(0, 3, "\xEF\xBB\xBF") == 0)
+  {
+    this->Line.erase(0, 3); // a UTF-8 byte order mark (spreadsheets write one) is not data
+  }
+  return true;
+}
+
 bool NumericCsvReader::Next(NumericRow& row)
 {
-  while (std::getline(this->In, this->Line))
+  while (this->ReadLine())
   {
     ++this->LineNumber;
     const std::size_t first = this->Line.find_first_not_of(" \t\r");

@@ -34,8 +34,13 @@ public:
   /// The next row; false at the end of the file.
   bool Next(NumericRow& row);
   const std::string& FileName() const { return this->Name; }
+  /// The longest line read (characters, without its end); a longer one is refused.
+  static constexpr std::size_t MaxLineCharacters = 65536;
 
 private:
+  /// The next line into Line, without its end and without a UTF-8 byte order mark on the first;
+  /// false at the end of the file.
+  bool ReadLine();
   std::string Name;
   std::string What;
   std::ifstream In;

@@ -1,6 +1,7 @@
 #include "vpRunFolder.h"
 
 #include "vpInputError.h"
+#include "vpOutputFile.h"
 
 #include <nlohmann/json.hpp>
 
@@ -13,6 +14,9 @@
 #include <fstream>
 #include <set>
 #include <system_error>
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 namespace fs = std::filesystem;
@@ -22,9 +26,10 @@ namespace vp
 namespace
 {
 // The signals held while a run is written, the first one that arrived, and the handlers they had.
-const int HeldSignals[] = { SIGINT, SIGTERM, SIGHUP };
+const int HeldSignals[] = { SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGUSR1, SIGUSR2, SIGALRM, SIGPIPE, SIGXFSZ };
+constexpr int HeldCount = static_cast<int>(sizeof(HeldSignals) / sizeof(HeldSignals[0]));
 volatile std::sig_atomic_t PendingSignal = 0;
-struct sigaction PreviousActions[3];
+struct sigaction PreviousActions[HeldCount];
 int Holders = 0; // RunFolders begun and not released
 
 extern "C" void RecordSignal(int signal)
@@ -44,10 +49,15 @@ void HoldSignals()
   PendingSignal = 0;
   struct sigaction record = {};
   record.sa_handler = RecordSignal;
+  record.sa_flags = SA_RESTART;
   sigemptyset(&record.sa_mask);
-  for (int i = 0; i < 3; ++i)
+  for (int i = 0; i < HeldCount; ++i)
   {
-    sigaction(HeldSignals[i], &record, &PreviousActions[i]);
+    sigaction(HeldSignals[i], nullptr, &PreviousActions[i]);
+    if (PreviousActions[i].sa_handler != SIG_IGN) // nohup's SIGHUP stays ignored
+    {
+      sigaction(HeldSignals[i], &record, nullptr);
+    }
   }
 }
 
@@ -58,7 +68,7 @@ void ReleaseSignals()
   {
     return;
   }
-  for (int i = 0; i < 3; ++i)
+  for (int i = 0; i < HeldCount; ++i)
   {
     sigaction(HeldSignals[i], &PreviousActions[i], nullptr);
   }
@@ -69,62 +79,139 @@ void ReleaseSignals()
   }
 }
 
-// A report's entry: a file's name, or a folder's with its slash ("dicom/").
-struct Entry
-{
-  std::string Name;
-  bool Folder;
-};
+const char* LockName = ".lock";
+const char* PlanName = ".vesselproximity-plan.json";
 
-Entry SplitEntry(const std::string& entry)
+// "dicom/" is the folder dicom, "frames.csv" a file.
+std::pair<std::string, bool> SplitEntry(const std::string& entry)
 {
   const bool folder = !entry.empty() && entry.back() == '/';
   return { folder ? entry.substr(0, entry.size() - 1) : entry, folder };
 }
 
-// The files the previous run's report says it wrote: "files", or a models.json's structures;
-// none when there is no readable report (then nothing is removed).
-std::set<std::string> PreviousRunFiles(const std::string& report)
+std::string Canonical(const std::string& path)
 {
-  std::set<std::string> files;
-  std::ifstream in(report);
-  const nlohmann::json doc = nlohmann::json::parse(in, nullptr, false);
-  if (!in || doc.is_discarded() || !doc.is_object())
+  std::error_code ec;
+  const fs::path canonical = fs::weakly_canonical(fs::absolute(path, ec), ec);
+  return ec ? fs::absolute(path).lexically_normal().string() : canonical.string();
+}
+} // namespace
+
+namespace
+{
+using Json = nlohmann::json;
+
+// What a file or folder is now, to tell whether it is still what a run wrote (lstat: a link is
+// never a run's entry).
+bool IdentityNow(const std::string& path, bool folder, unsigned long long& device, unsigned long long& inode,
+  unsigned long long& size, long long& modifiedNs)
+{
+  struct stat info;
+  if (::lstat(path.c_str(), &info) != 0 || (folder ? !S_ISDIR(info.st_mode) : !S_ISREG(info.st_mode)))
   {
-    return files;
+    return false;
   }
-  const auto add = [&](const nlohmann::json& entry) {
-    // Only a plain name in the folder, or a plain folder name with its slash ("dicom/"): a report
-    // is data we do not control.
-    if (!entry.is_string())
-    {
-      return;
-    }
-    const std::string text = entry.get<std::string>();
-    const std::string name = SplitEntry(text).Name;
-    if (!name.empty() && fs::path(name).filename() == name && name != "." && name != "..")
-    {
-      files.insert(text);
-    }
-  };
-  if (doc.contains("files") && doc["files"].is_array())
+  device = static_cast<unsigned long long>(info.st_dev);
+  inode = static_cast<unsigned long long>(info.st_ino);
+  size = folder ? 0 : static_cast<unsigned long long>(info.st_size);
+  modifiedNs = folder ? 0 : static_cast<long long>(info.st_mtim.tv_sec) * 1000000000LL + info.st_mtim.tv_nsec;
+  return true;
+}
+
+
+/// Whether path is still the entry a run recorded.
+bool SameIdentity(const std::string& path, const RunFolder::Entry& e)
+{
+  unsigned long long device, inode, size;
+  long long modified;
+  return IdentityNow(path, e.Folder, device, inode, size, modified) && device == e.Device && inode == e.Inode &&
+    size == e.Size && modified == e.ModifiedNs;
+}
+
+Json EntryJson(const std::string& name, bool folder, unsigned long long device, unsigned long long inode,
+  unsigned long long size, long long modifiedNs)
+{
+  return Json{ { "name", folder ? name + "/" : name }, { "device", device }, { "inode", inode }, { "size", size },
+    { "modified_ns", modifiedNs } };
+}
+
+/// The entries of a marker or a plan's list; a list that is not what we write gives none (a
+/// marker is a file anyone can edit: only plain names in the folder are taken).
+std::vector<RunFolder::Entry> EntriesOf(const Json& list)
+{
+  std::vector<RunFolder::Entry> entries;
+  if (!list.is_array())
   {
-    for (const auto& name : doc["files"])
-    {
-      add(name);
-    }
+    return entries;
   }
-  if (doc.contains("structures") && doc["structures"].is_array())
+  for (const Json& e : list)
   {
-    for (const auto& s : doc["structures"])
+    if (!e.is_object() || !e.contains("name") || !e["name"].is_string())
     {
-      if (s.is_object() && s.contains("file"))
-      {
-        add(s["file"]);
-      }
+      continue;
     }
+    const auto [name, folder] = SplitEntry(e["name"].get<std::string>());
+    if (name.empty() || fs::path(name).filename() != name || name == "." || name == ".." ||
+      name.rfind(".vesselproximity", 0) == 0)
+    {
+      continue;
+    }
+    RunFolder::Entry entry;
+    entry.Name = name;
+    entry.Folder = folder;
+    entry.Device = e.value("device", 0ULL);
+    entry.Inode = e.value("inode", 0ULL);
+    entry.Size = e.value("size", 0ULL);
+    entry.ModifiedNs = e.value("modified_ns", 0LL);
+    entries.push_back(entry);
   }
-  return files;
+  return entries;
+}
+
+Json ReadJsonOrNull(const std::string& file)
+{
+  std::ifstream in(file);
+  if (!in)
+  {
+    return Json();
+  }
+  const Json doc = Json::parse(in, nullptr, false);
+  return doc.is_discarded() ? Json() : doc;
+}
+
+/// Whether the process that made a staging or commit folder is gone: its lock is free (or, for a
+/// folder from before the lock, its process number names no process).
+bool OwnerGone(const fs::path& folder)
+{
+  const int fd = ::open((folder / LockName).c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd >= 0)
+  {
+    const bool free = ::flock(fd, LOCK_EX | LOCK_NB) == 0;
+    ::close(fd);
+    return free;
+  }
+  const std::string name = folder.filename().string();
+  const std::string prefix = RunFolder::StagingPrefix();
+  if (name.rfind(prefix, 0) != 0)
+  {
+    return false;
+  }
+  char* end = nullptr;
+  const long pid = std::strtol(name.c_str() + prefix.size(), &end, 10);
+  return end && *end == '\0' && pid > 0 && ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH;
+}
+
+void Remove(const std::string& path, bool folder)
+{
+  std::error_code ec;
+  if (folder)
+  {
+    fs::remove_all(path, ec);
+  }
+  else
+  {
+    fs::remove(path, ec);
+  }
 }
 } // namespace
 
@@ -140,6 +227,85 @@ bool CreateOutputFolder(const std::string& folder)
   return created;
 }
 
+namespace
+{
+/// Completes a commit: the plan's entries into place (the report last), the previous run's
+/// leftovers it names removed while they are still what that run wrote, the marker replaced,
+/// the commit folder removed. Each step can be done again: a process killed in the middle
+/// leaves what the next one completes.
+void RollForward(const std::string& target, const std::string& commit)
+{
+  const Json plan = ReadJsonOrNull(commit + "/" + PlanName);
+  using Step = RunFolder::Entry;
+  if (plan.is_object())
+  {
+    const std::string report = plan.value("report", std::string());
+    std::vector<Step> moves = EntriesOf(plan.value("entries", Json::array()));
+    std::stable_partition(moves.begin(), moves.end(), [&](const Step& m) { return m.Name != report; });
+    const auto move = [&](const Step& m) {
+      const std::string staged = commit + "/" + m.Name, placed = target + "/" + m.Name;
+      struct stat info;
+      if (::lstat(staged.c_str(), &info) != 0)
+      {
+        return; // put in place already
+      }
+      std::error_code ec;
+      if (fs::is_directory(fs::symlink_status(placed, ec)) || m.Folder)
+      {
+        fs::remove_all(placed, ec); // the previous run's, checked when the plan was made
+      }
+      if (std::rename(staged.c_str(), placed.c_str()) != 0)
+      {
+        throw InputError(placed, std::string("cannot put in place: ") + std::strerror(errno));
+      }
+    };
+    for (const Step& m : moves)
+    {
+      if (m.Name == report)
+      {
+        // The previous run's leftovers go before the report that says the run is whole.
+        for (const Step& r : EntriesOf(plan.value("remove", Json::array())))
+        {
+          const std::string path = target + "/" + r.Name;
+          if (SameIdentity(path, r))
+          {
+            Remove(path, r.Folder);
+          }
+        }
+      }
+      move(m);
+    }
+    const std::string marker = commit + "/" + RunFolder::MarkerName();
+    if (std::rename(marker.c_str(), (target + "/" + RunFolder::MarkerName()).c_str()) != 0 && errno != ENOENT)
+    {
+      throw InputError(target, std::string("cannot record the run: ") + std::strerror(errno));
+    }
+  }
+  std::error_code ec;
+  fs::remove_all(commit, ec);
+}
+
+/// A commit a killed run left is completed; the staging folders of dead runs are removed.
+void Recover(const std::string& target)
+{
+  std::error_code ec;
+  const fs::path commit = fs::path(target) / RunFolder::CommitName();
+  if (fs::is_directory(fs::symlink_status(commit, ec)) && OwnerGone(commit))
+  {
+    RollForward(target, commit.string());
+  }
+  for (const auto& entry : fs::directory_iterator(target, ec))
+  {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind(RunFolder::StagingPrefix(), 0) == 0 && fs::is_directory(fs::symlink_status(entry.path(), ec)) &&
+      OwnerGone(entry.path()))
+    {
+      fs::remove_all(entry.path(), ec);
+    }
+  }
+}
+} // namespace
+
 RunFolder::RunFolder(const std::string& target, const std::string& report)
   : TargetPath(fs::path(target).lexically_normal().string())
   , ReportName(report)
@@ -149,7 +315,7 @@ RunFolder::RunFolder(const std::string& target, const std::string& report)
   {
     throw InputError(target, "cannot create folder: a file has that name");
   }
-  this->StagingPath = (fs::path(this->TargetPath) / (".vesselproximity-partial-" + std::to_string(::getpid()))).string();
+  this->StagingPath = (fs::path(this->TargetPath) / (StagingPrefix() + std::to_string(::getpid()))).string();
 }
 
 bool RunFolder::SignalPending()
@@ -162,6 +328,31 @@ RunFolder::~RunFolder()
   this->Release();
 }
 
+void RunFolder::SetInputs(const std::vector<std::string>& paths)
+{
+  this->Inputs.clear();
+  for (const std::string& p : paths)
+  {
+    if (!p.empty())
+    {
+      this->Inputs.push_back(Canonical(p));
+    }
+  }
+}
+
+bool RunFolder::TouchesInput(const std::string& path) const
+{
+  const std::string p = Canonical(path);
+  for (const std::string& input : this->Inputs)
+  {
+    if (input == p || (input.size() > p.size() && input.compare(0, p.size(), p) == 0 && input[p.size()] == '/'))
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
 void RunFolder::Begin()
 {
   if (this->Begun)
@@ -171,20 +362,46 @@ void RunFolder::Begin()
   HoldSignals();
   this->Begun = true;
   this->CreatedTarget = CreateOutputFolder(this->TargetPath);
+  Recover(this->TargetPath);
+  const Json marker = ReadJsonOrNull(this->TargetPath + "/" + MarkerName());
+  this->Previous = marker.is_object() ? EntriesOf(marker.value("entries", Json::array())) : std::vector<Entry>();
   std::error_code ec;
   fs::remove_all(this->StagingPath, ec); // left by a killed process that had our pid
   if (!fs::create_directory(this->StagingPath, ec))
   {
     throw InputError(this->TargetPath, "cannot write here: " + ec.message());
   }
+  this->LockFd = ::open((this->StagingPath + "/" + LockName).c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0600);
+  if (this->LockFd < 0 || ::flock(this->LockFd, LOCK_EX | LOCK_NB) != 0)
+  {
+    throw InputError(this->TargetPath, std::string("cannot write here: ") + std::strerror(errno));
+  }
 }
+
 
 std::string RunFolder::Register(const std::string& entry)
 {
-  const std::string name = SplitEntry(entry).Name;
+  const auto [name, folder] = SplitEntry(entry);
+  const std::string placed = this->TargetPath + "/" + name;
   if (!this->Begun)
   {
-    return this->TargetPath + "/" + name;
+    return placed;
+  }
+  struct stat info;
+  if (::lstat(placed.c_str(), &info) == 0)
+  {
+    if (this->TouchesInput(placed))
+    {
+      throw InputError(placed, "is an input of this run: write the run to another folder");
+    }
+    const bool ours = std::any_of(this->Previous.begin(), this->Previous.end(), [&](const Entry& e) {
+      return e.Name == name && SameIdentity(placed, e);
+    });
+    if (!ours)
+    {
+      throw InputError(placed, std::string("was not written by a run here (") + MarkerName() +
+          " does not name it as it is now): move it away or write the run to another folder");
+    }
   }
   if (std::find(this->Names.begin(), this->Names.end(), entry) == this->Names.end())
   {
@@ -214,61 +431,51 @@ std::string RunFolder::Folder(const std::string& name)
   return path;
 }
 
-namespace
-{
-/// A run's entry in the target: a file is replaced by the rename; a folder of the previous run is
-/// removed first (a folder cannot be renamed onto one that is not empty).
-void PutInPlace(const std::string& staged, const std::string& target, bool folder)
-{
-  std::error_code ec;
-  if (folder && fs::is_directory(target, ec))
-  {
-    fs::remove_all(target, ec);
-  }
-  if (std::rename(staged.c_str(), target.c_str()) != 0)
-  {
-    throw InputError(target, std::string("cannot write: ") + std::strerror(errno));
-  }
-}
-} // namespace
-
 void RunFolder::Commit()
 {
   if (!this->Begun)
   {
     return;
   }
-  std::error_code ec;
-  const std::set<std::string> ours(this->Names.begin(), this->Names.end());
-  for (const std::string& stale : PreviousRunFiles(this->TargetPath + "/" + this->ReportName))
+  // The plan: this run's entries as they are in the staging folder (a rename keeps them so), and
+  // the previous run's that this one does not write again, unless the user changed them since or
+  // the run reads them.
+  Json entries = Json::array(), remove = Json::array();
+  std::set<std::string> written;
+  for (const std::string& entry : this->Names)
   {
-    if (ours.count(stale))
-    {
-      continue;
-    }
-    const Entry entry = SplitEntry(stale);
-    const std::string path = this->TargetPath + "/" + entry.Name;
-    if (!entry.Folder)
-    {
-      fs::remove(path, ec);
-    }
-    else if (fs::is_directory(path, ec) && !fs::is_symlink(path, ec))
-    {
-      fs::remove_all(path, ec);
-    }
-  }
-  // The report last: whoever sees the new report sees every file it lists.
-  std::vector<std::string> order = this->Names;
-  std::stable_partition(order.begin(), order.end(), [&](const std::string& n) { return n != this->ReportName; });
-  for (const std::string& name : order)
-  {
-    const Entry entry = SplitEntry(name);
-    if (!fs::exists(this->StagingPath + "/" + entry.Name, ec))
+    const auto [name, folder] = SplitEntry(entry);
+    unsigned long long device, inode, size;
+    long long modified;
+    if (!IdentityNow(this->StagingPath + "/" + name, folder, device, inode, size, modified))
     {
       continue; // named, never written (a writer that failed quietly is the writer's to report)
     }
-    PutInPlace(this->StagingPath + "/" + entry.Name, this->TargetPath + "/" + entry.Name, entry.Folder);
+    entries.push_back(EntryJson(name, folder, device, inode, size, modified));
+    written.insert(name);
   }
+  for (const Entry& e : this->Previous)
+  {
+    const std::string placed = this->TargetPath + "/" + e.Name;
+    if (!written.count(e.Name) && SameIdentity(placed, e) &&
+      !this->TouchesInput(placed))
+    {
+      remove.push_back(EntryJson(e.Name, e.Folder, e.Device, e.Inode, e.Size, e.ModifiedNs));
+    }
+  }
+  WriteFileAtomically(this->StagingPath + "/" + MarkerName(), Json{ { "entries", entries } }.dump(2) + "\n");
+  WriteFileAtomically(this->StagingPath + "/" + PlanName,
+    Json{ { "report", this->ReportName }, { "entries", entries }, { "remove", remove } }.dump(2) + "\n");
+  // The commit: one rename. From here the run is in place, or in the plan the next run completes.
+  const std::string commit = this->TargetPath + "/" + CommitName();
+  if (std::rename(this->StagingPath.c_str(), commit.c_str()) != 0)
+  {
+    const bool busy = errno == EEXIST || errno == ENOTEMPTY;
+    throw InputError(this->TargetPath, std::string("cannot put the run in place: ") +
+        (busy ? "another run is putting its files in place here" : std::strerror(errno)));
+  }
+  this->StagingPath.clear(); // the plan is no longer this run's to remove
+  RollForward(this->TargetPath, commit);
   this->CreatedTarget = false; // it holds the run now
   this->Release();
 }
@@ -280,7 +487,15 @@ void RunFolder::Release()
     return;
   }
   std::error_code ec;
-  fs::remove_all(this->StagingPath, ec);
+  if (!this->StagingPath.empty())
+  {
+    fs::remove_all(this->StagingPath, ec);
+  }
+  if (this->LockFd >= 0)
+  {
+    ::close(this->LockFd); // a commit left half done is the next run's to complete
+    this->LockFd = -1;
+  }
   if (this->CreatedTarget)
   {
     fs::remove(this->TargetPath, ec); // only if empty: a failed first run leaves no folder

@@ -1,5 +1,7 @@
 #include "vtkVesselMeshWriter.h"
 
+#include "vpOutputFile.h"
+
 #include <vtkCellArray.h>
 #include <vtkCellArrayIterator.h>
 #include <vtkNew.h>
@@ -15,35 +17,6 @@
 #include <unistd.h>
 
 vtkStandardNewMacro(vtkVesselMeshWriter);
-
-namespace vp
-{
-void WriteFileAtomically(const std::string& fileName, const std::string& bytes)
-{
-  const std::string temporary = fileName + ".tmp." + std::to_string(::getpid());
-  {
-    std::ofstream stream(temporary, std::ios::binary | std::ios::trunc);
-    if (!stream)
-    {
-      throw InputError(fileName, std::string("cannot write: ") + std::strerror(errno));
-    }
-    stream.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    stream.flush();
-    if (!stream)
-    {
-      const std::string reason = std::strerror(errno);
-      std::remove(temporary.c_str());
-      throw InputError(fileName, "write failed: " + reason);
-    }
-  }
-  if (std::rename(temporary.c_str(), fileName.c_str()) != 0)
-  {
-    const std::string reason = std::strerror(errno);
-    std::remove(temporary.c_str());
-    throw InputError(fileName, "cannot write: " + reason);
-  }
-}
-} // namespace vp
 
 vtkVesselMeshWriter::vtkVesselMeshWriter() = default;
 vtkVesselMeshWriter::~vtkVesselMeshWriter() = default;

@@ -44,11 +44,5 @@ private:
   vtkSmartPointer<vtkPolyData> Input;
 };
 
-namespace vp
-{
-/// Writes bytes to fileName atomically (temporary file in the same folder, then rename).
-/// Throws InputError naming the file when the folder is not writable.
-void WriteFileAtomically(const std::string& fileName, const std::string& bytes);
-}
 
 #endif

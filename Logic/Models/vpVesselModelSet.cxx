@@ -1,5 +1,6 @@
 #include "vpVesselModelSet.h"
 
+#include "vpOutputFile.h"
 #include "vpClock.h"
 #include "vpInputError.h"
 #include "vpRunFolder.h"

@@ -1,7 +1,7 @@
 #include "vpDistancePlot.h"
 
 #include "vpInputError.h"
-#include "vtkVesselMeshWriter.h" // vp::WriteFileAtomically
+#include "vpOutputFile.h"
 
 #include <vtkFreeTypeTools.h>
 #include <vtkNew.h>

@@ -1,11 +1,11 @@
 #include "vpDefaultScalpel.h"
 
+#include "vpOutputFile.h"
 #include "CusaHandpiece_json.h"
 #include "CusaHandpiece_stl.h"
 #include "vpInputError.h"
 #include "vpIndexedMesh.h"
 #include "vpStlFormat.h"
-#include "vtkVesselMeshWriter.h"
 
 #include <filesystem>
 

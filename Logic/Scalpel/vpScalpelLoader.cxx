@@ -84,7 +84,8 @@ vtkSmartPointer<vtkScalpelModel> LoadScalpel(const std::string& modelFile, const
   const std::string besideFile = ScalpelDefinitionFileFor(modelFile);
   std::error_code ec;
   std::optional<ScalpelTipDefinition> beside;
-  if (!given.TipMm && std::filesystem::is_regular_file(besideFile, ec))
+  // Whatever has that name is read (a folder or a pipe there is refused, not passed over).
+  if (!given.TipMm && std::filesystem::exists(std::filesystem::symlink_status(besideFile, ec)))
   {
     beside = ReadScalpelDefinition(besideFile);
     beside->Source = std::filesystem::path(besideFile).filename().string();

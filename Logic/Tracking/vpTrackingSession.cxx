@@ -1,5 +1,6 @@
 #include "vpTrackingSession.h"
 
+#include "vpOutputFile.h"
 #include "vpClock.h"
 #include "vpDistancePlotRecorder.h"
 #include "vpFramesCsv.h"
@@ -8,7 +9,6 @@
 #include "vpTrackingReport.h"
 #include "vtkScalpelTrackingLogic.h"
 #include "vtkVesselDistanceEngine.h"
-#include "vtkVesselMeshWriter.h"
 #include "vtkVesselProximityLogic.h"
 
 #include <vtkCallbackCommand.h>

@@ -3,11 +3,11 @@
 // program returns the distance to each vessel class through the return-parameter file and,
 // when asked, writes the distance command's JSON report.
 #include "vpCliDescription.h"
+#include "vpOutputFile.h"
 #include "vpClock.h"
 #include "vpDistanceEngineSettings.h"
 #include "vpInputError.h"
 #include "vpTipDistanceQuery.h"
-#include "vtkVesselMeshWriter.h"
 
 #include <vtkObject.h>
 

@@ -126,6 +126,7 @@ vp::cli::ModuleDescription Describe()
 void Run(const vp::cli::ParsedArguments& args, vp::cli::ReturnValues& results)
 {
   vp::RunFolder run(args.GetString("outputDirectory"), "models.json");
+  run.SetInputs({ args.GetString("inputVolume"), args.IsSet("labelTable") ? args.GetString("labelTable") : std::string() });
   vp::VesselModelParameters parameters;
   parameters.SmoothingFactor = args.GetNumber("smoothing");
   parameters.SmoothingIterations = args.GetInteger("smoothingIterations");

@@ -287,6 +287,11 @@ std::string FormatNumber(double value);
 /// usable Vulkan device (vp::DeviceError), 3 out of memory or an internal error.
 int ReportFailure(const ModuleDescription& description, const std::string& who);
 
+/// A run's exit code once what it printed has reached standard output: when stdout cannot take
+/// it (a full disk, /dev/full, a closed pipe), one line on stderr ("WHO: error: standard output:
+/// ...") and exit code 1 instead of a silent 0.
+int FinishStandardOutput(const std::string& who, int code);
+
 /// What a program does once its arguments are parsed: fill results, or throw.
 using ProgramBody = std::function<void(const ParsedArguments& args, ReturnValues& results)>;
 

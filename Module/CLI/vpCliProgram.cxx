@@ -1,12 +1,15 @@
 // The life of a program around its description: --xml, --help, parsing, the body, the exit code
 // and the return-parameter file.
 #include "vpCliDescription.h"
+#include "vpOutputFile.h"
 #include "vpCliValues.h"
 
 #include "vpInputError.h"
 #include "vpVulkanContext.h"
-#include "vtkVesselMeshWriter.h"
 
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <algorithm>
 #include <iostream>
 #include <new>
@@ -182,6 +185,19 @@ int ReportFailure(const ModuleDescription& description, const std::string& who)
   }
 }
 
+int FinishStandardOutput(const std::string& who, int code)
+{
+  errno = 0;
+  std::cout.flush();
+  const bool failed = !std::cout || std::fflush(stdout) != 0 || std::ferror(stdout);
+  if (!failed)
+  {
+    return code;
+  }
+  std::cerr << who << ": error: standard output: cannot write (" << std::strerror(errno != 0 ? errno : EIO) << ")\n";
+  return code == 0 ? 1 : code;
+}
+
 int RunProgram(const ModuleDescription& description, int argc, const char* const* argv, const ProgramBody& body)
 {
   const std::vector<std::string> args(argv + 1, argv + argc);
@@ -202,8 +218,8 @@ int RunProgram(const ModuleDescription& description, int argc, const char* const
     {
       results.Write(parsed.GetReturnParameterFile());
     }
-    std::cout << results.Text() << std::flush;
-    return 0;
+    std::cout << results.Text();
+    return FinishStandardOutput(description.Program, 0);
   }
   catch (...)
   {

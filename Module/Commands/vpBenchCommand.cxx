@@ -1,6 +1,7 @@
 // vesselproximity bench: the distance engines side by side with the brute-force reference, on
 // vessel meshes grown to fixed triangle counts, in one run.
 #include "vpArguments.h"
+#include "vpOutputFile.h"
 #include "vpEngineBenchmark.h"
 #include "vpAnalyticShapes.h"
 #include "vpScalpelLoader.h"
@@ -12,7 +13,6 @@
 #include "vpCommands.h"
 #include "vpEngineOptions.h"
 #include "vpInputError.h"
-#include "vtkVesselMeshWriter.h"
 #include "vtkZBufferVesselDistance.h"
 
 #include <vtkNew.h>

@@ -36,9 +36,9 @@ int RunCommandReportingErrors(const CommandEntry& command, const std::vector<std
     if (WantsHelp(args))
     {
       std::cout << cli::WriteHelp(description);
-      return 0;
+      return cli::FinishStandardOutput("vesselproximity", 0);
     }
-    return command.Run(cli::ParseArguments(description, args), module);
+    return cli::FinishStandardOutput("vesselproximity", command.Run(cli::ParseArguments(description, args), module));
   }
   catch (...)
   {

@@ -1,5 +1,6 @@
 #include "vpDemoPipeline.h"
 
+#include "vpOutputFile.h"
 #include "vpCommandSupport.h"
 #include "vpDangerLevels.h"
 #include "vpDistanceEngineSettings.h"
@@ -14,7 +15,6 @@
 #include "vpVulkanContext.h"
 #include "vtkScalpelModel.h"
 #include "vtkScalpelTrackingLogic.h"
-#include "vtkVesselMeshWriter.h"
 #include "vtkVesselProximityLogic.h"
 #include "vtkVesselProximityView.h"
 

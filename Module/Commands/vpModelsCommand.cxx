@@ -76,6 +76,9 @@ int RunModelsCommand(const cli::ParsedArguments& args, const ModuleServices&)
 {
   const std::string outDir = args.GetString("output");
   RunFolder run(outDir, "models.json");
+  std::vector<std::string> inputs = args.GetStrings("inputs");
+  inputs.push_back(args.GetString("labels"));
+  run.SetInputs(inputs); // never removed or written over, even inside the output folder
   VesselModelParameters parameters;
   parameters.FileSpace = args.GetString("space") == "RAS" ? MeshSpace::RAS : MeshSpace::LPS;
   parameters.SmoothingFactor = args.GetNumber("smoothing");

@@ -1,6 +1,7 @@
 // vesselproximity register: the scalpel's registrations from files, each with its error as IGT
 // tools report it, written as a JSON transform (and tip).
 #include "vpArguments.h"
+#include "vpOutputFile.h"
 #include "vpCommands.h"
 #include "vpInputError.h"
 #include "vpJsonFile.h"
@@ -10,7 +11,6 @@
 #include "vpPoseFile.h"
 #include "vpSurfaceIcpRegistration.h"
 #include "vtkVesselMeshReader.h"
-#include "vtkVesselMeshWriter.h"
 
 #include <vtkNew.h>
 #include <vtkPolyData.h>

@@ -126,7 +126,15 @@ int RunTrackCommand(const cli::ParsedArguments& args, const ModuleServices& modu
   const std::string posesFile = args.GetString("poses");
   const std::size_t poseCount = PoseStream::CountPoses(posesFile);
   vtkSmartPointer<vtkVesselProximityLogic> proximity = ConfigureTrackingLogic(args, module);
-  auto meshes = LoadVesselMeshes(ParsePairs(args.GetString("vessels"), "--vessels"));
+  const auto vessels = ParsePairs(args.GetString("vessels"), "--vessels");
+  // What the run reads is never removed or written over, even in its own output folder.
+  std::vector<std::string> inputs = { posesFile, args.GetString("scalpel"), ScalpelDefinitionFileFor(args.GetString("scalpel")) };
+  for (const auto& vessel : vessels)
+  {
+    inputs.push_back(vessel.second);
+  }
+  run.SetInputs(inputs);
+  auto meshes = LoadVesselMeshes(vessels);
   if (args.GetBoolean("repair"))
   {
     RepairVesselMeshes(meshes);

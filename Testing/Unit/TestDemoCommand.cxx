@@ -47,6 +47,7 @@ TEST(DemoCommand, ItsFolderHoldsOneWholeRun)
   std::ofstream(out + "/screenshots/frame0000_start.png") << "an older run's picture";
   std::ofstream(out + "/notes.txt") << "the user's own";
   std::ofstream(out + "/summary.json") << R"({"files": ["frames.csv", "summary.json", "screenshots/", "poses.csv"]})";
+  vp::test::RecordAsRun(out, { "summary.json", "screenshots/" }); // an earlier demo's
 
   const auto run = vp::test::RunTool(tmp, "demo --no-screenshots -o " + out);
   ASSERT_EQ(run.ExitCode, 0) << run.Err;
@@ -100,6 +101,7 @@ TEST(DemoCommand, AnInterruptedDemoLeavesThePreviousRunAsItWas)
   std::ofstream(out + "/notes.txt") << "the user's own";
   std::ofstream(out + "/frames.csv") << "an older run's frames\n";
   std::ofstream(out + "/summary.json") << R"({"files": ["frames.csv", "summary.json"]})";
+  vp::test::RecordAsRun(out, { "frames.csv", "summary.json" }); // an earlier run's
   const std::map<std::string, std::string> before = FolderContents(out);
   for (const int ms : { 200, 1200, 2500, 4000 })
   {

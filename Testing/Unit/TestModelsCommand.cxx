@@ -146,7 +146,7 @@ TEST_F(ModelsCommand, AFolderHoldsOneWholeRunAfterAReRunOrAnInterrupt)
     int status = 0;
     waitpid(child, &status, 0);
     const auto doc = nlohmann::json::parse(vp::test::Slurp(out + "/models.json"));
-    std::set<std::string> expected{ "notes.txt" };
+    std::set<std::string> expected{ "notes.txt", ".vesselproximity-run.json" };
     for (const auto& name : doc["files"])
     {
       expected.insert(name.get<std::string>());

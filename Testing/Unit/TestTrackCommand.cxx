@@ -759,7 +759,8 @@ TEST_F(TrackCommand, AMillionPosesTakeTheMemoryOfTenThousandAndAnInterruptLeaves
   {
     found.insert(entry.path().filename().string());
   }
-  EXPECT_EQ(found, (std::set<std::string>{ "distance.png", "frames.csv", "summary.json" })) << "no staging folder left";
+  EXPECT_EQ(found, (std::set<std::string>{ "distance.png", "frames.csv", "summary.json", ".vesselproximity-run.json" }))
+    << "no staging folder left";
   EXPECT_EQ(Slurp(out + "/summary.json"), shortSummary) << "the earlier run, as it was";
   EXPECT_EQ(Slurp(out + "/frames.csv"), shortFrames);
 

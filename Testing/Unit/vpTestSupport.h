@@ -106,6 +106,28 @@ inline std::string Slurp(const std::string& path)
   return s.str();
 }
 
+/// Records names (files, and folders as "name/") in folder as the entries of a run of ours, as
+/// vp::RunFolder's marker does: for a test that lays out an earlier run by hand.
+inline void RecordAsRun(const std::string& folder, const std::vector<std::string>& names)
+{
+  std::string json = "{\"entries\": [";
+  for (std::size_t i = 0; i < names.size(); ++i)
+  {
+    const bool isFolder = !names[i].empty() && names[i].back() == '/';
+    const std::string path = folder + "/" + (isFolder ? names[i].substr(0, names[i].size() - 1) : names[i]);
+    struct stat info;
+    if (::lstat(path.c_str(), &info) != 0)
+    {
+      continue;
+    }
+    const long long modified = isFolder ? 0 : static_cast<long long>(info.st_mtim.tv_sec) * 1000000000LL + info.st_mtim.tv_nsec;
+    json += std::string(i ? ", " : "") + "{\"name\": \"" + names[i] + "\", \"device\": " + std::to_string(info.st_dev) +
+      ", \"inode\": " + std::to_string(info.st_ino) + ", \"size\": " + std::to_string(isFolder ? 0 : info.st_size) +
+      ", \"modified_ns\": " + std::to_string(modified) + "}";
+  }
+  std::ofstream(folder + "/.vesselproximity-run.json") << json << "]}\n";
+}
+
 /// Starts program with arguments, its stdout and stderr going to the given files, and returns
 /// its process id at once; -1 when it cannot be started.
 inline pid_t StartProgram(const std::string& program, const std::vector<std::string>& arguments,

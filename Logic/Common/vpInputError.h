@@ -44,6 +44,41 @@ private:
   std::string Problem;
 };
 
+/// Text from an input as a one-line message may quote it: control characters (a line break in a
+/// name) written as \n, \t, \xNN, and at most 80 characters of it.
+inline std::string Printable(const std::string& text)
+{
+  std::string out;
+  for (const char c : text)
+  {
+    if (out.size() >= 80)
+    {
+      out += "...";
+      break;
+    }
+    const auto u = static_cast<unsigned char>(c);
+    if (c == '\n')
+    {
+      out += "\\n";
+    }
+    else if (c == '\t')
+    {
+      out += "\\t";
+    }
+    else if (u < 32 || u == 127)
+    {
+      char hex[8];
+      std::snprintf(hex, sizeof(hex), "\\x%02X", u);
+      out += hex;
+    }
+    else
+    {
+      out.push_back(c);
+    }
+  }
+  return out;
+}
+
 /// A number as a message shows it: the shortest form to the given significant digits ("0.9",
 /// "1.41421"), not std::to_string's fixed six decimals.
 inline std::string NumberText(double value, int significantDigits = 6)

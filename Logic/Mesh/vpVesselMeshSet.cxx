@@ -1,5 +1,7 @@
 #include "vpVesselMeshSet.h"
 
+#include "vpClassName.h"
+
 #include "vpInputError.h"
 #include "vpVesselSurface.h"
 #include "vtkVesselDistanceEngine.h"
@@ -17,6 +19,11 @@ std::vector<NamedMesh> LoadVesselMeshes(const std::vector<std::pair<std::string,
   std::set<std::string> seen;
   for (const auto& pair : pairs)
   {
+    const std::string problem = ClassNameProblem(pair.first);
+    if (!problem.empty())
+    {
+      throw ParameterError("Vessels", "'" + Printable(pair.first) + "': " + problem);
+    }
     if (!seen.insert(pair.first).second)
     {
       throw ParameterError("Vessels", "class '" + pair.first + "' is given twice");

@@ -3,6 +3,8 @@
 #include "vpDangerLevels.h"
 #include "vpInputError.h"
 
+#include <set>
+
 namespace vp
 {
 namespace
@@ -13,7 +15,38 @@ std::string Number(double value, const char* format = "%.4f")
 }
 } // namespace
 
+namespace
+{
+std::string Header(const std::vector<std::string>& classes, bool surface);
+} // namespace
+
+void CheckFramesCsvColumns(const std::vector<std::string>& classes)
+{
+  const std::string header = Header(classes, true);
+  std::set<std::string> seen;
+  std::size_t begin = 0;
+  while (begin < header.size())
+  {
+    std::size_t end = header.find_first_of(",\n", begin);
+    const std::string column = header.substr(begin, end - begin);
+    if (!seen.insert(column).second)
+    {
+      throw ParameterError("Vessels", "the class names give frames.csv two columns named '" + column +
+          "': rename a class");
+    }
+    begin = end + 1;
+  }
+}
+
 std::string FramesCsvHeader(const std::vector<std::string>& classes, bool surface)
+{
+  CheckFramesCsvColumns(classes);
+  return Header(classes, surface);
+}
+
+namespace
+{
+std::string Header(const std::vector<std::string>& classes, bool surface)
 {
   std::string csv = "frame,time,tip_x,tip_y,tip_z,nearest_class,nearest_mm";
   for (const auto& c : classes)
@@ -34,6 +67,7 @@ std::string FramesCsvHeader(const std::vector<std::string>& classes, bool surfac
   csv += "\n";
   return csv;
 }
+} // namespace
 
 std::string FramesCsvRow(const TrackedFrame& f, bool surface)
 {

@@ -155,6 +155,15 @@ LabelStructures ReadSegmentation(DcmDataset& data, const std::string& path, cons
     throw InputError(path, "MaximumFractionalValue is 0");
   }
   const std::size_t frames = seg->getNumberOfFrames();
+  // DCMTK reads as many frames as NumberOfFrames says, and getFrame() trusts the per-frame groups'
+  // count (with none read it indexed past the end: NumberOfFrames 0 crashed). They must agree.
+  Sint32 declaredFrames = 0;
+  if (frames == 0 || data.findAndGetSint32(DCM_NumberOfFrames, declaredFrames).bad() || declaredFrames <= 0 ||
+    static_cast<std::size_t>(declaredFrames) != frames)
+  {
+    throw InputError(path, "NumberOfFrames (" + std::to_string(declaredFrames) + ") does not match the " +
+        std::to_string(frames) + " per-frame functional groups");
+  }
   FrameGeometry g = PlaceFrames(seg->getFunctionalGroups(), frames, data, path, maximumVoxels);
 
   LabelStructures structures;

@@ -1,6 +1,8 @@
 #include "vpVesselLabelTable.h"
 
+#include "vpClassName.h"
 #include "vpInputError.h"
+#include "vpRegularFile.h"
 
 #include "VesselLabels_json.h"
 
@@ -45,6 +47,15 @@ VesselLabelTable VesselLabelTable::Default()
 
 VesselLabelTable VesselLabelTable::Load(const std::string& fileName)
 {
+  // A label table names a few classes: a device, a pipe or a file of megabytes is none.
+  constexpr std::uint64_t MaxBytes = 1u << 20;
+  const std::uint64_t size = RegularFileSize(fileName, "is a folder, not a label table",
+    "is not a regular file (a device, pipe or socket), not a label table");
+  if (size > MaxBytes)
+  {
+    throw InputError(fileName, "is " + std::to_string(size) + " bytes: a label table holds at most " +
+        std::to_string(MaxBytes) + " (a few classes and their names)");
+  }
   std::ifstream in(fileName, std::ios::binary);
   if (!in)
   {
@@ -69,9 +80,14 @@ VesselLabelTable VesselLabelTable::Parse(const std::string& json, const std::str
     for (const auto& entry : classes)
     {
       const std::string name = entry.at("class").get<std::string>();
-      if (name.empty() || std::count(table.ClassNames.begin(), table.ClassNames.end(), name))
+      const std::string problem = ClassNameProblem(name);
+      if (!problem.empty())
       {
-        throw InputError(source, "class \"" + name + "\" is empty or listed twice");
+        throw InputError(source, "class \"" + Printable(name) + "\": " + problem);
+      }
+      if (std::count(table.ClassNames.begin(), table.ClassNames.end(), name))
+      {
+        throw InputError(source, "class \"" + name + "\" is listed twice");
       }
       table.ClassNames.push_back(name);
       table.Colors[name] = entry.value("color", std::array<double, 3>{ 0.8, 0.8, 0.8 });

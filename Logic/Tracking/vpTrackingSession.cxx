@@ -58,6 +58,12 @@ bool TrackingSession::Run(PoseSource& poses, RunFolder& run)
 
   // The frames stream into frames.csv in the run's staging folder as they are computed, and the
   // summary and the plot keep what they need in memory that does not grow with the run.
+  std::vector<std::string> classes;
+  for (int c = 0; c < engine->GetNumberOfVessels(); ++c)
+  {
+    classes.push_back(engine->GetVesselName(c));
+  }
+  CheckFramesCsvColumns(classes); // before anything is written
   run.Begin();
   std::ofstream framesCsv(run.File("frames.csv"), std::ios::binary | std::ios::trunc);
   const auto writeFailed = [&]() {

@@ -395,6 +395,9 @@ TEST_F(ModelsCommand, EachBadSegmentationGetsItsOneLineAndWritesNothing)
     const std::vector<Uint8> half(bits, bits + n / 2);
     d.putAndInsertUint8Array(DCM_PixelData, half.data(), n / 2);
   }), "short.dcm", "Invalid Pixel Data");
+  // Issue 29: NumberOfFrames 0 beside the per-frame groups crashed in DcmSegmentation::getFrame.
+  this->ExpectRefused(broken("frames0.dcm", [&](DcmDataset& d) { d.putAndInsertString(DCM_NumberOfFrames, "0"); }),
+    "frames0.dcm", "NumberOfFrames (0) does not match the 3 per-frame functional groups");
   const std::string truncated = this->Dir + "/truncated.dcm";
   fs::copy_file(original, truncated);
   fs::resize_file(truncated, fs::file_size(truncated) / 2);

@@ -1,0 +1,15 @@
+#ifndef vpClassName_h
+#define vpClassName_h
+
+#include <string>
+
+namespace vp
+{
+/// Whether name can name a vessel class. A class's name becomes a file name (<class>.stl), the
+/// prefix of CSV columns (<class>_mm) and a JSON key, so it is 1 to 64 letters, digits, '_' and
+/// '-', starting with a letter: no blank, comma, quote, slash or line break. Returns the problem
+/// in a few words ("" when the name is fine).
+std::string ClassNameProblem(const std::string& name);
+} // namespace vp
+
+#endif

@@ -1,5 +1,8 @@
 #include "vpDepthLayerGrid.h"
 
+#include "vpInputError.h"
+
+#include <algorithm>
 #include <cmath>
 
 namespace vp
@@ -16,6 +19,22 @@ double DepthLayerGrid::ErrorBoundMm(double binWidthMm) const
   return this->HalfDiagonalMm() * 1.002 + 1e-4 + (binWidthMm > 0.0 ? 0.5 * binWidthMm : 0.0);
 }
 
+namespace
+{
+/// Cells along an axis, counted in double before they become an int: a cell of 1e-8 mm asked
+/// for more cells than an int holds, and the size estimate built from it overflowed.
+int CellsAlong(double cells)
+{
+  constexpr double MaxCells = 1 << 20;
+  if (!(std::ceil(cells) <= MaxCells))
+  {
+    throw ParameterError("CellSizeMm", "the layers would have " + NumberText(std::ceil(cells), 3) +
+        " cells along one axis, more than " + std::to_string(static_cast<long>(MaxCells)) + ": use larger cells");
+  }
+  return std::max(1, static_cast<int>(std::ceil(cells)));
+}
+} // namespace
+
 DepthLayerGrid DepthLayerGrid::Covering(const double bounds[6], double pixelMm, double sliceMm, double marginMm)
 {
   DepthLayerGrid g;
@@ -27,7 +46,7 @@ DepthLayerGrid DepthLayerGrid::Covering(const double bounds[6], double pixelMm, 
   {
     const double lo = bounds[2 * k] - marginMm;
     const double hi = bounds[2 * k + 1] + marginMm;
-    *n[k] = static_cast<int>(std::ceil((hi - lo) / cell[k]));
+    *n[k] = CellsAlong((hi - lo) / cell[k]);
     if (*n[k] < 1)
     {
       *n[k] = 1;
@@ -48,7 +67,7 @@ DepthLayerGrid DepthLayerGrid::Centred(const double centre[3], const double size
   int* n[3] = { &g.Nx, &g.Ny, &g.Nz };
   for (int k = 0; k < 3; ++k)
   {
-    *n[k] = static_cast<int>(std::ceil(sizeMm[k] / cell[k]));
+    *n[k] = CellsAlong(sizeMm[k] / cell[k]);
     const double corner = centre[k] - 0.5 * (*n[k]) * cell[k];
     g.OriginMm[k] = anchor[k] + std::round((corner - anchor[k]) / cell[k]) * cell[k];
   }

@@ -1,6 +1,7 @@
 #include "vpDistanceEngineSettings.h"
 
 #include "vpInputError.h"
+#include "vpPhysicalLimits.h"
 #include "vpVulkanContext.h"
 #include "vtkBruteForceVesselDistance.h"
 #include "vtkExactVesselDistance.h"
@@ -76,6 +77,11 @@ vtkSmartPointer<vtkVesselDistanceEngine> MakeDistanceEngine(const DistanceEngine
   }
   if (settings.RangeMm)
   {
+    // A user's range: a body's size at most (the engines' own searches may reach further).
+    if (!(*settings.RangeMm <= limits::MaxRangeMm))
+    {
+      throw ParameterError("RangeMm", "must be at most " + NumberText(limits::MaxRangeMm) + " millimetres (more than any body)");
+    }
     engine->SetRangeMm(*settings.RangeMm);
   }
   return engine;

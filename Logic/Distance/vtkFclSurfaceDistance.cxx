@@ -1,6 +1,7 @@
 #include "vtkFclSurfaceDistance.h"
 
 #include "vpInputError.h"
+#include "vpMemory.h"
 #include "vpVesselSurface.h"
 
 #include <vtkObjectFactory.h>
@@ -11,6 +12,8 @@
 #include <fcl/narrowphase/detail/primitive_shape_algorithm/triangle_distance.h>
 
 #include <cmath>
+#include <iostream>
+#include <sstream>
 #include <limits>
 
 #include <chrono>
@@ -20,6 +23,9 @@ vtkStandardNewMacro(vtkFclSurfaceDistance);
 namespace
 {
 using Model = fcl::BVHModel<fcl::OBBRSSd>;
+/// What FCL's tree takes per triangle, about: two OBBRSS nodes of 256 bytes, the indices, the
+/// vertices, and our copies while it is built.
+constexpr std::uint64_t BytesPerTriangle = 600;
 
 /// FCL's tree over a prepared surface (triangulated, in the surface's own coordinates).
 std::shared_ptr<Model> MakeModel(const vp::VesselSurface& surface)
@@ -37,9 +43,25 @@ std::shared_ptr<Model> MakeModel(const vp::VesselSurface& surface)
     triangles.emplace_back(static_cast<std::size_t>(t[0]), static_cast<std::size_t>(t[1]), static_cast<std::size_t>(t[2]));
   }
   auto model = std::make_shared<Model>();
-  model->beginModel(static_cast<int>(triangles.size()), static_cast<int>(points.size()));
-  model->addSubModel(points, triangles);
-  model->endModel();
+  // FCL says a failure on std::cerr and goes on with a broken tree (a 10M-triangle vessel crashed
+  // after "BVH Error! Out of memory"): its return codes decide, and its words stay off the terminal.
+  std::ostringstream said;
+  std::streambuf* terminal = std::cerr.rdbuf(said.rdbuf());
+  int status = model->beginModel(static_cast<int>(triangles.size()), static_cast<int>(points.size()));
+  if (status == fcl::BVH_OK)
+  {
+    status = model->addSubModel(points, triangles);
+  }
+  if (status == fcl::BVH_OK)
+  {
+    status = model->endModel();
+  }
+  std::cerr.rdbuf(terminal);
+  if (status != fcl::BVH_OK)
+  {
+    throw vp::InputError(surface.Name(), "FCL cannot build its tree of " + std::to_string(triangles.size()) + " triangles (" +
+        (status == fcl::BVH_ERR_MODEL_OUT_OF_MEMORY ? std::string("out of memory") : "error " + std::to_string(status)) + ")");
+  }
   return model;
 }
 } // namespace
@@ -99,7 +121,10 @@ void vtkFclSurfaceDistance::Build()
   s.Vessels.clear();
   for (int c = 0; c < this->Vessels->GetNumberOfVessels(); ++c)
   {
-    s.Vessels.push_back(MakeModel(this->Vessels->GetSurface(c)));
+    const vp::VesselSurface& surface = this->Vessels->GetSurface(c);
+    vp::CheckMemoryFor(BytesPerTriangle * surface.NumberOfTriangles(), surface.Name(),
+      "FCL's tree of its " + std::to_string(surface.NumberOfTriangles()) + " triangles (the whole instrument's distance)");
+    s.Vessels.push_back(MakeModel(surface));
   }
   s.VesselsBuiltFrom = this->Vessels;
   s.VesselsBuiltAt = this->Vessels->GetMTime();

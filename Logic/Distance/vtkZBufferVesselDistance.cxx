@@ -5,6 +5,7 @@
 #include "vpEdgeSplitting.h"
 #include "vpGpuBuffer.h"
 #include "vpInputError.h"
+#include "vpPhysicalLimits.h"
 #include "vpPreparedCommands.h"
 #include "vpTriangleGeometry.h"
 #include "vpVulkanContext.h"
@@ -734,9 +735,10 @@ void vtkZBufferVesselDistance::SetBoxMode(int mode)
 
 void vtkZBufferVesselDistance::SetCellSizeMm(double cellMm)
 {
-  if (!(cellMm > 0.0) || !std::isfinite(cellMm))
+  if (!(cellMm >= vp::limits::MinVoxelMm && cellMm <= vp::limits::MaxVoxelMm))
   {
-    throw vp::ParameterError("CellSizeMm", "must be a positive number of millimetres");
+    throw vp::ParameterError("CellSizeMm", "must be from " + vp::NumberText(vp::limits::MinVoxelMm) + " to " +
+        vp::NumberText(vp::limits::MaxVoxelMm) + " millimetres");
   }
   if (cellMm != this->CellSizeMm)
   {

@@ -1,5 +1,7 @@
 #include "vtkVesselMeshReader.h"
 
+#include "vpPhysicalLimits.h"
+
 #include "vpIndexedMesh.h"
 #include "vpLegacyVtkGeometry.h"
 #include "vpObjIndices.h"
@@ -300,6 +302,16 @@ void vtkVesselMeshReader::Read()
     throw vp::InputError(fileName,
       dropped ? "every triangle is degenerate (" + std::to_string(dropped) + " dropped)"
               : std::string("no triangles"));
+  }
+  double bounds[6];
+  mesh->GetBounds(bounds);
+  for (int i = 0; i < 6; ++i)
+  {
+    const std::string problem = vp::MagnitudeProblem(bounds[i], vp::limits::CoordinateMm, "mm");
+    if (!problem.empty())
+    {
+      throw vp::InputError(fileName, "a coordinate of " + problem + ": not a patient's model (unit error?)");
+    }
   }
   const vp::MeshSpace space =
     this->FileSpace == vp::MeshSpace::Unspecified ? this->DefaultFileSpace : this->FileSpace;

@@ -11,27 +11,30 @@
 
 namespace vp
 {
-namespace
-{
-// The largest distance of any point from the line through the two points farthest apart: zero
-// for collinear landmarks, which leave the rotation about that line undetermined.
 double SpreadOffLineMm(const std::vector<Point3>& points)
 {
-  std::size_t a = 0, b = 0;
-  double longest = 0.0;
-  for (std::size_t i = 0; i < points.size(); ++i)
-  {
-    for (std::size_t j = i + 1; j < points.size(); ++j)
+  // The line through a point farthest from the first and the point farthest from that one: on
+  // points that lie on one line it is that line, and it takes one pass, not one per pair.
+  const auto farthestFrom = [&](const Point3& from) {
+    std::size_t best = 0;
+    double longest = 0.0;
+    for (std::size_t i = 0; i < points.size(); ++i)
     {
-      const double d = std::hypot(points[i][0] - points[j][0], points[i][1] - points[j][1], points[i][2] - points[j][2]);
+      const double d = std::hypot(points[i][0] - from[0], points[i][1] - from[1], points[i][2] - from[2]);
       if (d > longest)
       {
         longest = d;
-        a = i;
-        b = j;
+        best = i;
       }
     }
+    return std::make_pair(best, longest);
+  };
+  if (points.empty())
+  {
+    return 0.0;
   }
+  const std::size_t a = farthestFrom(points[0]).first;
+  const auto [b, longest] = farthestFrom(points[a]);
   if (longest == 0.0)
   {
     return 0.0;
@@ -47,7 +50,6 @@ double SpreadOffLineMm(const std::vector<Point3>& points)
   }
   return spread;
 }
-} // namespace
 
 RigidRegistration RegisterPairedPoints(const std::vector<Point3>& modelPoints, const std::vector<Point3>& worldPoints)
 {

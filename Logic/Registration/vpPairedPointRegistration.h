@@ -16,6 +16,11 @@ struct RigidRegistration
   double RmsErrorMm = 0.0;               ///< fiducial registration error (FRE): RMS of the above
 };
 
+/// The largest distance (mm) of any point from the line through the two points farthest apart:
+/// zero for points on one line (or all at one point), which leave a rotation about that line
+/// undetermined.
+double SpreadOffLineMm(const std::vector<Point3>& points);
+
 /// Rigid least-squares fit of landmarks given in model coordinates to the same landmarks measured
 /// in world coordinates (Horn's closed form, through vtkLandmarkTransform). Needs at least three
 /// pairs that do not lie on one line; throws vp::InputError("landmarks", ...) otherwise.

@@ -1,6 +1,7 @@
 #include "vpSurfaceIcpRegistration.h"
 
 #include "vpInputError.h"
+#include "vpPairedPointRegistration.h"
 #include "vpQuantile.h"
 
 #include <vtkMath.h>
@@ -56,6 +57,12 @@ vtkSmartPointer<vtkCellLocator> IcpLocator(vtkPolyData* modelSurface, const std:
   if (worldPoints.size() < 6)
   {
     throw InputError("ICP", "at least 6 measured surface points are needed, got " + std::to_string(worldPoints.size()));
+  }
+  if (SpreadOffLineMm(worldPoints) < 1e-3)
+  {
+    // Points on one line (or at one point) leave the turn about it, and the slide along it, open:
+    // any pose would fit them with no residual.
+    throw InputError("ICP", "the measured points lie on one line, so they cannot fix the pose");
   }
   auto locator = vtkSmartPointer<vtkCellLocator>::New();
   locator->SetDataSet(modelSurface);

@@ -1,6 +1,7 @@
 #include "vpLabelStructure.h"
 
 #include "vpInputError.h"
+#include "vpPhysicalLimits.h"
 
 #include <vtkDataArray.h>
 #include <vtkPointData.h>
@@ -28,6 +29,33 @@ double LabelGrid::VoxelVolumeMm3() const
 
 namespace vp
 {
+void CheckVoxelGeometry(const std::array<double, 16>& m, const std::string& source)
+{
+  const char* axisName[3] = { "column (i)", "row (j)", "slice (k)" };
+  double length[3];
+  for (int c = 0; c < 3; ++c)
+  {
+    length[c] = std::sqrt(m[c] * m[c] + m[4 + c] * m[4 + c] + m[8 + c] * m[8 + c]);
+    if (!std::isfinite(m[c]) || !std::isfinite(m[4 + c]) || !std::isfinite(m[8 + c]))
+    {
+      throw InputError(source, std::string("the voxel's ") + axisName[c] + " direction holds a NaN or infinite value");
+    }
+    if (!(length[c] >= limits::MinVoxelMm && length[c] <= limits::MaxVoxelMm))
+    {
+      throw InputError(source, std::string("a voxel ") + NumberText(length[c]) + " mm long along its " + axisName[c] +
+          " axis: a voxel is " + NumberText(limits::MinVoxelMm) + " to " + NumberText(limits::MaxVoxelMm) + " mm");
+    }
+  }
+  const double det = m[0] * (m[5] * m[10] - m[6] * m[9]) - m[1] * (m[4] * m[10] - m[6] * m[8]) +
+    m[2] * (m[4] * m[9] - m[5] * m[8]);
+  if (!(std::fabs(det) >= 1e-3 * length[0] * length[1] * length[2]))
+  {
+    throw InputError(source, "the voxel's three axes lie in one plane (its directions are degenerate)");
+  }
+  const double origin[3] = { m[3], m[7], m[11] };
+  CheckCoordinates(origin, source, "the image's origin");
+}
+
 LabelGrid MakeLabelGrid(const std::string& source, const int dimensions[3], const std::vector<std::int32_t>& values,
   const std::array<double, 16>& ijkToLps)
 {

@@ -59,6 +59,12 @@ using LabelStructures = std::vector<LabelStructure>;
 /// Decides, from a structure's name, whether its voxels are read (the others are only listed).
 using StructureFilter = std::function<bool(const std::string& name)>;
 
+/// Throws InputError(source, ...) unless an index-to-LPS matrix is a voxel grid a patient's image
+/// can have: finite, each voxel axis from limits::MinVoxelMm to limits::MaxVoxelMm long, the three
+/// axes not in one plane, the origin within limits::CoordinateMm. Checked from the header, before
+/// any voxel is allocated (PixelSpacing 1e-300 gave a model of no volume).
+void CheckVoxelGeometry(const std::array<double, 16>& ijkToLps, const std::string& source);
+
 /// Stores voxel values (x fastest, then y, then z) as a LabelGrid in the narrowest unsigned type
 /// that holds them, after checking that they are labels: no negative value and at most 256
 /// distinct ones; otherwise throws vp::InputError naming source ("an image, not a labelmap").

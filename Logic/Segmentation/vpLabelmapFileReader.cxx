@@ -2,6 +2,7 @@
 #include "vpLabelmapFileReader.h"
 
 #include "vpInputError.h"
+#include "vpPhysicalLimits.h"
 
 #if defined(__clang__)
 #include "vpItkClangCompat.h" // before any ITK header
@@ -166,6 +167,82 @@ VoxelStorage StorageOf(const std::string& fileName)
   return storage;
 }
 
+/// The lengths of the axes an NRRD header line gives: the vectors "(x,y,z)" of "space
+/// directions" ("none": an axis not in space), or the numbers of "spacings" (NaN: the same).
+/// A vector holding a NaN or an infinity has length NaN.
+std::vector<double> AxisLengths(const std::string& value, bool vectors)
+{
+  std::vector<double> lengths;
+  const auto numbers = [](const char* p, const char* stop, std::vector<double>& out) {
+    while (p < stop)
+    {
+      char* end = nullptr;
+      const double v = std::strtod(p, &end);
+      if (end == p || end > stop)
+      {
+        ++p;
+        continue;
+      }
+      out.push_back(v);
+      p = end;
+    }
+  };
+  if (!vectors)
+  {
+    numbers(value.c_str(), value.c_str() + value.size(), lengths);
+    lengths.erase(std::remove_if(lengths.begin(), lengths.end(), [](double v) { return std::isnan(v); }), lengths.end());
+    return lengths;
+  }
+  for (std::size_t open = value.find('('); open != std::string::npos; open = value.find('(', open + 1))
+  {
+    const std::size_t close = value.find(')', open);
+    if (close == std::string::npos)
+    {
+      break;
+    }
+    std::vector<double> v;
+    numbers(value.c_str() + open + 1, value.c_str() + close, v);
+    double length = 0.0; // hypot: a component of 1e155 does not overflow when squared
+    for (double x : v)
+    {
+      length = std::isfinite(x) ? std::hypot(length, x) : std::nan("");
+    }
+    lengths.push_back(length);
+  }
+  return lengths;
+}
+
+// ITK takes an NRRD's "space directions" apart into spacings and unit directions, and a column
+// too long to square (1e155) became a spacing of 1 mm: the axes are checked as written.
+void CheckNrrdDirections(const std::string& fileName)
+{
+  if (!EndsWith(fileName, ".nrrd") && !EndsWith(fileName, ".nhdr"))
+  {
+    return;
+  }
+  std::ifstream in(fileName, std::ios::binary);
+  for (std::string line; std::getline(in, line) && !line.empty() && line != "\r";)
+  {
+    std::string lower = line;
+    std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    const bool vectors = lower.rfind("space directions:", 0) == 0;
+    if (!vectors && lower.rfind("spacings:", 0) != 0)
+    {
+      continue;
+    }
+    const std::string field = line.substr(0, line.find(':'));
+    for (const double length : AxisLengths(line.substr(field.size() + 1), vectors))
+    {
+      if (!(length >= limits::MinVoxelMm && length <= limits::MaxVoxelMm))
+      {
+        throw InputError(fileName, "\"" + field + "\" gives a voxel axis " +
+            (std::isfinite(length) ? NumberText(length) + " mm long" : std::string("with a NaN or infinite value")) +
+            ": a voxel is " + NumberText(limits::MinVoxelMm) + " to " + NumberText(limits::MaxVoxelMm) + " mm");
+      }
+    }
+  }
+}
+
 // Deflate (gzip) gives at most 1032 bytes out per byte in (zlib's technical details): a header
 // claiming more than that of its file is refused before ITK allocates the image.
 constexpr double GzipMaximumRatio = 1032.0;
@@ -212,6 +289,8 @@ LabelStructures LabelmapFileReader::Read(const std::string& fileName, std::size_
     throw InputError(fileName, std::string("not a readable ") + (IsNifti(fileName) ? "NIfTI" : "NRRD") + " file");
   }
   Image::Pointer image;
+  std::array<double, 16> ijkToLps{};
+  CheckNrrdDirections(fileName);
   try
   {
     io->SetFileName(fileName);
@@ -225,6 +304,18 @@ LabelStructures LabelmapFileReader::Read(const std::string& fileName, std::size_
     {
       claimed *= static_cast<double>(io->GetDimensions(d));
     }
+    // The geometry as the header gives it, checked before a voxel is read.
+    for (int r = 0; r < 3; ++r)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        ijkToLps[4 * r + c] = io->GetDirection(static_cast<unsigned>(c))[static_cast<std::size_t>(r)] *
+          io->GetSpacing(static_cast<unsigned>(c));
+      }
+      ijkToLps[4 * r + 3] = io->GetOrigin(static_cast<unsigned>(r));
+    }
+    ijkToLps[15] = 1.0;
+    CheckVoxelGeometry(ijkToLps, fileName);
     if (claimed > static_cast<double>(maximumVoxels))
     {
       throw InputError(fileName, "the header claims " + std::to_string(static_cast<long long>(claimed)) +
@@ -241,23 +332,18 @@ LabelStructures LabelmapFileReader::Read(const std::string& fileName, std::size_
   }
   catch (const itk::ExceptionObject& e)
   {
+    // ITK's description runs over lines, its cause on the last: one line, all of it.
     std::string what = e.GetDescription();
-    what = what.substr(0, what.find('\n'));
+    std::replace(what.begin(), what.end(), '\n', ' ');
+    while (!what.empty() && what.back() == ' ')
+    {
+      what.pop_back();
+    }
     throw InputError(fileName, "cannot be read: " + what);
   }
 
   const auto size = image->GetLargestPossibleRegion().GetSize();
   const int dimensions[3] = { static_cast<int>(size[0]), static_cast<int>(size[1]), static_cast<int>(size[2]) };
-  std::array<double, 16> ijkToLps{};
-  for (int r = 0; r < 3; ++r)
-  {
-    for (int c = 0; c < 3; ++c)
-    {
-      ijkToLps[4 * r + c] = image->GetDirection()[r][c] * image->GetSpacing()[c];
-    }
-    ijkToLps[4 * r + 3] = image->GetOrigin()[r];
-  }
-  ijkToLps[15] = 1.0;
 
   // One grid per layer (vector component); values must be whole numbers.
   const unsigned layers = image->GetNumberOfComponentsPerPixel();

@@ -1,6 +1,7 @@
 #include "vpSliceStack.h"
 
 #include "vpInputError.h"
+#include "vpLabelStructure.h"
 
 #include <algorithm>
 #include <cmath>
@@ -177,6 +178,7 @@ SliceStack StackPlanes(const std::string& where, const std::vector<PlanePlacemen
     stack.IjkToLps[4 * r + 3] = lowest.PositionLps[r];
   }
   stack.IjkToLps[15] = 1.0;
+  CheckVoxelGeometry(stack.IjkToLps, where);
   return stack;
 }
 } // namespace vp

@@ -2,6 +2,7 @@
 
 #include "vpInputError.h"
 #include "vpNumericCsv.h"
+#include "vpPhysicalLimits.h"
 
 namespace vp
 {
@@ -17,6 +18,7 @@ std::array<double, 3> ParsePoint(const std::string& text, const std::string& sou
   {
     throw InputError(source, "expected X,Y,Z (3 numbers), got " + std::to_string(values.size()));
   }
+  CheckCoordinates(values.data(), source, "the point");
   return { values[0], values[1], values[2] };
 }
 
@@ -30,6 +32,7 @@ std::vector<std::array<double, 3>> ReadPointCsv(const std::string& fileName)
       throw InputError(fileName, "line " + std::to_string(row.Line) + ": expected x,y,z (3 numbers), got " +
           std::to_string(row.Values.size()));
     }
+    CheckCoordinates(row.Values.data(), fileName, "line " + std::to_string(row.Line));
     points.push_back({ row.Values[0], row.Values[1], row.Values[2] });
   }
   return points;

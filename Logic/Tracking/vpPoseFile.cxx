@@ -1,6 +1,7 @@
 #include "vpPoseFile.h"
 
 #include "vpInputError.h"
+#include "vpPhysicalLimits.h"
 #include "vpJsonPoseReader.h"
 #include "vpNumericCsv.h"
 
@@ -76,7 +77,13 @@ TrackedPose CheckedPose(double time, const double* values, std::size_t count, co
 {
   TrackedPose pose;
   pose.TimeS = time;
-  std::string problem = MakePose(values, count, pose);
+  std::string problem = MagnitudeProblem(time, limits::TimeS, "s");
+  problem = problem.empty() ? MakePose(values, count, pose) : "time " + problem;
+  for (int a = 0; a < 3 && problem.empty(); ++a)
+  {
+    const std::string far = MagnitudeProblem(pose.ModelToWorld[4 * a + 3], limits::CoordinateMm, "mm");
+    problem = far.empty() ? far : "position " + far + " (a patient lies within metres of the origin)";
+  }
   if (problem.empty() && previous && !(pose.TimeS > previous->TimeS))
   {
     problem = "time " + NumberText(pose.TimeS) + " is not after the previous " + NumberText(previous->TimeS);

@@ -192,7 +192,9 @@ TEST_F(DistanceCommand, EachBadInputGivesOneLineAndNoOutput)
     { "distance" + v + " --tip 0,0,0 --method zbuffer --layers fancy", "--layers: must be one of exact, paper; got 'fancy'" },
     { "distance" + v + " --tip 0,0,0 --method zbuffer --box round", "--box: must be one of fixed, moving; got 'round'" },
     { "distance" + v + " --tip 0,0,0 --method zbuffer --bins 20", "--bins: must be 0 (off) or a multiple of 16" },
-    { "distance" + v + " --tip 0,0,0 --method zbuffer --cell 0", "--cell: must be a positive number" },
+    { "distance" + v + " --tip 0,0,0 --method zbuffer --cell 0", "--cell: must be from 0.001 to 1000 millimetres" },
+    { "distance" + v + " --tip 0,0,0 --method zbuffer --cell 1e-8", "--cell: must be from 0.001 to 1000 millimetres" },
+    { "distance" + v + " --tip 0,0,0 --range 1e10", "--range: must be at most 2000 millimetres" },
     { "distance" + v + " --tip 0,0,0 --method zbuffer --resolution 99999", "--resolution: must be between 1 and 16384" },
     { "distance" + v + " --tip 0,0,0 --method zbuffer --cell 0.001", "--cell/--resolution: the depth layers would need" },
     { "distance" + v + " --tip 0,0,0 --method zbuffer --box-size 100,100", "--box-size: expected X,Y,Z (3 numbers), got 2" },
@@ -332,21 +334,23 @@ TEST_F(DistanceCommand, OptionsAndTheRangeEdgeAreAsTheHelpSays)
   EXPECT_LE(inRange, 14) << "beyond 50.35 mm out of range";
 }
 
-// --range 1e9 (issue 16): the z-buffer's tile order table is never wider than its grid, so a
-// huge range costs no memory (it asked for gigabytes and ran out), and tips metres away are
-// answered within the bound.
+// The largest range (issue 16 asked 1e9; issue 29 bounds a range by a body's size, 2 m, since 1e10
+// made every search cover everything): the z-buffer's tile order table is never wider than its
+// grid, so it costs no memory (it asked for gigabytes and ran out), and tips a metre or more
+// away are answered within the bound.
 TEST_F(DistanceCommand, AHugeRangeNeedsNoMoreMemoryAndFarTipsAreAnswered)
 {
-  const std::string tips = WriteBytes(this->Dir, "far.csv", "x,y,z\n0,0,15\n500,0,0\n-3000,40,20\n0,0,100000\n");
+  const std::string tips = WriteBytes(this->Dir, "far.csv", "x,y,z\n0,0,15\n500,0,0\n-1800,40,20\n0,0,1990\n");
   const ToolRun r = RunTool(this->Dir, "distance --vessels portal_vein=" + this->Sphere + " --tips " + tips +
-      " --method both --range 1e9 --json");
+      " --method both --range 2000 --json");
   ASSERT_EQ(r.ExitCode, 0) << r.Err;
   struct rusage usage = {};
   getrusage(RUSAGE_CHILDREN, &usage);
   EXPECT_LT(usage.ru_maxrss, 1024L * 1024L) << "kB at most, of any command this test process ran";
   const auto j = nlohmann::json::parse(r.Out);
   EXPECT_EQ(j["comparison"]["outside_bound"], 0);
-  EXPECT_NEAR(j["results"][3]["classes"]["portal_vein"]["distance_mm"].get<double>(), 100000.0 - 10.0, 0.5);
+  EXPECT_NEAR(j["results"][3]["classes"]["portal_vein"]["distance_mm"].get<double>(), 1990.0 - 10.0, 0.5);
+  EXPECT_NEAR(j["results"][2]["classes"]["portal_vein"]["distance_mm"].get<double>(), std::hypot(1800.0, 40.0, 20.0) - 10.0, 0.5);
 }
 
 TEST_F(DistanceCommand, PhantomWritesClosedVesselsThatAreFound)

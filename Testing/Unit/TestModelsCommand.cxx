@@ -442,7 +442,7 @@ TEST_F(ModelsCommand, BadOptionsAreRefused)
 {
   this->ExpectRefused(this->Masks + " --smoothing 2", "--smoothing", "between 0 and 1");
   this->ExpectRefused(this->Masks + " --space XYZ", "--space", "must be one of LPS, RAS");
-  this->ExpectRefused(this->Masks + " --labels " + this->Dir + "/none.json", "none.json", "cannot be opened");
+  this->ExpectRefused(this->Masks + " --labels " + this->Dir + "/none.json", "none.json", "no such file");
   const std::string table = this->Dir + "/table.json";
   std::ofstream(table) << "{\"classes\": [{\"class\": \"liver\", \"names\": [\"liver\"]}]}";
   this->ExpectRefused(this->Masks + " --labels " + table, this->Masks, "no vessel or liver structure");

@@ -1,0 +1,48 @@
+#include "vpMemory.h"
+
+#include "vpInputError.h"
+
+#include <fstream>
+#include <limits>
+#include <sys/resource.h>
+#include <unistd.h>
+
+namespace vp
+{
+std::uint64_t AvailableMemoryBytes()
+{
+  std::uint64_t available = std::numeric_limits<std::uint64_t>::max();
+  std::ifstream meminfo("/proc/meminfo");
+  for (std::string key; meminfo >> key;)
+  {
+    std::uint64_t kb = 0;
+    meminfo >> kb;
+    if (key == "MemAvailable:")
+    {
+      available = kb * 1024u;
+      break;
+    }
+    meminfo.ignore(std::numeric_limits<std::streamsize>::max(), '\n');
+  }
+  struct rlimit limit;
+  if (getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY)
+  {
+    std::uint64_t pages = 0;
+    std::ifstream("/proc/self/statm") >> pages; // the address space taken now
+    const std::uint64_t used = pages * static_cast<std::uint64_t>(sysconf(_SC_PAGESIZE));
+    const std::uint64_t left = limit.rlim_cur > used ? limit.rlim_cur - used : 0;
+    available = std::min(available, left);
+  }
+  return available;
+}
+
+void CheckMemoryFor(std::uint64_t bytes, const std::string& source, const std::string& what)
+{
+  const std::uint64_t available = AvailableMemoryBytes();
+  if (bytes > available)
+  {
+    throw InputError(source, what + " needs about " + NumberText(static_cast<double>(bytes) / 1e9, 3) + " GB, more than the " +
+        NumberText(static_cast<double>(available) / 1e9, 3) + " GB this process has left");
+  }
+}
+} // namespace vp

@@ -170,6 +170,14 @@ std::vector<RunFolder::Entry> EntriesOf(const Json& list)
 
 Json ReadJsonOrNull(const std::string& file)
 {
+  // Ours, or nothing: a marker is a regular file of a few kilobytes (a FIFO put in its place
+  // would block the open, a huge one take the memory).
+  constexpr off_t MaxBytes = 16 << 20;
+  struct stat info;
+  if (::lstat(file.c_str(), &info) != 0 || !S_ISREG(info.st_mode) || info.st_size > MaxBytes)
+  {
+    return Json();
+  }
   std::ifstream in(file);
   if (!in)
   {

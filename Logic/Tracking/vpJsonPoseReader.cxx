@@ -68,7 +68,7 @@ JsonPoseReader::Item ToItem(const nlohmann::json& entry)
 JsonPoseReader::JsonPoseReader(const std::string& fileName)
   : FileName(fileName)
 {
-  std::ifstream in = OpenJsonFile(fileName, "a pose list");
+  auto in = std::make_unique<JsonFileInput>(fileName, "a pose list");
   this->Parser = std::thread(&JsonPoseReader::Parse, this, std::move(in));
 }
 
@@ -114,7 +114,7 @@ void JsonPoseReader::Hand(Item item)
   this->Changed.notify_all();
 }
 
-void JsonPoseReader::Parse(std::ifstream in)
+void JsonPoseReader::Parse(std::unique_ptr<JsonFileInput> in)
 {
   using Event = nlohmann::json::parse_event_t;
   std::exception_ptr error;
@@ -124,11 +124,12 @@ void JsonPoseReader::Parse(std::ifstream in)
   {
     // Depth 1 holds the document's keys; depth 2, the entries of its "poses" array. Each entry is
     // handed over as it ends and dropped from the document (the callback returns false).
-    const nlohmann::json document = nlohmann::json::parse(in, [&](int depth, Event event, nlohmann::json& parsed) {
+    const nlohmann::json document = nlohmann::json::parse(*in, [&](int depth, Event event, nlohmann::json& parsed) {
       if (event == Event::key && depth == 1)
       {
+        // Only "poses" is kept: any other member, however long, is read and dropped.
         topKey = parsed.get<std::string>();
-        return true;
+        return topKey == "poses";
       }
       const bool entryEnds = event == Event::object_end || event == Event::array_end || event == Event::value;
       if (depth != 2 || topKey != "poses" || !entryEnds)

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <deque>
 #include <exception>
+#include <memory>
 #include <mutex>
 #include <string>
 #include <thread>
@@ -12,6 +13,8 @@
 
 namespace vp
 {
+class JsonFileInput;
+
 /// A JSON pose list ({"poses": [{"time": t, "matrix": [16]} or {"time": t, "position": [3],
 /// "quaternion": [4]}, ...]}) read a pose at a time, so that an hour of recording is never held
 /// whole: nlohmann's parser runs on a thread of its own and hands each pose over through a small
@@ -40,7 +43,7 @@ public:
   bool Next(Item& item);
 
 private:
-  void Parse(std::ifstream in);
+  void Parse(std::unique_ptr<JsonFileInput> in);
   /// Called by the parser's thread for each pose: waits while the queue is full.
   void Hand(Item item);
 

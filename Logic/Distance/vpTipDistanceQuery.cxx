@@ -8,6 +8,7 @@
 #include "vtkExactVesselDistance.h"
 
 #include <algorithm>
+#include <optional>
 #include <cmath>
 
 namespace vp
@@ -49,23 +50,27 @@ double TipDistanceAnswer::QueryMs() const
   return this->BatchMs / static_cast<double>(std::max<std::size_t>(1, this->Results.size()));
 }
 
-TipDistanceAnswer ComputeTipDistances(const TipDistanceRequest& request)
+double TipDistanceTotals::QueryMs() const
+{
+  return this->BatchMs / static_cast<double>(std::max<std::size_t>(1, this->Tips));
+}
+
+TipDistanceTotals ComputeTipDistancesInChunks(const TipDistanceRequest& request, std::size_t chunkTips,
+  const std::function<void(const TipDistanceAnswer& chunk, std::size_t firstTip)>& visit)
 {
   vtkVesselDistanceEngine* engine = request.Engine;
-  std::vector<std::array<double, 3>> axes;
-  if (request.Axis)
+  std::optional<std::array<double, 3>> axis = request.Axis;
+  if (axis)
   {
-    std::array<double, 3> axis = *request.Axis;
-    const double n = std::sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
+    const double n = std::sqrt((*axis)[0] * (*axis)[0] + (*axis)[1] * (*axis)[1] + (*axis)[2] * (*axis)[2]);
     if (!(n > 0))
     {
       throw ParameterError("Axis", "must not be the zero vector");
     }
-    for (double& c : axis)
+    for (double& c : *axis)
     {
       c /= n;
     }
-    axes.assign(request.TipsMm.size(), axis);
   }
   vtkSmartPointer<vtkExactVesselDistance> reference;
   if (request.CompareWithExact)
@@ -87,27 +92,49 @@ TipDistanceAnswer ComputeTipDistances(const TipDistanceRequest& request)
     reference->Build();
   }
 
-  TipDistanceAnswer answer;
-  const double start = NowMs();
-  engine->ComputeProximityBatch(request.TipsMm, request.Axis ? &axes : nullptr, answer.Results);
-  answer.BatchMs = NowMs() - start;
-  if (reference)
+  TipDistanceTotals totals;
+  totals.Compared = static_cast<bool>(reference);
+  chunkTips = std::max<std::size_t>(1, chunkTips);
+  for (std::size_t first = 0; first < request.TipsMm.size(); first += chunkTips)
   {
-    reference->ComputeProximityBatch(request.TipsMm, request.Axis ? &axes : nullptr, answer.Exact);
-    answer.WithinBound.resize(answer.Exact.size());
-    for (std::size_t i = 0; i < answer.Exact.size(); ++i)
+    const std::size_t n = std::min(chunkTips, request.TipsMm.size() - first);
+    const std::vector<std::array<double, 3>> tips(request.TipsMm.begin() + static_cast<std::ptrdiff_t>(first),
+      request.TipsMm.begin() + static_cast<std::ptrdiff_t>(first + n));
+    const std::vector<std::array<double, 3>> axes(axis ? n : 0, axis ? *axis : std::array<double, 3>{});
+    TipDistanceAnswer answer;
+    const double start = NowMs();
+    engine->ComputeProximityBatch(tips, axis ? &axes : nullptr, answer.Results);
+    answer.BatchMs = NowMs() - start;
+    if (reference)
     {
-      answer.Comparison.Add(answer.Results[i], answer.Exact[i], engine->GetRangeMm(), engine->GetErrorBoundMm(),
-        &answer.WithinBound[i]);
+      reference->ComputeProximityBatch(tips, axis ? &axes : nullptr, answer.Exact);
+      answer.WithinBound.resize(answer.Exact.size());
+      for (std::size_t i = 0; i < answer.Exact.size(); ++i)
+      {
+        answer.Comparison.Add(answer.Results[i], answer.Exact[i], engine->GetRangeMm(), engine->GetErrorBoundMm(),
+          &answer.WithinBound[i]);
+        totals.Comparison.Add(answer.Results[i], answer.Exact[i], engine->GetRangeMm(), engine->GetErrorBoundMm());
+      }
     }
+    totals.BatchMs += answer.BatchMs;
+    totals.Tips += n;
+    visit(answer, first);
   }
-  return answer;
+  return totals;
 }
 
-Json TipDistanceReportJson(const TipDistanceRequest& request, const TipDistanceAnswer& answer, bool ras, double loadMs)
+TipDistanceAnswer ComputeTipDistances(const TipDistanceRequest& request)
+{
+  TipDistanceAnswer whole;
+  const TipDistanceTotals totals = ComputeTipDistancesInChunks(request, request.TipsMm.size(),
+    [&](const TipDistanceAnswer& chunk, std::size_t) { whole = chunk; });
+  whole.Comparison = totals.Comparison;
+  return whole;
+}
+
+Json TipDistanceHeaderJson(const TipDistanceRequest& request, bool ras)
 {
   vtkVesselDistanceEngine* engine = request.Engine;
-  const bool compared = !answer.Exact.empty();
   Json out;
   out["method"] = engine->GetMethodName();
   out["device"] = engine->GetDeviceDescription();
@@ -115,39 +142,97 @@ Json TipDistanceReportJson(const TipDistanceRequest& request, const TipDistanceA
   out["range_mm"] = engine->GetRangeMm();
   out["error_bound_mm"] = engine->GetErrorBoundMm();
   out["surfaces"] = SurfacesJson(engine, request.Vessels);
+  return out;
+}
+
+Json TipResultJson(const TipDistanceAnswer& answer, std::size_t i, bool ras)
+{
+  const bool compared = !answer.Exact.empty();
+  const ProximityResult& r = answer.Results[i];
+  Json item;
+  item["tip"] = PointJson(r.Tip, ras);
+  item["error_bound_mm"] = r.ErrorBoundMm;
+  const int nearest = r.NearestIndex();
+  item["nearest"] = nullptr;
+  if (nearest >= 0)
+  {
+    const ClassProximity& n = r.Classes[nearest];
+    item["nearest"] = { { "class", n.ClassName }, { "distance_mm", n.DistanceMm }, { "point", PointJson(n.ClosestPoint, ras) } };
+  }
+  Json classes = Json::object();
+  for (std::size_t k = 0; k < r.Classes.size(); ++k)
+  {
+    classes[r.Classes[k].ClassName] = ClassJson(r.Classes[k], compared ? &answer.Exact[i].Classes[k] : nullptr,
+      compared && answer.WithinBound[i][k] != 0, ras);
+  }
+  item["classes"] = classes;
+  return item;
+}
+
+Json TipDistanceTrailerJson(const TipDistanceRequest& request, const TipDistanceTotals& totals, double loadMs)
+{
+  Json out = Json::object();
+  if (totals.Compared)
+  {
+    out["comparison"] = { { "reference", "exact" }, { "max_abs_difference_mm", totals.Comparison.MaxAbsDifferenceMm },
+      { "outside_bound", totals.Comparison.OutsideBound } };
+  }
+  // Each tip's share of its batch: the batches' time per tip, the same for every tip.
+  out["timing_ms"] = { { "load", loadMs }, { "build", request.Engine->GetBuildTimeMs() }, { "query_median", totals.QueryMs() },
+    { "query_p95", totals.QueryMs() }, { "batch", totals.BatchMs },
+    { "tips_per_second", 1000.0 * static_cast<double>(totals.Tips) / std::max(1e-9, totals.BatchMs) } };
+  return out;
+}
+
+std::string TipDistanceReportText(const Json& header, const std::string& results, const Json& trailer)
+{
+  // As the whole document's dump(2): the header's members, "results" with each item at four
+  // spaces, then the trailer's members.
+  std::string text = header.dump(2);
+  text.erase(text.size() - 2); // "\n}"
+  text += ",\n  \"results\": " + (results.empty() ? std::string("[]") : "[\n" + results + "\n  ]");
+  for (auto it = trailer.begin(); it != trailer.end(); ++it)
+  {
+    std::string member = Json{ { it.key(), it.value() } }.dump(2);
+    member = member.substr(2, member.size() - 4); // without the braces and their line breaks
+    text += ",\n" + member;
+  }
+  return text + "\n}";
+}
+
+std::string IndentedItem(const Json& item)
+{
+  std::string text = "    ";
+  for (const char c : item.dump(2))
+  {
+    text.push_back(c);
+    if (c == '\n')
+    {
+      text += "    ";
+    }
+  }
+  return text;
+}
+
+Json TipDistanceReportJson(const TipDistanceRequest& request, const TipDistanceAnswer& answer, bool ras, double loadMs)
+{
+  Json out = TipDistanceHeaderJson(request, ras);
   Json list = Json::array();
   for (std::size_t i = 0; i < answer.Results.size(); ++i)
   {
-    const ProximityResult& r = answer.Results[i];
-    Json item;
-    item["tip"] = PointJson(r.Tip, ras);
-    item["error_bound_mm"] = r.ErrorBoundMm;
-    const int nearest = r.NearestIndex();
-    item["nearest"] = nullptr;
-    if (nearest >= 0)
-    {
-      const ClassProximity& n = r.Classes[nearest];
-      item["nearest"] = { { "class", n.ClassName }, { "distance_mm", n.DistanceMm }, { "point", PointJson(n.ClosestPoint, ras) } };
-    }
-    Json classes = Json::object();
-    for (std::size_t k = 0; k < r.Classes.size(); ++k)
-    {
-      classes[r.Classes[k].ClassName] = ClassJson(r.Classes[k], compared ? &answer.Exact[i].Classes[k] : nullptr,
-        compared && answer.WithinBound[i][k] != 0, ras);
-    }
-    item["classes"] = classes;
-    list.push_back(item);
+    list.push_back(TipResultJson(answer, i, ras));
   }
   out["results"] = list;
-  if (compared)
+  TipDistanceTotals totals;
+  totals.Compared = !answer.Exact.empty();
+  totals.Comparison = answer.Comparison;
+  totals.BatchMs = answer.BatchMs;
+  totals.Tips = answer.Results.size();
+  const Json trailer = TipDistanceTrailerJson(request, totals, loadMs);
+  for (auto it = trailer.begin(); it != trailer.end(); ++it)
   {
-    out["comparison"] = { { "reference", "exact" }, { "max_abs_difference_mm", answer.Comparison.MaxAbsDifferenceMm },
-      { "outside_bound", answer.Comparison.OutsideBound } };
+    out[it.key()] = it.value();
   }
-  const std::vector<double> queryMs(answer.Results.size(), answer.QueryMs());
-  out["timing_ms"] = { { "load", loadMs }, { "build", engine->GetBuildTimeMs() }, { "query_median", Quantile(queryMs, 0.5) },
-    { "query_p95", Quantile(queryMs, 0.95) }, { "batch", answer.BatchMs },
-    { "tips_per_second", 1000.0 * static_cast<double>(answer.Results.size()) / std::max(1e-9, answer.BatchMs) } };
   return out;
 }
 } // namespace vp

@@ -11,6 +11,8 @@
 #include <nlohmann/json.hpp>
 
 #include <array>
+#include <functional>
+#include <string>
 #include <optional>
 #include <vector>
 
@@ -48,11 +50,38 @@ struct TipDistanceAnswer
 
 TipDistanceAnswer ComputeTipDistances(const TipDistanceRequest& request);
 
+/// What the chunks of ComputeTipDistancesInChunks add up to.
+struct TipDistanceTotals
+{
+  bool Compared = false;
+  ExactComparison Comparison;
+  double BatchMs = 0.0;
+  std::size_t Tips = 0;
+  double QueryMs() const;
+};
+
+/// The same, chunkTips tips at a time in the order given: each chunk's answer goes to visit with
+/// the index of its first tip as soon as it is computed, and is gone after, so that memory
+/// follows the chunk, not the tips (a million tips with --json took 3.5 GB).
+TipDistanceTotals ComputeTipDistancesInChunks(const TipDistanceRequest& request, std::size_t chunkTips,
+  const std::function<void(const TipDistanceAnswer& chunk, std::size_t firstTip)>& visit);
+
 /// The JSON report of `distance --json` and of the CLI's report file: the engine, its bound, the
 /// surfaces, per tip the nearest class and every class's answer (points in RAS when ras), the
 /// comparison with the exact engine, and the times.
 nlohmann::ordered_json TipDistanceReportJson(
   const TipDistanceRequest& request, const TipDistanceAnswer& answer, bool ras, double loadMs);
+/// The same report in pieces, for one written as its chunks come: the members before
+/// "results", one tip's entry (answer.Results[i]), and the members after.
+nlohmann::ordered_json TipDistanceHeaderJson(const TipDistanceRequest& request, bool ras);
+nlohmann::ordered_json TipResultJson(const TipDistanceAnswer& answer, std::size_t i, bool ras);
+nlohmann::ordered_json TipDistanceTrailerJson(const TipDistanceRequest& request, const TipDistanceTotals& totals, double loadMs);
+/// One entry of "results" as the report's dump(2) writes it (four spaces in).
+std::string IndentedItem(const nlohmann::ordered_json& item);
+/// The report's text, the same as TipDistanceReportJson(...).dump(2), from its header, its
+/// "results" entries (IndentedItem, joined by ",\n") and its trailer.
+std::string TipDistanceReportText(
+  const nlohmann::ordered_json& header, const std::string& results, const nlohmann::ordered_json& trailer);
 } // namespace vp
 
 #endif

@@ -59,6 +59,12 @@ bool ContainsDicomFile(const fs::path& folder)
 }
 
 // One slice as read: its geometry and its stored values, widened to 32 bits.
+/// The largest slice side taken (pixels): CT and MR slices are 512 or 1024 wide, micro-CT a few
+/// thousand.
+constexpr unsigned MaxSliceSide = 8192;
+/// The most voxels a series may hold, as the other readers (about 268 million).
+constexpr double MaxSeriesVoxels = double(std::size_t(1) << 28);
+
 struct Slice
 {
   std::string File;
@@ -127,6 +133,12 @@ Slice ReadSlice(const std::string& folder, const fs::path& path)
   {
     throw InputError(where, "no image: Rows or Columns missing");
   }
+  if (rows > MaxSliceSide || columns > MaxSliceSide)
+  {
+    // Read before the pixel data: two slices of 16384 x 16384 took gigabytes.
+    throw InputError(where, std::to_string(columns) + " x " + std::to_string(rows) + " pixels: a slice of a labelmap is at most " +
+        std::to_string(MaxSliceSide) + " x " + std::to_string(MaxSliceSide));
+  }
   data->findAndGetUint16(DCM_BitsAllocated, bitsAllocated);
   data->findAndGetUint16(DCM_PixelRepresentation, representation);
   data->findAndGetUint16(DCM_SamplesPerPixel, samples);
@@ -194,6 +206,14 @@ LabelGrid DicomLabelSeriesReader::ReadSeries(const std::string& folder)
   for (const auto& path : files)
   {
     slices.push_back(ReadSlice(folder, path));
+    const double voxels = double(slices.front().Rows) * double(slices.front().Columns) * double(files.size());
+    if (slices.size() == 1 && voxels > MaxSeriesVoxels)
+    {
+      // Known from the first slice and the number of files, before the others are read.
+      throw InputError(folder, std::to_string(files.size()) + " slices of " + std::to_string(slices.front().Columns) + " x " +
+          std::to_string(slices.front().Rows) + " pixels: " + NumberText(voxels, 4) + " voxels, more than the " +
+          NumberText(MaxSeriesVoxels, 4) + " this reader takes");
+    }
     if (slices.back().SeriesUid != slices.front().SeriesUid)
     {
       throw InputError(folder, "more than one series (" + slices.front().File + " and " + slices.back().File +

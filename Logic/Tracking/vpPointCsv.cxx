@@ -25,7 +25,8 @@ std::array<double, 3> ParsePoint(const std::string& text, const std::string& sou
 std::vector<std::array<double, 3>> ReadPointCsv(const std::string& fileName)
 {
   std::vector<std::array<double, 3>> points;
-  for (const NumericRow& row : ReadNumericCsv(fileName, "a point list (one x,y,z per line)"))
+  NumericCsvReader reader(fileName, "a point list (one x,y,z per line)"); // a row at a time: only the points are kept
+  for (NumericRow row; reader.Next(row);)
   {
     if (row.Values.size() != 3)
     {

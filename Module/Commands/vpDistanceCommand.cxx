@@ -12,8 +12,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <iostream>
 
 namespace vp
@@ -47,7 +49,7 @@ TipDistanceRequest ParseRequest(const cli::ParsedArguments& args, bool ras)
 }
 
 /// "  portal_vein  12.345  (1.00, 2.00, 3.00)  no  -" and, when compared, the exact answer.
-void PrintClassRow(const ClassProximity& c, const ClassProximity* exact, bool within, bool ras)
+std::string ClassRow(const ClassProximity& c, const ClassProximity* exact, bool within, bool ras)
 {
   char check[64] = "";
   if (exact)
@@ -55,46 +57,79 @@ void PrintClassRow(const ClassProximity& c, const ClassProximity* exact, bool wi
     std::snprintf(check, sizeof(check), "  %8s  %s", exact->InRange ? FixedText(exact->DistanceMm, "%.3f").c_str() : "-",
       within ? "yes" : "NO");
   }
+  char row[512];
   if (!c.InRange)
   {
-    std::printf("  %-16s %12s  %-28s %-7s %-14s%s\n", c.ClassName.c_str(), "out of range", "", "", "", check);
-    return;
+    std::snprintf(row, sizeof(row), "  %-16s %12s  %-28s %-7s %-14s%s\n", c.ClassName.c_str(), "out of range", "", "", "", check);
+    return row;
   }
   const auto q = ConvertSpace({ c.ClosestPoint[0], c.ClosestPoint[1], c.ClosestPoint[2] }, ras);
   char point[64];
   std::snprintf(point, sizeof(point), "(%.2f, %.2f, %.2f)", q[0], q[1], q[2]);
-  std::printf("  %-16s %12.3f  %-28s %-7s %-14s%s\n", c.ClassName.c_str(), c.DistanceMm, point,
+  std::snprintf(row, sizeof(row), "  %-16s %12.3f  %-28s %-7s %-14s%s\n", c.ClassName.c_str(), c.DistanceMm, point,
     c.Inside ? (*c.Inside ? "yes" : "no") : "open", c.DirectionalMm ? FixedText(*c.DirectionalMm, "%.3f").c_str() : "-", check);
+  return row;
 }
 
-void PrintTable(const TipDistanceRequest& request, const TipDistanceAnswer& answer, bool ras, double loadMs)
+/// Output held back until every tip is answered (a failure leaves no partial output), in an
+/// unnamed temporary file rather than memory: a million tips' report is hundreds of megabytes.
+class HeldOutput
 {
-  vtkVesselDistanceEngine* engine = request.Engine;
-  const bool compared = !answer.Exact.empty();
-  std::printf("method %s on %s, range %.1f mm, error bound %.3f mm, space %s, %zu tip(s)\n", engine->GetMethodName(),
-    engine->GetDeviceDescription().c_str(), engine->GetRangeMm(), engine->GetErrorBoundMm(), ras ? "RAS" : "LPS",
-    answer.Results.size());
-  for (std::size_t i = 0; i < answer.Results.size(); ++i)
+public:
+  HeldOutput()
+    : File(std::tmpfile())
   {
-    const ProximityResult& r = answer.Results[i];
-    const auto tip = ConvertSpace({ r.Tip[0], r.Tip[1], r.Tip[2] }, ras);
-    const int nearest = r.NearestIndex();
-    std::printf("tip (%.2f, %.2f, %.2f)  nearest: %s\n", tip[0], tip[1], tip[2],
-      nearest >= 0 ? r.Classes[nearest].ClassName.c_str() : "none in range");
-    std::printf("  %-16s %12s  %-28s %-7s %-14s%s\n", "class", "distance mm", "closest point", "inside", "directional mm",
-      compared ? "  exact mm  within bound" : "");
-    for (std::size_t k = 0; k < r.Classes.size(); ++k)
+    if (!this->File)
     {
-      PrintClassRow(r.Classes[k], compared ? &answer.Exact[i].Classes[k] : nullptr, compared && answer.WithinBound[i][k], ras);
+      throw InputError("temporary file", std::string("cannot hold the output: ") + std::strerror(errno));
     }
   }
-  std::printf("load %.1f ms, build %.1f ms, query median %.4f ms, p95 %.4f ms\n", loadMs, engine->GetBuildTimeMs(),
-    answer.QueryMs(), answer.QueryMs());
-  if (compared)
+  ~HeldOutput() { std::fclose(this->File); }
+  HeldOutput(const HeldOutput&) = delete;
+  HeldOutput& operator=(const HeldOutput&) = delete;
+  std::FILE* Get() const { return this->File; }
+  void Write(const std::string& text)
   {
-    std::printf("against the exact engine: largest difference %.4f mm, %d answer(s) outside the bound\n",
-      answer.Comparison.MaxAbsDifferenceMm, answer.Comparison.OutsideBound);
+    if (std::fwrite(text.data(), 1, text.size(), this->File) != text.size())
+    {
+      throw InputError("temporary file", std::string("cannot hold the output: ") + std::strerror(errno));
+    }
   }
+  /// Everything written, to stdout.
+  void Release()
+  {
+    std::fflush(this->File);
+    std::rewind(this->File);
+    char block[65536];
+    for (std::size_t n; (n = std::fread(block, 1, sizeof(block), this->File)) > 0;)
+    {
+      std::fwrite(block, 1, n, stdout);
+    }
+  }
+
+private:
+  std::FILE* File;
+};
+
+/// The table's rows for one tip.
+std::string TableRows(const TipDistanceAnswer& answer, std::size_t i, bool ras)
+{
+  const bool compared = !answer.Exact.empty();
+  const ProximityResult& r = answer.Results[i];
+  const auto tip = ConvertSpace({ r.Tip[0], r.Tip[1], r.Tip[2] }, ras);
+  const int nearest = r.NearestIndex();
+  char line[512];
+  std::snprintf(line, sizeof(line), "tip (%.2f, %.2f, %.2f)  nearest: %s\n", tip[0], tip[1], tip[2],
+    nearest >= 0 ? r.Classes[nearest].ClassName.c_str() : "none in range");
+  std::string rows = line;
+  std::snprintf(line, sizeof(line), "  %-16s %12s  %-28s %-7s %-14s%s\n", "class", "distance mm", "closest point", "inside",
+    "directional mm", compared ? "  exact mm  within bound" : "");
+  rows += line;
+  for (std::size_t k = 0; k < r.Classes.size(); ++k)
+  {
+    rows += ClassRow(r.Classes[k], compared ? &answer.Exact[i].Classes[k] : nullptr, compared && answer.WithinBound[i][k], ras);
+  }
+  return rows;
 }
 } // namespace
 
@@ -144,21 +179,48 @@ int RunDistanceCommand(const cli::ParsedArguments& args, const ModuleServices&)
     RepairVesselMeshes(request.Vessels);
   }
   const double loadMs = NowMs() - loadStart;
-  const TipDistanceAnswer answer = ComputeTipDistances(request);
+  // The tips are answered a chunk at a time and their report held in a temporary file: memory
+  // follows the chunk, not the tips; nothing is printed before the last tip is answered.
+  const bool json = args.GetBoolean("json");
+  HeldOutput held;
+  bool firstItem = true;
+  const TipDistanceTotals totals = ComputeTipDistancesInChunks(request, 4096, [&](const TipDistanceAnswer& chunk, std::size_t) {
+    std::string text;
+    for (std::size_t i = 0; i < chunk.Results.size(); ++i)
+    {
+      text += json ? (firstItem ? "" : ",\n") + IndentedItem(TipResultJson(chunk, i, ras)) : TableRows(chunk, i, ras);
+      firstItem = false;
+    }
+    held.Write(text);
+  });
   ReportSurfaceDefects("distance", request.Engine, request.Vessels);
-  if (answer.Comparison.OutsideBound > 0)
+  if (totals.Comparison.OutsideBound > 0)
   {
-    std::cerr << "vesselproximity: warning: " << answer.Comparison.OutsideBound
+    std::cerr << "vesselproximity: warning: " << totals.Comparison.OutsideBound
               << " answer(s) of the z-buffer engine outside its error bound of " << request.Engine->GetErrorBoundMm() << " mm\n";
   }
-  // Everything is computed before anything is printed: a failure leaves no partial output.
-  if (args.GetBoolean("json"))
+  vtkVesselDistanceEngine* engine = request.Engine;
+  if (json)
   {
-    std::cout << TipDistanceReportJson(request, answer, ras, loadMs).dump(2) << "\n";
+    // The report's text with the held entries in their place (no entry held twice in memory).
+    const std::string marker = "\x01results\x01";
+    const std::string text = TipDistanceReportText(TipDistanceHeaderJson(request, ras), marker,
+      TipDistanceTrailerJson(request, totals, loadMs));
+    const std::size_t at = text.find(marker);
+    std::fwrite(text.data(), 1, at, stdout);
+    held.Release();
+    std::fputs((text.substr(at + marker.size()) + "\n").c_str(), stdout);
+    return 0;
   }
-  else
+  std::printf("method %s on %s, range %.1f mm, error bound %.3f mm, space %s, %zu tip(s)\n", engine->GetMethodName(),
+    engine->GetDeviceDescription().c_str(), engine->GetRangeMm(), engine->GetErrorBoundMm(), ras ? "RAS" : "LPS", totals.Tips);
+  held.Release();
+  std::printf("load %.1f ms, build %.1f ms, query median %.4f ms, p95 %.4f ms\n", loadMs, engine->GetBuildTimeMs(),
+    totals.QueryMs(), totals.QueryMs());
+  if (totals.Compared)
   {
-    PrintTable(request, answer, ras, loadMs);
+    std::printf("against the exact engine: largest difference %.4f mm, %d answer(s) outside the bound\n",
+      totals.Comparison.MaxAbsDifferenceMm, totals.Comparison.OutsideBound);
   }
   return 0;
 }

@@ -16,6 +16,7 @@
 #include <vtkPolyData.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <map>
@@ -223,11 +224,28 @@ cli::ModuleDescription DescribeSelfTestCommand()
         Switch("no-screenshots", "Skip the screenshots.") } } });
 }
 
+namespace
+{
+/// The system's temporary folder, as TMPDIR names it; a TMPDIR that is no folder is said so.
+std::string TemporaryFolder()
+{
+  std::error_code ec;
+  const std::filesystem::path folder = std::filesystem::temp_directory_path(ec);
+  if (ec)
+  {
+    const char* tmpdir = std::getenv("TMPDIR");
+    throw InputError(std::string("TMPDIR ") + (tmpdir ? tmpdir : ""),
+      "is not a folder (" + ec.message() + "): set TMPDIR to one, or give -o");
+  }
+  return folder.string();
+}
+} // namespace
+
 int RunSelfTestCommand(const cli::ParsedArguments& args, const ModuleServices& module)
 {
   const bool temporary = !args.IsSet("output");
   const std::string outDir = temporary
-    ? (std::filesystem::temp_directory_path() / ("vesselproximity-selftest-" + std::to_string(getpid()))).string()
+    ? (std::filesystem::path(TemporaryFolder()) / ("vesselproximity-selftest-" + std::to_string(getpid()))).string()
     : args.GetString("output");
   const DemoReport report = RunDemoPipeline(module, outDir, !args.GetBoolean("noScreenshots"));
   // The checks read what the run returned, typed; of its files they check only that each is there.

@@ -15,7 +15,8 @@ public:
   Guard(const std::string& fileName, const std::string& what)
     : Name(fileName)
   {
-    RegularFileSize(fileName, "cannot open as " + what, "cannot open as " + what);
+    RegularFileSize(fileName, "is a folder, cannot open as " + what,
+      "is not a regular file (a device, pipe or socket), cannot open as " + what);
     this->File.open(fileName, std::ios::binary);
     if (!this->File)
     {

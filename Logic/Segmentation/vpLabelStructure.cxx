@@ -35,7 +35,7 @@ void CheckVoxelGeometry(const std::array<double, 16>& m, const std::string& sour
   double length[3];
   for (int c = 0; c < 3; ++c)
   {
-    length[c] = std::sqrt(m[c] * m[c] + m[4 + c] * m[4 + c] + m[8 + c] * m[8 + c]);
+    length[c] = std::hypot(std::hypot(m[c], m[4 + c]), m[8 + c]); // 1e-300 squared is 0
     if (!std::isfinite(m[c]) || !std::isfinite(m[4 + c]) || !std::isfinite(m[8 + c]))
     {
       throw InputError(source, std::string("the voxel's ") + axisName[c] + " direction holds a NaN or infinite value");

@@ -6,6 +6,7 @@
 #include "vpCommands.h"
 #include "vpDangerLevels.h"
 #include "vpEngineOptions.h"
+#include "vpFramesCsv.h"
 #include "vpInputError.h"
 #include "vpPoseFile.h"
 #include "vpScalpelLoader.h"
@@ -127,6 +128,12 @@ int RunTrackCommand(const cli::ParsedArguments& args, const ModuleServices& modu
   const std::size_t poseCount = PoseStream::CountPoses(posesFile);
   vtkSmartPointer<vtkVesselProximityLogic> proximity = ConfigureTrackingLogic(args, module);
   const auto vessels = ParsePairs(args.GetString("vessels"), "--vessels");
+  std::vector<std::string> classes;
+  for (const auto& vessel : vessels)
+  {
+    classes.push_back(vessel.first);
+  }
+  CheckFramesCsvColumns(classes); // before anything is read or said
   // What the run reads is never removed or written over, even in its own output folder.
   std::vector<std::string> inputs = { posesFile, args.GetString("scalpel"), ScalpelDefinitionFileFor(args.GetString("scalpel")) };
   for (const auto& vessel : vessels)

@@ -289,9 +289,21 @@ TEST_F(ModelsCommand, EachBadSeriesGetsItsOneLineAndWritesNothing)
   this->ExpectRefused(spaced, spaced, "different pixel spacings");
   // Rows x Columns far beyond the pixel data (the fuzzer's: the reader once allocated them first).
   const std::string huge = copy("huge");
-  edit(huge + "/image_3", DCM_Rows, "65535");
-  edit(huge + "/image_3", DCM_Columns, "65535");
+  edit(huge + "/image_3", DCM_Rows, "8000");
+  edit(huge + "/image_3", DCM_Columns, "8000");
   this->ExpectRefused(huge, "image_3", "pixel data missing or shorter than Rows x Columns");
+  // Issue 29: slices of 16384 x 16384 took gigabytes; a PixelSpacing of 1e-300 gave a model of no
+  // volume. Both are refused from the headers.
+  const std::string wide = copy("wide");
+  edit(wide + "/image_0", DCM_Rows, "16384");
+  edit(wide + "/image_0", DCM_Columns, "16384");
+  this->ExpectRefused(wide, "image_0", "16384 x 16384 pixels: a slice of a labelmap is at most 8192 x 8192");
+  const std::string tiny = copy("tiny");
+  for (const auto& slice : fs::directory_iterator(tiny))
+  {
+    edit(slice.path().string(), DCM_PixelSpacing, "1e-300\\1e-300");
+  }
+  this->ExpectRefused(tiny, tiny, "a voxel 1e-300 mm long along its column (i) axis");
 
   // An empty structure among good ones.
   this->WriteMask("portalvein1", [](const double*) { return 0; });

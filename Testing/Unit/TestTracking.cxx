@@ -123,6 +123,8 @@ TEST(DangerLevels, ThresholdsNamesAndTheErrorBound)
   p.Inside = true;
   EXPECT_EQ(vp::ClassifyDanger(p, 0.0, t), vp::DangerLevel::Breach);
   p.InRange = false;
+  EXPECT_EQ(vp::ClassifyDanger(p, 0.0, t), vp::DangerLevel::Breach) << "inside is a breach whatever the range (issue 29)";
+  p.Inside = false;
   EXPECT_EQ(vp::ClassifyDanger(p, 0.0, t), vp::DangerLevel::Safe);
   EXPECT_STREQ(vp::DangerLevelName(vp::DangerLevel::Warning), "warning");
   EXPECT_EQ(vp::DangerLevelColour(vp::DangerLevel::Safe)[0], 255);

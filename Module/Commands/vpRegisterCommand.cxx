@@ -70,19 +70,29 @@ RigidRegistration Landmarks(const cli::ParsedArguments& args)
   return RegisterPairedPoints(model, world);
 }
 
-Json RunLandmarks(const cli::ParsedArguments& args)
+/// What a registration says once its result is written (a refusal of the output leaves no word
+/// of a result that was never saved).
+template <typename... Values>
+void Say(std::string& said, const char* format, Values... values)
+{
+  char line[512];
+  std::snprintf(line, sizeof(line), format, values...);
+  said += line;
+}
+
+Json RunLandmarks(const cli::ParsedArguments& args, std::string& said)
 {
   const RigidRegistration r = Landmarks(args);
-  std::printf("landmarks: %zu points, FRE (RMS) %.3f mm\n", r.PointErrorsMm.size(), r.RmsErrorMm);
+  Say(said, "landmarks: %zu points, FRE (RMS) %.3f mm\n", r.PointErrorsMm.size(), r.RmsErrorMm);
   for (std::size_t i = 0; i < r.PointErrorsMm.size(); ++i)
   {
-    std::printf("  point %zu: %.3f mm\n", i + 1, r.PointErrorsMm[i]);
+    Say(said, "  point %zu: %.3f mm\n", i + 1, r.PointErrorsMm[i]);
   }
   return { { "method", "landmarks" }, { "model_to_world", MatrixJson(r.ModelToWorld) }, { "fre_mm", r.RmsErrorMm },
     { "point_errors_mm", r.PointErrorsMm } };
 }
 
-Json RunIcp(const cli::ParsedArguments& args)
+Json RunIcp(const cli::ParsedArguments& args, std::string& said)
 {
   vtkNew<vtkVesselMeshReader> reader;
   reader->SetFileName(args.GetString("model"));
@@ -113,14 +123,14 @@ Json RunIcp(const cli::ParsedArguments& args)
       SurfaceRegistration::MaximumMedianResidualMm, 100.0 * SurfaceRegistration::MaximumFarFraction);
     throw InputError(args.GetString("points"), why);
   }
-  std::printf("icp: %zu points from %s, best of %d starts, %d iterations, mean residual %.3f mm (median %.3f, p95 %.3f)\n",
+  Say(said, "icp: %zu points from %s, best of %d starts, %d iterations, mean residual %.3f mm (median %.3f, p95 %.3f)\n",
     points.size(), start.c_str(), r.Starts, r.Iterations, r.MeanResidualMm, r.MedianResidualMm, r.P95ResidualMm);
   return { { "method", "icp" }, { "model_to_world", MatrixJson(r.ModelToWorld) }, { "mean_residual_mm", r.MeanResidualMm },
     { "median_residual_mm", r.MedianResidualMm }, { "p95_residual_mm", r.P95ResidualMm }, { "far_fraction", r.FarFraction },
     { "iterations", r.Iterations }, { "starts", r.Starts }, { "points", points.size() }, { "initial", start } };
 }
 
-Json RunPivot(const cli::ParsedArguments& args)
+Json RunPivot(const cli::ParsedArguments& args, std::string& said)
 {
   const auto poses = ReadPoseFile(args.GetString("poses"));
   std::vector<std::array<double, 16>> matrices;
@@ -130,7 +140,7 @@ Json RunPivot(const cli::ParsedArguments& args)
   }
   const PivotCalibration r = CalibratePivot(
     matrices, static_cast<std::size_t>(args.GetInteger("minPoses")), args.GetNumber("minRotationDeg"));
-  std::printf("pivot: %zu poses turning up to %.1f deg, tip (%.3f, %.3f, %.3f) mm in tool coordinates, RMSE %.3f mm\n",
+  Say(said, "pivot: %zu poses turning up to %.1f deg, tip (%.3f, %.3f, %.3f) mm in tool coordinates, RMSE %.3f mm\n",
     poses.size(), r.RotationSpreadDeg, r.TipInToolMm[0], r.TipInToolMm[1], r.TipInToolMm[2], r.RmseMm);
   // A translation to the tip: placing the model by it puts its origin at the tip.
   std::array<double, 16> tipToTool{ 1, 0, 0, r.TipInToolMm[0], 0, 1, 0, r.TipInToolMm[1], 0, 0, 1, r.TipInToolMm[2], 0, 0, 0,
@@ -198,23 +208,24 @@ int RunRegisterCommand(const cli::ParsedArguments& args, const ModuleServices&)
     }
   };
   Json result;
+  std::string said;
   if (method == "landmarks")
   {
     require({ { "modelPoints", "--model-points" }, { "worldPoints", "--world-points" } });
-    result = RunLandmarks(args);
+    result = RunLandmarks(args, said);
   }
   else if (method == "icp")
   {
     require({ { "model", "--model" }, { "points", "--points" } });
-    result = RunIcp(args);
+    result = RunIcp(args, said);
   }
   else // pivot: the parser accepts only the three
   {
     require({ { "poses", "--poses" } });
-    result = RunPivot(args);
+    result = RunPivot(args, said);
   }
   WriteFileAtomically(args.GetString("output"), result.dump(2) + "\n");
-  std::printf("wrote %s\n", args.GetString("output").c_str());
+  std::printf("%swrote %s\n", said.c_str(), args.GetString("output").c_str());
   return 0;
 }
 } // namespace vp

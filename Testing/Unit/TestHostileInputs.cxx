@@ -62,6 +62,36 @@ BoundedRun RunBounded(const std::string& dir, const std::string& program, const 
   run.Err = vp::test::Slurp(err);
   return run;
 }
+/// The command line as one line, for messages.
+std::string CommandLine(const std::string& program, const std::vector<std::string>& arguments)
+{
+  std::string line = std::filesystem::path(program).filename().string();
+  for (const std::string& a : arguments)
+  {
+    line += " " + (a.size() > 120 ? a.substr(0, 120) + "..." : a);
+  }
+  return line;
+}
+
+/// A hostile case run in its own process: one line on stderr holding expected, exit 1, nothing
+/// on stdout and nothing at out, within 10 s and 400 MB.
+void ExpectRefusedInOneLine(const std::string& dir, const std::string& program, const std::vector<std::string>& arguments,
+  const std::string& expected, const std::string& out)
+{
+  const std::string line = CommandLine(program, arguments);
+  const BoundedRun r = RunBounded(dir, program, arguments, 20.0);
+  std::printf("%5.2f s %7ld kB  %s\n", r.Seconds, r.PeakKb, line.c_str());
+  EXPECT_FALSE(r.TimedOut) << line;
+  EXPECT_EQ(r.ExitCode, 1) << line << "\n" << r.Err;
+  EXPECT_NE(r.Err.find(expected), std::string::npos) << line << "\n  stderr: " << r.Err;
+  EXPECT_EQ(std::count(r.Err.begin(), r.Err.end(), '\n'), 1) << "one line: " << r.Err;
+  EXPECT_EQ(r.Out, "") << line;
+  EXPECT_LT(r.Seconds, 10.0) << line;
+#ifndef VP_UNDER_ASAN
+  EXPECT_LT(r.PeakKb, 400L * 1024L) << "kB, " << line;
+#endif
+  EXPECT_FALSE(std::filesystem::exists(out)) << "nothing written: " << line;
+}
 } // namespace
 
 TEST(HostileInputs, EachIsRefusedInOneLineWithinSecondsAndMegabytes)
@@ -113,40 +143,13 @@ TEST(HostileInputs, EachIsRefusedInOneLineWithinSecondsAndMegabytes)
   cases.push_back({ VP_EXECUTABLE, trackWith({ "--scalpel", sphere, "--poses", fifo }), fifo + ": " });
   for (const auto& [program, arguments, expected] : cases)
   {
-    std::string line = std::filesystem::path(program).filename().string();
-    for (const std::string& a : arguments)
-    {
-      line += " " + a;
-    }
-    const BoundedRun r = RunBounded(dir, program, arguments, 20.0);
-    std::printf("%5.2f s %7ld kB  %s\n", r.Seconds, r.PeakKb, line.c_str());
-    EXPECT_FALSE(r.TimedOut) << line;
-    EXPECT_EQ(r.ExitCode, 1) << line << "\n" << r.Err;
-    EXPECT_NE(r.Err.find(expected), std::string::npos) << line << "\n  stderr: " << r.Err;
-    EXPECT_EQ(std::count(r.Err.begin(), r.Err.end(), '\n'), 1) << "one line: " << r.Err;
-    EXPECT_EQ(r.Out, "") << line;
-    EXPECT_LT(r.Seconds, 10.0) << line;
-#ifndef VP_UNDER_ASAN
-    EXPECT_LT(r.PeakKb, 400L * 1024L) << "kB, " << line;
-#endif
-    EXPECT_FALSE(std::filesystem::exists(out)) << "nothing written: " << line;
+    ExpectRefusedInOneLine(dir, program, arguments, expected, out);
   }
   std::filesystem::remove_all(dir);
 }
 
 namespace
 {
-/// The command line as one line, for messages.
-std::string CommandLine(const std::string& program, const std::vector<std::string>& arguments)
-{
-  std::string line = std::filesystem::path(program).filename().string();
-  for (const std::string& a : arguments)
-  {
-    line += " " + (a.size() > 120 ? a.substr(0, 120) + "..." : a);
-  }
-  return line;
-}
-
 /// A sphere of radius 10 about the origin with this many rings and segments.
 std::string SphereFile(const std::string& dir, const std::string& name, double radiusMm = 10.0, int rings = 16, int segments = 32)
 {
@@ -265,18 +268,7 @@ TEST(HostileInputs, TheSecondRoundIsRefusedInOneLineOrAnsweredCorrectly)
   };
   for (const auto& [program, arguments, expected] : refused)
   {
-    const std::string line = CommandLine(program, arguments);
-    const BoundedRun r = RunBounded(dir, program, arguments, 20.0);
-    std::printf("%5.2f s %7ld kB  %s\n", r.Seconds, r.PeakKb, line.c_str());
-    EXPECT_FALSE(r.TimedOut) << line;
-    EXPECT_EQ(r.ExitCode, 1) << line << "\n" << r.Err;
-    EXPECT_NE(r.Err.find(expected), std::string::npos) << line << "\n  stderr: " << r.Err;
-    EXPECT_EQ(std::count(r.Err.begin(), r.Err.end(), '\n'), 1) << "one line: " << r.Err;
-    EXPECT_LT(r.Seconds, 10.0) << line;
-#ifndef VP_UNDER_ASAN
-    EXPECT_LT(r.PeakKb, 400L * 1024L) << "kB, " << line;
-#endif
-    EXPECT_FALSE(fs::exists(out)) << "nothing written: " << line;
+    ExpectRefusedInOneLine(dir, program, arguments, expected, out);
   }
   EXPECT_TRUE(fs::is_fifo(fifo)) << "the pipe was written through, not replaced";
   EXPECT_TRUE(fs::is_character_file("/dev/full"));

@@ -29,6 +29,10 @@ constexpr double TimeS = 1e12;
 /// The engines' range (mm): 2 m, more than any body. A range of 1e10 made every search cover
 /// everything (300 frames took over a minute).
 constexpr double MaxRangeMm = 2000.0;
+/// Triangles in one model file: 5 million, more than any segmentation's surface (the models of a
+/// 0.5 mm CT have a few hundred thousand) and the largest the z-buffer was measured with (4.5M a
+/// class). A 10M-triangle vessel took 8 GB with the whole instrument (FCL's tree), or crashed.
+constexpr double MaxModelTriangles = 5e6;
 } // namespace limits
 
 /// "" when |value| <= limit (and finite), else the problem in a few words.

@@ -1,5 +1,7 @@
 #include "vpStlFormat.h"
 
+#include "vpPhysicalLimits.h"
+
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
@@ -238,6 +240,12 @@ std::uint64_t BinaryStlCount(const char* data, std::size_t size, std::uint64_t f
   if (count == 0)
   {
     throw InputError(sourceName, "STL file has no triangles");
+  }
+  if (static_cast<double>(count) > limits::MaxModelTriangles)
+  {
+    // Known from the header, before the file is read.
+    throw InputError(sourceName, "binary STL of " + std::to_string(count) + " triangles: a model holds at most " +
+        NumberText(limits::MaxModelTriangles) + " (decimate it: models --decimation)");
   }
   return count;
 }

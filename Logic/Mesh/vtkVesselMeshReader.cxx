@@ -303,6 +303,11 @@ void vtkVesselMeshReader::Read()
       dropped ? "every triangle is degenerate (" + std::to_string(dropped) + " dropped)"
               : std::string("no triangles"));
   }
+  if (static_cast<double>(mesh->GetNumberOfPolys()) > vp::limits::MaxModelTriangles)
+  {
+    throw vp::InputError(fileName, std::to_string(mesh->GetNumberOfPolys()) + " triangles: a model holds at most " +
+        vp::NumberText(vp::limits::MaxModelTriangles) + " (decimate it: models --decimation)");
+  }
   double bounds[6];
   mesh->GetBounds(bounds);
   for (int i = 0; i < 6; ++i)

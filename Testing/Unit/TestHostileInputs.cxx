@@ -208,6 +208,11 @@ TEST(HostileInputs, TheSecondRoundIsRefusedInOneLineOrAnsweredCorrectly)
   const std::string bigNumber = WriteBytes(dir, "number.json", "{\"poses\": [{\"time\": 1" + std::string(3 << 20, '0') + "}]}");
   const std::string longLine = WriteBytes(dir, "line.csv", "0," + std::string(1 << 20, '1') + "\n");
   const std::string landmarks = pointsFile("landmarks.csv", "0,0,0\n10,0,0\n0,10,0\n0,0,10", 1);
+  // A binary STL of 10 million triangles (sparse: 500 MB that take no disk).
+  const std::uint32_t tenMillion = 10000000;
+  const std::string tenMillionStl = WriteBytes(dir, "ten_million.stl",
+    std::string(80, 'x') + std::string(reinterpret_cast<const char*>(&tenMillion), 4));
+  ASSERT_EQ(truncate(tenMillionStl.c_str(), off_t(84) + off_t(50) * tenMillion), 0);
 
   struct Case
   {
@@ -225,6 +230,8 @@ TEST(HostileInputs, TheSecondRoundIsRefusedInOneLineOrAnsweredCorrectly)
     { vp, { "register", "icp", "--model", sphere, "--points", pointsFile("far.csv", "1e300,0,0", 7), "-o", out + "/r.json" },
       "far.csv: line 1: coordinate 1e+300 mm is beyond ±1e+06 mm" },
     { vp, { "distance", "--vessels", "portal_vein=" + cube1e20, "--tip", "0,0,0" }, cube1e20 + ": a coordinate of 1e+20 mm" },
+    { vp, { "track", "--vessels", "portal_vein=" + tenMillionStl, "--scalpel", tool, "--poses", poses, "-o", out },
+      tenMillionStl + ": binary STL of 10000000 triangles: a model holds at most 5e+06" },
     { vp, { "distance", "--vessels", "portal_vein=" + sphere, "--tip", "1e19,0,0" }, "--tip: the point: coordinate 1e+19 mm is beyond" },
     { vp, with(track, { "--poses", WriteBytes(dir, "far_pose.csv", "0,1e19,0,0,1,0,0,0\n") }), "far_pose.csv: line 1: position 1e+19 mm" },
     { vp, with(track, { "--poses", WriteBytes(dir, "late.csv", "0,0,0,30,1,0,0,0\n1.7e308,0,0,30,1,0,0,0\n") }),

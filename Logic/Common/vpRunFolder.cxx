@@ -389,7 +389,7 @@ void RunFolder::Begin()
 
 std::string RunFolder::Register(const std::string& entry)
 {
-  const auto [name, folder] = SplitEntry(entry);
+  const std::string name = SplitEntry(entry).first; // not a structured binding: a lambda below captures it
   const std::string placed = this->TargetPath + "/" + name;
   if (!this->Begun)
   {

@@ -57,6 +57,18 @@ TEST(ViewCommand, BadInputGivesOneLineAndNoScreenshot)
     EXPECT_EQ(std::count(run.Err.begin(), run.Err.end(), '\n'), 1) << bad << ": " << run.Err;
     EXPECT_FALSE(vp::test::FileExists(tmp + "/x.png")) << bad;
   }
+  // Issue 29: a screenshot is written as every output is: through a link (kept), never replacing
+  // a device; /dev/full says it is full.
+  const auto full = vp::test::RunTool(tmp, "view " + PhantomVessels(tmp) + " --size 320x240 --screenshot /dev/full");
+  EXPECT_EQ(full.ExitCode, 1);
+  EXPECT_NE(full.Err.find("/dev/full: write failed: No space left on device"), std::string::npos) << full.Err;
+  EXPECT_TRUE(std::filesystem::is_character_file("/dev/full"));
+  vp::test::WriteBytes(tmp, "target.png", "an older picture");
+  std::filesystem::create_symlink(tmp + "/target.png", tmp + "/link.png");
+  const auto linked = vp::test::RunTool(tmp, "view " + PhantomVessels(tmp) + " --size 320x240 --screenshot " + tmp + "/link.png");
+  EXPECT_EQ(linked.ExitCode, 0) << linked.Err;
+  EXPECT_TRUE(std::filesystem::is_symlink(tmp + "/link.png"));
+  EXPECT_EQ(vp::test::Slurp(tmp + "/target.png").substr(1, 3), "PNG");
   // No display and no --screenshot: the window cannot open, and the message says so.
   auto run = vp::test::RunTool(tmp, "view " + PhantomVessels(tmp), "env -u DISPLAY");
   EXPECT_EQ(run.ExitCode, 1);

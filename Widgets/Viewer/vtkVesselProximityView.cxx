@@ -1,6 +1,7 @@
 #include "vtkVesselProximityView.h"
 
 #include "vpInputError.h"
+#include "vpOutputFile.h"
 #include "vtkScalpelKeyboardMouseStyle.h"
 #include "vtkScalpelModel.h"
 #include "vtkVesselProximityLogic.h"
@@ -13,6 +14,7 @@
 #include <vtkNew.h>
 #include <vtkObjectFactory.h>
 #include <vtkPNGWriter.h>
+#include <vtkUnsignedCharArray.h>
 #include <vtkPolyData.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderWindowInteractor.h>
@@ -22,7 +24,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 
 vtkStandardNewMacro(vtkVesselProximityView);
 
@@ -252,23 +253,19 @@ std::string vtkVesselProximityView::SaveScreenshot(const std::string& requested)
   grab->ReadFrontBufferOff();
   grab->Update();
   this->LastScreenshot = grab->GetOutput();
-  const std::string temporary = file + ".partial";
+  // Encoded in memory, then written as every output is (vp::WriteFileAtomically): whole or not at
+  // all, through a link, never replacing a device or a pipe with a regular file.
   vtkNew<vtkPNGWriter> writer;
-  writer->SetFileName(temporary.c_str());
+  writer->WriteToMemoryOn();
   writer->SetInputConnection(grab->GetOutputPort());
   writer->Write();
-  std::error_code ec;
-  if (writer->GetErrorCode() != 0 || !std::filesystem::exists(temporary, ec))
+  vtkUnsignedCharArray* bytes = writer->GetResult();
+  if (writer->GetErrorCode() != 0 || !bytes || bytes->GetNumberOfValues() == 0)
   {
-    std::filesystem::remove(temporary, ec);
-    throw vp::InputError(file, "cannot write the screenshot");
+    throw vp::InputError(file, "cannot write the screenshot: PNG encoding failed");
   }
-  std::filesystem::rename(temporary, file, ec);
-  if (ec)
-  {
-    std::filesystem::remove(temporary, ec);
-    throw vp::InputError(file, "cannot write the screenshot: " + ec.message());
-  }
+  vp::WriteFileAtomically(
+    file, std::string(reinterpret_cast<const char*>(bytes->GetPointer(0)), static_cast<std::size_t>(bytes->GetNumberOfValues())));
   return file;
 }
 

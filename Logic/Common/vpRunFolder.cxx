@@ -12,6 +12,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <set>
 #include <system_error>
 #include <fcntl.h>
@@ -95,44 +96,40 @@ std::string Canonical(const std::string& path)
   const fs::path canonical = fs::weakly_canonical(fs::absolute(path, ec), ec);
   return ec ? fs::absolute(path).lexically_normal().string() : canonical.string();
 }
-} // namespace
 
-namespace
-{
 using Json = nlohmann::json;
 
-// What a file or folder is now, to tell whether it is still what a run wrote (lstat: a link is
-// never a run's entry).
-bool IdentityNow(const std::string& path, bool folder, unsigned long long& device, unsigned long long& inode,
-  unsigned long long& size, long long& modifiedNs)
+/// The entry named name as it is now at path, to tell whether it is still what a run wrote
+/// (lstat: a link is never a run's entry); empty when there is no such file or folder.
+std::optional<RunFolder::Entry> IdentityNow(const std::string& path, const std::string& name, bool folder)
 {
   struct stat info;
   if (::lstat(path.c_str(), &info) != 0 || (folder ? !S_ISDIR(info.st_mode) : !S_ISREG(info.st_mode)))
   {
-    return false;
+    return std::nullopt;
   }
-  device = static_cast<unsigned long long>(info.st_dev);
-  inode = static_cast<unsigned long long>(info.st_ino);
-  size = folder ? 0 : static_cast<unsigned long long>(info.st_size);
-  modifiedNs = folder ? 0 : static_cast<long long>(info.st_mtim.tv_sec) * 1000000000LL + info.st_mtim.tv_nsec;
-  return true;
+  RunFolder::Entry e;
+  e.Name = name;
+  e.Folder = folder;
+  e.Device = static_cast<unsigned long long>(info.st_dev);
+  e.Inode = static_cast<unsigned long long>(info.st_ino);
+  e.Size = folder ? 0 : static_cast<unsigned long long>(info.st_size);
+  e.ModifiedNs = folder ? 0 : static_cast<long long>(info.st_mtim.tv_sec) * 1000000000LL + info.st_mtim.tv_nsec;
+  return e;
 }
-
 
 /// Whether path is still the entry a run recorded.
 bool SameIdentity(const std::string& path, const RunFolder::Entry& e)
 {
-  unsigned long long device, inode, size;
-  long long modified;
-  return IdentityNow(path, e.Folder, device, inode, size, modified) && device == e.Device && inode == e.Inode &&
-    size == e.Size && modified == e.ModifiedNs;
+  const std::optional<RunFolder::Entry> now = IdentityNow(path, e.Name, e.Folder);
+  return now && now->Device == e.Device && now->Inode == e.Inode && now->Size == e.Size &&
+    now->ModifiedNs == e.ModifiedNs;
 }
 
-Json EntryJson(const std::string& name, bool folder, unsigned long long device, unsigned long long inode,
-  unsigned long long size, long long modifiedNs)
+Json EntryJson(const RunFolder::Entry& e)
 {
-  return Json{ { "name", folder ? name + "/" : name }, { "device", device }, { "inode", inode }, { "size", size },
-    { "modified_ns", modifiedNs } };
+  return Json{ { "name", e.Folder ? e.Name + "/" : e.Name }, { "device", e.Device }, { "inode", e.Inode },
+    { "size", e.Size }, { "modified_ns", e.ModifiedNs } };
 }
 
 /// The entries of a marker or a plan's list; a list that is not what we write gives none (a
@@ -248,8 +245,7 @@ void RollForward(const std::string& target, const std::string& commit)
   if (plan.is_object())
   {
     const std::string report = plan.value("report", std::string());
-    std::vector<Step> moves = EntriesOf(plan.value("entries", Json::array()));
-    std::stable_partition(moves.begin(), moves.end(), [&](const Step& m) { return m.Name != report; });
+    const std::vector<Step> moves = EntriesOf(plan.value("entries", Json::array()));
     const auto move = [&](const Step& m) {
       const std::string staged = commit + "/" + m.Name, placed = target + "/" + m.Name;
       struct stat info;
@@ -269,22 +265,33 @@ void RollForward(const std::string& target, const std::string& commit)
     };
     for (const Step& m : moves)
     {
+      if (m.Name != report)
+      {
+        move(m);
+      }
+    }
+    // The previous run's leftovers go before the report that says the run is whole, the report
+    // last: whoever sees the new report sees every file it lists, and none of the old run's.
+    for (const Step& r : EntriesOf(plan.value("remove", Json::array())))
+    {
+      const std::string path = target + "/" + r.Name;
+      if (SameIdentity(path, r))
+      {
+        Remove(path, r.Folder);
+      }
+    }
+    for (const Step& m : moves)
+    {
       if (m.Name == report)
       {
-        // The previous run's leftovers go before the report that says the run is whole.
-        for (const Step& r : EntriesOf(plan.value("remove", Json::array())))
-        {
-          const std::string path = target + "/" + r.Name;
-          if (SameIdentity(path, r))
-          {
-            Remove(path, r.Folder);
-          }
-        }
+        move(m);
       }
-      move(m);
     }
+    // The marker, made from the plan's entries, takes the place of whatever has its name (a name
+    // of ours: a link put there is replaced, never written through).
     const std::string marker = commit + "/" + RunFolder::MarkerName();
-    if (std::rename(marker.c_str(), (target + "/" + RunFolder::MarkerName()).c_str()) != 0 && errno != ENOENT)
+    WriteFileAtomically(marker, Json{ { "entries", plan.value("entries", Json::array()) } }.dump(2) + "\n");
+    if (std::rename(marker.c_str(), (target + "/" + RunFolder::MarkerName()).c_str()) != 0)
     {
       throw InputError(target, std::string("cannot record the run: ") + std::strerror(errno));
     }
@@ -453,25 +460,22 @@ void RunFolder::Commit()
   for (const std::string& entry : this->Names)
   {
     const auto [name, folder] = SplitEntry(entry);
-    unsigned long long device, inode, size;
-    long long modified;
-    if (!IdentityNow(this->StagingPath + "/" + name, folder, device, inode, size, modified))
+    const std::optional<Entry> staged = IdentityNow(this->StagingPath + "/" + name, name, folder);
+    if (!staged)
     {
       continue; // named, never written (a writer that failed quietly is the writer's to report)
     }
-    entries.push_back(EntryJson(name, folder, device, inode, size, modified));
+    entries.push_back(EntryJson(*staged));
     written.insert(name);
   }
   for (const Entry& e : this->Previous)
   {
     const std::string placed = this->TargetPath + "/" + e.Name;
-    if (!written.count(e.Name) && SameIdentity(placed, e) &&
-      !this->TouchesInput(placed))
+    if (!written.count(e.Name) && SameIdentity(placed, e) && !this->TouchesInput(placed))
     {
-      remove.push_back(EntryJson(e.Name, e.Folder, e.Device, e.Inode, e.Size, e.ModifiedNs));
+      remove.push_back(EntryJson(e));
     }
   }
-  WriteFileAtomically(this->StagingPath + "/" + MarkerName(), Json{ { "entries", entries } }.dump(2) + "\n");
   WriteFileAtomically(this->StagingPath + "/" + PlanName,
     Json{ { "report", this->ReportName }, { "entries", entries }, { "remove", remove } }.dump(2) + "\n");
   // The commit: one rename. From here the run is in place, or in the plan the next run completes.

@@ -19,14 +19,14 @@ bool CreateOutputFolder(const std::string& folder);
 /// Commit() prepares a plan in the staging folder (the new entries, and the previous run's
 /// entries this one does not write again, to remove), then renames the staging folder to
 /// ".vesselproximity-commit": that one rename is the commit. Then the entries move into place,
-/// the report last, the previous run's leftovers go and the marker is replaced. A process killed
+/// the previous run's leftovers go, the report follows and the marker is replaced. A process killed
 /// after the commit leaves the plan, which the next run in the folder completes before its own;
 /// one killed before it leaves a staging folder, which the next run removes (its lock is free).
 ///
 /// Nothing the runs did not write is removed or replaced:
 /// - an entry is the previous run's only while the marker names it and its identity still holds
 ///   (a file the user replaced or edited since is theirs);
-/// - an entry that is, holds or lies in one of the run's inputs (SetInputs) is never removed,
+/// - an entry that is or holds one of the run's inputs (SetInputs) is never removed,
 ///   and writing over one is refused before anything is written;
 /// - writing over a name the marker does not claim is refused ("not written by a run here").
 ///
@@ -95,7 +95,7 @@ private:
   void Release();
   /// Notes an entry of the run ("name" or "name/") and returns its path: staged once begun.
   std::string Register(const std::string& entry);
-  /// Whether path (canonical) is, holds or lies in one of the inputs.
+  /// Whether path is or holds one of the inputs (both canonical).
   bool TouchesInput(const std::string& path) const;
 };
 } // namespace vp

@@ -47,10 +47,6 @@ DepthLayerGrid DepthLayerGrid::Covering(const double bounds[6], double pixelMm, 
     const double lo = bounds[2 * k] - marginMm;
     const double hi = bounds[2 * k + 1] + marginMm;
     *n[k] = CellsAlong((hi - lo) / cell[k]);
-    if (*n[k] < 1)
-    {
-      *n[k] = 1;
-    }
     // Centre the cells on the bounds.
     g.OriginMm[k] = 0.5 * (lo + hi) - 0.5 * (*n[k]) * cell[k];
   }

@@ -8,8 +8,8 @@
 #include "vtkExactVesselDistance.h"
 
 #include <algorithm>
-#include <optional>
 #include <cmath>
+#include <optional>
 
 namespace vp
 {
@@ -111,9 +111,8 @@ TipDistanceTotals ComputeTipDistancesInChunks(const TipDistanceRequest& request,
       answer.WithinBound.resize(answer.Exact.size());
       for (std::size_t i = 0; i < answer.Exact.size(); ++i)
       {
-        answer.Comparison.Add(answer.Results[i], answer.Exact[i], engine->GetRangeMm(), engine->GetErrorBoundMm(),
+        totals.Comparison.Add(answer.Results[i], answer.Exact[i], engine->GetRangeMm(), engine->GetErrorBoundMm(),
           &answer.WithinBound[i]);
-        totals.Comparison.Add(answer.Results[i], answer.Exact[i], engine->GetRangeMm(), engine->GetErrorBoundMm());
       }
     }
     totals.BatchMs += answer.BatchMs;
@@ -184,20 +183,21 @@ Json TipDistanceTrailerJson(const TipDistanceRequest& request, const TipDistance
   return out;
 }
 
-std::string TipDistanceReportText(const Json& header, const std::string& results, const Json& trailer)
+std::pair<std::string, std::string> TipDistanceReportAround(const Json& header, const Json& trailer, bool anyResults)
 {
   // As the whole document's dump(2): the header's members, "results" with each item at four
   // spaces, then the trailer's members.
-  std::string text = header.dump(2);
-  text.erase(text.size() - 2); // "\n}"
-  text += ",\n  \"results\": " + (results.empty() ? std::string("[]") : "[\n" + results + "\n  ]");
+  std::string before = header.dump(2);
+  before.erase(before.size() - 2); // "\n}"
+  before += anyResults ? ",\n  \"results\": [\n" : ",\n  \"results\": []";
+  std::string after = anyResults ? "\n  ]" : "";
   for (auto it = trailer.begin(); it != trailer.end(); ++it)
   {
     std::string member = Json{ { it.key(), it.value() } }.dump(2);
     member = member.substr(2, member.size() - 4); // without the braces and their line breaks
-    text += ",\n" + member;
+    after += ",\n" + member;
   }
-  return text + "\n}";
+  return { before, after + "\n}" };
 }
 
 std::string IndentedItem(const Json& item)

@@ -13,6 +13,7 @@
 #include <array>
 #include <functional>
 #include <string>
+#include <utility>
 #include <optional>
 #include <vector>
 
@@ -62,7 +63,8 @@ struct TipDistanceTotals
 
 /// The same, chunkTips tips at a time in the order given: each chunk's answer goes to visit with
 /// the index of its first tip as soon as it is computed, and is gone after, so that memory
-/// follows the chunk, not the tips (a million tips with --json took 3.5 GB).
+/// follows the chunk, not the tips (a million tips with --json took 3.5 GB). The comparison with
+/// the exact engine is the totals' (the chunk's WithinBound says it per tip and class).
 TipDistanceTotals ComputeTipDistancesInChunks(const TipDistanceRequest& request, std::size_t chunkTips,
   const std::function<void(const TipDistanceAnswer& chunk, std::size_t firstTip)>& visit);
 
@@ -78,10 +80,11 @@ nlohmann::ordered_json TipResultJson(const TipDistanceAnswer& answer, std::size_
 nlohmann::ordered_json TipDistanceTrailerJson(const TipDistanceRequest& request, const TipDistanceTotals& totals, double loadMs);
 /// One entry of "results" as the report's dump(2) writes it (four spaces in).
 std::string IndentedItem(const nlohmann::ordered_json& item);
-/// The report's text, the same as TipDistanceReportJson(...).dump(2), from its header, its
-/// "results" entries (IndentedItem, joined by ",\n") and its trailer.
-std::string TipDistanceReportText(
-  const nlohmann::ordered_json& header, const std::string& results, const nlohmann::ordered_json& trailer);
+/// The report's text around its "results" entries, so that the whole is the same as
+/// TipDistanceReportJson(...).dump(2) with the entries (IndentedItem, joined by ",\n") between
+/// the two: from the header and the trailer; anyResults says whether there is an entry at all.
+std::pair<std::string, std::string> TipDistanceReportAround(
+  const nlohmann::ordered_json& header, const nlohmann::ordered_json& trailer, bool anyResults);
 } // namespace vp
 
 #endif

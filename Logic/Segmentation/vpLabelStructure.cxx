@@ -11,6 +11,15 @@
 
 namespace vp
 {
+namespace
+{
+/// The determinant of the 3x3 part of a row-major 4x4 matrix: a voxel's signed volume.
+double Determinant3(const std::array<double, 16>& m)
+{
+  return m[0] * (m[5] * m[10] - m[6] * m[9]) - m[1] * (m[4] * m[10] - m[6] * m[8]) + m[2] * (m[4] * m[9] - m[5] * m[8]);
+}
+} // namespace
+
 double LabelGrid::SpacingMm(int k) const
 {
   const auto& m = this->IjkToLps;
@@ -20,15 +29,9 @@ double LabelGrid::SpacingMm(int k) const
 double LabelGrid::VoxelVolumeMm3() const
 {
   // |det| of the 3x3 part: also right for sheared (gantry-tilted) grids.
-  const auto& m = this->IjkToLps;
-  const double det = m[0] * (m[5] * m[10] - m[6] * m[9]) - m[1] * (m[4] * m[10] - m[6] * m[8]) +
-    m[2] * (m[4] * m[9] - m[5] * m[8]);
-  return std::abs(det);
+  return std::abs(Determinant3(this->IjkToLps));
 }
-} // namespace vp
 
-namespace vp
-{
 void CheckVoxelGeometry(const std::array<double, 16>& m, const std::string& source)
 {
   const char* axisName[3] = { "column (i)", "row (j)", "slice (k)" };
@@ -46,9 +49,7 @@ void CheckVoxelGeometry(const std::array<double, 16>& m, const std::string& sour
           " axis: a voxel is " + NumberText(limits::MinVoxelMm) + " to " + NumberText(limits::MaxVoxelMm) + " mm");
     }
   }
-  const double det = m[0] * (m[5] * m[10] - m[6] * m[9]) - m[1] * (m[4] * m[10] - m[6] * m[8]) +
-    m[2] * (m[4] * m[9] - m[5] * m[8]);
-  if (!(std::fabs(det) >= 1e-3 * length[0] * length[1] * length[2]))
+  if (!(std::fabs(Determinant3(m)) >= 1e-3 * length[0] * length[1] * length[2]))
   {
     throw InputError(source, "the voxel's three axes lie in one plane (its directions are degenerate)");
   }

@@ -17,6 +17,7 @@
 #include <cctype>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <charconv>
 #include <cmath>
 #include <map>
@@ -137,6 +138,23 @@ enum class VoxelStorage
   Unbounded,
 };
 
+/// Calls visit(the line in lower case, the line) for each line of an NRRD file's header, up to
+/// the blank line that ends it, while visit returns true.
+void VisitNrrdHeader(
+  const std::string& fileName, const std::function<bool(const std::string& lower, const std::string& line)>& visit)
+{
+  std::ifstream in(fileName, std::ios::binary);
+  for (std::string line; std::getline(in, line) && !line.empty() && line != "\r";)
+  {
+    std::string lower = line;
+    std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (!visit(lower, line))
+    {
+      return;
+    }
+  }
+}
+
 VoxelStorage StorageOf(const std::string& fileName)
 {
   if (EndsWith(fileName, ".nii") || EndsWith(fileName, ".nii.gz"))
@@ -147,15 +165,12 @@ VoxelStorage StorageOf(const std::string& fileName)
   {
     return VoxelStorage::Unbounded;
   }
-  std::ifstream in(fileName, std::ios::binary);
   VoxelStorage storage = VoxelStorage::Unbounded;
-  for (std::string line; std::getline(in, line) && !line.empty() && line != "\r";)
-  {
-    std::string lower = line;
-    std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  VisitNrrdHeader(fileName, [&](const std::string& lower, const std::string&) {
     if (lower.rfind("data file:", 0) == 0 || lower.rfind("datafile:", 0) == 0)
     {
-      return VoxelStorage::Unbounded;
+      storage = VoxelStorage::Unbounded;
+      return false;
     }
     if (lower.rfind("encoding:", 0) == 0)
     {
@@ -163,7 +178,8 @@ VoxelStorage StorageOf(const std::string& fileName)
         : lower.find("gz") != std::string::npos       ? VoxelStorage::Gzip
                                                       : VoxelStorage::Unbounded;
     }
-  }
+    return true;
+  });
   return storage;
 }
 
@@ -220,15 +236,11 @@ void CheckNrrdDirections(const std::string& fileName)
   {
     return;
   }
-  std::ifstream in(fileName, std::ios::binary);
-  for (std::string line; std::getline(in, line) && !line.empty() && line != "\r";)
-  {
-    std::string lower = line;
-    std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  VisitNrrdHeader(fileName, [&](const std::string& lower, const std::string& line) {
     const bool vectors = lower.rfind("space directions:", 0) == 0;
     if (!vectors && lower.rfind("spacings:", 0) != 0)
     {
-      continue;
+      return true;
     }
     const std::string field = line.substr(0, line.find(':'));
     for (const double length : AxisLengths(line.substr(field.size() + 1), vectors))
@@ -240,7 +252,8 @@ void CheckNrrdDirections(const std::string& fileName)
             ": a voxel is " + NumberText(limits::MinVoxelMm) + " to " + NumberText(limits::MaxVoxelMm) + " mm");
       }
     }
-  }
+    return true;
+  });
 }
 
 // Deflate (gzip) gives at most 1032 bytes out per byte in (zlib's technical details): a header

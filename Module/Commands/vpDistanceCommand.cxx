@@ -87,7 +87,6 @@ public:
   ~HeldOutput() { std::fclose(this->File); }
   HeldOutput(const HeldOutput&) = delete;
   HeldOutput& operator=(const HeldOutput&) = delete;
-  std::FILE* Get() const { return this->File; }
   void Write(const std::string& text)
   {
     if (std::fwrite(text.data(), 1, text.size(), this->File) != text.size())
@@ -202,14 +201,12 @@ int RunDistanceCommand(const cli::ParsedArguments& args, const ModuleServices&)
   vtkVesselDistanceEngine* engine = request.Engine;
   if (json)
   {
-    // The report's text with the held entries in their place (no entry held twice in memory).
-    const std::string marker = "\x01results\x01";
-    const std::string text = TipDistanceReportText(TipDistanceHeaderJson(request, ras), marker,
-      TipDistanceTrailerJson(request, totals, loadMs));
-    const std::size_t at = text.find(marker);
-    std::fwrite(text.data(), 1, at, stdout);
+    // The report's text around the held entries, which go out from the file as they are.
+    const auto [before, after] = TipDistanceReportAround(
+      TipDistanceHeaderJson(request, ras), TipDistanceTrailerJson(request, totals, loadMs), totals.Tips > 0);
+    std::fputs(before.c_str(), stdout);
     held.Release();
-    std::fputs((text.substr(at + marker.size()) + "\n").c_str(), stdout);
+    std::fputs((after + "\n").c_str(), stdout);
     return 0;
   }
   std::printf("method %s on %s, range %.1f mm, error bound %.3f mm, space %s, %zu tip(s)\n", engine->GetMethodName(),

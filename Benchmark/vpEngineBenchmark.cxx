@@ -1,5 +1,6 @@
 #include "vpEngineBenchmark.h"
 
+#include "vpDistanceEngineFactory.h"
 #include "vpExactBenchmark.h"
 #include "vpMeshRefinement.h"
 #include "vpReplayBenchmark.h"

@@ -1,5 +1,6 @@
 #include "vpZBufferBenchmark.h"
 
+#include "vpDistanceEngineFactory.h"
 #include "vpClock.h"
 #include "vpExactComparison.h"
 #include "vpQuantile.h"

@@ -5,7 +5,10 @@
 #  - a command's Run...Command is called only from the command table;
 #  - no front end captures stdout (the CLI harness's stderr-to-stdout for Slicer aside);
 #  - a command's parser, --help and (for Slicer) XML come from its one description;
-#  - commands take their logic and overlays from the module class, as Slicer's widgets do.
+#  - commands take their logic and overlays from the module class, as Slicer's widgets do;
+#  - Logic's folders are layers (issue 30): a folder includes only folders of lower layers, never
+#    one beside it or above it, and every folder has its layer;
+#  - the front ends (Module/, Widgets/) include only Logic's public headers (Logic/PublicHeaders.txt).
 # Prints each breach as file:line and exits 1 when there is one.
 set -u
 root="${1:?usage: CheckLayering.sh SOURCE_DIR}"
@@ -19,7 +22,55 @@ breach() {
   fi
 }
 breach "command-line flag text in Logic/ (name the parameter: vp::ParameterError)" \
-  "$(grep -rn --include='*.h' --include='*.cxx' '"--' Logic)"
+  "$(grep -rnE --include='*.h' --include='*.cxx' '"([^"\\]|\\.)*--[a-z]' Logic | grep -vE '^[^:]+:[0-9]+: *//')"
+
+# Logic's layers, lowest first; the folders of one line are independent of each other.
+layers=(
+  "Common"
+  "Mesh Segmentation Registration ZBuffer/Vulkan"
+  "Engine Scalpel"
+  "ExactEngine"
+  "ZBuffer"
+  "Instrument"
+  "Tracking"
+  "Reports"
+  "Models"
+  "."
+)
+layer_of() {
+  local rank=0 line folder
+  for line in "${layers[@]}"; do
+    for folder in $line; do
+      [ "$folder" = "$1" ] && { echo "$rank"; return; }
+    done
+    rank=$((rank + 1))
+  done
+  echo -1
+}
+declare -A header_folder
+while IFS= read -r f; do
+  folder=$(dirname "${f#Logic/}")
+  header_folder[$(basename "$f")]=$folder
+done < <(find Logic -name '*.h' | sort)
+unplaced=""
+wrong_way=""
+while IFS= read -r folder; do
+  [ "$folder" = Logic ] && folder=. || folder=${folder#Logic/}
+  [ "$(layer_of "$folder")" = -1 ] && unplaced+="Logic/$folder"$'\n'
+done < <(find Logic -type f \( -name '*.h' -o -name '*.cxx' \) -printf '%h\n' | sort -u)
+while IFS=: read -r file line text; do
+  included=$(sed -E 's/.*#include "([^"]+)".*/\1/' <<<"$text")
+  target=${header_folder[$(basename "$included")]:-}
+  [ -n "$target" ] || continue
+  source=$(dirname "${file#Logic/}")
+  [ "$source" = "$target" ] && continue
+  from=$(layer_of "$source"); to=$(layer_of "$target")
+  if [ "$from" -le "$to" ]; then
+    wrong_way+="$file:$line: Logic/$source (layer $from) includes $included of Logic/$target (layer $to)"$'\n'
+  fi
+done < <(grep -rnE --include='*.h' --include='*.cxx' '^#include "' Logic)
+breach "a Logic folder with no layer (add it to the layers in Testing/CheckLayering.sh)" "${unplaced%$'\n'}"
+breach "a Logic folder includes one of its own layer or above (a circle, or a wrong-way include)" "${wrong_way%$'\n'}"
 breach "Logic/ includes a widget, module or phantom header" \
   "$(grep -rnE --include='*.h' --include='*.cxx' '#include "(vtkVesselProximityView|vtkVesselProximityOverlays|vpCommand|vpCli|vpLiverPhantom|vpDemoTrajectory|vpAnalyticShapes|vpBuiltInPhantom|vpCusaHandpiece|vpMeshRefinement)' Logic)"
 breach "Run...Command called outside the command table" \

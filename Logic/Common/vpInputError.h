@@ -23,6 +23,38 @@ public:
   }
 };
 
+/// No usable Vulkan device, or the device failed. The message is one line that says what is
+/// missing, ready to be printed as it is.
+class DeviceError : public std::runtime_error
+{
+public:
+  explicit DeviceError(const std::string& message)
+    : std::runtime_error(message)
+  {
+  }
+  /// A device setting that chose none: the message names the setting as the logic knows it
+  /// ("DeviceSelector") between before and after; a front end names it its own way (Describe).
+  DeviceError(const std::string& setting, const std::string& before, const std::string& after)
+    : std::runtime_error(before + setting + after)
+    , Setting(setting)
+    , Before(before)
+    , After(after)
+  {
+  }
+  /// The setting's name in the message, empty when no setting is to blame.
+  const std::string& GetSetting() const { return this->Setting; }
+  /// The message with the setting called displayName (what() when no setting is to blame).
+  std::string Describe(const std::string& displayName) const
+  {
+    return this->Setting.empty() ? std::string(this->what()) : this->Before + displayName + this->After;
+  }
+
+private:
+  std::string Setting;
+  std::string Before;
+  std::string After;
+};
+
 /// A setting of the logic outside what it accepts. The logic names the setting as it knows it
 /// ("RangeMm", the name of its Set/Get pair), never as a front end spells it: a command reports
 /// it under its flag (--range), a Slicer CLI under its XML name (rangeMm). what() reads

@@ -245,7 +245,7 @@ std::uint64_t BinaryStlCount(const char* data, std::size_t size, std::uint64_t f
   {
     // Known from the header, before the file is read.
     throw InputError(sourceName, "binary STL of " + std::to_string(count) + " triangles: a model holds at most " +
-        NumberText(limits::MaxModelTriangles) + " (decimate it: models --decimation)");
+        NumberText(limits::MaxModelTriangles) + " (decimate it first)");
   }
   return count;
 }

@@ -3,8 +3,6 @@
 #include "vpClassName.h"
 
 #include "vpInputError.h"
-#include "vpVesselSurface.h"
-#include "vtkVesselDistanceEngine.h"
 #include "vtkVesselMeshReader.h"
 
 #include <vtkNew.h>
@@ -46,34 +44,5 @@ void RepairVesselMeshes(std::vector<NamedMesh>& meshes)
     m.Mesh = repair->GetOutput();
     m.Repair = repair->GetReport();
   }
-}
-
-std::vector<std::string> DescribeSurfaceDefects(
-  vtkVesselDistanceEngine* engine, const std::vector<NamedMesh>& meshes, const std::string& repairName)
-{
-  std::vector<std::string> lines;
-  for (const NamedMesh& m : meshes)
-  {
-    if (m.Repair)
-    {
-      lines.push_back(m.ClassName + " (" + m.FileName + "): " + repairName + ": " + m.Repair->Describe());
-    }
-  }
-  for (int c = 0; c < engine->GetNumberOfVessels(); ++c)
-  {
-    const VesselSurface& surface = engine->GetSurface(c);
-    if (surface.IsClosed())
-    {
-      continue;
-    }
-    std::string file;
-    for (const NamedMesh& m : meshes)
-    {
-      file = m.ClassName == surface.Name() ? m.FileName : file;
-    }
-    lines.push_back(surface.Name() + " (" + file + "): the surface is not closed (" + surface.Defects().Describe() +
-      "): inside is the majority of five rays' crossing parities, and a tip where they disagree is a breach");
-  }
-  return lines;
 }
 } // namespace vp

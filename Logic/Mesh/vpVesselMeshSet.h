@@ -11,7 +11,6 @@
 #include <utility>
 #include <vector>
 
-class vtkVesselDistanceEngine;
 
 namespace vp
 {
@@ -32,12 +31,6 @@ std::vector<NamedMesh> LoadVesselMeshes(const std::vector<std::pair<std::string,
 /// Each mesh replaced by what vtkVesselSurfaceRepair makes of it, its report kept.
 void RepairVesselMeshes(std::vector<NamedMesh>& meshes);
 
-/// One line per repaired class saying what the repair changed, then one per class whose surface
-/// in the built engine is not closed: its file, its defects, and how its inside is decided, so
-/// that nobody reads a vote or a null as the exact answer of a closed surface. repairName is how
-/// the front end names the repair (a command says its flag). Each line starts with the class name.
-std::vector<std::string> DescribeSurfaceDefects(
-  vtkVesselDistanceEngine* engine, const std::vector<NamedMesh>& meshes, const std::string& repairName);
 } // namespace vp
 
 #endif

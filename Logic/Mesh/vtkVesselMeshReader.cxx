@@ -306,7 +306,7 @@ void vtkVesselMeshReader::Read()
   if (static_cast<double>(mesh->GetNumberOfPolys()) > vp::limits::MaxModelTriangles)
   {
     throw vp::InputError(fileName, std::to_string(mesh->GetNumberOfPolys()) + " triangles: a model holds at most " +
-        vp::NumberText(vp::limits::MaxModelTriangles) + " (decimate it: models --decimation)");
+        vp::NumberText(vp::limits::MaxModelTriangles) + " (decimate it first)");
   }
   double bounds[6];
   mesh->GetBounds(bounds);

@@ -35,4 +35,33 @@ nlohmann::ordered_json SurfacesJson(vtkVesselDistanceEngine* engine, const std::
   }
   return out;
 }
+
+std::vector<std::string> DescribeSurfaceDefects(
+  vtkVesselDistanceEngine* engine, const std::vector<NamedMesh>& meshes, const std::string& repairName)
+{
+  std::vector<std::string> lines;
+  for (const NamedMesh& m : meshes)
+  {
+    if (m.Repair)
+    {
+      lines.push_back(m.ClassName + " (" + m.FileName + "): " + repairName + ": " + m.Repair->Describe());
+    }
+  }
+  for (int c = 0; c < engine->GetNumberOfVessels(); ++c)
+  {
+    const VesselSurface& surface = engine->GetSurface(c);
+    if (surface.IsClosed())
+    {
+      continue;
+    }
+    std::string file;
+    for (const NamedMesh& m : meshes)
+    {
+      file = m.ClassName == surface.Name() ? m.FileName : file;
+    }
+    lines.push_back(surface.Name() + " (" + file + "): the surface is not closed (" + surface.Defects().Describe() +
+      "): inside is the majority of five rays' crossing parities, and a tip where they disagree is a breach");
+  }
+  return lines;
+}
 } // namespace vp

@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <string>
 #include <vector>
 
 class vtkVesselDistanceEngine;
@@ -17,6 +18,12 @@ class VesselSurface;
 nlohmann::ordered_json SurfaceJson(const VesselSurface& surface);
 /// Per class of a built engine: SurfaceJson, and what a repair did ("repair") when it was made.
 nlohmann::ordered_json SurfacesJson(vtkVesselDistanceEngine* engine, const std::vector<NamedMesh>& meshes);
+/// One line per repaired class saying what the repair changed, then one per class whose surface
+/// in the built engine is not closed: its file, its defects, and how its inside is decided, so
+/// that nobody reads a vote or a null as the exact answer of a closed surface. repairName is how
+/// the front end names the repair (a command says its flag). Each line starts with the class name.
+std::vector<std::string> DescribeSurfaceDefects(
+  vtkVesselDistanceEngine* engine, const std::vector<NamedMesh>& meshes, const std::string& repairName);
 } // namespace vp
 
 #endif

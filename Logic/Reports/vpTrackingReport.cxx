@@ -5,7 +5,6 @@
 #include "vtkScalpelModel.h"
 #include "vtkScalpelTrackingLogic.h"
 #include "vtkVesselDistanceEngine.h"
-#include "vtkVesselProximityLogic.h"
 
 namespace vp
 {
@@ -25,12 +24,10 @@ Json MinimumJson(const ClassMinimum& m)
 
 } // namespace
 
-Json TrackingSummaryJson(const TrackingSummary& s, vtkVesselProximityLogic* proximity, const std::vector<NamedMesh>& meshes,
+Json TrackingSummaryJson(const TrackingSummary& s, vtkScalpelTrackingLogic* logic, bool surface, const std::vector<NamedMesh>& meshes,
   const std::string& posesFile, const ExactComparison* comparison)
 {
-  vtkScalpelTrackingLogic* logic = proximity->GetTrackingLogic();
-  vtkVesselDistanceEngine* engine = proximity->GetDistanceEngine();
-  const bool surface = proximity->GetComputeSurfaceDistance();
+  vtkVesselDistanceEngine* engine = logic->GetDistanceEngine();
   Json out;
   out["poses"] = posesFile;
   out["frames"] = s.GetNumberOfFrames();

@@ -123,7 +123,8 @@ void DefineScalpelTip(vtkScalpelModel* scalpel, const ScalpelTipDefinition& give
     scalpel->SetTipMm(estimate.TipMm.data());
     const auto& a = definition.Axis ? *definition.Axis : estimate.Axis;
     scalpel->SetAxis(a[0], a[1], a[2]);
-    scalpel->SetTipSource(estimate.Description);
+    // The loader, not the finder, knows what the front end calls the tip setting.
+    scalpel->SetTipSource(estimate.Description + (estimate.Ambiguous ? ": give the tip with " + given.Source + " or a JSON file" : ""));
     return;
   }
   const auto& tip = *definition.TipMm;

@@ -16,9 +16,10 @@ struct ScalpelTipDefinition
 {
   std::optional<std::array<double, 3>> TipMm;
   std::optional<std::array<double, 3>> Axis;
-  /// Where the given tip came from, in the words of the front end that took it (its flag, for a
-  /// command), for the scalpel's TipSource.
-  std::string Source = "the given tip";
+  /// What the front end calls the tip setting (its flag, for a command; the logic's own name
+  /// TipMm by default): the scalpel's TipSource says the tip came from it, and a guessed tip
+  /// says to give it there.
+  std::string Source = "TipMm";
 };
 
 /// The tip definition file that belongs to a model: the model's name with .json in place of its

@@ -202,7 +202,7 @@ ScalpelTipEstimate FindScalpelTip(vtkPolyData* model, const std::string& source)
     "principal axis (length %.1f mm; its last 10%% holds %.0f mm2 of surface, the other end's %.0f mm2)%s",
     estimate.TipMm[0], estimate.TipMm[1], estimate.TipMm[2], estimate.Axis[0], estimate.Axis[1], estimate.Axis[2],
     length, estimate.TipEndAreaMm2, estimate.OtherEndAreaMm2,
-    estimate.Ambiguous ? "; the ends are alike, so this is a guess: give the tip with --tip or a JSON file" : "");
+    estimate.Ambiguous ? "; the ends are alike, so this is a guess" : "");
   estimate.Description = text;
   return estimate;
 }

@@ -5,7 +5,7 @@
 #include "vpCliDescription.h"
 #include "vpOutputFile.h"
 #include "vpClock.h"
-#include "vpDistanceEngineSettings.h"
+#include "vpDistanceEngineFactory.h"
 #include "vpInputError.h"
 #include "vpTipDistanceQuery.h"
 

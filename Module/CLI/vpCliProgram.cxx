@@ -170,7 +170,8 @@ int ReportFailure(const ModuleDescription& description, const std::string& who)
   }
   catch (const DeviceError& e)
   {
-    std::cerr << who << ": error: " << e.what() << "\n";
+    std::cerr << who << ": error: "
+              << (e.GetSetting().empty() ? std::string(e.what()) : e.Describe(DisplayNameOfSetting(description, e.GetSetting()))) << "\n";
     return 4;
   }
   catch (const std::bad_alloc&)

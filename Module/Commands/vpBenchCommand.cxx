@@ -1,5 +1,6 @@
 // vesselproximity bench: the distance engines side by side with the brute-force reference, on
 // vessel meshes grown to fixed triangle counts, in one run.
+#include "vpDistanceEngineFactory.h"
 #include "vpArguments.h"
 #include "vpOutputFile.h"
 #include "vpEngineBenchmark.h"

@@ -3,7 +3,7 @@
 #include "vpOutputFile.h"
 #include "vpCommandSupport.h"
 #include "vpDangerLevels.h"
-#include "vpDistanceEngineSettings.h"
+#include "vpDistanceEngineFactory.h"
 #include "vpDefaultScalpel.h"
 #include "vpDemoTrajectory.h"
 #include "vpInputError.h"

@@ -51,6 +51,7 @@ cli::ParameterGroup EngineOptions(const std::vector<std::string>& methods)
                                .SetLogicName("RangeMm"));
   const std::vector<cli::Parameter> zbuffer = {
     Option(ParameterType::String, "device", "z-buffer: the Vulkan device by name or index (default: a GPU if any, else lavapipe).")
+      .SetLogicName("DeviceSelector")
       .SetPlaceholder("NAME|INDEX"),
     Option(ParameterType::Double, "cell", "z-buffer: the cell edge (default 0.4 mm: error bound 0.35 mm).").SetPlaceholder("MM").SetLogicName("CellSizeMm"),
     Option(ParameterType::Integer, "resolution", "z-buffer: pixels across the box, instead of --cell.").SetPlaceholder("PX").SetLogicName("ResolutionPx"),

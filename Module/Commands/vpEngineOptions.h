@@ -2,7 +2,7 @@
 #define vpEngineOptions_h
 
 #include "vpArguments.h"
-#include "vpDistanceEngineSettings.h"
+#include "vpDistanceEngineFactory.h"
 #include "vpExactComparison.h"
 #include "vtkVesselDistanceEngine.h"
 

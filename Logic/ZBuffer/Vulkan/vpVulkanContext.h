@@ -1,6 +1,8 @@
 #ifndef vpVulkanContext_h
 #define vpVulkanContext_h
 
+#include "vpInputError.h" // DeviceError
+
 #include <vulkan/vulkan.h>
 
 #include <cstdint>
@@ -11,17 +13,6 @@
 
 namespace vp
 {
-/// No usable Vulkan device, or the device failed. The message is one line that says what is
-/// missing, ready to be printed as it is.
-class DeviceError : public std::runtime_error
-{
-public:
-  explicit DeviceError(const std::string& message)
-    : std::runtime_error(message)
-  {
-  }
-};
-
 /// What a Vulkan physical device calls itself.
 struct VulkanDeviceInfo
 {

@@ -1,4 +1,4 @@
-#include "vpDistanceEngineSettings.h"
+#include "vpDistanceEngineFactory.h"
 
 #include "vpInputError.h"
 #include "vpPhysicalLimits.h"

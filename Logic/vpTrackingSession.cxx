@@ -115,7 +115,7 @@ bool TrackingSession::Run(PoseSource& poses, RunFolder& run)
   }
   framesCsv.close();
 
-  nlohmann::ordered_json doc = TrackingSummaryJson(this->Summary, proximity, this->Vessels, poses.GetName(),
+  nlohmann::ordered_json doc = TrackingSummaryJson(this->Summary, tracking, surface, this->Vessels, poses.GetName(),
     this->Comparison ? &*this->Comparison : nullptr);
   doc["timing_ms"]["load_and_build"] = this->LoadAndBuildMs;
   // The session's own files, then whatever else the run has written beside them (the demo's).

@@ -264,7 +264,7 @@ VulkanContext::VulkanContext(const std::string& selector)
       {
         available << (i ? ", " : "") << i << ": " << Describe(devices[i], static_cast<int>(i)).Name;
       }
-      throw DeviceError("no Vulkan device matches --device '" + selector + "' (available: " + available.str() + ")");
+      throw DeviceError("DeviceSelector", "no Vulkan device matches ", " '" + selector + "' (available: " + available.str() + ")");
     }
     this->PhysicalDevice = devices[chosen];
     this->Info = Describe(this->PhysicalDevice, chosen);

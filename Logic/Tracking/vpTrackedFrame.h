@@ -1,0 +1,41 @@
+#ifndef vpTrackedFrame_h
+#define vpTrackedFrame_h
+
+#include "vpDangerLevels.h"
+#include "vpProximityResult.h"
+
+#include <string>
+#include <vector>
+
+namespace vp
+{
+/// Everything known about one tracked frame.
+struct TrackedFrame
+{
+  int Frame = 0;
+  double TimeS = 0.0;
+  double TipMm[3] = { 0, 0, 0 };   ///< world
+  double AxisWorld[3] = { 0, 0, 1 };
+  ProximityResult Proximity;       ///< per class: distance, closest point, inside, directional
+  std::vector<DangerLevel> ClassLevels;
+  DangerLevel Level = DangerLevel::Safe; ///< the worst over the classes
+  int LevelClass = -1;             ///< the class that set Level, -1 when all are safe
+  std::vector<SurfaceProximity> Surface; ///< per class; empty when not computed
+  std::vector<Penetration> Penetrations; ///< per class: the instrument inside it; empty when not computed
+  double FrameMs = 0.0;            ///< wall time of the distance queries of this frame
+  bool OverBudget = false;         ///< FrameMs exceeded the tracking logic's frame budget
+};
+
+/// A change of the overall danger level between two frames.
+struct DangerLevelChange
+{
+  int Frame = 0;
+  double TimeS = 0.0;
+  DangerLevel From = DangerLevel::Safe;
+  DangerLevel To = DangerLevel::Safe;
+  std::string ClassName; ///< the class that sets the new level (empty when it is safe)
+  double DistanceMm = 0.0; ///< that class's distance, 0 when none
+};
+} // namespace vp
+
+#endif

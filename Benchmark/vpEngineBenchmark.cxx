@@ -1,6 +1,5 @@
 #include "vpEngineBenchmark.h"
 
-#include "vpDistanceEngineFactory.h"
 #include "vpExactBenchmark.h"
 #include "vpMeshRefinement.h"
 #include "vpReplayBenchmark.h"
@@ -69,10 +68,8 @@ BenchJson RunBenchmark(const BenchmarkRequest& request)
   }
   if (request.Parts.count("replay"))
   {
-    vtkSmartPointer<vtkVesselDistanceEngine> zbuffer =
-      request.Parts.count("zbuffer") ? MakeDistanceEngine(request.ZBufferSettings) : nullptr;
     report["replay"] = BenchReplay(request.Vessels, static_cast<std::size_t>(request.Queries), request.Seed, request.Scalpel,
-      zbuffer, request.BruteQueries, request.Poses);
+      request.Parts.count("zbuffer") ? &request.ZBufferSettings : nullptr, request.BruteQueries, request.Poses);
     report["replay"]["scalpel"] = request.Scalpel->GetTipSource();
   }
   return report;

@@ -4,15 +4,15 @@
 #include "vpExactComparison.h"
 #include "vpQuantile.h"
 #include "vpRigidTransform.h"
-#include "vtkBruteForceVesselDistance.h"
+#include "vpTrackingSession.h"
 #include "vtkExactVesselDistance.h"
 #include "vtkFclSurfaceDistance.h"
 #include "vtkScalpelModel.h"
 #include "vtkScalpelPenetration.h"
 #include "vtkScalpelSurfaceDistance.h"
 #include "vtkScalpelTrackingLogic.h"
+#include "vtkVesselProximityLogic.h"
 #include "vtkZBufferSurfaceDistance.h"
-#include "vtkZBufferVesselDistance.h"
 
 #include <vtkNew.h>
 
@@ -84,24 +84,50 @@ struct Replay
   std::vector<TrackedFrame> Frames;
 };
 
-/// afterEach (may be empty) runs after each pose, outside the frame's time.
-Replay Run(vtkScalpelTrackingLogic* logic, const std::vector<TrackedPose>& poses, std::size_t count,
+/// What every replay opens: the bench's vessels and scalpel, the engine and the instrument as the
+/// replay asks (tip only unless it says otherwise).
+struct ReplayScene
+{
+  const std::vector<NamedMesh>& Vessels;
+  vtkScalpelModel* Scalpel;
+};
+
+/// The module's logic over the scene, opened from the request adjust makes of the tip-only one:
+/// each replay measures the module as it tracks, its engines built once before the frames.
+vtkSmartPointer<vtkVesselProximityLogic> OpenReplay(const ReplayScene& scene, const std::function<void(SceneRequest&)>& adjust = {})
+{
+  SceneRequest request;
+  request.Vessels = scene.Vessels;
+  request.Scalpel = scene.Scalpel;
+  request.ComputeSurfaceDistance = false;
+  if (adjust)
+  {
+    adjust(request);
+  }
+  vtkSmartPointer<vtkVesselProximityLogic> logic = vtkSmartPointer<vtkVesselProximityLogic>::New();
+  logic->OpenScene(request);
+  return logic;
+}
+
+/// The first count poses through a tracking session on the logic. afterEach (may be empty) runs
+/// after each frame, outside its time.
+Replay Run(vtkVesselProximityLogic* logic, const std::vector<TrackedPose>& poses, std::size_t count,
   const std::function<void()>& afterEach = {})
 {
   Replay replay;
-  logic->Reset();
-  count = std::min(count, poses.size());
+  const std::vector<TrackedPose> first(poses.begin(), poses.begin() + static_cast<std::ptrdiff_t>(std::min(count, poses.size())));
+  PoseListSource source(first, "the replay's poses");
+  TrackingSession session(logic);
   const double start = NowMs();
-  for (std::size_t i = 0; i < count; ++i)
-  {
-    replay.Frames.push_back(logic->ProcessPose(poses[i]));
+  session.Run(source, [&](const TrackedFrame& frame) {
+    replay.Frames.push_back(frame);
     if (afterEach)
     {
       afterEach();
     }
-  }
+  });
   const double elapsedMs = NowMs() - start;
-  replay.FramesPerSecond = 1000.0 * static_cast<double>(count) / std::max(1e-9, elapsedMs);
+  replay.FramesPerSecond = 1000.0 * static_cast<double>(first.size()) / std::max(1e-9, elapsedMs);
   for (const auto& f : replay.Frames)
   {
     replay.FrameMs.push_back(f.FrameMs);
@@ -210,20 +236,16 @@ Json ComparePenetrations(const Replay& a, const Replay& b)
     { "outside_bounds", outside } };
 }
 
-void ReplayZBufferFullFrame(vtkScalpelTrackingLogic* logic, vtkZBufferSurfaceDistance* zsurface, vtkExactVesselDistance* exact,
-  vtkScalpelModel* scalpel, const std::vector<TrackedPose>& poses, const Replay& whole, Json& out)
+/// The z-buffer's full frame: tip, whole instrument and penetration, all from its layers.
+void ReplayZBufferFullFrame(const ReplayScene& scene, const DistanceEngineSettings& settings, const std::vector<TrackedPose>& poses,
+  const Replay& whole, Json& out)
 {
   std::fprintf(stderr, ", z-buffer full frame");
-  vtkNew<vtkScalpelPenetration> zpenetration;
-  zpenetration->SetVesselDistance(exact); // which classes are closed
-  zpenetration->SetZBufferSurface(zsurface);
-  zpenetration->SetToolSurface(scalpel->GetModel());
-  zpenetration->Build();
-  logic->SetSurfaceDistance(zsurface);
-  logic->SetPenetration(zpenetration);
+  vtkSmartPointer<vtkVesselProximityLogic> logic = OpenReplay(scene, [&](SceneRequest& r) {
+    r.Engine = settings;
+    r.ComputeSurfaceDistance = true;
+  });
   const Replay zfull = Run(logic, poses, poses.size());
-  logic->SetPenetration(nullptr);
-  logic->SetSurfaceDistance(nullptr);
   Json f = Entry(zfull);
   f["includes"] = "tip, whole-instrument distance, penetration depth and volume, all from the z-buffer's layers";
   f["vs_exact_penetration"] = ComparePenetrations(zfull, whole);
@@ -231,22 +253,15 @@ void ReplayZBufferFullFrame(vtkScalpelTrackingLogic* logic, vtkZBufferSurfaceDis
 }
 
 /// The z-buffer engine's own tip answers over the same frames, against the exact ones.
-void ReplayZBufferTip(vtkScalpelTrackingLogic* logic, vtkVesselDistanceEngine* zbuffer, const std::vector<TrackedPose>& poses,
+void ReplayZBufferTip(const ReplayScene& scene, const DistanceEngineSettings& settings, const std::vector<TrackedPose>& poses,
   const Replay& tip, Json& out)
 {
   std::fprintf(stderr, ", z-buffer (render");
   const double renderStart = NowMs();
-  zbuffer->Build();
-  vp::ProximityResult warm;
-  const double origin[3] = { tip.Frames[0].TipMm[0], tip.Frames[0].TipMm[1], tip.Frames[0].TipMm[2] };
-  zbuffer->ComputeProximity(origin, nullptr, warm); // renders the layers
-  const double renderMs = NowMs() - renderStart;
-  if (auto* layers = vtkZBufferVesselDistance::SafeDownCast(zbuffer))
-  {
-    layers->BuildQueryCeilings(); // as the module's logic does before tracking
-  }
+  vtkSmartPointer<vtkVesselProximityLogic> logic = OpenReplay(scene, [&](SceneRequest& r) { r.Engine = settings; });
+  const double renderMs = NowMs() - renderStart; // the build, the layers' rendering and the query ceilings
+  vtkVesselDistanceEngine* zbuffer = logic->GetDistanceEngine();
   std::fprintf(stderr, ", frames)");
-  logic->SetDistanceEngine(zbuffer);
   const Replay cached = Run(logic, poses, poses.size());
   ExactComparison check;
   for (std::size_t i = 0; i < cached.Frames.size(); ++i)
@@ -262,22 +277,26 @@ void ReplayZBufferTip(vtkScalpelTrackingLogic* logic, vtkVesselDistanceEngine* z
   out["zbuffer_cached"] = z;
 }
 
-/// The whole instrument on the z-buffer's layers, then with its penetration: the full frame.
-void ReplayZBufferInstrument(vtkScalpelTrackingLogic* logic, vtkZBufferVesselDistance* layers, vtkExactVesselDistance* exact,
-  vtkScalpelModel* scalpel, const std::vector<TrackedPose>& poses, const Replay& whole, Json& out)
+/// The whole instrument on the z-buffer's layers (no penetration), then the full frame.
+void ReplayZBufferInstrument(const ReplayScene& scene, const DistanceEngineSettings& settings, const std::vector<TrackedPose>& poses,
+  const Replay& whole, Json& out)
 {
   std::fprintf(stderr, ", z-buffer whole instrument");
-  vtkNew<vtkZBufferSurfaceDistance> zsurface;
-  zsurface->SetZBuffer(layers);
-  zsurface->SetToolSurface(scalpel->GetModel());
-  zsurface->Build();
-  logic->SetSurfaceDistance(zsurface);
+  vtkSmartPointer<vtkVesselProximityLogic> logic = OpenReplay(scene, [&](SceneRequest& r) {
+    r.Engine = settings;
+    r.ComputeSurfaceDistance = true;
+    r.ComputePenetration = false;
+  });
+  auto* zsurface = vtkZBufferSurfaceDistance::SafeDownCast(logic->GetTrackingLogic()->GetSurfaceDistance());
+  if (!zsurface)
+  {
+    return; // a moving box: the module measures the instrument with FCL, measured above
+  }
   std::vector<double> evaluated, submissions;
   const Replay zwhole = Run(logic, poses, poses.size(), [&]() {
     evaluated.push_back(static_cast<double>(zsurface->GetLastEvaluatedSamples()));
     submissions.push_back(static_cast<double>(zsurface->GetLastSubmissions()));
   });
-  logic->SetSurfaceDistance(nullptr);
   Json w = Entry(zwhole);
   w["includes"] = "tip and whole-instrument distance on the z-buffer's layers (no penetration)";
   w["build_ms"] = zsurface->GetBuildTimeMs();
@@ -291,7 +310,7 @@ void ReplayZBufferInstrument(vtkScalpelTrackingLogic* logic, vtkZBufferVesselDis
   w["submissions_p95"] = Quantile(submissions, 0.95);
   w["vs_exact_tip_and_surface"] = CompareSurfaces(zwhole, whole);
   out["zbuffer_tip_and_surface"] = w;
-  ReplayZBufferFullFrame(logic, zsurface, exact, scalpel, poses, whole, out);
+  ReplayZBufferFullFrame(scene, settings, poses, whole, out);
 }
 
 /// The exact pipeline's replays: the tip alone; tip, whole instrument (FCL, warm start) and
@@ -302,51 +321,52 @@ struct ExactReplays
   Replay Tip, Whole, Plain, Spheres, Near, Slow;
   Json Sizes; ///< triangle counts and build times, for the report
   double SurfaceRangeMm = 0.0;
+  double RangeMm = 0.0;
 };
 
-ExactReplays RunExactReplays(vtkScalpelTrackingLogic* logic, vtkExactVesselDistance* exact, vtkBruteForceVesselDistance* brute,
-  vtkScalpelModel* scalpel, const std::vector<TrackedPose>& poses, int bruteFrames)
+/// The module's whole instrument with the method and range given, no penetration.
+Replay ReplayInstrument(const ReplayScene& scene, InstrumentMethod method, double rangeMm, const std::vector<TrackedPose>& poses,
+  vtkSmartPointer<vtkVesselProximityLogic>& logic)
+{
+  logic = OpenReplay(scene, [&](SceneRequest& r) {
+    r.ComputeSurfaceDistance = true;
+    r.Instrument = method;
+    r.InstrumentRangeMm = rangeMm;
+    r.ComputePenetration = false;
+  });
+  return Run(logic, poses, poses.size());
+}
+
+ExactReplays RunExactReplays(const ReplayScene& scene, const std::vector<TrackedPose>& poses, int bruteFrames)
 {
   ExactReplays r;
-  r.Tip = Run(logic, poses, poses.size());
+  vtkSmartPointer<vtkVesselProximityLogic> tip = OpenReplay(scene);
+  r.RangeMm = tip->GetDistanceEngine()->GetRangeMm();
+  r.Tip = Run(tip, poses, poses.size());
   std::fprintf(stderr, ", whole surface (FCL, warm start)");
-  vtkNew<vtkFclSurfaceDistance> surface;
-  surface->SetVesselDistance(exact);
-  surface->SetToolSurface(scalpel->GetModel());
-  surface->Build();
-  logic->SetSurfaceDistance(surface);
-  vtkNew<vtkScalpelPenetration> penetration;
-  penetration->SetVesselDistance(exact);
-  penetration->SetToolSurface(scalpel->GetModel());
-  penetration->Build();
-  logic->SetPenetration(penetration);
-  r.Whole = Run(logic, poses, poses.size());
-  logic->SetPenetration(nullptr); // the others measure the distance only, as FCL does
+  vtkSmartPointer<vtkVesselProximityLogic> whole = OpenReplay(scene, [](SceneRequest& req) { req.ComputeSurfaceDistance = true; });
+  r.Whole = Run(whole, poses, poses.size());
+  vtkScalpelSurfaceDistance* surface = whole->GetTrackingLogic()->GetSurfaceDistance();
   std::fprintf(stderr, ", plain FCL");
-  r.Plain = PlainFcl(exact, scalpel, poses);
+  r.Plain = PlainFcl(tip->GetExactDistance(), scene.Scalpel, poses);
   std::fprintf(stderr, ", bounding spheres");
-  vtkNew<vtkScalpelSurfaceDistance> spheres;
-  spheres->SetVesselDistance(exact);
-  spheres->SetToolSurface(scalpel->GetModel());
-  logic->SetSurfaceDistance(spheres);
-  r.Spheres = Run(logic, poses, poses.size());
+  vtkSmartPointer<vtkVesselProximityLogic> spheres;
+  r.Spheres = ReplayInstrument(scene, InstrumentMethod::BoundingSpheres, 0.0, poses, spheres);
   std::fprintf(stderr, ", whole surface within the caution distance");
-  logic->SetSurfaceDistance(surface);
-  surface->SetRangeMm(logic->GetDangerThresholds().CautionMm);
-  r.Near = Run(logic, poses, poses.size());
-  r.SurfaceRangeMm = surface->GetRangeMm();
-  logic->SetSurfaceDistance(nullptr);
+  vtkSmartPointer<vtkVesselProximityLogic> near;
+  r.Near = ReplayInstrument(scene, InstrumentMethod::Fcl, tip->GetDangerThresholds().CautionMm, poses, near);
+  r.SurfaceRangeMm = near->GetTrackingLogic()->GetSurfaceDistance()->GetRangeMm();
   std::fprintf(stderr, ", brute force");
-  brute->Build();
-  logic->SetDistanceEngine(brute);
-  r.Slow = Run(logic, poses, static_cast<std::size_t>(bruteFrames));
+  vtkSmartPointer<vtkVesselProximityLogic> brute = OpenReplay(scene, [](SceneRequest& req) { req.Engine.Method = "brute"; });
+  r.Slow = Run(brute, poses, static_cast<std::size_t>(bruteFrames));
   r.Sizes = { { "tool_triangles", surface->GetNumberOfToolTriangles() },
-    { "tool_triangles_split_for_spheres", spheres->GetNumberOfToolTriangles() },
-    { "surface_build_ms", surface->GetBuildTimeMs() }, { "penetration_build_ms", penetration->GetBuildTimeMs() } };
+    { "tool_triangles_split_for_spheres", spheres->GetTrackingLogic()->GetSurfaceDistance()->GetNumberOfToolTriangles() },
+    { "surface_build_ms", vtkFclSurfaceDistance::SafeDownCast(surface)->GetBuildTimeMs() },
+    { "penetration_build_ms", whole->GetTrackingLogic()->GetPenetration()->GetBuildTimeMs() } };
   return r;
 }
 
-void AddExactReplays(const ExactReplays& r, double rangeMm, Json& out)
+void AddExactReplays(const ExactReplays& r, Json& out)
 {
   out["tool_triangles"] = r.Sizes["tool_triangles"];
   out["tool_triangles_split_for_spheres"] = r.Sizes["tool_triangles_split_for_spheres"];
@@ -365,49 +385,35 @@ void AddExactReplays(const ExactReplays& r, double rangeMm, Json& out)
   ExactComparison bruteCheck;
   for (std::size_t i = 0; i < r.Slow.Frames.size(); ++i)
   {
-    bruteCheck.Add(r.Slow.Frames[i].Proximity, r.Tip.Frames[i].Proximity, rangeMm, 0.0);
+    bruteCheck.Add(r.Slow.Frames[i].Proximity, r.Tip.Frames[i].Proximity, r.RangeMm, 0.0);
   }
   out["max_abs_diff_exact_vs_brute_mm"] = bruteCheck.MaxAbsDifferenceMm;
 }
 } // namespace
 
 Json BenchReplay(const std::vector<NamedMesh>& vessels, std::size_t frames, unsigned seed, vtkScalpelModel* scalpel,
-  vtkVesselDistanceEngine* zbuffer, int bruteFrames, const std::vector<TrackedPose>& givenPoses)
+  const DistanceEngineSettings* zbuffer, int bruteFrames, const std::vector<TrackedPose>& givenPoses)
 {
   const std::vector<std::array<double, 3>> path =
     givenPoses.empty() ? PathNearVessels(vessels, frames, seed) : std::vector<std::array<double, 3>>();
   const std::vector<TrackedPose> poses = givenPoses.empty() ? PosesAlong(path, scalpel) : givenPoses;
   std::size_t triangles = 0;
-  vtkNew<vtkExactVesselDistance> exact;
-  vtkNew<vtkBruteForceVesselDistance> brute;
   for (const auto& v : vessels)
   {
-    exact->AddVessel(v.ClassName, v.Mesh);
-    brute->AddVessel(v.ClassName, v.Mesh);
-    if (zbuffer)
-    {
-      zbuffer->AddVessel(v.ClassName, v.Mesh);
-    }
     triangles += static_cast<std::size_t>(v.Mesh->GetNumberOfPolys());
   }
   std::fprintf(stderr, "bench: replay of %zu poses, %zu classes, %zu triangles: exact", poses.size(), vessels.size(), triangles);
-  exact->Build();
-  vtkNew<vtkScalpelTrackingLogic> logic;
-  logic->SetScalpel(scalpel);
-  logic->SetDistanceEngine(exact);
-  const ExactReplays replays = RunExactReplays(logic, exact, brute, scalpel, poses, bruteFrames);
+  const ReplayScene scene{ vessels, scalpel };
+  const ExactReplays replays = RunExactReplays(scene, poses, bruteFrames);
   Json out;
   out["poses"] = poses.size();
   out["classes"] = vessels.size();
   out["triangles"] = triangles;
-  AddExactReplays(replays, exact->GetRangeMm(), out);
+  AddExactReplays(replays, out);
   if (zbuffer)
   {
-    ReplayZBufferTip(logic, zbuffer, poses, replays.Tip, out);
-    if (auto* layers = vtkZBufferVesselDistance::SafeDownCast(zbuffer))
-    {
-      ReplayZBufferInstrument(logic, layers, exact, scalpel, poses, replays.Whole, out);
-    }
+    ReplayZBufferTip(scene, *zbuffer, poses, replays.Tip, out);
+    ReplayZBufferInstrument(scene, *zbuffer, poses, replays.Whole, out);
   }
   std::fprintf(stderr, "\n");
   return out;

@@ -1,32 +1,15 @@
 #include "vpTrackingSession.h"
 
-#include "vpOutputFile.h"
 #include "vpClock.h"
-#include "vpDistancePlotRecorder.h"
-#include "vpFramesCsv.h"
-#include "vpInputError.h"
 #include "vpRunFolder.h"
-#include "vpTrackingReport.h"
-#include "vtkScalpelTrackingLogic.h"
-#include "vtkVesselDistanceEngine.h"
 #include "vtkVesselProximityLogic.h"
-
-#include <vtkCallbackCommand.h>
-#include <vtkNew.h>
-
-#include <algorithm>
-#include <cerrno>
-#include <cstring>
-#include <fstream>
-#include <memory>
-#include <sys/resource.h>
 
 namespace vp
 {
-TrackingSession::TrackingSession(vtkVesselProximityLogic* logic, std::vector<NamedMesh> vessels)
+TrackingSession::TrackingSession(vtkVesselProximityLogic* logic)
   : Logic(logic)
-  , Vessels(std::move(vessels))
 {
+  this->Restart();
 }
 
 void TrackingSession::SetProgress(std::function<void(std::size_t, std::size_t)> progress)
@@ -34,46 +17,21 @@ void TrackingSession::SetProgress(std::function<void(std::size_t, std::size_t)> 
   this->Progress = std::move(progress);
 }
 
-bool TrackingSession::Run(PoseSource& poses, RunFolder& run)
+void TrackingSession::Restart()
 {
-  vtkVesselProximityLogic* proximity = this->Logic;
-  vtkVesselDistanceEngine* engine = proximity->GetDistanceEngine();
-  const bool surface = proximity->GetComputeSurfaceDistance();
-  const bool compare = proximity->GetCompareWithExact();
-  this->Summary = TrackingSummary();
-  this->Comparison = compare ? std::optional<ExactComparison>(ExactComparison()) : std::nullopt;
-  vtkNew<vtkCallbackCommand> onChange;
-  onChange->SetClientData(&this->Summary);
-  onChange->SetCallback([](vtkObject*, unsigned long, void* client, void* call) {
-    static_cast<TrackingSummary*>(client)->AddChange(*static_cast<DangerLevelChange*>(call));
-  });
-  vtkScalpelTrackingLogic* tracking = proximity->GetTrackingLogic();
-  const unsigned long observer = tracking->AddObserver(vtkScalpelTrackingLogic::DangerLevelChangedEvent, onChange);
-  struct RemoveObserver
-  {
-    vtkScalpelTrackingLogic* Tracking;
-    unsigned long Tag;
-    ~RemoveObserver() { this->Tracking->RemoveObserver(this->Tag); }
-  } removeObserver{ tracking, observer };
+  this->Logic->ResetTracking();
+  this->Frames = 0;
+}
 
-  // The frames stream into frames.csv in the run's staging folder as they are computed, and the
-  // summary and the plot keep what they need in memory that does not grow with the run.
-  std::vector<std::string> classes;
-  for (int c = 0; c < engine->GetNumberOfVessels(); ++c)
-  {
-    classes.push_back(engine->GetVesselName(c));
-  }
-  CheckFramesCsvColumns(classes); // before anything is written
-  run.Begin();
-  std::ofstream framesCsv(run.File("frames.csv"), std::ios::binary | std::ios::trunc);
-  const auto writeFailed = [&]() {
-    return InputError(run.Target() + "/frames.csv", std::string("write failed: ") + std::strerror(errno));
-  };
-  if (!framesCsv)
-  {
-    throw writeFailed();
-  }
-  std::unique_ptr<DistancePlotRecorder> plot;
+const TrackedFrame& TrackingSession::Process(const TrackedPose& pose)
+{
+  const TrackedFrame& frame = this->Logic->ProcessPose(pose);
+  ++this->Frames;
+  return frame;
+}
+
+bool TrackingSession::Run(PoseSource& poses, const std::function<void(const TrackedFrame&)>& onFrame)
+{
   double lastReport = NowMs();
   for (TrackedPose pose; poses.Next(pose);)
   {
@@ -81,22 +39,10 @@ bool TrackingSession::Run(PoseSource& poses, RunFolder& run)
     {
       return false;
     }
-    const TrackedFrame& frame = proximity->ProcessPose(pose); // valid until the next pose
-    this->Summary.Add(frame);
-    if (!plot)
+    const TrackedFrame& frame = this->Process(pose);
+    if (onFrame)
     {
-      plot = std::make_unique<DistancePlotRecorder>(this->Summary.GetClassNames(), surface);
-      framesCsv << FramesCsvHeader(this->Summary.GetClassNames(), surface);
-    }
-    plot->Add(frame);
-    framesCsv << FramesCsvRow(frame, surface);
-    if (!framesCsv)
-    {
-      throw writeFailed();
-    }
-    if (compare)
-    {
-      this->Comparison->Add(frame.Proximity, proximity->GetLastExactProximity(), engine->GetRangeMm(), engine->GetErrorBoundMm());
+      onFrame(frame);
     }
     if (this->Progress && NowMs() - lastReport > 1000.0)
     {
@@ -104,38 +50,6 @@ bool TrackingSession::Run(PoseSource& poses, RunFolder& run)
       this->Progress(poses.PosesRead(), poses.PosesExpected());
     }
   }
-  if (!plot)
-  {
-    throw InputError(poses.GetName(), "no poses");
-  }
-  framesCsv.flush();
-  if (!framesCsv)
-  {
-    throw writeFailed();
-  }
-  framesCsv.close();
-
-  nlohmann::ordered_json doc = TrackingSummaryJson(this->Summary, tracking, surface, this->Vessels, poses.GetName(),
-    this->Comparison ? &*this->Comparison : nullptr);
-  doc["timing_ms"]["load_and_build"] = this->LoadAndBuildMs;
-  // The session's own files, then whatever else the run has written beside them (the demo's).
-  std::vector<std::string> files{ "frames.csv", "summary.json", "distance.png" };
-  for (const std::string& entry : run.GetEntries())
-  {
-    if (std::find(files.begin(), files.end(), entry) == files.end())
-    {
-      files.push_back(entry);
-    }
-  }
-  doc["files"] = files;
-  struct rusage usage = {};
-  getrusage(RUSAGE_SELF, &usage);
-  this->PeakMemoryMb = static_cast<double>(usage.ru_maxrss) / 1024.0; // Linux: kB
-  doc["peak_memory_mb"] = this->PeakMemoryMb;
-
-  plot->Write(run.File("distance.png"), tracking->GetDangerThresholds(), engine->GetRangeMm());
-  WriteFileAtomically(run.File("summary.json"), doc.dump(2) + "\n");
-  this->Report = std::move(doc);
   return true;
 }
 } // namespace vp

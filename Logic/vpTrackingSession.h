@@ -1,65 +1,50 @@
 #ifndef vpTrackingSession_h
 #define vpTrackingSession_h
 
-#include "vpExactComparison.h"
 #include "vpPoseFile.h"
-#include "vpTrackingSummary.h"
-#include "vpVesselMeshSet.h"
+#include "vpTrackedFrame.h"
 
-#include <nlohmann/json.hpp>
-
+#include <cstddef>
 #include <functional>
-#include <optional>
-#include <string>
-#include <vector>
 
 class vtkVesselProximityLogic;
 
 namespace vp
 {
-class RunFolder;
-
-/// A tracking session: poses from a source, through the module logic, to the run's report:
-/// frames.csv (a row per frame, written as it is computed), distance.png and summary.json, in
-/// the run's folder; the caller commits it (RunFolder::Commit) with whatever else the run wrote. Memory does not grow with the number of frames. Observers
-/// of the logic's tracking logic hear every frame and every level change as they happen.
+/// One run of poses through the module logic: the frame loop every front end shares. A file, a
+/// list, a live stream and the viewer's interactive moves are all poses of one session; the
+/// logic (opened: vtkVesselProximityLogic::OpenScene) computes each frame, and its tracking
+/// logic's observers hear of every frame and every change of level as they happen.
+///
+/// The session starts the logic's tracking afresh: its first pose is frame 0, from the safe level.
 class TrackingSession
 {
 public:
-  /// logic: configured (vessels, scalpel, engine, thresholds) and built. vessels: the meshes as
-  /// read, for the report's surface section (their files and repairs).
-  TrackingSession(vtkVesselProximityLogic* logic, std::vector<NamedMesh> vessels);
+  explicit TrackingSession(vtkVesselProximityLogic* logic);
 
-  /// Called about once a second with the frames done so far and the source's expected count.
+  /// One pose: its frame, valid until the next pose.
+  const TrackedFrame& Process(const TrackedPose& pose);
+
+  /// Every pose of the source in turn; each frame goes to onFrame (may be empty), outside the
+  /// frame's own time. Returns false when a held signal came (RunFolder::SignalPending) before
+  /// the source ended: the caller lets its RunFolder go and the signal acts. Throws the source's
+  /// InputError.
+  bool Run(PoseSource& poses, const std::function<void(const TrackedFrame&)>& onFrame = {});
+
+  /// Called about once a second during Run with the poses done and the source's expected count.
   void SetProgress(std::function<void(std::size_t done, std::size_t expected)> progress);
-  /// Added to summary.json's timing_ms as load_and_build (the caller's time before Run()).
-  void SetLoadAndBuildMs(double ms) { this->LoadAndBuildMs = ms; }
 
-  /// Runs every pose of the source and writes the report into run (begun here if it was not).
-  /// summary.json's "files" lists the session's files and every entry the run noted before it
-  /// (RunFolder::GetEntries): what a later run removes when it does not write them again.
-  /// Returns false when a held signal came (RunFolder::SignalPending):
-  /// the caller lets the RunFolder go and the signal acts. Throws InputError naming the file that
-  /// could not be written, or the source's own error.
-  bool Run(PoseSource& poses, RunFolder& run);
+  /// Starts over: the next pose is frame 0, from the safe level.
+  void Restart();
 
-  const TrackingSummary& GetSummary() const { return this->Summary; }
-  /// Against the exact engine, when the logic compares with it.
-  const std::optional<ExactComparison>& GetComparison() const { return this->Comparison; }
-  /// summary.json as written.
-  const nlohmann::ordered_json& GetReport() const { return this->Report; }
-  /// The process's peak resident memory when the run ended.
-  double GetPeakMemoryMb() const { return this->PeakMemoryMb; }
+  /// Frames computed since the session started (or restarted).
+  std::size_t GetNumberOfFrames() const { return this->Frames; }
+  vtkVesselProximityLogic* GetLogic() const { return this->Logic; }
 
 private:
   vtkVesselProximityLogic* Logic;
-  std::vector<NamedMesh> Vessels;
   std::function<void(std::size_t, std::size_t)> Progress;
-  TrackingSummary Summary;
-  std::optional<ExactComparison> Comparison;
-  nlohmann::ordered_json Report;
-  double LoadAndBuildMs = 0.0;
-  double PeakMemoryMb = 0.0;
+  std::size_t Frames = 0;
 };
 } // namespace vp
 

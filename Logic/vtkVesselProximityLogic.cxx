@@ -1,6 +1,9 @@
 #include "vtkVesselProximityLogic.h"
 
+#include "vpDefaultScalpel.h"
+#include "vpDistanceEngineFactory.h"
 #include "vtkExactVesselDistance.h"
+#include "vtkVesselMeshReader.h"
 #include "vtkScalpelModel.h"
 #include "vtkFclSurfaceDistance.h"
 #include "vtkZBufferSurfaceDistance.h"
@@ -10,6 +13,7 @@
 #include "vtkVesselProximityParameters.h"
 
 #include <vtkCommand.h>
+#include <vtkNew.h>
 #include <vtkObjectFactory.h>
 #include <vtkPolyData.h>
 
@@ -27,6 +31,48 @@ vtkVesselProximityLogic::vtkVesselProximityLogic()
 vtkVesselProximityLogic::~vtkVesselProximityLogic()
 {
   this->Parameters->RemoveObserver(this->ParametersObserver);
+}
+
+vp::OpenedScene vtkVesselProximityLogic::OpenScene(const vp::SceneRequest& request)
+{
+  vp::OpenedScene scene;
+  vtkSmartPointer<vtkVesselDistanceEngine> engine = vp::MakeDistanceEngine(request.Engine, &scene.EngineNote);
+  scene.Vessels = vp::LoadVesselMeshes(request.Vessels);
+  if (request.RepairVessels)
+  {
+    vp::RepairVesselMeshes(scene.Vessels);
+  }
+  if (!request.LiverFile.empty())
+  {
+    vtkNew<vtkVesselMeshReader> reader;
+    reader->SetFileName(request.LiverFile);
+    reader->Read();
+    scene.Liver = reader->GetOutput();
+  }
+  vtkSmartPointer<vtkScalpelModel> scalpel = request.Scalpel ? request.Scalpel
+    : request.ScalpelFile.empty()                            ? vp::MakeDefaultScalpel(request.Tip)
+                                                             : vp::LoadScalpel(request.ScalpelFile, request.Tip);
+
+  vtkVesselProximityParameters* p = this->Parameters;
+  p->RemoveAllVessels();
+  for (const vp::NamedMesh& vessel : scene.Vessels)
+  {
+    p->SetVessel(vessel.ClassName, vessel.Mesh);
+  }
+  p->SetScalpel(scalpel);
+  p->SetDistanceEngine(engine);
+  p->SetCompareWithExact(request.CompareWithExact && !vtkExactVesselDistance::SafeDownCast(engine));
+  p->SetComputeSurfaceDistance(request.ComputeSurfaceDistance);
+  p->SetInstrumentMethod(request.Instrument);
+  p->SetInstrumentRangeMm(request.InstrumentRangeMm);
+  p->SetComputePenetration(request.ComputePenetration);
+  p->SetDangerThresholds(request.Tracking.Thresholds);
+  p->SetHysteresisMm(request.Tracking.HysteresisMm);
+  p->SetFrameBudgetMs(request.Tracking.FrameBudgetMs);
+  this->Build();
+  this->Tracking->ValidateSettings();
+  this->ResetTracking();
+  return scene;
 }
 
 void vtkVesselProximityLogic::SetParameters(vtkVesselProximityParameters* parameters)
@@ -187,42 +233,61 @@ void vtkVesselProximityLogic::Build()
   this->Tracking->SetDistanceEngine(engine);
   if (surface)
   {
-    // The z-buffer answers the whole instrument from its own layers (a distance field of them,
-    // within a stated bound) when they stay put; otherwise FCL answers it exactly.
-    auto* layers = vtkZBufferVesselDistance::SafeDownCast(engine);
-    if (layers && layers->GetBoxMode() == vtkZBufferVesselDistance::FixedAroundVessels)
-    {
-      auto zbuffer = vtkSmartPointer<vtkZBufferSurfaceDistance>::New();
-      zbuffer->SetZBuffer(layers);
-      zbuffer->SetToolSurface(this->GetScalpel()->GetModel());
-      zbuffer->Build(); // the samples and the field, once: not in the first frame's time
-      this->Surface = zbuffer;
-    }
-    else
-    {
-      auto fcl = vtkSmartPointer<vtkFclSurfaceDistance>::New();
-      fcl->SetVesselDistance(this->Exact);
-      fcl->SetToolSurface(this->GetScalpel()->GetModel());
-      fcl->Build(); // the trees, once: not in the first frame's time
-      this->Surface = fcl;
-    }
-    this->Tracking->SetSurfaceDistance(this->Surface);
-    this->Penetration = vtkSmartPointer<vtkScalpelPenetration>::New();
-    this->Penetration->SetVesselDistance(this->Exact);
-    this->Penetration->SetZBufferSurface(vtkZBufferSurfaceDistance::SafeDownCast(this->Surface));
-    this->Penetration->SetToolSurface(this->GetScalpel()->GetModel());
-    this->Penetration->Build();
-    this->Tracking->SetPenetration(this->Penetration);
+    this->BuildInstrument(engine);
   }
   else
   {
     this->Surface = nullptr;
     this->Penetration = nullptr;
-    this->Tracking->SetSurfaceDistance(nullptr);
-    this->Tracking->SetPenetration(nullptr);
   }
+  this->Tracking->SetSurfaceDistance(this->Surface);
+  this->Tracking->SetPenetration(this->Penetration);
   this->SceneChanged = false;
   ++this->NumberOfBuilds;
+}
+
+void vtkVesselProximityLogic::BuildInstrument(vtkVesselDistanceEngine* engine)
+{
+  vtkVesselProximityParameters* p = this->Parameters;
+  vtkPolyData* tool = this->GetScalpel()->GetModel();
+  // The z-buffer answers the whole instrument from its own layers (a distance field of them,
+  // within a stated bound) when they stay put; otherwise FCL answers it exactly.
+  auto* layers = vtkZBufferVesselDistance::SafeDownCast(engine);
+  if (p->GetInstrumentMethod() == vp::InstrumentMethod::Automatic && layers &&
+    layers->GetBoxMode() == vtkZBufferVesselDistance::FixedAroundVessels)
+  {
+    auto zbuffer = vtkSmartPointer<vtkZBufferSurfaceDistance>::New();
+    zbuffer->SetZBuffer(layers);
+    zbuffer->SetToolSurface(tool);
+    zbuffer->SetRangeMm(p->GetInstrumentRangeMm());
+    zbuffer->Build(); // the samples and the field, once: not in the first frame's time
+    this->Surface = zbuffer;
+  }
+  else if (p->GetInstrumentMethod() == vp::InstrumentMethod::BoundingSpheres)
+  {
+    this->Surface = vtkSmartPointer<vtkScalpelSurfaceDistance>::New();
+    this->Surface->SetVesselDistance(this->Exact);
+    this->Surface->SetToolSurface(tool);
+    this->Surface->SetRangeMm(p->GetInstrumentRangeMm());
+  }
+  else
+  {
+    auto fcl = vtkSmartPointer<vtkFclSurfaceDistance>::New();
+    fcl->SetVesselDistance(this->Exact);
+    fcl->SetToolSurface(tool);
+    fcl->SetRangeMm(p->GetInstrumentRangeMm());
+    fcl->Build(); // the trees, once: not in the first frame's time
+    this->Surface = fcl;
+  }
+  this->Penetration = nullptr;
+  if (p->GetComputePenetration())
+  {
+    this->Penetration = vtkSmartPointer<vtkScalpelPenetration>::New();
+    this->Penetration->SetVesselDistance(this->Exact);
+    this->Penetration->SetZBufferSurface(vtkZBufferSurfaceDistance::SafeDownCast(this->Surface));
+    this->Penetration->SetToolSurface(tool);
+    this->Penetration->Build();
+  }
 }
 
 const vp::TrackedFrame& vtkVesselProximityLogic::ProcessPose(const vp::TrackedPose& pose)

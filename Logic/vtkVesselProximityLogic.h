@@ -2,6 +2,7 @@
 #define vtkVesselProximityLogic_h
 
 #include "vpProximityResult.h"
+#include "vpSceneRequest.h"
 #include "vtkScalpelTrackingLogic.h"
 #include "vtkVesselProximityParameters.h"
 
@@ -21,8 +22,9 @@ class vtkVesselDistanceEngine;
 
 /// The module's logic: the scene (vessel surfaces per class, the scalpel) and everything computed
 /// for a tracked pose. What vtkSlicerVesselProximityModuleLogic would be inside Slicer: a widget
-/// or a command sets the scene, calls ProcessPose() per pose and reads the frame; observers of
-/// GetTrackingLogic() hear of each frame and of each change of danger level.
+/// or a command opens the scene (OpenScene, from a vp::SceneRequest), runs its poses through a
+/// vp::TrackingSession and reads the frames; observers of GetTrackingLogic() hear of each frame
+/// and of each change of danger level.
 ///
 /// What it computes from lives in its parameter set (vtkVesselProximityParameters, the part a
 /// MRML node plays in Slicer), which it observes; the setters below are shorthands that write
@@ -40,6 +42,14 @@ public:
   static vtkVesselProximityLogic* New();
   vtkTypeMacro(vtkVesselProximityLogic, vtkObject);
   void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// Opens the scene a front end asks for and leaves the logic ready to track: the engine made
+  /// first (its Vulkan device opened before any file is read), the vessels read and repaired as
+  /// asked, the liver read, the scalpel loaded and its tip defined, every setting written to the
+  /// parameter set, the engines built and the settings checked against the engine (ValidateSettings
+  /// of the tracking logic); the next pose is frame 0. One message per problem: throws
+  /// ParameterError naming the setting, InputError naming the file, DeviceError for the device.
+  vp::OpenedScene OpenScene(const vp::SceneRequest& request);
 
   /// The parameter set the logic computes from (one of its own until another is set), observed
   /// for ModifiedEvent. Not null.
@@ -115,6 +125,8 @@ protected:
 private:
   vtkVesselProximityLogic(const vtkVesselProximityLogic&) = delete;
   bool WantsSurfaceDistance() const;
+  /// The whole instrument's calculator and its penetration, as the parameter set asks.
+  void BuildInstrument(vtkVesselDistanceEngine* engine);
   /// What a change of the parameter set invalidates: the built engines (scene), or only the
   /// tracking logic's per-frame settings.
   void ApplyParameters();

@@ -113,6 +113,30 @@ void vtkVesselProximityParameters::SetComputeSurfaceDistance(bool compute)
   }
 }
 
+void vtkVesselProximityParameters::SetInstrumentMethod(vp::InstrumentMethod method)
+{
+  if (Assign(this->Instrument, method))
+  {
+    this->SceneModified();
+  }
+}
+
+void vtkVesselProximityParameters::SetInstrumentRangeMm(double rangeMm)
+{
+  if (Assign(this->InstrumentRangeMm, NotNegative(rangeMm, "InstrumentRangeMm", "must be a distance in mm, 0 or more (0: the engine's range)")))
+  {
+    this->SceneModified();
+  }
+}
+
+void vtkVesselProximityParameters::SetComputePenetration(bool compute)
+{
+  if (Assign(this->ComputePenetration, compute))
+  {
+    this->SceneModified();
+  }
+}
+
 void vtkVesselProximityParameters::SetCompareWithExact(bool compare)
 {
   if (Assign(this->CompareWithExact, compare))
@@ -123,17 +147,17 @@ void vtkVesselProximityParameters::SetCompareWithExact(bool compare)
 
 void vtkVesselProximityParameters::SetDangerThresholds(const vp::DangerThresholds& t)
 {
-  const vp::DangerThresholds& d = this->DangerThresholds;
+  const vp::DangerThresholds& d = this->Tracking.Thresholds;
   if (t.CautionMm != d.CautionMm || t.WarningMm != d.WarningMm || t.DangerMm != d.DangerMm)
   {
-    this->DangerThresholds = t;
+    this->Tracking.Thresholds = t;
     this->SettingsModified();
   }
 }
 
 void vtkVesselProximityParameters::SetHysteresisMm(double hysteresisMm)
 {
-  if (Assign(this->HysteresisMm, NotNegative(hysteresisMm, "HysteresisMm", "must be a distance in mm, 0 or more (0: none)")))
+  if (Assign(this->Tracking.HysteresisMm, NotNegative(hysteresisMm, "HysteresisMm", "must be a distance in mm, 0 or more (0: none)")))
   {
     this->SettingsModified();
   }
@@ -141,7 +165,7 @@ void vtkVesselProximityParameters::SetHysteresisMm(double hysteresisMm)
 
 void vtkVesselProximityParameters::SetFrameBudgetMs(double budgetMs)
 {
-  if (Assign(this->FrameBudgetMs, NotNegative(budgetMs, "FrameBudgetMs", "must be a time in ms, 0 or more (0: no budget)")))
+  if (Assign(this->Tracking.FrameBudgetMs, NotNegative(budgetMs, "FrameBudgetMs", "must be a time in ms, 0 or more (0: no budget)")))
   {
     this->SettingsModified();
   }
@@ -158,9 +182,12 @@ void vtkVesselProximityParameters::PrintSelf(ostream& os, vtkIndent indent)
   os << "\n" << indent << "Scalpel: " << (this->Scalpel ? "set" : "(none)") << "\n";
   os << indent << "DistanceEngine: " << this->DistanceEngine->GetMethodName() << "\n";
   os << indent << "ComputeSurfaceDistance: " << this->ComputeSurfaceDistance << "\n";
+  os << indent << "InstrumentMethod: " << vp::InstrumentMethodName(this->Instrument) << "\n";
+  os << indent << "InstrumentRangeMm: " << this->InstrumentRangeMm << (this->InstrumentRangeMm > 0 ? "" : " (the engine's)") << "\n";
+  os << indent << "ComputePenetration: " << this->ComputePenetration << "\n";
   os << indent << "CompareWithExact: " << this->CompareWithExact << "\n";
-  os << indent << "DangerThresholdsMm: " << this->DangerThresholds.CautionMm << " " << this->DangerThresholds.WarningMm << " "
-     << this->DangerThresholds.DangerMm << "\n";
-  os << indent << "HysteresisMm: " << this->HysteresisMm << "\n";
-  os << indent << "FrameBudgetMs: " << this->FrameBudgetMs << "\n";
+  os << indent << "DangerThresholdsMm: " << this->Tracking.Thresholds.CautionMm << " " << this->Tracking.Thresholds.WarningMm << " "
+     << this->Tracking.Thresholds.DangerMm << "\n";
+  os << indent << "HysteresisMm: " << this->Tracking.HysteresisMm << "\n";
+  os << indent << "FrameBudgetMs: " << this->Tracking.FrameBudgetMs << "\n";
 }

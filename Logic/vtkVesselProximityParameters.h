@@ -1,7 +1,8 @@
 #ifndef vtkVesselProximityParameters_h
 #define vtkVesselProximityParameters_h
 
-#include "vpDangerLevels.h"
+#include "vpInstrumentMethod.h"
+#include "vpTrackingSettings.h"
 
 #include <vtkObject.h>
 #include <vtkSmartPointer.h>
@@ -25,7 +26,7 @@ class vtkVesselDistanceEngine;
 /// budget), which never causes a rebuild.
 ///
 /// Defaults: no vessel, no scalpel, the exact engine, the whole instrument measured, no
-/// comparison with the exact engine, thresholds 10/5/2 mm, hysteresis 0.3 mm, budget 16.7 ms.
+/// comparison with the exact engine, and vp::TrackingSettings' thresholds, hysteresis and budget.
 class vtkVesselProximityParameters : public vtkObject
 {
 public:
@@ -50,19 +51,34 @@ public:
   /// Whether the whole instrument surface is measured beside the tip, with its penetration.
   void SetComputeSurfaceDistance(bool compute);
   bool GetComputeSurfaceDistance() const { return this->ComputeSurfaceDistance; }
+  /// How the whole instrument is measured (default Automatic: the z-buffer's layers when the
+  /// engine is the z-buffer with a fixed box, else FCL).
+  void SetInstrumentMethod(vp::InstrumentMethod method);
+  vp::InstrumentMethod GetInstrumentMethod() const { return this->Instrument; }
+  /// How far the whole instrument is searched, in mm (default 0: the engine's range). Not
+  /// negative: throws ParameterError("InstrumentRangeMm").
+  void SetInstrumentRangeMm(double rangeMm);
+  double GetInstrumentRangeMm() const { return this->InstrumentRangeMm; }
+  /// Whether the instrument's penetration depth and volume are computed with the surface
+  /// distance (default true).
+  void SetComputePenetration(bool compute);
+  bool GetComputePenetration() const { return this->ComputePenetration; }
+
   /// Whether every frame is also answered by the exact engine, for the accuracy check.
   void SetCompareWithExact(bool compare);
   bool GetCompareWithExact() const { return this->CompareWithExact; }
 
   /// Checked where they are used (vtkScalpelTrackingLogic::ValidateSettings).
   void SetDangerThresholds(const vp::DangerThresholds& thresholds);
-  const vp::DangerThresholds& GetDangerThresholds() const { return this->DangerThresholds; }
+  const vp::DangerThresholds& GetDangerThresholds() const { return this->Tracking.Thresholds; }
   /// Not negative: throws ParameterError("HysteresisMm").
   void SetHysteresisMm(double hysteresisMm);
-  double GetHysteresisMm() const { return this->HysteresisMm; }
+  double GetHysteresisMm() const { return this->Tracking.HysteresisMm; }
   /// Not negative, 0: no budget. Throws ParameterError("FrameBudgetMs").
   void SetFrameBudgetMs(double budgetMs);
-  double GetFrameBudgetMs() const { return this->FrameBudgetMs; }
+  double GetFrameBudgetMs() const { return this->Tracking.FrameBudgetMs; }
+  /// The thresholds, the hysteresis and the frame budget together.
+  const vp::TrackingSettings& GetTrackingSettings() const { return this->Tracking; }
 
   vtkMTimeType GetSceneMTime() const { return this->SceneTime.GetMTime(); }
   vtkMTimeType GetSettingsMTime() const { return this->SettingsTime.GetMTime(); }
@@ -81,10 +97,11 @@ private:
   vtkSmartPointer<vtkScalpelModel> Scalpel;
   vtkSmartPointer<vtkVesselDistanceEngine> DistanceEngine;
   bool ComputeSurfaceDistance = true;
+  vp::InstrumentMethod Instrument = vp::InstrumentMethod::Automatic;
+  double InstrumentRangeMm = 0.0;
+  bool ComputePenetration = true;
   bool CompareWithExact = false;
-  vp::DangerThresholds DangerThresholds;
-  double HysteresisMm = 0.3;
-  double FrameBudgetMs = 16.7;
+  vp::TrackingSettings Tracking;
   vtkTimeStamp SceneTime;
   vtkTimeStamp SettingsTime;
 };

@@ -11,27 +11,39 @@
 
 namespace vp
 {
-std::vector<NamedMesh> LoadVesselMeshes(const std::vector<std::pair<std::string, std::string>>& pairs)
+std::vector<NamedMesh> LoadVesselMeshes(std::vector<NamedMesh> vessels)
 {
-  std::vector<NamedMesh> meshes;
   std::set<std::string> seen;
-  for (const auto& pair : pairs)
+  for (NamedMesh& vessel : vessels)
   {
-    const std::string problem = ClassNameProblem(pair.first);
+    const std::string problem = ClassNameProblem(vessel.ClassName);
     if (!problem.empty())
     {
-      throw ParameterError("Vessels", "'" + Printable(pair.first) + "': " + problem);
+      throw ParameterError("Vessels", "'" + Printable(vessel.ClassName) + "': " + problem);
     }
-    if (!seen.insert(pair.first).second)
+    if (!seen.insert(vessel.ClassName).second)
     {
-      throw ParameterError("Vessels", "class '" + pair.first + "' is given twice");
+      throw ParameterError("Vessels", "class '" + vessel.ClassName + "' is given twice");
     }
-    vtkNew<vtkVesselMeshReader> reader;
-    reader->SetFileName(pair.second);
-    reader->Read();
-    meshes.push_back({ pair.first, pair.second, reader->GetOutput(), std::nullopt });
+    if (!vessel.Mesh)
+    {
+      vtkNew<vtkVesselMeshReader> reader;
+      reader->SetFileName(vessel.FileName);
+      reader->Read();
+      vessel.Mesh = reader->GetOutput();
+    }
   }
-  return meshes;
+  return vessels;
+}
+
+std::vector<NamedMesh> LoadVesselMeshes(const std::vector<std::pair<std::string, std::string>>& pairs)
+{
+  std::vector<NamedMesh> vessels;
+  for (const auto& pair : pairs)
+  {
+    vessels.push_back({ pair.first, pair.second, nullptr, std::nullopt });
+  }
+  return LoadVesselMeshes(std::move(vessels));
 }
 
 void RepairVesselMeshes(std::vector<NamedMesh>& meshes)

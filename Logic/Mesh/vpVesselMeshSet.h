@@ -24,8 +24,11 @@ struct NamedMesh
   std::optional<SurfaceRepairReport> Repair;
 };
 
-/// Reads each (class, file) pair; throws InputError naming the file on any problem, and
-/// ParameterError("Vessels") for a class named twice.
+/// Each vessel with its surface: the one given (Mesh), else read from its FileName. Throws
+/// InputError naming the file on any problem, and ParameterError("Vessels") for a class named
+/// twice or a name that cannot be a class's (ClassNameProblem).
+std::vector<NamedMesh> LoadVesselMeshes(std::vector<NamedMesh> vessels);
+/// The same for (class, file) pairs, every surface read.
 std::vector<NamedMesh> LoadVesselMeshes(const std::vector<std::pair<std::string, std::string>>& pairs);
 
 /// Each mesh replaced by what vtkVesselSurfaceRepair makes of it, its report kept.

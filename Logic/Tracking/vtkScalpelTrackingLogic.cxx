@@ -58,9 +58,9 @@ void vtkScalpelTrackingLogic::SetHysteresisMm(double hysteresisMm)
   {
     throw vp::InputError("hysteresis", "expected a distance in mm, 0 or more, got " + vp::NumberText(hysteresisMm));
   }
-  if (this->HysteresisMm != hysteresisMm)
+  if (this->Settings.HysteresisMm != hysteresisMm)
   {
-    this->HysteresisMm = hysteresisMm;
+    this->Settings.HysteresisMm = hysteresisMm;
     this->Modified();
   }
 }
@@ -71,21 +71,21 @@ void vtkScalpelTrackingLogic::ValidateSettings() const
   {
     throw std::logic_error("vtkScalpelTrackingLogic: set the distance engine first");
   }
-  this->Thresholds.Validate("danger thresholds");
+  this->Settings.Thresholds.Validate("danger thresholds");
   // An engine with a bound reports a class out of range when its estimate is beyond the range,
   // where the truth may lie the bound nearer: the range must reach the threshold by that much.
   const double boundMm = this->Engine->GetErrorBoundMm();
-  if (this->Engine->GetRangeMm() < this->Thresholds.CautionMm + boundMm)
+  if (this->Engine->GetRangeMm() < this->Settings.Thresholds.CautionMm + boundMm)
   {
     throw vp::ParameterError("RangeMm", "the range (" + vp::NumberText(this->Engine->GetRangeMm()) +
-        " mm) must reach the caution threshold (" + vp::NumberText(this->Thresholds.CautionMm) + " mm)" +
+        " mm) must reach the caution threshold (" + vp::NumberText(this->Settings.Thresholds.CautionMm) + " mm)" +
         (boundMm > 0.0 ? " plus the engine's error bound (" + vp::NumberText(boundMm) + " mm)" : std::string()) +
         ", or a class beyond it would look safe");
   }
-  if (this->Engine->GetErrorBoundMm() >= this->Thresholds.DangerMm)
+  if (this->Engine->GetErrorBoundMm() >= this->Settings.Thresholds.DangerMm)
   {
     throw vp::InputError("cell size", "the engine's error bound (" + vp::NumberText(this->Engine->GetErrorBoundMm()) +
-        " mm) must be below the danger threshold (" + vp::NumberText(this->Thresholds.DangerMm) +
+        " mm) must be below the danger threshold (" + vp::NumberText(this->Settings.Thresholds.DangerMm) +
         " mm), or it cannot tell danger from safety: use smaller cells");
   }
 }
@@ -128,7 +128,7 @@ const vp::TrackedFrame& vtkScalpelTrackingLogic::ProcessPose(const vp::TrackedPo
     }
   }
   frame.FrameMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  frame.OverBudget = this->FrameBudgetMs > 0.0 && frame.FrameMs > this->FrameBudgetMs;
+  frame.OverBudget = this->Settings.FrameBudgetMs > 0.0 && frame.FrameMs > this->Settings.FrameBudgetMs;
 
   const auto& classes = frame.Proximity.Classes;
   frame.ClassLevels.resize(classes.size());
@@ -137,7 +137,7 @@ const vp::TrackedFrame& vtkScalpelTrackingLogic::ProcessPose(const vp::TrackedPo
     const vp::DangerLevel before =
       hasPrevious && c < this->Last.ClassLevels.size() ? this->Last.ClassLevels[c] : vp::DangerLevel::Safe;
     frame.ClassLevels[c] = vp::ClassifyDangerWithHysteresis(
-      classes[c], frame.Proximity.ErrorBoundMm, this->Thresholds, before, this->HysteresisMm);
+      classes[c], frame.Proximity.ErrorBoundMm, this->Settings.Thresholds, before, this->Settings.HysteresisMm);
     // The worst level wins; among equals, the nearer class names it.
     const bool worse = frame.LevelClass < 0 || frame.ClassLevels[c] > frame.Level ||
       (frame.ClassLevels[c] == frame.Level && classes[c].DistanceMm < classes[frame.LevelClass].DistanceMm);
@@ -177,9 +177,9 @@ void vtkScalpelTrackingLogic::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Scalpel: " << (this->Scalpel ? "set" : "(none)") << "\n";
   os << indent << "SurfaceDistance: " << (this->SurfaceDistance ? this->SurfaceDistance->GetMethodName() : "off") << "\n";
   os << indent << "Penetration: " << (this->Penetration ? "on" : "off") << "\n";
-  os << indent << "DangerThresholds (caution, warning, danger): " << this->Thresholds.CautionMm << ", "
-     << this->Thresholds.WarningMm << ", " << this->Thresholds.DangerMm << " mm\n";
-  os << indent << "HysteresisMm: " << this->HysteresisMm << "\n";
-  os << indent << "FrameBudgetMs: " << this->FrameBudgetMs << (this->FrameBudgetMs > 0 ? "" : " (off)") << "\n";
+  os << indent << "DangerThresholds (caution, warning, danger): " << this->Settings.Thresholds.CautionMm << ", "
+     << this->Settings.Thresholds.WarningMm << ", " << this->Settings.Thresholds.DangerMm << " mm\n";
+  os << indent << "HysteresisMm: " << this->Settings.HysteresisMm << "\n";
+  os << indent << "FrameBudgetMs: " << this->Settings.FrameBudgetMs << (this->Settings.FrameBudgetMs > 0 ? "" : " (off)") << "\n";
   os << indent << "FramesProcessed: " << this->FramesProcessed << "\n";
 }

@@ -3,6 +3,7 @@
 
 #include "vpDangerLevels.h"
 #include "vpTrackedFrame.h"
+#include "vpTrackingSettings.h"
 #include "vpPoseFile.h"
 #include "vpProximityResult.h"
 #include "vtkScalpelModel.h"
@@ -55,22 +56,22 @@ public:
   void SetPenetration(vtkScalpelPenetration* penetration);
   vtkScalpelPenetration* GetPenetration() const { return this->Penetration; }
 
-  /// The time a frame may take, in ms (default 16.7: one refresh at 60 Hz; the paper's 40 ms is
+  /// The time a frame may take, in ms (default vp::TrackingSettings: 16.7, one refresh at 60 Hz; the paper's 40 ms is
   /// where a navigator's animation freezes). A frame that takes longer is marked OverBudget; 0
   /// switches the check off.
-  void SetFrameBudgetMs(double budgetMs) { this->FrameBudgetMs = budgetMs; }
-  double GetFrameBudgetMs() const { return this->FrameBudgetMs; }
+  void SetFrameBudgetMs(double budgetMs) { this->Settings.FrameBudgetMs = budgetMs; }
+  double GetFrameBudgetMs() const { return this->Settings.FrameBudgetMs; }
 
   /// Hysteresis on the way out of a level, in mm (default 0.3): entering a more dangerous level is
   /// immediate, leaving one needs the distance to exceed its threshold by this much (see
   /// vp::ClassifyDangerWithHysteresis); 0 switches it off. Tracking noise of a tenth of a
   /// millimetre at a threshold would otherwise flicker the level.
   void SetHysteresisMm(double hysteresisMm);
-  double GetHysteresisMm() const { return this->HysteresisMm; }
+  double GetHysteresisMm() const { return this->Settings.HysteresisMm; }
 
   /// Danger thresholds (defaults 10, 5, 2 mm). Validated when the first pose is processed.
-  void SetDangerThresholds(const vp::DangerThresholds& thresholds) { this->Thresholds = thresholds; }
-  const vp::DangerThresholds& GetDangerThresholds() const { return this->Thresholds; }
+  void SetDangerThresholds(const vp::DangerThresholds& thresholds) { this->Settings.Thresholds = thresholds; }
+  const vp::DangerThresholds& GetDangerThresholds() const { return this->Settings.Thresholds; }
 
   /// Throws vp::InputError when the engine's range is shorter than the caution threshold plus
   /// its error bound (a far class would look safe when it is not), or its error bound is not
@@ -93,9 +94,7 @@ protected:
   vtkSmartPointer<vtkScalpelModel> Scalpel;
   vtkSmartPointer<vtkScalpelSurfaceDistance> SurfaceDistance;
   vtkSmartPointer<vtkScalpelPenetration> Penetration;
-  vp::DangerThresholds Thresholds;
-  double FrameBudgetMs = 16.7;
-  double HysteresisMm = 0.3;
+  vp::TrackingSettings Settings;
   vp::TrackedFrame Last;
   int FramesProcessed = 0;
 

@@ -3,16 +3,15 @@
 #include "vpOutputFile.h"
 #include "vpCommandSupport.h"
 #include "vpDangerLevels.h"
-#include "vpDistanceEngineFactory.h"
 #include "vpDefaultScalpel.h"
 #include "vpDemoTrajectory.h"
 #include "vpInputError.h"
 #include "vpLiverPhantom.h"
 #include "vpPoseFile.h"
+#include "vpTrackingRecorder.h"
 #include "vpTrackingSession.h"
 #include "vpVesselModelSet.h"
 #include "vpVirtualDisplay.h"
-#include "vpVulkanContext.h"
 #include "vtkScalpelModel.h"
 #include "vtkScalpelTrackingLogic.h"
 #include "vtkVesselProximityLogic.h"
@@ -63,10 +62,10 @@ std::vector<std::pair<int, std::string>> KeyFrames(vtkVesselProximityLogic* logi
   std::map<int, std::string> keys{ { 0, "start" }, { static_cast<int>(poses.size()) - 1, "end" } };
   std::set<DangerLevel> seen{ DangerLevel::Safe };
   std::map<std::string, std::pair<double, int>> closest; // signed: inside is negative
-  logic->ResetTracking();
-  for (std::size_t i = 0; i < poses.size(); ++i)
-  {
-    const TrackedFrame& f = logic->ProcessPose(poses[i]);
+  TrackingSession session(logic);
+  PoseListSource source(poses, "the demo trajectory");
+  session.Run(source, [&](const TrackedFrame& f) {
+    const std::size_t i = static_cast<std::size_t>(f.Frame);
     if (seen.insert(f.Level).second)
     {
       keys.emplace(static_cast<int>(i), DangerLevelName(f.Level));
@@ -80,7 +79,7 @@ std::vector<std::pair<int, std::string>> KeyFrames(vtkVesselProximityLogic* logi
         closest[c.ClassName] = { signedMm, static_cast<int>(i) };
       }
     }
-  }
+  });
   for (const auto& [name, entry] : closest)
   {
     keys.emplace(entry.second, "closest_" + name);
@@ -139,65 +138,62 @@ void RenderKeyFrames(const ModuleServices& module, DemoReport& report, const std
   }
 }
 
+/// The demo's vessels as built, in memory, each naming the file the models stage wrote.
+std::vector<NamedMesh> DemoVessels(const DemoReport& report)
+{
+  std::vector<NamedMesh> vessels;
+  for (const char* c : VesselClasses)
+  {
+    vessels.push_back({ c, report.OutDir + "/models/" + c + ".stl", report.Surfaces.at(c), std::nullopt });
+  }
+  return vessels;
+}
+
 /// Both engines on every frame: the z-buffer engine answers, the exact engine checks; the exact
 /// engine alone without a Vulkan device.
-void TrackDemo(const ModuleServices& module, DemoReport& report, const std::vector<NamedMesh>& vessels, double frameBudgetMs, RunFolder& run)
+void TrackDemo(const ModuleServices& module, DemoReport& report, double frameBudgetMs, RunFolder& run)
 {
+  SceneRequest request;
+  request.Vessels = DemoVessels(report);
+  request.Engine.Method = "auto";
+  request.CompareWithExact = true; // when the z-buffer answers
+  request.Tracking.FrameBudgetMs = frameBudgetMs;
   vtkSmartPointer<vtkVesselProximityLogic> logic = module.CreateLogic();
-  DistanceEngineSettings settings;
-  settings.Method = "zbuffer";
-  report.Method = "both";
-  try
+  const OpenedScene scene = logic->OpenScene(request);
+  report.Method = logic->GetCompareWithExact() ? "both" : "exact";
+  if (!scene.EngineNote.empty())
   {
-    logic->SetDistanceEngine(MakeDistanceEngine(settings));
-  }
-  catch (const DeviceError& e)
-  {
-    report.Method = "exact";
-    report.MethodNote = std::string("no Vulkan device, exact engine only: ") + e.what();
+    report.MethodNote = "no Vulkan device, exact engine only: " + scene.EngineNote;
     std::cerr << "demo: " << report.MethodNote << "\n";
-    settings.Method = "exact";
-    logic->SetDistanceEngine(MakeDistanceEngine(settings));
   }
-  logic->SetCompareWithExact(report.Method == "both");
-  logic->SetScalpel(MakeDefaultScalpel());
-  for (const NamedMesh& m : vessels)
-  {
-    logic->AddVessel(m.ClassName, m.Mesh);
-  }
-  logic->Build();
-  logic->GetParameters()->SetFrameBudgetMs(frameBudgetMs);
-  logic->GetTrackingLogic()->ValidateSettings();
   vtkNew<vtkCallbackCommand> onFrame;
   onFrame->SetClientData(&report.FrameLevels);
   onFrame->SetCallback([](vtkObject*, unsigned long, void* levels, void* frame) {
     static_cast<std::vector<DangerLevel>*>(levels)->push_back(static_cast<const TrackedFrame*>(frame)->Level);
   });
   logic->GetTrackingLogic()->AddObserver(vtkScalpelTrackingLogic::FrameProcessedEvent, onFrame);
-  TrackingSession session(logic, vessels);
+  TrackingRecorder recorder(logic, scene.Vessels);
   PoseListSource poses(report.Trajectory.Poses, report.PosesFile);
-  if (session.Run(poses, run))
+  if (recorder.Run(poses, run))
   {
-    report.Summary = session.GetReport();
+    report.Summary = recorder.GetReport();
   }
 }
 } // namespace
 
 vtkSmartPointer<vtkVesselProximityLogic> MakeDemoTipLogic(const ModuleServices& module, const DemoReport& report)
 {
+  SceneRequest request;
+  request.Vessels = DemoVessels(report);
+  request.ComputeSurfaceDistance = false;
   vtkSmartPointer<vtkVesselProximityLogic> logic = module.CreateLogic();
-  for (const char* c : VesselClasses)
-  {
-    logic->AddVessel(c, report.Surfaces.at(c));
-  }
-  logic->SetScalpel(MakeDefaultScalpel());
-  logic->SetComputeSurfaceDistance(false);
+  logic->OpenScene(request);
   return logic;
 }
 
 /// The phantom's DICOM series, read back and modelled as any patient's; the report keeps the
 /// surfaces, the vessels name their files where they will be, and the models the series.
-std::vector<NamedMesh> BuildDemoModels(DemoReport& report, RunFolder& run)
+void BuildDemoModels(DemoReport& report, RunFolder& run)
 {
   const std::string staged = run.Folder("dicom");
   VesselModelSet set = BuildVesselModels(
@@ -211,7 +207,6 @@ std::vector<NamedMesh> BuildDemoModels(DemoReport& report, RunFolder& run)
     std::for_each(structures.begin(), structures.end(), [&](LabelStructure& s) { retarget(s.Source); });
   }
   WriteVesselModelFiles(set, run.Folder("models"));
-  std::vector<NamedMesh> vessels;
   for (const VesselClassModel& m : set.Models)
   {
     report.Surfaces[m.ClassName] = m.Surface;
@@ -222,9 +217,7 @@ std::vector<NamedMesh> BuildDemoModels(DemoReport& report, RunFolder& run)
     {
       throw InputError(report.DicomFolder, std::string("no model was built for ") + c);
     }
-    vessels.push_back({ c, report.OutDir + "/models/" + c + ".stl", report.Surfaces[c], std::nullopt });
   }
-  return vessels;
 }
 
 DemoReport RunDemoPipeline(const ModuleServices& module, const std::string& outDir, bool screenshots, double frameBudgetMs)
@@ -236,14 +229,13 @@ DemoReport RunDemoPipeline(const ModuleServices& module, const std::string& outD
   run.Begin();
   // Noted before the track stage writes summary.json, which lists every entry of the run.
   const std::string shots = screenshots ? run.Folder("screenshots") : std::string();
-  std::vector<NamedMesh> vessels;
   const std::vector<std::pair<const char*, std::function<void()>>> stages = {
     { "phantom: liver labelmap with three vessel trees, written as DICOM series",
       [&] {
         report.Phantom = MakeLiverPhantom();
         WriteLiverPhantomDicom(report.Phantom, run.Folder("dicom"));
       } },
-    { "models: DICOM series -> vessel surface models", [&] { vessels = BuildDemoModels(report, run); } },
+    { "models: DICOM series -> vessel surface models", [&] { BuildDemoModels(report, run); } },
     { "scalpel and trajectory",
       [&] {
         WriteDefaultScalpel(run.Folder("scalpel"));
@@ -253,7 +245,7 @@ DemoReport RunDemoPipeline(const ModuleServices& module, const std::string& outD
         report.Frames = static_cast<int>(report.Trajectory.Poses.size());
       } },
     { "track: every frame through the z-buffer engine, checked by the exact engine",
-      [&] { TrackDemo(module, report, vessels, frameBudgetMs, run); } },
+      [&] { TrackDemo(module, report, frameBudgetMs, run); } },
     { "screenshots of the key frames",
       screenshots ? std::function<void()>([&] { RenderKeyFrames(module, report, report.Trajectory.Poses, shots); }) : nullptr },
   };

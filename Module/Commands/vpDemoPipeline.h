@@ -50,7 +50,7 @@ struct DemoReport
 /// frameBudgetMs goes to the track stage (--frame-budget-ms). The module creates the logic of
 /// every stage and the overlays of the screenshots.
 DemoReport RunDemoPipeline(
-  const ModuleServices& module, const std::string& outDir, bool screenshots, double frameBudgetMs = 16.7);
+  const ModuleServices& module, const std::string& outDir, bool screenshots, double frameBudgetMs = TrackingSettings().FrameBudgetMs);
 
 /// The module's logic over the demo's built vessel models and scalpel, with the exact engine and
 /// the tip only (the whole surface off): what the screenshots show and the self-test checks.

@@ -95,10 +95,15 @@ vtkSmartPointer<vtkVesselDistanceEngine> MakeDistanceEngine(const std::string& m
 {
   std::string note;
   auto engine = MakeDistanceEngine(ParseEngineSettings(method, args), &note);
+  ReportEngineNote(note);
+  return engine;
+}
+
+void ReportEngineNote(const std::string& note)
+{
   if (!note.empty())
   {
     std::cerr << "vesselproximity: note: " << note << "; --method auto uses the exact engine\n";
   }
-  return engine;
 }
 } // namespace vp

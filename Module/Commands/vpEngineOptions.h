@@ -27,6 +27,9 @@ DistanceEngineSettings ParseEngineSettings(const std::string& method, const cli:
 /// "both" returns the z-buffer engine (the caller adds the exact one). Throws InputError for a
 /// bad option and DeviceError when the z-buffer engine was asked for and there is no device.
 vtkSmartPointer<vtkVesselDistanceEngine> MakeDistanceEngine(const std::string& method, const cli::ParsedArguments& args);
+
+/// The note of method auto when it fell back to the exact engine (empty: none), on stderr.
+void ReportEngineNote(const std::string& note);
 } // namespace vp
 
 #endif

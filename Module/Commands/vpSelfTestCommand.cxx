@@ -7,6 +7,7 @@
 #include "vpDemoTrajectory.h"
 #include "vpInputError.h"
 #include "vpPoseFile.h"
+#include "vpTrackingSession.h"
 #include "vtkVesselProximityLogic.h"
 
 #include <vtkCallbackCommand.h>
@@ -80,10 +81,9 @@ std::vector<DangerLevel> ExactLevels(const ModuleServices& module, const DemoRep
   });
   logic->GetTrackingLogic()->AddObserver(vtkScalpelTrackingLogic::DangerLevelChangedEvent, onChange);
   std::vector<DangerLevel> levels;
-  for (const TrackedPose& pose : report.Trajectory.Poses) // the poses the track stage ran
-  {
-    levels.push_back(logic->ProcessPose(pose).Level);
-  }
+  TrackingSession session(logic);
+  PoseListSource poses(report.Trajectory.Poses, report.PosesFile); // the poses the track stage ran
+  session.Run(poses, [&](const TrackedFrame& frame) { levels.push_back(frame.Level); });
   return levels;
 }
 

@@ -11,7 +11,7 @@
 #include "vpPoseFile.h"
 #include "vpScalpelLoader.h"
 #include "vpTrackingOptions.h"
-#include "vpTrackingSession.h"
+#include "vpTrackingRecorder.h"
 #include "vtkScalpelPenetration.h"
 #include "vtkScalpelTrackingLogic.h"
 #include "vtkVesselProximityLogic.h"
@@ -23,24 +23,12 @@ namespace vp
 {
 namespace
 {
-/// The module logic over the vessels and the scalpel, built: the engine, and beside it the exact
-/// engine when --method both's check or the whole surface needs one.
-void BuildLogic(vtkVesselProximityLogic* proximity, const std::vector<NamedMesh>& meshes, vtkScalpelModel* scalpel)
-{
-  proximity->SetScalpel(scalpel);
-  for (const auto& m : meshes)
-  {
-    proximity->AddVessel(m.ClassName, m.Mesh);
-  }
-  proximity->Build();
-  proximity->GetTrackingLogic()->ValidateSettings();
-}
-
 /// Said once everything is built and checked: a line before a refusal would make its one line two.
-void ReportBuiltScene(vtkVesselProximityLogic* proximity, const std::vector<NamedMesh>& meshes, const std::string& scalpelFile)
+void ReportOpenedScene(vtkVesselProximityLogic* proximity, const OpenedScene& scene, const std::string& scalpelFile)
 {
+  ReportEngineNote(scene.EngineNote);
   std::cerr << "track: " << proximity->GetScalpel()->GetTipSource() << "\n";
-  ReportSurfaceDefects("track", proximity->GetDistanceEngine(), meshes);
+  ReportSurfaceDefects("track", proximity->GetDistanceEngine(), scene.Vessels);
   vtkScalpelPenetration* penetration = proximity->GetTrackingLogic()->GetPenetration();
   if (penetration && !penetration->IsToolClosed())
   {
@@ -49,7 +37,7 @@ void ReportBuiltScene(vtkVesselProximityLogic* proximity, const std::vector<Name
   }
 }
 
-void PrintSummary(const TrackingSession& session, vtkVesselProximityLogic* proximity, const std::string& outDir)
+void PrintSummary(const TrackingRecorder& session, vtkVesselProximityLogic* proximity, const std::string& outDir)
 {
   const TrackingSummary& summary = session.GetSummary();
   vtkVesselDistanceEngine* engine = proximity->GetDistanceEngine();
@@ -116,7 +104,6 @@ cli::ModuleDescription DescribeTrackCommand()
 
 int RunTrackCommand(const cli::ParsedArguments& args, const ModuleServices& module)
 {
-  const ScalpelTipDefinition tip = ParseTipDefinition(args);
   const std::string outDir = args.GetString("output");
   RunFolder run(outDir, "summary.json");
 
@@ -126,30 +113,25 @@ int RunTrackCommand(const cli::ParsedArguments& args, const ModuleServices& modu
   const double start = NowMs();
   const std::string posesFile = args.GetString("poses");
   const std::size_t poseCount = PoseStream::CountPoses(posesFile);
-  vtkSmartPointer<vtkVesselProximityLogic> proximity = ConfigureTrackingLogic(args, module);
-  const auto vessels = ParsePairs(args.GetString("vessels"), "--vessels");
+  SceneRequest request = ParseSceneRequest(args);
+  request.RepairVessels = args.GetBoolean("repair");
   std::vector<std::string> classes;
-  for (const auto& vessel : vessels)
+  for (const NamedMesh& vessel : request.Vessels)
   {
-    classes.push_back(vessel.first);
+    classes.push_back(vessel.ClassName);
   }
   CheckFramesCsvColumns(classes); // before anything is read or said
   // What the run reads is never removed or written over, even in its own output folder.
-  std::vector<std::string> inputs = { posesFile, args.GetString("scalpel"), ScalpelDefinitionFileFor(args.GetString("scalpel")) };
-  for (const auto& vessel : vessels)
+  std::vector<std::string> inputs = { posesFile, request.ScalpelFile, ScalpelDefinitionFileFor(request.ScalpelFile) };
+  for (const NamedMesh& vessel : request.Vessels)
   {
-    inputs.push_back(vessel.second);
+    inputs.push_back(vessel.FileName);
   }
   run.SetInputs(inputs);
-  auto meshes = LoadVesselMeshes(vessels);
-  if (args.GetBoolean("repair"))
-  {
-    RepairVesselMeshes(meshes);
-  }
-  auto scalpel = LoadScalpel(args.GetString("scalpel"), tip);
-  BuildLogic(proximity, meshes, scalpel);
-  ReportBuiltScene(proximity, meshes, args.GetString("scalpel"));
-  TrackingSession session(proximity, meshes);
+  vtkSmartPointer<vtkVesselProximityLogic> proximity = module.CreateLogic();
+  const OpenedScene scene = proximity->OpenScene(request);
+  ReportOpenedScene(proximity, scene, request.ScalpelFile);
+  TrackingRecorder session(proximity, scene.Vessels);
   session.SetLoadAndBuildMs(NowMs() - start);
   session.SetProgress([](std::size_t done, std::size_t expected) {
     std::fprintf(stderr, "track: frame %zu of %zu (%.0f%%)\n", done, expected, 100.0 * done / expected);

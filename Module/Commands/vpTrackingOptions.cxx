@@ -11,10 +11,10 @@ namespace vp
 {
 namespace
 {
-/// The defaults the help shows are the parameter set's own.
-vtkSmartPointer<vtkVesselProximityParameters> Defaults()
+/// The defaults the help shows are the logic's own.
+TrackingSettings Defaults()
 {
-  return vtkSmartPointer<vtkVesselProximityParameters>::New();
+  return TrackingSettings();
 }
 } // namespace
 
@@ -36,13 +36,13 @@ cli::Parameter FrameBudgetOption()
   return Option(cli::ParameterType::Double, "frame-budget-ms",
     "The time one frame may take (60 Hz by default; 0: no budget); the frames over it are counted and shown.")
     .SetPlaceholder("MS")
-    .SetDefault(cli::FormatNumber(Defaults()->GetFrameBudgetMs()))
+    .SetDefault(cli::FormatNumber(Defaults().FrameBudgetMs))
     .SetLogicName("FrameBudgetMs");
 }
 
 cli::ParameterGroup TrackingOptions()
 {
-  const DangerThresholds d = Defaults()->GetDangerThresholds();
+  const DangerThresholds d = Defaults().Thresholds;
   using cli::FormatNumber;
   return { "Tracking", "",
     {
@@ -55,7 +55,7 @@ cli::ParameterGroup TrackingOptions()
         "A level is entered at once but left only when the distance exceeds its threshold by this much (0: none), so "
         "tracking noise does not flicker it.")
         .SetPlaceholder("MM")
-        .SetDefault(FormatNumber(Defaults()->GetHysteresisMm()))
+        .SetDefault(FormatNumber(Defaults().HysteresisMm))
         .SetLogicName("HysteresisMm"),
       FrameBudgetOption(),
       Switch("no-surface",
@@ -118,17 +118,22 @@ std::string FrameTimesText(const TrackingSummary& summary, double budgetMs)
                   : std::string("no frame budget"));
 }
 
-vtkSmartPointer<vtkVesselProximityLogic> ConfigureTrackingLogic(const cli::ParsedArguments& args, const ModuleServices& module)
+SceneRequest ParseSceneRequest(const cli::ParsedArguments& args)
 {
+  SceneRequest request;
+  for (const auto& [className, file] : ParsePairs(args.GetString("vessels"), "--vessels"))
+  {
+    request.Vessels.push_back({ className, file, nullptr, std::nullopt });
+  }
+  request.ScalpelFile = args.GetString("scalpel");
+  request.Tip = ParseTipDefinition(args);
   const std::string method = args.GetString("method");
-  vtkSmartPointer<vtkVesselProximityLogic> logic = module.CreateLogic();
-  vtkVesselProximityParameters* parameters = logic->GetParameters();
-  parameters->SetDangerThresholds(ParseDangerThresholds(args));
-  parameters->SetFrameBudgetMs(ParseFrameBudgetMs(args));
-  parameters->SetHysteresisMm(ParseHysteresisMm(args));
-  parameters->SetComputeSurfaceDistance(!args.GetBoolean("noSurface"));
-  parameters->SetCompareWithExact(method == "both");
-  parameters->SetDistanceEngine(MakeDistanceEngine(method, args));
-  return logic;
+  request.Engine = ParseEngineSettings(method, args);
+  request.CompareWithExact = method == "both";
+  request.ComputeSurfaceDistance = !args.GetBoolean("noSurface");
+  request.Tracking.Thresholds = ParseDangerThresholds(args);
+  request.Tracking.FrameBudgetMs = ParseFrameBudgetMs(args);
+  request.Tracking.HysteresisMm = ParseHysteresisMm(args);
+  return request;
 }
 } // namespace vp

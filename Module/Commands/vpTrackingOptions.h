@@ -3,12 +3,9 @@
 
 #include "vpCliDescription.h"
 #include "vpDangerLevels.h"
-#include "vpModuleServices.h"
 #include "vpScalpelLoader.h"
 #include "vpTrackingSummary.h"
-#include "vtkVesselProximityLogic.h"
-
-#include <vtkSmartPointer.h>
+#include "vpSceneRequest.h"
 
 #include <string>
 
@@ -35,10 +32,12 @@ double ParseHysteresisMm(const cli::ParsedArguments& args);
 /// budget"): how track and view report the frames' computing times.
 std::string FrameTimesText(const TrackingSummary& summary, double budgetMs);
 
-/// The module's logic (ModuleServices::CreateLogic) with what the tracking options set, checked before any file is read: the
-/// danger thresholds, the frame budget, the hysteresis, --no-surface, the engine of --method (its
-/// device opened) and, for "both", the comparison with the exact engine.
-vtkSmartPointer<vtkVesselProximityLogic> ConfigureTrackingLogic(const cli::ParsedArguments& args, const ModuleServices& module);
+/// The scene the shared options ask for (track, view): --vessels, --scalpel (none: the built-in
+/// handpiece) with --tip and --axis, the engine of --method with its settings (for "both", the
+/// comparison with the exact engine), --danger-mm, --frame-budget-ms, --hysteresis-mm and
+/// --no-surface. Nothing is read or opened here: vtkVesselProximityLogic::OpenScene does it.
+/// Throws InputError naming the option.
+SceneRequest ParseSceneRequest(const cli::ParsedArguments& args);
 } // namespace vp
 
 #endif

@@ -4,17 +4,14 @@
 #include "vpCommandSupport.h"
 #include "vpCommands.h"
 #include "vpDangerLevels.h"
-#include "vpDefaultScalpel.h"
 #include "vpEngineOptions.h"
 #include "vpInputError.h"
 #include "vpPointCsv.h"
 #include "vpPoseFile.h"
-#include "vpScalpelLoader.h"
 #include "vpTrackingOptions.h"
 #include "vpVirtualDisplay.h"
 #include "vtkScalpelModel.h"
 #include "vtkScalpelTrackingLogic.h"
-#include "vtkVesselMeshReader.h"
 #include "vtkVesselProximityLogic.h"
 #include "vtkVesselProximityView.h"
 
@@ -73,26 +70,6 @@ std::array<double, 16> StartingPose(vtkVesselProximityLogic* logic)
   const double cx = 0.5 * (bounds[0] + bounds[1]), cy = bounds[2] - 30.0, cz = 0.5 * (bounds[4] + bounds[5]);
   return { 1, 0, 0, cx, 0, 0, 1, cy, 0, -1, 0, cz, 0, 0, 0, 1 };
 }
-/// The vessels, the scalpel (the built-in handpiece unless one is given) and the liver.
-vtkSmartPointer<vtkPolyData> ReadScene(const cli::ParsedArguments& args, const ScalpelTipDefinition& tip, vtkVesselProximityLogic* logic)
-{
-  for (const auto& m : LoadVesselMeshes(ParsePairs(args.GetString("vessels"), "--vessels")))
-  {
-    logic->AddVessel(m.ClassName, m.Mesh);
-  }
-  vtkSmartPointer<vtkPolyData> liver;
-  if (args.IsSet("liver"))
-  {
-    vtkNew<vtkVesselMeshReader> reader;
-    reader->SetFileName(args.GetString("liver"));
-    reader->Read();
-    liver = reader->GetOutput();
-  }
-  logic->SetScalpel(args.IsSet("scalpel") ? LoadScalpel(args.GetString("scalpel"), tip) : MakeDefaultScalpel(tip));
-  logic->Build();
-  return liver;
-}
-
 /// A window needs the user's display; a screenshot takes a virtual one when there is none.
 void RequireDisplay(const std::string& screenshot, VirtualDisplay& display)
 {
@@ -161,11 +138,11 @@ cli::ModuleDescription DescribeViewCommand()
 
 int RunViewCommand(const cli::ParsedArguments& args, const ModuleServices& module)
 {
-  const ScalpelTipDefinition tip = ParseTipDefinition(args);
+  SceneRequest request = ParseSceneRequest(args);
+  request.LiverFile = args.GetString("liver");
   const auto size = ParseSize(args.GetString("size"));
   const std::vector<std::string> keys = SplitKeys(args.GetString("keys"));
   const std::string screenshot = args.GetString("screenshot");
-  vtkSmartPointer<vtkVesselProximityLogic> logic = ConfigureTrackingLogic(args, module);
   // Everything that can be refused is read before a window opens.
   std::vector<TrackedPose> poses;
   if (args.IsSet("poses"))
@@ -177,7 +154,9 @@ int RunViewCommand(const cli::ParsedArguments& args, const ModuleServices& modul
   {
     throw InputError("--pose", "no pose " + std::to_string(first) + " (the pose file has " + std::to_string(poses.size()) + ")");
   }
-  vtkSmartPointer<vtkPolyData> liver = ReadScene(args, tip, logic);
+  vtkSmartPointer<vtkVesselProximityLogic> logic = module.CreateLogic();
+  const OpenedScene scene = logic->OpenScene(request);
+  ReportEngineNote(scene.EngineNote);
   // Every frame the window shows, for the frame times said when it closes.
   TrackingSummary frames;
   vtkNew<vtkCallbackCommand> onFrame;
@@ -194,9 +173,9 @@ int RunViewCommand(const cli::ParsedArguments& args, const ModuleServices& modul
   view->SetOffScreen(!screenshot.empty());
   view->SetSizePx(size.first, size.second);
   view->SetLogic(logic);
-  if (liver)
+  if (scene.Liver)
   {
-    view->SetLiverSurface(liver);
+    view->SetLiverSurface(scene.Liver);
   }
   view->SetPoses(poses);
   for (int i = 0; i <= first && !poses.empty(); ++i)

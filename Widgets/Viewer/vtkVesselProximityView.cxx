@@ -2,6 +2,7 @@
 
 #include "vpInputError.h"
 #include "vpOutputFile.h"
+#include "vpTrackingSession.h"
 #include "vtkScalpelKeyboardMouseStyle.h"
 #include "vtkScalpelModel.h"
 #include "vtkVesselProximityLogic.h"
@@ -116,18 +117,24 @@ void vtkVesselProximityView::Process(const std::array<double, 16>& modelToWorld,
   {
     return;
   }
-  // Poses must move forward in time; a jump back (replay restarted) starts a new session.
-  if (logic->GetTrackingLogic()->GetNumberOfFrames() > 0 && timeS <= logic->GetLastFrame().TimeS)
+  // Poses must move forward in time; a jump back (replay restarted) starts a new session, as
+  // does a logic of its own. A session starts safe, its plot empty.
+  const bool jumpedBack = this->Session && this->Session->GetNumberOfFrames() > 0 && timeS <= logic->GetLastFrame().TimeS;
+  if (!this->Session || this->Session->GetLogic() != logic || jumpedBack)
   {
-    logic->ResetTracking();
-    this->Overlays->GetPlot()->ClearHistory();
-    this->Overlays->GetScalpel()->SetDangerLevel(vp::DangerLevel::Safe); // a session starts safe
+    const bool hadFrames = logic->GetTrackingLogic()->GetNumberOfFrames() > 0;
+    this->Session = std::make_unique<vp::TrackingSession>(logic);
+    if (hadFrames)
+    {
+      this->Overlays->GetPlot()->ClearHistory();
+      this->Overlays->GetScalpel()->SetDangerLevel(vp::DangerLevel::Safe);
+    }
   }
   this->TimeS = timeS;
   vp::TrackedPose pose;
   pose.TimeS = timeS;
   pose.ModelToWorld = modelToWorld;
-  logic->ProcessPose(pose);
+  this->Session->Process(pose);
 }
 
 void vtkVesselProximityView::ShowPose(int i)

@@ -8,6 +8,7 @@
 #include <vtkSmartPointer.h>
 
 #include <array>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -18,6 +19,10 @@ class vtkRenderWindowInteractor;
 class vtkScalpelKeyboardMouseStyle;
 class vtkVesselProximityLogic;
 class vtkVesselProximityOverlays;
+namespace vp
+{
+class TrackingSession;
+}
 
 /// A 3D view of the module: the overlays of a vtkVesselProximityLogic in a render window, with
 /// the scalpel moved by keys and mouse (vtkScalpelKeyboardMouseStyle) or replayed from poses.
@@ -97,6 +102,8 @@ protected:
   std::vector<vp::TrackedPose> Poses;
   int CurrentPose = -1;
   double TimeS = 0.0; ///< time stamped on poses made by moving the scalpel by hand
+  /// The poses shown so far, through the logic's frame loop; a new one when time jumps back.
+  std::unique_ptr<vp::TrackingSession> Session;
   bool Playing = false;
   int TimerId = -1;
   int ScreenshotCount = 0;

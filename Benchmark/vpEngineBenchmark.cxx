@@ -1,5 +1,6 @@
 #include "vpEngineBenchmark.h"
 
+#include "vpDistanceEngineFactory.h"
 #include "vpExactBenchmark.h"
 #include "vpMeshRefinement.h"
 #include "vpReplayBenchmark.h"
@@ -51,6 +52,11 @@ void BenchSizes(const BenchmarkRequest& request, const BenchTips& tips, Json& re
   }
 }
 } // namespace
+
+vtkSmartPointer<vtkZBufferVesselDistance> MakeBenchZBuffer(const DistanceEngineSettings& settings)
+{
+  return vtkZBufferVesselDistance::SafeDownCast(MakeDistanceEngine(settings));
+}
 
 BenchJson RunBenchmark(const BenchmarkRequest& request)
 {

@@ -37,6 +37,10 @@ struct BenchmarkRequest
   std::vector<TrackedPose> Poses;
 };
 
+/// The z-buffer engine the settings describe, its device opened: a missing one fails before any
+/// work. Throws as MakeDistanceEngine.
+vtkSmartPointer<vtkZBufferVesselDistance> MakeBenchZBuffer(const DistanceEngineSettings& settings);
+
 /// The engines side by side in one run: report["sizes"] (BenchExact per size), report["zbuffer"]
 /// (BenchZBuffer per size and ZBufferReport) and report["replay"] (BenchReplay), each when its
 /// part is asked for. Progress on stderr.

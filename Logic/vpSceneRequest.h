@@ -69,6 +69,9 @@ struct OpenedScene
   vtkSmartPointer<vtkPolyData> Liver;
   /// Why method auto answers with the exact engine (no Vulkan device); empty otherwise.
   std::string EngineNote;
+  /// The instrument's penetration is wanted but its surface is not closed, so its depth and
+  /// volume cannot be known (they are left empty).
+  bool PenetrationUnknown = false;
 };
 } // namespace vp
 

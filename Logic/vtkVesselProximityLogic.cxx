@@ -72,6 +72,7 @@ vp::OpenedScene vtkVesselProximityLogic::OpenScene(const vp::SceneRequest& reque
   this->Build();
   this->Tracking->ValidateSettings();
   this->ResetTracking();
+  scene.PenetrationUnknown = this->Penetration && !this->Penetration->IsToolClosed();
   return scene;
 }
 

@@ -82,5 +82,18 @@ breach "a command's usage or options written by hand (declare them in its descri
   "$(grep -rnE --include='*.h' --include='*.cxx' 'const char\* *Usage|std::set<std::string> options|Arguments args\(' Module/Commands)"
 breach "a command makes its own logic or overlays (take them from the module: ModuleServices)" \
   "$(grep -rnE --include='*.h' --include='*.cxx' 'vtkVesselProximity(Logic|Overlays)>::New|vtkNew<vtkVesselProximity(Logic|Overlays)>' Module/Commands)"
+public=" $(grep -vE '^\s*(#|$)' Logic/PublicHeaders.txt | tr '\n' ' ') "
+private_use=""
+while IFS=: read -r file line text; do
+  included=$(basename "$(sed -E 's/.*#include "([^"]+)".*/\1/' <<<"$text")")
+  [ -n "${header_folder[$included]:-}" ] || continue
+  [[ "$public" == *" $included "* ]] || private_use+="$file:$line: $included"$'\n'
+done < <(grep -rnE --include='*.h' --include='*.cxx' '^#include "' Module Widgets)
+breach "a front end includes a header Logic/PublicHeaders.txt does not list" "${private_use%$'\n'}"
+stale=""
+for listed in $public; do
+  [ -n "${header_folder[$listed]:-}" ] || stale+="Logic/PublicHeaders.txt: $listed"$'\n'
+done
+breach "a public header that is not in Logic/" "${stale%$'\n'}"
 [ "$failed" = 0 ] && echo "layering: every rule holds"
 exit "$failed"

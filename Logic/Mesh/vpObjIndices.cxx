@@ -41,11 +41,65 @@ bool WholeNumber(std::string_view text, std::int64_t& value)
   value = negative ? -value : value;
   return true;
 }
+/// One entry of a face, line or point (where: "line N: face"): v, v/vt, v//vn or v/vt/vn, of the
+/// line's form (form: -1 before its first entry), each index nonzero and defined before it.
+void CheckEntry(std::string_view entry, int& form, const std::int64_t defined[3], const std::string& where, const std::string& fileName)
+{
+  static const char* const Kinds[3] = { "vertex", "texture coordinate", "normal" };
+  // v, v/vt, v//vn or v/vt/vn, the same in every entry of the line: VTK's reader crashed on
+  // a trailing slash (2/) beside other forms.
+  const std::size_t slashes = static_cast<std::size_t>(std::count(entry.begin(), entry.end(), '/'));
+  const std::size_t firstSlash = entry.find('/');
+  const bool hasTexture = slashes >= 1 && firstSlash + 1 < entry.size() && entry[firstSlash + 1] != '/';
+  const bool hasNormal = slashes == 2 && entry.back() != '/';
+  if (slashes > 2 || (slashes == 1 && !hasTexture) || (slashes == 2 && !hasNormal))
+  {
+    throw InputError(fileName, where + " entry '" + std::string(entry) +
+        "' is not v, v/vt, v//vn or v/vt/vn");
+  }
+  const int entryForm = (hasTexture ? 1 : 0) | (hasNormal ? 2 : 0);
+  if (form >= 0 && entryForm != form)
+  {
+    throw InputError(fileName, where + " entry '" + std::string(entry) +
+        "' is not of the same form as the first");
+  }
+  form = entryForm;
+  std::size_t part = 0, from = 0;
+  for (;;)
+  {
+    const std::size_t slash = entry.find('/', from);
+    const std::string_view text = entry.substr(from, slash == std::string_view::npos ? std::string_view::npos : slash - from);
+    if (part > 2)
+    {
+      throw InputError(fileName, where + " entry '" + std::string(entry) +
+          "' has more than v/vt/vn");
+    }
+    if (!text.empty() || part == 0)
+    {
+      std::int64_t index = 0;
+      if (!WholeNumber(text, index) || index == 0)
+      {
+        throw InputError(fileName, where + " entry '" + std::string(entry) +
+            "' is not a nonzero whole-number index");
+      }
+      if (index > defined[part] || -index > defined[part])
+      {
+        throw InputError(fileName, where + " names " + Kinds[part] + " " +
+            std::to_string(index) + ", but " + std::to_string(defined[part]) + " are defined before it");
+      }
+    }
+    if (slash == std::string_view::npos)
+    {
+      break;
+    }
+    from = slash + 1;
+    ++part;
+  }
+}
 } // namespace
 
 void CheckObjIndices(const std::string& bytes, const std::string& fileName)
 {
-  static const char* const Kinds[3] = { "vertex", "texture coordinate", "normal" };
   std::int64_t defined[3] = { 0, 0, 0 }; // v, vt, vn so far
   std::size_t lineNumber = 0;
   for (std::size_t start = 0; start < bytes.size();)
@@ -97,55 +151,7 @@ void CheckObjIndices(const std::string& bytes, const std::string& fileName)
       }
       const std::string_view entry = line.substr(k, e - k);
       k = e;
-      // v, v/vt, v//vn or v/vt/vn, the same in every entry of the line: VTK's reader crashed on
-      // a trailing slash (2/) beside other forms.
-      const std::size_t slashes = static_cast<std::size_t>(std::count(entry.begin(), entry.end(), '/'));
-      const std::size_t firstSlash = entry.find('/');
-      const bool hasTexture = slashes >= 1 && firstSlash + 1 < entry.size() && entry[firstSlash + 1] != '/';
-      const bool hasNormal = slashes == 2 && entry.back() != '/';
-      if (slashes > 2 || (slashes == 1 && !hasTexture) || (slashes == 2 && !hasNormal))
-      {
-        throw InputError(fileName, "line " + std::to_string(lineNumber) + ": " + what + " entry '" + std::string(entry) +
-            "' is not v, v/vt, v//vn or v/vt/vn");
-      }
-      const int entryForm = (hasTexture ? 1 : 0) | (hasNormal ? 2 : 0);
-      if (form >= 0 && entryForm != form)
-      {
-        throw InputError(fileName, "line " + std::to_string(lineNumber) + ": " + what + " entry '" + std::string(entry) +
-            "' is not of the same form as the first");
-      }
-      form = entryForm;
-      std::size_t part = 0, from = 0;
-      for (;;)
-      {
-        const std::size_t slash = entry.find('/', from);
-        const std::string_view text = entry.substr(from, slash == std::string_view::npos ? std::string_view::npos : slash - from);
-        if (part > 2)
-        {
-          throw InputError(fileName, "line " + std::to_string(lineNumber) + ": " + what + " entry '" + std::string(entry) +
-              "' has more than v/vt/vn");
-        }
-        if (!text.empty() || part == 0)
-        {
-          std::int64_t index = 0;
-          if (!WholeNumber(text, index) || index == 0)
-          {
-            throw InputError(fileName, "line " + std::to_string(lineNumber) + ": " + what + " entry '" + std::string(entry) +
-                "' is not a nonzero whole-number index");
-          }
-          if (index > defined[part] || -index > defined[part])
-          {
-            throw InputError(fileName, "line " + std::to_string(lineNumber) + ": " + what + " names " + Kinds[part] + " " +
-                std::to_string(index) + ", but " + std::to_string(defined[part]) + " are defined before it");
-          }
-        }
-        if (slash == std::string_view::npos)
-        {
-          break;
-        }
-        from = slash + 1;
-        ++part;
-      }
+      CheckEntry(entry, form, defined, "line " + std::to_string(lineNumber) + ": " + what, fileName);
     }
   }
 }

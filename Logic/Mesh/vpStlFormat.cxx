@@ -68,6 +68,45 @@ void CheckFinite(const std::vector<float>& coords, const std::string& sourceName
   }
 }
 
+/// The three numbers after "vertex" (p just past the keyword) appended to coordinates; returns
+/// where they end. Throws InputError naming the line when they are not three numbers.
+const char* ReadVertex(const char* p, std::size_t line, const std::string& sourceName, std::vector<float>& coordinates)
+{
+  for (int k = 0; k < 3; ++k)
+  {
+    char* numberEnd = nullptr;
+    errno = 0;
+    const double value = std::strtod(p, &numberEnd);
+    if (numberEnd == p || (*numberEnd != ' ' && *numberEnd != '\t' && *numberEnd != '\r' &&
+                            *numberEnd != '\n' && *numberEnd != '\0'))
+    {
+      throw InputError(sourceName,
+        "line " + std::to_string(line) + ": expected three numbers after 'vertex'");
+    }
+    coordinates.push_back(static_cast<float>(value));
+    p = numberEnd;
+  }
+  return p;
+}
+
+/// A whole ASCII STL: a "solid", whole facets, and an "endsolid" after any.
+void CheckAsciiStlEnds(const StlSoup& soup, bool sawSolid, bool sawEndSolid, const std::string& sourceName)
+{
+  if (!sawSolid)
+  {
+    throw InputError(sourceName, "not an STL file (no 'solid' keyword)");
+  }
+  if (soup.Coordinates.size() % 9 != 0)
+  {
+    throw InputError(sourceName, "ASCII STL ends inside a facet (vertex count " +
+        std::to_string(soup.Coordinates.size() / 3) + " is not a multiple of 3)");
+  }
+  if (!sawEndSolid && !soup.Coordinates.empty())
+  {
+    throw InputError(sourceName, "ASCII STL is truncated (no 'endsolid')");
+  }
+}
+
 /// ASCII STL: only the "vertex x y z" lines carry geometry; facet normals are recomputed from
 /// the winding, as every reader of STL that wants consistent normals does.
 // wholeFile false: data is the start of a longer file, cut at a line's end; only what it holds
@@ -119,20 +158,7 @@ StlSoup ParseAsciiStl(const char* data, std::size_t size, const std::string& sou
     }
     if (word == "vertex")
     {
-      for (int k = 0; k < 3; ++k)
-      {
-        char* numberEnd = nullptr;
-        errno = 0;
-        const double value = std::strtod(p, &numberEnd);
-        if (numberEnd == p || (*numberEnd != ' ' && *numberEnd != '\t' && *numberEnd != '\r' &&
-                                *numberEnd != '\n' && *numberEnd != '\0'))
-        {
-          throw InputError(sourceName,
-            "line " + std::to_string(line) + ": expected three numbers after 'vertex'");
-        }
-        soup.Coordinates.push_back(static_cast<float>(value));
-        p = numberEnd;
-      }
+      p = ReadVertex(p, line, sourceName, soup.Coordinates);
       continue;
     }
     if (word == "endsolid")
@@ -155,22 +181,9 @@ StlSoup ParseAsciiStl(const char* data, std::size_t size, const std::string& sou
     throw InputError(sourceName,
       "line " + std::to_string(line) + ": unexpected '" + word.substr(0, 32) + "' in ASCII STL");
   }
-  if (!wholeFile)
+  if (wholeFile)
   {
-    return soup;
-  }
-  if (!sawSolid)
-  {
-    throw InputError(sourceName, "not an STL file (no 'solid' keyword)");
-  }
-  if (soup.Coordinates.size() % 9 != 0)
-  {
-    throw InputError(sourceName, "ASCII STL ends inside a facet (vertex count " +
-        std::to_string(soup.Coordinates.size() / 3) + " is not a multiple of 3)");
-  }
-  if (!sawEndSolid && !soup.Coordinates.empty())
-  {
-    throw InputError(sourceName, "ASCII STL is truncated (no 'endsolid')");
+    CheckAsciiStlEnds(soup, sawSolid, sawEndSolid, sourceName);
   }
   return soup;
 }

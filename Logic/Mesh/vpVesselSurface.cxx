@@ -45,6 +45,47 @@ void Normalize(std::array<double, 3>& v)
     v[2] /= n;
   }
 }
+/// Pairs the sorted directed edges: each shared edge links its two triangles (neighbours, and
+/// their pieces in parent); what cannot pair is counted as a defect, with the pieces.
+MeshDefects PairEdges(const std::vector<DirectedEdge>& edges, std::vector<std::array<std::int32_t, 3>>& neighbours,
+  std::vector<std::int32_t>& parent)
+{
+  MeshDefects defects;
+  for (std::size_t i = 0; i < edges.size();)
+  {
+    std::size_t j = i;
+    while (j < edges.size() && edges[j].Key == edges[i].Key)
+    {
+      ++j;
+    }
+    if (j - i == 1)
+    {
+      ++defects.BoundaryEdges;
+    }
+    else if (j - i > 2)
+    {
+      ++defects.NonManifoldEdges;
+    }
+    else
+    {
+      const DirectedEdge& x = edges[i];
+      const DirectedEdge& y = edges[i + 1];
+      if (x.Forward == y.Forward)
+      {
+        ++defects.InconsistentEdges;
+      }
+      neighbours[x.Triangle][x.Local] = y.Triangle;
+      neighbours[y.Triangle][y.Local] = x.Triangle;
+      parent[FindRoot(parent, x.Triangle)] = FindRoot(parent, y.Triangle);
+    }
+    i = j;
+  }
+  for (std::size_t t = 0; t < parent.size(); ++t)
+  {
+    defects.Components += FindRoot(parent, static_cast<std::int32_t>(t)) == static_cast<std::int32_t>(t) ? 1 : 0;
+  }
+  return defects;
+}
 } // namespace
 
 VesselSurface::VesselSurface(const std::string& name, vtkPolyData* mesh)
@@ -126,48 +167,21 @@ void VesselSurface::BuildTopology()
   std::vector<std::array<std::int32_t, 3>> neighbours(nt, { -1, -1, -1 });
   std::vector<std::int32_t> parent(nt);
   std::iota(parent.begin(), parent.end(), 0);
-  MeshDefects defects;
-  for (std::size_t i = 0; i < edges.size();)
-  {
-    std::size_t j = i;
-    while (j < edges.size() && edges[j].Key == edges[i].Key)
-    {
-      ++j;
-    }
-    if (j - i == 1)
-    {
-      ++defects.BoundaryEdges;
-    }
-    else if (j - i > 2)
-    {
-      ++defects.NonManifoldEdges;
-    }
-    else
-    {
-      const DirectedEdge& x = edges[i];
-      const DirectedEdge& y = edges[i + 1];
-      if (x.Forward == y.Forward)
-      {
-        ++defects.InconsistentEdges;
-      }
-      neighbours[x.Triangle][x.Local] = y.Triangle;
-      neighbours[y.Triangle][y.Local] = x.Triangle;
-      parent[FindRoot(parent, x.Triangle)] = FindRoot(parent, y.Triangle);
-    }
-    i = j;
-  }
-  for (std::size_t t = 0; t < nt; ++t)
-  {
-    defects.Components += FindRoot(parent, static_cast<std::int32_t>(t)) == static_cast<std::int32_t>(t) ? 1 : 0;
-  }
-  this->DefectCounts = defects;
-  const bool closed = !defects.Any();
-  this->Closed = closed;
-  if (!closed)
+  this->DefectCounts = PairEdges(edges, neighbours, parent);
+  this->Closed = !this->DefectCounts.Any();
+  if (!this->Closed)
   {
     return;
   }
+  std::vector<std::array<double, 3>> faceNormals = this->OutwardFaceNormals(parent);
+  this->VertexNormals = this->AngleWeightedVertexNormals(faceNormals);
+  this->FaceNormals = std::move(faceNormals);
+  this->Neighbours = std::move(neighbours);
+}
 
+std::vector<std::array<double, 3>> VesselSurface::OutwardFaceNormals(std::vector<std::int32_t>& parent) const
+{
+  const std::size_t nt = this->Triangles.size();
   // Each connected piece faces outward when its enclosed volume is positive.
   std::vector<double> volume(nt, 0.0);
   std::vector<std::array<double, 3>> faceNormals(nt);
@@ -194,7 +208,13 @@ void VesselSurface::BuildTopology()
     }
     Normalize(faceNormals[t]);
   }
+  return faceNormals;
+}
 
+std::vector<std::array<double, 3>> VesselSurface::AngleWeightedVertexNormals(
+  const std::vector<std::array<double, 3>>& faceNormals) const
+{
+  const std::size_t nt = this->Triangles.size();
   std::vector<std::array<double, 3>> vertexNormals(this->Points.size(), { 0.0, 0.0, 0.0 });
   for (std::size_t t = 0; t < nt; ++t)
   {
@@ -214,9 +234,7 @@ void VesselSurface::BuildTopology()
       }
     }
   }
-  this->FaceNormals = std::move(faceNormals);
-  this->Neighbours = std::move(neighbours);
-  this->VertexNormals = std::move(vertexNormals);
+  return vertexNormals;
 }
 
 std::string MeshDefects::Describe() const

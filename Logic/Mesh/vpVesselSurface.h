@@ -74,6 +74,10 @@ private:
   std::vector<std::array<double, 3>> VertexNormals;   // angle-weighted, outward
 
   void BuildTopology();
+  /// Per triangle its unit normal, turned so that each closed piece (parent: the pieces) faces out.
+  std::vector<std::array<double, 3>> OutwardFaceNormals(std::vector<std::int32_t>& parent) const;
+  /// Per point the angle-weighted sum of its triangles' normals (the pseudonormal's direction).
+  std::vector<std::array<double, 3>> AngleWeightedVertexNormals(const std::vector<std::array<double, 3>>& faceNormals) const;
 };
 } // namespace vp
 

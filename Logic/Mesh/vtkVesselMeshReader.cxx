@@ -216,6 +216,31 @@ vtkSmartPointer<vtkPolyData> ReadWithVtk(Reader* reader, const std::string& file
   }
   return output;
 }
+/// A model's triangles and coordinates within what a patient's model can be.
+void CheckModel(vtkPolyData* mesh, const std::string& fileName, std::size_t dropped)
+{
+  if (mesh->GetNumberOfPolys() == 0)
+  {
+    throw vp::InputError(fileName,
+      dropped ? "every triangle is degenerate (" + std::to_string(dropped) + " dropped)"
+              : std::string("no triangles"));
+  }
+  if (static_cast<double>(mesh->GetNumberOfPolys()) > vp::limits::MaxModelTriangles)
+  {
+    throw vp::InputError(fileName, std::to_string(mesh->GetNumberOfPolys()) + " triangles: a model holds at most " +
+        vp::NumberText(vp::limits::MaxModelTriangles) + " (decimate it first)");
+  }
+  double bounds[6];
+  mesh->GetBounds(bounds);
+  for (int i = 0; i < 6; ++i)
+  {
+    const std::string problem = vp::MagnitudeProblem(bounds[i], vp::limits::CoordinateMm, "mm");
+    if (!problem.empty())
+    {
+      throw vp::InputError(fileName, "a coordinate of " + problem + ": not a patient's model (unit error?)");
+    }
+  }
+}
 } // namespace
 
 vtkVesselMeshReader::vtkVesselMeshReader() = default;
@@ -228,6 +253,48 @@ void vtkVesselMeshReader::SetFileName(const std::string& fileName)
     this->FileName = fileName;
     this->Modified();
   }
+}
+
+vtkSmartPointer<vtkPolyData> vtkVesselMeshReader::ReadThroughVtk(const std::string& bytes, const std::string& ext, std::size_t& dropped)
+{
+  const std::string& fileName = this->FileName;
+  vtkSmartPointer<vtkPolyData> raw;
+  if (ext == ".vtk")
+  {
+    vtkNew<vtkPolyDataReader> reader;
+    reader->SetFileName(fileName.c_str());
+    if (!reader->IsFilePolyData())
+    {
+      throw vp::InputError(fileName, "not a legacy VTK polydata file");
+    }
+    // VTK reads only the geometry we walked first: its reader trusts what a file declares.
+    const std::size_t geometry = vp::CheckLegacyVtkGeometry(bytes, fileName);
+    reader->ReadFromInputStringOn();
+    reader->SetInputString(bytes.data(), static_cast<int>(std::min<std::size_t>(geometry, INT_MAX)));
+    raw = ReadWithVtk(reader.Get(), fileName, "legacy VTK");
+    this->FileSpace = vp::ParseSpaceTag(reader->GetHeader() ? reader->GetHeader() : "");
+  }
+  else if (ext == ".vtp")
+  {
+    vtkNew<vtkXMLPolyDataReader> reader;
+    raw = ReadWithVtk(reader.Get(), fileName, "VTP");
+    this->FileSpace = vp::ParseSpaceTag(bytes.substr(0, 4096));
+  }
+  else if (ext == ".obj")
+  {
+    vp::CheckObjIndices(bytes, fileName);
+    vtkNew<vtkOBJReader> reader;
+    raw = ReadWithVtk(reader.Get(), fileName, "OBJ");
+    this->FileSpace = vp::ParseSpaceTag(bytes.substr(0, 4096));
+  }
+  else
+  {
+    throw vp::InputError(fileName,
+      "unknown mesh format '" + (ext.empty() ? std::string("(no extension)") : ext) +
+        "' (expected .stl, .vtk, .vtp or .obj)");
+  }
+  const std::vector<double> soup = TriangleSoupFromPolyData(raw, fileName, ext == ".obj");
+  return vp::BuildIndexedMesh(soup.data(), soup.size() / 9, &dropped);
 }
 
 void vtkVesselMeshReader::Read()
@@ -259,65 +326,9 @@ void vtkVesselMeshReader::Read()
   }
   else
   {
-    vtkSmartPointer<vtkPolyData> raw;
-    if (ext == ".vtk")
-    {
-      vtkNew<vtkPolyDataReader> reader;
-      reader->SetFileName(fileName.c_str());
-      if (!reader->IsFilePolyData())
-      {
-        throw vp::InputError(fileName, "not a legacy VTK polydata file");
-      }
-      // VTK reads only the geometry we walked first: its reader trusts what a file declares.
-      const std::size_t geometry = vp::CheckLegacyVtkGeometry(bytes, fileName);
-      reader->ReadFromInputStringOn();
-      reader->SetInputString(bytes.data(), static_cast<int>(std::min<std::size_t>(geometry, INT_MAX)));
-      raw = ReadWithVtk(reader.Get(), fileName, "legacy VTK");
-      this->FileSpace = vp::ParseSpaceTag(reader->GetHeader() ? reader->GetHeader() : "");
-    }
-    else if (ext == ".vtp")
-    {
-      vtkNew<vtkXMLPolyDataReader> reader;
-      raw = ReadWithVtk(reader.Get(), fileName, "VTP");
-      this->FileSpace = vp::ParseSpaceTag(bytes.substr(0, 4096));
-    }
-    else if (ext == ".obj")
-    {
-      vp::CheckObjIndices(bytes, fileName);
-      vtkNew<vtkOBJReader> reader;
-      raw = ReadWithVtk(reader.Get(), fileName, "OBJ");
-      this->FileSpace = vp::ParseSpaceTag(bytes.substr(0, 4096));
-    }
-    else
-    {
-      throw vp::InputError(fileName,
-        "unknown mesh format '" + (ext.empty() ? std::string("(no extension)") : ext) +
-          "' (expected .stl, .vtk, .vtp or .obj)");
-    }
-    const std::vector<double> soup = TriangleSoupFromPolyData(raw, fileName, ext == ".obj");
-    mesh = vp::BuildIndexedMesh(soup.data(), soup.size() / 9, &dropped);
+    mesh = this->ReadThroughVtk(bytes, ext, dropped);
   }
-  if (mesh->GetNumberOfPolys() == 0)
-  {
-    throw vp::InputError(fileName,
-      dropped ? "every triangle is degenerate (" + std::to_string(dropped) + " dropped)"
-              : std::string("no triangles"));
-  }
-  if (static_cast<double>(mesh->GetNumberOfPolys()) > vp::limits::MaxModelTriangles)
-  {
-    throw vp::InputError(fileName, std::to_string(mesh->GetNumberOfPolys()) + " triangles: a model holds at most " +
-        vp::NumberText(vp::limits::MaxModelTriangles) + " (decimate it first)");
-  }
-  double bounds[6];
-  mesh->GetBounds(bounds);
-  for (int i = 0; i < 6; ++i)
-  {
-    const std::string problem = vp::MagnitudeProblem(bounds[i], vp::limits::CoordinateMm, "mm");
-    if (!problem.empty())
-    {
-      throw vp::InputError(fileName, "a coordinate of " + problem + ": not a patient's model (unit error?)");
-    }
-  }
+  CheckModel(mesh, fileName, dropped);
   const vp::MeshSpace space =
     this->FileSpace == vp::MeshSpace::Unspecified ? this->DefaultFileSpace : this->FileSpace;
   if (space == vp::MeshSpace::RAS)

@@ -54,6 +54,8 @@ protected:
   ~vtkVesselMeshReader() override;
 
 private:
+  /// A VTK, VTP or OBJ file through VTK's reader (after our own checks of it), as triangles.
+  vtkSmartPointer<vtkPolyData> ReadThroughVtk(const std::string& bytes, const std::string& ext, std::size_t& dropped);
   vtkVesselMeshReader(const vtkVesselMeshReader&) = delete;
   void operator=(const vtkVesselMeshReader&) = delete;
 

@@ -55,6 +55,8 @@ private:
   void operator=(const vtkVesselModelBuilder&) = delete;
 
   vtkSmartPointer<vtkPolyData> BuildOnGrid(const std::vector<const vp::LabelStructure*>& structures);
+  /// The contour decimated and smoothed as the settings say (each when its factor is above 0).
+  vtkSmartPointer<vtkPolyData> DecimateAndSmooth(vtkPolyData* contour) const;
 
   double SmoothingFactor = 0.5;
   int SmoothingIterations = 20;

@@ -95,6 +95,19 @@ void PrincipalAxis(vtkPolyData* mesh, double centroid[3], double axis[3])
     axis[i] = vectors[i][0];
   }
 }
+
+/// Each point of the model with its position s along the axis from the centroid.
+template <typename Visit>
+void ForEachPointAlong(vtkPoints* points, const double centroid[3], const double axis[3], Visit&& visit)
+{
+  const vtkIdType count = points->GetNumberOfPoints();
+  for (vtkIdType i = 0; i < count; ++i)
+  {
+    double p[3];
+    points->GetPoint(i, p);
+    visit(p, (p[0] - centroid[0]) * axis[0] + (p[1] - centroid[1]) * axis[1] + (p[2] - centroid[2]) * axis[2]);
+  }
+}
 } // namespace
 
 ScalpelTipEstimate FindScalpelTip(vtkPolyData* model, const std::string& source)
@@ -121,16 +134,11 @@ ScalpelTipEstimate FindScalpelTip(vtkPolyData* model, const std::string& source)
 
   // Extent along the axis and each point's distance from it.
   vtkPoints* points = mesh->GetPoints();
-  const vtkIdType count = points->GetNumberOfPoints();
   double low = VTK_DOUBLE_MAX, high = -VTK_DOUBLE_MAX;
-  for (vtkIdType i = 0; i < count; ++i)
-  {
-    double p[3];
-    points->GetPoint(i, p);
-    const double s = (p[0] - centroid[0]) * axis[0] + (p[1] - centroid[1]) * axis[1] + (p[2] - centroid[2]) * axis[2];
+  ForEachPointAlong(points, centroid, axis, [&](const double*, double s) {
     low = std::min(low, s);
     high = std::max(high, s);
-  }
+  });
   const double length = high - low;
   if (!(length > 0))
   {
@@ -158,11 +166,7 @@ ScalpelTipEstimate FindScalpelTip(vtkPolyData* model, const std::string& source)
   // The tip point: the centre of the surface points at the very extreme of the chosen end.
   double tipSum[2][3] = { { 0, 0, 0 }, { 0, 0, 0 } };
   int inTip[2] = { 0, 0 };
-  for (vtkIdType i = 0; i < count; ++i)
-  {
-    double p[3];
-    points->GetPoint(i, p);
-    const double s = (p[0] - centroid[0]) * axis[0] + (p[1] - centroid[1]) * axis[1] + (p[2] - centroid[2]) * axis[2];
+  ForEachPointAlong(points, centroid, axis, [&](const double* p, double s) {
     const double fromEnd[2] = { s - low, high - s };
     for (int e = 0; e < 2; ++e)
     {
@@ -175,7 +179,7 @@ ScalpelTipEstimate FindScalpelTip(vtkPolyData* model, const std::string& source)
         ++inTip[e];
       }
     }
-  }
+  });
   double width[2];
   for (int e = 0; e < 2; ++e)
   {

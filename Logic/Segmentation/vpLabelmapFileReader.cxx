@@ -285,25 +285,18 @@ bool LabelmapFileReader::Handles(const std::string& fileName)
   return IsNifti(fileName) || EndsWith(fileName, ".nrrd") || EndsWith(fileName, ".nhdr");
 }
 
-LabelStructures LabelmapFileReader::Read(const std::string& fileName, std::size_t maximumVoxels)
+namespace
 {
-  using Image = itk::VectorImage<double, 3>;
-  itk::ImageIOBase::Pointer io;
-  if (IsNifti(fileName))
-  {
-    io = itk::NiftiImageIO::New();
-  }
-  else
-  {
-    io = itk::NrrdImageIO::New();
-  }
-  if (!io->CanReadFile(fileName.c_str()))
-  {
-    throw InputError(fileName, std::string("not a readable ") + (IsNifti(fileName) ? "NIfTI" : "NRRD") + " file");
-  }
+using LabelImage = itk::VectorImage<double, 3>;
+
+/// The image through io, its header checked before a voxel is read: three dimensions, a voxel
+/// geometry (ijkToLps, filled here) the checks accept, no more voxels than maximumVoxels and no
+/// more than the file holds. One line for ITK's own errors.
+LabelImage::Pointer ReadLabelImage(itk::ImageIOBase* io, const std::string& fileName, std::size_t maximumVoxels,
+  std::array<double, 16>& ijkToLps)
+{
+  using Image = LabelImage;
   Image::Pointer image;
-  std::array<double, 16> ijkToLps{};
-  CheckNrrdDirections(fileName);
   try
   {
     io->SetFileName(fileName);
@@ -354,11 +347,14 @@ LabelStructures LabelmapFileReader::Read(const std::string& fileName, std::size_
     }
     throw InputError(fileName, "cannot be read: " + what);
   }
+  return image;
+}
 
+/// One grid per layer (vector component); values must be whole numbers.
+std::vector<LabelGrid> LayerGrids(LabelImage* image, const std::string& fileName, const std::array<double, 16>& ijkToLps)
+{
   const auto size = image->GetLargestPossibleRegion().GetSize();
   const int dimensions[3] = { static_cast<int>(size[0]), static_cast<int>(size[1]), static_cast<int>(size[2]) };
-
-  // One grid per layer (vector component); values must be whole numbers.
   const unsigned layers = image->GetNumberOfComponentsPerPixel();
   const std::size_t voxels = static_cast<std::size_t>(size[0]) * size[1] * size[2];
   const double* buffer = image->GetBufferPointer();
@@ -381,7 +377,53 @@ LabelStructures LabelmapFileReader::Read(const std::string& fileName, std::size_
     grids.push_back(MakeLabelGrid(layers > 1 ? fileName + " (layer " + std::to_string(layer) + ")" : fileName,
       dimensions, values, ijkToLps));
   }
+  return grids;
+}
 
+/// The structure a Segment<N>_ key set names, on its layer's grid.
+LabelStructure SegmentStructure(int index, const SegmentKeys& keys, const std::string& fileName, const std::vector<LabelGrid>& grids)
+{
+  LabelStructure s;
+  s.Name = keys.Name.empty() ? "Segment" + std::to_string(index) : keys.Name;
+  s.Source = fileName;
+  s.LabelValue = keys.LabelValue;
+  // Slicer: "context~category scheme^value^meaning~type scheme^value^meaning~..."
+  std::vector<std::string> fields;
+  std::istringstream in(keys.Terminology);
+  for (std::string field; std::getline(in, field, '~');)
+  {
+    fields.push_back(field);
+  }
+  if (fields.size() >= 3)
+  {
+    s.Category = ParseCode(fields[1]);
+    s.Type = ParseCode(fields[2]);
+  }
+  s.Grid = grids[static_cast<std::size_t>(keys.Layer)];
+  return s;
+}
+} // namespace
+
+LabelStructures LabelmapFileReader::Read(const std::string& fileName, std::size_t maximumVoxels)
+{
+  itk::ImageIOBase::Pointer io;
+  if (IsNifti(fileName))
+  {
+    io = itk::NiftiImageIO::New();
+  }
+  else
+  {
+    io = itk::NrrdImageIO::New();
+  }
+  if (!io->CanReadFile(fileName.c_str()))
+  {
+    throw InputError(fileName, std::string("not a readable ") + (IsNifti(fileName) ? "NIfTI" : "NRRD") + " file");
+  }
+  std::array<double, 16> ijkToLps{};
+  CheckNrrdDirections(fileName);
+  const LabelImage::Pointer image = ReadLabelImage(io, fileName, maximumVoxels, ijkToLps);
+  const unsigned layers = image->GetNumberOfComponentsPerPixel();
+  const std::vector<LabelGrid> grids = LayerGrids(image, fileName, ijkToLps);
   const std::map<int, SegmentKeys> segments = ReadSegmentKeys(io->GetMetaDataDictionary(), fileName);
   if (segments.empty())
   {
@@ -399,24 +441,7 @@ LabelStructures LabelmapFileReader::Read(const std::string& fileName, std::size_
       throw InputError(fileName, "Segment" + std::to_string(index) + "_Layer is " + std::to_string(keys.Layer) +
           " but the file has " + std::to_string(layers) + " layer(s)");
     }
-    LabelStructure s;
-    s.Name = keys.Name.empty() ? "Segment" + std::to_string(index) : keys.Name;
-    s.Source = fileName;
-    s.LabelValue = keys.LabelValue;
-    // Slicer: "context~category scheme^value^meaning~type scheme^value^meaning~..."
-    std::vector<std::string> fields;
-    std::istringstream in(keys.Terminology);
-    for (std::string field; std::getline(in, field, '~');)
-    {
-      fields.push_back(field);
-    }
-    if (fields.size() >= 3)
-    {
-      s.Category = ParseCode(fields[1]);
-      s.Type = ParseCode(fields[2]);
-    }
-    s.Grid = grids[static_cast<std::size_t>(keys.Layer)];
-    structures.push_back(std::move(s));
+    structures.push_back(SegmentStructure(index, keys, fileName, grids));
   }
   return structures;
 }

@@ -33,6 +33,52 @@ void MinimumOfNeighbours(double* f, std::size_t stride, int n, std::vector<doubl
     f[i * stride] = m;
   }
 }
+
+/// The squared Euclidean distance transform of the padded block grid (P blocks, layout stride),
+/// one axis after the other, edgeMm a block's edge along each.
+void SquaredDistanceAlongAxes(std::vector<double>& field, const int P[3], const std::size_t stride[3], const double edgeMm[3])
+{
+  vp::SquaredDistanceTransform transform;
+  std::vector<double> line;
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    const int a = (axis + 1) % 3, b = (axis + 2) % 3;
+    for (int j = 0; j < P[b]; ++j)
+    {
+      for (int i = 0; i < P[a]; ++i)
+      {
+        double* first = field.data() + i * stride[a] + j * stride[b];
+        line.resize(P[axis]);
+        for (int q = 0; q < P[axis]; ++q)
+        {
+          line[q] = first[q * stride[axis]];
+        }
+        transform.Line(line.data(), P[axis], edgeMm[axis]);
+        for (int q = 0; q < P[axis]; ++q)
+        {
+          first[q * stride[axis]] = line[q];
+        }
+      }
+    }
+  }
+}
+
+/// Each block's value becomes the least over its 27 neighbours (one axis at a time).
+void MinimumOverNeighbours(std::vector<double>& field, const int P[3], const std::size_t stride[3])
+{
+  std::vector<double> values;
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    const int a = (axis + 1) % 3, b = (axis + 2) % 3;
+    for (int j = 0; j < P[b]; ++j)
+    {
+      for (int i = 0; i < P[a]; ++i)
+      {
+        MinimumOfNeighbours(field.data() + i * stride[a] + j * stride[b], stride[axis], P[axis], values);
+      }
+    }
+  }
+}
 } // namespace
 
 namespace vp
@@ -62,8 +108,6 @@ BlockDistanceField::BlockDistanceField(
   this->Gaps.assign(blocks * classes, std::numeric_limits<float>::infinity());
   this->Marked.assign(classes, 0);
   std::vector<double> field;
-  std::vector<double> values, line;
-  vp::SquaredDistanceTransform transform;
   auto at = [&](int x, int y, int zz) { return (static_cast<std::size_t>(zz) * P[1] + y) * P[0] + x; };
   for (int c = 0; c < classes; ++c)
   {
@@ -94,38 +138,8 @@ BlockDistanceField::BlockDistanceField(
       continue;
     }
     const std::size_t stride[3] = { 1, static_cast<std::size_t>(P[0]), static_cast<std::size_t>(P[0]) * P[1] };
-    for (int axis = 0; axis < 3; ++axis)
-    {
-      const int a = (axis + 1) % 3, b = (axis + 2) % 3;
-      for (int j = 0; j < P[b]; ++j)
-      {
-        for (int i = 0; i < P[a]; ++i)
-        {
-          double* first = field.data() + i * stride[a] + j * stride[b];
-          line.resize(P[axis]);
-          for (int q = 0; q < P[axis]; ++q)
-          {
-            line[q] = first[q * stride[axis]];
-          }
-          transform.Line(line.data(), P[axis], this->EdgeMm[axis]);
-          for (int q = 0; q < P[axis]; ++q)
-          {
-            first[q * stride[axis]] = line[q];
-          }
-        }
-      }
-    }
-    for (int axis = 0; axis < 3; ++axis)
-    {
-      const int a = (axis + 1) % 3, b = (axis + 2) % 3;
-      for (int j = 0; j < P[b]; ++j)
-      {
-        for (int i = 0; i < P[a]; ++i)
-        {
-          MinimumOfNeighbours(field.data() + i * stride[a] + j * stride[b], stride[axis], P[axis], values);
-        }
-      }
-    }
+    SquaredDistanceAlongAxes(field, P, stride, this->EdgeMm);
+    MinimumOverNeighbours(field, P, stride);
     float* gap = this->Gaps.data() + static_cast<std::size_t>(c) * blocks;
     for (int zz = 0; zz < this->Dims[2]; ++zz)
     {

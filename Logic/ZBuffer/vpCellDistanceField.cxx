@@ -95,6 +95,58 @@ void TransformAxis(LargeBuffer<float>& field, const int dims[3], const std::size
     }
   });
 }
+/// Per column of words, bit z: the parity of the crossings below slice z, or a crossing in it.
+std::vector<std::uint32_t> InsideParity(const std::vector<std::uint32_t>& crossings, std::size_t columns, std::size_t words)
+{
+  std::vector<std::uint32_t> insideBits(columns * words);
+  vtkSMPTools::For(0, static_cast<vtkIdType>(columns), [&](vtkIdType begin, vtkIdType end) {
+    for (vtkIdType column = begin; column < end; ++column)
+    {
+      std::uint32_t carry = 0u; // the parity of every bit below this word, all bits set or none
+      for (std::size_t w = 0; w < words; ++w)
+      {
+        const std::uint32_t bits = crossings[static_cast<std::size_t>(column) * words + w];
+        std::uint32_t inclusive = bits; // bit z: the parity of bits 0..z of the word
+        for (int shift = 1; shift < 32; shift *= 2)
+        {
+          inclusive ^= inclusive << shift;
+        }
+        inclusive ^= carry;
+        insideBits[static_cast<std::size_t>(column) * words + w] = (inclusive ^ bits) | bits;
+        carry = (inclusive >> 31) ? ~0u : 0u;
+      }
+    }
+  });
+  return insideBits;
+}
+
+/// 0 in field at every cell (K layer cells a side, pad cells of padding, layout stride) that
+/// holds a marked layer cell of class c.
+void MarkOccupiedCells(const vp::DepthLayerGrid& grid, const std::vector<std::uint32_t>& occupancy, int c, int K, int pad,
+  const std::size_t stride[3], float* field)
+{
+  const std::size_t words = static_cast<std::size_t>(grid.Words());
+  for (int y = 0; y < grid.Ny; ++y)
+  {
+    for (int x = 0; x < grid.Nx; ++x)
+    {
+      const std::uint32_t* column =
+        occupancy.data() + (static_cast<std::size_t>(c) * grid.Pixels() + static_cast<std::size_t>(y) * grid.Nx + x) * words;
+      const std::size_t base = (x / K + pad) * stride[0] + (y / K + pad) * stride[1] + pad;
+      for (std::size_t w = 0; w < words; ++w)
+      {
+        for (std::uint32_t bits = column[w]; bits != 0u; bits &= bits - 1u)
+        {
+          const int slice = static_cast<int>(w * 32) + __builtin_ctz(bits);
+          if (slice < grid.Nz)
+          {
+            field[base + slice / K] = 0.0f;
+          }
+        }
+      }
+    }
+  }
+}
 } // namespace
 
 namespace vp
@@ -114,26 +166,7 @@ CellDistanceField::CellDistanceField(const DepthLayerGrid& grid, int classes, co
   if (!crossings.empty())
   {
     // Per column, bit z: the parity of the crossings below slice z, or a crossing in it.
-    this->InsideBits.resize(layerWords);
-    const std::size_t columns = grid.Pixels() * static_cast<std::size_t>(classes);
-    vtkSMPTools::For(0, static_cast<vtkIdType>(columns), [&](vtkIdType begin, vtkIdType end) {
-      for (vtkIdType column = begin; column < end; ++column)
-      {
-        std::uint32_t carry = 0u; // the parity of every bit below this word, all bits set or none
-        for (std::size_t w = 0; w < words; ++w)
-        {
-          const std::uint32_t bits = crossings[static_cast<std::size_t>(column) * words + w];
-          std::uint32_t inclusive = bits; // bit z: the parity of bits 0..z of the word
-          for (int shift = 1; shift < 32; shift *= 2)
-          {
-            inclusive ^= inclusive << shift;
-          }
-          inclusive ^= carry;
-          this->InsideBits[static_cast<std::size_t>(column) * words + w] = (inclusive ^ bits) | bits;
-          carry = (inclusive >> 31) ? ~0u : 0u;
-        }
-      }
-    });
+    this->InsideBits = InsideParity(crossings, grid.Pixels() * static_cast<std::size_t>(classes), words);
   }
   const int n[3] = { grid.Nx, grid.Ny, grid.Nz };
   // Padded on every side: the layers' box ends two cells past the vessels, and a point just
@@ -175,26 +208,7 @@ CellDistanceField::CellDistanceField(const DepthLayerGrid& grid, int classes, co
   for (int c = 0; c < classes; ++c)
   {
     std::fill(field.begin(), field.end(), std::numeric_limits<float>::infinity());
-    for (int y = 0; y < grid.Ny; ++y)
-    {
-      for (int x = 0; x < grid.Nx; ++x)
-      {
-        const std::uint32_t* column =
-          occupancy.data() + (static_cast<std::size_t>(c) * grid.Pixels() + static_cast<std::size_t>(y) * grid.Nx + x) * words;
-        const std::size_t base = (x / this->K + pad) * stride[0] + (y / this->K + pad) * stride[1] + pad;
-        for (std::size_t w = 0; w < words; ++w)
-        {
-          for (std::uint32_t bits = column[w]; bits != 0u; bits &= bits - 1u)
-          {
-            const int slice = static_cast<int>(w * 32) + __builtin_ctz(bits);
-            if (slice < grid.Nz)
-            {
-              field[base + slice / this->K] = 0.0f;
-            }
-          }
-        }
-      }
-    }
+    MarkOccupiedCells(grid, occupancy, c, this->K, pad, stride, field.data());
     const std::size_t marked = static_cast<std::size_t>(std::count(field.begin(), field.end(), 0.0f));
     this->Marked[c] = marked;
     if (marked == 0)

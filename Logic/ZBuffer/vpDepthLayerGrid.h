@@ -23,8 +23,10 @@ struct DepthLayerGrid
   int Nz = 0;
 
   int Words() const { return (this->Nz + 31) / 32; }
-  int TilesX() const { return (this->Nx + 7) / 8; }
-  int TilesY() const { return (this->Ny + 7) / 8; }
+  /// Tiles of TilePx pixels across and along (SummarizeTiles.comp).
+  static constexpr int TilePx = 8;
+  int TilesX() const { return (this->Nx + TilePx - 1) / TilePx; }
+  int TilesY() const { return (this->Ny + TilePx - 1) / TilePx; }
   std::size_t Pixels() const { return static_cast<std::size_t>(this->Nx) * static_cast<std::size_t>(this->Ny); }
   double SizeMm(int axis) const { return (axis < 2 ? this->PixelMm : this->SliceMm) * (axis == 0 ? this->Nx : axis == 1 ? this->Ny : this->Nz); }
 

@@ -227,6 +227,10 @@ private:
   void AnswerBatch(const std::array<double, 3>* tips, std::size_t count, const std::array<double, 3>* axes, double searchMm,
     double binWidthMm, vp::ProximityResult* results) const;
 
+  /// The layers' grid around the vessels (fixed), or centred on their box until the first tip
+  /// (moving); anchorMm: the centre of the vessels' box; cellMm: the cell edge chosen.
+  vp::DepthLayerGrid PlaceGrid(double anchorMm[3], double& cellMm) const;
+
   int LayerMode = ExactIntervals;
   int BoxMode = FixedAroundVessels;
   double CellSizeMm = 0.4;

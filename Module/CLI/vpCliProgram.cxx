@@ -5,7 +5,6 @@
 #include "vpCliValues.h"
 
 #include "vpInputError.h"
-#include "vpVulkanContext.h"
 
 #include <cerrno>
 #include <cstdio>

@@ -1,6 +1,5 @@
 // vesselproximity bench: the distance engines side by side with the brute-force reference, on
 // vessel meshes grown to fixed triangle counts, in one run.
-#include "vpDistanceEngineFactory.h"
 #include "vpArguments.h"
 #include "vpOutputFile.h"
 #include "vpEngineBenchmark.h"
@@ -14,7 +13,6 @@
 #include "vpCommands.h"
 #include "vpEngineOptions.h"
 #include "vpInputError.h"
-#include "vtkZBufferVesselDistance.h"
 
 #include <vtkNew.h>
 #include <vtkPolyData.h>
@@ -349,7 +347,7 @@ int RunBenchCommand(const cli::ParsedArguments& args, const ModuleServices&)
   request.ZBufferSettings = ParseEngineSettings("zbuffer", args);
   if (request.Parts.count("zbuffer")) // the device opened now: a missing one fails at once
   {
-    request.ZBuffer = vtkZBufferVesselDistance::SafeDownCast(MakeDistanceEngine(request.ZBufferSettings));
+    request.ZBuffer = MakeBenchZBuffer(request.ZBufferSettings);
   }
   if (request.Parts.count("replay"))
   {

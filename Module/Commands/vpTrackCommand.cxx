@@ -12,7 +12,6 @@
 #include "vpScalpelLoader.h"
 #include "vpTrackingOptions.h"
 #include "vpTrackingRecorder.h"
-#include "vtkScalpelPenetration.h"
 #include "vtkScalpelTrackingLogic.h"
 #include "vtkVesselProximityLogic.h"
 
@@ -29,8 +28,7 @@ void ReportOpenedScene(vtkVesselProximityLogic* proximity, const OpenedScene& sc
   ReportEngineNote(scene.EngineNote);
   std::cerr << "track: " << proximity->GetScalpel()->GetTipSource() << "\n";
   ReportSurfaceDefects("track", proximity->GetDistanceEngine(), scene.Vessels);
-  vtkScalpelPenetration* penetration = proximity->GetTrackingLogic()->GetPenetration();
-  if (penetration && !penetration->IsToolClosed())
+  if (scene.PenetrationUnknown)
   {
     std::cerr << "track: " << scalpelFile
               << ": the surface is not closed, so the instrument's penetration depth and volume cannot be known (left empty)\n";

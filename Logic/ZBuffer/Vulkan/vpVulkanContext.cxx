@@ -200,6 +200,58 @@ VKAPI_ATTR VkBool32 VKAPI_CALL VulkanContext::OnValidationMessage(VkDebugUtilsMe
   return VK_FALSE;
 }
 
+namespace
+{
+/// The device the selector picks (empty: the most capable kind; a number: that index; other text:
+/// the first whose name holds it, any case), or DeviceError naming the choices.
+int ChooseDevice(const std::vector<VkPhysicalDevice>& devices, const std::string& selector)
+{
+  int chosen = -1;
+  if (selector.empty())
+  {
+    int best = 1 << 30;
+    for (std::size_t i = 0; i < devices.size(); ++i)
+    {
+      VkPhysicalDeviceProperties p;
+      vkGetPhysicalDeviceProperties(devices[i], &p);
+      if (Preference(p.deviceType) < best)
+      {
+        best = Preference(p.deviceType);
+        chosen = static_cast<int>(i);
+      }
+    }
+  }
+  else if (std::all_of(selector.begin(), selector.end(), [](unsigned char c) { return std::isdigit(c); }))
+  {
+    chosen = std::atoi(selector.c_str());
+    if (chosen >= static_cast<int>(devices.size()))
+    {
+      chosen = -1;
+    }
+  }
+  else
+  {
+    for (std::size_t i = 0; i < devices.size() && chosen < 0; ++i)
+    {
+      if (Lower(Describe(devices[i], 0).Name).find(Lower(selector)) != std::string::npos)
+      {
+        chosen = static_cast<int>(i);
+      }
+    }
+  }
+  if (chosen < 0)
+  {
+    std::ostringstream available;
+    for (std::size_t i = 0; i < devices.size(); ++i)
+    {
+      available << (i ? ", " : "") << i << ": " << Describe(devices[i], static_cast<int>(i)).Name;
+    }
+    throw DeviceError("DeviceSelector", "no Vulkan device matches ", " '" + selector + "' (available: " + available.str() + ")");
+  }
+  return chosen;
+}
+} // namespace
+
 VulkanContext::VulkanContext(const std::string& selector)
 {
   const bool validation = WantsValidation() && LayerAvailable("VK_LAYER_KHRONOS_validation");
@@ -208,160 +260,137 @@ VulkanContext::VulkanContext(const std::string& selector)
   {
     if (validation)
     {
-      VkDebugUtilsMessengerCreateInfoEXT info{};
-      info.sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT;
-      info.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
-      info.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
-        VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
-      info.pfnUserCallback = &VulkanContext::OnValidationMessage;
-      info.pUserData = this;
-      auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
-        vkGetInstanceProcAddr(this->Instance, "vkCreateDebugUtilsMessengerEXT"));
-      if (create)
-      {
-        Check(create(this->Instance, &info, nullptr, &this->Messenger), "vkCreateDebugUtilsMessengerEXT");
-      }
+      this->StartValidationMessages();
     }
-
     const auto devices = PhysicalDevices(this->Instance);
-    int chosen = -1;
-    if (selector.empty())
-    {
-      int best = 1 << 30;
-      for (std::size_t i = 0; i < devices.size(); ++i)
-      {
-        VkPhysicalDeviceProperties p;
-        vkGetPhysicalDeviceProperties(devices[i], &p);
-        if (Preference(p.deviceType) < best)
-        {
-          best = Preference(p.deviceType);
-          chosen = static_cast<int>(i);
-        }
-      }
-    }
-    else if (std::all_of(selector.begin(), selector.end(), [](unsigned char c) { return std::isdigit(c); }))
-    {
-      chosen = std::atoi(selector.c_str());
-      if (chosen >= static_cast<int>(devices.size()))
-      {
-        chosen = -1;
-      }
-    }
-    else
-    {
-      for (std::size_t i = 0; i < devices.size() && chosen < 0; ++i)
-      {
-        if (Lower(Describe(devices[i], 0).Name).find(Lower(selector)) != std::string::npos)
-        {
-          chosen = static_cast<int>(i);
-        }
-      }
-    }
-    if (chosen < 0)
-    {
-      std::ostringstream available;
-      for (std::size_t i = 0; i < devices.size(); ++i)
-      {
-        available << (i ? ", " : "") << i << ": " << Describe(devices[i], static_cast<int>(i)).Name;
-      }
-      throw DeviceError("DeviceSelector", "no Vulkan device matches ", " '" + selector + "' (available: " + available.str() + ")");
-    }
+    const int chosen = ChooseDevice(devices, selector);
     this->PhysicalDevice = devices[chosen];
     this->Info = Describe(this->PhysicalDevice, chosen);
     vkGetPhysicalDeviceProperties(this->PhysicalDevice, &this->Properties);
     vkGetPhysicalDeviceMemoryProperties(this->PhysicalDevice, &this->MemoryProperties);
-
-    std::uint32_t nFamilies = 0;
-    vkGetPhysicalDeviceQueueFamilyProperties(this->PhysicalDevice, &nFamilies, nullptr);
-    std::vector<VkQueueFamilyProperties> families(nFamilies);
-    vkGetPhysicalDeviceQueueFamilyProperties(this->PhysicalDevice, &nFamilies, families.data());
-    bool found = false;
-    for (std::uint32_t i = 0; i < nFamilies && !found; ++i)
-    {
-      if (families[i].queueFlags & VK_QUEUE_COMPUTE_BIT)
-      {
-        this->QueueFamily = i;
-        found = true;
-      }
-    }
-    if (!found)
-    {
-      throw DeviceError("Vulkan device '" + this->Info.Name + "' has no compute queue");
-    }
-
-    const float priority = 1.0f;
-    VkDeviceQueueCreateInfo queueInfo{};
-    queueInfo.sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO;
-    queueInfo.queueFamilyIndex = this->QueueFamily;
-    queueInfo.queueCount = 1;
-    queueInfo.pQueuePriorities = &priority;
-    VkDeviceCreateInfo deviceInfo{};
-    deviceInfo.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO;
-    deviceInfo.queueCreateInfoCount = 1;
-    deviceInfo.pQueueCreateInfos = &queueInfo;
-    // 64-bit buffer atomics, where the device has them (through the extension: the instance asks
-    // for Vulkan 1.1, where they are not core).
-    const char* atomicInt64 = VK_KHR_SHADER_ATOMIC_INT64_EXTENSION_NAME;
-    std::uint32_t nExtensions = 0;
-    vkEnumerateDeviceExtensionProperties(this->PhysicalDevice, nullptr, &nExtensions, nullptr);
-    std::vector<VkExtensionProperties> extensions(nExtensions);
-    vkEnumerateDeviceExtensionProperties(this->PhysicalDevice, nullptr, &nExtensions, extensions.data());
-    VkPhysicalDeviceShaderAtomicInt64FeaturesKHR int64Atomics{};
-    int64Atomics.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_ATOMIC_INT64_FEATURES_KHR;
-    VkPhysicalDeviceFeatures2 features{};
-    features.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2;
-    features.pNext = &int64Atomics;
-    VkPhysicalDeviceFeatures enabled{};
-    VkPhysicalDeviceShaderAtomicInt64FeaturesKHR enabledAtomics{};
-    enabledAtomics.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_ATOMIC_INT64_FEATURES_KHR;
-    if (std::any_of(extensions.begin(), extensions.end(),
-          [&](const VkExtensionProperties& e) { return std::strcmp(e.extensionName, atomicInt64) == 0; }))
-    {
-      vkGetPhysicalDeviceFeatures2(this->PhysicalDevice, &features);
-      if (features.features.shaderInt64 && int64Atomics.shaderBufferInt64Atomics)
-      {
-        enabled.shaderInt64 = VK_TRUE;
-        enabledAtomics.shaderBufferInt64Atomics = VK_TRUE;
-        deviceInfo.pNext = &enabledAtomics;
-        deviceInfo.pEnabledFeatures = &enabled;
-        deviceInfo.enabledExtensionCount = 1;
-        deviceInfo.ppEnabledExtensionNames = &atomicInt64;
-        this->Int64Atomics = true;
-      }
-    }
-    Check(vkCreateDevice(this->PhysicalDevice, &deviceInfo, nullptr, &this->LogicalDevice), "vkCreateDevice");
-    vkGetDeviceQueue(this->LogicalDevice, this->QueueFamily, 0, &this->Queue);
-
-    VkCommandPoolCreateInfo poolInfo{};
-
-    poolInfo.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO;
-    poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
-    poolInfo.queueFamilyIndex = this->QueueFamily;
-    Check(vkCreateCommandPool(this->LogicalDevice, &poolInfo, nullptr, &this->CommandPool), "vkCreateCommandPool");
-    VkCommandBufferAllocateInfo allocInfo{};
-    allocInfo.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO;
-    allocInfo.commandPool = this->CommandPool;
-    allocInfo.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-    allocInfo.commandBufferCount = 1;
-    Check(vkAllocateCommandBuffers(this->LogicalDevice, &allocInfo, &this->Commands), "vkAllocateCommandBuffers");
-    VkFenceCreateInfo fenceInfo{};
-    fenceInfo.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO;
-    Check(vkCreateFence(this->LogicalDevice, &fenceInfo, nullptr, &this->Fence), "vkCreateFence");
-    if (families[this->QueueFamily].timestampValidBits > 0 && this->Properties.limits.timestampPeriod > 0.0f)
-    {
-      VkQueryPoolCreateInfo stampInfo{};
-      stampInfo.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO;
-      stampInfo.queryType = VK_QUERY_TYPE_TIMESTAMP;
-      stampInfo.queryCount = 2;
-      Check(vkCreateQueryPool(this->LogicalDevice, &stampInfo, nullptr, &this->Stamps), "vkCreateQueryPool");
-      const std::uint32_t valid = families[this->QueueFamily].timestampValidBits;
-      this->StampMask = valid >= 64 ? ~0ull : (1ull << valid) - 1ull;
-    }
+    const VkQueueFamilyProperties family = this->ChooseComputeQueue();
+    this->CreateLogicalDevice();
+    this->CreateCommandObjects(family);
   }
   catch (...)
   {
     this->Destroy();
     throw;
+  }
+}
+
+void VulkanContext::StartValidationMessages()
+{
+  VkDebugUtilsMessengerCreateInfoEXT info{};
+  info.sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT;
+  info.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+  info.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+    VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+  info.pfnUserCallback = &VulkanContext::OnValidationMessage;
+  info.pUserData = this;
+  auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+    vkGetInstanceProcAddr(this->Instance, "vkCreateDebugUtilsMessengerEXT"));
+  if (create)
+  {
+    Check(create(this->Instance, &info, nullptr, &this->Messenger), "vkCreateDebugUtilsMessengerEXT");
+  }
+}
+
+VkQueueFamilyProperties VulkanContext::ChooseComputeQueue()
+{
+  std::uint32_t nFamilies = 0;
+  vkGetPhysicalDeviceQueueFamilyProperties(this->PhysicalDevice, &nFamilies, nullptr);
+  std::vector<VkQueueFamilyProperties> families(nFamilies);
+  vkGetPhysicalDeviceQueueFamilyProperties(this->PhysicalDevice, &nFamilies, families.data());
+  bool found = false;
+  for (std::uint32_t i = 0; i < nFamilies && !found; ++i)
+  {
+    if (families[i].queueFlags & VK_QUEUE_COMPUTE_BIT)
+    {
+      this->QueueFamily = i;
+      found = true;
+    }
+  }
+  if (!found)
+  {
+    throw DeviceError("Vulkan device '" + this->Info.Name + "' has no compute queue");
+  }
+  return families[this->QueueFamily];
+}
+
+void VulkanContext::CreateLogicalDevice()
+{
+  const float priority = 1.0f;
+  VkDeviceQueueCreateInfo queueInfo{};
+  queueInfo.sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO;
+  queueInfo.queueFamilyIndex = this->QueueFamily;
+  queueInfo.queueCount = 1;
+  queueInfo.pQueuePriorities = &priority;
+  VkDeviceCreateInfo deviceInfo{};
+  deviceInfo.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO;
+  deviceInfo.queueCreateInfoCount = 1;
+  deviceInfo.pQueueCreateInfos = &queueInfo;
+  // 64-bit buffer atomics, where the device has them (through the extension: the instance asks
+  // for Vulkan 1.1, where they are not core).
+  const char* atomicInt64 = VK_KHR_SHADER_ATOMIC_INT64_EXTENSION_NAME;
+  std::uint32_t nExtensions = 0;
+  vkEnumerateDeviceExtensionProperties(this->PhysicalDevice, nullptr, &nExtensions, nullptr);
+  std::vector<VkExtensionProperties> extensions(nExtensions);
+  vkEnumerateDeviceExtensionProperties(this->PhysicalDevice, nullptr, &nExtensions, extensions.data());
+  VkPhysicalDeviceShaderAtomicInt64FeaturesKHR int64Atomics{};
+  int64Atomics.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_ATOMIC_INT64_FEATURES_KHR;
+  VkPhysicalDeviceFeatures2 features{};
+  features.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2;
+  features.pNext = &int64Atomics;
+  VkPhysicalDeviceFeatures enabled{};
+  VkPhysicalDeviceShaderAtomicInt64FeaturesKHR enabledAtomics{};
+  enabledAtomics.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_ATOMIC_INT64_FEATURES_KHR;
+  if (std::any_of(extensions.begin(), extensions.end(),
+        [&](const VkExtensionProperties& e) { return std::strcmp(e.extensionName, atomicInt64) == 0; }))
+  {
+    vkGetPhysicalDeviceFeatures2(this->PhysicalDevice, &features);
+    if (features.features.shaderInt64 && int64Atomics.shaderBufferInt64Atomics)
+    {
+      enabled.shaderInt64 = VK_TRUE;
+      enabledAtomics.shaderBufferInt64Atomics = VK_TRUE;
+      deviceInfo.pNext = &enabledAtomics;
+      deviceInfo.pEnabledFeatures = &enabled;
+      deviceInfo.enabledExtensionCount = 1;
+      deviceInfo.ppEnabledExtensionNames = &atomicInt64;
+      this->Int64Atomics = true;
+    }
+  }
+  Check(vkCreateDevice(this->PhysicalDevice, &deviceInfo, nullptr, &this->LogicalDevice), "vkCreateDevice");
+  vkGetDeviceQueue(this->LogicalDevice, this->QueueFamily, 0, &this->Queue);
+
+}
+
+void VulkanContext::CreateCommandObjects(const VkQueueFamilyProperties& family)
+{
+  VkCommandPoolCreateInfo poolInfo{};
+
+  poolInfo.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO;
+  poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+  poolInfo.queueFamilyIndex = this->QueueFamily;
+  Check(vkCreateCommandPool(this->LogicalDevice, &poolInfo, nullptr, &this->CommandPool), "vkCreateCommandPool");
+  VkCommandBufferAllocateInfo allocInfo{};
+  allocInfo.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO;
+  allocInfo.commandPool = this->CommandPool;
+  allocInfo.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+  allocInfo.commandBufferCount = 1;
+  Check(vkAllocateCommandBuffers(this->LogicalDevice, &allocInfo, &this->Commands), "vkAllocateCommandBuffers");
+  VkFenceCreateInfo fenceInfo{};
+  fenceInfo.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO;
+  Check(vkCreateFence(this->LogicalDevice, &fenceInfo, nullptr, &this->Fence), "vkCreateFence");
+  if (family.timestampValidBits > 0 && this->Properties.limits.timestampPeriod > 0.0f)
+  {
+    VkQueryPoolCreateInfo stampInfo{};
+    stampInfo.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO;
+    stampInfo.queryType = VK_QUERY_TYPE_TIMESTAMP;
+    stampInfo.queryCount = 2;
+    Check(vkCreateQueryPool(this->LogicalDevice, &stampInfo, nullptr, &this->Stamps), "vkCreateQueryPool");
+    const std::uint32_t valid = family.timestampValidBits;
+    this->StampMask = valid >= 64 ? ~0ull : (1ull << valid) - 1ull;
   }
 }
 

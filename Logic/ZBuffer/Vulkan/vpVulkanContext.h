@@ -109,6 +109,11 @@ private:
   static VKAPI_ATTR VkBool32 VKAPI_CALL OnValidationMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
     VkDebugUtilsMessageTypeFlagsEXT type, const VkDebugUtilsMessengerCallbackDataEXT* data, void* self);
   void Destroy();
+  // The constructor's steps, in order.
+  void StartValidationMessages();
+  VkQueueFamilyProperties ChooseComputeQueue();
+  void CreateLogicalDevice();
+  void CreateCommandObjects(const VkQueueFamilyProperties& family);
 };
 } // namespace vp
 

@@ -1,0 +1,196 @@
+#ifndef vtkZBufferVesselDistanceInternals_h
+#define vtkZBufferVesselDistanceInternals_h
+
+// vtkZBufferVesselDistance's device state and the steps on it, shared by the files that cut the
+// engine along its seams: vtkZBufferVesselDistanceRasterizing.cxx (geometry, layers, rendering),
+// vtkZBufferVesselDistanceQueryTables.cxx (the tile order and the ceilings),
+// vtkZBufferVesselDistanceSubmission.cxx (the device, the points and the recorded query) and
+// vtkZBufferVesselDistance.cxx (settings, building, answers). Private to Logic/ZBuffer.
+
+#include "vtkZBufferVesselDistance.h"
+
+#include "vpBlockDistanceField.h"
+#include "vpComputeKernel.h"
+#include "vpGpuBuffer.h"
+#include "vpPreparedCommands.h"
+#include "vpTileOrder.h"
+#include "vpVulkanContext.h"
+#include "vpZBufferShaderLayout.h"
+#include "vtkExactVesselDistance.h"
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+namespace vp
+{
+namespace zbuffer
+{
+// Triangles are split until no edge is longer than this many cells, which bounds the pixels one
+// rasteriser invocation visits (and so the longest invocation).
+constexpr double MaxEdgeCells = 4.0;
+
+// Lanes that share the directional walk on a GPU (see QueryProximity.comp).
+constexpr std::int32_t GpuDirectionalLanes = 64;
+// Submissions of up to this many tips take the per-pixel pass over the order table on a GPU;
+// larger ones list their tiles first (SetTileListing) and visit the listed ones per pixel.
+// Measured on an H100 before the list: one tip 0.025 ms on the device per pixel, 0.042 per tile;
+// 1,000 tips 1.95 ms per pixel, 0.57 per tile (the per-pixel pass paid a workgroup for every tile
+// of the order table, nearly all of which it then skipped: the list leaves only the others).
+constexpr std::uint32_t PerPixelMaxTips = 8;
+// A larger batch without a list first visits, for every tip, the tiles within this many tiles of its own: on a
+// GPU all of a dispatch's tiles run at once, so a far tile would start before a near one had
+// lowered the best; after this first dispatch most far tiles are skipped at once.
+constexpr double NearTiles = 2.0;
+// Tips per submission: as many as the records of a batch allow within RecordBudgetBytes, and at
+// most these (a CPU device answers a batch's tips one after another: larger batches only cost
+// memory there; a GPU answers them side by side, so larger batches spread a submission's fixed
+// cost over more tips).
+constexpr std::uint32_t CpuBatchCapacity = 256;
+constexpr std::uint32_t GpuBatchCapacity = 4096;
+constexpr VkDeviceSize RecordBudgetBytes = 256ull << 20;
+
+/// An inside answer the exact engine's vote decides: on a surface that is not closed.
+struct InsideVote
+{
+  std::size_t Tip;
+  std::uint32_t Class;
+  double DistanceMm;
+};
+} // namespace zbuffer
+} // namespace vp
+
+struct vtkZBufferVesselDistance::Internals
+{
+  using InsideVote = vp::zbuffer::InsideVote;
+  using QueryParameters = vp::zbuffer::QueryParameters;
+  std::mutex Lock;
+  std::unique_ptr<vp::VulkanContext> Context;
+  std::string ContextSelector;
+
+  // Geometry, uploaded once per Build().
+  double AnchorMm[3] = { 0, 0, 0 };
+  std::vector<std::uint32_t> FirstTriangle, TriangleCount;
+  std::size_t RasterTriangles = 0;
+  std::unique_ptr<vp::GpuBuffer> Positions, Indices;
+
+  // Layers.
+  vp::DepthLayerGrid Grid;
+  bool Rendered = false;
+  int Renders = 0;
+  double LastRenderMs = 0.0;
+  std::unique_ptr<vp::GpuBuffer> Occupancy, Crossings, DepthRanges, TileRanges;
+
+  // Query.
+  double OrderRangeMm = -1.0;
+  std::uint32_t OrderCount = 0;
+  // The order table of tiles and that of coarse tiles, as uploaded (their gaps say which
+  // entries a search needs).
+  vp::TileOrder FineTable, CoarseTable;
+  std::unique_ptr<vp::GpuBuffer> Order, State, Choices, Records, HostState, Points;
+  // The coarse tiles' order table and each offset's entry in the order table (see CoarseOrder in
+  // QueryProximityCommon.glsl).
+  std::unique_ptr<vp::GpuBuffer> CoarseOrder, EntryIndex;
+  // Per point and class the answer's ceiling (mm), and the sizes of the query's two dispatches
+  // (VkDispatchIndirectCommand: the near tiles of a batch, then the lanes and the rest), written
+  // by the host before every submission.
+  std::unique_ptr<vp::GpuBuffer> Ceilings, DispatchSizes;
+  // The tiles a submission lists, and the list's size with the workgroup counts of the
+  // dispatch that visits them (written by the device; see TileList in the shaders).
+  std::unique_ptr<vp::GpuBuffer> TileList, TileListSize;
+  // The ceilings' sources: the coarse blocks of the current rendering, and per class the latest
+  // answer (tip, and the distance to its nearest marked cell) on the rendering it was made on.
+  std::unique_ptr<vp::BlockDistanceField> CeilingBlocks;
+  int CeilingBlocksRender = -1;
+  double CeilingBuildMs = 0.0;
+  struct LastAnswer
+  {
+    bool Known = false;
+    double TipMm[3] = { 0, 0, 0 };
+    double CellMm = 0.0;
+  };
+  std::vector<LastAnswer> Last;
+  int LastRender = -1;
+  int SubmissionsOnRender = 0;
+  std::uint32_t LastTiles = 0, LastTilesInRange = 0, LastTilesListed = 0;
+  // Tips per submission for the current order table (PrepareOrder).
+  std::uint32_t Capacity = 0;
+
+  std::unique_ptr<vp::ComputeKernel> Raster, Columns, Tiles, Query, QueryPerPixel, Reduce;
+  // The query's submissions, each recorded once for one batch size and one set of parameters
+  // (the whole instrument's search asks for a few ranges and sizes again and again).
+  struct PreparedQuery
+  {
+    std::uint32_t Points = 0;
+    bool PerPixel = false;
+    int Listing = 0; // 0: no list; 1: listed tiles visited per tile; 2: per pixel
+    QueryParameters Parameters{};
+    std::unique_ptr<vp::PreparedCommands> Commands;
+  };
+  std::vector<PreparedQuery> Prepared;
+  // The classes whose surface is not closed, in an exact engine of their own: their inside is its
+  // vote (one ray along +z cannot vote), and ExactIndex maps a class to its place there (-1: closed).
+  vtkSmartPointer<vtkExactVesselDistance> Votes;
+  std::vector<int> ExactIndex;
+  // Every class in an exact engine, made when a tip is first found deeper inside a closed class
+  // than the range reaches (AnswerBeyondRange); none until then.
+  vtkSmartPointer<vtkExactVesselDistance> Deep;
+  // Whether the answers being read are tips' (ComputeProximityBatch), whose inside counts however
+  // deep, or the whole instrument's points within a search distance.
+  bool TipQuery = true;
+  static constexpr std::size_t MaxPrepared = 64;
+
+  // The classes whose surface is not closed, in an exact engine of their own for their votes;
+  // and no deep engine until one is needed.
+  void BuildVotes(const std::vector<std::shared_ptr<const vp::VesselSurface>>& surfaces,
+    const std::vector<std::pair<std::string, vtkSmartPointer<vtkPolyData>>>& meshes);
+  // The votes run on the host, five rays each: a batch's on all cores (Embree's queries are
+  // thread-safe), so that a batch on a defective surface does not wait for them one by one.
+  void VoteInside(const std::vector<InsideVote>& votes, const std::array<double, 3>* tips, vp::ProximityResult* results) const;
+
+  vp::VulkanContext& Device(const std::string& selector);
+
+  void Release();
+
+  std::uint32_t Classes() const { return static_cast<std::uint32_t>(this->FirstTriangle.size()); }
+
+  // The occupancy or the crossings, copied to the host (lock held).
+  void CopyLayer(bool crossings, std::vector<std::uint32_t>& words);
+
+  // The ceilings' blocks for the current rendering, and no answer remembered from an older one.
+  // None for a rendering's first submission: a one-shot query (`distance --tip`) does not wait
+  // the tenths of a second they take on large layers.
+  const vp::BlockDistanceField* PrepareCeilings(bool now = false);
+
+  // Each tip in grid units and its unit axis (or zero), where the query reads them.
+  void WritePoints(const std::array<double, 3>* tips, std::size_t count, const std::array<double, 3>* axes);
+
+  // The query's submission for these parameters, batch size and passes, recorded once: the two
+  // dispatches over the order table (their sizes read from DispatchSizes when it runs), then the
+  // answers. With a list (listing 1: visited per tile, 2: per pixel), the second dispatch lists
+  // the tiles it would have visited and a third, sized by the device, visits them.
+  vp::PreparedCommands& PreparedQueryFor(const QueryParameters& q, std::uint32_t n, bool perPixel, int listing,
+    std::uint32_t nearEntries, std::uint32_t laneSlots);
+
+  // The vessels' triangles as the rasteriser reads them: long edges split so that one invocation
+  // never walks many pixels; float positions relative to the anchor, so that rounding stays far
+  // below a micrometre. Sets FirstTriangle, TriangleCount and RasterTriangles.
+  void UploadGeometry(const std::vector<std::shared_ptr<const vp::VesselSurface>>& surfaces, double cellMm);
+  // The layers and their summaries for Grid, and the kernels bound to them.
+  void CreateLayers(VkDeviceSize layerBytes);
+
+  // Rasterises every class into the layers, then summarises their columns and tiles.
+  void Render();
+
+  // The tiles within rangeMm of the tip's tile, nearest first: the query visits them in this
+  // order so that the running best shrinks early and far tiles skip their work. The offsets
+  // start at the grid's tile nearest the tip, so the table is never wider than the grid,
+  // whatever the range (--range 1e9 asked for gigabytes before). Beside it the coarse tiles'
+  // table, which the listing walks, and each offset's entry in the order table.
+  void PrepareOrder(double rangeMm);
+};
+
+#endif

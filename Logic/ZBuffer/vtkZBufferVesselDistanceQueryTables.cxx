@@ -1,0 +1,111 @@
+// vtkZBufferVesselDistance, the query's tables: the tiles within the range in their nearest-first
+// order (fine and coarse), the buffers sized for them, and the answers' ceilings from the coarse
+// blocks of the current rendering.
+#include "vtkZBufferVesselDistanceInternals.h"
+
+#include <algorithm>
+#include <chrono>
+
+using namespace vp::zbuffer;
+using vp::CoarseAcross;
+using vp::NearestFirst;
+
+void vtkZBufferVesselDistance::Internals::PrepareOrder(double rangeMm)
+{
+  if (this->OrderRangeMm == rangeMm)
+  {
+    return;
+  }
+  const vp::DepthLayerGrid& g = this->Grid;
+  this->FineTable = NearestFirst(rangeMm, TilePx, g.PixelMm, std::max(g.TilesX(), g.TilesY()));
+  this->CoarseTable = NearestFirst(
+    rangeMm, TilePx * CoarseTiles, g.PixelMm, std::max(CoarseAcross(g.TilesX()), CoarseAcross(g.TilesY())));
+  const std::vector<std::array<std::int32_t, 2>>& order = this->FineTable.Offsets;
+  const int reach = this->FineTable.Reach;
+  const int width = 2 * reach + 1;
+  std::vector<std::uint32_t> entryOf(order.size());
+  for (std::size_t e = 0; e < order.size(); ++e)
+  {
+    entryOf[static_cast<std::size_t>((order[e][1] + reach) * width + order[e][0] + reach)] = static_cast<std::uint32_t>(e);
+  }
+  this->Prepared.clear(); // it names the buffers replaced here
+  this->OrderCount = static_cast<std::uint32_t>(order.size());
+  using Placement = vp::GpuBuffer::Placement;
+  auto upload = [&](const void* data, std::size_t bytes) {
+    auto buffer = std::make_unique<vp::GpuBuffer>(*this->Context, bytes, Placement::Device);
+    buffer->Upload(data, bytes);
+    return buffer;
+  };
+  this->Order = upload(order.data(), order.size() * 8);
+  this->CoarseOrder = upload(this->CoarseTable.Offsets.data(), this->CoarseTable.Offsets.size() * 8);
+  this->EntryIndex = upload(entryOf.data(), entryOf.size() * 4);
+  const std::uint32_t classes = std::max(this->Classes(), 1u);
+  const VkDeviceSize recordBytesPerTip = static_cast<VkDeviceSize>(this->OrderCount) * classes * 16;
+  const VkDeviceSize budget =
+    std::min<VkDeviceSize>(RecordBudgetBytes, this->Context->Limits().maxStorageBufferRange);
+  this->Capacity = static_cast<std::uint32_t>(std::clamp<VkDeviceSize>(budget / recordBytesPerTip, 1,
+    this->Context->IsCpuDevice() ? CpuBatchCapacity : GpuBatchCapacity));
+  this->Records = std::make_unique<vp::GpuBuffer>(*this->Context, recordBytesPerTip * this->Capacity, Placement::Device);
+  const VkDeviceSize stateBytes = StateStride * 4ull * classes * this->Capacity;
+  this->State = std::make_unique<vp::GpuBuffer>(*this->Context, stateBytes, Placement::Device);
+  this->Choices = std::make_unique<vp::GpuBuffer>(*this->Context, 8ull * classes * this->Capacity, Placement::Device);
+  // The answers are written there by the device, and the points by the host, for every batch:
+  // host-visible, no copy. Every invocation of a query reads its point: in device memory where
+  // the host can write it.
+  this->HostState = std::make_unique<vp::GpuBuffer>(*this->Context, stateBytes, Placement::Host);
+  this->Points =
+    std::make_unique<vp::GpuBuffer>(*this->Context, sizeof(PointRecord) * this->Capacity, Placement::HostToDevice);
+  this->Ceilings = std::make_unique<vp::GpuBuffer>(
+    *this->Context, sizeof(AnswerCeiling) * classes * this->Capacity, Placement::HostToDevice);
+  this->DispatchSizes =
+    std::make_unique<vp::GpuBuffer>(*this->Context, 2 * sizeof(VkDispatchIndirectCommand), Placement::HostToDevice);
+  // At most one listed tile per answer and entry: half the records' bytes.
+  this->TileList = std::make_unique<vp::GpuBuffer>(*this->Context, recordBytesPerTip * this->Capacity / 2, Placement::Device);
+  this->TileListSize = std::make_unique<vp::GpuBuffer>(*this->Context, 16, Placement::Device);
+  for (vp::ComputeKernel* query : { this->Query.get(), this->QueryPerPixel.get() })
+  {
+    query->BindBuffers({ this->Occupancy->Handle(), this->Crossings->Handle(), this->DepthRanges->Handle(),
+      this->TileRanges->Handle(), this->Order->Handle(), this->State->Handle(), this->Records->Handle(),
+      this->Points->Handle(), this->Choices->Handle(), this->Ceilings->Handle(), this->TileList->Handle(),
+      this->TileListSize->Handle(), this->CoarseOrder->Handle(), this->EntryIndex->Handle() });
+  }
+  this->Reduce->BindBuffers({ this->State->Handle(), this->Records->Handle(), this->HostState->Handle(),
+    this->Choices->Handle(), this->TileListSize->Handle() });
+  // The state starts reset; every query leaves it so.
+  const std::uint32_t answers = this->Capacity * classes;
+  const ReduceParameters reset{ 0, answers, this->OrderCount };
+  this->Context->Submit([&](VkCommandBuffer cmd) {
+    this->Reduce->Record(cmd, &reset, (answers + 63) / 64);
+    vp::ComputeKernel::Barrier(cmd);
+  });
+  this->OrderRangeMm = rangeMm;
+}
+
+const vp::BlockDistanceField* vtkZBufferVesselDistance::Internals::PrepareCeilings(bool now)
+{
+  if (this->LastRender != this->Renders)
+  {
+    this->Last.assign(this->Classes(), LastAnswer{});
+    this->LastRender = this->Renders;
+    this->SubmissionsOnRender = 0;
+  }
+  if (this->CeilingBlocks && this->CeilingBlocksRender == this->Renders)
+  {
+    return this->CeilingBlocks.get();
+  }
+  if (this->SubmissionsOnRender++ == 0 && !now)
+  {
+    return nullptr;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<std::uint32_t> occupancy;
+  this->CopyLayer(false, occupancy);
+  // Blocks of 4 cells, at least 1.6 mm: about a 64th of the cells (a few MB at 0.4 mm), and
+  // the bound a few millimetres above the truth, which leaves a tip a few hundred tiles of
+  // a 50 mm range's thousands.
+  this->CeilingBlocks = std::make_unique<vp::BlockDistanceField>(
+    this->Grid, static_cast<int>(this->Classes()), occupancy, std::max(1.6, 4.0 * this->Grid.PixelMm));
+  this->CeilingBlocksRender = this->Renders;
+  this->CeilingBuildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return this->CeilingBlocks.get();
+}

@@ -1,0 +1,193 @@
+// vtkZBufferVesselDistance, submitting: the device, the points written where the query reads
+// them, the query's submission recorded once per batch size and parameters, and the host's votes
+// for the classes whose surface is not closed.
+#include "vtkZBufferVesselDistanceInternals.h"
+
+#include <vtkSMPTools.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+using namespace vp::zbuffer;
+
+vp::VulkanContext& vtkZBufferVesselDistance::Internals::Device(const std::string& selector)
+{
+  if (!this->Context || this->ContextSelector != selector)
+  {
+    this->Release();
+    this->Context.reset();
+    this->Context = std::make_unique<vp::VulkanContext>(selector);
+    this->ContextSelector = selector;
+  }
+  return *this->Context;
+}
+
+void vtkZBufferVesselDistance::Internals::Release()
+{
+  this->Prepared.clear(); // before the buffers and kernels it names
+  this->Raster.reset();
+  this->Columns.reset();
+  this->Tiles.reset();
+  this->Query.reset();
+  this->QueryPerPixel.reset();
+  this->Reduce.reset();
+  this->Points.reset();
+  this->Positions.reset();
+  this->Indices.reset();
+  this->Occupancy.reset();
+  this->Crossings.reset();
+  this->DepthRanges.reset();
+  this->TileRanges.reset();
+  this->Order.reset();
+  this->CoarseOrder.reset();
+  this->EntryIndex.reset();
+  this->State.reset();
+  this->Choices.reset();
+  this->Records.reset();
+  this->HostState.reset();
+  this->Ceilings.reset();
+  this->DispatchSizes.reset();
+  this->TileList.reset();
+  this->TileListSize.reset();
+  this->CeilingBlocks.reset();
+  this->CeilingBlocksRender = -1;
+  this->CeilingBuildMs = 0.0;
+  this->Last.clear();
+  this->LastRender = -1;
+  this->Rendered = false;
+  this->OrderRangeMm = -1.0;
+  this->Capacity = 0;
+}
+
+void vtkZBufferVesselDistance::Internals::VoteInside(const std::vector<InsideVote>& votes, const std::array<double, 3>* tips, vp::ProximityResult* results) const
+{
+  auto vote = [&](vtkIdType begin, vtkIdType end) {
+    for (vtkIdType k = begin; k < end; ++k)
+    {
+      const InsideVote& v = votes[static_cast<std::size_t>(k)];
+      vp::ClassProximity& out = results[v.Tip].Classes[v.Class];
+      out.Inside = this->Votes->VoteInside(this->ExactIndex[v.Class], tips[v.Tip].data(), v.DistanceMm, out.InsideUncertain);
+    }
+  };
+  if (votes.size() >= 64)
+  {
+    vtkSMPTools::For(0, static_cast<vtkIdType>(votes.size()), vote);
+  }
+  else
+  {
+    vote(0, static_cast<vtkIdType>(votes.size()));
+  }
+}
+
+void vtkZBufferVesselDistance::Internals::WritePoints(const std::array<double, 3>* tips, std::size_t count, const std::array<double, 3>* axes)
+{
+  const vp::DepthLayerGrid& g = this->Grid;
+  auto* points = static_cast<PointRecord*>(this->Points->Mapped());
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    const double* tip = tips[i].data();
+    PointRecord& p = points[i];
+    p = PointRecord{};
+    p.Tip[0] = static_cast<float>((tip[0] - g.OriginMm[0]) / g.PixelMm);
+    p.Tip[1] = static_cast<float>((tip[1] - g.OriginMm[1]) / g.PixelMm);
+    p.Tip[2] = static_cast<float>((tip[2] - g.OriginMm[2]) / g.SliceMm);
+    if (axes)
+    {
+      const double* axis = axes[i].data();
+      const double n = std::sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
+      for (int k = 0; k < 3 && n > 0.0; ++k)
+      {
+        p.Axis[k] = static_cast<float>(axis[k] / n);
+      }
+    }
+  }
+}
+
+vp::PreparedCommands& vtkZBufferVesselDistance::Internals::PreparedQueryFor(const QueryParameters& q, std::uint32_t n, bool perPixel, int listing,
+  std::uint32_t nearEntries, std::uint32_t laneSlots)
+{
+  const std::uint32_t orderCount = static_cast<std::uint32_t>(q.OrderCount);
+  auto prepared = std::find_if(this->Prepared.begin(), this->Prepared.end(), [&](const PreparedQuery& p) {
+    return p.Points == n && p.PerPixel == perPixel && p.Listing == listing &&
+      std::memcmp(&p.Parameters, &q, sizeof q) == 0;
+  });
+  if (prepared == this->Prepared.end())
+  {
+    if (this->Prepared.size() >= MaxPrepared)
+    {
+      this->Prepared.clear();
+    }
+    const std::uint32_t answers = n * this->Classes();
+    const ReduceParameters copy{ 1, answers, orderCount };
+    PreparedQuery entry;
+    entry.Points = n;
+    entry.PerPixel = perPixel;
+    entry.Listing = listing;
+    entry.Parameters = q;
+    entry.Commands = std::make_unique<vp::PreparedCommands>(*this->Context, [&](VkCommandBuffer cmd) {
+      this->Context->ResetStamps(cmd);
+      this->Context->Stamp(cmd, 0);
+      // Entries: a workgroup per tile (per pixel) or an invocation per tile (per tile); the
+      // lanes come first in the last dispatch, whose size after them follows the ceilings.
+      auto visit = [&](std::int32_t stage, bool pixels, std::uint32_t first, std::uint32_t last, std::uint32_t slots,
+                     const vp::GpuBuffer& sizes, VkDeviceSize sizesAt) {
+        QueryParameters part = q;
+        part.FirstEntry = static_cast<std::int32_t>(first);
+        part.EndEntry = static_cast<std::int32_t>(last);
+        part.LaneSlots = static_cast<std::int32_t>(slots);
+        part.Stage = stage;
+        part.TilesPerGroup = listing == 2 ? 1 : 64;
+        (pixels ? *this->QueryPerPixel : *this->Query).RecordIndirect(cmd, &part, sizes.Handle(), sizesAt);
+        vp::ComputeKernel::Barrier(cmd);
+      };
+      const VkDeviceSize second = sizeof(VkDispatchIndirectCommand);
+      if (nearEntries > 0)
+      {
+        visit(VisitOrderedTiles, perPixel, 0, nearEntries, 0, *this->DispatchSizes, 0);
+      }
+      if (listing == 0)
+      {
+        visit(VisitOrderedTiles, perPixel, nearEntries, orderCount, laneSlots, *this->DispatchSizes, second);
+      }
+      else
+      {
+        // The listing: workgroups per answer (DispatchSizes' second), each looping over its
+        // share of the answer's lanes and entries.
+        visit(SelectTiles, false, nearEntries, orderCount, 0, *this->DispatchSizes, second);
+        visit(VisitListedTiles, listing == 2, 0, 0, 0, *this->TileListSize, 4);
+      }
+      this->Reduce->Record(cmd, &copy, (answers + 63) / 64); // into the host-visible answers, and resets
+      vp::ComputeKernel::Barrier(cmd);
+      this->Context->Stamp(cmd, 1);
+    });
+    this->Prepared.push_back(std::move(entry));
+    prepared = this->Prepared.end() - 1;
+  }
+  return *prepared->Commands;
+}
+
+void vtkZBufferVesselDistance::Internals::BuildVotes(const std::vector<std::shared_ptr<const vp::VesselSurface>>& surfaces,
+  const std::vector<std::pair<std::string, vtkSmartPointer<vtkPolyData>>>& meshes)
+{
+  this->Votes = nullptr;
+  this->Deep = nullptr;
+  this->ExactIndex.assign(surfaces.size(), -1);
+  for (std::size_t c = 0; c < surfaces.size(); ++c)
+  {
+    if (!surfaces[c]->IsClosed())
+    {
+      if (!this->Votes)
+      {
+        this->Votes = vtkSmartPointer<vtkExactVesselDistance>::New();
+      }
+      this->ExactIndex[c] = this->Votes->GetNumberOfVessels();
+      this->Votes->AddVessel(meshes[c].first, meshes[c].second);
+    }
+  }
+  if (this->Votes)
+  {
+    this->Votes->Build();
+  }
+
+}

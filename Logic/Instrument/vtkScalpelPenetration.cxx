@@ -54,7 +54,7 @@ struct Cube
 
 struct vtkScalpelPenetration::Lattice
 {
-  double CellMm = 0.4;
+  double CellMm = 0.0; // the penetration's CellSizeMm, set when the lattice is built
   bool Closed = false; ///< false: the instrument has no inside
   std::vector<Node> Nodes;
   int Root = -1;

@@ -191,6 +191,14 @@ std::string vtkZBufferVesselDistance::GetDeviceName()
   return this->Impl->Device(this->DeviceSelector).Device().Name;
 }
 
+double vtkZBufferVesselDistance::ErrorBoundForCellMm(double cellMm)
+{
+  vp::DepthLayerGrid grid;
+  grid.PixelMm = cellMm;
+  grid.SliceMm = cellMm;
+  return grid.ErrorBoundMm();
+}
+
 double vtkZBufferVesselDistance::GetErrorBoundMm() const
 {
   this->EnsureBuilt();

@@ -62,6 +62,9 @@ public:
   int GetBoxMode() const { return this->BoxMode; }
 
   /// Edge of a cell (pixel and slice), in mm. Default 0.4 mm: an error bound of 0.35 mm.
+  static constexpr double DefaultCellSizeMm = 0.4;
+  /// The error bound of layers of cells of cellMm (without the paper's distance bits).
+  static double ErrorBoundForCellMm(double cellMm);
   void SetCellSizeMm(double cellMm);
   double GetCellSizeMm() const { return this->CellSizeMm; }
   /// Pixels across the longer side of the box in the view plane; overrides CellSizeMm when
@@ -70,6 +73,7 @@ public:
   int GetResolutionPx() const { return this->ResolutionPx; }
   /// Size of the moving box, in mm (x, y, z). Default: the paper's 106 x 106 x 213 mm. Each half
   /// must hold the range plus a cell.
+  static constexpr double DefaultMovingBoxSizeMm[3] = { 106.0, 106.0, 213.0 };
   void SetMovingBoxSizeMm(double x, double y, double z);
   const double* GetMovingBoxSizeMm() const { return this->MovingBoxSizeMm; }
   /// The paper's distance bits: this many bins (a multiple of 16, at most 768) over 0 to
@@ -233,9 +237,9 @@ private:
 
   int LayerMode = ExactIntervals;
   int BoxMode = FixedAroundVessels;
-  double CellSizeMm = 0.4;
+  double CellSizeMm = DefaultCellSizeMm;
   int ResolutionPx = 0;
-  double MovingBoxSizeMm[3] = { 106.0, 106.0, 213.0 };
+  double MovingBoxSizeMm[3] = { DefaultMovingBoxSizeMm[0], DefaultMovingBoxSizeMm[1], DefaultMovingBoxSizeMm[2] };
   int DistanceBins = 0;
   int DirectionalLanes = 0;
   int QueryPass = QueryPassByDevice;

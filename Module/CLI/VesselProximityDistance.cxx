@@ -92,14 +92,14 @@ vp::cli::ParameterGroup EngineGroup()
                                 .SetDescription("exact: BVH, exact. zbuffer: Vulkan depth layers, within the error "
                                                 "bound. both: z-buffer checked against exact. auto: z-buffer when a "
                                                 "Vulkan device opens, else exact.")
-                                .SetDefault("exact")
+                                .SetDefault(vp::DistanceEngineSettings().Method)
                                 .SetElements({ "exact", "zbuffer", "both", "auto" }));
   engine.Parameters.push_back(Parameter(ParameterType::Float, "rangeMm")
                                 .SetLongFlag("rangeMm")
                                 .SetLogicName("RangeMm")
                                 .SetLabel("Range (mm)")
                                 .SetDescription("Classes further from the tip than this return -1.")
-                                .SetDefault("50")
+                                .SetDefault(vp::cli::FormatNumber(vtkVesselDistanceEngine::DefaultRangeMm))
                                 .SetRange(1.0, 1000.0, 1.0));
   engine.Parameters.push_back(Parameter(ParameterType::File, "report")
                                 .SetFileExtensions(".json")

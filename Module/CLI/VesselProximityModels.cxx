@@ -61,28 +61,28 @@ vp::cli::ParameterGroup SurfaceGroup()
                                  .SetLabel("Smoothing")
                                  .SetDescription("Windowed-sinc smoothing factor as Slicer codes it: pass band "
                                                  "10^(-4 x factor). 0 keeps the voxel steps.")
-                                 .SetDefault("0.5")
+                                 .SetDefault(vp::cli::FormatNumber(vp::VesselModelParameters().SmoothingFactor))
                                  .SetRange(0.0, 1.0, 0.05));
   surface.Parameters.push_back(Parameter(ParameterType::Integer, "smoothingIterations")
                                  .SetLongFlag("smoothingIterations")
                                  .SetLogicName("SmoothingIterations")
                                  .SetLabel("Smoothing iterations")
                                  .SetDescription("Windowed-sinc iterations (Slicer uses 20; more shrink thin vessels).")
-                                 .SetDefault("20")
+                                 .SetDefault(std::to_string(vp::VesselModelParameters().SmoothingIterations))
                                  .SetRange(1, 1000, 1));
   surface.Parameters.push_back(Parameter(ParameterType::Float, "decimation")
                                  .SetLongFlag("decimation")
                                  .SetLogicName("DecimationFactor")
                                  .SetLabel("Decimation")
                                  .SetDescription("Fraction of triangles removed, keeping topology (0: none).")
-                                 .SetDefault("0")
+                                 .SetDefault(vp::cli::FormatNumber(vp::VesselModelParameters().DecimationFactor))
                                  .SetRange(0.0, 0.99, 0.05));
   surface.Parameters.push_back(Parameter(ParameterType::StringEnumeration, "space")
                                  .SetLongFlag("space")
                                  .SetLabel("Coordinate system")
                                  .SetDescription("Coordinates of the STL files, tagged in their header as Slicer "
                                                  "does: LPS (the DICOM frame, Slicer's default for files) or RAS.")
-                                 .SetDefault("LPS")
+                                 .SetDefault(vp::MeshSpaceName(vp::VesselModelParameters().FileSpace))
                                  .SetElements({ "LPS", "RAS" }));
   return surface;
 }

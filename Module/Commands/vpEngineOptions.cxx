@@ -2,6 +2,7 @@
 
 #include "vpInputError.h"
 #include "vpPointCsv.h"
+#include "vtkZBufferVesselDistance.h"
 
 #include <iostream>
 
@@ -49,19 +50,30 @@ cli::ParameterGroup EngineOptions(const std::vector<std::string>& methods)
                                .SetPlaceholder("MM")
                                .SetDefault(cli::FormatNumber(vtkVesselDistanceEngine::DefaultRangeMm))
                                .SetLogicName("RangeMm"));
+  // The z-buffer's defaults as its engine declares them, and the bound they give.
+  const double* box = vtkZBufferVesselDistance::DefaultMovingBoxSizeMm;
+  const double cell = vtkZBufferVesselDistance::DefaultCellSizeMm;
   const std::vector<cli::Parameter> zbuffer = {
     Option(ParameterType::String, "device", "z-buffer: the Vulkan device by name or index (default: a GPU if any, else lavapipe).")
       .SetLogicName("DeviceSelector")
       .SetPlaceholder("NAME|INDEX"),
-    Option(ParameterType::Double, "cell", "z-buffer: the cell edge (default 0.4 mm: error bound 0.35 mm).").SetPlaceholder("MM").SetLogicName("CellSizeMm"),
+    Option(ParameterType::Double, "cell",
+      "z-buffer: the cell edge (default " + cli::FormatNumber(cell) + " mm: error bound " +
+        FixedText(vtkZBufferVesselDistance::ErrorBoundForCellMm(cell), "%.2f") + " mm).")
+      .SetPlaceholder("MM")
+      .SetLogicName("CellSizeMm"),
     Option(ParameterType::Integer, "resolution", "z-buffer: pixels across the box, instead of --cell.").SetPlaceholder("PX").SetLogicName("ResolutionPx"),
     Option(ParameterType::StringEnumeration, "layers", "z-buffer: exact intervals, or the paper's nearest and farthest depth only.")
       .SetElements({ "exact", "paper" }).SetDefault(defaults.LayerMode).SetLogicName("LayerMode"),
     Option(ParameterType::StringEnumeration, "box", "z-buffer: a box fixed around the vessels, or moving with the tip.")
       .SetElements({ "fixed", "moving" }).SetDefault(defaults.BoxMode).SetLogicName("BoxMode"),
-    Option(ParameterType::String, "box-size", "z-buffer: the moving box's size (default 106,106,213 mm).").SetPlaceholder("X,Y,Z").SetLogicName("MovingBoxSizeMm"),
+    Option(ParameterType::String, "box-size",
+      "z-buffer: the moving box's size (default " + cli::FormatNumber(box[0]) + "," + cli::FormatNumber(box[1]) + "," +
+        cli::FormatNumber(box[2]) + " mm).")
+      .SetPlaceholder("X,Y,Z")
+      .SetLogicName("MovingBoxSizeMm"),
     Option(ParameterType::Integer, "bins", "z-buffer: the paper's distance bits, N bins over the range, a multiple of 16 (0: off).")
-      .SetPlaceholder("N").SetDefault("0").SetLogicName("DistanceBins"),
+      .SetPlaceholder("N").SetDefault(std::to_string(defaults.DistanceBins)).SetLogicName("DistanceBins"),
   };
   group.Parameters.insert(group.Parameters.end(), zbuffer.begin(), zbuffer.end());
   return group;

@@ -28,13 +28,12 @@ breach "command-line flag text in Logic/ (name the parameter: vp::ParameterError
 layers=(
   "Common"
   "Mesh Segmentation Registration ZBuffer/Vulkan"
-  "Engine Scalpel"
+  "Engine Scalpel Models"
   "ExactEngine"
   "ZBuffer"
   "Instrument"
   "Tracking"
   "Reports"
-  "Models"
   "."
 )
 layer_of() {

@@ -5,7 +5,7 @@
 #include "vpInputError.h"
 #include "vpRunFolder.h"
 #include "vpSegmentationImport.h"
-#include "vpSurfaceReport.h"
+#include "vpSurfaceJson.h"
 #include "vpVesselLabelTable.h"
 #include "vpVesselSurface.h"
 #include "vtkVesselMeshWriter.h"

@@ -5,14 +5,6 @@
 
 namespace vp
 {
-nlohmann::ordered_json SurfaceJson(const VesselSurface& surface)
-{
-  const MeshDefects& d = surface.Defects();
-  return { { "closed", surface.IsClosed() }, { "triangles", surface.NumberOfTriangles() },
-    { "boundary_edges", d.BoundaryEdges }, { "non_manifold_edges", d.NonManifoldEdges },
-    { "inconsistent_edges", d.InconsistentEdges }, { "components", d.Components } };
-}
-
 nlohmann::ordered_json SurfacesJson(vtkVesselDistanceEngine* engine, const std::vector<NamedMesh>& meshes)
 {
   nlohmann::ordered_json out = nlohmann::ordered_json::object();

@@ -104,8 +104,16 @@ bool NumericCsvReader::Next(NumericRow& row)
   {
     ++this->LineNumber;
     const std::size_t first = this->Line.find_first_not_of(" \t\r");
-    if (first == std::string::npos || this->Line[first] == '#')
+    if (first == std::string::npos)
     {
+      continue;
+    }
+    if (this->Line[first] == '#')
+    {
+      if (this->Rows == 0)
+      {
+        this->Comments.push_back(TrimBlanks(this->Line.substr(first + 1)));
+      }
       continue;
     }
     row.Line = this->LineNumber;
@@ -114,7 +122,19 @@ bool NumericCsvReader::Next(NumericRow& row)
     {
       if (this->Rows == 0 && ScanDecimal(this->Line.c_str() + first) == this->Line.c_str() + first)
       {
-        continue; // a header: its first field is no number at all
+        // A header: its first field is no number at all.
+        this->HeaderFields.clear();
+        std::size_t start = 0;
+        for (std::size_t comma = this->Line.find(','); ; comma = this->Line.find(',', start))
+        {
+          this->HeaderFields.push_back(TrimBlanks(this->Line.substr(start, comma == std::string::npos ? std::string::npos : comma - start)));
+          if (comma == std::string::npos)
+          {
+            break;
+          }
+          start = comma + 1;
+        }
+        continue;
       }
       throw InputError(this->Name, "line " + std::to_string(this->LineNumber) + ": " + problem);
     }
@@ -126,6 +146,16 @@ bool NumericCsvReader::Next(NumericRow& row)
     throw InputError(this->Name, "nothing in it: expected " + this->What);
   }
   return false;
+}
+
+std::string TrimBlanks(const std::string& text)
+{
+  const std::size_t first = text.find_first_not_of(" \t\r");
+  if (first == std::string::npos)
+  {
+    return std::string();
+  }
+  return text.substr(first, text.find_last_not_of(" \t\r") - first + 1);
 }
 
 std::vector<NumericRow> ReadNumericCsv(const std::string& fileName, const std::string& what)

@@ -34,6 +34,12 @@ public:
   /// The next row; false at the end of the file.
   bool Next(NumericRow& row);
   const std::string& FileName() const { return this->Name; }
+  /// The header's fields, blanks around them trimmed: the last line before the first row whose
+  /// first field is no number; empty when there is none. Known once the first row is read.
+  const std::vector<std::string>& Header() const { return this->HeaderFields; }
+  /// The comment lines before the first row, without their '#' and the blanks around them: where
+  /// a file may say how its numbers are to be read.
+  const std::vector<std::string>& LeadingComments() const { return this->Comments; }
   /// The longest line read (characters, without its end); a longer one is refused.
   static constexpr std::size_t MaxLineCharacters = 65536;
 
@@ -47,7 +53,12 @@ private:
   std::string Line;
   std::size_t LineNumber = 0;
   std::size_t Rows = 0;
+  std::vector<std::string> HeaderFields;
+  std::vector<std::string> Comments;
 };
+
+/// text without the blanks (spaces, tabs, carriage returns) at its ends.
+std::string TrimBlanks(const std::string& text);
 } // namespace vp
 
 #endif

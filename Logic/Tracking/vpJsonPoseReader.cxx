@@ -63,7 +63,36 @@ JsonPoseReader::Item ToItem(const nlohmann::json& entry)
   }
   return item;
 }
+
+bool IsDeclaration(const std::string& key)
+{
+  return key == "space" || key == "units" || key == "time_units" || key == "pose-space" || key == "pose-units" ||
+    key == "time-units";
+}
 } // namespace
+
+PoseReading JsonPoseReader::Declarations() const
+{
+  const std::lock_guard<std::mutex> lock(this->Mutex);
+  return this->Declared;
+}
+
+PoseReading JsonPoseReader::LateDeclarations() const
+{
+  const std::lock_guard<std::mutex> lock(this->Mutex);
+  return this->Late;
+}
+
+void JsonPoseReader::Declare(const std::string& key, const nlohmann::json& value, std::size_t posesBefore)
+{
+  if (!value.is_string())
+  {
+    throw InputError(this->FileName, "\"" + key + "\" is not a string");
+  }
+  const std::lock_guard<std::mutex> lock(this->Mutex);
+  ApplyPoseDeclaration(key + ":" + value.get<std::string>(), this->FileName, posesBefore > 0 ? this->Late : this->Declared);
+}
+
 
 JsonPoseReader::JsonPoseReader(const std::string& fileName)
   : FileName(fileName)
@@ -127,9 +156,15 @@ void JsonPoseReader::Parse(std::unique_ptr<JsonFileInput> in)
     const nlohmann::json document = nlohmann::json::parse(*in, [&](int depth, Event event, nlohmann::json& parsed) {
       if (event == Event::key && depth == 1)
       {
-        // Only "poses" is kept: any other member, however long, is read and dropped.
+        // Only "poses" and the declarations are kept: any other member, however long, is read
+        // and dropped.
         topKey = parsed.get<std::string>();
-        return topKey == "poses";
+        return topKey == "poses" || IsDeclaration(topKey);
+      }
+      if (depth == 1 && event == Event::value && IsDeclaration(topKey))
+      {
+        this->Declare(topKey, parsed, count);
+        return false;
       }
       const bool entryEnds = event == Event::object_end || event == Event::array_end || event == Event::value;
       if (depth != 2 || topKey != "poses" || !entryEnds)

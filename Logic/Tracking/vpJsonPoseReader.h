@@ -1,6 +1,10 @@
 #ifndef vpJsonPoseReader_h
 #define vpJsonPoseReader_h
 
+#include "vpPoseReading.h"
+
+#include <nlohmann/json.hpp>
+
 #include <condition_variable>
 #include <cstddef>
 #include <deque>
@@ -35,6 +39,13 @@ public:
   explicit JsonPoseReader(const std::string& fileName);
   /// Stops the parser, wherever it is.
   ~JsonPoseReader();
+  /// How the file says its numbers are read: its top-level "space", "units" and "time_units"
+  /// (or "pose-space", "pose-units", "time-units") before "poses". Complete once the first pose
+  /// has been handed over.
+  PoseReading Declarations() const;
+  /// The same declared after "poses" began: known when the last pose has been read, too late to
+  /// read the poses by; the caller refuses one that contradicts how they were read.
+  PoseReading LateDeclarations() const;
   JsonPoseReader(const JsonPoseReader&) = delete;
   JsonPoseReader& operator=(const JsonPoseReader&) = delete;
 
@@ -46,14 +57,18 @@ private:
   void Parse(std::unique_ptr<JsonFileInput> in);
   /// Called by the parser's thread for each pose: waits while the queue is full.
   void Hand(Item item);
+  /// A top-level declaration (IsDeclaration) into Declared; refused after a pose.
+  void Declare(const std::string& key, const nlohmann::json& value, std::size_t posesBefore);
 
   std::string FileName;
-  std::mutex Mutex;
+  mutable std::mutex Mutex;
   std::condition_variable Changed;
   std::deque<Item> Queue;
   bool Finished = false;  ///< the parser is done: the queue holds what is left
   bool Cancelled = false; ///< the reader is going away: the parser stops
   std::exception_ptr Error;
+  PoseReading Declared;
+  PoseReading Late;
   std::thread Parser;
 };
 } // namespace vp

@@ -4,6 +4,7 @@
 #include "vpPhysicalLimits.h"
 #include "vpJsonPoseReader.h"
 #include "vpNumericCsv.h"
+#include "vpPoseReading.h"
 
 #include <algorithm>
 #include <cmath>
@@ -16,6 +17,161 @@ namespace
 bool EndsWith(const std::string& text, const std::string& suffix)
 {
   return text.size() >= suffix.size() && text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+/// How a file's numbers are read once the settings and the file's declarations are resolved.
+struct ResolvedReading
+{
+  PoseSpace Space = PoseSpace::LPS;
+  double MillimetresPerUnit = 1.0;
+  double SecondsPerUnit = 1.0;
+};
+
+/// The settings a front end gave over what the file declares, each else its default; a setting
+/// the file contradicts is refused, naming both.
+ResolvedReading Resolve(const PoseReading& given, const PoseReading& declared, const std::string& fileName)
+{
+  auto unitName = [](double mmPerUnit) { return std::string(mmPerUnit == 1000.0 ? "m" : "mm"); };
+  auto timeName = [](double sPerUnit) { return std::string(sPerUnit == 0.001 ? "ms" : "s"); };
+  if (given.Space && declared.Space && *given.Space != *declared.Space)
+  {
+    throw ParameterError("PoseSpace", std::string(PoseSpaceName(*given.Space)) + ", but " + fileName + " declares " +
+        PoseSpaceName(*declared.Space));
+  }
+  if (given.MillimetresPerUnit && declared.MillimetresPerUnit && *given.MillimetresPerUnit != *declared.MillimetresPerUnit)
+  {
+    throw ParameterError("PoseUnits", unitName(*given.MillimetresPerUnit) + ", but " + fileName + " declares " +
+        unitName(*declared.MillimetresPerUnit));
+  }
+  if (given.SecondsPerUnit && declared.SecondsPerUnit && *given.SecondsPerUnit != *declared.SecondsPerUnit)
+  {
+    throw ParameterError("TimeUnits", timeName(*given.SecondsPerUnit) + ", but " + fileName + " declares " +
+        timeName(*declared.SecondsPerUnit));
+  }
+  ResolvedReading r;
+  r.Space = given.Space ? *given.Space : declared.Space.value_or(PoseSpace::LPS);
+  r.MillimetresPerUnit = given.MillimetresPerUnit ? *given.MillimetresPerUnit : declared.MillimetresPerUnit.value_or(1.0);
+  r.SecondsPerUnit = given.SecondsPerUnit ? *given.SecondsPerUnit : declared.SecondsPerUnit.value_or(1.0);
+  return r;
+}
+
+/// Declarations that came after the poses they would have changed: refused unless they say what
+/// the poses were read as.
+void CheckLateDeclarations(const PoseReading& late, const ResolvedReading& used, const std::string& fileName)
+{
+  const bool space = late.Space && *late.Space != used.Space;
+  const bool units = late.MillimetresPerUnit && *late.MillimetresPerUnit != used.MillimetresPerUnit;
+  const bool time = late.SecondsPerUnit && *late.SecondsPerUnit != used.SecondsPerUnit;
+  if (space || units || time)
+  {
+    throw InputError(fileName, std::string("declares ") + (space ? "its space" : units ? "its units" : "its time units") +
+        " after its poses, which were read otherwise: put the declaration before \"poses\"");
+  }
+}
+
+constexpr const char* ColumnNames = "time; x,y,z or tx,ty,tz; qw,qx,qy,qz in any order; or m00..m33";
+
+/// Where the numbers of a pose sit in a CSV row: the time, then the pose's values in the order
+/// MakePose takes them (16 matrix entries row-major, or x,y,z and qw,qx,qy,qz).
+struct PoseColumns
+{
+  std::size_t Count = 0;
+  std::size_t Time = 0;
+  std::vector<std::size_t> Pose;
+  bool Named = false; ///< from a header's names, not by position
+};
+
+/// A file without a header: time then 16 (a matrix, row-major) or 7 (x,y,z, qw,qx,qy,qz) numbers.
+PoseColumns ColumnsByPosition(std::size_t count, std::size_t line, const std::string& fileName)
+{
+  if (count != 17 && count != 8)
+  {
+    throw InputError(fileName, "line " + std::to_string(line) +
+        ": expected 17 numbers (time and a 4x4 matrix) or 8 (time, x,y,z, qw,qx,qy,qz), got " + std::to_string(count));
+  }
+  PoseColumns columns;
+  columns.Count = count;
+  for (std::size_t k = 1; k < count; ++k)
+  {
+    columns.Pose.push_back(k);
+  }
+  return columns;
+}
+
+/// The place of one header name in a pose: 0 time, 1..16 matrix m00..m33, 17..19 x,y,z,
+/// 20..23 qw,qx,qy,qz; -1 when it names nothing of a pose.
+int PoseFieldOf(std::string name)
+{
+  std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (name == "time" || name == "t" || name == "timestamp")
+  {
+    return 0;
+  }
+  if (name.size() == 3 && name[0] == 'm' && name[1] >= '0' && name[1] <= '3' && name[2] >= '0' && name[2] <= '3')
+  {
+    return 1 + 4 * (name[1] - '0') + (name[2] - '0');
+  }
+  const std::string axes[3][2] = { { "x", "tx" }, { "y", "ty" }, { "z", "tz" } };
+  for (int a = 0; a < 3; ++a)
+  {
+    if (name == axes[a][0] || name == axes[a][1])
+    {
+      return 17 + a;
+    }
+  }
+  const char* quaternion[4] = { "qw", "qx", "qy", "qz" };
+  for (int k = 0; k < 4; ++k)
+  {
+    if (name == quaternion[k])
+    {
+      return 20 + k;
+    }
+  }
+  return -1;
+}
+
+/// The columns a header names: a time and either the 16 matrix entries or a position and a
+/// quaternion, each once, nothing else.
+PoseColumns ColumnsByName(const std::vector<std::string>& header, const std::string& fileName)
+{
+  std::vector<int> at(24, -1);
+  for (std::size_t c = 0; c < header.size(); ++c)
+  {
+    const int field = PoseFieldOf(header[c]);
+    const std::string column = "column " + std::to_string(c + 1) + " '" + Printable(header[c]) + "'";
+    if (field < 0)
+    {
+      throw InputError(fileName, "header: " + column + " is not a pose column (" + ColumnNames + ")");
+    }
+    if (at[static_cast<std::size_t>(field)] >= 0)
+    {
+      throw InputError(fileName, "header: " + column + " names a value already given");
+    }
+    at[static_cast<std::size_t>(field)] = static_cast<int>(c);
+  }
+  const bool matrix = std::any_of(at.begin() + 1, at.begin() + 17, [](int c) { return c >= 0; });
+  const bool position = std::any_of(at.begin() + 17, at.end(), [](int c) { return c >= 0; });
+  if (at[0] < 0 || matrix == position)
+  {
+    throw InputError(fileName, std::string("header: ") +
+        (at[0] < 0 ? "no time column" : matrix ? "both a matrix and a position or quaternion" : "no pose columns") + " (" +
+        ColumnNames + ")");
+  }
+  static const char* names[24] = { "time", "m00", "m01", "m02", "m03", "m10", "m11", "m12", "m13", "m20", "m21", "m22", "m23",
+    "m30", "m31", "m32", "m33", "x", "y", "z", "qw", "qx", "qy", "qz" };
+  PoseColumns columns;
+  columns.Count = header.size();
+  columns.Time = static_cast<std::size_t>(at[0]);
+  columns.Named = true;
+  for (int field = matrix ? 1 : 17; field < (matrix ? 17 : 24); ++field)
+  {
+    if (at[static_cast<std::size_t>(field)] < 0)
+    {
+      throw InputError(fileName, std::string("header: no column ") + names[field] + " (" + ColumnNames + ")");
+    }
+    columns.Pose.push_back(static_cast<std::size_t>(at[static_cast<std::size_t>(field)]));
+  }
+  return columns;
 }
 
 // The problem with a model-to-world matrix, or "" when it is a rigid pose.
@@ -48,8 +204,9 @@ std::string RigidProblem(const std::array<double, 16>& m)
   return "";
 }
 
-// A pose from the numbers after the time: 16 (matrix) or 7 (position, quaternion); "" or the problem.
-std::string MakePose(const double* values, std::size_t count, TrackedPose& pose)
+// A pose from the numbers after the time: 16 (matrix) or 7 (position, quaternion w,x,y,z), read
+// as reading says (units, frame); "" or the problem.
+std::string MakePose(const double* values, std::size_t count, const ResolvedReading& reading, TrackedPose& pose)
 {
   if (count == 16)
   {
@@ -66,19 +223,32 @@ std::string MakePose(const double* values, std::size_t count, TrackedPose& pose)
     pose.ModelToWorld = PoseFromQuaternion(
       { values[0], values[1], values[2] }, { values[3] / norm, values[4] / norm, values[5] / norm, values[6] / norm });
   }
-  return RigidProblem(pose.ModelToWorld);
+  std::string problem = RigidProblem(pose.ModelToWorld);
+  for (int a = 0; a < 3; ++a)
+  {
+    pose.ModelToWorld[4 * a + 3] *= reading.MillimetresPerUnit;
+  }
+  if (reading.Space == PoseSpace::RAS)
+  {
+    // World RAS to LPS: x and y negated, a half turn about the superior axis (still a rotation).
+    for (int k = 0; k < 8; ++k)
+    {
+      pose.ModelToWorld[k] = -pose.ModelToWorld[k];
+    }
+  }
+  return problem;
 }
 
 // Makes the pose at time from the numbers after the time (16: matrix; 7: position and
 // quaternion), after the previous pose (null for the first), or throws naming fileName and where
 // (the line or pose).
 TrackedPose CheckedPose(double time, const double* values, std::size_t count, const TrackedPose* previous,
-  const std::string& fileName, const std::string& where)
+  const ResolvedReading& reading, const std::string& fileName, const std::string& where)
 {
   TrackedPose pose;
-  pose.TimeS = time;
-  std::string problem = MagnitudeProblem(time, limits::TimeS, "s");
-  problem = problem.empty() ? MakePose(values, count, pose) : "time " + problem;
+  pose.TimeS = time * reading.SecondsPerUnit;
+  std::string problem = MagnitudeProblem(pose.TimeS, limits::TimeS, "s");
+  problem = problem.empty() ? MakePose(values, count, reading, pose) : "time " + problem;
   for (int a = 0; a < 3 && problem.empty(); ++a)
   {
     const std::string far = MagnitudeProblem(pose.ModelToWorld[4 * a + 3], limits::CoordinateMm, "mm");
@@ -95,21 +265,26 @@ TrackedPose CheckedPose(double time, const double* values, std::size_t count, co
   return pose;
 }
 
-// The pose of one CSV row, after the previous (null for the first, whose columns every row must have).
-TrackedPose CsvPose(const NumericRow& row, std::size_t columns, const TrackedPose* previous, const std::string& fileName)
+// The pose of one CSV row through the file's columns, after the previous (null for the first).
+TrackedPose CsvPose(const NumericRow& row, const PoseColumns& columns, const TrackedPose* previous, const ResolvedReading& reading,
+  const std::string& fileName)
 {
   const std::string where = "line " + std::to_string(row.Line) + ": ";
   if (row.Values.size() != 17 && row.Values.size() != 8)
   {
-    throw InputError(fileName, where + "expected 17 numbers (time and a 4x4 matrix) or 8 (time, x,y,z, qw,qx,qy,qz), got " +
-        std::to_string(row.Values.size()));
+    ColumnsByPosition(row.Values.size(), row.Line, fileName); // throws: no pose has this many numbers
   }
-  if (row.Values.size() != columns)
+  if (row.Values.size() != columns.Count)
   {
-    throw InputError(fileName, where + std::to_string(row.Values.size()) + " numbers where the first pose has " +
-        std::to_string(columns));
+    throw InputError(fileName, where + std::to_string(row.Values.size()) + " numbers where " +
+        (columns.Named ? "the header names " : "the first pose has ") + std::to_string(columns.Count));
   }
-  return CheckedPose(row.Values[0], row.Values.data() + 1, row.Values.size() - 1, previous, fileName, where);
+  std::vector<double> values;
+  for (std::size_t index : columns.Pose)
+  {
+    values.push_back(row.Values[index]);
+  }
+  return CheckedPose(row.Values[columns.Time], values.data(), values.size(), previous, reading, fileName, where);
 }
 
 constexpr const char* CsvWhat = "a pose list (time,m00..m33 or time,x,y,z,qw,qx,qy,qz per line)";
@@ -125,9 +300,16 @@ std::array<double, 16> PoseFromQuaternion(const std::array<double, 3>& p, const 
     0, 0, 0, 1 };
 }
 
-PoseStream::PoseStream(const std::string& fileName, std::size_t expected)
+struct PoseStream::Format
+{
+  ResolvedReading Reading;
+  PoseColumns Columns;
+};
+
+PoseStream::PoseStream(const std::string& fileName, std::size_t expected, const PoseReading& reading)
   : Name(fileName)
   , Expected(expected)
+  , Given(reading)
 {
   if (EndsWith(fileName, ".json"))
   {
@@ -141,9 +323,9 @@ PoseStream::PoseStream(const std::string& fileName, std::size_t expected)
 
 PoseStream::~PoseStream() = default;
 
-std::size_t PoseStream::CountPoses(const std::string& fileName)
+std::size_t PoseStream::CountPoses(const std::string& fileName, const PoseReading& reading)
 {
-  PoseStream check(fileName);
+  PoseStream check(fileName, 0, reading);
   for (TrackedPose pose; check.Next(pose);)
   {
   }
@@ -157,10 +339,20 @@ bool PoseStream::Next(TrackedPose& pose)
     JsonPoseReader::Item item;
     if (!this->Json->Next(item))
     {
+      if (this->Layout)
+      {
+        CheckLateDeclarations(this->Json->LateDeclarations(), this->Layout->Reading, this->Name);
+      }
       return false;
     }
+    if (!this->Layout)
+    {
+      this->Layout = std::make_unique<Format>();
+      this->Layout->Reading = Resolve(this->Given, this->Json->Declarations(), this->Name);
+    }
     const std::string where = "pose " + std::to_string(this->Read + 1) + ": ";
-    pose = CheckedPose(item.Time, item.Values.data(), item.Values.size(), this->Read ? &this->Previous : nullptr, this->Name, where);
+    pose = CheckedPose(item.Time, item.Values.data(), item.Values.size(), this->Read ? &this->Previous : nullptr,
+      this->Layout->Reading, this->Name, where);
     this->Previous = pose;
     ++this->Read;
     return true;
@@ -170,19 +362,27 @@ bool PoseStream::Next(TrackedPose& pose)
   {
     return false;
   }
-  if (this->Read == 0)
+  if (!this->Layout)
   {
-    this->Columns = row.Values.size();
+    this->Layout = std::make_unique<Format>();
+    PoseReading declared;
+    for (const std::string& comment : this->Csv->LeadingComments())
+    {
+      ApplyPoseDeclaration(comment, this->Name, declared);
+    }
+    this->Layout->Reading = Resolve(this->Given, declared, this->Name);
+    this->Layout->Columns = this->Csv->Header().empty() ? ColumnsByPosition(row.Values.size(), row.Line, this->Name)
+                                                         : ColumnsByName(this->Csv->Header(), this->Name);
   }
-  pose = CsvPose(row, this->Columns, this->Read > 0 ? &this->Previous : nullptr, this->Name);
+  pose = CsvPose(row, this->Layout->Columns, this->Read > 0 ? &this->Previous : nullptr, this->Layout->Reading, this->Name);
   this->Previous = pose;
   ++this->Read;
   return true;
 }
 
-std::vector<TrackedPose> ReadPoseFile(const std::string& fileName)
+std::vector<TrackedPose> ReadPoseFile(const std::string& fileName, const PoseReading& reading)
 {
-  PoseStream stream(fileName);
+  PoseStream stream(fileName, 0, reading);
   std::vector<TrackedPose> poses;
   TrackedPose pose;
   while (stream.Next(pose))

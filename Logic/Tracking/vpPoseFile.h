@@ -1,6 +1,8 @@
 #ifndef vpPoseFile_h
 #define vpPoseFile_h
 
+#include "vpPoseReading.h"
+
 #include <array>
 #include <cstddef>
 #include <memory>
@@ -18,16 +20,23 @@ struct TrackedPose
 };
 
 /// Reads a pose stream.
-///  - CSV (any name but *.json): one pose per line, header allowed, either
-///    `time,m00,m01,...,m33` (17 numbers) or `time,x,y,z,qw,qx,qy,qz` (8 numbers: position in mm,
-///    unit quaternion, scalar first). All lines use the same form.
-///  - JSON: {"poses": [{"time": t, "matrix": [16 numbers]} or
-///    {"time": t, "position": [x,y,z], "quaternion": [w,x,y,z]}, ...]}.
-/// Refused with one line naming the file and the line (CSV) or pose (JSON): a wrong number of
-/// columns, NaN or infinity, a time not after the previous one, a rotation that is not
-/// orthonormal (|R^T R - I| > 1e-3) or is a reflection, a quaternion not of unit length (within
-/// 1e-3), a matrix whose last row is not 0 0 0 1, and a file without poses. Throws vp::InputError.
-std::vector<TrackedPose> ReadPoseFile(const std::string& fileName);
+///  - CSV (any name but *.json): one pose per line. A header names the columns, in any order:
+///    `time`; `x,y,z` (or `tx,ty,tz`) and `qw,qx,qy,qz` (so scalar-last files are read as
+///    written), or `m00`..`m33`; a column it cannot place is refused. Without a header a line is
+///    `time,m00,...,m33` (17 numbers) or `time,x,y,z,qw,qx,qy,qz` (8: scalar first). Comment
+///    lines before the first pose may say how it is read ("# pose-space: RAS", "# pose-units: m",
+///    "# time-units: ms").
+///  - JSON: {"space": "RAS", "units": "m", "time_units": "ms" (each optional, before "poses"),
+///    "poses": [{"time": t, "matrix": [16 numbers]} or {"time": t, "position": [x,y,z],
+///    "quaternion": [w,x,y,z]}, ...]}.
+/// Positions become millimetres and the world LPS, times seconds, as reading and the file say
+/// (vp::PoseReading). Refused with one line naming the file and the line (CSV) or pose (JSON): a
+/// wrong number of columns, NaN or infinity, a time not after the previous one, a rotation that
+/// is not orthonormal (|R^T R - I| > 1e-3) or is a reflection, a quaternion not of unit length
+/// (within 1e-3), a matrix whose last row is not 0 0 0 1, a header or declaration the reader
+/// cannot place, and a file without poses. Throws vp::InputError (ParameterError naming the
+/// setting when a setting given contradicts the file).
+std::vector<TrackedPose> ReadPoseFile(const std::string& fileName, const PoseReading& reading = {});
 
 class NumericCsvReader;
 class JsonPoseReader;
@@ -57,7 +66,7 @@ class PoseStream : public PoseSource
 public:
   /// Opens the file; throws vp::InputError naming it when it cannot be read. expected: the
   /// poses it holds when the caller counted them (PosesExpected()).
-  explicit PoseStream(const std::string& fileName, std::size_t expected = 0);
+  explicit PoseStream(const std::string& fileName, std::size_t expected = 0, const PoseReading& reading = {});
   ~PoseStream() override;
   PoseStream(const PoseStream&) = delete;
   PoseStream& operator=(const PoseStream&) = delete;
@@ -69,7 +78,7 @@ public:
   const std::string& GetName() const override { return this->Name; }
   /// Reads a file through once, with every check, and returns how many poses it holds: a bad
   /// file is refused before anything is computed.
-  static std::size_t CountPoses(const std::string& fileName);
+  static std::size_t CountPoses(const std::string& fileName, const PoseReading& reading = {});
 
 private:
   std::string Name;
@@ -77,7 +86,10 @@ private:
   std::unique_ptr<JsonPoseReader> Json;
   std::size_t Read = 0;
   std::size_t Expected = 0;
-  std::size_t Columns = 0;
+  PoseReading Given;
+  /// How the numbers are read, settled at the first pose (the header and declarations known).
+  struct Format;
+  std::unique_ptr<Format> Layout;
   TrackedPose Previous;
 };
 

@@ -298,6 +298,10 @@ cli::ModuleDescription DescribeBenchCommand()
   {
     replay.push_back(p);
   }
+  for (const cli::Parameter& p : PoseReadingOptions())
+  {
+    replay.push_back(p);
+  }
   cli::ParameterGroup engine = EngineOptions({});
   engine.Parameters.push_back(Option(ParameterType::Double, "fine-cell", "z-buffer: also the smallest size at this cell, beside the set one.").SetPlaceholder("MM"));
   return cli::ModuleDescription::Subcommand("vesselproximity bench", "engines side by side with the brute-force reference, JSON with --json",
@@ -352,7 +356,7 @@ int RunBenchCommand(const cli::ParsedArguments& args, const ModuleServices&)
   if (request.Parts.count("replay"))
   {
     request.Scalpel = ReplayScalpel(args);
-    request.Poses = args.IsSet("poses") ? ReadPoseFile(args.GetString("poses")) : std::vector<TrackedPose>();
+    request.Poses = args.IsSet("poses") ? ReadPoseFile(args.GetString("poses"), ParsePoseReading(args)) : std::vector<TrackedPose>();
   }
   request.Queries = args.GetInteger("queries");
   request.BruteQueries = std::min(request.Queries, args.GetInteger("bruteQueries"));

@@ -9,6 +9,7 @@
 #include "vpPivotCalibration.h"
 #include "vpPointCsv.h"
 #include "vpPoseFile.h"
+#include "vpTrackingOptions.h"
 #include "vpSurfaceIcpRegistration.h"
 #include "vtkVesselMeshReader.h"
 
@@ -132,7 +133,7 @@ Json RunIcp(const cli::ParsedArguments& args, std::string& said)
 
 Json RunPivot(const cli::ParsedArguments& args, std::string& said)
 {
-  const auto poses = ReadPoseFile(args.GetString("poses"));
+  const auto poses = ReadPoseFile(args.GetString("poses"), ParsePoseReading(args));
   std::vector<std::array<double, 16>> matrices;
   for (const auto& p : poses)
   {
@@ -190,7 +191,8 @@ cli::ModuleDescription DescribeRegisterCommand()
       { "pivot", "",
         { input("poses", "FILE", "Tool-to-world poses pivoting about the tip."),
           Option(ParameterType::Integer, "min-poses", "The fewest poses accepted.").SetPlaceholder("N").SetDefault("6").SetRange(3, 1000000000, 1),
-          Option(ParameterType::Double, "min-rotation-deg", "The least rotation the poses must span.").SetPlaceholder("D").SetDefault("10") } },
+          Option(ParameterType::Double, "min-rotation-deg", "The least rotation the poses must span.").SetPlaceholder("D").SetDefault("10"),
+          PoseReadingOptions()[0], PoseReadingOptions()[1], PoseReadingOptions()[2] } },
     });
 }
 

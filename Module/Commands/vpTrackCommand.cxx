@@ -90,10 +90,12 @@ cli::ModuleDescription DescribeTrackCommand()
       { "Inputs", "",
         { VesselsOption().SetRequired(), RepairSwitch(),
           Option(ParameterType::File, "poses",
-            "Tracked poses, model-to-world: CSV `time,m00..m33` or `time,x,y,z,qw,qx,qy,qz`, or JSON.")
+            "Tracked poses, model-to-world: CSV with a header naming its columns (time; x,y,z and qw,qx,qy,qz in any "
+            "order; or m00..m33), `time,m00..m33` or `time,x,y,z,qw,qx,qy,qz` without one, or JSON.")
             .SetChannel(cli::Channel::Input)
             .SetRequired(),
           OutputFolderOption("The run's folder: frames.csv, summary.json, distance.png.").SetRequired() } },
+      { "Poses", "", PoseReadingOptions() },
       { "Scalpel", "", scalpel },
       EngineOptions({ "exact", "zbuffer", "both" }),
       TrackingOptions(),
@@ -110,7 +112,8 @@ int RunTrackCommand(const cli::ParsedArguments& args, const ModuleServices& modu
   // frames are computed: an hour of tracking never has to fit in memory.
   const double start = NowMs();
   const std::string posesFile = args.GetString("poses");
-  const std::size_t poseCount = PoseStream::CountPoses(posesFile);
+  const PoseReading reading = ParsePoseReading(args);
+  const std::size_t poseCount = PoseStream::CountPoses(posesFile, reading);
   SceneRequest request = ParseSceneRequest(args);
   request.RepairVessels = args.GetBoolean("repair");
   std::vector<std::string> classes;
@@ -134,7 +137,7 @@ int RunTrackCommand(const cli::ParsedArguments& args, const ModuleServices& modu
   session.SetProgress([](std::size_t done, std::size_t expected) {
     std::fprintf(stderr, "track: frame %zu of %zu (%.0f%%)\n", done, expected, 100.0 * done / expected);
   });
-  PoseStream poses(posesFile, poseCount);
+  PoseStream poses(posesFile, poseCount, reading);
   if (!session.Run(poses, run))
   {
     return 1; // the RunFolder removes what was written, then the signal acts

@@ -64,6 +64,42 @@ cli::ParameterGroup TrackingOptions()
     } };
 }
 
+std::vector<cli::Parameter> PoseReadingOptions()
+{
+  using cli::ParameterType;
+  return {
+    Option(ParameterType::StringEnumeration, "pose-space",
+      "The world frame of the poses: LPS (DICOM, the vessels') or RAS (3D Slicer's). Default: what the file declares, "
+      "else LPS.")
+      .SetElements({ "LPS", "RAS" })
+      .SetLogicName("PoseSpace"),
+    Option(ParameterType::StringEnumeration, "pose-units", "The poses' length unit. Default: what the file declares, else mm.")
+      .SetElements({ "mm", "m" })
+      .SetLogicName("PoseUnits"),
+    Option(ParameterType::StringEnumeration, "time-units", "The poses' time unit. Default: what the file declares, else s.")
+      .SetElements({ "s", "ms" })
+      .SetLogicName("TimeUnits"),
+  };
+}
+
+PoseReading ParsePoseReading(const cli::ParsedArguments& args)
+{
+  PoseReading reading;
+  if (args.IsSet("poseSpace"))
+  {
+    reading.Space = args.GetString("poseSpace") == "RAS" ? PoseSpace::RAS : PoseSpace::LPS;
+  }
+  if (args.IsSet("poseUnits"))
+  {
+    reading.MillimetresPerUnit = args.GetString("poseUnits") == "m" ? 1000.0 : 1.0;
+  }
+  if (args.IsSet("timeUnits"))
+  {
+    reading.SecondsPerUnit = args.GetString("timeUnits") == "ms" ? 0.001 : 1.0;
+  }
+  return reading;
+}
+
 DangerThresholds ParseDangerThresholds(const cli::ParsedArguments& args)
 {
   const auto d = ParsePoint(args.GetString("dangerMm"), "--danger-mm");

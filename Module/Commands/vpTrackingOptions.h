@@ -3,6 +3,7 @@
 
 #include "vpCliDescription.h"
 #include "vpDangerLevels.h"
+#include "vpPoseFile.h"
 #include "vpScalpelLoader.h"
 #include "vpTrackingSummary.h"
 #include "vpSceneRequest.h"
@@ -18,6 +19,12 @@ cli::Parameter FrameBudgetOption();
 /// What tracking shares (track, view): --danger-mm, --hysteresis-mm, --frame-budget-ms and
 /// --no-surface, with the parameter set's defaults.
 cli::ParameterGroup TrackingOptions();
+
+/// --pose-space LPS|RAS, --pose-units mm|m and --time-units s|ms: how a pose file's numbers are
+/// read (left out: what the file declares, else LPS, mm, s).
+std::vector<cli::Parameter> PoseReadingOptions();
+/// What those options say (each unset when not given).
+PoseReading ParsePoseReading(const cli::ParsedArguments& args);
 
 /// --danger-mm C,W,D, validated: throws InputError naming the option.
 DangerThresholds ParseDangerThresholds(const cli::ParsedArguments& args);

@@ -122,6 +122,9 @@ cli::ModuleDescription DescribeViewCommand()
       { "Replay and window", "",
         {
           Option(ParameterType::File, "poses", "Recorded poses to replay (space plays, n/b step).").SetChannel(cli::Channel::Input),
+          PoseReadingOptions()[0],
+          PoseReadingOptions()[1],
+          PoseReadingOptions()[2],
           Option(ParameterType::Integer, "pose", "The pose shown first, from 0.").SetPlaceholder("N").SetRange(0, 1000000000, 1),
           Option(ParameterType::String, "size", "The window's size in pixels (64..8192 each).").SetPlaceholder("WxH").SetDefault("1280x800"),
           Option(ParameterType::String, "keys", "Keys pressed before the window opens (VTK key names: Left, Up, Prior, i, n, ...).")
@@ -147,7 +150,7 @@ int RunViewCommand(const cli::ParsedArguments& args, const ModuleServices& modul
   std::vector<TrackedPose> poses;
   if (args.IsSet("poses"))
   {
-    poses = ReadPoseFile(args.GetString("poses"));
+    poses = ReadPoseFile(args.GetString("poses"), ParsePoseReading(args));
   }
   const int first = args.IsSet("pose") ? args.GetInteger("pose") : 0;
   if (args.IsSet("pose") && first >= static_cast<int>(poses.size()))

@@ -101,3 +101,155 @@ TEST_F(PoseFile, EachBadLineIsNamed)
   EXPECT_EQ(vp::ReadPoseFile(this->Write("ok.csv", q)).size(), 1u);
 }
 } // namespace
+
+namespace
+{
+// Issue 31: a file says what its numbers are, by its header's names and its declarations, or
+// the front end does; the same poses written every way users write them read as the same poses.
+void ExpectSamePoses(const std::vector<vp::TrackedPose>& a, const std::vector<vp::TrackedPose>& b, double tolerance, const std::string& what)
+{
+  ASSERT_EQ(a.size(), b.size()) << what;
+  for (std::size_t p = 0; p < a.size(); ++p)
+  {
+    EXPECT_NEAR(a[p].TimeS, b[p].TimeS, 1e-12) << what << " pose " << p;
+    for (int i = 0; i < 16; ++i)
+    {
+      EXPECT_NEAR(a[p].ModelToWorld[i], b[p].ModelToWorld[i], tolerance) << what << " pose " << p << " entry " << i;
+    }
+  }
+}
+
+// Two poses, in LPS millimetres and seconds: at (10,20,30) turned 90 degrees about z, then at
+// (-40,5,12) turned 60 degrees about x.
+const double C60 = 0.5, S60 = std::sqrt(0.75), C30 = std::sqrt(0.75), S30 = 0.5;
+std::string ScalarFirst(const std::string& header)
+{
+  char text[400];
+  std::snprintf(text, sizeof text, "%s0,10,20,30,%.17g,0,0,%.17g\n0.5,-40,5,12,%.17g,%.17g,0,0\n", header.c_str(), H, H, C30, S30);
+  return text;
+}
+} // namespace
+
+TEST_F(PoseFile, HeaderNamesPlaceTheColumnsInAnyOrder)
+{
+  const auto first = vp::ReadPoseFile(this->Write("first.csv", ScalarFirst("time,x,y,z,qw,qx,qy,qz\n")));
+  char text[400];
+  // Scalar last (ROS, Eigen's coefficients), positions named tx..tz, time last.
+  std::snprintf(text, sizeof text, "tx,ty,tz,qx,qy,qz,qw,timestamp\n10,20,30,0,0,%.17g,%.17g,0\n-40,5,12,%.17g,0,0,%.17g,0.5\n", H, H,
+    S30, C30);
+  ExpectSamePoses(vp::ReadPoseFile(this->Write("last.csv", text)), first, 0.0, "scalar last");
+  // The matrix by name, its columns shuffled: m33 first.
+  std::string header = "m33", row0 = "1", row1 = "1";
+  const auto& m0 = first[0].ModelToWorld;
+  const auto& m1 = first[1].ModelToWorld;
+  for (int k = 0; k < 15; ++k)
+  {
+    header += ",m" + std::to_string(k / 4) + std::to_string(k % 4);
+    row0 += "," + vp::FixedText(m0[k], "%.17g");
+    row1 += "," + vp::FixedText(m1[k], "%.17g");
+  }
+  const auto matrix = vp::ReadPoseFile(this->Write("m.csv", header + ",time\n" + row0 + ",0\n" + row1 + ",0.5\n"));
+  ExpectSamePoses(matrix, first, 1e-15, "matrix by name");
+  EXPECT_NEAR(first[1].ModelToWorld[5], C60, 1e-12); // 60 degrees about x
+  EXPECT_NEAR(first[1].ModelToWorld[9], S60, 1e-12);
+}
+
+TEST_F(PoseFile, MetresRasAndMillisecondsReadAsTheSettingsOrTheFileSay)
+{
+  const auto lps = vp::ReadPoseFile(this->Write("lps.csv", ScalarFirst("time,x,y,z,qw,qx,qy,qz\n")));
+  // The same poses in RAS metres with times in ms: x and y negated (rotation too), positions / 1000.
+  std::string ras = "time,x,y,z,qw,qx,qy,qz\n";
+  for (const vp::TrackedPose& p : lps)
+  {
+    std::array<double, 16> m = p.ModelToWorld;
+    for (int k = 0; k < 8; ++k)
+    {
+      m[k] = -m[k];
+    }
+    // The rotation of m as a quaternion, from its largest component (Shepperd): the RAS turn of
+    // a pose can be a half turn, where the trace alone divides by zero.
+    const double t[4] = { 1.0 + m[0] + m[5] + m[10], 1.0 + m[0] - m[5] - m[10], 1.0 - m[0] + m[5] - m[10], 1.0 - m[0] - m[5] + m[10] };
+    double w = 0, x = 0, y = 0, z = 0;
+    if (t[0] >= t[1] && t[0] >= t[2] && t[0] >= t[3])
+    {
+      w = 0.5 * std::sqrt(t[0]), x = (m[9] - m[6]) / (4 * w), y = (m[2] - m[8]) / (4 * w), z = (m[4] - m[1]) / (4 * w);
+    }
+    else if (t[1] >= t[2] && t[1] >= t[3])
+    {
+      x = 0.5 * std::sqrt(t[1]), w = (m[9] - m[6]) / (4 * x), y = (m[1] + m[4]) / (4 * x), z = (m[2] + m[8]) / (4 * x);
+    }
+    else if (t[2] >= t[3])
+    {
+      y = 0.5 * std::sqrt(t[2]), w = (m[2] - m[8]) / (4 * y), x = (m[1] + m[4]) / (4 * y), z = (m[6] + m[9]) / (4 * y);
+    }
+    else
+    {
+      z = 0.5 * std::sqrt(t[3]), w = (m[4] - m[1]) / (4 * z), x = (m[2] + m[8]) / (4 * z), y = (m[6] + m[9]) / (4 * z);
+    }
+    char line[300];
+    std::snprintf(line, sizeof line, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", 1000.0 * p.TimeS, m[3] / 1000.0,
+      m[7] / 1000.0, m[11] / 1000.0, w, x, y, z);
+    ras += line;
+  }
+  vp::PoseReading settings;
+  settings.Space = vp::PoseSpace::RAS;
+  settings.MillimetresPerUnit = 1000.0;
+  settings.SecondsPerUnit = 0.001;
+  ExpectSamePoses(vp::ReadPoseFile(this->Write("ras.csv", ras), settings), lps, 1e-9, "settings");
+  ExpectSamePoses(vp::ReadPoseFile(this->Write("declared.csv", "# recorded in Slicer\n# pose-space: RAS\n# pose-units = m\n"
+                                                                 "# Time-Units: ms\n" + ras)),
+    lps, 1e-9, "comment declarations");
+  const std::string body = ras.substr(ras.find('\n') + 1);
+  std::string json = "{\"space\": \"RAS\", \"units\": \"m\", \"time_units\": \"ms\", \"poses\": [";
+  for (std::size_t start = 0, n = 0; start < body.size(); ++n)
+  {
+    const std::size_t end = body.find('\n', start);
+    const std::string row = body.substr(start, end - start);
+    std::vector<std::string> f;
+    for (std::size_t a = 0, b; (b = row.find(',', a)) != std::string::npos || a <= row.size(); a = b + 1)
+    {
+      f.push_back(row.substr(a, b == std::string::npos ? std::string::npos : b - a));
+      if (b == std::string::npos)
+      {
+        break;
+      }
+    }
+    json += (n ? "," : "") + std::string("{\"time\": ") + f[0] + ", \"position\": [" + f[1] + "," + f[2] + "," + f[3] +
+      "], \"quaternion\": [" + f[4] + "," + f[5] + "," + f[6] + "," + f[7] + "]}";
+    start = end + 1;
+  }
+  ExpectSamePoses(vp::ReadPoseFile(this->Write("declared.json", json + "], \"units\": \"m\"}")), lps, 1e-9, "JSON declarations");
+  // Unread, the same file is 1000 times too small and mirrored: the reader cannot know, the scene can (track's warnings).
+  EXPECT_NEAR(vp::ReadPoseFile(this->Write("plain.csv", ras))[0].ModelToWorld[3], -0.010, 1e-12);
+}
+
+TEST_F(PoseFile, AHeaderOrADeclarationItCannotPlaceIsRefusedNamingTheColumn)
+{
+  const std::string row = "0,10,20,30,1,0,0,0\n";
+  EXPECT_EQ(this->Refusal("unknown.csv", "time,x,y,z,qw,qx,qy,qk\n" + row),
+    "header: column 8 'qk' is not a pose column (time; x,y,z or tx,ty,tz; qw,qx,qy,qz in any order; or m00..m33)");
+  EXPECT_EQ(this->Refusal("twice.csv", "time,x,y,x,qw,qx,qy,qz\n" + row), "header: column 4 'x' names a value already given");
+  EXPECT_EQ(this->Refusal("notime.csv", "x,y,z,qw,qx,qy,qz\n10,20,30,1,0,0,0\n"),
+    "header: no time column (time; x,y,z or tx,ty,tz; qw,qx,qy,qz in any order; or m00..m33)");
+  EXPECT_EQ(this->Refusal("missing.csv", "time,x,y,z,qw,qx,qy,m00\n" + row),
+    "header: both a matrix and a position or quaternion (time; x,y,z or tx,ty,tz; qw,qx,qy,qz in any order; or m00..m33)");
+  EXPECT_EQ(this->Refusal("short.csv", "time,x,y,z,qw,qx,qy,tx\n" + row), "header: column 8 'tx' names a value already given");
+  EXPECT_EQ(this->Refusal("unit.csv", "# pose-units: inch\n" + row), "declares pose-units 'inch'; expected mm or m");
+  EXPECT_EQ(this->Refusal("late.json", "{\"poses\": [{\"time\": 0, \"position\": [1, 2, 3], \"quaternion\": [1, 0, 0, 0]}], "
+                                       "\"units\": \"m\"}"),
+    "declares its units after its poses, which were read otherwise: put the declaration before \"poses\"");
+  // A setting the file contradicts names the setting (the front end spells it as its flag).
+  const std::string declared = this->Write("ras.csv", "# pose-space: RAS\n" + row);
+  vp::PoseReading lps;
+  lps.Space = vp::PoseSpace::LPS;
+  try
+  {
+    vp::ReadPoseFile(declared, lps);
+    ADD_FAILURE() << "LPS was taken for a file that says RAS";
+  }
+  catch (const vp::ParameterError& e)
+  {
+    EXPECT_EQ(e.GetParameter(), "PoseSpace");
+    EXPECT_EQ(e.GetProblem(), "LPS, but " + declared + " declares RAS");
+  }
+}

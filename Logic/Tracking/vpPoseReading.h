@@ -1,0 +1,43 @@
+#ifndef vpPoseReading_h
+#define vpPoseReading_h
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace vp
+{
+/// The frame a pose file's world coordinates are in: LPS (DICOM's patient frame, ours) or RAS
+/// (3D Slicer's), x and y negated between them.
+enum class PoseSpace
+{
+  LPS,
+  RAS
+};
+
+/// How a pose file's numbers are read. Each setting a front end leaves unset is what the file
+/// declares (a "# pose-space: RAS" comment before a CSV's first row, a top-level "space" field of
+/// a JSON file before its "poses"), else LPS, millimetres and seconds. A setting given that the
+/// file contradicts is refused (ParameterError naming the setting and the file): a unit or a frame
+/// is never guessed between two sources that disagree.
+struct PoseReading
+{
+  /// PoseSpace: the world frame of the positions and rotations.
+  std::optional<PoseSpace> Space;
+  /// PoseUnits: millimetres per unit of the positions (1: mm, 1000: m).
+  std::optional<double> MillimetresPerUnit;
+  /// TimeUnits: seconds per unit of the times (1: s, 0.001: ms).
+  std::optional<double> SecondsPerUnit;
+};
+
+/// "LPS", "RAS".
+const char* PoseSpaceName(PoseSpace space);
+
+/// A declaration of how to read a file's numbers, from one line of text: "pose-space: RAS",
+/// "pose-units = m", "time-units: ms" (also "space", "units"; any case; ':' or '='). Lines that
+/// declare nothing (any other comment) leave reading as it is; a known key with a value it cannot
+/// take throws InputError(source, ...).
+void ApplyPoseDeclaration(const std::string& line, const std::string& source, PoseReading& declared);
+} // namespace vp
+
+#endif

@@ -59,6 +59,12 @@ struct SceneRequest
   TrackingSettings Tracking;
 };
 
+/// Refuses a vessel class that is one or two letters from a class of the default label table
+/// ("portal_vien"): ParameterError("Vessels", "... did you mean 'portal_vein'?"). A misspelt class
+/// would otherwise be a class of its own, and the vessel it meant would be missing from the
+/// answers without a word.
+void CheckVesselClassNames(const std::vector<NamedMesh>& vessels);
+
 /// What opening a scene read and decided, for the front end to say and to report.
 struct OpenedScene
 {

@@ -1,5 +1,6 @@
 #include "vpTipDistanceQuery.h"
 
+#include "vpSceneRequest.h"
 #include "vpInputError.h"
 #include "vpPatientSpace.h"
 #include "vpQuantile.h"
@@ -59,6 +60,7 @@ TipDistanceTotals ComputeTipDistancesInChunks(const TipDistanceRequest& request,
   const std::function<void(const TipDistanceAnswer& chunk, std::size_t firstTip)>& visit)
 {
   vtkVesselDistanceEngine* engine = request.Engine;
+  CheckVesselClassNames(request.Vessels);
   std::optional<std::array<double, 3>> axis = request.Axis;
   if (axis)
   {

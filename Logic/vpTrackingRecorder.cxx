@@ -75,10 +75,14 @@ bool TrackingRecorder::Run(PoseSource& poses, RunFolder& run)
     throw writeFailed();
   }
   std::unique_ptr<DistancePlotRecorder> plot;
+  double bounds[6] = { 0, 0, 0, 0, 0, 0 };
+  proximity->GetVesselBounds(bounds);
+  TrajectoryCheck check(bounds, engine->GetRangeMm());
   TrackingSession session(proximity);
   session.SetProgress(this->Progress);
   const bool ended = session.Run(poses, [&](const TrackedFrame& frame) {
     this->Summary.Add(frame);
+    check.Add(frame);
     if (!plot)
     {
       plot = std::make_unique<DistancePlotRecorder>(this->Summary.GetClassNames(), surface);
@@ -113,6 +117,13 @@ bool TrackingRecorder::Run(PoseSource& poses, RunFolder& run)
   nlohmann::ordered_json doc = TrackingSummaryJson(this->Summary, tracking, surface, this->Vessels, poses.GetName(),
     this->Comparison ? &*this->Comparison : nullptr);
   doc["timing_ms"]["load_and_build"] = this->LoadAndBuildMs;
+  this->Warnings = check.Warnings();
+  nlohmann::ordered_json warnings = nlohmann::ordered_json::array();
+  for (const TrajectoryWarning& w : this->Warnings)
+  {
+    warnings.push_back({ { "kind", w.Kind }, { "text", w.Text } });
+  }
+  doc["warnings"] = warnings;
   // The session's own files, then whatever else the run has written beside them (the demo's).
   std::vector<std::string> files{ "frames.csv", "summary.json", "distance.png" };
   for (const std::string& entry : run.GetEntries())

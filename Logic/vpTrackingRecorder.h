@@ -4,6 +4,7 @@
 #include "vpExactComparison.h"
 #include "vpPoseFile.h"
 #include "vpTrackingSummary.h"
+#include "vpTrajectoryCheck.h"
 #include "vpVesselMeshSet.h"
 
 #include <nlohmann/json.hpp>
@@ -47,6 +48,8 @@ public:
   const TrackingSummary& GetSummary() const { return this->Summary; }
   /// Against the exact engine, when the logic compares with it.
   const std::optional<ExactComparison>& GetComparison() const { return this->Comparison; }
+  /// What the poses suggest was misread (TrajectoryCheck), also in summary.json's "warnings".
+  const std::vector<TrajectoryWarning>& GetWarnings() const { return this->Warnings; }
   /// summary.json as written.
   const nlohmann::ordered_json& GetReport() const { return this->Report; }
   /// The process's peak resident memory when the run ended.
@@ -58,6 +61,7 @@ private:
   std::function<void(std::size_t, std::size_t)> Progress;
   TrackingSummary Summary;
   std::optional<ExactComparison> Comparison;
+  std::vector<TrajectoryWarning> Warnings;
   nlohmann::ordered_json Report;
   double LoadAndBuildMs = 0.0;
   double PeakMemoryMb = 0.0;

@@ -36,6 +36,7 @@ vtkVesselProximityLogic::~vtkVesselProximityLogic()
 vp::OpenedScene vtkVesselProximityLogic::OpenScene(const vp::SceneRequest& request)
 {
   vp::OpenedScene scene;
+  vp::CheckVesselClassNames(request.Vessels);
   vtkSmartPointer<vtkVesselDistanceEngine> engine = vp::MakeDistanceEngine(request.Engine, &scene.EngineNote);
   scene.Vessels = vp::LoadVesselMeshes(request.Vessels);
   if (request.RepairVessels)

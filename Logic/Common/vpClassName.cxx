@@ -1,5 +1,6 @@
 #include "vpClassName.h"
 
+#include <algorithm>
 #include <cctype>
 
 namespace vp
@@ -28,5 +29,55 @@ std::string ClassNameProblem(const std::string& name)
     }
   }
   return std::string();
+}
+
+namespace
+{
+/// Edits (insert, delete, replace, swap two neighbours) from a to b: the optimal string
+/// alignment distance.
+std::size_t EditDistance(const std::string& a, const std::string& b)
+{
+  std::vector<std::vector<std::size_t>> d(a.size() + 1, std::vector<std::size_t>(b.size() + 1));
+  for (std::size_t i = 0; i <= a.size(); ++i)
+  {
+    d[i][0] = i;
+  }
+  for (std::size_t j = 0; j <= b.size(); ++j)
+  {
+    d[0][j] = j;
+  }
+  for (std::size_t i = 1; i <= a.size(); ++i)
+  {
+    for (std::size_t j = 1; j <= b.size(); ++j)
+    {
+      d[i][j] = std::min({ d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1) });
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1])
+      {
+        d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+      }
+    }
+  }
+  return d[a.size()][b.size()];
+}
+} // namespace
+
+std::string NearMissOf(const std::string& name, const std::vector<std::string>& known)
+{
+  if (std::find(known.begin(), known.end(), name) != known.end())
+  {
+    return std::string();
+  }
+  std::string nearest;
+  std::size_t best = 3;
+  for (const std::string& k : known)
+  {
+    const std::size_t d = EditDistance(name, k);
+    if (d < best)
+    {
+      best = d;
+      nearest = k;
+    }
+  }
+  return nearest;
 }
 } // namespace vp

@@ -2,6 +2,7 @@
 #define vpClassName_h
 
 #include <string>
+#include <vector>
 
 namespace vp
 {
@@ -10,6 +11,11 @@ namespace vp
 /// '-', starting with a letter: no blank, comma, quote, slash or line break. Returns the problem
 /// in a few words ("" when the name is fine).
 std::string ClassNameProblem(const std::string& name);
+
+/// The known class one or two letters from name (an edit, a missing or extra letter, two letters
+/// swapped: "portal_vien"), or "" when name is known or far from every known class: a near miss
+/// is a typing error, never a new class.
+std::string NearMissOf(const std::string& name, const std::vector<std::string>& known);
 } // namespace vp
 
 #endif

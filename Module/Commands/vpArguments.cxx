@@ -1,6 +1,7 @@
 #include "vpArguments.h"
 
 #include "vpInputError.h"
+#include "vpNumericCsv.h"
 
 #include <cctype>
 
@@ -97,7 +98,12 @@ std::vector<std::pair<std::string, std::string>> ParsePairs(const std::string& t
     {
       throw InputError(option, "expected CLASS=FILE, got '" + entry + "'");
     }
-    pairs.emplace_back(entry.substr(0, eq), entry.substr(eq + 1));
+    // Blanks around a name or a path are the list's layout, never part of them.
+    pairs.emplace_back(TrimBlanks(entry.substr(0, eq)), TrimBlanks(entry.substr(eq + 1)));
+    if (pairs.back().first.empty() || pairs.back().second.empty())
+    {
+      throw InputError(option, "expected CLASS=FILE, got '" + entry + "'");
+    }
   }
   return pairs;
 }

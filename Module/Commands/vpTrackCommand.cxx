@@ -35,6 +35,41 @@ void ReportOpenedScene(vtkVesselProximityLogic* proximity, const OpenedScene& sc
   }
 }
 
+/// The reading options, and --strict.
+std::vector<cli::Parameter> PoseReadingOptionsWithStrict()
+{
+  std::vector<cli::Parameter> options = PoseReadingOptions();
+  options.push_back(Switch("strict",
+    "Refuse the run (nothing written) when the poses look misread: none near a vessel, 1000 times too small or large, "
+    "mirrored, or timed in milliseconds (without it, a warning on stderr and in summary.json)."));
+  return options;
+}
+
+/// The flag that would read the poses as a warning suspects.
+std::string Hint(const std::string& kind)
+{
+  return kind == "metres" ? " (--pose-units m)"
+    : kind == "mirrored" ? " (--pose-space RAS)"
+    : kind == "milliseconds" ? " (--time-units ms)"
+    : kind == "no_pose_near_vessels" ? " (--pose-space, --pose-units)"
+                                     : "";
+}
+
+/// Each warning on stderr; under --strict the first refuses the run in one line instead.
+void ReportTrajectoryWarnings(const std::vector<TrajectoryWarning>& warnings, bool strict, const std::string& posesFile)
+{
+  if (strict && !warnings.empty())
+  {
+    const std::size_t more = warnings.size() - 1;
+    throw InputError(posesFile, warnings.front().Text + Hint(warnings.front().Kind) + "; --strict refuses the run" +
+        (more ? " (" + std::to_string(more) + " more warning(s))" : ""));
+  }
+  for (const TrajectoryWarning& w : warnings)
+  {
+    std::cerr << "track: warning: " << posesFile << ": " << w.Text << Hint(w.Kind) << "\n";
+  }
+}
+
 void PrintSummary(const TrackingRecorder& session, vtkVesselProximityLogic* proximity, const std::string& outDir)
 {
   const TrackingSummary& summary = session.GetSummary();
@@ -95,7 +130,7 @@ cli::ModuleDescription DescribeTrackCommand()
             .SetChannel(cli::Channel::Input)
             .SetRequired(),
           OutputFolderOption("The run's folder: frames.csv, summary.json, distance.png.").SetRequired() } },
-      { "Poses", "", PoseReadingOptions() },
+      { "Poses", "", PoseReadingOptionsWithStrict() },
       { "Scalpel", "", scalpel },
       EngineOptions({ "exact", "zbuffer", "both" }),
       TrackingOptions(),
@@ -131,7 +166,12 @@ int RunTrackCommand(const cli::ParsedArguments& args, const ModuleServices& modu
   run.SetInputs(inputs);
   vtkSmartPointer<vtkVesselProximityLogic> proximity = module.CreateLogic();
   const OpenedScene scene = proximity->OpenScene(request);
-  ReportOpenedScene(proximity, scene, request.ScalpelFile);
+  // Under --strict the run may yet be refused after its frames: its one line comes alone.
+  const bool strict = args.GetBoolean("strict");
+  if (!strict)
+  {
+    ReportOpenedScene(proximity, scene, request.ScalpelFile);
+  }
   TrackingRecorder session(proximity, scene.Vessels);
   session.SetLoadAndBuildMs(NowMs() - start);
   session.SetProgress([](std::size_t done, std::size_t expected) {
@@ -141,6 +181,11 @@ int RunTrackCommand(const cli::ParsedArguments& args, const ModuleServices& modu
   if (!session.Run(poses, run))
   {
     return 1; // the RunFolder removes what was written, then the signal acts
+  }
+  ReportTrajectoryWarnings(session.GetWarnings(), strict, posesFile);
+  if (strict)
+  {
+    ReportOpenedScene(proximity, scene, request.ScalpelFile);
   }
   run.Commit(); // the folder holds this run whole, or the previous one as it was
   if (session.GetComparison() && session.GetComparison()->OutsideBound > 0)

@@ -18,6 +18,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iterator>
 #include <random>
 #include <set>
@@ -854,5 +855,173 @@ TEST_F(TrackCommand, AFullFileSystemFailsInOneLineAndLeavesThePreviousRun)
   EXPECT_EQ(Slurp(d + "/after.txt"), Slurp(d + "/before.txt")) << "the same files, no staging folder";
   EXPECT_EQ(Slurp(d + "/after.json"), Slurp(d + "/before.json")) << "the previous run, as it was";
   EXPECT_EQ(nlohmann::json::parse(Slurp(d + "/after.json"))["frames"], 100);
+}
+} // namespace
+
+namespace
+{
+// Issue 31: the same trajectory written as users' exports write it gives the same frames; what
+// cannot be read as given is refused, and what looks misread is said, or refused under --strict.
+class PoseForms : public TrackCommand
+{
+protected:
+  /// The approach of TrackCommand's fixture, each pose written by format(time, x) after the header.
+  std::string Poses(const std::string& name, const std::string& header,
+    const std::function<std::string(double time, double x)>& format)
+  {
+    std::string text = header;
+    int frame = 0;
+    for (double x = 30.0; x > 10.5; x -= 0.5)
+    {
+      text += format(frame++ * 0.05, x);
+    }
+    for (double x = 10.5; x <= 30.0; x += 0.5)
+    {
+      text += format(frame++ * 0.05, x);
+    }
+    this->Frames = frame;
+    return this->WriteText(name, text);
+  }
+
+  /// frames.csv of a run, without frame_ms (a timing).
+  std::vector<std::vector<std::string>> Frames_(const std::string& out)
+  {
+    auto rows = ReadCsvCells(out + "/frames.csv");
+    const std::size_t ms = static_cast<std::size_t>(std::find(rows[0].begin(), rows[0].end(), "frame_ms") - rows[0].begin());
+    for (auto& row : rows)
+    {
+      if (ms < row.size())
+      {
+        row.erase(row.begin() + static_cast<std::ptrdiff_t>(ms));
+      }
+    }
+    return rows;
+  }
+
+  ToolRun Track(const std::string& poses, const std::string& out, const std::string& extra = "")
+  {
+    return RunTool(this->Dir, "track --vessels " + this->Vessels + " --scalpel " + this->Tool + " --poses " + poses + extra + " -o " + out);
+  }
+};
+
+std::string Number(double v)
+{
+  char text[40];
+  std::snprintf(text, sizeof text, "%.17g", v);
+  return text;
+}
+
+const double H = std::sqrt(0.5);
+
+TEST_F(PoseForms, ScalarLastRasMetresAndMillisecondsGiveTheFramesOfTheMillimetreLpsFile)
+{
+  const auto first = [](double t, double x) { return Number(t) + "," + Number(x) + ",0,0," + Number(H) + ",0," + Number(-H) + ",0\n"; };
+  ASSERT_EQ(this->Track(this->Poses("lps.csv", "time,x,y,z,qw,qx,qy,qz\n", first), this->Dir + "/lps").ExitCode, 0);
+  const auto reference = this->Frames_(this->Dir + "/lps");
+  // Scalar last, as ROS writes it: the same numbers, bit for bit.
+  const ToolRun last = this->Track(this->Poses("last.csv", "time,x,y,z,qx,qy,qz,qw\n",
+                                     [](double t, double x) { return Number(t) + "," + Number(x) + ",0,0,0," + Number(-H) + ",0," + Number(H) + "\n"; }),
+    this->Dir + "/last");
+  ASSERT_EQ(last.ExitCode, 0) << last.Err;
+  EXPECT_EQ(this->Frames_(this->Dir + "/last"), reference) << "scalar last";
+  // RAS (x and y negated; the rotation turned half about z: q = (0, h, 0, h)), metres and
+  // milliseconds, read as the options say: the same frames to rounding.
+  const auto ras = [](double t, double x) {
+    return Number(1000.0 * t) + "," + Number(-x / 1000.0) + ",0,0,0," + Number(H) + ",0," + Number(H) + "\n";
+  };
+  const ToolRun read = this->Track(this->Poses("ras.csv", "time,x,y,z,qw,qx,qy,qz\n", ras), this->Dir + "/ras",
+    " --pose-space RAS --pose-units m --time-units ms");
+  ASSERT_EQ(read.ExitCode, 0) << read.Err;
+  const auto rows = this->Frames_(this->Dir + "/ras");
+  ASSERT_EQ(rows.size(), reference.size());
+  for (std::size_t r = 1; r < rows.size(); ++r)
+  {
+    ASSERT_EQ(rows[r].size(), reference[r].size());
+    for (std::size_t c = 0; c < rows[r].size(); ++c)
+    {
+      char* end = nullptr;
+      const double a = std::strtod(rows[r][c].c_str(), &end);
+      if (end != rows[r][c].c_str() && *end == '\0')
+      {
+        EXPECT_NEAR(a, std::strtod(reference[r][c].c_str(), nullptr), 1e-9) << "row " << r << " " << reference[0][c];
+      }
+      else
+      {
+        EXPECT_EQ(rows[r][c], reference[r][c]) << "row " << r << " " << reference[0][c];
+      }
+    }
+  }
+  EXPECT_TRUE(nlohmann::json::parse(Slurp(this->Dir + "/ras/summary.json"))["warnings"].empty());
+}
+
+TEST_F(PoseForms, MisreadPosesAreSaidAndStrictRefusesThem)
+{
+  // The vessels away from the origin, so that a mirror image and a scale are each told apart.
+  const double centre[3] = { 150, 120, 0 };
+  this->Vessels = "portal_vein=" + this->Write("far_portal.stl", vp::MakeSphere(centre, 10.0, 24, 48));
+  const auto at = [](double scale, double sign, double timeScale) {
+    return [=](double t, double x) {
+      return Number(timeScale * t) + "," + Number(sign * (120.0 + x) * scale) + "," + Number(sign * 120.0 * scale) + ",0," +
+        Number(H) + ",0," + Number(-H) + ",0\n";
+    };
+  };
+  const std::string header = "time,x,y,z,qw,qx,qy,qz\n";
+  struct Case
+  {
+    std::string Name;
+    std::function<std::string(double, double)> Format;
+    std::vector<std::string> Kinds;
+  };
+  const std::vector<Case> cases = {
+    { "metres", at(0.001, 1.0, 1.0), { "no_pose_near_vessels", "metres" } },
+    { "mirrored", at(1.0, -1.0, 1.0), { "no_pose_near_vessels", "mirrored" } },
+    { "milliseconds", at(1.0, 1.0, 1000.0), { "milliseconds" } },
+    { "lps", at(1.0, 1.0, 1.0), {} },
+  };
+  for (const Case& c : cases)
+  {
+    const std::string poses = this->Poses(c.Name + ".csv", header, c.Format);
+    const ToolRun r = this->Track(poses, this->Dir + "/" + c.Name);
+    ASSERT_EQ(r.ExitCode, 0) << r.Err;
+    std::vector<std::string> kinds;
+    const nlohmann::json summary = nlohmann::json::parse(Slurp(this->Dir + "/" + c.Name + "/summary.json"));
+    for (const auto& w : summary["warnings"])
+    {
+      kinds.push_back(w["kind"].get<std::string>());
+      EXPECT_NE(r.Err.find("track: warning: " + poses + ": " + w["text"].get<std::string>()), std::string::npos) << r.Err;
+    }
+    EXPECT_EQ(kinds, c.Kinds) << c.Name;
+    // --strict: one line, nothing written; a run without warnings goes through.
+    const std::string out = this->Dir + "/" + c.Name + "_strict";
+    const ToolRun strict = this->Track(poses, out, " --strict");
+    EXPECT_EQ(strict.ExitCode, c.Kinds.empty() ? 0 : 1) << c.Name << ": " << strict.Err;
+    if (!c.Kinds.empty())
+    {
+      EXPECT_EQ(std::count(strict.Err.begin(), strict.Err.end(), '\n'), 1) << strict.Err;
+      EXPECT_NE(strict.Err.find("--strict refuses the run"), std::string::npos) << strict.Err;
+      EXPECT_FALSE(vp::test::FileExists(out)) << c.Name;
+    }
+  }
+  const ToolRun hint = this->Track(this->Poses("m.csv", header, at(0.001, 1.0, 1.0)), this->Dir + "/m2");
+  EXPECT_NE(hint.Err.find("are they in metres? (--pose-units m)"), std::string::npos) << hint.Err;
+}
+
+TEST_F(PoseForms, AMisspeltClassIsRefusedAndBlanksAroundNamesAreNoPartOfThem)
+{
+  const std::string poses = this->ApproachPoses();
+  const std::string sphere = this->Vessels.substr(this->Vessels.find('=') + 1, this->Vessels.find(',') - this->Vessels.find('=') - 1);
+  const ToolRun typo = RunTool(this->Dir, "track --vessels portal_vien=" + sphere + " --scalpel " + this->Tool + " --poses " + poses +
+      " -o " + this->Dir + "/typo");
+  EXPECT_EQ(typo.ExitCode, 1);
+  EXPECT_EQ(typo.Err, "vesselproximity: error: --vessels: 'portal_vien' is not a known class; did you mean 'portal_vein'? "
+                      "(a new class needs a name of its own)\n");
+  const ToolRun blanks = RunTool(this->Dir, "track --vessels ' portal_vein = " + sphere + " ' --scalpel " + this->Tool + " --poses " +
+      poses + " -o " + this->Dir + "/blanks");
+  ASSERT_EQ(blanks.ExitCode, 0) << blanks.Err;
+  EXPECT_EQ(ReadCsvCells(this->Dir + "/blanks/frames.csv")[0][7], "portal_vein_mm");
+  // A class far from every known one is a class of its own.
+  const ToolRun own = RunTool(this->Dir, "track --vessels tumour=" + sphere + " --scalpel " + this->Tool + " --poses " + poses +
+      " -o " + this->Dir + "/own");
+  EXPECT_EQ(own.ExitCode, 0) << own.Err;
 }
 } // namespace

@@ -794,11 +794,14 @@ void WriteLiverPhantomDicom(const LiverPhantom& phantom, const std::string& fold
   {
     throw InputError(folder, "cannot create folder: " + ec.message());
   }
+  const ImageIdentity identity = DicomLabelSeriesWriter::NewIdentity("");
   for (const PhantomStructure& s : phantom.Structures)
   {
     // Foreground 255, as most of 3D-IRCADb's masks have it.
     LabelGrid written;
     written.IjkToLps = s.Mask.IjkToLps;
+    written.Identity = identity; // one patient: every series in one study and frame of reference
+    written.Identity.PatientName = "VesselProximity^" + s.Name;
     written.Labels = vtkSmartPointer<vtkImageData>::New();
     written.Labels->SetDimensions(s.Mask.Labels->GetDimensions());
     written.Labels->AllocateScalars(VTK_UNSIGNED_CHAR, 1);

@@ -59,6 +59,35 @@ nlohmann::json StructureJson(const LabelStructure& s)
 {
   return { { "name", s.Name }, { "source", s.Source }, { "label", s.LabelValue } };
 }
+/// Every structure read is of one patient, study and frame of reference, as far as the inputs say
+/// (NRRD and NIfTI say nothing): two patients' vessels in one model is a model of no one.
+void CheckOnePatient(const std::vector<LabelStructures>& imports)
+{
+  const LabelStructure* first = nullptr;
+  for (const LabelStructures& structures : imports)
+  {
+    for (const LabelStructure& s : structures)
+    {
+      if (!s.Grid.Labels)
+      {
+        continue;
+      }
+      if (!first)
+      {
+        first = &s;
+        continue;
+      }
+      const std::string differs = first->Grid.Identity.DiffersIn(s.Grid.Identity);
+      if (!differs.empty())
+      {
+        throw ParameterError("AllowMixedPatients", first->Source + " is " + first->Grid.Identity.Describe() + "; " + s.Source +
+            " is " + s.Grid.Identity.Describe() + ": another " + differs + ", and a run builds one patient's models " +
+            "unless mixing them is allowed");
+      }
+    }
+  }
+}
+
 } // namespace
 
 VesselModelSet BuildVesselModels(
@@ -76,6 +105,10 @@ VesselModelSet BuildVesselModels(
   {
     const double t0 = NowMs();
     set.Imports.push_back(ImportSegmentation(input, [&](const std::string& name) { return !table.ClassOfName(name).empty(); }));
+    if (!parameters.AllowMixedPatients)
+    {
+      CheckOnePatient(set.Imports); // before the input's line: a refusal is one line
+    }
     progress(input + ": " + std::to_string(set.Imports.back().size()) + " structure(s) read in " +
       FixedText(NowMs() - t0, "%.0f") + " ms");
   }

@@ -25,6 +25,9 @@ struct VesselModelParameters
   double DecimationFactor = 0.0; ///< fraction of triangles removed, 0..0.99
   MeshSpace FileSpace = MeshSpace::LPS;
   std::string LabelTableFile; ///< empty: the built-in Resources/VesselLabels.json
+  /// Whether inputs of different patients or frames of reference may be built into one set of
+  /// models (default false: refused, ParameterError("AllowMixedPatients")).
+  bool AllowMixedPatients = false;
   /// Throws ParameterError naming the first setting out of its range.
   void Validate() const;
 };

@@ -1,5 +1,7 @@
 #include "vpDcmtkFile.h"
 
+#include <dcmtk/dcmdata/dcdeftag.h>
+
 #include "vpInputError.h"
 
 #include <dcmtk/dcmdata/dcxfer.h>
@@ -24,5 +26,19 @@ void LoadDicomFile(DcmFileFormat& file, const std::string& path, const std::stri
     throw InputError(where, std::string("compressed pixel data (") + xfer.getXferName() + ", " + xfer.getXferID() +
         ") that this reader cannot decode; export the labelmap uncompressed");
   }
+}
+
+ImageIdentity IdentityOf(DcmItem& data)
+{
+  ImageIdentity identity;
+  auto get = [&](const DcmTagKey& tag) {
+    OFString text;
+    return data.findAndGetOFString(tag, text).good() ? std::string(text.c_str()) : std::string();
+  };
+  identity.PatientId = get(DCM_PatientID);
+  identity.PatientName = get(DCM_PatientName);
+  identity.StudyUid = get(DCM_StudyInstanceUID);
+  identity.FrameOfReferenceUid = get(DCM_FrameOfReferenceUID);
+  return identity;
 }
 } // namespace vp

@@ -4,6 +4,8 @@
 #include <dcmtk/config/osconfig.h>
 #include <dcmtk/dcmdata/dcfilefo.h>
 
+#include "vpLabelStructure.h"
+
 #include <string>
 
 namespace vp
@@ -13,6 +15,10 @@ namespace vp
 /// encapsulated (compressed) transfer syntax, which we do not decode, are refused with
 /// vp::InputError naming where.
 void LoadDicomFile(DcmFileFormat& file, const std::string& path, const std::string& where);
+
+/// Whose image a DICOM data set is: PatientID, PatientName, StudyInstanceUID and
+/// FrameOfReferenceUID, each empty when absent.
+ImageIdentity IdentityOf(DcmItem& data);
 } // namespace vp
 
 #endif

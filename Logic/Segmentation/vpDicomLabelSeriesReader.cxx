@@ -69,6 +69,7 @@ struct Slice
 {
   std::string File;
   std::string SeriesUid;
+  ImageIdentity Identity;
   std::array<double, 3> Position{};
   std::array<double, 6> Orientation{};
   std::array<double, 2> Spacing{}; // row spacing (between rows), column spacing
@@ -122,6 +123,7 @@ Slice ReadSlice(const std::string& folder, const fs::path& path)
   }
   data->findAndGetOFString(DCM_SeriesInstanceUID, text);
   s.SeriesUid = text.c_str();
+  s.Identity = IdentityOf(*data);
   Sint32 frames = 1;
   if (data->findAndGetSint32(DCM_NumberOfFrames, frames).good() && frames > 1)
   {
@@ -240,7 +242,9 @@ LabelGrid DicomLabelSeriesReader::ReadSeries(const std::string& folder)
   }
   const int dimensions[3] = { static_cast<int>(slices.front().Columns), static_cast<int>(slices.front().Rows),
     stack.NumberOfSlices };
-  return MakeLabelGrid(folder, dimensions, values, stack.IjkToLps);
+  LabelGrid grid = MakeLabelGrid(folder, dimensions, values, stack.IjkToLps);
+  grid.Identity = slices.front().Identity; // one series: one patient, study and frame
+  return grid;
 }
 
 LabelStructures DicomLabelSeriesReader::ReadFolder(const std::string& folder, const StructureFilter& wanted)

@@ -38,6 +38,18 @@ void Check(const OFCondition& status, const std::string& folder)
 }
 } // namespace
 
+ImageIdentity DicomLabelSeriesWriter::NewIdentity(const std::string& patientName)
+{
+  char study[100], frame[100];
+  dcmGenerateUniqueIdentifier(study, SITE_STUDY_UID_ROOT);
+  dcmGenerateUniqueIdentifier(frame);
+  ImageIdentity identity;
+  identity.PatientName = patientName;
+  identity.StudyUid = study;
+  identity.FrameOfReferenceUid = frame;
+  return identity;
+}
+
 void DicomLabelSeriesWriter::Write(const LabelGrid& grid, const std::string& folder, const std::string& seriesName,
   const std::vector<int>& fileOrder, const std::string& prefix)
 {
@@ -62,10 +74,12 @@ void DicomLabelSeriesWriter::Write(const LabelGrid& grid, const std::string& fol
   const double orientation[6] = { axis[0][0], axis[0][1], axis[0][2], axis[1][0], axis[1][1], axis[1][2] };
   const double pixelSpacing[2] = { spacing[1], spacing[0] }; // between rows, between columns
   const bool wide = grid.Labels->GetScalarType() != VTK_UNSIGNED_CHAR;
-  char study[100], series[100], frame[100];
-  dcmGenerateUniqueIdentifier(study, SITE_STUDY_UID_ROOT);
+  char series[100];
   dcmGenerateUniqueIdentifier(series, SITE_SERIES_UID_ROOT);
-  dcmGenerateUniqueIdentifier(frame);
+  const ImageIdentity own = grid.Identity.FrameOfReferenceUid.empty() ? NewIdentity("") : grid.Identity;
+  const char* study = own.StudyUid.c_str();
+  const char* frame = own.FrameOfReferenceUid.c_str();
+  const std::string patient = grid.Identity.PatientName.empty() ? "VesselProximity^" + seriesName : grid.Identity.PatientName;
   const std::size_t perSlice = static_cast<std::size_t>(dims[0]) * dims[1];
   vtkDataArray* scalars = grid.Labels->GetPointData()->GetScalars();
 
@@ -86,7 +100,7 @@ void DicomLabelSeriesWriter::Write(const LabelGrid& grid, const std::string& fol
     Check(d->putAndInsertString(DCM_SeriesInstanceUID, series), folder);
     Check(d->putAndInsertString(DCM_FrameOfReferenceUID, frame), folder);
     Check(d->putAndInsertString(DCM_Modality, "CT"), folder);
-    Check(d->putAndInsertString(DCM_PatientName, ("VesselProximity^" + seriesName).c_str()), folder);
+    Check(d->putAndInsertString(DCM_PatientName, patient.c_str()), folder);
     Check(d->putAndInsertString(DCM_SeriesDescription, seriesName.c_str()), folder);
     Check(d->putAndInsertString(DCM_InstanceNumber, std::to_string(k + 1).c_str()), folder);
     Check(d->putAndInsertString(DCM_ImagePositionPatient, Join(position, 3).c_str()), folder);

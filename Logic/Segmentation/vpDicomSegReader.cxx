@@ -374,15 +374,18 @@ LabelStructures DicomSegReader::Read(const std::string& path, const StructureFil
   DcmDataset& data = *file.getDataset();
   OFString sopClass;
   data.findAndGetOFString(DCM_SOPClassUID, sopClass);
-  if (sopClass == UID_SegmentationStorage)
+  if (sopClass != UID_SegmentationStorage && sopClass != LabelMapSegmentationStorage)
   {
-    return ReadSegmentation(data, path, wanted, maximumVoxels);
-  }
-  if (sopClass == LabelMapSegmentationStorage)
-  {
-    return ReadLabelMap(data, path, wanted, maximumVoxels);
-  }
-  throw InputError(path, std::string("a single DICOM ") + dcmFindNameOfUID(sopClass.c_str(), "file") +
+    throw InputError(path, std::string("a single DICOM ") + dcmFindNameOfUID(sopClass.c_str(), "file") +
       " object, not a segmentation; give the folder that holds its series");
+  }
+  LabelStructures structures = sopClass == UID_SegmentationStorage ? ReadSegmentation(data, path, wanted, maximumVoxels)
+                                                                    : ReadLabelMap(data, path, wanted, maximumVoxels);
+  const ImageIdentity identity = IdentityOf(data);
+  for (LabelStructure& structure : structures)
+  {
+    structure.Grid.Identity = identity;
+  }
+  return structures;
 }
 } // namespace vp

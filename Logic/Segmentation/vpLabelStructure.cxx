@@ -158,4 +158,42 @@ LabelStructures StructuresOf(const LabelGrid& grid, const std::string& source, c
   }
   return structures;
 }
+
+std::string ImageIdentity::Describe() const
+{
+  std::string text;
+  auto add = [&](const std::string& part) { text += (text.empty() ? "" : ", ") + part; };
+  if (!this->PatientName.empty() || !this->PatientId.empty())
+  {
+    add("patient '" + Printable(this->PatientName.empty() ? this->PatientId : this->PatientName) + "'" +
+      (!this->PatientName.empty() && !this->PatientId.empty() ? " (ID " + Printable(this->PatientId) + ")" : ""));
+  }
+  if (!this->StudyUid.empty())
+  {
+    add("study " + Printable(this->StudyUid));
+  }
+  if (!this->FrameOfReferenceUid.empty())
+  {
+    add("frame of reference " + Printable(this->FrameOfReferenceUid));
+  }
+  return text.empty() ? "no patient or frame of reference recorded" : text;
+}
+
+std::string ImageIdentity::DiffersIn(const ImageIdentity& other) const
+{
+  auto differ = [](const std::string& a, const std::string& b) { return !a.empty() && !b.empty() && a != b; };
+  // A person name's family name (before its first '^'): IRCADb names each structure's series
+  // "liver_01^artery", "liver_01^liver", ..., one patient under several names, and gives each its
+  // own study, so the study alone says nothing of the patient.
+  auto family = [](const std::string& name) { return name.substr(0, name.find('^')); };
+  if (differ(this->PatientId, other.PatientId) || differ(family(this->PatientName), family(other.PatientName)))
+  {
+    return "patient";
+  }
+  if (differ(this->FrameOfReferenceUid, other.FrameOfReferenceUid))
+  {
+    return "frame of reference";
+  }
+  return std::string();
+}
 } // namespace vp

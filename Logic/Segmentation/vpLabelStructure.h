@@ -25,6 +25,22 @@ struct CodedConcept
   std::string Key() const { return this->Scheme + ":" + this->Value; }
 };
 
+/// Whose image a labelmap is, as DICOM says it (every field empty for NRRD and NIfTI, which do
+/// not say): the models of one run must be one patient's, in one frame of reference.
+struct ImageIdentity
+{
+  std::string PatientId;
+  std::string PatientName;
+  std::string StudyUid;
+  std::string FrameOfReferenceUid;
+  /// "patient 'P' (ID I), study S, frame of reference F", the known fields only.
+  std::string Describe() const;
+  /// "patient" when both know the patient (its ID, or its name's family name) and it differs,
+  /// "frame of reference" likewise, else "". The study is not compared: some data sets (IRCADb)
+  /// give each structure of one patient a study of its own.
+  std::string DiffersIn(const ImageIdentity& other) const;
+};
+
 /// The voxel grid of an imported labelmap: integer labels on an index grid (vtkImageData with
 /// origin 0 and spacing 1, so VTK filters work in index space as Slicer's do), and the 4x4
 /// index-to-LPS matrix that places it in DICOM patient coordinates (millimetres).
@@ -32,6 +48,7 @@ struct LabelGrid
 {
   vtkSmartPointer<vtkImageData> Labels;
   std::array<double, 16> IjkToLps{}; ///< row-major; column k is the step of index k in mm
+  ImageIdentity Identity;             ///< whose image it is (DICOM)
 
   /// Spacing along index axis k (mm): the length of column k.
   double SpacingMm(int k) const;

@@ -50,6 +50,9 @@ cli::ModuleDescription DescribeModelsCommand()
             .SetChannel(cli::Channel::Input)
             .SetPlaceholder("TABLE.json"),
           OutputFolderOption("The run's folder: one STL per class and models.json.").SetRequired(),
+          Switch("allow-mixed",
+            "Build inputs of different patients or frames of reference into one set of models (refused without it).")
+            .SetLogicName("AllowMixedPatients"),
         } },
       { "Surfaces", "",
         {
@@ -85,6 +88,7 @@ int RunModelsCommand(const cli::ParsedArguments& args, const ModuleServices&)
   parameters.DecimationFactor = args.GetNumber("decimation");
   parameters.SmoothingIterations = args.GetInteger("smoothingIterations");
   parameters.LabelTableFile = args.GetString("labels");
+  parameters.AllowMixedPatients = args.GetBoolean("allowMixed");
   // Every line is said once its step is done: a line before a refusal would make its one line two.
   const VesselModelSet set = BuildVesselModels(
     args.GetStrings("inputs"), parameters, [](const std::string& line) { std::cerr << "models: " << line << "\n"; });

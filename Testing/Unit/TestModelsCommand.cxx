@@ -54,7 +54,9 @@ protected:
 
   void WriteMask(const std::string& name, const std::function<int(const double p[3])>& label)
   {
-    vp::DicomLabelSeriesWriter::Write(vp::test::MakeGrid(this->Dims, this->Geometry, label), this->Masks + "/" + name, name);
+    vp::LabelGrid grid = vp::test::MakeGrid(this->Dims, this->Geometry, label);
+    grid.Identity = this->Patient; // one patient's structures share a study and a frame of reference
+    vp::DicomLabelSeriesWriter::Write(grid, this->Masks + "/" + name, name);
   }
 
   // The run failed cleanly: exit 1, one line naming what, nothing written.
@@ -76,6 +78,7 @@ protected:
   }
 
   std::string Dir, Masks;
+  vp::ImageIdentity Patient = vp::DicomLabelSeriesWriter::NewIdentity("");
   int Dims[3] = { 40, 50, 30 };
   std::array<double, 16> Geometry{};
 };
@@ -468,3 +471,22 @@ TEST_F(ModelsCommand, BadOptionsAreRefused)
   EXPECT_EQ(vp::test::Slurp(file), "x");
 }
 } // namespace
+
+// Issue 31: two patients' masks in one run made one model per class of both; now refused in one
+// line naming the flag that allows it, and nothing written. One patient's masks, whose series
+// IRCADb names "liver_01^artery", "liver_01^liver", ... each with its own study, pass.
+TEST_F(ModelsCommand, TwoPatientsInOneRunAreRefusedUnlessMixingIsAllowed)
+{
+  const std::string extracted = vp::test::ExtractedDataDir();
+  const std::string p1 = extracted + "/ircadb/3Dircadb1.1/MASKS_DICOM", p4 = extracted + "/ircadb/3Dircadb1.4/MASKS_DICOM";
+  if (extracted.empty() || !fs::exists(p1) || !fs::exists(p4))
+  {
+    GTEST_SKIP() << "VP_TEST_DATA not set: the IRCADb masks are in ../shared/data";
+  }
+  this->ExpectRefused(p1 + " " + p4, "--allow-mixed: " + p1 + "/artery is patient 'liver_01^artery'",
+    p4 + "/artery is patient 'liver_04^artery', study");
+  const ToolRun mixed = RunTool(this->Dir, "models " + p1 + " " + p4 + " --allow-mixed -o " + this->Dir + "/mixed");
+  EXPECT_EQ(mixed.ExitCode, 0) << mixed.Err;
+  const ToolRun one = RunTool(this->Dir, "models " + p1 + " -o " + this->Dir + "/one");
+  EXPECT_EQ(one.ExitCode, 0) << one.Err;
+}

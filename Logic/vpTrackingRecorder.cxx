@@ -124,6 +124,12 @@ bool TrackingRecorder::Run(PoseSource& poses, RunFolder& run)
     warnings.push_back({ { "kind", w.Kind }, { "text", w.Text } });
   }
   doc["warnings"] = warnings;
+  // Times the tracker did not see the tool: no frame, no distance (a gap in the record).
+  doc["poses_lost"] = session.GetNumberOfLostPoses();
+  if (session.GetNumberOfLostPoses() > 0)
+  {
+    doc["first_lost_time_s"] = session.GetFirstLostTimeS();
+  }
   // The session's own files, then whatever else the run has written beside them (the demo's).
   std::vector<std::string> files{ "frames.csv", "summary.json", "distance.png" };
   for (const std::string& entry : run.GetEntries())

@@ -21,6 +21,7 @@ void TrackingSession::Restart()
 {
   this->Logic->ResetTracking();
   this->Frames = 0;
+  this->Lost = 0;
 }
 
 const TrackedFrame& TrackingSession::Process(const TrackedPose& pose)
@@ -38,6 +39,11 @@ bool TrackingSession::Run(PoseSource& poses, const std::function<void(const Trac
     if (RunFolder::SignalPending())
     {
       return false;
+    }
+    if (pose.Lost)
+    {
+      this->FirstLostTimeS = this->Lost++ == 0 ? pose.TimeS : this->FirstLostTimeS;
+      continue;
     }
     const TrackedFrame& frame = this->Process(pose);
     if (onFrame)

@@ -26,7 +26,8 @@ public:
   const TrackedFrame& Process(const TrackedPose& pose);
 
   /// Every pose of the source in turn; each frame goes to onFrame (may be empty), outside the
-  /// frame's own time. Returns false when a held signal came (RunFolder::SignalPending) before
+  /// frame's own time. A lost pose (the tracker did not see the tool) is counted, never computed:
+  /// no distance comes from where the tool was before. Returns false when a held signal came (RunFolder::SignalPending) before
   /// the source ended: the caller lets its RunFolder go and the signal acts. Throws the source's
   /// InputError.
   bool Run(PoseSource& poses, const std::function<void(const TrackedFrame&)>& onFrame = {});
@@ -39,12 +40,17 @@ public:
 
   /// Frames computed since the session started (or restarted).
   std::size_t GetNumberOfFrames() const { return this->Frames; }
+  /// Poses of Run's sources the tracker had lost, and the time of the first (s).
+  std::size_t GetNumberOfLostPoses() const { return this->Lost; }
+  double GetFirstLostTimeS() const { return this->FirstLostTimeS; }
   vtkVesselProximityLogic* GetLogic() const { return this->Logic; }
 
 private:
   vtkVesselProximityLogic* Logic;
   std::function<void(std::size_t, std::size_t)> Progress;
   std::size_t Frames = 0;
+  std::size_t Lost = 0;
+  double FirstLostTimeS = 0.0;
 };
 } // namespace vp
 

@@ -5,6 +5,7 @@
 #include "vpJsonPoseReader.h"
 #include "vpNumericCsv.h"
 #include "vpPoseReading.h"
+#include "vpTrackedSequence.h"
 
 #include <algorithm>
 #include <cmath>
@@ -17,6 +18,47 @@ namespace
 bool EndsWith(const std::string& text, const std::string& suffix)
 {
   return text.size() >= suffix.size() && text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+/// The inverse of a 4x4 whose last row is 0 0 0 1 (row-major), by the adjugate of its 3x3 part:
+/// a recorded rotation is orthonormal only to the tracker's rounding, and PLUS composes its
+/// transforms with the exact inverse (vtkMatrix4x4::Invert), not the transpose.
+std::array<double, 16> InvertRigid(const std::array<double, 16>& m)
+{
+  const double det = m[0] * (m[5] * m[10] - m[6] * m[9]) - m[1] * (m[4] * m[10] - m[6] * m[8]) + m[2] * (m[4] * m[9] - m[5] * m[8]);
+  std::array<double, 16> r{};
+  r[0] = (m[5] * m[10] - m[6] * m[9]) / det;
+  r[1] = (m[2] * m[9] - m[1] * m[10]) / det;
+  r[2] = (m[1] * m[6] - m[2] * m[5]) / det;
+  r[4] = (m[6] * m[8] - m[4] * m[10]) / det;
+  r[5] = (m[0] * m[10] - m[2] * m[8]) / det;
+  r[6] = (m[2] * m[4] - m[0] * m[6]) / det;
+  r[8] = (m[4] * m[9] - m[5] * m[8]) / det;
+  r[9] = (m[1] * m[8] - m[0] * m[9]) / det;
+  r[10] = (m[0] * m[5] - m[1] * m[4]) / det;
+  for (int a = 0; a < 3; ++a)
+  {
+    r[4 * a + 3] = -(r[4 * a] * m[3] + r[4 * a + 1] * m[7] + r[4 * a + 2] * m[11]);
+  }
+  r[15] = 1.0;
+  return r;
+}
+
+/// a times b (row-major 4x4).
+std::array<double, 16> ComposeRigid(const std::array<double, 16>& a, const std::array<double, 16>& b)
+{
+  std::array<double, 16> r{};
+  for (int i = 0; i < 4; ++i)
+  {
+    for (int j = 0; j < 4; ++j)
+    {
+      for (int k = 0; k < 4; ++k)
+      {
+        r[4 * i + j] += a[4 * i + k] * b[4 * k + j];
+      }
+    }
+  }
+  return r;
 }
 
 /// How a file's numbers are read once the settings and the file's declarations are resolved.
@@ -315,6 +357,15 @@ PoseStream::PoseStream(const std::string& fileName, std::size_t expected, const 
   {
     this->Json = std::make_unique<JsonPoseReader>(fileName);
   }
+  else if (IsSequenceFileName(fileName))
+  {
+    this->Sequence = std::make_unique<TrackedSequence>(ReadTrackedSequence(fileName));
+    this->SequenceTool = this->Sequence->Resolve(reading.ToolName, fileName, "tool");
+    if (!reading.ReferenceName.empty())
+    {
+      this->SequenceReference = this->Sequence->Resolve(reading.ReferenceName, fileName, "reference");
+    }
+  }
   else
   {
     this->Csv = std::make_unique<NumericCsvReader>(fileName, CsvWhat);
@@ -334,6 +385,10 @@ std::size_t PoseStream::CountPoses(const std::string& fileName, const PoseReadin
 
 bool PoseStream::Next(TrackedPose& pose)
 {
+  if (this->Sequence)
+  {
+    return this->NextOfSequence(pose);
+  }
   if (this->Json)
   {
     JsonPoseReader::Item item;
@@ -380,6 +435,54 @@ bool PoseStream::Next(TrackedPose& pose)
   return true;
 }
 
+bool PoseStream::NextOfSequence(TrackedPose& pose)
+{
+  if (this->Read == this->Sequence->Frames.size())
+  {
+    return false;
+  }
+  const TrackedSequence::Frame& frame = this->Sequence->Frames[this->Read];
+  const std::string where = "frame " + std::to_string(this->Read) + ": ";
+  if (!frame.HasTime)
+  {
+    throw InputError(this->Name, where + "no Timestamp");
+  }
+  if (!this->Layout)
+  {
+    this->Layout = std::make_unique<Format>();
+    this->Layout->Reading = Resolve(this->Given, PoseReading(), this->Name);
+  }
+  const auto seen = [&](const std::string& name) {
+    const auto status = frame.Valid.find(name);
+    return frame.Transforms.count(name) && (status == frame.Valid.end() || status->second);
+  };
+  if (!seen(this->SequenceTool) || (!this->SequenceReference.empty() && !seen(this->SequenceReference)))
+  {
+    // Tracking lost: a time and nothing else, never the last pose again.
+    pose = TrackedPose();
+    pose.TimeS = frame.TimeS * this->Layout->Reading.SecondsPerUnit;
+    pose.Lost = true;
+    ++this->Read;
+    return true;
+  }
+  std::array<double, 16> m = frame.Transforms.at(this->SequenceTool);
+  if (!this->SequenceReference.empty())
+  {
+    const std::array<double, 16>& reference = frame.Transforms.at(this->SequenceReference);
+    const std::string problem = RigidProblem(reference);
+    if (!problem.empty())
+    {
+      throw InputError(this->Name, where + this->SequenceReference + "Transform: " + problem);
+    }
+    m = ComposeRigid(InvertRigid(reference), m); // tool to reference
+  }
+  pose = CheckedPose(frame.TimeS, m.data(), 16, this->HasPrevious ? &this->Previous : nullptr, this->Layout->Reading, this->Name, where);
+  this->Previous = pose;
+  this->HasPrevious = true;
+  ++this->Read;
+  return true;
+}
+
 std::vector<TrackedPose> ReadPoseFile(const std::string& fileName, const PoseReading& reading)
 {
   PoseStream stream(fileName, 0, reading);
@@ -387,7 +490,10 @@ std::vector<TrackedPose> ReadPoseFile(const std::string& fileName, const PoseRea
   TrackedPose pose;
   while (stream.Next(pose))
   {
-    poses.push_back(pose);
+    if (!pose.Lost) // a list of poses has no place for the times the tool was not seen
+    {
+      poses.push_back(pose);
+    }
   }
   return poses;
 }

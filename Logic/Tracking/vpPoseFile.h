@@ -17,6 +17,9 @@ struct TrackedPose
 {
   double TimeS = 0.0;
   std::array<double, 16> ModelToWorld{};
+  /// The tracker did not see the tool at this time (a sequence's status not OK): no pose, and no
+  /// distance may be computed from an earlier one.
+  bool Lost = false;
 };
 
 /// Reads a pose stream.
@@ -40,6 +43,7 @@ std::vector<TrackedPose> ReadPoseFile(const std::string& fileName, const PoseRea
 
 class NumericCsvReader;
 class JsonPoseReader;
+struct TrackedSequence;
 
 /// Where a tracking session's poses come from, one at a time: a recorded file (PoseStream), and
 /// later a live stream. Next() throws vp::InputError naming the source on a bad pose.
@@ -84,6 +88,11 @@ private:
   std::string Name;
   std::unique_ptr<NumericCsvReader> Csv;
   std::unique_ptr<JsonPoseReader> Json;
+  std::unique_ptr<TrackedSequence> Sequence;
+  std::string SequenceTool, SequenceReference;
+  bool HasPrevious = false; ///< a sequence's last pose that was seen (lost ones are no pose)
+  /// The next frame of a tracked sequence: the tool's pose (relative to the reference), or a lost frame.
+  bool NextOfSequence(TrackedPose& pose);
   std::size_t Read = 0;
   std::size_t Expected = 0;
   PoseReading Given;

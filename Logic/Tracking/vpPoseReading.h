@@ -28,6 +28,12 @@ struct PoseReading
   std::optional<double> MillimetresPerUnit;
   /// TimeUnits: seconds per unit of the times (1: s, 0.001: ms).
   std::optional<double> SecondsPerUnit;
+  /// A tracked sequence's (PLUS .igs.mha) transforms: ToolName, the tool's ("Stylus" for
+  /// StylusToTracker, or a whole name; empty: the sequence's default or only one), and
+  /// ReferenceName, a reference the poses are taken relative to (tool-to-reference, as PLUS
+  /// composes them; empty: none).
+  std::string ToolName;
+  std::string ReferenceName;
 };
 
 /// "LPS", "RAS".

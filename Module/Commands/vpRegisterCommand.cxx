@@ -192,7 +192,8 @@ cli::ModuleDescription DescribeRegisterCommand()
         { input("poses", "FILE", "Tool-to-world poses pivoting about the tip."),
           Option(ParameterType::Integer, "min-poses", "The fewest poses accepted.").SetPlaceholder("N").SetDefault("6").SetRange(3, 1000000000, 1),
           Option(ParameterType::Double, "min-rotation-deg", "The least rotation the poses must span.").SetPlaceholder("D").SetDefault("10"),
-          PoseReadingOptions()[0], PoseReadingOptions()[1], PoseReadingOptions()[2] } },
+          PoseReadingOptions()[0], PoseReadingOptions()[1], PoseReadingOptions()[2], PoseReadingOptions()[3],
+          PoseReadingOptions()[4] } },
     });
 }
 

@@ -95,6 +95,12 @@ void PrintSummary(const TrackingRecorder& session, vtkVesselProximityLogic* prox
     std::printf(" %s %.2f s", DangerLevelName(static_cast<DangerLevel>(l)), summary.GetTimeInLevelS()[l]);
   }
   std::printf("\n  %zu level change(s), worst level %s\n", summary.GetChanges().size(), DangerLevelName(summary.GetWorstLevel()));
+  const auto lost = session.GetReport().value("poses_lost", 0);
+  if (lost > 0)
+  {
+    std::printf("  %d pose(s) lost by the tracker (from %.3f s): no frame and no distance for them\n", static_cast<int>(lost),
+      session.GetReport().value("first_lost_time_s", 0.0));
+  }
   std::printf("  %s\n", FrameTimesText(summary, budgetMs).c_str());
   if (const auto& check = session.GetComparison())
   {

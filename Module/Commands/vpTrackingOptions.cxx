@@ -79,6 +79,15 @@ std::vector<cli::Parameter> PoseReadingOptions()
     Option(ParameterType::StringEnumeration, "time-units", "The poses' time unit. Default: what the file declares, else s.")
       .SetElements({ "s", "ms" })
       .SetLogicName("TimeUnits"),
+    Option(ParameterType::String, "tool",
+      "A tracked sequence's (PLUS .igs.mha, .igs.nrrd) tool: NAME for its NAMEToTrackerTransform, or a whole "
+      "<From>To<To> name. Default: the sequence's default transform, or its only one.")
+      .SetPlaceholder("NAME")
+      .SetLogicName("ToolName"),
+    Option(ParameterType::String, "reference",
+      "A tracked sequence's reference: the poses become tool-to-reference, as PLUS composes them.")
+      .SetPlaceholder("NAME")
+      .SetLogicName("ReferenceName"),
   };
 }
 
@@ -97,6 +106,8 @@ PoseReading ParsePoseReading(const cli::ParsedArguments& args)
   {
     reading.SecondsPerUnit = args.GetString("timeUnits") == "ms" ? 0.001 : 1.0;
   }
+  reading.ToolName = args.GetString("tool");
+  reading.ReferenceName = args.GetString("reference");
   return reading;
 }
 

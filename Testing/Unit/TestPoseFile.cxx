@@ -2,12 +2,17 @@
 // with its line (or pose) number.
 #include "vpInputError.h"
 #include "vpPoseFile.h"
+#include "vpTrackedSequence.h"
 #include "vpTestSupport.h"
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <fstream>
+#include <map>
+#include <regex>
+#include <sstream>
 #include <string>
 
 namespace
@@ -252,4 +257,144 @@ TEST_F(PoseFile, AHeaderOrADeclarationItCannotPlaceIsRefusedNamingTheColumn)
     EXPECT_EQ(e.GetParameter(), "PoseSpace");
     EXPECT_EQ(e.GetProblem(), "LPS, but " + declared + " declares RAS");
   }
+}
+
+namespace
+{
+// The transforms of a PLUS sequence as the test reads them itself: per frame, name -> 16 numbers.
+std::map<int, std::map<std::string, std::array<double, 16>>> RawTransforms(const std::string& path)
+{
+  std::map<int, std::map<std::string, std::array<double, 16>>> frames;
+  std::ifstream in(path, std::ios::binary);
+  const std::regex field(R"(^Seq_Frame(\d+)_(\w+)Transform = (.*)$)");
+  for (std::string line; std::getline(in, line) && line.rfind("ElementDataFile", 0) != 0;)
+  {
+    std::smatch m;
+    if (std::regex_match(line, m, field))
+    {
+      std::istringstream numbers(m[3].str());
+      std::array<double, 16> matrix{};
+      for (double& v : matrix)
+      {
+        numbers >> v;
+      }
+      frames[std::stoi(m[1].str())][m[2].str()] = matrix;
+    }
+  }
+  return frames;
+}
+
+std::array<double, 16> Times(const std::array<double, 16>& a, const std::array<double, 16>& b)
+{
+  std::array<double, 16> r{};
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j)
+      for (int k = 0; k < 4; ++k)
+        r[4 * i + j] += a[4 * i + k] * b[4 * k + j];
+  return r;
+}
+
+// A rigid transform's inverse, by the adjugate of its rotation (not the transpose the reader uses).
+std::array<double, 16> Inverse(const std::array<double, 16>& m)
+{
+  const double det = m[0] * (m[5] * m[10] - m[6] * m[9]) - m[1] * (m[4] * m[10] - m[6] * m[8]) + m[2] * (m[4] * m[9] - m[5] * m[8]);
+  std::array<double, 16> r{};
+  r[0] = (m[5] * m[10] - m[6] * m[9]) / det, r[1] = (m[2] * m[9] - m[1] * m[10]) / det, r[2] = (m[1] * m[6] - m[2] * m[5]) / det;
+  r[4] = (m[6] * m[8] - m[4] * m[10]) / det, r[5] = (m[0] * m[10] - m[2] * m[8]) / det, r[6] = (m[2] * m[4] - m[0] * m[6]) / det;
+  r[8] = (m[4] * m[9] - m[5] * m[8]) / det, r[9] = (m[1] * m[8] - m[0] * m[9]) / det, r[10] = (m[0] * m[5] - m[1] * m[4]) / det;
+  for (int a = 0; a < 3; ++a)
+  {
+    r[4 * a + 3] = -(r[4 * a] * m[3] + r[4 * a + 1] * m[7] + r[4 * a + 2] * m[11]);
+  }
+  r[15] = 1.0;
+  return r;
+}
+} // namespace
+
+TEST(TrackedSequence, PlusRecordingsGiveEveryFrameWhereItsTransformsPutIt)
+{
+  const std::string data = vp::test::TestDataDir();
+  if (data.empty())
+  {
+    GTEST_SKIP() << "VP_TEST_DATA not set: the PLUS recordings are in ../shared/data/plus";
+  }
+  // 20 synthetic frames: the file's own matrices, its own times.
+  const std::string synthetic = data + "/plus/SyntheticTrackerBuffer20.igs.mha";
+  const auto raw = RawTransforms(synthetic);
+  const auto poses = vp::ReadPoseFile(synthetic);
+  ASSERT_EQ(poses.size(), 20u);
+  for (std::size_t f = 0; f < poses.size(); ++f)
+  {
+    for (int i = 0; i < 16; ++i)
+    {
+      EXPECT_EQ(poses[f].ModelToWorld[i], raw.at(static_cast<int>(f)).at("ToolToTracker")[i]) << f << " " << i;
+    }
+  }
+  EXPECT_DOUBLE_EQ(poses[1].TimeS, 1.5);
+  // The real recording: 1000 frames of a stylus and a reference, the stylus tip (StylusTipToStylus
+  // of PLUS's device set) in reference coordinates, as PLUS composes them.
+  const std::string landmarks = data + "/plus/EightLandmarkPointsTrackedForPhantomRegistration.igs.mha";
+  vp::PoseReading reading;
+  reading.ToolName = "Stylus";
+  reading.ReferenceName = "Reference";
+  const auto relative = vp::ReadPoseFile(landmarks, reading);
+  const auto frames = RawTransforms(landmarks);
+  ASSERT_EQ(relative.size(), 1000u);
+  const std::array<double, 16> tipToStylus = { 0.997175, -0.0713837, -0.0233796, 108.565, 0.0714032, 0.997448, 0, 7.77385,
+    0.0233199, -0.00166938, 0.999727, 2.5389, 0, 0, 0, 1 };
+  double worst = 0.0;
+  for (std::size_t f = 0; f < relative.size(); ++f)
+  {
+    const auto& stylus = frames.at(static_cast<int>(f)).at("StylusToTracker");
+    const auto& reference = frames.at(static_cast<int>(f)).at("ReferenceToTracker");
+    const auto expected = Times(Times(Inverse(reference), stylus), tipToStylus);
+    const auto got = Times(relative[f].ModelToWorld, tipToStylus);
+    for (int a = 0; a < 3; ++a)
+    {
+      worst = std::max(worst, std::abs(got[4 * a + 3] - expected[4 * a + 3]));
+    }
+  }
+  EXPECT_LT(worst, 1e-6) << "tips in reference coordinates, mm";
+  EXPECT_GT(relative.back().TimeS, relative.front().TimeS + 60.0) << "about 15 Hz over 1000 frames";
+}
+
+TEST_F(PoseFile, ASequenceSaysWhichToolAndWhenTheTrackerLostIt)
+{
+  std::string text;
+  for (int f = 0; f < 6; ++f)
+  {
+    char line[400];
+    std::snprintf(line, sizeof line,
+      "Seq_Frame%04d_ToolToTrackerTransform = 1 0 0 %d  0 1 0 20  0 0 1 30  0 0 0 1\nSeq_Frame%04d_ToolToTrackerTransformStatus = %s\n"
+      "Seq_Frame%04d_ReferenceToTrackerTransform = 1 0 0 0  0 1 0 0  0 0 1 5  0 0 0 1\nSeq_Frame%04d_Timestamp = %g\n",
+      f, 10 + f, f, f == 2 || f == 3 ? "INVALID" : "OK", f, f, 0.1 * f);
+    text += line;
+  }
+  const std::string header = "ObjectType = Image\nNDims = 3\nDimSize = 0 0 6\n";
+  const std::string file = this->Write("lost.igs.mha", header + text + "ElementDataFile = LOCAL\n");
+  vp::PoseReading tool;
+  tool.ToolName = "Tool";
+  vp::PoseStream stream(file, 0, tool);
+  std::vector<vp::TrackedPose> all;
+  for (vp::TrackedPose p; stream.Next(p);)
+  {
+    all.push_back(p);
+  }
+  ASSERT_EQ(all.size(), 6u);
+  EXPECT_TRUE(all[2].Lost && all[3].Lost);
+  EXPECT_FALSE(all[4].Lost);
+  EXPECT_EQ(all[4].ModelToWorld[3], 14.0) << "frame 4's own pose, not frame 1's";
+  EXPECT_EQ(vp::ReadPoseFile(file, tool).size(), 4u) << "a list keeps what was seen";
+  tool.ReferenceName = "Reference";
+  EXPECT_EQ(vp::ReadPoseFile(file, tool)[0].ModelToWorld[11], 25.0) << "tool to reference";
+  // Two transforms and no default: which one is the tool is said, never guessed.
+  EXPECT_EQ(this->Refusal("two.igs.mha", header + text), "several transforms (ReferenceToTracker, ToolToTracker): say which is the tool");
+  EXPECT_EQ(this->Refusal("short.igs.mha", header + "Seq_Frame0000_ToolToTrackerTransform = 1 0 0\nSeq_Frame0000_Timestamp = 0\n"),
+    "line 4: ToolToTrackerTransform is not 16 finite numbers");
+  EXPECT_EQ(this->Refusal("status.igs.mha", header + "Seq_Frame0000_ToolToTrackerTransformStatus = MAYBE\n"),
+    "line 4: the status 'MAYBE' is none of OK, INVALID, MISSING, OUT_OF_VIEW");
+  EXPECT_EQ(this->Refusal("empty.igs.mha", header + "ElementDataFile = LOCAL\n"),
+    "no tracked frames (no Seq_FrameNNNN_<From>To<To>Transform fields): not a tracked sequence");
+  EXPECT_EQ(this->Refusal("notime.igs.mha", header + "Seq_Frame0000_ToolToTrackerTransform = 1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1\n"),
+    "frame 0: no Timestamp");
 }

@@ -1025,3 +1025,33 @@ TEST_F(PoseForms, AMisspeltClassIsRefusedAndBlanksAroundNamesAreNoPartOfThem)
   EXPECT_EQ(own.ExitCode, 0) << own.Err;
 }
 } // namespace
+
+namespace
+{
+// A PLUS recording with frames the tracker lost: no frame and no distance for them, counted.
+TEST_F(PoseForms, ATrackedSequencesLostFramesAreCountedNeverComputed)
+{
+  std::string text = "ObjectType = Image\nNDims = 3\nDimSize = 0 0 8\nDefaultFrameTransformName = ToolToTrackerTransform\n";
+  for (int f = 0; f < 8; ++f)
+  {
+    char line[300];
+    // The tool along -z (as the fixture's approach), its tip 30 mm down to 16 mm from the sphere's centre.
+    std::snprintf(line, sizeof line,
+      "Seq_Frame%04d_ToolToTrackerTransform = 0 0 -1 %g  0 1 0 0  1 0 0 0  0 0 0 1\n"
+      "Seq_Frame%04d_ToolToTrackerTransformStatus = %s\nSeq_Frame%04d_Timestamp = %g\n",
+      f, 30.0 - 2.0 * f, f, f == 5 || f == 6 ? "MISSING" : "OK", f, 0.05 * f);
+    text += line;
+  }
+  const std::string sequence = this->WriteText("approach.igs.mha", text + "ElementDataFile = LOCAL\n");
+  const ToolRun r = this->Track(sequence, this->Dir + "/seq");
+  ASSERT_EQ(r.ExitCode, 0) << r.Err;
+  const nlohmann::json s = nlohmann::json::parse(Slurp(this->Dir + "/seq/summary.json"));
+  EXPECT_EQ(s["frames"], 6);
+  EXPECT_EQ(s["poses_lost"], 2);
+  EXPECT_DOUBLE_EQ(s["first_lost_time_s"].get<double>(), 0.25);
+  const auto rows = ReadCsvCells(this->Dir + "/seq/frames.csv");
+  ASSERT_EQ(rows.size(), 7u);
+  EXPECT_EQ(rows.back()[1], "0.350000") << "the last frame is frame 7's, at its own time";
+  EXPECT_NE(r.Out.find("2 pose(s) lost by the tracker (from 0.250 s)"), std::string::npos) << r.Out;
+}
+} // namespace

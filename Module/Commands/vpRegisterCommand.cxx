@@ -8,6 +8,7 @@
 #include "vpPairedPointRegistration.h"
 #include "vpPivotCalibration.h"
 #include "vpPointCsv.h"
+#include "vpDwellPoints.h"
 #include "vpPoseFile.h"
 #include "vpTrackingOptions.h"
 #include "vpSurfaceIcpRegistration.h"
@@ -59,18 +60,6 @@ std::array<double, 16> ReadInitialTransform(const std::string& file)
   return m;
 }
 
-RigidRegistration Landmarks(const cli::ParsedArguments& args)
-{
-  const auto model = ReadPointCsv(args.GetString("modelPoints"));
-  const auto world = ReadPointCsv(args.GetString("worldPoints"));
-  if (model.size() != world.size())
-  {
-    throw InputError(args.GetString("worldPoints"), std::to_string(world.size()) + " points, but " +
-        args.GetString("modelPoints") + " has " + std::to_string(model.size()) + ": the lists must pair up");
-  }
-  return RegisterPairedPoints(model, world);
-}
-
 /// What a registration says once its result is written (a refusal of the output leaves no word
 /// of a result that was never saved).
 template <typename... Values>
@@ -81,9 +70,48 @@ void Say(std::string& said, const char* format, Values... values)
   said += line;
 }
 
+/// The points where a recorded stylus rested, in world (or reference) coordinates.
+std::vector<Point3> DwellWorldPoints(const cli::ParsedArguments& args, std::string& said)
+{
+  const std::string sequence = args.GetString("sequence");
+  const auto poses = ReadPoseFile(sequence, ParsePoseReading(args));
+  std::vector<double> times;
+  std::vector<std::array<double, 16>> matrices;
+  for (const TrackedPose& p : poses)
+  {
+    times.push_back(p.TimeS);
+    matrices.push_back(p.ModelToWorld);
+  }
+  const std::vector<DwellPoint> dwells = FindDwellPoints(times, matrices, ReadMatrixText(args.GetString("tipTransform")));
+  std::vector<Point3> world;
+  for (std::size_t i = 0; i < dwells.size(); ++i)
+  {
+    const DwellPoint& d = dwells[i];
+    world.push_back(d.PointMm);
+    Say(said, "  rest %zu: %.2f-%.2f s, (%.2f, %.2f, %.2f) mm, tip within %.2f mm, shaft moved %.0f mm\n", i + 1, d.StartS, d.EndS,
+      d.PointMm[0], d.PointMm[1], d.PointMm[2], d.TipSpreadMm, d.ShaftMotionMm);
+  }
+  return world;
+}
+
+RigidRegistration Landmarks(const cli::ParsedArguments& args, std::string& said)
+{
+  const auto model = ReadPointCsv(args.GetString("modelPoints"));
+  const bool recorded = args.IsSet("sequence");
+  const auto world = recorded ? DwellWorldPoints(args, said) : ReadPointCsv(args.GetString("worldPoints"));
+  if (model.size() != world.size())
+  {
+    const std::string source = recorded ? args.GetString("sequence") : args.GetString("worldPoints");
+    throw InputError(source, std::to_string(world.size()) + (recorded ? " rests of the stylus" : " points") + ", but " +
+        args.GetString("modelPoints") + " has " + std::to_string(model.size()) + ": the lists must pair up");
+  }
+  return RegisterPairedPoints(model, world);
+}
+
+
 Json RunLandmarks(const cli::ParsedArguments& args, std::string& said)
 {
-  const RigidRegistration r = Landmarks(args);
+  const RigidRegistration r = Landmarks(args, said);
   Say(said, "landmarks: %zu points, FRE (RMS) %.3f mm\n", r.PointErrorsMm.size(), r.RmsErrorMm);
   for (std::size_t i = 0; i < r.PointErrorsMm.size(); ++i)
   {
@@ -108,7 +136,8 @@ Json RunIcp(const cli::ParsedArguments& args, std::string& said)
   }
   else if (args.IsSet("modelPoints") || args.IsSet("worldPoints"))
   {
-    const RigidRegistration guess = Landmarks(args);
+    std::string ignored;
+    const RigidRegistration guess = Landmarks(args, ignored);
     initial = guess.ModelToWorld;
     start = "landmarks (FRE " + NumberText(guess.RmsErrorMm, 3) + " mm)";
   }
@@ -184,16 +213,20 @@ cli::ModuleDescription DescribeRegisterCommand()
         } },
       { "landmarks (also icp's start)", "",
         { input("model-points", "M.csv", "Points in model coordinates."),
-          input("world-points", "W.csv", "The same points in world coordinates.") } },
+          input("world-points", "W.csv", "The same points in world coordinates."),
+          input("sequence", "REC.igs.mha",
+            "Instead of --world-points: a recording (PLUS sequence or pose file, --tool and --reference as for track) "
+            "of a stylus resting about a second on each landmark in turn, pivoting on it; the rests are matched to "
+            "--model-points in order."),
+          input("tip-transform", "T.txt", "With --sequence: the stylus tip in tool coordinates, a 4x4 matrix (16 numbers, row-major).") } },
       { "icp", "",
         { input("model", "FILE.stl", "The model surface."), input("points", "W.csv", "Points measured on it, in world coordinates."),
           input("initial", "T.json", "The start: a RESULT.json with \"model_to_world\".") } },
       { "pivot", "",
         { input("poses", "FILE", "Tool-to-world poses pivoting about the tip."),
           Option(ParameterType::Integer, "min-poses", "The fewest poses accepted.").SetPlaceholder("N").SetDefault("6").SetRange(3, 1000000000, 1),
-          Option(ParameterType::Double, "min-rotation-deg", "The least rotation the poses must span.").SetPlaceholder("D").SetDefault("10"),
-          PoseReadingOptions()[0], PoseReadingOptions()[1], PoseReadingOptions()[2], PoseReadingOptions()[3],
-          PoseReadingOptions()[4] } },
+          Option(ParameterType::Double, "min-rotation-deg", "The least rotation the poses must span.").SetPlaceholder("D").SetDefault("10") } },
+      { "Recordings (pivot's poses, landmarks' sequence)", "", PoseReadingOptions() },
     });
 }
 
@@ -214,7 +247,15 @@ int RunRegisterCommand(const cli::ParsedArguments& args, const ModuleServices&)
   std::string said;
   if (method == "landmarks")
   {
-    require({ { "modelPoints", "--model-points" }, { "worldPoints", "--world-points" } });
+    require({ { "modelPoints", "--model-points" } });
+    if (args.IsSet("sequence"))
+    {
+      require({ { "tipTransform", "--tip-transform" } });
+    }
+    else
+    {
+      require({ { "worldPoints", "--world-points" } });
+    }
     result = RunLandmarks(args, said);
   }
   else if (method == "icp")

@@ -1055,3 +1055,46 @@ TEST_F(PoseForms, ATrackedSequencesLostFramesAreCountedNeverComputed)
   EXPECT_NE(r.Out.find("2 pose(s) lost by the tracker (from 0.250 s)"), std::string::npos) << r.Out;
 }
 } // namespace
+
+namespace
+{
+// Issue 31: PLUS's own phantom registration inputs, as its test uses them: the recording of a
+// stylus resting on the eight landmarks of the fCal 2.0 phantom, the stylus tip calibration and
+// the landmark positions of its device set. The rests are found, matched in order, registered.
+TEST(RegisterFromARecording, PlusPhantomLandmarksRegisterWithinHalfAMillimetre)
+{
+  const std::string data = vp::test::TestDataDir();
+  if (data.empty())
+  {
+    GTEST_SKIP() << "VP_TEST_DATA not set: the PLUS recordings are in ../shared/data/plus";
+  }
+  const std::string dir = vp::test::MakeTempDir("register_plus");
+  // From PlusDeviceSet_fCal_Sim_RecordPhantomLandmarks.xml: <Landmarks> and StylusTipToStylus.
+  const std::string landmarks = vp::test::WriteBytes(dir, "phantom_landmarks.csv",
+    "104.3,5.0,20.0\n104.3,45.0,20.0\n104.3,45.0,0.0\n104.3,-5.0,0.0\n-34.3,45.0,15.0\n-34.3,-5.0,20.0\n-34.3,-5.0,0.0\n-34.3,45.0,0.0\n");
+  const std::string tip = vp::test::WriteBytes(dir, "StylusTipToStylus.txt",
+    "0.997175 -0.0713837 -0.0233796 108.565\n0.0714032 0.997448 0 7.77385\n0.0233199 -0.00166938 0.999727 2.5389\n0 0 0 1\n");
+  const std::string recording = data + "/plus/EightLandmarkPointsTrackedForPhantomRegistration.igs.mha";
+  const ToolRun r = RunTool(dir, "register landmarks --model-points " + landmarks + " --sequence " + recording +
+      " --tool Stylus --reference Reference --tip-transform " + tip + " -o " + dir + "/R.json");
+  ASSERT_EQ(r.ExitCode, 0) << r.Err;
+  const nlohmann::json result = nlohmann::json::parse(Slurp(dir + "/R.json"));
+  ASSERT_EQ(result["point_errors_mm"].size(), 8u);
+  for (const auto& e : result["point_errors_mm"])
+  {
+    EXPECT_LT(e.get<double>(), 0.5);
+  }
+  EXPECT_LT(result["fre_mm"].get<double>(), 0.5);
+  EXPECT_NE(r.Out.find("landmarks: 8 points, FRE (RMS) "), std::string::npos) << r.Out;
+  EXPECT_NE(r.Out.find("rest 8: "), std::string::npos) << r.Out;
+  // Without the pivoting, a stylus lying still is no landmark: the list of rests is the eight.
+  EXPECT_EQ(r.Out.find("rest 9: "), std::string::npos) << r.Out;
+  // One landmark too many in the model's list: said, nothing written.
+  const std::string nine = vp::test::WriteBytes(dir, "nine.csv", Slurp(landmarks) + "0,0,0\n");
+  const ToolRun refused = RunTool(dir, "register landmarks --model-points " + nine + " --sequence " + recording +
+      " --tool Stylus --reference Reference --tip-transform " + tip + " -o " + dir + "/R9.json");
+  EXPECT_EQ(refused.ExitCode, 1);
+  EXPECT_NE(refused.Err.find("8 rests of the stylus, but " + nine + " has 9: the lists must pair up"), std::string::npos) << refused.Err;
+  EXPECT_FALSE(vp::test::FileExists(dir + "/R9.json"));
+}
+} // namespace

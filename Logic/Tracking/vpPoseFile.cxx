@@ -5,6 +5,7 @@
 #include "vpJsonPoseReader.h"
 #include "vpNumericCsv.h"
 #include "vpPoseReading.h"
+#include "vpRigidTransform.h"
 #include "vpTrackedSequence.h"
 
 #include <algorithm>
@@ -20,53 +21,13 @@ bool EndsWith(const std::string& text, const std::string& suffix)
   return text.size() >= suffix.size() && text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
-/// The inverse of a 4x4 whose last row is 0 0 0 1 (row-major), by the adjugate of its 3x3 part:
-/// a recorded rotation is orthonormal only to the tracker's rounding, and PLUS composes its
-/// transforms with the exact inverse (vtkMatrix4x4::Invert), not the transpose.
-std::array<double, 16> InvertRigid(const std::array<double, 16>& m)
-{
-  const double det = m[0] * (m[5] * m[10] - m[6] * m[9]) - m[1] * (m[4] * m[10] - m[6] * m[8]) + m[2] * (m[4] * m[9] - m[5] * m[8]);
-  std::array<double, 16> r{};
-  r[0] = (m[5] * m[10] - m[6] * m[9]) / det;
-  r[1] = (m[2] * m[9] - m[1] * m[10]) / det;
-  r[2] = (m[1] * m[6] - m[2] * m[5]) / det;
-  r[4] = (m[6] * m[8] - m[4] * m[10]) / det;
-  r[5] = (m[0] * m[10] - m[2] * m[8]) / det;
-  r[6] = (m[2] * m[4] - m[0] * m[6]) / det;
-  r[8] = (m[4] * m[9] - m[5] * m[8]) / det;
-  r[9] = (m[1] * m[8] - m[0] * m[9]) / det;
-  r[10] = (m[0] * m[5] - m[1] * m[4]) / det;
-  for (int a = 0; a < 3; ++a)
-  {
-    r[4 * a + 3] = -(r[4 * a] * m[3] + r[4 * a + 1] * m[7] + r[4 * a + 2] * m[11]);
-  }
-  r[15] = 1.0;
-  return r;
-}
-
-/// a times b (row-major 4x4).
-std::array<double, 16> ComposeRigid(const std::array<double, 16>& a, const std::array<double, 16>& b)
-{
-  std::array<double, 16> r{};
-  for (int i = 0; i < 4; ++i)
-  {
-    for (int j = 0; j < 4; ++j)
-    {
-      for (int k = 0; k < 4; ++k)
-      {
-        r[4 * i + j] += a[4 * i + k] * b[4 * k + j];
-      }
-    }
-  }
-  return r;
-}
-
 /// How a file's numbers are read once the settings and the file's declarations are resolved.
 struct ResolvedReading
 {
   PoseSpace Space = PoseSpace::LPS;
   double MillimetresPerUnit = 1.0;
   double SecondsPerUnit = 1.0;
+  std::optional<std::array<double, 16>> TrackerToPatient;
 };
 
 /// The settings a front end gave over what the file declares, each else its default; a setting
@@ -94,6 +55,7 @@ ResolvedReading Resolve(const PoseReading& given, const PoseReading& declared, c
   r.Space = given.Space ? *given.Space : declared.Space.value_or(PoseSpace::LPS);
   r.MillimetresPerUnit = given.MillimetresPerUnit ? *given.MillimetresPerUnit : declared.MillimetresPerUnit.value_or(1.0);
   r.SecondsPerUnit = given.SecondsPerUnit ? *given.SecondsPerUnit : declared.SecondsPerUnit.value_or(1.0);
+  r.TrackerToPatient = given.TrackerToPatient;
   return r;
 }
 
@@ -277,6 +239,10 @@ std::string MakePose(const double* values, std::size_t count, const ResolvedRead
     {
       pose.ModelToWorld[k] = -pose.ModelToWorld[k];
     }
+  }
+  if (reading.TrackerToPatient)
+  {
+    pose.ModelToWorld = MultiplyTransforms(*reading.TrackerToPatient, pose.ModelToWorld);
   }
   return problem;
 }
@@ -474,7 +440,9 @@ bool PoseStream::NextOfSequence(TrackedPose& pose)
     {
       throw InputError(this->Name, where + this->SequenceReference + "Transform: " + problem);
     }
-    m = ComposeRigid(InvertRigid(reference), m); // tool to reference
+    // Tool to reference, with the exact inverse (VTK's, as PLUS composes them): a recorded rotation
+    // is orthonormal only to the tracker's rounding.
+    m = MultiplyTransforms(InvertTransform(reference), m);
   }
   pose = CheckedPose(frame.TimeS, m.data(), 16, this->HasPrevious ? &this->Previous : nullptr, this->Layout->Reading, this->Name, where);
   this->Previous = pose;

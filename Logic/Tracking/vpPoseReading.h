@@ -1,6 +1,7 @@
 #ifndef vpPoseReading_h
 #define vpPoseReading_h
 
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -34,6 +35,9 @@ struct PoseReading
   /// composes them; empty: none).
   std::string ToolName;
   std::string ReferenceName;
+  /// Registration: tracker (or reference) to patient, applied to every pose after its units and
+  /// frame (ReadTrackerToPatient reads register's result); unset: the poses are the patient's.
+  std::optional<std::array<double, 16>> TrackerToPatient;
 };
 
 /// "LPS", "RAS".

@@ -4,6 +4,7 @@
 #include "vpEngineOptions.h"
 #include "vpInputError.h"
 #include "vpPointCsv.h"
+#include "vpRegistrationFile.h"
 
 #include <cstdio>
 
@@ -88,6 +89,11 @@ std::vector<cli::Parameter> PoseReadingOptions()
       "A tracked sequence's reference: the poses become tool-to-reference, as PLUS composes them.")
       .SetPlaceholder("NAME")
       .SetLogicName("ReferenceName"),
+    Option(ParameterType::File, "registration",
+      "register's RESULT.json (landmarks or icp: model points in the patient's images, world points by the tracker "
+      "or relative to --reference): every pose is taken from the tracker into the patient by it.")
+      .SetChannel(cli::Channel::Input)
+      .SetPlaceholder("R.json"),
   };
 }
 
@@ -108,6 +114,10 @@ PoseReading ParsePoseReading(const cli::ParsedArguments& args)
   }
   reading.ToolName = args.GetString("tool");
   reading.ReferenceName = args.GetString("reference");
+  if (args.IsSet("registration"))
+  {
+    reading.TrackerToPatient = ReadTrackerToPatient(args.GetString("registration"));
+  }
   return reading;
 }
 

@@ -127,6 +127,7 @@ cli::ModuleDescription DescribeViewCommand()
           PoseReadingOptions()[2],
           PoseReadingOptions()[3],
           PoseReadingOptions()[4],
+          PoseReadingOptions()[5],
           Option(ParameterType::Integer, "pose", "The pose shown first, from 0.").SetPlaceholder("N").SetRange(0, 1000000000, 1),
           Option(ParameterType::String, "size", "The window's size in pixels (64..8192 each).").SetPlaceholder("WxH").SetDefault("1280x800"),
           Option(ParameterType::String, "keys", "Keys pressed before the window opens (VTK key names: Left, Up, Prior, i, n, ...).")

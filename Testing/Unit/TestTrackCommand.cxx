@@ -1098,3 +1098,51 @@ TEST(RegisterFromARecording, PlusPhantomLandmarksRegisterWithinHalfAMillimetre)
   EXPECT_FALSE(vp::test::FileExists(dir + "/R9.json"));
 }
 } // namespace
+
+namespace
+{
+// A registration applied where it belongs: poses in the tracker's frame, register's result (the
+// patient's model points to the tracker's) takes each into the patient's, and the frames are the
+// patient-frame file's.
+TEST_F(PoseForms, ARegistrationTakesTrackerPosesIntoThePatient)
+{
+  const auto patient = [](double t, double x) { return Number(t) + "," + Number(x) + ",0,0," + Number(H) + ",0," + Number(-H) + ",0\n"; };
+  // The tip's answers (the penetration estimate's lattice follows the pose's rounding: within its
+  // bound, not to 1e-9).
+  ASSERT_EQ(this->Track(this->Poses("patient.csv", "time,x,y,z,qw,qx,qy,qz\n", patient), this->Dir + "/patient", " --no-surface").ExitCode, 0);
+  // The tracker sees the patient turned 90 degrees about z and shifted: model_to_world = that.
+  const std::string registration = this->WriteText("R.json",
+    "{\"method\": \"landmarks\", \"model_to_world\": [0,-1,0,100, 1,0,0,-50, 0,0,1,7, 0,0,0,1]}");
+  // A pose in the tracker: (Rz90 * p + t), its rotation Rz90 * R; Rz90 as a quaternion (c, 0, 0, s), c = s = H.
+  const auto tracker = [](double t, double x) {
+    // Rz90 * (x, 0, 0) + (100, -50, 7) = (100, x - 50, 7); (H,0,0,H) * (H,0,-H,0) = (0.5, 0.5, -0.5, 0.5).
+    return Number(t) + "," + Number(100.0) + "," + Number(x - 50.0) + "," + Number(7.0) + ",0.5,0.5,-0.5,0.5\n";
+  };
+  const ToolRun r = this->Track(this->Poses("tracker.csv", "time,x,y,z,qw,qx,qy,qz\n", tracker), this->Dir + "/registered",
+    " --no-surface --registration " + registration);
+  ASSERT_EQ(r.ExitCode, 0) << r.Err;
+  const auto a = this->Frames_(this->Dir + "/patient");
+  const auto b = this->Frames_(this->Dir + "/registered");
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t row = 1; row < a.size(); ++row)
+  {
+    for (std::size_t c = 0; c < a[row].size(); ++c)
+    {
+      char* end = nullptr;
+      const double x = std::strtod(a[row][c].c_str(), &end);
+      if (end != a[row][c].c_str() && *end == '\0')
+      {
+        EXPECT_NEAR(std::strtod(b[row][c].c_str(), nullptr), x, 1e-9) << row << " " << a[0][c];
+      }
+      else
+      {
+        EXPECT_EQ(b[row][c], a[row][c]) << row << " " << a[0][c];
+      }
+    }
+  }
+  const ToolRun bad = this->Track(this->Poses("t2.csv", "time,x,y,z,qw,qx,qy,qz\n", tracker), this->Dir + "/bad",
+    " --registration " + this->WriteText("bad.json", "{\"model_to_world\": [2,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1]}"));
+  EXPECT_EQ(bad.ExitCode, 1);
+  EXPECT_NE(bad.Err.find("model_to_world is not a rigid transform"), std::string::npos) << bad.Err;
+}
+} // namespace

@@ -98,7 +98,13 @@ bool TrackingRecorder::Run(PoseSource& poses, RunFolder& run)
     {
       this->Comparison->Add(frame.Proximity, proximity->GetLastExactProximity(), engine->GetRangeMm(), engine->GetErrorBoundMm());
     }
-  });
+  },
+    [&](const TrackedPose& lost) {
+      if (plot)
+      {
+        plot->AddLost(lost.TimeS); // a gap in the plot where the tracker lost the tool
+      }
+    });
   if (!ended)
   {
     return false;

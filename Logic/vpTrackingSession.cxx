@@ -31,7 +31,8 @@ const TrackedFrame& TrackingSession::Process(const TrackedPose& pose)
   return frame;
 }
 
-bool TrackingSession::Run(PoseSource& poses, const std::function<void(const TrackedFrame&)>& onFrame)
+bool TrackingSession::Run(PoseSource& poses, const std::function<void(const TrackedFrame&)>& onFrame,
+  const std::function<void(const TrackedPose&)>& onLost)
 {
   double lastReport = NowMs();
   for (TrackedPose pose; poses.Next(pose);)
@@ -43,6 +44,10 @@ bool TrackingSession::Run(PoseSource& poses, const std::function<void(const Trac
     if (pose.Lost)
     {
       this->FirstLostTimeS = this->Lost++ == 0 ? pose.TimeS : this->FirstLostTimeS;
+      if (onLost)
+      {
+        onLost(pose);
+      }
       continue;
     }
     const TrackedFrame& frame = this->Process(pose);

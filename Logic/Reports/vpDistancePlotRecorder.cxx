@@ -5,6 +5,7 @@
 #include "vpPlotValues.h"
 
 #include <algorithm>
+#include <limits>
 #include <cmath>
 
 namespace vp
@@ -38,6 +39,14 @@ DistancePlotRecorder::DistancePlotRecorder(const std::vector<std::string>& class
 {
 }
 
+void DistancePlotRecorder::AddLost(double timeS)
+{
+  const double none = std::numeric_limits<double>::quiet_NaN();
+  Bucket one{ timeS, timeS, 1, {} };
+  one.Lines.assign(this->Classes.size() * (this->Surface ? 2 : 1), Extreme{ none, none, timeS, timeS });
+  this->AddBucket(std::move(one));
+}
+
 void DistancePlotRecorder::Add(const TrackedFrame& frame)
 {
   // The frame as a bucket of its own, then into the last bucket while it has room.
@@ -54,6 +63,11 @@ void DistancePlotRecorder::Add(const TrackedFrame& frame)
       this->LargestVolumeMm3[c] = std::max(this->LargestVolumeMm3[c], InstrumentVolumeMm3(frame, c));
     }
   }
+  this->AddBucket(std::move(one));
+}
+
+void DistancePlotRecorder::AddBucket(Bucket one)
+{
   if (!this->Buckets.empty() && this->Buckets.back().Frames < this->Width)
   {
     Append(this->Buckets.back(), one);

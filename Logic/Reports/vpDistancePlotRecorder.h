@@ -29,6 +29,8 @@ public:
 
   DistancePlotRecorder(const std::vector<std::string>& classes, bool surface);
   void Add(const TrackedFrame& frame);
+  /// A time the tracker lost the tool: no value on any line, so the plot shows a gap there.
+  void AddLost(double timeS);
   /// What the plot draws: the times and, per line (per class the tip's, then with the surface
   /// the instrument's), a value at each.
   void Samples(std::vector<double>& timesS, std::vector<PlotSeries>& series) const;
@@ -49,6 +51,8 @@ private:
     std::size_t Frames;
     std::vector<Extreme> Lines;
   };
+  /// A frame's (or a lost time's) bucket after the others, merging neighbours when full.
+  void AddBucket(Bucket one);
   /// Appends the frames of later (the bucket after into) to into.
   static void Append(Bucket& into, const Bucket& later);
   std::vector<std::string> Classes;

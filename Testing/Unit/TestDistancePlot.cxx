@@ -2,6 +2,7 @@
 // are, lines where their values are, nothing in a NaN gap), headless text, and the PNG file.
 #include "vpDangerBands.h"
 #include "vpDistancePlot.h"
+#include "vpDistancePlotRecorder.h"
 #include "vpPlotValues.h"
 #include "vpInputError.h"
 #include "vpTestSupport.h"
@@ -445,4 +446,34 @@ TEST(DistancePlot, UnwritableFolderThrowsAndLeavesNoFile)
   }
   EXPECT_FALSE(vp::test::FileExists(path));
   EXPECT_TRUE(FolderEntries(dir).empty());
+}
+
+// Issue 31: where the tracker lost the tool, the plot shows a gap: no value on any line at that
+// time, the values before and after as they were.
+TEST(DistancePlotRecorder, ALostPoseIsAGapOnEveryLine)
+{
+  vp::DistancePlotRecorder recorder({ "portal_vein" }, false);
+  auto frame = [](double t, double mm) {
+    vp::TrackedFrame f;
+    f.TimeS = t;
+    vp::ClassProximity c;
+    c.ClassName = "portal_vein";
+    c.InRange = true;
+    c.DistanceMm = mm;
+    c.Inside = false;
+    f.Proximity.Classes.push_back(c);
+    return f;
+  };
+  recorder.Add(frame(0.0, 12.0));
+  recorder.AddLost(0.1);
+  recorder.Add(frame(0.2, 8.0));
+  std::vector<double> times;
+  std::vector<vp::PlotSeries> series;
+  recorder.Samples(times, series);
+  ASSERT_EQ(series.size(), 1u);
+  ASSERT_EQ(times.size(), 3u);
+  EXPECT_EQ(times[1], 0.1);
+  EXPECT_TRUE(std::isnan(series[0].ValuesMm[1])) << "a gap, not a value carried over";
+  EXPECT_FALSE(std::isnan(series[0].ValuesMm[0]));
+  EXPECT_FALSE(std::isnan(series[0].ValuesMm[2]));
 }

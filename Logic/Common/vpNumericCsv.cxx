@@ -148,6 +148,26 @@ bool NumericCsvReader::Next(NumericRow& row)
   return false;
 }
 
+bool ParseSeparatedNumbers(const std::string& text, std::vector<double>& values, std::string& problem)
+{
+  std::string joined;
+  bool separator = true;
+  for (const char c : text)
+  {
+    const bool blank = c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == ',';
+    if (!blank && separator && !joined.empty())
+    {
+      joined += ',';
+    }
+    if (!blank)
+    {
+      joined += c;
+    }
+    separator = blank;
+  }
+  return ParseNumbers(joined, values, problem);
+}
+
 std::string TrimBlanks(const std::string& text)
 {
   const std::size_t first = text.find_first_not_of(" \t\r");

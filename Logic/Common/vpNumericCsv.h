@@ -18,6 +18,9 @@ struct NumericRow
 /// Splits "a,b,c" (blanks around commas allowed) into finite numbers. Returns false with a short
 /// problem ("NaN or infinite value", "'...' is not a list of numbers") otherwise.
 bool ParseNumbers(const std::string& text, std::vector<double>& values, std::string& problem);
+/// The same for numbers separated by any run of blanks, line breaks and commas ("1 0 0 10  0 1 0
+/// 20", as PLUS writes a transform, or a matrix over four lines).
+bool ParseSeparatedNumbers(const std::string& text, std::vector<double>& values, std::string& problem);
 
 /// Reads the numeric lines of a CSV file: a first line whose first field is not a number is a
 /// header, blank lines and lines starting with '#' are skipped. Throws vp::InputError naming the

@@ -5,8 +5,8 @@
 #include "vpRegularFile.h"
 
 #include <cmath>
+#include <cstdint>
 #include <fstream>
-#include <sstream>
 
 namespace vp
 {
@@ -120,26 +120,21 @@ std::vector<DwellPoint> FindDwellPoints(const std::vector<double>& timesS, const
 
 std::array<double, 16> ReadMatrixText(const std::string& fileName)
 {
-  RegularFileSize(fileName, "is a folder, not a transform", "is not a regular file (a device, pipe or socket), not a transform");
+  const std::uint64_t size =
+    RegularFileSize(fileName, "is a folder, not a transform", "is not a regular file (a device, pipe or socket), not a transform");
+  if (size > 65536)
+  {
+    throw InputError(fileName, "is " + std::to_string(size) + " bytes: not a 4x4 transform (16 numbers)");
+  }
   std::ifstream in(fileName);
   std::string text, line;
-  while (std::getline(in, line) && text.size() < 65536)
+  while (std::getline(in, line))
   {
     text += line.substr(0, line.find('#')) + " ";
   }
-  for (char& c : text)
-  {
-    c = (c == ',' || c == '\t' || c == '\r') ? ' ' : c;
-  }
-  std::istringstream numbers(text);
-  std::string joined;
-  for (std::string word; numbers >> word;)
-  {
-    joined += (joined.empty() ? "" : ",") + word;
-  }
   std::vector<double> values;
   std::string problem;
-  if (!ParseNumbers(joined, values, problem) || values.size() != 16)
+  if (!ParseSeparatedNumbers(text, values, problem) || values.size() != 16)
   {
     throw InputError(fileName, "expected a 4x4 transform: 16 numbers, row-major" +
         (problem.empty() ? ", got " + std::to_string(values.size()) : " (" + problem + ")"));

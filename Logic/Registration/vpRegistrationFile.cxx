@@ -7,13 +7,13 @@
 
 namespace vp
 {
-Matrix4 ReadTrackerToPatient(const std::string& fileName)
+Matrix4 ReadModelToWorld(const std::string& fileName, const std::string& what)
 {
-  const nlohmann::json root = ReadJsonFile(fileName, "a registration (register's RESULT.json)");
+  const nlohmann::json root = ReadJsonFile(fileName, what);
   if (!root.is_object() || !root.contains("model_to_world") || !root.at("model_to_world").is_array() ||
     root.at("model_to_world").size() != 16)
   {
-    throw InputError(fileName, "expected \"model_to_world\": an array of 16 numbers (row-major 4x4), as register writes it");
+    throw InputError(fileName, "expected \"model_to_world\": an array of 16 numbers (row-major 4x4)");
   }
   Matrix4 m{};
   for (int i = 0; i < 16; ++i)
@@ -25,18 +25,16 @@ Matrix4 ReadTrackerToPatient(const std::string& fileName)
     }
     m[i] = v.get<double>();
   }
-  double worst = std::abs(m[12]) + std::abs(m[13]) + std::abs(m[14]) + std::abs(m[15] - 1.0);
-  for (int a = 0; a < 3; ++a)
+  return m;
+}
+
+Matrix4 ReadTrackerToPatient(const std::string& fileName)
+{
+  const Matrix4 m = ReadModelToWorld(fileName, "a registration (register's RESULT.json)");
+  const std::string problem = RigidTransformProblem(m);
+  if (!problem.empty())
   {
-    for (int b = 0; b < 3; ++b)
-    {
-      const double dot = m[a] * m[b] + m[4 + a] * m[4 + b] + m[8 + a] * m[8 + b];
-      worst = std::max(worst, std::abs(dot - (a == b ? 1.0 : 0.0)));
-    }
-  }
-  if (worst > 1e-3)
-  {
-    throw InputError(fileName, "model_to_world is not a rigid transform (a rotation and a translation)");
+    throw InputError(fileName, "model_to_world is not a rigid transform: " + problem);
   }
   return InvertTransform(m);
 }

@@ -1,5 +1,7 @@
 #include "vpRigidTransform.h"
 
+#include "vpInputError.h" // NumberText
+
 #include <vtkMath.h>
 #include <vtkMatrix4x4.h>
 
@@ -51,5 +53,34 @@ double RotationBetweenDeg(const Matrix4& a, const Matrix4& b)
     }
   }
   return vtkMath::DegreesFromRadians(std::acos(std::clamp((trace - 1.0) / 2.0, -1.0, 1.0)));
+}
+
+std::string RigidTransformProblem(const Matrix4& m)
+{
+  if (std::abs(m[12]) > 1e-6 || std::abs(m[13]) > 1e-6 || std::abs(m[14]) > 1e-6 || std::abs(m[15] - 1.0) > 1e-6)
+  {
+    return "the last matrix row is not 0 0 0 1";
+  }
+  double worst = 0.0;
+  for (int a = 0; a < 3; ++a)
+  {
+    for (int b = 0; b < 3; ++b)
+    {
+      // (R^T R)_ab: columns a and b of R.
+      const double dot = m[a] * m[b] + m[4 + a] * m[4 + b] + m[8 + a] * m[8 + b];
+      worst = std::max(worst, std::abs(dot - (a == b ? 1.0 : 0.0)));
+    }
+  }
+  if (worst > 1e-3)
+  {
+    return "the rotation is not orthonormal (|R^T R - I| = " + NumberText(worst) + ")";
+  }
+  const double det = m[0] * (m[5] * m[10] - m[6] * m[9]) - m[1] * (m[4] * m[10] - m[6] * m[8]) +
+    m[2] * (m[4] * m[9] - m[5] * m[8]);
+  if (det < 0.0)
+  {
+    return "the rotation is a reflection (determinant -1)";
+  }
+  return "";
 }
 } // namespace vp

@@ -2,6 +2,7 @@
 #define vpRigidTransform_h
 
 #include <array>
+#include <string>
 
 namespace vp
 {
@@ -18,6 +19,11 @@ Matrix4 InvertTransform(const Matrix4& m);
 Matrix4 RotationAboutAxis(Point3 axis, double angleRad, const Point3& translation);
 
 Point3 TransformPoint(const Matrix4& m, const Point3& p);
+
+/// Why m is not a rigid transform ("the last matrix row is not 0 0 0 1", "the rotation is not
+/// orthonormal (|R^T R - I| = ...)" beyond 1e-3, "the rotation is a reflection (determinant -1)"),
+/// or "" when it is one.
+std::string RigidTransformProblem(const Matrix4& m);
 
 /// The angle of the rotation that takes a's orientation to b's (degrees, 0 to 180).
 double RotationBetweenDeg(const Matrix4& a, const Matrix4& b);

@@ -63,12 +63,6 @@ JsonPoseReader::Item ToItem(const nlohmann::json& entry)
   }
   return item;
 }
-
-bool IsDeclaration(const std::string& key)
-{
-  return key == "space" || key == "units" || key == "time_units" || key == "pose-space" || key == "pose-units" ||
-    key == "time-units";
-}
 } // namespace
 
 PoseReading JsonPoseReader::Declarations() const
@@ -159,9 +153,9 @@ void JsonPoseReader::Parse(std::unique_ptr<JsonFileInput> in)
         // Only "poses" and the declarations are kept: any other member, however long, is read
         // and dropped.
         topKey = parsed.get<std::string>();
-        return topKey == "poses" || IsDeclaration(topKey);
+        return topKey == "poses" || IsPoseDeclarationKey(topKey);
       }
-      if (depth == 1 && event == Event::value && IsDeclaration(topKey))
+      if (depth == 1 && event == Event::value && IsPoseDeclarationKey(topKey))
       {
         this->Declare(topKey, parsed, count);
         return false;

@@ -57,7 +57,7 @@ private:
   void Parse(std::unique_ptr<JsonFileInput> in);
   /// Called by the parser's thread for each pose: waits while the queue is full.
   void Hand(Item item);
-  /// A top-level declaration (IsDeclaration) into Declared; refused after a pose.
+  /// A top-level declaration (IsPoseDeclarationKey) into Declared; refused after a pose.
   void Declare(const std::string& key, const nlohmann::json& value, std::size_t posesBefore);
 
   std::string FileName;

@@ -6,6 +6,7 @@
 #include "vpNumericCsv.h"
 #include "vpPoseReading.h"
 #include "vpRigidTransform.h"
+#include "vpText.h"
 #include "vpTrackedSequence.h"
 
 #include <algorithm>
@@ -16,11 +17,6 @@ namespace vp
 {
 namespace
 {
-bool EndsWith(const std::string& text, const std::string& suffix)
-{
-  return text.size() >= suffix.size() && text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
 /// How a file's numbers are read once the settings and the file's declarations are resolved.
 struct ResolvedReading
 {
@@ -85,14 +81,21 @@ struct PoseColumns
   bool Named = false; ///< from a header's names, not by position
 };
 
-/// A file without a header: time then 16 (a matrix, row-major) or 7 (x,y,z, qw,qx,qy,qz) numbers.
-PoseColumns ColumnsByPosition(std::size_t count, std::size_t line, const std::string& fileName)
+/// Refuses a row whose count of numbers no pose has: a time and 16 (a matrix) or 7 (a position and
+/// a quaternion), whatever order a header puts them in.
+void CheckPoseNumberCount(std::size_t count, std::size_t line, const std::string& fileName)
 {
   if (count != 17 && count != 8)
   {
     throw InputError(fileName, "line " + std::to_string(line) +
         ": expected 17 numbers (time and a 4x4 matrix) or 8 (time, x,y,z, qw,qx,qy,qz), got " + std::to_string(count));
   }
+}
+
+/// A file without a header: time then 16 (a matrix, row-major) or 7 (x,y,z, qw,qx,qy,qz) numbers.
+PoseColumns ColumnsByPosition(std::size_t count, std::size_t line, const std::string& fileName)
+{
+  CheckPoseNumberCount(count, line, fileName);
   PoseColumns columns;
   columns.Count = count;
   for (std::size_t k = 1; k < count; ++k)
@@ -104,9 +107,9 @@ PoseColumns ColumnsByPosition(std::size_t count, std::size_t line, const std::st
 
 /// The place of one header name in a pose: 0 time, 1..16 matrix m00..m33, 17..19 x,y,z,
 /// 20..23 qw,qx,qy,qz; -1 when it names nothing of a pose.
-int PoseFieldOf(std::string name)
+int PoseFieldOf(const std::string& header)
 {
-  std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::string name = LowerCase(header);
   if (name == "time" || name == "t" || name == "timestamp")
   {
     return 0;
@@ -178,36 +181,6 @@ PoseColumns ColumnsByName(const std::vector<std::string>& header, const std::str
   return columns;
 }
 
-// The problem with a model-to-world matrix, or "" when it is a rigid pose.
-std::string RigidProblem(const std::array<double, 16>& m)
-{
-  if (std::abs(m[12]) > 1e-6 || std::abs(m[13]) > 1e-6 || std::abs(m[14]) > 1e-6 || std::abs(m[15] - 1.0) > 1e-6)
-  {
-    return "the last matrix row is not 0 0 0 1";
-  }
-  double worst = 0.0;
-  for (int a = 0; a < 3; ++a)
-  {
-    for (int b = 0; b < 3; ++b)
-    {
-      // (R^T R)_ab: columns a and b of R.
-      const double dot = m[a] * m[b] + m[4 + a] * m[4 + b] + m[8 + a] * m[8 + b];
-      worst = std::max(worst, std::abs(dot - (a == b ? 1.0 : 0.0)));
-    }
-  }
-  if (worst > 1e-3)
-  {
-    return "the rotation is not orthonormal (|R^T R - I| = " + NumberText(worst) + ")";
-  }
-  const double det = m[0] * (m[5] * m[10] - m[6] * m[9]) - m[1] * (m[4] * m[10] - m[6] * m[8]) +
-    m[2] * (m[4] * m[9] - m[5] * m[8]);
-  if (det < 0.0)
-  {
-    return "the rotation is a reflection (determinant -1)";
-  }
-  return "";
-}
-
 // A pose from the numbers after the time: 16 (matrix) or 7 (position, quaternion w,x,y,z), read
 // as reading says (units, frame); "" or the problem.
 std::string MakePose(const double* values, std::size_t count, const ResolvedReading& reading, TrackedPose& pose)
@@ -227,7 +200,7 @@ std::string MakePose(const double* values, std::size_t count, const ResolvedRead
     pose.ModelToWorld = PoseFromQuaternion(
       { values[0], values[1], values[2] }, { values[3] / norm, values[4] / norm, values[5] / norm, values[6] / norm });
   }
-  std::string problem = RigidProblem(pose.ModelToWorld);
+  std::string problem = RigidTransformProblem(pose.ModelToWorld);
   for (int a = 0; a < 3; ++a)
   {
     pose.ModelToWorld[4 * a + 3] *= reading.MillimetresPerUnit;
@@ -278,10 +251,7 @@ TrackedPose CsvPose(const NumericRow& row, const PoseColumns& columns, const Tra
   const std::string& fileName)
 {
   const std::string where = "line " + std::to_string(row.Line) + ": ";
-  if (row.Values.size() != 17 && row.Values.size() != 8)
-  {
-    ColumnsByPosition(row.Values.size(), row.Line, fileName); // throws: no pose has this many numbers
-  }
+  CheckPoseNumberCount(row.Values.size(), row.Line, fileName);
   if (row.Values.size() != columns.Count)
   {
     throw InputError(fileName, where + std::to_string(row.Values.size()) + " numbers where " +
@@ -435,7 +405,7 @@ bool PoseStream::NextOfSequence(TrackedPose& pose)
   if (!this->SequenceReference.empty())
   {
     const std::array<double, 16>& reference = frame.Transforms.at(this->SequenceReference);
-    const std::string problem = RigidProblem(reference);
+    const std::string problem = RigidTransformProblem(reference);
     if (!problem.empty())
     {
       throw InputError(this->Name, where + this->SequenceReference + "Transform: " + problem);

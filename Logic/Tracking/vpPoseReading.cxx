@@ -2,6 +2,7 @@
 
 #include "vpInputError.h"
 #include "vpNumericCsv.h"
+#include "vpText.h"
 
 #include <algorithm>
 #include <cctype>
@@ -15,12 +16,18 @@ const char* PoseSpaceName(PoseSpace space)
 
 namespace
 {
-std::string Lower(std::string text)
+/// Which setting a declaration's key names: 0 space, 1 units, 2 time units, -1 none.
+int DeclaredSetting(const std::string& key)
 {
-  std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return text;
+  const std::string k = LowerCase(key);
+  return k == "pose-space" || k == "space" ? 0 : k == "pose-units" || k == "units" ? 1 : k == "time-units" || k == "time_units" ? 2 : -1;
 }
 } // namespace
+
+bool IsPoseDeclarationKey(const std::string& key)
+{
+  return DeclaredSetting(key) >= 0;
+}
 
 void ApplyPoseDeclaration(const std::string& line, const std::string& source, PoseReading& declared)
 {
@@ -29,13 +36,14 @@ void ApplyPoseDeclaration(const std::string& line, const std::string& source, Po
   {
     return;
   }
-  const std::string key = Lower(TrimBlanks(line.substr(0, separator)));
+  const std::string key = LowerCase(TrimBlanks(line.substr(0, separator)));
   const std::string value = TrimBlanks(line.substr(separator + 1));
-  const std::string lower = Lower(value);
+  const std::string lower = LowerCase(value);
   auto refuse = [&](const char* expected) {
     throw InputError(source, "declares " + key + " '" + Printable(value) + "'; expected " + expected);
   };
-  if (key == "pose-space" || key == "space")
+  const int setting = DeclaredSetting(key);
+  if (setting == 0)
   {
     if (lower != "lps" && lower != "ras")
     {
@@ -43,7 +51,7 @@ void ApplyPoseDeclaration(const std::string& line, const std::string& source, Po
     }
     declared.Space = lower == "ras" ? PoseSpace::RAS : PoseSpace::LPS;
   }
-  else if (key == "pose-units" || key == "units")
+  else if (setting == 1)
   {
     if (lower != "mm" && lower != "m")
     {
@@ -51,7 +59,7 @@ void ApplyPoseDeclaration(const std::string& line, const std::string& source, Po
     }
     declared.MillimetresPerUnit = lower == "m" ? 1000.0 : 1.0;
   }
-  else if (key == "time-units" || key == "time_units")
+  else if (setting == 2)
   {
     if (lower != "s" && lower != "ms")
     {

@@ -48,6 +48,8 @@ const char* PoseSpaceName(PoseSpace space);
 /// declare nothing (any other comment) leave reading as it is; a known key with a value it cannot
 /// take throws InputError(source, ...).
 void ApplyPoseDeclaration(const std::string& line, const std::string& source, PoseReading& declared);
+/// Whether a key declares how poses are read (ApplyPoseDeclaration's keys, any case).
+bool IsPoseDeclarationKey(const std::string& key);
 } // namespace vp
 
 #endif

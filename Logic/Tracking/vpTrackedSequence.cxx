@@ -3,6 +3,7 @@
 #include "vpInputError.h"
 #include "vpNumericCsv.h"
 #include "vpRegularFile.h"
+#include "vpText.h"
 
 #include <algorithm>
 #include <cctype>
@@ -14,17 +15,6 @@ namespace vp
 {
 namespace
 {
-bool EndsWith(const std::string& text, const std::string& suffix)
-{
-  return text.size() >= suffix.size() && text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
-std::string Lower(std::string text)
-{
-  std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return text;
-}
-
 /// One header line as a key and its value: "Key = Value" (MetaImage) or "key:=value" (NRRD);
 /// false for a line that is neither (a NRRD field "type: uchar", a comment).
 bool SplitField(const std::string& line, bool nrrd, std::string& key, std::string& value)
@@ -37,6 +27,13 @@ bool SplitField(const std::string& line, bool nrrd, std::string& key, std::strin
   key = TrimBlanks(line.substr(0, at));
   value = TrimBlanks(line.substr(at + (nrrd ? 2 : 1)));
   return !key.empty();
+}
+
+/// A transform's name without its "Transform" ("StylusToTrackerTransform" -> "StylusToTracker").
+std::string WithoutTransformSuffix(const std::string& name)
+{
+  const std::string suffix = "Transform";
+  return EndsWith(name, suffix) ? name.substr(0, name.size() - suffix.size()) : name;
 }
 
 /// A per-frame field into its frame: "Seq_Frame0012_StylusToTrackerTransform" and its value.
@@ -69,39 +66,23 @@ void AddFrameField(const std::string& key, const std::string& value, std::map<lo
   }
   else if (EndsWith(field, "TransformStatus"))
   {
-    const std::string status = value;
-    if (status != "OK" && status != "INVALID" && status != "MISSING" && status != "OUT_OF_VIEW")
+    if (value != "OK" && value != "INVALID" && value != "MISSING" && value != "OUT_OF_VIEW")
     {
-      throw InputError(where + "the status '" + Printable(status) + "' is none of OK, INVALID, MISSING, OUT_OF_VIEW");
+      throw InputError(where + "the status '" + Printable(value) + "' is none of OK, INVALID, MISSING, OUT_OF_VIEW");
     }
-    frame.Valid[field.substr(0, field.size() - std::char_traits<char>::length("TransformStatus"))] = status == "OK";
+    frame.Valid[WithoutTransformSuffix(field.substr(0, field.size() - std::string("Status").size()))] = value == "OK";
   }
   else if (EndsWith(field, "Transform"))
   {
-    std::string spaced = value;
-    std::replace(spaced.begin(), spaced.end(), ' ', ',');
     std::vector<double> numbers;
     std::string problem;
-    // Blanks separate the numbers: consecutive ones make empty fields, which are dropped here.
-    std::string joined;
-    for (std::size_t i = 0; i < spaced.size(); ++i)
-    {
-      if (!(spaced[i] == ',' && (joined.empty() || joined.back() == ',')))
-      {
-        joined += spaced[i];
-      }
-    }
-    while (!joined.empty() && joined.back() == ',')
-    {
-      joined.pop_back();
-    }
-    if (!ParseNumbers(joined, numbers, problem) || numbers.size() != 16)
+    if (!ParseSeparatedNumbers(value, numbers, problem) || numbers.size() != 16)
     {
       throw InputError(where + field + " is not 16 finite numbers");
     }
     std::array<double, 16> m{};
     std::copy(numbers.begin(), numbers.end(), m.begin());
-    frame.Transforms[field.substr(0, field.size() - std::char_traits<char>::length("Transform"))] = m;
+    frame.Transforms[WithoutTransformSuffix(field)] = m;
   }
 }
 } // namespace
@@ -113,11 +94,7 @@ std::string TrackedSequence::Resolve(const std::string& name, const std::string&
   {
     names += (names.empty() ? "" : ", ") + n;
   }
-  std::string wanted = name;
-  if (EndsWith(wanted, "Transform"))
-  {
-    wanted.resize(wanted.size() - std::char_traits<char>::length("Transform"));
-  }
+  const std::string wanted = WithoutTransformSuffix(name);
   if (wanted.empty())
   {
     if (!this->DefaultTransform.empty() && std::count(this->TransformNames.begin(), this->TransformNames.end(), this->DefaultTransform))
@@ -171,7 +148,7 @@ TrackedSequence ParseTrackedSequence(const std::string& text, const std::string&
     }
     if (key == "DefaultFrameTransformName")
     {
-      sequence.DefaultTransform = EndsWith(value, "Transform") ? value.substr(0, value.size() - 9) : value;
+      sequence.DefaultTransform = WithoutTransformSuffix(value);
     }
     else if (key.compare(0, 9, "Seq_Frame") == 0)
     {
@@ -216,7 +193,7 @@ TrackedSequence ReadTrackedSequence(const std::string& fileName)
 
 bool IsSequenceFileName(const std::string& fileName)
 {
-  const std::string lower = Lower(fileName);
+  const std::string lower = LowerCase(fileName);
   return EndsWith(lower, ".mha") || EndsWith(lower, ".mhd") || EndsWith(lower, ".nrrd") || EndsWith(lower, ".nhdr");
 }
 } // namespace vp

@@ -10,6 +10,7 @@
 #include "vpPointCsv.h"
 #include "vpDwellPoints.h"
 #include "vpPoseFile.h"
+#include "vpRegistrationFile.h"
 #include "vpTrackingOptions.h"
 #include "vpSurfaceIcpRegistration.h"
 #include "vtkVesselMeshReader.h"
@@ -37,27 +38,6 @@ Json MatrixJson(const std::array<double, 16>& m)
 Json PointJson(const std::array<double, 3>& p)
 {
   return Json::array({ p[0], p[1], p[2] });
-}
-
-std::array<double, 16> ReadInitialTransform(const std::string& file)
-{
-  const nlohmann::json root = ReadJsonFile(file, "an initial transform");
-  if (!root.is_object() || !root.contains("model_to_world") || !root.at("model_to_world").is_array() ||
-    root.at("model_to_world").size() != 16)
-  {
-    throw InputError(file, "expected \"model_to_world\": an array of 16 numbers (row-major 4x4)");
-  }
-  std::array<double, 16> m{};
-  for (int i = 0; i < 16; ++i)
-  {
-    const auto& v = root.at("model_to_world")[i];
-    if (!v.is_number() || !std::isfinite(v.get<double>()))
-    {
-      throw InputError(file, "model_to_world: element " + std::to_string(i) + " is not a finite number");
-    }
-    m[i] = v.get<double>();
-  }
-  return m;
 }
 
 /// What a registration says once its result is written (a refusal of the output leaves no word
@@ -131,7 +111,7 @@ Json RunIcp(const cli::ParsedArguments& args, std::string& said)
   std::string start = "identity";
   if (args.IsSet("initial"))
   {
-    initial = ReadInitialTransform(args.GetString("initial"));
+    initial = ReadModelToWorld(args.GetString("initial"), "an initial transform");
     start = args.GetString("initial");
   }
   else if (args.IsSet("modelPoints") || args.IsSet("worldPoints"))

@@ -1,5 +1,7 @@
 #include "vpVulkanContext.h"
 
+#include "vpText.h"
+
 #include <algorithm>
 #include <cctype>
 #include <chrono>
@@ -57,12 +59,6 @@ int Preference(VkPhysicalDeviceType t)
     case VK_PHYSICAL_DEVICE_TYPE_CPU: return 3;
     default: return 4;
   }
-}
-
-std::string Lower(std::string s)
-{
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return s;
 }
 
 bool WantsValidation()
@@ -233,7 +229,7 @@ int ChooseDevice(const std::vector<VkPhysicalDevice>& devices, const std::string
   {
     for (std::size_t i = 0; i < devices.size() && chosen < 0; ++i)
     {
-      if (Lower(Describe(devices[i], 0).Name).find(Lower(selector)) != std::string::npos)
+      if (LowerCase(Describe(devices[i], 0).Name).find(LowerCase(selector)) != std::string::npos)
       {
         chosen = static_cast<int>(i);
       }

@@ -383,6 +383,12 @@ bool PoseStream::NextOfSequence(TrackedPose& pose)
   {
     throw InputError(this->Name, where + "no Timestamp");
   }
+  // Every frame's time follows the one before, a lost frame's too: its time is all it says.
+  if (this->Read > 0 && !(frame.TimeS > this->Sequence->Frames[this->Read - 1].TimeS))
+  {
+    throw InputError(this->Name, where + "time " + NumberText(frame.TimeS) + " is not after the previous " +
+        NumberText(this->Sequence->Frames[this->Read - 1].TimeS));
+  }
   if (!this->Layout)
   {
     this->Layout = std::make_unique<Format>();

@@ -395,6 +395,11 @@ TEST_F(PoseFile, ASequenceSaysWhichToolAndWhenTheTrackerLostIt)
     "line 4: the status 'MAYBE' is none of OK, INVALID, MISSING, OUT_OF_VIEW");
   EXPECT_EQ(this->Refusal("empty.igs.mha", header + "ElementDataFile = LOCAL\n"),
     "no tracked frames (no Seq_FrameNNNN_<From>To<To>Transform fields): not a tracked sequence");
+  // A lost frame's time is all it says: it must follow the frame before, as any frame's.
+  EXPECT_EQ(this->Refusal("back.igs.mha", header + "Seq_Frame0000_ToolToTrackerTransform = 1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1\n"
+                                                   "Seq_Frame0000_Timestamp = 1\nSeq_Frame0001_ToolToTrackerTransformStatus = MISSING\n"
+                                                   "Seq_Frame0001_Timestamp = 0.5\n"),
+    "frame 1: time 0.5 is not after the previous 1");
   EXPECT_EQ(this->Refusal("notime.igs.mha", header + "Seq_Frame0000_ToolToTrackerTransform = 1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1\n"),
     "frame 0: no Timestamp");
 }

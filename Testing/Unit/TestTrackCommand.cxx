@@ -1152,5 +1152,11 @@ TEST_F(PoseForms, ARegistrationTakesTrackerPosesIntoThePatient)
     " --registration " + this->WriteText("bad.json", "{\"model_to_world\": [2,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1]}"));
   EXPECT_EQ(bad.ExitCode, 1);
   EXPECT_NE(bad.Err.find("model_to_world is not a rigid transform"), std::string::npos) << bad.Err;
+  // A registration that mirrors the patient is no registration either.
+  const ToolRun mirror = this->Track(this->Poses("t3.csv", "time,x,y,z,qw,qx,qy,qz\n", tracker), this->Dir + "/mirror",
+    " --registration " + this->WriteText("mirror.json", "{\"model_to_world\": [-1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1]}"));
+  EXPECT_EQ(mirror.ExitCode, 1);
+  EXPECT_NE(mirror.Err.find("model_to_world is not a rigid transform: the rotation is a reflection"), std::string::npos) << mirror.Err;
+  EXPECT_FALSE(vp::test::FileExists(this->Dir + "/mirror"));
 }
 } // namespace

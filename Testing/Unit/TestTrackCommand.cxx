@@ -974,6 +974,7 @@ TEST_F(PoseForms, MisreadPosesAreSaidAndStrictRefusesThem)
   };
   const std::vector<Case> cases = {
     { "metres", at(0.001, 1.0, 1.0), { "no_pose_near_vessels", "metres" } },
+    { "micrometres", at(1000.0, 1.0, 1.0), { "no_pose_near_vessels", "micrometres" } },
     { "mirrored", at(1.0, -1.0, 1.0), { "no_pose_near_vessels", "mirrored" } },
     { "milliseconds", at(1.0, 1.0, 1000.0), { "milliseconds" } },
     { "lps", at(1.0, 1.0, 1.0), {} },
@@ -1104,6 +1105,19 @@ TEST(RegisterFromARecording, PlusPhantomLandmarksRegisterWithinHalfAMillimetre)
   EXPECT_EQ(refused.ExitCode, 1);
   EXPECT_NE(refused.Err.find("8 rests of the stylus, but " + nine + " has 9: the lists must pair up"), std::string::npos) << refused.Err;
   EXPECT_FALSE(vp::test::FileExists(dir + "/R9.json"));
+  // A tip transform that is not 16 numbers, or a file far too long to be one: one line, nothing written.
+  const std::string fifteen = vp::test::WriteBytes(dir, "fifteen.txt", "1 0 0 0\n0 1 0 0\n0 0 1 0\n0 0 0\n");
+  const std::string huge = vp::test::WriteBytes(dir, "huge.txt", std::string(70000, ' ') + "1\n");
+  const std::vector<std::pair<std::string, std::string>> bad = { { fifteen, "expected a 4x4 transform: 16 numbers, row-major, got 15" },
+    { huge, "is 70002 bytes: not a 4x4 transform (16 numbers)" } };
+  for (const auto& [file, problem] : bad)
+  {
+    const ToolRun r2 = RunTool(dir, "register landmarks --model-points " + landmarks + " --sequence " + recording +
+        " --tool Stylus --reference Reference --tip-transform " + file + " -o " + dir + "/Rbad.json");
+    EXPECT_EQ(r2.ExitCode, 1) << file;
+    EXPECT_EQ(r2.Err, "vesselproximity: error: " + file + ": " + problem + "\n");
+    EXPECT_FALSE(vp::test::FileExists(dir + "/Rbad.json"));
+  }
 }
 } // namespace
 

@@ -73,6 +73,10 @@ TipDistanceTotals ComputeTipDistancesInChunks(const TipDistanceRequest& request,
     {
       c /= n;
     }
+    if (request.Registration)
+    {
+      *axis = TransformDirection(request.Registration->TrackerToPatient, *axis);
+    }
   }
   vtkSmartPointer<vtkExactVesselDistance> reference;
   if (request.CompareWithExact)
@@ -100,8 +104,15 @@ TipDistanceTotals ComputeTipDistancesInChunks(const TipDistanceRequest& request,
   for (std::size_t first = 0; first < request.TipsMm.size(); first += chunkTips)
   {
     const std::size_t n = std::min(chunkTips, request.TipsMm.size() - first);
-    const std::vector<std::array<double, 3>> tips(request.TipsMm.begin() + static_cast<std::ptrdiff_t>(first),
+    std::vector<std::array<double, 3>> tips(request.TipsMm.begin() + static_cast<std::ptrdiff_t>(first),
       request.TipsMm.begin() + static_cast<std::ptrdiff_t>(first + n));
+    if (request.Registration)
+    {
+      for (auto& tip : tips)
+      {
+        tip = TransformPoint(request.Registration->TrackerToPatient, tip);
+      }
+    }
     const std::vector<std::array<double, 3>> axes(axis ? n : 0, axis ? *axis : std::array<double, 3>{});
     TipDistanceAnswer answer;
     const double start = NowMs();
@@ -143,6 +154,9 @@ Json TipDistanceHeaderJson(const TipDistanceRequest& request, bool ras)
   out["range_mm"] = engine->GetRangeMm();
   out["error_bound_mm"] = engine->GetErrorBoundMm();
   out["surfaces"] = SurfacesJson(engine, request.Vessels);
+  out["registration"] = request.Registration
+    ? Json{ { "file", request.Registration->FileName }, { "kind", request.Registration->Kind } }
+    : Json(nullptr);
   return out;
 }
 

@@ -3,6 +3,7 @@
 
 #include "vpExactComparison.h"
 #include "vpProximityResult.h"
+#include "vpRegistrationFile.h"
 #include "vpVesselMeshSet.h"
 #include "vtkVesselDistanceEngine.h"
 
@@ -34,6 +35,9 @@ struct TipDistanceRequest
   /// The scalpel's axis (LPS, any length), for the directional distance along it; throws
   /// ParameterError("Axis") when it is the zero vector.
   std::optional<std::array<double, 3>> Axis;
+  /// Registration: the tips and the axis are the tracker's (in the LPS convention), taken into
+  /// the patient by it; the answers, tips included, are the patient's. Unset: they are the patient's.
+  std::optional<TrackerRegistration> Registration;
 };
 
 struct TipDistanceAnswer
@@ -69,7 +73,7 @@ TipDistanceTotals ComputeTipDistancesInChunks(const TipDistanceRequest& request,
   const std::function<void(const TipDistanceAnswer& chunk, std::size_t firstTip)>& visit);
 
 /// The JSON report of `distance --json` and of the CLI's report file: the engine, its bound, the
-/// surfaces, per tip the nearest class and every class's answer (points in RAS when ras), the
+/// surfaces, the registration ({"file", "kind"} or null), per tip the nearest class and every class's answer (points in RAS when ras), the
 /// comparison with the exact engine, and the times.
 nlohmann::ordered_json TipDistanceReportJson(
   const TipDistanceRequest& request, const TipDistanceAnswer& answer, bool ras, double loadMs);

@@ -130,6 +130,10 @@ bool TrackingRecorder::Run(PoseSource& poses, RunFolder& run)
     warnings.push_back({ { "kind", w.Kind }, { "text", w.Text } });
   }
   doc["warnings"] = warnings;
+  if (const SettledReading* reading = poses.GetSettledReading())
+  {
+    doc["pose_reading"] = PoseReadingJson(*reading);
+  }
   // Times the tracker did not see the tool: no frame, no distance (a gap in the record).
   doc["poses_lost"] = session.GetNumberOfLostPoses();
   if (session.GetNumberOfLostPoses() > 0)

@@ -1,7 +1,9 @@
 #include "vpRegistrationFile.h"
 
 #include "vpInputError.h"
+#include "vpItkTransformFile.h"
 #include "vpJsonFile.h"
+#include "vpText.h"
 
 #include <cmath>
 
@@ -28,14 +30,39 @@ Matrix4 ReadModelToWorld(const std::string& fileName, const std::string& what)
   return m;
 }
 
-Matrix4 ReadTrackerToPatient(const std::string& fileName)
+TrackerRegistration ReadTrackerRegistration(const std::string& fileName)
 {
+  TrackerRegistration registration;
+  registration.FileName = fileName;
+  if (IsItkTransformFileName(fileName))
+  {
+    const Matrix4 fromParent = ReadItkLinearTransform(fileName);
+    const std::string problem = RigidTransformProblem(fromParent);
+    if (!problem.empty())
+    {
+      throw InputError(fileName, "the transform is not rigid: " + problem);
+    }
+    // Slicer's tracker-to-RAS is F * inverse(fromParent) * F (F: x and y negated, ITK's LPS to
+    // RAS); from the tracker's numbers as RAS to the patient's LPS that is F * it * F, so the
+    // Fs cancel and only the inversion of ITK's resampling sense remains.
+    registration.TrackerToPatient = InvertTransform(fromParent);
+    registration.TrackerSpace = PoseSpace::RAS;
+    registration.Kind = "a 3D Slicer transform";
+    return registration;
+  }
+  if (!EndsWith(LowerCase(fileName), ".json"))
+  {
+    throw InputError(fileName, "not a registration: expected register's RESULT.json or a 3D Slicer transform (.h5, .tfm, .txt, .mat)");
+  }
   const Matrix4 m = ReadModelToWorld(fileName, "a registration (register's RESULT.json)");
   const std::string problem = RigidTransformProblem(m);
   if (!problem.empty())
   {
     throw InputError(fileName, "model_to_world is not a rigid transform: " + problem);
   }
-  return InvertTransform(m);
+  registration.TrackerToPatient = InvertTransform(m);
+  registration.TrackerSpace = PoseSpace::LPS;
+  registration.Kind = "register's result";
+  return registration;
 }
 } // namespace vp

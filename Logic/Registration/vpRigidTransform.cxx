@@ -41,6 +41,11 @@ Point3 TransformPoint(const Matrix4& m, const Point3& p)
     m[8] * p[0] + m[9] * p[1] + m[10] * p[2] + m[11] };
 }
 
+Point3 TransformDirection(const Matrix4& m, const Point3& v)
+{
+  return { m[0] * v[0] + m[1] * v[1] + m[2] * v[2], m[4] * v[0] + m[5] * v[1] + m[6] * v[2], m[8] * v[0] + m[9] * v[1] + m[10] * v[2] };
+}
+
 double RotationBetweenDeg(const Matrix4& a, const Matrix4& b)
 {
   // trace(Ra^T Rb) = 1 + 2 cos(angle)

@@ -19,6 +19,8 @@ Matrix4 InvertTransform(const Matrix4& m);
 Matrix4 RotationAboutAxis(Point3 axis, double angleRad, const Point3& translation);
 
 Point3 TransformPoint(const Matrix4& m, const Point3& p);
+/// m's rotation applied to a direction (it turns, it does not move).
+Point3 TransformDirection(const Matrix4& m, const Point3& v);
 
 /// Why m is not a rigid transform ("the last matrix row is not 0 0 0 1", "the rotation is not
 /// orthonormal (|R^T R - I| = ...)" beyond 1e-3, "the rotation is a reflection (determinant -1)"),

@@ -94,4 +94,16 @@ Json TrackingSummaryJson(const TrackingSummary& s, vtkScalpelTrackingLogic* logi
   }
   return out;
 }
+
+Json PoseReadingJson(const SettledReading& reading)
+{
+  Json out;
+  out["space"] = PoseSpaceName(reading.Space);
+  out["units"] = reading.MillimetresPerUnit == 1000.0 ? "m" : "mm";
+  out["time_units"] = reading.SecondsPerUnit == 0.001 ? "ms" : "s";
+  out["registration"] = reading.Registration
+    ? Json{ { "file", reading.Registration->FileName }, { "kind", reading.Registration->Kind } }
+    : Json(nullptr);
+  return out;
+}
 } // namespace vp

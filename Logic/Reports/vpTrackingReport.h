@@ -2,6 +2,7 @@
 #define vpTrackingReport_h
 
 #include "vpExactComparison.h"
+#include "vpPoseReading.h"
 #include "vpTrackingSummary.h"
 #include "vpVesselMeshSet.h"
 
@@ -21,6 +22,10 @@ namespace vp
 /// the frames (its engine, scalpel and thresholds); surface: whether the whole instrument was measured.
 nlohmann::ordered_json TrackingSummaryJson(const TrackingSummary& summary, vtkScalpelTrackingLogic* tracking, bool surface,
   const std::vector<NamedMesh>& vessels, const std::string& posesName, const ExactComparison* comparison);
+
+/// How the poses were read, for summary.json: {"space", "units", "time_units", "registration":
+/// {"file", "kind"} or null}.
+nlohmann::ordered_json PoseReadingJson(const SettledReading& reading);
 } // namespace vp
 
 #endif

@@ -17,18 +17,9 @@ namespace vp
 {
 namespace
 {
-/// How a file's numbers are read once the settings and the file's declarations are resolved.
-struct ResolvedReading
-{
-  PoseSpace Space = PoseSpace::LPS;
-  double MillimetresPerUnit = 1.0;
-  double SecondsPerUnit = 1.0;
-  std::optional<std::array<double, 16>> TrackerToPatient;
-};
-
 /// The settings a front end gave over what the file declares, each else its default; a setting
 /// the file contradicts is refused, naming both.
-ResolvedReading Resolve(const PoseReading& given, const PoseReading& declared, const std::string& fileName)
+SettledReading Resolve(const PoseReading& given, const PoseReading& declared, const std::string& fileName)
 {
   auto unitName = [](double mmPerUnit) { return std::string(mmPerUnit == 1000.0 ? "m" : "mm"); };
   auto timeName = [](double sPerUnit) { return std::string(sPerUnit == 0.001 ? "ms" : "s"); };
@@ -47,17 +38,18 @@ ResolvedReading Resolve(const PoseReading& given, const PoseReading& declared, c
     throw ParameterError("TimeUnits", timeName(*given.SecondsPerUnit) + ", but " + fileName + " declares " +
         timeName(*declared.SecondsPerUnit));
   }
-  ResolvedReading r;
-  r.Space = given.Space ? *given.Space : declared.Space.value_or(PoseSpace::LPS);
+  SettledReading r;
+  const PoseSpace fallback = given.Registration ? given.Registration->TrackerSpace : PoseSpace::LPS;
+  r.Space = given.Space ? *given.Space : declared.Space.value_or(fallback);
   r.MillimetresPerUnit = given.MillimetresPerUnit ? *given.MillimetresPerUnit : declared.MillimetresPerUnit.value_or(1.0);
   r.SecondsPerUnit = given.SecondsPerUnit ? *given.SecondsPerUnit : declared.SecondsPerUnit.value_or(1.0);
-  r.TrackerToPatient = given.TrackerToPatient;
+  r.Registration = given.Registration;
   return r;
 }
 
 /// Declarations that came after the poses they would have changed: refused unless they say what
 /// the poses were read as.
-void CheckLateDeclarations(const PoseReading& late, const ResolvedReading& used, const std::string& fileName)
+void CheckLateDeclarations(const PoseReading& late, const SettledReading& used, const std::string& fileName)
 {
   const bool space = late.Space && *late.Space != used.Space;
   const bool units = late.MillimetresPerUnit && *late.MillimetresPerUnit != used.MillimetresPerUnit;
@@ -183,7 +175,7 @@ PoseColumns ColumnsByName(const std::vector<std::string>& header, const std::str
 
 // A pose from the numbers after the time: 16 (matrix) or 7 (position, quaternion w,x,y,z), read
 // as reading says (units, frame); "" or the problem.
-std::string MakePose(const double* values, std::size_t count, const ResolvedReading& reading, TrackedPose& pose)
+std::string MakePose(const double* values, std::size_t count, const SettledReading& reading, TrackedPose& pose)
 {
   if (count == 16)
   {
@@ -213,9 +205,9 @@ std::string MakePose(const double* values, std::size_t count, const ResolvedRead
       pose.ModelToWorld[k] = -pose.ModelToWorld[k];
     }
   }
-  if (reading.TrackerToPatient)
+  if (reading.Registration)
   {
-    pose.ModelToWorld = MultiplyTransforms(*reading.TrackerToPatient, pose.ModelToWorld);
+    pose.ModelToWorld = MultiplyTransforms(reading.Registration->TrackerToPatient, pose.ModelToWorld);
   }
   return problem;
 }
@@ -224,7 +216,7 @@ std::string MakePose(const double* values, std::size_t count, const ResolvedRead
 // quaternion), after the previous pose (null for the first), or throws naming fileName and where
 // (the line or pose).
 TrackedPose CheckedPose(double time, const double* values, std::size_t count, const TrackedPose* previous,
-  const ResolvedReading& reading, const std::string& fileName, const std::string& where)
+  const SettledReading& reading, const std::string& fileName, const std::string& where)
 {
   TrackedPose pose;
   pose.TimeS = time * reading.SecondsPerUnit;
@@ -247,7 +239,7 @@ TrackedPose CheckedPose(double time, const double* values, std::size_t count, co
 }
 
 // The pose of one CSV row through the file's columns, after the previous (null for the first).
-TrackedPose CsvPose(const NumericRow& row, const PoseColumns& columns, const TrackedPose* previous, const ResolvedReading& reading,
+TrackedPose CsvPose(const NumericRow& row, const PoseColumns& columns, const TrackedPose* previous, const SettledReading& reading,
   const std::string& fileName)
 {
   const std::string where = "line " + std::to_string(row.Line) + ": ";
@@ -280,7 +272,7 @@ std::array<double, 16> PoseFromQuaternion(const std::array<double, 3>& p, const 
 
 struct PoseStream::Format
 {
-  ResolvedReading Reading;
+  SettledReading Reading;
   PoseColumns Columns;
 };
 
@@ -309,6 +301,11 @@ PoseStream::PoseStream(const std::string& fileName, std::size_t expected, const 
 }
 
 PoseStream::~PoseStream() = default;
+
+const SettledReading* PoseStream::GetSettledReading() const
+{
+  return this->Layout ? &this->Layout->Reading : nullptr;
+}
 
 std::size_t PoseStream::CountPoses(const std::string& fileName, const PoseReading& reading)
 {

@@ -59,6 +59,9 @@ public:
   virtual std::size_t PosesExpected() const { return 0; }
   /// The source as reports name it (the file name).
   virtual const std::string& GetName() const = 0;
+  /// How its numbers were read (settled at the first pose); none before it, or for poses that
+  /// came as numbers in the patient's frame.
+  virtual const SettledReading* GetSettledReading() const { return nullptr; }
 };
 
 /// The poses of a pose file one at a time, with ReadPoseFile's checks and messages: a CSV file
@@ -80,6 +83,7 @@ public:
   std::size_t PosesRead() const override { return this->Read; }
   std::size_t PosesExpected() const override { return this->Expected; }
   const std::string& GetName() const override { return this->Name; }
+  const SettledReading* GetSettledReading() const override;
   /// Reads a file through once, with every check, and returns how many poses it holds: a bad
   /// file is refused before anything is computed.
   static std::size_t CountPoses(const std::string& fileName, const PoseReading& reading = {});

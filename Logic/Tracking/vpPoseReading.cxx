@@ -9,11 +9,6 @@
 
 namespace vp
 {
-const char* PoseSpaceName(PoseSpace space)
-{
-  return space == PoseSpace::RAS ? "RAS" : "LPS";
-}
-
 namespace
 {
 /// Which setting a declaration's key names: 0 space, 1 units, 2 time units, -1 none.

@@ -1,6 +1,9 @@
 #ifndef vpPoseReading_h
 #define vpPoseReading_h
 
+#include "vpPatientSpace.h"
+#include "vpRegistrationFile.h"
+
 #include <array>
 #include <optional>
 #include <string>
@@ -8,14 +11,6 @@
 
 namespace vp
 {
-/// The frame a pose file's world coordinates are in: LPS (DICOM's patient frame, ours) or RAS
-/// (3D Slicer's), x and y negated between them.
-enum class PoseSpace
-{
-  LPS,
-  RAS
-};
-
 /// How a pose file's numbers are read. Each setting a front end leaves unset is what the file
 /// declares (a "# pose-space: RAS" comment before a CSV's first row, a top-level "space" field of
 /// a JSON file before its "poses"), else LPS, millimetres and seconds. A setting given that the
@@ -36,12 +31,21 @@ struct PoseReading
   std::string ToolName;
   std::string ReferenceName;
   /// Registration: tracker (or reference) to patient, applied to every pose after its units and
-  /// frame (ReadTrackerToPatient reads register's result); unset: the poses are the patient's.
-  std::optional<std::array<double, 16>> TrackerToPatient;
+  /// frame (ReadTrackerRegistration reads register's result or a 3D Slicer transform); its
+  /// TrackerSpace is the poses' frame when neither Space nor the file says. Unset: the poses are
+  /// the patient's.
+  std::optional<TrackerRegistration> Registration;
 };
 
-/// "LPS", "RAS".
-const char* PoseSpaceName(PoseSpace space);
+/// How a source's numbers were read once the settings, the file's declarations and the defaults
+/// were settled: what reports say, so that a default is never a silent one.
+struct SettledReading
+{
+  PoseSpace Space = PoseSpace::LPS;
+  double MillimetresPerUnit = 1.0;
+  double SecondsPerUnit = 1.0;
+  std::optional<TrackerRegistration> Registration;
+};
 
 /// A declaration of how to read a file's numbers, from one line of text: "pose-space: RAS",
 /// "pose-units = m", "time-units: ms" (also "space", "units"; any case; ':' or '='). Lines that

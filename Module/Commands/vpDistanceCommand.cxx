@@ -6,6 +6,7 @@
 #include "vpInputError.h"
 #include "vpPointCsv.h"
 #include "vpPatientSpace.h"
+#include "vpRegistrationFile.h"
 #include "vpTipDistanceQuery.h"
 
 #include <vtkSmartPointer.h>
@@ -153,9 +154,14 @@ cli::ModuleDescription DescribeDistanceCommand()
             .SetPlaceholder("X,Y,Z")
             .SetLogicName("Axis"),
           Option(ParameterType::StringEnumeration, "space",
-            "The tips are given and the points reported in LPS (DICOM's frame) or RAS (Slicer's view).")
-            .SetElements({ "LPS", "RAS" })
-            .SetDefault("LPS"),
+            "The tips are given and the points reported in LPS (DICOM's frame) or RAS (Slicer's view). Default: LPS, "
+            "or RAS with a 3D Slicer transform as --registration.")
+            .SetElements({ "LPS", "RAS" }),
+          Option(ParameterType::File, "registration",
+            "The tips are the tracker's (or its reference's): register's RESULT.json or a 3D Slicer transform (.h5, "
+            ".tfm, .txt) takes them into the patient's images; the answers, tips included, are the patient's.")
+            .SetChannel(cli::Channel::Input)
+            .SetPlaceholder("R.json|T.h5"),
         } },
       EngineOptions({ "exact", "zbuffer", "both", "brute", "auto" }),
       { "Output", "", { Switch("json", "Print the answer as JSON instead of a table.") } },
@@ -168,9 +174,15 @@ int RunDistanceCommand(const cli::ParsedArguments& args, const ModuleServices&)
   {
     throw InputError("--tip/--tips", "give exactly one of --tip X,Y,Z or --tips FILE.csv");
   }
-  const std::string space = args.GetString("space");
-  const bool ras = space == "RAS";
+  std::optional<TrackerRegistration> registration;
+  if (args.IsSet("registration"))
+  {
+    registration = ReadTrackerRegistration(args.GetString("registration"));
+  }
+  // A Slicer transform takes the tracker's numbers as RAS, as Slicer holds them; a space given wins.
+  const bool ras = args.IsSet("space") ? args.GetString("space") == "RAS" : registration && registration->TrackerSpace == PoseSpace::RAS;
   TipDistanceRequest request = ParseRequest(args, ras);
+  request.Registration = registration;
   const double loadStart = NowMs();
   request.Vessels = LoadVesselMeshes(ParsePairs(args.GetString("vessels"), "--vessels"));
   if (args.GetBoolean("repair"))
@@ -209,8 +221,9 @@ int RunDistanceCommand(const cli::ParsedArguments& args, const ModuleServices&)
     std::fputs((after + "\n").c_str(), stdout);
     return 0;
   }
-  std::printf("method %s on %s, range %.1f mm, error bound %.3f mm, space %s, %zu tip(s)\n", engine->GetMethodName(),
-    engine->GetDeviceDescription().c_str(), engine->GetRangeMm(), engine->GetErrorBoundMm(), ras ? "RAS" : "LPS", totals.Tips);
+  std::printf("method %s on %s, range %.1f mm, error bound %.3f mm, space %s, %zu tip(s)%s\n", engine->GetMethodName(),
+    engine->GetDeviceDescription().c_str(), engine->GetRangeMm(), engine->GetErrorBoundMm(), ras ? "RAS" : "LPS", totals.Tips,
+    registration ? (", registered by " + registration->FileName + " (" + registration->Kind + ")").c_str() : "");
   held.Release();
   std::printf("load %.1f ms, build %.1f ms, query median %.4f ms, p95 %.4f ms\n", loadMs, engine->GetBuildTimeMs(),
     totals.QueryMs(), totals.QueryMs());

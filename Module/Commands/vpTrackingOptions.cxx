@@ -90,10 +90,11 @@ std::vector<cli::Parameter> PoseReadingOptions()
       .SetPlaceholder("NAME")
       .SetLogicName("ReferenceName"),
     Option(ParameterType::File, "registration",
-      "register's RESULT.json (landmarks or icp: model points in the patient's images, world points by the tracker "
-      "or relative to --reference): every pose is taken from the tracker into the patient by it.")
+      "The tracker (or --reference) to the patient's images: register's RESULT.json (landmarks or icp), or a 3D "
+      "Slicer transform (.h5, .tfm, .txt: the tracker's transform to RAS as Slicer saves it; the poses are then read "
+      "as RAS, as Slicer holds them, unless --pose-space says otherwise). Every pose is taken into the patient by it.")
       .SetChannel(cli::Channel::Input)
-      .SetPlaceholder("R.json"),
+      .SetPlaceholder("R.json|T.h5"),
   };
 }
 
@@ -116,7 +117,7 @@ PoseReading ParsePoseReading(const cli::ParsedArguments& args)
   reading.ReferenceName = args.GetString("reference");
   if (args.IsSet("registration"))
   {
-    reading.TrackerToPatient = ReadTrackerToPatient(args.GetString("registration"));
+    reading.Registration = ReadTrackerRegistration(args.GetString("registration"));
   }
   return reading;
 }

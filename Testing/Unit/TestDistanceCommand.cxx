@@ -1,6 +1,8 @@
 // `vesselproximity distance` end to end: the JSON it prints, and the one-line error, non-zero
 // exit and empty stdout for each bad input.
 #include "vpAnalyticShapes.h"
+#include "vpItkTransformFile.h"
+#include "vpRigidTransform.h"
 #include "vpStlFormat.h"
 #include "vpModelTestSupport.h"
 #include "vpTestSupport.h"
@@ -163,6 +165,79 @@ TEST_F(DistanceCommand, TipsFileRasSpaceAndBruteAgree)
   const auto rasPoint = r["results"][0]["nearest"]["point"];
   // tip (3,4,-20) RAS is (-3,-4,-20) LPS; by symmetry its closest point is the LPS one mirrored.
   EXPECT_NEAR(rasPoint[2].get<double>(), lpsPoint[2].get<double>(), 1e-9);
+}
+
+// Tips measured by the tracker: a registration takes them, and the axis, into the patient, and the
+// answers are the patient's, the same as for the tips given there; from register's result and
+// from a 3D Slicer transform (whose tracker numbers are RAS, so the answers come out in RAS).
+TEST_F(DistanceCommand, ARegistrationTakesTrackerTipsIntoThePatient)
+{
+  const vp::Matrix4 modelToWorld = vp::RotationAboutAxis({ 1.0, 2.0, -0.5 }, 0.9, { 40.0, -75.0, 12.0 });
+  const vp::Point3 axis{ 0.0, -0.6, -0.8 }; // from the first tip, into the sphere
+  const std::vector<vp::Point3> patientTips{ { 0, 0, 15 }, { 3, 4, -20 } };
+  std::string tracker = "x,y,z\n";
+  for (const auto& p : patientTips)
+  {
+    const vp::Point3 t = vp::TransformPoint(modelToWorld, p);
+    tracker += vp::test::Number(t[0]) + "," + vp::test::Number(t[1]) + "," + vp::test::Number(t[2]) + "\n";
+  }
+  const vp::Point3 a = vp::TransformDirection(modelToWorld, axis);
+  const std::string trackerAxis = vp::test::Number(a[0]) + "," + vp::test::Number(a[1]) + "," + vp::test::Number(a[2]);
+  const std::string vessels = "distance --vessels portal_vein=" + this->Sphere + " --json";
+  const ToolRun truth = RunTool(this->Dir, vessels + " --tips " + WriteBytes(this->Dir, "patient.csv", "x,y,z\n0,0,15\n3,4,-20\n") + " --axis 0,-0.6,-0.8");
+  ASSERT_EQ(truth.ExitCode, 0) << truth.Err;
+  const auto t = nlohmann::json::parse(truth.Out);
+  EXPECT_TRUE(t["registration"].is_null());
+  std::string json = "{\"method\": \"landmarks\", \"model_to_world\": [";
+  for (int i = 0; i < 16; ++i)
+  {
+    json += (i ? "," : "") + vp::test::Number(modelToWorld[i]);
+  }
+  const std::string registration = WriteBytes(this->Dir, "R.json", json + "]}");
+  const vp::Matrix4 flip = { -1, 0, 0, 0, 0, -1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
+  vp::WriteItkLinearTransform(this->Dir + "/TrackerToRas.h5", vp::MultiplyTransforms(flip, modelToWorld));
+  const std::string tips = WriteBytes(this->Dir, "tracker.csv", tracker);
+  for (const std::string& file : { registration, this->Dir + "/TrackerToRas.h5" })
+  {
+    const bool slicer = file.back() == '5';
+    // The same numbers of the tracker either way; Slicer's file holds F * model_to_world, and the
+    // answers come out in RAS, as Slicer shows them.
+    const ToolRun r = RunTool(this->Dir, vessels + " --tips " + tips + " --axis " + trackerAxis + " --registration " + file);
+    ASSERT_EQ(r.ExitCode, 0) << r.Err;
+    const auto j = nlohmann::json::parse(r.Out);
+    EXPECT_EQ(j["space"], slicer ? "RAS" : "LPS");
+    EXPECT_EQ(j["registration"]["kind"], slicer ? "a 3D Slicer transform" : "register's result");
+    for (std::size_t i = 0; i < patientTips.size(); ++i)
+    {
+      const auto& got = j["results"][i];
+      const auto& want = t["results"][i];
+      for (int k = 0; k < 3; ++k)
+      {
+        const double sign = slicer && k < 2 ? -1.0 : 1.0;
+        EXPECT_NEAR(got["tip"][k].get<double>(), sign * patientTips[i][k], 1e-9) << file << " " << i;
+        EXPECT_NEAR(got["nearest"]["point"][k].get<double>(), sign * want["nearest"]["point"][k].get<double>(), 1e-9) << file;
+      }
+      EXPECT_NEAR(got["nearest"]["distance_mm"].get<double>(), want["nearest"]["distance_mm"].get<double>(), 1e-9) << file;
+      const auto& wantDirectional = want["classes"]["portal_vein"]["directional_mm"];
+      if (i == 0)
+      {
+        ASSERT_TRUE(wantDirectional.is_number());
+      }
+      if (wantDirectional.is_number())
+      {
+        EXPECT_NEAR(got["classes"]["portal_vein"]["directional_mm"].get<double>(), wantDirectional.get<double>(), 1e-9) << file;
+      }
+      else
+      {
+        EXPECT_TRUE(got["classes"]["portal_vein"]["directional_mm"].is_null()) << file;
+      }
+    }
+  }
+  const ToolRun scaled = RunTool(this->Dir, vessels + " --tips " + tips + " --registration " +
+      WriteBytes(this->Dir, "scaled.json", "{\"model_to_world\": [2,0,0,0, 0,2,0,0, 0,0,2,0, 0,0,0,1]}"));
+  EXPECT_EQ(scaled.ExitCode, 1);
+  EXPECT_EQ(scaled.Out, "");
+  EXPECT_NE(scaled.Err.find("scaled.json: model_to_world is not a rigid transform"), std::string::npos) << scaled.Err;
 }
 
 TEST_F(DistanceCommand, EachBadInputGivesOneLineAndNoOutput)

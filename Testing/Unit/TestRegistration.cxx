@@ -2,8 +2,10 @@
 // synthetic measurements with and without noise (after SlicerIGT's vtkPivotCalibrationTest),
 // and ICP of a real instrument surface from a start a few millimetres and degrees off.
 #include "vpInputError.h"
+#include "vpItkTransformFile.h"
 #include "vpPairedPointRegistration.h"
 #include "vpPivotCalibration.h"
+#include "vpRegistrationFile.h"
 #include "vpSurfaceIcpRegistration.h"
 #include "vpTestSupport.h"
 #include "vtkVesselMeshReader.h"
@@ -18,6 +20,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstdio>
+#include <functional>
 #include <numeric>
 #include <random>
 
@@ -289,5 +292,125 @@ TEST(SurfaceIcpRegistration, ThinInstrumentsFromTenMillimetresAndDegreesOffAreFi
     EXPECT_EQ(fitted, static_cast<int>(trials.size())) << instrument.File;
     EXPECT_GE(wrongSingle, 1) << instrument.File << ": these poses should be hard for a single ICP";
   }
+}
+} // namespace
+
+namespace
+{
+using vp::Matrix4;
+/// ITK's LPS <-> Slicer's RAS: x and y negated.
+const Matrix4 Flip = { -1, 0, 0, 0, 0, -1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
+
+std::string RefusalOf(const std::function<void()>& read)
+{
+  try
+  {
+    read();
+  }
+  catch (const vp::InputError& e)
+  {
+    return e.what();
+  }
+  return "";
+}
+
+// A transform as 3D Slicer saved it and showed it (discourse.slicer.org/t/270, "Displayed
+// transform vs .tfm content"): the file's numbers in full, the "Transform to parent" matrix the
+// Transforms module showed, rounded to two decimals and whole millimetres. The convention read
+// from the file must give what Slicer showed: to-parent RAS = F * inverse(file) * F. That
+// transform was edited by hand and is not quite orthonormal, so as a registration it is refused.
+TEST(SlicerTransformFile, ReadsTheMatrixSlicerShowedAndRefusesItAsNotRigid)
+{
+  const std::string dir = vp::test::MakeTempDir("slicer_transform_forum");
+  const std::string file = vp::test::WriteBytes(dir, "Shown.tfm",
+    "#Insight Transform File V1.0\n#Transform 0\nTransform: AffineTransform_double_3_3\n"
+    "Parameters: -0.12281062601468536 0.9902729990354874 0.06989222618721933 -0.9559259621663395 -0.0968506562880039 "
+    "-0.26898522478338405 -0.2598992353790456 -0.09944665326067206 0.9609182640368552 -64.32660836989362 "
+    "-696.1487386450094 -130.6846842169375\nFixedParameters: 0 0 0\n");
+  const Matrix4 fromParent = vp::ReadItkLinearTransform(file);
+  const Matrix4 shown = vp::MultiplyTransforms(Flip, vp::MultiplyTransforms(vp::InvertTransform(fromParent), Flip));
+  const double slicer[12] = { -0.12, -0.96, 0.26, 710, 0.99, -0.1, 0.1, 19, -0.07, 0.27, 0.96, -58 };
+  for (int i = 0; i < 12; ++i)
+  {
+    EXPECT_NEAR(shown[i], slicer[i], i % 4 == 3 ? 0.5 : 0.005) << i;
+  }
+  const std::string refusal = RefusalOf([&] { vp::ReadTrackerRegistration(file); });
+  EXPECT_EQ(refusal.rfind(file + ": the transform is not rigid: the rotation is not orthonormal", 0), 0u) << refusal;
+}
+
+// What register and Slicer agree on: the tracker-to-patient a Slicer transform gives is the one
+// register's result gives for the same placement, and the four formats ITK writes are read back
+// to the last digit that matters.
+TEST(SlicerTransformFile, EveryFormatGivesTheRegistrationSlicerMeans)
+{
+  const std::string dir = vp::test::MakeTempDir("slicer_transform_formats");
+  // The patient seen by the tracker (register's model_to_world), tracker numbers taken as RAS.
+  const Matrix4 patientToTracker = vp::RotationAboutAxis({ 0.3, -1.0, 0.4 }, 0.7, { 120.0, -35.0, 410.0 });
+  // Slicer's node: tracker (its raw numbers, as RAS) to RAS; the patient's RAS is F * its LPS.
+  const Matrix4 trackerToRas = vp::MultiplyTransforms(Flip, vp::MultiplyTransforms(vp::InvertTransform(patientToTracker), Flip));
+  // What Slicer writes: ITK's LPS, from parent.
+  const Matrix4 fileMatrix = vp::MultiplyTransforms(Flip, vp::MultiplyTransforms(vp::InvertTransform(trackerToRas), Flip));
+  for (const char* name : { "TrackerToRas.h5", "TrackerToRas.tfm", "TrackerToRas.txt", "TrackerToRas.mat" })
+  {
+    const std::string file = dir + "/" + name;
+    vp::WriteItkLinearTransform(file, fileMatrix);
+    const Matrix4 read = vp::ReadItkLinearTransform(file);
+    for (int i = 0; i < 16; ++i)
+    {
+      EXPECT_NEAR(read[i], fileMatrix[i], 1e-9) << name << " " << i;
+    }
+    const vp::TrackerRegistration registration = vp::ReadTrackerRegistration(file);
+    EXPECT_EQ(registration.TrackerSpace, vp::PoseSpace::RAS) << name;
+    EXPECT_EQ(registration.Kind, "a 3D Slicer transform");
+    // A point of the tracker, its raw numbers p: Slicer puts it at trackerToRas * p (RAS); ours
+    // reads p as RAS (F * p in LPS) and registers it.
+    const vp::Point3 p{ 12.0, -40.0, 33.0 };
+    const vp::Point3 ours = vp::TransformPoint(registration.TrackerToPatient, { -p[0], -p[1], p[2] });
+    const vp::Point3 slicerRas = vp::TransformPoint(trackerToRas, p);
+    EXPECT_NEAR(ours[0], -slicerRas[0], 1e-9) << name;
+    EXPECT_NEAR(ours[1], -slicerRas[1], 1e-9) << name;
+    EXPECT_NEAR(ours[2], slicerRas[2], 1e-9) << name;
+  }
+}
+
+TEST(SlicerTransformFile, RefusesWhatIsNoRigidRegistrationInOneLine)
+{
+  const std::string dir = vp::test::MakeTempDir("slicer_transform_refusals");
+  const std::string header = "#Insight Transform File V1.0\n#Transform 0\n";
+  const std::string affine = "Transform: AffineTransform_double_3_3\n";
+  std::string bspline = header + "Transform: BSplineTransform_double_3_3\nParameters:";
+  for (int i = 0; i < 4 * 4 * 4 * 3; ++i)
+  {
+    bspline += " 0";
+  }
+  bspline += "\nFixedParameters: 4 4 4 0 0 0 1 1 1 1 0 0 0 1 0 0 0 1\n";
+  const std::vector<std::pair<std::pair<std::string, std::string>, std::string>> cases = {
+    { { "garbage.tfm", "a registration\n" }, "not a transform file ITK can read: " },
+    { { "text.h5", header + affine }, "not a transform file ITK can read as h5" },
+    { { "short.tfm", header + affine + "Parameters: 1 0 0 0 1 0 0 0 1 0 0\nFixedParameters: 0 0 0\n" },
+      "not a transform file ITK can read: " },
+    { { "two.tfm", header + affine + "Parameters: 1 0 0 0 1 0 0 0 1 0 0 0\nFixedParameters: 0 0 0\n#Transform 1\n" + affine +
+          "Parameters: 1 0 0 0 1 0 0 0 1 0 0 0\nFixedParameters: 0 0 0\n" },
+      "holds 2 transforms; a registration is one linear transform" },
+    { { "plane.tfm", header + "Transform: AffineTransform_double_2_2\nParameters: 1 0 0 1 0 0\nFixedParameters: 0 0\n" },
+      "holds AffineTransform_double_2_2, not a 3-D transform" },
+    { { "warp.tfm", bspline }, "holds BSplineTransform_double_3_3, not a linear transform" },
+    { { "scaled.tfm", header + affine + "Parameters: 2 0 0 0 2 0 0 0 2 0 0 0\nFixedParameters: 0 0 0\n" },
+      "the transform is not rigid: the rotation is not orthonormal" },
+    { { "mirror.tfm", header + affine + "Parameters: -1 0 0 0 1 0 0 0 1 0 0 0\nFixedParameters: 0 0 0\n" },
+      "the transform is not rigid: the rotation is a reflection" },
+    { { "notanumber.tfm", header + affine + "Parameters: nan 0 0 0 1 0 0 0 1 0 0 0\nFixedParameters: 0 0 0\n" }, "" },
+    { { "R.xml", "<transform/>" }, "not a registration: expected register's RESULT.json or a 3D Slicer transform" },
+  };
+  for (const auto& [file, expected] : cases)
+  {
+    const std::string path = vp::test::WriteBytes(dir, file.first, file.second);
+    const std::string refusal = RefusalOf([&] { vp::ReadTrackerRegistration(path); });
+    ASSERT_FALSE(refusal.empty()) << file.first << " was read";
+    EXPECT_EQ(refusal.rfind(path + ": " + expected, 0), 0u) << refusal;
+    EXPECT_EQ(refusal.find('\n'), std::string::npos) << refusal;
+  }
+  const std::string missing = RefusalOf([&] { vp::ReadTrackerRegistration(dir + "/absent.h5"); });
+  EXPECT_EQ(missing, dir + "/absent.h5: no such file");
 }
 } // namespace

@@ -1,6 +1,7 @@
 // `vesselproximity track` and `register` end to end: the files they write, their numbers, and the
 // one-line error with nothing written for every bad pose file.
 #include "vpAnalyticShapes.h"
+#include "vpItkTransformFile.h"
 #include "vpModelTestSupport.h"
 #include "vpTestSupport.h"
 
@@ -902,14 +903,34 @@ protected:
   {
     return RunTool(this->Dir, "track --vessels " + this->Vessels + " --scalpel " + this->Tool + " --poses " + poses + extra + " -o " + out);
   }
+
+  /// Two runs' frames.csv are the same, numbers to 1e-9 (frame_ms aside).
+  void ExpectSameFrames(const std::string& expectedOut, const std::string& out)
+  {
+    const auto a = this->Frames_(expectedOut);
+    const auto b = this->Frames_(out);
+    ASSERT_EQ(a.size(), b.size()) << out;
+    for (std::size_t row = 1; row < a.size(); ++row)
+    {
+      ASSERT_EQ(a[row].size(), b[row].size()) << out << " " << row;
+      for (std::size_t c = 0; c < a[row].size(); ++c)
+      {
+        char* end = nullptr;
+        const double x = std::strtod(a[row][c].c_str(), &end);
+        if (end != a[row][c].c_str() && *end == '\0')
+        {
+          EXPECT_NEAR(std::strtod(b[row][c].c_str(), nullptr), x, 1e-9) << out << " " << row << " " << a[0][c];
+        }
+        else
+        {
+          EXPECT_EQ(b[row][c], a[row][c]) << out << " " << row << " " << a[0][c];
+        }
+      }
+    }
+  }
 };
 
-std::string Number(double v)
-{
-  char text[40];
-  std::snprintf(text, sizeof text, "%.17g", v);
-  return text;
-}
+using vp::test::Number;
 
 const double H = std::sqrt(0.5);
 
@@ -1140,26 +1161,46 @@ TEST_F(PoseForms, ARegistrationTakesTrackerPosesIntoThePatient)
     // Rz90 * (x, 0, 0) + (100, -50, 7) = (100, x - 50, 7); (H,0,0,H) * (H,0,-H,0) = (0.5, 0.5, -0.5, 0.5).
     return Number(t) + "," + Number(100.0) + "," + Number(x - 50.0) + "," + Number(7.0) + ",0.5,0.5,-0.5,0.5\n";
   };
-  const ToolRun r = this->Track(this->Poses("tracker.csv", "time,x,y,z,qw,qx,qy,qz\n", tracker), this->Dir + "/registered",
-    " --no-surface --registration " + registration);
+  const std::string tracker_ = this->Poses("tracker.csv", "time,x,y,z,qw,qx,qy,qz\n", tracker);
+  const ToolRun r = this->Track(tracker_, this->Dir + "/registered", " --no-surface --registration " + registration);
   ASSERT_EQ(r.ExitCode, 0) << r.Err;
-  const auto a = this->Frames_(this->Dir + "/patient");
-  const auto b = this->Frames_(this->Dir + "/registered");
-  ASSERT_EQ(a.size(), b.size());
-  for (std::size_t row = 1; row < a.size(); ++row)
+  this->ExpectSameFrames(this->Dir + "/patient", this->Dir + "/registered");
+  const auto reading = nlohmann::json::parse(Slurp(this->Dir + "/registered/summary.json")).at("pose_reading");
+  EXPECT_EQ(reading.at("space"), "LPS");
+  EXPECT_EQ(reading.at("registration").at("kind"), "register's result");
+
+  // The same placement as 3D Slicer saves a tracker-to-RAS transform node (ITK's format: LPS, and
+  // the inverse sense, the file holding F * model_to_world): the tracker's numbers are then read as
+  // RAS, as Slicer holds them, and the frames are the patient's again, from each format.
+  const vp::Matrix4 modelToWorld = { 0, -1, 0, 100, 1, 0, 0, -50, 0, 0, 1, 7, 0, 0, 0, 1 };
+  const vp::Matrix4 flip = { -1, 0, 0, 0, 0, -1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
+  for (const std::string name : { "TrackerToRas.h5", "TrackerToRas.tfm" })
   {
-    for (std::size_t c = 0; c < a[row].size(); ++c)
+    vp::WriteItkLinearTransform(this->Dir + "/" + name, vp::MultiplyTransforms(flip, modelToWorld));
+    const ToolRun slicer = this->Track(tracker_, this->Dir + "/slicer_" + name, " --no-surface --registration " + this->Dir + "/" + name);
+    ASSERT_EQ(slicer.ExitCode, 0) << slicer.Err;
+    this->ExpectSameFrames(this->Dir + "/patient", this->Dir + "/slicer_" + name);
+    const auto settled = nlohmann::json::parse(Slurp(this->Dir + "/slicer_" + name + "/summary.json")).at("pose_reading");
+    EXPECT_EQ(settled.at("space"), "RAS");
+    EXPECT_EQ(settled.at("registration").at("kind"), "a 3D Slicer transform");
+  }
+  // Told the numbers are LPS, the reader believes it: each tip lands where the tracker's numbers,
+  // turned half a turn about its z axis, would put it (inverse(M) * F * M of the true tip).
+  const ToolRun told = this->Track(tracker_, this->Dir + "/told_lps",
+    " --no-surface --pose-space LPS --registration " + this->Dir + "/TrackerToRas.h5");
+  ASSERT_EQ(told.ExitCode, 0) << told.Err;
+  const auto rows = this->Frames_(this->Dir + "/told_lps");
+  const auto truth = this->Frames_(this->Dir + "/patient");
+  const std::size_t tipX = static_cast<std::size_t>(std::find(rows[0].begin(), rows[0].end(), "tip_x") - rows[0].begin());
+  ASSERT_LE(tipX + 3, rows[0].size());
+  const vp::Matrix4 turned = vp::MultiplyTransforms(vp::InvertTransform(modelToWorld), vp::MultiplyTransforms(flip, modelToWorld));
+  for (std::size_t row = 1; row < rows.size(); row += 10)
+  {
+    const vp::Point3 expected = vp::TransformPoint(turned,
+      { std::stod(truth[row][tipX]), std::stod(truth[row][tipX + 1]), std::stod(truth[row][tipX + 2]) });
+    for (std::size_t a = 0; a < 3; ++a)
     {
-      char* end = nullptr;
-      const double x = std::strtod(a[row][c].c_str(), &end);
-      if (end != a[row][c].c_str() && *end == '\0')
-      {
-        EXPECT_NEAR(std::strtod(b[row][c].c_str(), nullptr), x, 1e-9) << row << " " << a[0][c];
-      }
-      else
-      {
-        EXPECT_EQ(b[row][c], a[row][c]) << row << " " << a[0][c];
-      }
+      EXPECT_NEAR(std::stod(rows[row][tipX + a]), expected[a], 1e-3) << row << " " << a; // frames.csv's tips: 4 decimals
     }
   }
   const ToolRun bad = this->Track(this->Poses("t2.csv", "time,x,y,z,qw,qx,qy,qz\n", tracker), this->Dir + "/bad",

@@ -1,6 +1,7 @@
 #ifndef vpTestSupport_h
 #define vpTestSupport_h
 
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -63,6 +64,14 @@ inline bool FileExists(const std::string& path)
 {
   struct stat info;
   return stat(path.c_str(), &info) == 0;
+}
+
+/// v to 17 significant digits: read back, the same double.
+inline std::string Number(double v)
+{
+  char text[40];
+  std::snprintf(text, sizeof text, "%.17g", v);
+  return text;
 }
 
 /// A fresh empty folder under the build's temporary area.

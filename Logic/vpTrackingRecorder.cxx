@@ -124,13 +124,20 @@ bool TrackingRecorder::Run(PoseSource& poses, RunFolder& run)
     this->Comparison ? &*this->Comparison : nullptr);
   doc["timing_ms"]["load_and_build"] = this->LoadAndBuildMs;
   this->Warnings = check.Warnings();
+  const SettledReading* reading = poses.GetSettledReading();
+  if (reading && reading->QuaternionOrderAssumed)
+  {
+    this->Warnings.push_back({ "quaternion_order_assumed",
+      "no header: each row was read as time,x,y,z,qw,qx,qy,qz (scalar first); a scalar-last quaternion read so turns "
+      "the instrument" });
+  }
   nlohmann::ordered_json warnings = nlohmann::ordered_json::array();
   for (const TrajectoryWarning& w : this->Warnings)
   {
     warnings.push_back({ { "kind", w.Kind }, { "text", w.Text } });
   }
   doc["warnings"] = warnings;
-  if (const SettledReading* reading = poses.GetSettledReading())
+  if (reading)
   {
     doc["pose_reading"] = PoseReadingJson(*reading);
   }

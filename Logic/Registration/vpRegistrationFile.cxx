@@ -3,6 +3,7 @@
 #include "vpInputError.h"
 #include "vpItkTransformFile.h"
 #include "vpJsonFile.h"
+#include "vpPhysicalLimits.h"
 #include "vpText.h"
 
 #include <cmath>
@@ -27,6 +28,8 @@ Matrix4 ReadModelToWorld(const std::string& fileName, const std::string& what)
     }
     m[i] = v.get<double>();
   }
+  const double translation[3] = { m[3], m[7], m[11] };
+  CheckCoordinates(translation, fileName, "model_to_world's translation");
   return m;
 }
 
@@ -52,7 +55,7 @@ TrackerRegistration ReadTrackerRegistration(const std::string& fileName)
   }
   if (!EndsWith(LowerCase(fileName), ".json"))
   {
-    throw InputError(fileName, "not a registration: expected register's RESULT.json or a 3D Slicer transform (.h5, .tfm, .txt, .mat)");
+    throw InputError(fileName, "not a registration: expected register's RESULT.json or a 3D Slicer transform (.h5, .tfm, .txt)");
   }
   const Matrix4 m = ReadModelToWorld(fileName, "a registration (register's RESULT.json)");
   const std::string problem = RigidTransformProblem(m);

@@ -8,9 +8,9 @@
 
 namespace vp
 {
-/// The "model_to_world" of a registration result (16 finite numbers, row-major), as register
-/// writes it; what names the file's role in messages ("an initial transform"). Throws InputError
-/// naming the file otherwise.
+/// The "model_to_world" of a registration result (16 finite numbers, row-major, the translation
+/// within limits::CoordinateMm), as register writes it; what names the file's role in messages
+/// ("an initial transform"). Throws InputError naming the file otherwise.
 Matrix4 ReadModelToWorld(const std::string& fileName, const std::string& what);
 
 /// A fixed registration of the tracker (or its reference) to the patient's images.
@@ -31,7 +31,7 @@ struct TrackerRegistration
 /// The registration in fileName:
 ///  - register's RESULT.json (landmarks, icp): the inverse of its "model_to_world" (the model
 ///    points were the patient's, the world points the tracker's);
-///  - a 3D Slicer transform, as Slicer saves a transform node (.h5, .tfm, .txt, .mat; ITK's
+///  - a 3D Slicer transform, as Slicer saves a transform node (.h5, .tfm, .txt; ITK's
 ///    format: LPS, and "from parent", the inverse of the tracker-to-RAS matrix Slicer shows): the
 ///    inverse of the file's matrix, which takes the tracker's LPS-converted numbers to the
 ///    patient's LPS, so the tracker's raw numbers are read as RAS unless a setting or the pose

@@ -104,6 +104,10 @@ Json PoseReadingJson(const SettledReading& reading)
   out["registration"] = reading.Registration
     ? Json{ { "file", reading.Registration->FileName }, { "kind", reading.Registration->Kind } }
     : Json(nullptr);
+  if (reading.QuaternionOrderAssumed)
+  {
+    out["columns"] = "time,x,y,z,qw,qx,qy,qz (no header: assumed)";
+  }
   return out;
 }
 } // namespace vp

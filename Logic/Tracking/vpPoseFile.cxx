@@ -361,6 +361,7 @@ bool PoseStream::Next(TrackedPose& pose)
     this->Layout->Reading = Resolve(this->Given, declared, this->Name);
     this->Layout->Columns = this->Csv->Header().empty() ? ColumnsByPosition(row.Values.size(), row.Line, this->Name)
                                                          : ColumnsByName(this->Csv->Header(), this->Name);
+    this->Layout->Reading.QuaternionOrderAssumed = this->Csv->Header().empty() && this->Layout->Columns.Count == 8;
   }
   pose = CsvPose(row, this->Layout->Columns, this->Read > 0 ? &this->Previous : nullptr, this->Layout->Reading, this->Name);
   this->Previous = pose;

@@ -26,7 +26,8 @@ struct TrackedPose
 ///  - CSV (any name but *.json): one pose per line. A header names the columns, in any order:
 ///    `time`; `x,y,z` (or `tx,ty,tz`) and `qw,qx,qy,qz` (so scalar-last files are read as
 ///    written), or `m00`..`m33`; a column it cannot place is refused. Without a header a line is
-///    `time,m00,...,m33` (17 numbers) or `time,x,y,z,qw,qx,qy,qz` (8: scalar first). Comment
+///    `time,m00,...,m33` (17 numbers) or `time,x,y,z,qw,qx,qy,qz` (8: scalar first; reported
+///    as SettledReading::QuaternionOrderAssumed). Comment
 ///    lines before the first pose may say how it is read ("# pose-space: RAS", "# pose-units: m",
 ///    "# time-units: ms").
 ///  - JSON: {"space": "RAS", "units": "m", "time_units": "ms" (each optional, before "poses"),

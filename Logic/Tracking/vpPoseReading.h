@@ -45,6 +45,10 @@ struct SettledReading
   double MillimetresPerUnit = 1.0;
   double SecondsPerUnit = 1.0;
   std::optional<TrackerRegistration> Registration;
+  /// A CSV without a header whose rows hold a position and a quaternion: their order was taken
+  /// as documented (time,x,y,z,qw,qx,qy,qz), since nothing in the numbers tells scalar-first from
+  /// scalar-last; reports say so.
+  bool QuaternionOrderAssumed = false;
 };
 
 /// A declaration of how to read a file's numbers, from one line of text: "pose-space: RAS",

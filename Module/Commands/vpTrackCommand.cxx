@@ -41,7 +41,8 @@ std::vector<cli::Parameter> PoseReadingOptionsWithStrict()
   std::vector<cli::Parameter> options = PoseReadingOptions();
   options.push_back(Switch("strict",
     "Refuse the run (nothing written) when the poses look misread: none near a vessel, 1000 times too small or large, "
-    "mirrored, or timed in milliseconds (without it, a warning on stderr and in summary.json)."));
+    "mirrored, timed in milliseconds, or quaternions without a header naming their order (without it, a warning on "
+    "stderr and in summary.json)."));
   return options;
 }
 
@@ -52,6 +53,7 @@ std::string Hint(const std::string& kind)
     : kind == "mirrored" ? " (--pose-space RAS)"
     : kind == "milliseconds" ? " (--time-units ms)"
     : kind == "no_pose_near_vessels" ? " (--pose-space, --pose-units)"
+    : kind == "quaternion_order_assumed" ? " (name the columns in a header line: time,x,y,z,qx,qy,qz,qw if scalar last)"
                                      : "";
 }
 

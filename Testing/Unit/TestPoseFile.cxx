@@ -358,6 +358,44 @@ TEST(TrackedSequence, PlusRecordingsGiveEveryFrameWhereItsTransformsPutIt)
   EXPECT_GT(relative.back().TimeS, relative.front().TimeS + 60.0) << "about 15 Hz over 1000 frames";
 }
 
+// The same recording as an NRRD sequence header (.igs.nrrd, as 3D Slicer's Sequences writes its
+// fields, "key:=value"): the same poses, bit for bit, and the same times.
+TEST_F(PoseFile, ANrrdSequenceHeaderIsReadAsItsMetaImageTwin)
+{
+  const std::string data = vp::test::TestDataDir();
+  if (data.empty())
+  {
+    GTEST_SKIP() << "VP_TEST_DATA not set: the PLUS recordings are in ../shared/data/plus";
+  }
+  const std::string mha = data + "/plus/EightLandmarkPointsTrackedForPhantomRegistration.igs.mha";
+  std::istringstream in(vp::test::Slurp(mha));
+  std::string nrrd = "NRRD0004\n# the PLUS recording's fields, as an NRRD header\ntype: uchar\ndimension: 3\nsizes: 0 0 1000\n";
+  int fields = 0;
+  for (std::string line; std::getline(in, line) && line.rfind("ElementDataFile", 0) != 0;)
+  {
+    const auto equals = line.find(" = ");
+    if (equals != std::string::npos && (line.rfind("Seq_", 0) == 0 || line.rfind("DefaultFrameTransformName", 0) == 0))
+    {
+      nrrd += line.substr(0, equals) + ":=" + line.substr(equals + 3) + "\n";
+      ++fields;
+    }
+  }
+  ASSERT_GT(fields, 4000) << "1000 frames, each with two transforms, their statuses and a time";
+  vp::PoseReading reading;
+  reading.ToolName = "Stylus";
+  reading.ReferenceName = "Reference";
+  const auto expected = vp::ReadPoseFile(mha, reading);
+  const auto got = vp::ReadPoseFile(this->Write("landmarks.igs.nrrd", nrrd + "\n"), reading);
+  ASSERT_EQ(got.size(), expected.size());
+  ASSERT_EQ(got.size(), 1000u);
+  for (std::size_t f = 0; f < got.size(); ++f)
+  {
+    EXPECT_EQ(got[f].TimeS, expected[f].TimeS) << f;
+    EXPECT_EQ(got[f].Lost, expected[f].Lost) << f;
+    EXPECT_EQ(got[f].ModelToWorld, expected[f].ModelToWorld) << f;
+  }
+}
+
 TEST_F(PoseFile, ASequenceSaysWhichToolAndWhenTheTrackerLostIt)
 {
   std::string text;

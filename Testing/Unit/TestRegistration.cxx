@@ -12,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include <H5Cpp.h>
 #include <vtkMath.h>
 #include <vtkNew.h>
 #include <vtkPolyData.h>
@@ -350,7 +351,7 @@ TEST(SlicerTransformFile, EveryFormatGivesTheRegistrationSlicerMeans)
   const Matrix4 trackerToRas = vp::MultiplyTransforms(Flip, vp::MultiplyTransforms(vp::InvertTransform(patientToTracker), Flip));
   // What Slicer writes: ITK's LPS, from parent.
   const Matrix4 fileMatrix = vp::MultiplyTransforms(Flip, vp::MultiplyTransforms(vp::InvertTransform(trackerToRas), Flip));
-  for (const char* name : { "TrackerToRas.h5", "TrackerToRas.tfm", "TrackerToRas.txt", "TrackerToRas.mat" })
+  for (const char* name : { "TrackerToRas.h5", "TrackerToRas.hdf5", "TrackerToRas.tfm", "TrackerToRas.txt" })
   {
     const std::string file = dir + "/" + name;
     vp::WriteItkLinearTransform(file, fileMatrix);
@@ -373,6 +374,27 @@ TEST(SlicerTransformFile, EveryFormatGivesTheRegistrationSlicerMeans)
   }
 }
 
+// A composite, as ITK writes one (its line, then its parts; applied last part first), of a
+// rotation in single precision and a translation: one rigid transform, the parts' product.
+TEST(SlicerTransformFile, ACompositeOfLinearPartsIsTheirProduct)
+{
+  const std::string dir = vp::test::MakeTempDir("slicer_transform_composite");
+  const std::string file = vp::test::WriteBytes(dir, "Composite.tfm",
+    "#Insight Transform File V1.0\n#Transform 0\nTransform: CompositeTransform_double_3_3\n"
+    "#Transform 1\nTransform: AffineTransform_float_3_3\nParameters: 0 -1 0 1 0 0 0 0 1 5 0 0\nFixedParameters: 0 0 0\n"
+    "#Transform 2\nTransform: TranslationTransform_double_3_3\nParameters: 1 2 3\nFixedParameters:\n");
+  const Matrix4 m = vp::ReadItkLinearTransform(file);
+  // Rz90 * (p + (1,2,3)) + (5,0,0): the translation first.
+  const Matrix4 expected = { 0, -1, 0, 5 - 2, 1, 0, 0, 1, 0, 0, 1, 3, 0, 0, 0, 1 };
+  for (int i = 0; i < 16; ++i)
+  {
+    EXPECT_NEAR(m[i], expected[i], 1e-6) << i; // the rotation was stored as float
+  }
+  const std::string empty = vp::test::WriteBytes(dir, "Empty.tfm",
+    "#Insight Transform File V1.0\n#Transform 0\nTransform: CompositeTransform_double_3_3\n");
+  EXPECT_EQ(RefusalOf([&] { vp::ReadItkLinearTransform(empty); }), empty + ": holds an empty CompositeTransform");
+}
+
 TEST(SlicerTransformFile, RefusesWhatIsNoRigidRegistrationInOneLine)
 {
   const std::string dir = vp::test::MakeTempDir("slicer_transform_refusals");
@@ -385,10 +407,26 @@ TEST(SlicerTransformFile, RefusesWhatIsNoRigidRegistrationInOneLine)
   }
   bspline += "\nFixedParameters: 4 4 4 0 0 0 1 1 1 1 0 0 0 1 0 0 0 1\n";
   const std::vector<std::pair<std::pair<std::string, std::string>, std::string>> cases = {
-    { { "garbage.tfm", "a registration\n" }, "not a transform file ITK can read: " },
+    { { "garbage.tfm", "a registration\n" }, "line 1: expected a comment, Transform:, Parameters: or FixedParameters:" },
     { { "text.h5", header + affine }, "not a transform file ITK can read as h5" },
     { { "short.tfm", header + affine + "Parameters: 1 0 0 0 1 0 0 0 1 0 0\nFixedParameters: 0 0 0\n" },
-      "not a transform file ITK can read: " },
+      "line 3: AffineTransform_double_3_3 takes 12 parameters and 3 fixed ones, the file gives 11 and 3" },
+    // What ITK alone took as the identity, and what crashed it (found by fuzz_itk_transform).
+    { { "noparameters.tfm", header + affine }, "line 3: AffineTransform_double_3_3 has no Parameters line" },
+    { { "nofixed.tfm", header + affine + "Parameters: 1 0 0 0 1 0 0 0 1 0 0 0\n" },
+      "line 3: AffineTransform_double_3_3 has no FixedParameters line" },
+    { { "translation.tfm", header + "Transform: TranslationTransform_double_3_3\nParameters:\x01\x0fZ 1 2 3\nFixedParameters:\n" },
+      "line 4: a control character: not a text transform file" },
+    { { "nul.tfm", header + "Transform: TranslationTransform_double_3_3\nParameters: 1" + std::string(3, '\0') + " 2 3\nFixedParameters:\n" },
+      "line 4: a control character: not a text transform file" },
+    { { "word.tfm", header + "Transform: TranslationTransform_double_3_3\nParameters: 1 2 3mm\nFixedParameters:\n" },
+      "line 4: '3mm' is not a finite number" },
+    { { "empty.tfm", header + "Transform: TranslationTransform_double_3_3\nParameters:\nFixedParameters:\n" },
+      "line 3: TranslationTransform_double_3_3 takes 3 parameters and 0 fixed ones, the file gives 0 and 0" },
+    { { "unknown.tfm", header + "Transform: NoSuchTransform_double_3_3\nParameters: 1\nFixedParameters:\n" },
+      "line 3: 'NoSuchTransform_double_3_3' is not a transform type ITK knows" },
+    { { "twice.tfm", header + affine + "Parameters: 1 0 0 0 1 0 0 0 1 0 0 0\nParameters: 1 0 0 0 1 0 0 0 1 0 0 0\n" },
+      "line 5: a second Parameters line for one transform" },
     { { "two.tfm", header + affine + "Parameters: 1 0 0 0 1 0 0 0 1 0 0 0\nFixedParameters: 0 0 0\n#Transform 1\n" + affine +
           "Parameters: 1 0 0 0 1 0 0 0 1 0 0 0\nFixedParameters: 0 0 0\n" },
       "holds 2 transforms; a registration is one linear transform" },
@@ -399,8 +437,13 @@ TEST(SlicerTransformFile, RefusesWhatIsNoRigidRegistrationInOneLine)
       "the transform is not rigid: the rotation is not orthonormal" },
     { { "mirror.tfm", header + affine + "Parameters: -1 0 0 0 1 0 0 0 1 0 0 0\nFixedParameters: 0 0 0\n" },
       "the transform is not rigid: the rotation is a reflection" },
-    { { "notanumber.tfm", header + affine + "Parameters: nan 0 0 0 1 0 0 0 1 0 0 0\nFixedParameters: 0 0 0\n" }, "" },
+    { { "notanumber.tfm", header + affine + "Parameters: nan 0 0 0 1 0 0 0 1 0 0 0\nFixedParameters: 0 0 0\n" },
+      "line 4: 'nan' is not a finite number" },
     { { "R.xml", "<transform/>" }, "not a registration: expected register's RESULT.json or a 3D Slicer transform" },
+    { { "far.tfm", header + affine + "Parameters: 1 0 0 0 1 0 0 0 1 1e30 0 0\nFixedParameters: 0 0 0\n" },
+      "the translation: coordinate 1e+30 mm is beyond" },
+    { { "far.json", "{\"model_to_world\": [1,0,0,0, 0,1,0,2e7, 0,0,1,0, 0,0,0,1]}" },
+      "model_to_world's translation: coordinate 2e+07 mm is beyond" },
   };
   for (const auto& [file, expected] : cases)
   {
@@ -412,5 +455,31 @@ TEST(SlicerTransformFile, RefusesWhatIsNoRigidRegistrationInOneLine)
   }
   const std::string missing = RefusalOf([&] { vp::ReadTrackerRegistration(dir + "/absent.h5"); });
   EXPECT_EQ(missing, dir + "/absent.h5: no such file");
+  // The same traps in ITK's HDF5 layout, written through the HDF5 library as ITK lays it out.
+  auto hdf5 = [&](const std::string& name, const std::string& type, std::size_t parameters, std::size_t fixed) {
+    const std::string path = dir + "/" + name;
+    H5::H5File file(path, H5F_ACC_TRUNC);
+    file.createGroup("/TransformGroup");
+    file.createGroup("/TransformGroup/0");
+    const hsize_t one = 1;
+    const H5::StrType text(H5::PredType::C_S1, H5T_VARIABLE);
+    file.createDataSet("/TransformGroup/0/TransformType", text, H5::DataSpace(1, &one)).write(type, text);
+    const std::vector<double> zeros(std::max<std::size_t>(1, std::max(parameters, fixed)), 0.0);
+    for (const auto& [set, count] : { std::make_pair("TransformParameters", parameters), std::make_pair("TransformFixedParameters", fixed) })
+    {
+      const hsize_t n = count;
+      file.createDataSet(std::string("/TransformGroup/0/") + set, H5::PredType::NATIVE_DOUBLE, H5::DataSpace(1, &n))
+        .write(zeros.data(), H5::PredType::NATIVE_DOUBLE);
+    }
+    return path;
+  };
+  const std::string shortH5 = hdf5("short.h5", "TranslationTransform_double_3_3", 1, 0);
+  EXPECT_EQ(RefusalOf([&] { vp::ReadTrackerRegistration(shortH5); }),
+    shortH5 + ": /TransformGroup/0: TranslationTransform_double_3_3 takes 3 parameters and 0 fixed ones, the file gives 1 and 0");
+  const std::string warpH5 = hdf5("warp.h5", "BSplineTransform_double_3_3", 192, 18);
+  EXPECT_EQ(RefusalOf([&] { vp::ReadTrackerRegistration(warpH5); }),
+    warpH5 + ": holds BSplineTransform_double_3_3, not a linear transform: a registration here is rigid");
+  const std::string movedH5 = hdf5("moved.h5", "TranslationTransform_double_3_3", 3, 0);
+  EXPECT_EQ(vp::ReadTrackerRegistration(movedH5).TrackerToPatient[3], 0.0) << "counted right, it is read";
 }
 } // namespace

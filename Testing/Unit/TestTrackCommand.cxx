@@ -992,6 +992,7 @@ TEST_F(PoseForms, MisreadPosesAreSaidAndStrictRefusesThem)
     std::string Name;
     std::function<std::string(double, double)> Format;
     std::vector<std::string> Kinds;
+    std::string Header = "time,x,y,z,qw,qx,qy,qz\n";
   };
   const std::vector<Case> cases = {
     { "metres", at(0.001, 1.0, 1.0), { "no_pose_near_vessels", "metres" } },
@@ -999,10 +1000,12 @@ TEST_F(PoseForms, MisreadPosesAreSaidAndStrictRefusesThem)
     { "mirrored", at(1.0, -1.0, 1.0), { "no_pose_near_vessels", "mirrored" } },
     { "milliseconds", at(1.0, 1.0, 1000.0), { "milliseconds" } },
     { "lps", at(1.0, 1.0, 1.0), {} },
+    // Without a header nothing tells a scalar-first quaternion from a scalar-last one.
+    { "headerless", at(1.0, 1.0, 1.0), { "quaternion_order_assumed" }, "" },
   };
   for (const Case& c : cases)
   {
-    const std::string poses = this->Poses(c.Name + ".csv", header, c.Format);
+    const std::string poses = this->Poses(c.Name + ".csv", c.Header, c.Format);
     const ToolRun r = this->Track(poses, this->Dir + "/" + c.Name);
     ASSERT_EQ(r.ExitCode, 0) << r.Err;
     std::vector<std::string> kinds;

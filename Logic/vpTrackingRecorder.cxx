@@ -80,6 +80,7 @@ bool TrackingRecorder::Run(PoseSource& poses, RunFolder& run)
   TrajectoryCheck check(bounds, engine->GetRangeMm());
   TrackingSession session(proximity);
   session.SetProgress(this->Progress);
+  double lastFlushMs = NowMs();
   const bool ended = session.Run(poses, [&](const TrackedFrame& frame) {
     this->Summary.Add(frame);
     check.Add(frame);
@@ -98,11 +99,24 @@ bool TrackingRecorder::Run(PoseSource& poses, RunFolder& run)
     {
       this->Comparison->Add(frame.Proximity, proximity->GetLastExactProximity(), engine->GetRangeMm(), engine->GetErrorBoundMm());
     }
+    if (NowMs() - lastFlushMs > 1000.0)
+    {
+      framesCsv.flush(); // a live run that dies loses at most its last second of rows
+      lastFlushMs = NowMs();
+    }
+    if (this->FrameObserver)
+    {
+      this->FrameObserver(frame);
+    }
   },
     [&](const TrackedPose& lost) {
       if (plot)
       {
         plot->AddLost(lost.TimeS); // a gap in the plot where the tracker lost the tool
+      }
+      if (this->LostObserver)
+      {
+        this->LostObserver(lost);
       }
     });
   if (!ended)
@@ -161,6 +175,10 @@ bool TrackingRecorder::Run(PoseSource& poses, RunFolder& run)
   getrusage(RUSAGE_SELF, &usage);
   this->PeakMemoryMb = static_cast<double>(usage.ru_maxrss) / 1024.0; // Linux: kB
   doc["peak_memory_mb"] = this->PeakMemoryMb;
+  if (this->ReportAddition)
+  {
+    this->ReportAddition(doc);
+  }
 
   plot->Write(run.File("distance.png"), tracking->GetDangerThresholds(), engine->GetRangeMm());
   WriteFileAtomically(run.File("summary.json"), doc.dump(2) + "\n");

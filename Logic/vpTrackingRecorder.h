@@ -21,7 +21,7 @@ namespace vp
 class RunFolder;
 
 /// A tracking session (vp::TrackingSession) recorded into the run's report: frames.csv (a row per
-/// frame, written as it is computed), distance.png and summary.json, in the run's folder; the
+/// frame, written as it is computed and flushed at least once a second), distance.png and summary.json, in the run's folder; the
 /// caller commits it (RunFolder::Commit) with whatever else the run wrote. Memory does not grow
 /// with the number of frames. Observers of the logic's tracking logic hear every frame and every
 /// level change as they happen.
@@ -36,6 +36,13 @@ public:
   void SetProgress(std::function<void(std::size_t done, std::size_t expected)> progress);
   /// Added to summary.json's timing_ms as load_and_build (the caller's time before Run()).
   void SetLoadAndBuildMs(double ms) { this->LoadAndBuildMs = ms; }
+  /// Called with each frame once it is recorded, and with each lost pose: a live front end sends
+  /// them on. (May be empty.)
+  void SetFrameObserver(std::function<void(const TrackedFrame&)> observer) { this->FrameObserver = std::move(observer); }
+  void SetLostObserver(std::function<void(const TrackedPose&)> observer) { this->LostObserver = std::move(observer); }
+  /// Called with summary.json before it is written, for the front end's own sections (a live
+  /// run's latency and link counts).
+  void SetReportAddition(std::function<void(nlohmann::ordered_json&)> addition) { this->ReportAddition = std::move(addition); }
 
   /// Runs every pose of the source and writes the report into run (begun here if it was not).
   /// summary.json's "files" lists the session's files and every entry the run noted before it
@@ -65,6 +72,9 @@ private:
   nlohmann::ordered_json Report;
   double LoadAndBuildMs = 0.0;
   double PeakMemoryMb = 0.0;
+  std::function<void(const TrackedFrame&)> FrameObserver;
+  std::function<void(const TrackedPose&)> LostObserver;
+  std::function<void(nlohmann::ordered_json&)> ReportAddition;
 };
 } // namespace vp
 

@@ -37,7 +37,7 @@ bool TrackingSession::Run(PoseSource& poses, const std::function<void(const Trac
   double lastReport = NowMs();
   for (TrackedPose pose; poses.Next(pose);)
   {
-    if (RunFolder::SignalPending())
+    if (RunFolder::SignalPending() && !poses.EndsOnSignal())
     {
       return false;
     }

@@ -27,9 +27,10 @@ public:
 
   /// Every pose of the source in turn; each frame goes to onFrame (may be empty), outside the
   /// frame's own time. A lost pose (the tracker did not see the tool) is counted and goes to
-  /// onLost (may be empty), never computed: no distance comes from where the tool was before. Returns false when a held signal came (RunFolder::SignalPending) before
-  /// the source ended: the caller lets its RunFolder go and the signal acts. Throws the source's
-  /// InputError.
+  /// onLost (may be empty), never computed: no distance comes from where the tool was before.
+  /// Returns false when a held signal came (RunFolder::SignalPending) before the source ended,
+  /// unless the signal is the source's own end (PoseSource::EndsOnSignal): the caller lets its
+  /// RunFolder go and the signal acts. Throws the source's InputError.
   bool Run(PoseSource& poses, const std::function<void(const TrackedFrame&)>& onFrame = {},
     const std::function<void(const TrackedPose&)>& onLost = {});
 

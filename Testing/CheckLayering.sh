@@ -34,6 +34,7 @@ layers=(
   "Instrument"
   "Tracking"
   "Reports"
+  "Live"
   "."
 )
 layer_of() {

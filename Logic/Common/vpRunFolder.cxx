@@ -1,5 +1,7 @@
 #include "vpRunFolder.h"
 
+#include "vpSignalHold.h"
+
 #include "vpInputError.h"
 #include "vpOutputFile.h"
 
@@ -26,60 +28,6 @@ namespace vp
 {
 namespace
 {
-// The signals held while a run is written, the first one that arrived, and the handlers they had.
-const int HeldSignals[] = { SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGUSR1, SIGUSR2, SIGALRM, SIGPIPE, SIGXFSZ };
-constexpr int HeldCount = static_cast<int>(sizeof(HeldSignals) / sizeof(HeldSignals[0]));
-volatile std::sig_atomic_t PendingSignal = 0;
-struct sigaction PreviousActions[HeldCount];
-int Holders = 0; // RunFolders begun and not released
-
-extern "C" void RecordSignal(int signal)
-{
-  if (PendingSignal == 0)
-  {
-    PendingSignal = signal;
-  }
-}
-
-void HoldSignals()
-{
-  if (Holders++ > 0)
-  {
-    return;
-  }
-  PendingSignal = 0;
-  struct sigaction record = {};
-  record.sa_handler = RecordSignal;
-  record.sa_flags = SA_RESTART;
-  sigemptyset(&record.sa_mask);
-  for (int i = 0; i < HeldCount; ++i)
-  {
-    sigaction(HeldSignals[i], nullptr, &PreviousActions[i]);
-    if (PreviousActions[i].sa_handler != SIG_IGN) // nohup's SIGHUP stays ignored
-    {
-      sigaction(HeldSignals[i], &record, nullptr);
-    }
-  }
-}
-
-// Restores the handlers; a signal that came meanwhile is raised again, to act as it would have.
-void ReleaseSignals()
-{
-  if (--Holders > 0)
-  {
-    return;
-  }
-  for (int i = 0; i < HeldCount; ++i)
-  {
-    sigaction(HeldSignals[i], &PreviousActions[i], nullptr);
-  }
-  if (const int signal = PendingSignal)
-  {
-    PendingSignal = 0;
-    std::raise(signal);
-  }
-}
-
 const char* LockName = ".lock";
 const char* PlanName = ".vesselproximity-plan.json";
 
@@ -335,7 +283,7 @@ RunFolder::RunFolder(const std::string& target, const std::string& report)
 
 bool RunFolder::SignalPending()
 {
-  return PendingSignal != 0;
+  return SignalHold::Pending();
 }
 
 RunFolder::~RunFolder()
@@ -374,7 +322,7 @@ void RunFolder::Begin()
   {
     return;
   }
-  HoldSignals();
+  this->Signals = std::make_unique<SignalHold>();
   this->Begun = true;
   this->CreatedTarget = CreateOutputFolder(this->TargetPath);
   Recover(this->TargetPath);
@@ -513,6 +461,6 @@ void RunFolder::Release()
     fs::remove(this->TargetPath, ec); // only if empty: a failed first run leaves no folder
   }
   this->Begun = false;
-  ReleaseSignals();
+  this->Signals.reset();
 }
 } // namespace vp

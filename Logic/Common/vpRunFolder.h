@@ -1,11 +1,14 @@
 #ifndef vpRunFolder_h
 #define vpRunFolder_h
 
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace vp
 {
+class SignalHold;
+
 /// Creates an output folder and its missing parents, like mkdir -p; returns whether it was new.
 /// Throws InputError naming the folder when it cannot be made.
 bool CreateOutputFolder(const std::string& folder);
@@ -90,6 +93,7 @@ private:
   std::vector<std::string> Inputs; // canonical paths
   std::vector<Entry> Previous;     // the marker's entries when the run began
   int LockFd = -1;                 // the staging folder's lock, held while the run lives
+  std::unique_ptr<SignalHold> Signals; // from Begin() to the commit or the end
   bool Begun = false;
   bool CreatedTarget = false;
   void Release();

@@ -173,45 +173,6 @@ PoseColumns ColumnsByName(const std::vector<std::string>& header, const std::str
   return columns;
 }
 
-// A pose from the numbers after the time: 16 (matrix) or 7 (position, quaternion w,x,y,z), read
-// as reading says (units, frame); "" or the problem.
-std::string MakePose(const double* values, std::size_t count, const SettledReading& reading, TrackedPose& pose)
-{
-  if (count == 16)
-  {
-    std::copy(values, values + 16, pose.ModelToWorld.begin());
-  }
-  else
-  {
-    const double norm = std::sqrt(values[3] * values[3] + values[4] * values[4] + values[5] * values[5] + values[6] * values[6]);
-    if (!(std::abs(norm - 1.0) <= 1e-3))
-    {
-      return "the quaternion is not of unit length (|q| = " + NumberText(norm) + ")";
-    }
-    // Normalised, so that a quaternion written to 4 decimals still gives an orthonormal rotation.
-    pose.ModelToWorld = PoseFromQuaternion(
-      { values[0], values[1], values[2] }, { values[3] / norm, values[4] / norm, values[5] / norm, values[6] / norm });
-  }
-  std::string problem = RigidTransformProblem(pose.ModelToWorld);
-  for (int a = 0; a < 3; ++a)
-  {
-    pose.ModelToWorld[4 * a + 3] *= reading.MillimetresPerUnit;
-  }
-  if (reading.Space == PoseSpace::RAS)
-  {
-    // World RAS to LPS: x and y negated, a half turn about the superior axis (still a rotation).
-    for (int k = 0; k < 8; ++k)
-    {
-      pose.ModelToWorld[k] = -pose.ModelToWorld[k];
-    }
-  }
-  if (reading.Registration)
-  {
-    pose.ModelToWorld = MultiplyTransforms(reading.Registration->TrackerToPatient, pose.ModelToWorld);
-  }
-  return problem;
-}
-
 // Makes the pose at time from the numbers after the time (16: matrix; 7: position and
 // quaternion), after the previous pose (null for the first), or throws naming fileName and where
 // (the line or pose).
@@ -221,12 +182,7 @@ TrackedPose CheckedPose(double time, const double* values, std::size_t count, co
   TrackedPose pose;
   pose.TimeS = time * reading.SecondsPerUnit;
   std::string problem = MagnitudeProblem(pose.TimeS, limits::TimeS, "s");
-  problem = problem.empty() ? MakePose(values, count, reading, pose) : "time " + problem;
-  for (int a = 0; a < 3 && problem.empty(); ++a)
-  {
-    const std::string far = MagnitudeProblem(pose.ModelToWorld[4 * a + 3], limits::CoordinateMm, "mm");
-    problem = far.empty() ? far : "position " + far + " (a patient lies within metres of the origin)";
-  }
+  problem = problem.empty() ? MakeTrackedPose(values, count, reading, pose) : "time " + problem;
   if (problem.empty() && previous && !(pose.TimeS > previous->TimeS))
   {
     problem = "time " + NumberText(pose.TimeS) + " is not after the previous " + NumberText(previous->TimeS);
@@ -275,6 +231,54 @@ struct PoseStream::Format
   SettledReading Reading;
   PoseColumns Columns;
 };
+
+SettledReading SettlePoseReading(const PoseReading& given)
+{
+  return Resolve(given, PoseReading(), std::string());
+}
+
+std::string MakeTrackedPose(const double* values, std::size_t count, const SettledReading& reading, TrackedPose& pose)
+{
+  if (count == 16)
+  {
+    std::copy(values, values + 16, pose.ModelToWorld.begin());
+  }
+  else
+  {
+    const double norm = std::sqrt(values[3] * values[3] + values[4] * values[4] + values[5] * values[5] + values[6] * values[6]);
+    if (!(std::abs(norm - 1.0) <= 1e-3))
+    {
+      return "the quaternion is not of unit length (|q| = " + NumberText(norm) + ")";
+    }
+    // Normalised, so that a quaternion written to 4 decimals still gives an orthonormal rotation.
+    pose.ModelToWorld = PoseFromQuaternion(
+      { values[0], values[1], values[2] }, { values[3] / norm, values[4] / norm, values[5] / norm, values[6] / norm });
+  }
+  std::string problem = RigidTransformProblem(pose.ModelToWorld);
+  for (int a = 0; a < 3; ++a)
+  {
+    pose.ModelToWorld[4 * a + 3] *= reading.MillimetresPerUnit;
+  }
+  if (reading.Space == PoseSpace::RAS)
+  {
+    // World RAS to LPS: x and y negated, a half turn about the superior axis (still a rotation).
+    for (int k = 0; k < 8; ++k)
+    {
+      pose.ModelToWorld[k] = -pose.ModelToWorld[k];
+    }
+  }
+  if (reading.Registration)
+  {
+    pose.ModelToWorld = MultiplyTransforms(reading.Registration->TrackerToPatient, pose.ModelToWorld);
+  }
+  for (int a = 0; a < 3 && problem.empty(); ++a)
+  {
+    const std::string far = MagnitudeProblem(pose.ModelToWorld[4 * a + 3], limits::CoordinateMm, "mm");
+    problem = far.empty() ? far : "position " + far + " (a patient lies within metres of the origin)";
+  }
+  return problem;
+}
+
 
 PoseStream::PoseStream(const std::string& fileName, std::size_t expected, const PoseReading& reading)
   : Name(fileName)

@@ -63,6 +63,9 @@ public:
   /// How its numbers were read (settled at the first pose); none before it, or for poses that
   /// came as numbers in the patient's frame.
   virtual const SettledReading* GetSettledReading() const { return nullptr; }
+  /// Whether a held signal (Ctrl-C) is the source's own end, as for a live stream, rather than an
+  /// interruption of the run.
+  virtual bool EndsOnSignal() const { return false; }
 };
 
 /// The poses of a pose file one at a time, with ReadPoseFile's checks and messages: a CSV file
@@ -139,6 +142,16 @@ private:
 /// The CSV form ReadPoseFile reads, `time,m00,...,m33` with a header line, each number to 17
 /// significant digits so a pose read back is the pose written.
 std::string FormatPoseCsv(const std::vector<TrackedPose>& poses);
+
+/// How a source that declares nothing (a live stream) is read: the settings given, else the
+/// defaults (the registration's tracker space, LPS; mm; s).
+SettledReading SettlePoseReading(const PoseReading& given);
+
+/// A pose from its numbers: 16 (model-to-world, row-major) or 7 (position, then the quaternion
+/// w,x,y,z), read as reading says (units, frame, registration), with every check a pose file's
+/// pose gets but its time's: orthonormal and proper, a unit quaternion, the position within
+/// limits::CoordinateMm. Returns "" or the problem in a few words (the pose is then not to be used).
+std::string MakeTrackedPose(const double* values, std::size_t count, const SettledReading& reading, TrackedPose& pose);
 
 /// The rotation matrix of a unit quaternion (w, x, y, z), as a model-to-world matrix with the
 /// given translation.

@@ -18,6 +18,7 @@ const std::vector<CommandEntry>& CommandTable()
     { "models", DescribeModelsCommand, RunModelsCommand },
     { "distance", DescribeDistanceCommand, RunDistanceCommand },
     { "track", DescribeTrackCommand, RunTrackCommand },
+    { "live", DescribeLiveCommand, RunLiveCommand },
     { "register", DescribeRegisterCommand, RunRegisterCommand },
     { "bench", DescribeBenchCommand, RunBenchCommand },
     { "phantom", DescribePhantomCommand, RunPhantomCommand },

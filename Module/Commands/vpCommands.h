@@ -20,6 +20,8 @@ cli::ModuleDescription DescribeModelsCommand();
 int RunModelsCommand(const cli::ParsedArguments& args, const ModuleServices& module);
 cli::ModuleDescription DescribeTrackCommand();
 int RunTrackCommand(const cli::ParsedArguments& args, const ModuleServices& module);
+cli::ModuleDescription DescribeLiveCommand();
+int RunLiveCommand(const cli::ParsedArguments& args, const ModuleServices& module);
 cli::ModuleDescription DescribeRegisterCommand();
 int RunRegisterCommand(const cli::ParsedArguments& args, const ModuleServices& module);
 cli::ModuleDescription DescribeDemoCommand();

@@ -22,19 +22,6 @@ namespace vp
 {
 namespace
 {
-/// Said once everything is built and checked: a line before a refusal would make its one line two.
-void ReportOpenedScene(vtkVesselProximityLogic* proximity, const OpenedScene& scene, const std::string& scalpelFile)
-{
-  ReportEngineNote(scene.EngineNote);
-  std::cerr << "track: " << proximity->GetScalpel()->GetTipSource() << "\n";
-  ReportSurfaceDefects("track", proximity->GetDistanceEngine(), scene.Vessels);
-  if (scene.PenetrationUnknown)
-  {
-    std::cerr << "track: " << scalpelFile
-              << ": the surface is not closed, so the instrument's penetration depth and volume cannot be known (left empty)\n";
-  }
-}
-
 /// The reading options, and --strict.
 std::vector<cli::Parameter> PoseReadingOptionsWithStrict()
 {
@@ -178,7 +165,7 @@ int RunTrackCommand(const cli::ParsedArguments& args, const ModuleServices& modu
   const bool strict = args.GetBoolean("strict");
   if (!strict)
   {
-    ReportOpenedScene(proximity, scene, request.ScalpelFile);
+    ReportOpenedScene("track", proximity, scene, request.ScalpelFile);
   }
   TrackingRecorder session(proximity, scene.Vessels);
   session.SetLoadAndBuildMs(NowMs() - start);
@@ -193,7 +180,7 @@ int RunTrackCommand(const cli::ParsedArguments& args, const ModuleServices& modu
   ReportTrajectoryWarnings(session.GetWarnings(), strict, posesFile);
   if (strict)
   {
-    ReportOpenedScene(proximity, scene, request.ScalpelFile);
+    ReportOpenedScene("track", proximity, scene, request.ScalpelFile);
   }
   run.Commit(); // the folder holds this run whole, or the previous one as it was
   if (session.GetComparison() && session.GetComparison()->OutsideBound > 0)

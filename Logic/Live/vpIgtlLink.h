@@ -1,0 +1,125 @@
+#ifndef vpIgtlLink_h
+#define vpIgtlLink_h
+
+#include "vpPoseFile.h"
+#include "vpPoseReading.h"
+
+#include <atomic>
+#include <condition_variable>
+#include <cstddef>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace vp
+{
+/// Where the link meets its peers and what it takes from them.
+struct IgtlLinkSettings
+{
+  /// ConnectHost and ConnectPort: a server to connect to (a tracker's, PlusServer), as Slicer
+  /// connects to PLUS; reconnected with a growing pause (0.1 s to 2 s) whenever it is lost.
+  /// ConnectPort 0: none.
+  std::string ConnectHost = "127.0.0.1";
+  int ConnectPort = 0;
+  /// ListenPort: a port to serve on, for clients (Slicer, a tracker client) to connect to;
+  /// -1: none; 0: any free port (GetListenPort()).
+  int ListenPort = -1;
+  /// ToolName: the TRANSFORM device, or the QTDATA/TDATA element, that carries the tool's pose
+  /// ("StylusToTracker").
+  std::string ToolName;
+  /// How the numbers are read (SettlePoseReading): frame, units, registration.
+  SettledReading Reading;
+  /// MaxBodyBytes: a body larger than this is a size field that lies: counted, and the connection
+  /// closed (the stream cannot be followed past it). 1 MiB by default (a TDATA of a hundred tools
+  /// is 7 kB).
+  std::uint64_t MaxBodyBytes = 1u << 20;
+  /// MessageTimeoutMs: a message begun must end within this, or the connection is closed as
+  /// stalled. 1000 by default.
+  double MessageTimeoutMs = 1000.0;
+  /// MaxClients: clients served at once; one more is turned away. 8 by default.
+  int MaxClients = 8;
+};
+
+/// What a link saw, since it started.
+struct IgtlLinkCounts
+{
+  std::size_t Messages = 0; ///< whole messages read
+  std::size_t Poses = 0;    ///< the tool's poses taken from them
+  std::size_t Dropped = 0;  ///< poses replaced by a newer one before they were computed
+  std::map<std::string, std::size_t> Rejected; ///< malformed or implausible, by reason
+  std::map<std::string, std::size_t> Ignored;  ///< other types and tools, by which
+  std::size_t Connections = 0;
+  std::size_t ConnectionsLost = 0;
+  std::size_t SendFailures = 0; ///< peers sent no more results because they took none
+  std::size_t RejectedTotal() const;
+};
+
+/// OpenIGTLink (Debian's library) both ways, as PLUS and 3D Slicer speak it: the tool's poses
+/// in from a server it connects to and from the clients it serves, results out to all of them.
+/// Each connection is read by a thread of its own; the newest pose waits in a mailbox of one
+/// (WaitForPose), so a sender faster than the frames loses its older poses (counted), never
+/// queues them. A malformed message is skipped and counted; one that cannot be followed (a size
+/// that lies, a stall midway, bytes that are no header) closes its connection, which a server
+/// connected to is reconnected. Nothing here blocks a caller for longer than it asks.
+class IgtlLink
+{
+public:
+  /// Starts listening and connecting. Throws ParameterError("ListenPort") when the port cannot
+  /// be served on, ParameterError("ToolName") when none is given.
+  explicit IgtlLink(const IgtlLinkSettings& settings);
+  ~IgtlLink();
+  IgtlLink(const IgtlLink&) = delete;
+  IgtlLink& operator=(const IgtlLink&) = delete;
+
+  /// Waits up to timeoutMs for a pose newer than the last taken: true with it (its TimeS: seconds
+  /// since the link started, at its arrival) and its arrival (vp::NowMs()).
+  bool WaitForPose(double timeoutMs, TrackedPose& pose, double& arrivalMs);
+  /// Writes packed messages to every peer connected now; a peer that cannot take them within
+  /// 20 ms (a tracker server that never reads) is sent nothing more (counted, said), never waited
+  /// for again; its poses are still read.
+  void Send(const std::string& packed);
+
+  IgtlLinkCounts GetCounts() const;
+  /// What happened since the last call, a line each ("connected to 127.0.0.1:18944", "skipped a
+  /// message from ...: bad CRC (counted from now on)"), for the front end to show.
+  std::vector<std::string> TakeEvents();
+  const IgtlLinkSettings& GetSettings() const { return this->Settings; }
+  /// The port served on (the one chosen when ListenPort was 0); -1 when not listening.
+  int GetListenPort() const { return this->ListenPort; }
+  std::size_t GetNumberOfPeers() const;
+
+private:
+  struct Peer;
+  void ConnectLoop();
+  void AcceptLoop();
+  void ReadLoop(Peer& peer);
+  /// Reads the peer's messages until it closes, stalls, sends what cannot be followed or the link
+  /// stops.
+  void ServePeer(Peer& peer);
+  /// Joins and forgets the readers of peers that have ended.
+  void Prune();
+  void Note(const std::string& event);
+  void Count(std::map<std::string, std::size_t> IgtlLinkCounts::*which, const std::string& reason, const std::string& from);
+
+  IgtlLinkSettings Settings;
+  double StartMs = 0.0;
+  int ListenPort = -1;
+  std::atomic<bool> Stop{ false };
+  mutable std::mutex Mutex; // guards everything below
+  std::condition_variable PoseArrived;
+  std::vector<std::shared_ptr<Peer>> Peers; // connected now or being read to the end
+  IgtlLinkCounts Counts;
+  std::vector<std::string> Events;
+  TrackedPose Newest;
+  double NewestArrivalMs = 0.0;
+  bool Fresh = false;
+  std::shared_ptr<void> Server; // the listening socket (igtl::ServerSocket), kept out of this header
+  std::thread Connector, Acceptor;
+};
+} // namespace vp
+
+#endif

@@ -1,0 +1,95 @@
+#include "vpLiveResults.h"
+
+#include "vpIgtlMessages.h"
+
+#include <nlohmann/json.hpp>
+
+namespace vp
+{
+namespace
+{
+using Json = nlohmann::ordered_json;
+
+/// LPS (ours) to RAS (what a Slicer peer shows).
+Json RasJson(const double p[3])
+{
+  return Json::array({ -p[0], -p[1], p[2] });
+}
+
+std::array<double, 3> Ras(const double p[3])
+{
+  return { -p[0], -p[1], p[2] };
+}
+
+std::array<unsigned char, 4> Rgba(DangerLevel level)
+{
+  const auto c = DangerLevelColour(level);
+  return { c[0], c[1], c[2], 255 };
+}
+} // namespace
+
+std::string LiveFrameJson(const TrackedFrame& frame)
+{
+  const ProximityResult& r = frame.Proximity;
+  Json out;
+  out["state"] = "tracking";
+  out["frame"] = frame.Frame;
+  out["time"] = frame.TimeS;
+  out["space"] = "RAS";
+  out["tip"] = RasJson(frame.TipMm);
+  out["level"] = DangerLevelName(frame.Level);
+  out["level_class"] = frame.LevelClass >= 0 ? Json(r.Classes[static_cast<std::size_t>(frame.LevelClass)].ClassName) : Json(nullptr);
+  out["error_bound_mm"] = r.ErrorBoundMm;
+  const int nearest = r.NearestIndex();
+  out["nearest"] = nearest >= 0 ? Json{ { "class", r.Classes[static_cast<std::size_t>(nearest)].ClassName },
+                                     { "distance_mm", r.Classes[static_cast<std::size_t>(nearest)].DistanceMm } }
+                                 : Json(nullptr);
+  Json classes = Json::object();
+  for (std::size_t c = 0; c < r.Classes.size(); ++c)
+  {
+    const ClassProximity& p = r.Classes[c];
+    Json entry;
+    entry["distance_mm"] = p.InRange ? Json(p.DistanceMm) : Json(nullptr);
+    entry["inside"] = p.Inside ? Json(*p.Inside) : Json(nullptr);
+    entry["level"] = c < frame.ClassLevels.size() ? DangerLevelName(frame.ClassLevels[c]) : "safe";
+    entry["point"] = p.InRange ? RasJson(p.ClosestPoint) : Json(nullptr);
+    entry["surface_mm"] = c < frame.Surface.size() && frame.Surface[c].InRange ? Json(frame.Surface[c].DistanceMm) : Json(nullptr);
+    const bool known = c < frame.Penetrations.size() && frame.Penetrations[c].Known;
+    entry["penetration_depth_mm"] = known ? Json(frame.Penetrations[c].DepthMm) : Json(nullptr);
+    entry["penetration_volume_mm3"] = known ? Json(frame.Penetrations[c].VolumeMm3) : Json(nullptr);
+    classes[p.ClassName] = entry;
+  }
+  out["classes"] = classes;
+  return out.dump();
+}
+
+std::string PackLiveFrame(const TrackedFrame& frame)
+{
+  std::vector<IgtlPoint> points;
+  points.push_back({ "tip", "scalpel", Rgba(frame.Level), Ras(frame.TipMm) });
+  for (std::size_t c = 0; c < frame.Proximity.Classes.size(); ++c)
+  {
+    const ClassProximity& p = frame.Proximity.Classes[c];
+    if (p.InRange)
+    {
+      points.push_back({ p.ClassName, "closest", Rgba(c < frame.ClassLevels.size() ? frame.ClassLevels[c] : DangerLevel::Safe),
+        Ras(p.ClosestPoint) });
+    }
+  }
+  return PackIgtlString(live::FrameDevice, LiveFrameJson(frame)) + PackIgtlPoints(live::PointsDevice, points);
+}
+
+std::string PackLiveLost(double timeS, double sincePoseMs)
+{
+  const Json out = { { "state", "lost" }, { "time", timeS }, { "since_pose_ms", sincePoseMs } };
+  return PackIgtlString(live::FrameDevice, out.dump());
+}
+
+std::string PackLiveLevelChange(const DangerLevelChange& change)
+{
+  const Json out = { { "frame", change.Frame }, { "time", change.TimeS }, { "from", DangerLevelName(change.From) },
+    { "to", DangerLevelName(change.To) }, { "class", change.ClassName.empty() ? Json(nullptr) : Json(change.ClassName) },
+    { "distance_mm", change.DistanceMm } };
+  return PackIgtlString(live::LevelDevice, out.dump());
+}
+} // namespace vp

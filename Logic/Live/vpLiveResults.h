@@ -1,0 +1,38 @@
+#ifndef vpLiveResults_h
+#define vpLiveResults_h
+
+#include "vpTrackedFrame.h"
+
+#include <string>
+
+namespace vp
+{
+/// The device names of what a live session sends back, as 3D Slicer's OpenIGTLinkIF makes
+/// nodes of them with no code of its own: a text node of the frame, a point list of the tip and
+/// the closest points.
+namespace live
+{
+/// STRING: every frame as JSON (LiveFrameJson), and {"state": "lost", ...} when tracking is lost.
+constexpr const char* FrameDevice = "VesselProximity";
+/// STRING: each change of the overall danger level, as JSON, when it happens.
+constexpr const char* LevelDevice = "VesselProximityLevel";
+/// POINT: "tip", then per class in range its closest point (named for the class), RAS, mm,
+/// coloured by the class's level.
+constexpr const char* PointsDevice = "VesselProximityPoints";
+} // namespace live
+
+/// One frame as the peer reads it: {"state": "tracking", "frame", "time", "space": "RAS", "tip",
+/// "level", "level_class", "error_bound_mm", "nearest": {"class", "distance_mm"} or null,
+/// "classes": {"<class>": {"distance_mm", "inside", "level", "point", "surface_mm",
+/// "penetration_depth_mm", "penetration_volume_mm3"}}}: points in RAS (what Slicer shows), null
+/// where a class is out of range or a quantity was not computed.
+std::string LiveFrameJson(const TrackedFrame& frame);
+/// The frame's messages, packed: the STRING and the POINT list.
+std::string PackLiveFrame(const TrackedFrame& frame);
+/// Tracking lost: {"state": "lost", "time", "since_pose_ms"}.
+std::string PackLiveLost(double timeS, double sincePoseMs);
+/// A level change: {"frame", "time", "from", "to", "class", "distance_mm"}.
+std::string PackLiveLevelChange(const DangerLevelChange& change);
+} // namespace vp
+
+#endif

@@ -1,0 +1,308 @@
+// vesselproximity live: the tracking session on a live OpenIGTLink stream (PLUS, a tracker, 3D
+// Slicer), its results sent back to every peer as Slicer reads them, and recorded like track's.
+#include "vpArguments.h"
+#include "vpCommandSupport.h"
+#include "vpCommands.h"
+#include "vpEngineOptions.h"
+#include "vpFramesCsv.h"
+#include "vpIgtlLink.h"
+#include "vpInputError.h"
+#include "vpLivePoseSource.h"
+#include "vpLiveResults.h"
+#include "vpPoseFile.h"
+#include "vpRegistrationFile.h"
+#include "vpRunFolder.h"
+#include "vpRunningQuantiles.h"
+#include "vpSignalHold.h"
+#include "vpTrackingOptions.h"
+#include "vpTrackingRecorder.h"
+#include "vpTrackingSession.h"
+#include "vtkScalpelTrackingLogic.h"
+#include "vtkVesselProximityLogic.h"
+
+#include <vtkCallbackCommand.h>
+#include <vtkNew.h>
+
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <optional>
+
+namespace vp
+{
+namespace
+{
+/// "HOST:PORT" (the host may be a name or an IPv4 address).
+std::pair<std::string, int> ParseHostPort(const std::string& text)
+{
+  const auto colon = text.rfind(':');
+  char* end = nullptr;
+  const long port = colon == std::string::npos ? -1 : std::strtol(text.c_str() + colon + 1, &end, 10);
+  if (colon == std::string::npos || colon == 0 || end == text.c_str() + colon + 1 || *end != '\0' || port < 1 || port > 65535)
+  {
+    throw InputError("--igtl", "expected HOST:PORT (a port 1 to 65535), got '" + text + "'");
+  }
+  return { text.substr(0, colon), static_cast<int>(port) };
+}
+
+/// The link's counts for summary.json and the terminal.
+nlohmann::ordered_json CountsJson(const IgtlLinkCounts& counts)
+{
+  nlohmann::ordered_json out;
+  out["messages"] = counts.Messages;
+  out["poses"] = counts.Poses;
+  out["poses_dropped"] = counts.Dropped;
+  out["rejected"] = counts.Rejected;
+  out["ignored"] = counts.Ignored;
+  out["connections"] = counts.Connections;
+  out["connections_lost"] = counts.ConnectionsLost;
+  out["send_failures"] = counts.SendFailures;
+  return out;
+}
+
+nlohmann::ordered_json LatencyJson(const RunningQuantiles& latency)
+{
+  if (latency.Count() == 0)
+  {
+    return nullptr;
+  }
+  return { { "median", latency.Quantile(0.5) }, { "p95", latency.Quantile(0.95) }, { "max", latency.Quantile(1.0) },
+    { "frames", latency.Count() } };
+}
+
+void PrintEvents(IgtlLink& link)
+{
+  for (const std::string& event : link.TakeEvents())
+  {
+    std::cerr << "live: " << event << "\n";
+  }
+}
+} // namespace
+
+cli::ModuleDescription DescribeLiveCommand()
+{
+  using cli::ParameterType;
+  std::vector<cli::Parameter> scalpel = {
+    Option(ParameterType::File, "scalpel", "The scalpel's surface model (STL, VTK, VTP or OBJ), in model coordinates.")
+      .SetChannel(cli::Channel::Input)
+      .SetRequired(),
+  };
+  for (const cli::Parameter& p : ScalpelTipOptions())
+  {
+    scalpel.push_back(p);
+  }
+  const std::vector<cli::Parameter> reading = PoseReadingOptions();
+  return cli::ModuleDescription::Subcommand("vesselproximity live",
+    "track a live OpenIGTLink stream (PLUS, a tracker, 3D Slicer) and send the results back",
+    "Takes the scalpel's pose from a live OpenIGTLink stream, computes each frame as track does and sends it back to "
+    "every peer: a STRING " +
+      std::string(live::FrameDevice) + " (the frame as JSON, or {\"state\": \"lost\"}), a POINT " + live::PointsDevice +
+      " (the tip and each class's closest point, RAS) and, on each change of level, a STRING " + live::LevelDevice +
+      ". Runs until Ctrl-C (or --duration-s); with -o, the run's frames.csv, summary.json and distance.png.",
+    {
+      { "Inputs", "", { VesselsOption().SetRequired(), RepairSwitch() } },
+      { "Stream", "",
+        {
+          Option(ParameterType::String, "igtl", "Connect to a tracker's OpenIGTLink server (PlusServer), reconnecting when it is lost.")
+            .SetPlaceholder("HOST:PORT"),
+          Option(ParameterType::Integer, "igtl-listen", "Serve on this port for clients (3D Slicer, a tracker client); 0: any free port.")
+            .SetPlaceholder("PORT")
+            .SetLogicName("ListenPort"),
+          Option(ParameterType::String, "tool-name",
+            "The TRANSFORM device (or QTDATA/TDATA element) carrying the scalpel's pose, e.g. StylusToTracker.")
+            .SetPlaceholder("NAME")
+            .SetLogicName("ToolName")
+            .SetRequired(),
+          reading[0],
+          reading[1],
+          reading[5],
+          Option(ParameterType::Double, "stale-ms", "No pose for this long is tracking lost: said, sent to the peers and recorded.")
+            .SetPlaceholder("MS")
+            .SetDefault("200")
+            .SetLogicName("StaleMs"),
+          Option(ParameterType::Double, "duration-s", "Stop after this long (0: at Ctrl-C).").SetPlaceholder("S").SetDefault("0"),
+          OutputFolderOption("The run's folder: frames.csv (flushed every second), summary.json, distance.png."),
+        } },
+      { "Scalpel", "", scalpel },
+      EngineOptions({ "exact", "zbuffer", "both" }),
+      TrackingOptions(),
+    });
+}
+
+int RunLiveCommand(const cli::ParsedArguments& args, const ModuleServices& module)
+{
+  // Ctrl-C is the session's end, not its interruption: held from here, answered at the end.
+  SignalHold hold;
+  IgtlLinkSettings link;
+  if (!args.IsSet("igtl") && !args.IsSet("igtlListen"))
+  {
+    throw InputError("--igtl/--igtl-listen", "give --igtl HOST:PORT (a tracker's server), --igtl-listen PORT, or both");
+  }
+  if (args.IsSet("igtl"))
+  {
+    std::tie(link.ConnectHost, link.ConnectPort) = ParseHostPort(args.GetString("igtl"));
+  }
+  if (args.IsSet("igtlListen"))
+  {
+    link.ListenPort = args.GetInteger("igtlListen");
+    if (link.ListenPort < 0 || link.ListenPort > 65535)
+    {
+      throw InputError("--igtl-listen", "expected a port 0 to 65535, got " + std::to_string(link.ListenPort));
+    }
+  }
+  link.ToolName = args.GetString("toolName");
+  PoseReading reading;
+  if (args.IsSet("poseSpace"))
+  {
+    reading.Space = args.GetString("poseSpace") == "RAS" ? PoseSpace::RAS : PoseSpace::LPS;
+  }
+  if (args.IsSet("poseUnits"))
+  {
+    reading.MillimetresPerUnit = args.GetString("poseUnits") == "m" ? 1000.0 : 1.0;
+  }
+  if (args.IsSet("registration"))
+  {
+    reading.Registration = ReadTrackerRegistration(args.GetString("registration"));
+  }
+  link.Reading = SettlePoseReading(reading);
+  const double staleMs = args.GetNumber("staleMs");
+  const double durationS = args.GetNumber("durationS");
+  if (!(staleMs > 0.0))
+  {
+    throw InputError("--stale-ms", "expected a time in ms above 0, got '" + args.GetString("staleMs") + "'");
+  }
+  if (!(durationS >= 0.0))
+  {
+    throw InputError("--duration-s", "expected a time in s, 0 or more, got '" + args.GetString("durationS") + "'");
+  }
+
+  const double start = NowMs();
+  SceneRequest request = ParseSceneRequest(args);
+  request.RepairVessels = args.GetBoolean("repair");
+  std::vector<std::string> classes;
+  for (const NamedMesh& vessel : request.Vessels)
+  {
+    classes.push_back(vessel.ClassName);
+  }
+  CheckFramesCsvColumns(classes);
+  std::unique_ptr<RunFolder> run;
+  const std::string outDir = args.GetString("output");
+  if (!outDir.empty())
+  {
+    run = std::make_unique<RunFolder>(outDir, "summary.json");
+    std::vector<std::string> inputs = { request.ScalpelFile };
+    for (const NamedMesh& vessel : request.Vessels)
+    {
+      inputs.push_back(vessel.FileName);
+    }
+    if (args.IsSet("registration"))
+    {
+      inputs.push_back(args.GetString("registration"));
+    }
+    run->SetInputs(inputs);
+  }
+  vtkSmartPointer<vtkVesselProximityLogic> proximity = module.CreateLogic();
+  const OpenedScene scene = proximity->OpenScene(request);
+  ReportOpenedScene("live", proximity, scene, request.ScalpelFile);
+
+  // The scene is built before the stream is opened: no pose waits on a build.
+  IgtlLink stream(link);
+  const std::string name = link.ConnectPort > 0 ? link.ConnectHost + ":" + std::to_string(link.ConnectPort)
+                                                : "port " + std::to_string(stream.GetListenPort());
+  if (stream.GetListenPort() >= 0)
+  {
+    std::cerr << "live: listening on port " << stream.GetListenPort() << "\n";
+  }
+  if (link.ConnectPort > 0)
+  {
+    std::cerr << "live: connecting to " << link.ConnectHost << ":" << link.ConnectPort << "\n";
+  }
+  std::cerr << "live: waiting for " << link.ToolName << "; Ctrl-C ends the session\n";
+  LivePoseSource poses(stream, name, staleMs, durationS);
+  poses.SetIdleCallback([&stream] { PrintEvents(stream); });
+
+  // Each change of level goes to the peers when it happens, as the logic announces it.
+  vtkNew<vtkCallbackCommand> onChange;
+  onChange->SetClientData(&stream);
+  onChange->SetCallback([](vtkObject*, unsigned long, void* client, void* call) {
+    static_cast<IgtlLink*>(client)->Send(PackLiveLevelChange(*static_cast<DangerLevelChange*>(call)));
+  });
+  vtkScalpelTrackingLogic* tracking = proximity->GetTrackingLogic();
+  const unsigned long observer = tracking->AddObserver(vtkScalpelTrackingLogic::DangerLevelChangedEvent, onChange);
+
+  RunningQuantiles latency;
+  TrackingSummary summary; // without -o; the recorder keeps its own
+  double lastStatusMs = NowMs();
+  const auto onFrame = [&](const TrackedFrame& frame) {
+    stream.Send(PackLiveFrame(frame));
+    latency.Add(NowMs() - poses.GetLastArrivalMs()); // pose in -> results out
+    if (!run)
+    {
+      summary.Add(frame);
+    }
+    PrintEvents(stream);
+    if (NowMs() - lastStatusMs > 1000.0)
+    {
+      lastStatusMs = NowMs();
+      std::fprintf(stderr, "live: frame %d, %s, latency p95 %.3f ms, %zu peer(s)\n", frame.Frame, DangerLevelName(frame.Level),
+        latency.Quantile(0.95), stream.GetNumberOfPeers());
+    }
+  };
+  const auto onLost = [&](const TrackedPose& lost) {
+    const double sinceMs = NowMs() - poses.GetLastArrivalMs() + poses.GetStaleMs();
+    stream.Send(PackLiveLost(lost.TimeS, sinceMs));
+    std::cerr << "live: tracking lost: no pose of " << link.ToolName << " for " << static_cast<int>(staleMs) << " ms\n";
+  };
+  nlohmann::ordered_json report;
+  std::size_t frames = 0;
+  std::size_t lostPoses = 0;
+  if (run)
+  {
+    TrackingRecorder recorder(proximity, scene.Vessels);
+    recorder.SetLoadAndBuildMs(NowMs() - start);
+    recorder.SetFrameObserver(onFrame);
+    recorder.SetLostObserver(onLost);
+    recorder.SetReportAddition([&](nlohmann::ordered_json& doc) {
+      doc["latency_ms"] = LatencyJson(latency);
+      doc["stale_ms"] = staleMs;
+      doc["link"] = CountsJson(stream.GetCounts());
+    });
+    recorder.Run(poses, *run);
+    run->Commit();
+    report = recorder.GetReport();
+    frames = static_cast<std::size_t>(recorder.GetSummary().GetNumberOfFrames());
+    lostPoses = report.value("poses_lost", std::size_t(0));
+  }
+  else
+  {
+    TrackingSession session(proximity);
+    session.Run(poses, onFrame, onLost);
+    frames = session.GetNumberOfFrames();
+    lostPoses = session.GetNumberOfLostPoses();
+  }
+  tracking->RemoveObserver(observer);
+  PrintEvents(stream);
+  const IgtlLinkCounts counts = stream.GetCounts();
+  const int signal = SignalHold::Answer(); // the session ended as asked: the signal is not raised again
+  std::printf("%zu frames; %zu message(s), %zu pose(s) of %s, %zu dropped (a newer one came first), %zu rejected, "
+              "%zu tracking loss(es)%s\n",
+    frames, counts.Messages, counts.Poses, link.ToolName.c_str(), counts.Dropped, counts.RejectedTotal(), lostPoses,
+    signal ? " (ended by a signal)" : "");
+  for (const auto& [reason, count] : counts.Rejected)
+  {
+    std::printf("  rejected %zu: %s\n", count, reason.c_str());
+  }
+  if (latency.Count() > 0)
+  {
+    std::printf("  latency pose in -> results out: median %.4f ms, p95 %.4f ms, max %.4f ms\n", latency.Quantile(0.5),
+      latency.Quantile(0.95), latency.Quantile(1.0));
+  }
+  if (run)
+  {
+    std::printf("wrote %s/frames.csv, summary.json, distance.png\n", outDir.c_str());
+  }
+  return 0;
+}
+} // namespace vp

@@ -1,0 +1,361 @@
+// `vesselproximity live` against real OpenIGTLink peers over loopback: the library's own example
+// programs (TrackerServer, ReceiveClient, built by the test suite from Debian's
+// openigtlink-examples) and our peer written with the library (Testing/Peers), every run bounded
+// in time. Frames are checked against track on the same poses, results as a real client reads
+// them, and each malformed message for being skipped and counted.
+#include "vpAnalyticShapes.h"
+#include "vpModelTestSupport.h"
+#include "vpTestSupport.h"
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <thread>
+
+namespace
+{
+using vp::test::Slurp;
+using vp::test::ToolRun;
+
+/// A port free now on loopback (the kernel's choice), for a peer that must be told one.
+int FreePort()
+{
+  const int s = socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  address.sin_port = 0;
+  bind(s, reinterpret_cast<sockaddr*>(&address), sizeof address);
+  socklen_t length = sizeof address;
+  getsockname(s, reinterpret_cast<sockaddr*>(&address), &length);
+  close(s);
+  return ntohs(address.sin_port);
+}
+
+/// Waits (10 s at most) for text to appear in a file a child writes.
+bool WaitForText(const std::string& file, const std::string& text, double seconds = 10.0)
+{
+  const auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds(static_cast<int>(1000 * seconds));
+  while (std::chrono::steady_clock::now() < until)
+  {
+    if (Slurp(file).find(text) != std::string::npos)
+    {
+      return true;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return false;
+}
+
+/// Waits for a child to end (seconds at most, then kills it): its exit code, -signal when a
+/// signal ended it, -999 when it had to be killed.
+int WaitFor(pid_t child, double seconds)
+{
+  const auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds(static_cast<int>(1000 * seconds));
+  int status = 0;
+  while (std::chrono::steady_clock::now() < until)
+  {
+    if (waitpid(child, &status, WNOHANG) == child)
+    {
+      return WIFEXITED(status) ? WEXITSTATUS(status) : -WTERMSIG(status);
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  kill(child, SIGKILL);
+  waitpid(child, &status, 0);
+  return -999;
+}
+
+std::vector<std::vector<std::string>> Rows(const std::string& csv)
+{
+  std::vector<std::vector<std::string>> rows;
+  std::istringstream in(Slurp(csv));
+  for (std::string line; std::getline(in, line);)
+  {
+    std::vector<std::string> cells;
+    std::istringstream fields(line);
+    for (std::string cell; std::getline(fields, cell, ',');)
+    {
+      cells.push_back(cell);
+    }
+    rows.push_back(cells);
+  }
+  return rows;
+}
+
+class LiveCommand : public ::testing::Test
+{
+protected:
+  void SetUp() override
+  {
+    this->Dir = vp::test::MakeTempDir("live");
+    const double centre[3] = { 0, 0, 0 };
+    this->Vessels = "portal_vein=" + vp::test::WriteMeshFile(this->Dir, "portal.stl", vp::MakeSphere(centre, 10.0, 24, 48));
+    this->Scalpel = std::string(VP_SOURCE_DIR) + "/Resources/CusaHandpiece.stl";
+  }
+
+  /// count poses moving the tip from 40 mm to 1 mm off the sphere, time,m00..m33: each tip
+  /// another, to frames.csv's 4 decimals, so that a live frame is found among track's by its tip.
+  std::string SweepPoses(int count)
+  {
+    std::string text = "time,m00,m01,m02,m03,m10,m11,m12,m13,m20,m21,m22,m23,m30,m31,m32,m33\n";
+    for (int i = 0; i < count; ++i)
+    {
+      const double x = 40.0 - 29.0 * i / (count - 1);
+      text += vp::test::Number(0.001 * (i + 1)) + ",1,0,0," + vp::test::Number(x) + ",0,1,0,0.5,0,0,1,-0.25,0,0,0,1\n";
+    }
+    return vp::test::WriteBytes(this->Dir, "poses" + std::to_string(count) + ".csv", text);
+  }
+
+  /// Starts live on the given stream options; its stderr goes to Dir/live.err.
+  pid_t StartLive(const std::vector<std::string>& stream, const std::string& out)
+  {
+    std::vector<std::string> args = { "live", "--vessels", this->Vessels, "--scalpel", this->Scalpel, "--tool-name", "Stylus" };
+    args.insert(args.end(), stream.begin(), stream.end());
+    if (!out.empty())
+    {
+      args.insert(args.end(), { "-o", out });
+    }
+    return vp::test::StartProgram(VP_EXECUTABLE, args, this->Dir + "/live.out", this->Dir + "/live.err");
+  }
+
+  /// The peer serves poses at rateHz to live; live is stopped with SIGINT once the peer is done.
+  /// Returns live's summary.json.
+  nlohmann::json StreamThroughLive(const std::string& poses, double rateHz, const std::string& out, int pauseAfter = -1, int pauseMs = 0)
+  {
+    const int port = FreePort();
+    std::vector<std::string> peerArgs = { "serve", std::to_string(port), poses, vp::test::Number(rateHz), "Stylus", this->Dir + "/sent.csv" };
+    if (pauseAfter >= 0)
+    {
+      peerArgs.insert(peerArgs.end(), { std::to_string(pauseAfter), std::to_string(pauseMs) });
+    }
+    const pid_t peer = vp::test::StartProgram(VP_IGTL_PEER, peerArgs, this->Dir + "/peer.out", this->Dir + "/peer.err");
+    EXPECT_TRUE(WaitForText(this->Dir + "/peer.out", "port ")) << Slurp(this->Dir + "/peer.err");
+    const pid_t live = this->StartLive({ "--igtl", "127.0.0.1:" + std::to_string(port) }, out);
+    EXPECT_EQ(WaitFor(peer, 60.0), 0) << Slurp(this->Dir + "/peer.err");
+    kill(live, SIGINT); // Ctrl-C: the session's normal end
+    EXPECT_EQ(WaitFor(live, 60.0), 0) << Slurp(this->Dir + "/live.err");
+    return nlohmann::json::parse(Slurp(out + "/summary.json"));
+  }
+
+  /// Every frame live computed equals track's frame for the same pose (found by its tip), in
+  /// every column but the frame number, the time and the frame's duration.
+  std::size_t ExpectFramesEqualTrack(const std::string& liveOut)
+  {
+    const ToolRun track = vp::test::RunTool(this->Dir, "track --vessels " + this->Vessels + " --scalpel " + this->Scalpel +
+        " --poses " + this->Dir + "/sent.csv -o " + this->Dir + "/track");
+    EXPECT_EQ(track.ExitCode, 0) << track.Err;
+    const auto expected = Rows(this->Dir + "/track/frames.csv");
+    const auto got = Rows(liveOut + "/frames.csv");
+    EXPECT_EQ(got.at(0), expected.at(0)) << "the same columns";
+    const auto& header = expected.at(0);
+    // The live frames are the sent poses in order, less those dropped: each is found at or after
+    // the one before, by its tip.
+    std::size_t next = 1;
+    for (std::size_t r = 1; r < got.size(); ++r)
+    {
+      while (next < expected.size() &&
+        !(expected[next][2] == got[r][2] && expected[next][3] == got[r][3] && expected[next][4] == got[r][4]))
+      {
+        ++next;
+      }
+      if (next == expected.size())
+      {
+        ADD_FAILURE() << "live frame " << got[r][0] << " (tip " << got[r][2] << ", " << got[r][3] << ", " << got[r][4]
+                      << ") is no pose sent after the one before (live frame " << got[r - 1][0] << ", tip " << got[r - 1][2] << ")";
+        break;
+      }
+      for (std::size_t c = 0; c < header.size(); ++c)
+      {
+        if (header[c] == "frame" || header[c] == "time" || header[c] == "frame_ms")
+        {
+          continue;
+        }
+        // The whole instrument's search (FCL) starts from the previous frame's closest pair: after
+        // dropped poses, from another one, converging within its 1e-4 mm tolerance.
+        if (header[c].find("surface") != std::string::npos && !got[r][c].empty() && !expected[next][c].empty())
+        {
+          EXPECT_NEAR(std::stod(got[r][c]), std::stod(expected[next][c]), 2e-4) << header[c] << " of live frame " << got[r][0];
+        }
+        else
+        {
+          EXPECT_EQ(got[r][c], expected[next][c]) << header[c] << " of live frame " << got[r][0];
+        }
+      }
+      ++next;
+    }
+    return got.size() - 1;
+  }
+
+  std::string Dir, Vessels, Scalpel;
+};
+} // namespace
+
+// A tracker streaming at 50 Hz for 10 s: every pose computed, each frame track's.
+TEST_F(LiveCommand, At50HzEveryFrameEqualsTrackOnTheSamePoses)
+{
+  const nlohmann::json summary = this->StreamThroughLive(this->SweepPoses(500), 50.0, this->Dir + "/out50");
+  const std::size_t frames = this->ExpectFramesEqualTrack(this->Dir + "/out50");
+  const auto& link = summary.at("link");
+  EXPECT_EQ(link.at("poses").get<std::size_t>(), 500u);
+  EXPECT_EQ(frames + link.at("poses_dropped").get<std::size_t>(), 500u) << "each pose computed or counted as dropped";
+  EXPECT_LE(link.at("poses_dropped").get<std::size_t>(), 5u) << "at 50 Hz a frame takes far less than 20 ms";
+  EXPECT_TRUE(link.at("rejected").empty());
+  EXPECT_GT(summary.at("latency_ms").at("p95").get<double>(), 0.0);
+  EXPECT_EQ(summary.at("latency_ms").at("frames").get<std::size_t>(), frames);
+  EXPECT_NE(Slurp(this->Dir + "/live.out").find("latency pose in -> results out: median"), std::string::npos);
+}
+
+// At 1 kHz for 10 s the frames cannot keep up on two cores with the whole instrument: the newest
+// pose is computed, the older ones counted as dropped; nothing queues.
+TEST_F(LiveCommand, At1kHzTheNewestPoseIsComputedAndNothingQueues)
+{
+  const nlohmann::json summary = this->StreamThroughLive(this->SweepPoses(10000), 1000.0, this->Dir + "/out1k");
+  const std::size_t frames = this->ExpectFramesEqualTrack(this->Dir + "/out1k");
+  const auto& link = summary.at("link");
+  EXPECT_EQ(link.at("poses").get<std::size_t>(), 10000u);
+  const std::size_t dropped = link.at("poses_dropped").get<std::size_t>();
+  EXPECT_GE(frames + dropped, 9999u);
+  EXPECT_LE(frames + dropped, 10000u) << "a pose left in the mailbox at the end is neither";
+  EXPECT_LT(summary.at("peak_memory_mb").get<double>(), 1000.0);
+}
+
+// No pose for longer than --stale-ms: tracking lost, recorded within stale-ms and one poll; once
+// in the pause, and once more when the stream ends (the peer closes half a second after its last).
+TEST_F(LiveCommand, AStaleStreamIsTrackingLostAndSaidSo)
+{
+  const nlohmann::json summary = this->StreamThroughLive(this->SweepPoses(60), 50.0, this->Dir + "/stale", 29, 1000);
+  EXPECT_EQ(summary.at("poses_lost").get<int>(), 2);
+  const auto rows = Rows(this->Dir + "/stale/frames.csv");
+  ASSERT_GE(rows.size(), 31u);
+  const double lastBefore = std::stod(rows[30][1]); // frame 29, the last before the pause
+  const double lost = summary.at("first_lost_time_s").get<double>();
+  EXPECT_GE(lost - lastBefore, 0.2);
+  EXPECT_LE(lost - lastBefore, 0.2 + 0.02 + 0.05) << "stale-ms, one frame's interval, and the poll";
+  EXPECT_NE(Slurp(this->Dir + "/live.err").find("live: tracking lost: no pose of Stylus for 200 ms"), std::string::npos);
+  EXPECT_EQ(rows.size() - 1 + summary.at("link").at("poses_dropped").get<std::size_t>(), 60u);
+}
+
+// Each malformed message a peer can send: skipped and counted by reason; the session goes on, and
+// after a size field that lies (the stream cannot be followed) it reconnects.
+TEST_F(LiveCommand, EachMalformedMessageIsSkippedAndCounted)
+{
+  const int port = FreePort();
+  const pid_t peer = vp::test::StartProgram(VP_IGTL_PEER, { "hostile", std::to_string(port), "Stylus" }, this->Dir + "/peer.out",
+    this->Dir + "/peer.err");
+  ASSERT_TRUE(WaitForText(this->Dir + "/peer.out", "port "));
+  const pid_t live = this->StartLive({ "--igtl", "127.0.0.1:" + std::to_string(port) }, this->Dir + "/hostile");
+  EXPECT_EQ(WaitFor(peer, 30.0), 0) << Slurp(this->Dir + "/peer.err");
+  kill(live, SIGINT);
+  ASSERT_EQ(WaitFor(live, 30.0), 0) << Slurp(this->Dir + "/live.err");
+  const nlohmann::json link = nlohmann::json::parse(Slurp(this->Dir + "/hostile/summary.json")).at("link");
+  const std::map<std::string, std::size_t> rejected = link.at("rejected").get<std::map<std::string, std::size_t>>();
+  const std::map<std::string, std::size_t> expected = {
+    { "bad CRC", 1 },
+    { "a NaN or infinite number", 1 },
+    { "the rotation is not orthonormal", 1 },
+    { "a TRANSFORM body not of 48 bytes", 1 },
+    { "the quaternion is not of unit length", 1 },
+    { "a body size beyond the limit", 1 },
+  };
+  EXPECT_EQ(rejected, expected) << link.dump();
+  EXPECT_EQ(link.at("ignored").at("type FOOBAR").get<int>(), 1);
+  EXPECT_EQ(link.at("ignored").at("device Reference").get<int>(), 1);
+  EXPECT_EQ(link.at("poses").get<int>(), 7) << "the first, the TDATA element, and five after reconnecting";
+  EXPECT_EQ(link.at("connections").get<int>(), 2);
+  const std::string err = Slurp(this->Dir + "/live.err");
+  EXPECT_NE(err.find("skipped a message from 127.0.0.1:" + std::to_string(port) + ": bad CRC"), std::string::npos) << err;
+  EXPECT_NE(err.find("connection to 127.0.0.1:" + std::to_string(port) + " lost; reconnecting"), std::string::npos) << err;
+  EXPECT_NE(Slurp(this->Dir + "/live.out").find("rejected 1: bad CRC"), std::string::npos);
+}
+
+// The library's own example tracker server, killed mid-stream and started again: live says so,
+// reconnects, and goes on; a real client (the library's ReceiveClient) connected to live reads
+// the frames as JSON STRINGs and the closest points as a POINT list.
+TEST_F(LiveCommand, AnExampleTrackerKilledMidStreamIsReconnectedAndAClientReadsTheResults)
+{
+  const int trackerPort = FreePort();
+  const std::string port = std::to_string(trackerPort);
+  pid_t tracker = vp::test::StartProgram(VP_IGTL_TRACKER_SERVER, { port, "50" }, this->Dir + "/tracker.out", "/dev/null");
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  std::vector<std::string> args = { "live", "--vessels", this->Vessels, "--scalpel", this->Scalpel, "--tool-name", "Tracker",
+    "--igtl", "127.0.0.1:" + port, "--igtl-listen", "0", "-o", this->Dir + "/example" };
+  const pid_t live = vp::test::StartProgram(VP_EXECUTABLE, args, this->Dir + "/live.out", this->Dir + "/live.err");
+  ASSERT_TRUE(WaitForText(this->Dir + "/live.err", "live: listening on port "));
+  const std::string err = Slurp(this->Dir + "/live.err");
+  const auto at = err.find("live: listening on port ") + std::string("live: listening on port ").size();
+  const std::string listenPort = err.substr(at, err.find('\n', at) - at);
+  const pid_t client = vp::test::StartProgram(VP_IGTL_RECEIVE_CLIENT, { "127.0.0.1", listenPort }, "/dev/null", this->Dir + "/client.err");
+  ASSERT_TRUE(WaitForText(this->Dir + "/live.err", "live: connected to 127.0.0.1:" + port));
+  std::this_thread::sleep_for(std::chrono::milliseconds(1000));
+  kill(tracker, SIGKILL);
+  WaitFor(tracker, 5.0);
+  ASSERT_TRUE(WaitForText(this->Dir + "/live.err", "lost; reconnecting"));
+  tracker = vp::test::StartProgram(VP_IGTL_TRACKER_SERVER, { port, "50" }, "/dev/null", "/dev/null");
+  std::this_thread::sleep_for(std::chrono::milliseconds(3000)); // the example sends 100 poses a connection, at 50 Hz
+  kill(client, SIGKILL);
+  WaitFor(client, 5.0);
+  kill(live, SIGINT);
+  EXPECT_EQ(WaitFor(live, 30.0), 0) << Slurp(this->Dir + "/live.err");
+  kill(tracker, SIGKILL);
+  WaitFor(tracker, 5.0);
+  const nlohmann::json summary = nlohmann::json::parse(Slurp(this->Dir + "/example/summary.json"));
+  EXPECT_GE(summary.at("link").at("connections").get<int>(), 3) << "the tracker twice, and the client";
+  EXPECT_GE(summary.at("link").at("connections_lost").get<int>(), 1);
+  EXPECT_TRUE(summary.at("link").at("rejected").empty()) << summary.at("link").dump();
+  EXPECT_GE(summary.at("frames").get<int>(), 120) << "fewer than 50 before the kill, over 100 after";
+
+  // What the client printed: each STRING is a frame as JSON, each POINT list the tip and the
+  // closest point, as frames.csv has them (in RAS).
+  const auto frames = Rows(this->Dir + "/example/frames.csv");
+  std::map<int, std::vector<std::string>> byFrame;
+  for (std::size_t r = 1; r < frames.size(); ++r)
+  {
+    byFrame[std::stoi(frames[r][0])] = frames[r];
+  }
+  std::istringstream printed(Slurp(this->Dir + "/client.err"));
+  int strings = 0, tips = 0;
+  for (std::string line; std::getline(printed, line);)
+  {
+    const auto text = line.find("String: "); // "Encoding: 3; String: {...}"
+    if (text != std::string::npos)
+    {
+      const nlohmann::json frame = nlohmann::json::parse(line.substr(text + 8));
+      if (frame.at("state") != "tracking")
+      {
+        continue;
+      }
+      ++strings;
+      for (const char* key : { "frame", "time", "space", "tip", "level", "level_class", "error_bound_mm", "nearest", "classes" })
+      {
+        EXPECT_TRUE(frame.contains(key)) << key;
+      }
+      const auto row = byFrame.find(frame.at("frame").get<int>());
+      ASSERT_NE(row, byFrame.end());
+      EXPECT_NEAR(frame.at("tip")[0].get<double>(), -std::stod(row->second[2]), 1e-3);
+      EXPECT_NEAR(frame.at("tip")[2].get<double>(), std::stod(row->second[4]), 1e-3);
+      const auto& vein = frame.at("classes").at("portal_vein");
+      for (const char* key : { "distance_mm", "inside", "level", "point", "surface_mm", "penetration_depth_mm" })
+      {
+        EXPECT_TRUE(vein.contains(key)) << key;
+      }
+    }
+    if (line.find(" Name      : tip") != std::string::npos)
+    {
+      ++tips;
+    }
+  }
+  EXPECT_GT(strings, 20);
+  EXPECT_GT(tips, 20);
+}

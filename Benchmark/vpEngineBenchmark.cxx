@@ -1,5 +1,7 @@
 #include "vpEngineBenchmark.h"
 
+#include "vpLiveBenchmark.h"
+
 #include "vpDistanceEngineFactory.h"
 #include "vpExactBenchmark.h"
 #include "vpMeshRefinement.h"
@@ -77,6 +79,13 @@ BenchJson RunBenchmark(const BenchmarkRequest& request)
     report["replay"] = BenchReplay(request.Vessels, static_cast<std::size_t>(request.Queries), request.Seed, request.Scalpel,
       request.Parts.count("zbuffer") ? &request.ZBufferSettings : nullptr, request.BruteQueries, request.Poses);
     report["replay"]["scalpel"] = request.Scalpel->GetTipSource();
+  }
+  if (request.Parts.count("live"))
+  {
+    const std::vector<TrackedPose> poses = request.Poses.empty()
+      ? PosesNearVessels(request.Vessels, static_cast<std::size_t>(request.Queries), request.Seed, request.Scalpel)
+      : request.Poses;
+    report["live"] = BenchLive(request.Vessels, request.Scalpel, poses, request.Live);
   }
   return report;
 }

@@ -3,6 +3,7 @@
 
 #include "vpBenchmarkSupport.h"
 #include "vpDistanceEngineSettings.h"
+#include "vpLiveBenchmark.h"
 #include "vpPoseFile.h"
 #include "vtkScalpelModel.h"
 #include "vtkZBufferVesselDistance.h"
@@ -18,7 +19,7 @@ namespace vp
 /// What `vesselproximity bench` measures, typed.
 struct BenchmarkRequest
 {
-  /// exact, zbuffer and/or replay.
+  /// exact, zbuffer, replay and/or live.
   std::set<std::string> Parts;
   /// Triangles per class each vessel is grown to (longest-edge bisection: same surface).
   std::vector<std::size_t> SizesTriangles;
@@ -35,6 +36,8 @@ struct BenchmarkRequest
   /// The replay's instrument, and poses to replay instead of the generated path (may be empty).
   vtkSmartPointer<vtkScalpelModel> Scalpel;
   std::vector<TrackedPose> Poses;
+  /// The live part's rates and durations (it uses the replay's instrument and poses).
+  LiveBenchSettings Live;
 };
 
 /// The z-buffer engine the settings describe, its device opened: a missing one fails before any

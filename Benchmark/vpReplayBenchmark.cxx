@@ -77,6 +77,15 @@ std::vector<TrackedPose> PosesAlong(const std::vector<std::array<double, 3>>& pa
   return poses;
 }
 
+} // namespace
+
+std::vector<TrackedPose> PosesNearVessels(const std::vector<NamedMesh>& vessels, std::size_t frames, unsigned seed, vtkScalpelModel* scalpel)
+{
+  return PosesAlong(PathNearVessels(vessels, frames, seed), scalpel);
+}
+
+namespace
+{
 struct Replay
 {
   double FramesPerSecond = 0.0;

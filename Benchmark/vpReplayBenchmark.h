@@ -13,6 +13,10 @@ class vtkScalpelModel;
 
 namespace vp
 {
+/// A surgeon's path through the vessels (seeded): the tip in straight 0.5 mm steps between points
+/// 1 to 15 mm off random vessel surface points, turning 0.2 degrees a frame, at 50 Hz.
+std::vector<TrackedPose> PosesNearVessels(const std::vector<NamedMesh>& vessels, std::size_t frames, unsigned seed, vtkScalpelModel* scalpel);
+
 /// Replay throughput: a scalpel tracked for `frames` poses at 50 Hz, its tip stepping 0.5 mm
 /// between points a few millimetres off random vessel surface points (seeded), turning 0.2
 /// degrees a frame, all vessel classes at full size: frames per second of the module's logic, each

@@ -55,24 +55,54 @@ std::vector<std::size_t> ParseSizes(const std::string& text)
   return sizes;
 }
 
-/// --engines: a list of exact, zbuffer and replay.
+/// --engines: a list of exact, zbuffer, replay and live.
 std::set<std::string> ParseBenchEngines(const cli::ParsedArguments& args)
 {
   std::set<std::string> engineNames;
   std::istringstream engineList(args.GetString("engines"));
   for (std::string name; std::getline(engineList, name, ',');)
   {
-    if (name != "exact" && name != "zbuffer" && name != "replay")
+    if (name != "exact" && name != "zbuffer" && name != "replay" && name != "live")
     {
-      throw InputError("--engines", "expected a list of exact, zbuffer and replay, got '" + name + "'");
+      throw InputError("--engines", "expected a list of exact, zbuffer, replay and live, got '" + name + "'");
     }
     engineNames.insert(name);
   }
   if (engineNames.empty())
   {
-    throw InputError("--engines", "expected a list of exact, zbuffer and replay");
+    throw InputError("--engines", "expected a list of exact, zbuffer, replay and live");
   }
   return engineNames;
+}
+
+/// The live part: per phase, latency beside the frame's own compute, drops and memory.
+void PrintLiveTable(const Json& live)
+{
+  std::printf("\nlive over OpenIGTLink (loopback), %s, %d classes:\n", live["engine"].get<std::string>().c_str(), live["classes"].get<int>());
+  std::printf("  %-10s %8s %8s %8s %9s  %-26s %-26s %s\n", "phase", "rate Hz", "frames", "dropped", "rejected",
+    "latency ms median/p95/max", "frame ms median/p95/max", "resident MB 5 s -> end");
+  for (const char* phase : { "latency", "sustained" })
+  {
+    if (!live.contains(phase))
+    {
+      continue;
+    }
+    const Json& p = live[phase];
+    auto triple = [](const Json& q) {
+      char text[64];
+      std::snprintf(text, sizeof text, "%.3f / %.3f / %.3f", q["median"].get<double>(), q["p95"].get<double>(), q["max"].get<double>());
+      return std::string(q.is_null() ? "-" : text);
+    };
+    char memory[64] = "-";
+    if (!p["resident_mb_after_5s"].is_null())
+    {
+      std::snprintf(memory, sizeof memory, "%.1f -> %.1f (%+.1f%%)", p["resident_mb_after_5s"].get<double>(),
+        p["resident_mb_end"].get<double>(), p["resident_growth_percent"].get<double>());
+    }
+    std::printf("  %-10s %8.0f %8zu %8zu %9zu  %-26s %-26s %s\n", phase, p["rate_hz"].get<double>(), p["frames"].get<std::size_t>(),
+      p["poses_dropped"].get<std::size_t>(), p["rejected"].get<std::size_t>(), triple(p["latency_ms"]).c_str(),
+      triple(p["frame_ms"]).c_str(), memory);
+  }
 }
 
 /// The replay's instrument: --scalpel (tip from --tip, its JSON or the finder), else a plain shaft.
@@ -279,6 +309,10 @@ void PrintBenchReport(Json& report)
   {
     PrintReplayTable(report["replay"]);
   }
+  if (report.contains("live"))
+  {
+    PrintLiveTable(report["live"]);
+  }
 }
 
 } // namespace
@@ -318,7 +352,12 @@ cli::ModuleDescription DescribeBenchCommand()
     "the tracked tip: frames per second, exact (tip; tip and whole surface), FCL's whole surface on the same poses (its "
     "answers compared with ours), z-buffer on cached layers: tip, tip and whole instrument from its distance field, "
     "and the full frame with its penetration (with zbuffer among the engines), brute force on the first brute-queries "
-    "frames. Progress goes to stderr.",
+    "frames.\n"
+    "live: the same logic (exact, tip and whole instrument) on a live OpenIGTLink stream over loopback: a tracker "
+    "thread streams the replay's poses at --live-rate-hz for --live-seconds, then at --sustained-rate-hz for "
+    "--sustained-seconds, and reads the results back; per frame the latency from a pose's arrival to its results "
+    "sent, beside the frame's own compute time, the poses dropped, and the resident memory after 5 s and at the end. "
+    "Progress goes to stderr.",
     {
       { "Workload", "",
         { VesselsOption().SetDescription("The vessels (default: the built-in analytic vessels)."),
@@ -326,10 +365,18 @@ cli::ModuleDescription DescribeBenchCommand()
           count("queries", "2000", "Random tips (and tracked steps, and replayed frames)."),
           count("brute-queries", "30", "Of those, how many the brute-force reference answers."),
           count("seed", "1", "The random seed."),
-          Option(ParameterType::String, "engines", "Which parts to run: a list of exact, zbuffer and replay.")
-            .SetPlaceholder("exact,zbuffer,replay")
+          Option(ParameterType::String, "engines", "Which parts to run: a list of exact, zbuffer, replay and live.")
+            .SetPlaceholder("exact,zbuffer,replay,live")
             .SetDefault("exact,zbuffer") } },
       { "Replay", "", replay },
+      { "Live", "",
+        { Option(ParameterType::Double, "live-rate-hz", "The tracker's rate for the latency.").SetPlaceholder("HZ").SetDefault("60").SetRange(1, 10000, 1),
+          Option(ParameterType::Double, "live-seconds", "How long at that rate.").SetPlaceholder("S").SetDefault("10").SetRange(1, 3600, 1),
+          Option(ParameterType::Double, "sustained-rate-hz", "The rate held for the memory.").SetPlaceholder("HZ").SetDefault("1000").SetRange(1, 10000, 1),
+          Option(ParameterType::Double, "sustained-seconds", "How long at that rate (0: not run).")
+            .SetPlaceholder("S")
+            .SetDefault("60")
+            .SetRange(0, 3600, 1) } },
       engine,
       { "Output", "",
         { Switch("json", "Print the report as JSON instead of a table."),
@@ -353,7 +400,11 @@ int RunBenchCommand(const cli::ParsedArguments& args, const ModuleServices&)
   {
     request.ZBuffer = MakeBenchZBuffer(request.ZBufferSettings);
   }
-  if (request.Parts.count("replay"))
+  request.Live.RateHz = args.GetNumber("liveRateHz");
+  request.Live.Seconds = args.GetNumber("liveSeconds");
+  request.Live.SustainedRateHz = args.GetNumber("sustainedRateHz");
+  request.Live.SustainedSeconds = args.GetNumber("sustainedSeconds");
+  if (request.Parts.count("replay") || request.Parts.count("live"))
   {
     request.Scalpel = ReplayScalpel(args);
     request.Poses = args.IsSet("poses") ? ReadPoseFile(args.GetString("poses"), ParsePoseReading(args)) : std::vector<TrackedPose>();

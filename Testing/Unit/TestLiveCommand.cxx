@@ -359,3 +359,21 @@ TEST_F(LiveCommand, AnExampleTrackerKilledMidStreamIsReconnectedAndAClientReadsT
   EXPECT_GT(strings, 20);
   EXPECT_GT(tips, 20);
 }
+
+// The live bench's report: the latency phase at its rate, its latency beside the frame's own
+// compute (never below it), and the memory of the sustained phase when asked for.
+TEST_F(LiveCommand, TheBenchMeasuresLatencyBesideTheFramesOwnTime)
+{
+  const ToolRun bench = vp::test::RunTool(this->Dir, "bench --engines live --queries 200 --vessels " + this->Vessels + " --scalpel " +
+      this->Scalpel + " --live-rate-hz 100 --live-seconds 2 --sustained-seconds 0 --json");
+  ASSERT_EQ(bench.ExitCode, 0) << bench.Err;
+  const nlohmann::json live = nlohmann::json::parse(bench.Out).at("live");
+  const nlohmann::json& phase = live.at("latency");
+  EXPECT_EQ(phase.at("rate_hz").get<double>(), 100.0);
+  EXPECT_GE(phase.at("poses_sent").get<int>(), 190);
+  EXPECT_EQ(phase.at("poses_received").get<int>(), phase.at("poses_sent").get<int>());
+  EXPECT_LE(std::abs(phase.at("frames").get<int>() + phase.at("poses_dropped").get<int>() - phase.at("poses_received").get<int>()), 1)
+    << "each pose computed or counted as dropped (but one left waiting at the end)";
+  EXPECT_GE(phase.at("latency_ms").at("median").get<double>(), phase.at("frame_ms").at("median").get<double>());
+  EXPECT_FALSE(live.contains("sustained"));
+}

@@ -1,0 +1,143 @@
+#include "vpLiveBenchmark.h"
+
+#include "vpClock.h"
+#include "vpIgtlLink.h"
+#include "vpIgtlMessages.h"
+#include "vpLivePoseSource.h"
+#include "vpLiveResults.h"
+#include "vpQuantile.h"
+#include "vpSceneRequest.h"
+#include "vpTrackingSession.h"
+#include "vtkVesselProximityLogic.h"
+
+#include <igtlClientSocket.h>
+
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <thread>
+#include <unistd.h>
+
+namespace vp
+{
+namespace
+{
+using Json = BenchJson;
+
+/// This process's resident memory now, in MB.
+double ResidentMb()
+{
+  long pages = 0, resident = 0;
+  std::ifstream("/proc/self/statm") >> pages >> resident;
+  return static_cast<double>(resident) * static_cast<double>(sysconf(_SC_PAGESIZE)) / (1024.0 * 1024.0);
+}
+
+Json Quantiles(const std::vector<double>& values)
+{
+  if (values.empty())
+  {
+    return nullptr;
+  }
+  return { { "median", Quantile(values, 0.5) }, { "p95", Quantile(values, 0.95) }, { "max", Quantile(values, 1.0) } };
+}
+
+/// One phase: the stream at rateHz for seconds, through a fresh session on the logic.
+Json Phase(vtkVesselProximityLogic* logic, const std::vector<TrackedPose>& poses, double rateHz, double seconds)
+{
+  IgtlLinkSettings settings;
+  settings.ListenPort = 0;
+  settings.ToolName = "Scalpel";
+  IgtlLink link(settings);
+  std::atomic<bool> stop{ false };
+  std::atomic<std::size_t> sent{ 0 };
+  // The tracker: connects, streams at its rate, and reads back (and drops) what it is sent.
+  std::thread tracker([&] {
+    auto socket = igtl::ClientSocket::New();
+    if (socket->ConnectToServer("127.0.0.1", link.GetListenPort()) != 0)
+    {
+      return;
+    }
+    socket->SetReceiveTimeout(1);
+    std::thread reader([&] {
+      std::vector<char> sink(1 << 16);
+      while (!stop)
+      {
+        socket->Receive(sink.data(), static_cast<int>(sink.size()), 0);
+      }
+    });
+    const auto start = std::chrono::steady_clock::now();
+    for (std::size_t i = 0; !stop; ++i)
+    {
+      const auto at = start + std::chrono::microseconds(static_cast<long long>(1e6 * static_cast<double>(i) / rateHz));
+      if (at - start > std::chrono::microseconds(static_cast<long long>(1e6 * seconds)))
+      {
+        break;
+      }
+      std::this_thread::sleep_until(at);
+      const std::string message = PackIgtlTransform("Scalpel", poses[i % poses.size()].ModelToWorld);
+      socket->Send(message.data(), static_cast<int>(message.size()));
+      ++sent;
+    }
+    stop = true;
+    reader.join();
+    socket->CloseSocket();
+  });
+  LivePoseSource source(link, "the bench's tracker", 1000.0, seconds + 0.3);
+  TrackingSession session(logic);
+  std::vector<double> latencyMs, frameMs;
+  latencyMs.reserve(static_cast<std::size_t>(rateHz * seconds) + 16);
+  frameMs.reserve(latencyMs.capacity());
+  const double startMs = NowMs();
+  double residentAt5s = 0.0;
+  session.Run(source, [&](const TrackedFrame& frame) {
+    link.Send(PackLiveFrame(frame));
+    latencyMs.push_back(NowMs() - source.GetLastArrivalMs());
+    frameMs.push_back(frame.FrameMs);
+    if (residentAt5s == 0.0 && NowMs() - startMs >= 5000.0)
+    {
+      residentAt5s = ResidentMb();
+    }
+  });
+  stop = true;
+  tracker.join();
+  const IgtlLinkCounts counts = link.GetCounts();
+  Json out;
+  out["rate_hz"] = rateHz;
+  out["seconds"] = seconds;
+  out["poses_sent"] = sent.load();
+  out["poses_received"] = counts.Poses;
+  out["frames"] = latencyMs.size();
+  out["poses_dropped"] = counts.Dropped;
+  out["rejected"] = counts.RejectedTotal();
+  out["latency_ms"] = Quantiles(latencyMs);
+  out["frame_ms"] = Quantiles(frameMs); // the anchor: the same frames' compute, without the network
+  out["resident_mb_after_5s"] = residentAt5s > 0.0 ? Json(residentAt5s) : Json(nullptr);
+  out["resident_mb_end"] = ResidentMb();
+  out["resident_growth_percent"] = residentAt5s > 0.0 ? Json(100.0 * (ResidentMb() - residentAt5s) / residentAt5s) : Json(nullptr);
+  return out;
+}
+} // namespace
+
+BenchJson BenchLive(const std::vector<NamedMesh>& vessels, vtkScalpelModel* scalpel, const std::vector<TrackedPose>& poses,
+  const LiveBenchSettings& settings)
+{
+  SceneRequest request;
+  request.Vessels = vessels;
+  request.Scalpel = scalpel;
+  request.ComputeSurfaceDistance = true;
+  vtkSmartPointer<vtkVesselProximityLogic> logic = vtkSmartPointer<vtkVesselProximityLogic>::New();
+  logic->OpenScene(request);
+  Json out;
+  out["classes"] = vessels.size();
+  out["engine"] = "exact, tip and whole instrument";
+  std::fprintf(stderr, "bench: live at %g Hz for %g s\n", settings.RateHz, settings.Seconds);
+  out["latency"] = Phase(logic, poses, settings.RateHz, settings.Seconds);
+  if (settings.SustainedSeconds > 0.0)
+  {
+    std::fprintf(stderr, "bench: live sustained at %g Hz for %g s\n", settings.SustainedRateHz, settings.SustainedSeconds);
+    out["sustained"] = Phase(logic, poses, settings.SustainedRateHz, settings.SustainedSeconds);
+  }
+  return out;
+}
+} // namespace vp

@@ -87,7 +87,7 @@ bool TrackingRecorder::Run(PoseSource& poses, RunFolder& run)
     if (!plot)
     {
       plot = std::make_unique<DistancePlotRecorder>(this->Summary.GetClassNames(), surface);
-      framesCsv << FramesCsvHeader(this->Summary.GetClassNames(), surface);
+      framesCsv << FramesCsvHeader(this->Summary.GetClassNames(), surface, frame.Haptic.has_value());
     }
     plot->Add(frame);
     framesCsv << FramesCsvRow(frame, surface);

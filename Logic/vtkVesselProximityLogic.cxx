@@ -70,6 +70,7 @@ vp::OpenedScene vtkVesselProximityLogic::OpenScene(const vp::SceneRequest& reque
   p->SetDangerThresholds(request.Tracking.Thresholds);
   p->SetHysteresisMm(request.Tracking.HysteresisMm);
   p->SetFrameBudgetMs(request.Tracking.FrameBudgetMs);
+  p->SetHapticSettings(request.Tracking.Haptic);
   this->Build();
   this->Tracking->ValidateSettings();
   this->ResetTracking();
@@ -114,6 +115,7 @@ void vtkVesselProximityLogic::ApplyParameters()
     this->Tracking->SetDangerThresholds(p->GetDangerThresholds());
     this->Tracking->SetHysteresisMm(p->GetHysteresisMm());
     this->Tracking->SetFrameBudgetMs(p->GetFrameBudgetMs());
+    this->Tracking->SetHapticSettings(p->GetHapticSettings());
   }
   this->Modified();
 }

@@ -171,6 +171,18 @@ void vtkVesselProximityParameters::SetFrameBudgetMs(double budgetMs)
   }
 }
 
+void vtkVesselProximityParameters::SetHapticSettings(const vp::HapticSettings& haptic)
+{
+  haptic.Validate();
+  const vp::HapticSettings& now = this->Tracking.Haptic;
+  if (now.StiffnessNPerMm != haptic.StiffnessNPerMm || now.DampingNsPerMm != haptic.DampingNsPerMm ||
+    now.RateTimeConstantS != haptic.RateTimeConstantS || now.MaxRateMmPerS != haptic.MaxRateMmPerS)
+  {
+    this->Tracking.Haptic = haptic;
+    this->SettingsModified();
+  }
+}
+
 void vtkVesselProximityParameters::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
@@ -189,5 +201,7 @@ void vtkVesselProximityParameters::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "DangerThresholdsMm: " << this->Tracking.Thresholds.CautionMm << " " << this->Tracking.Thresholds.WarningMm << " "
      << this->Tracking.Thresholds.DangerMm << "\n";
   os << indent << "HysteresisMm: " << this->Tracking.HysteresisMm << "\n";
+  os << indent << "HapticStiffnessNPerMm: " << this->Tracking.Haptic.StiffnessNPerMm << "\n";
+  os << indent << "HapticDampingNsPerMm: " << this->Tracking.Haptic.DampingNsPerMm << "\n";
   os << indent << "FrameBudgetMs: " << this->Tracking.FrameBudgetMs << "\n";
 }

@@ -77,7 +77,10 @@ public:
   /// Not negative, 0: no budget. Throws ParameterError("FrameBudgetMs").
   void SetFrameBudgetMs(double budgetMs);
   double GetFrameBudgetMs() const { return this->Tracking.FrameBudgetMs; }
-  /// The thresholds, the hysteresis and the frame budget together.
+  /// The haptic contact force (vp::HapticSettings, off by default). Throws as HapticSettings::Validate.
+  void SetHapticSettings(const vp::HapticSettings& haptic);
+  const vp::HapticSettings& GetHapticSettings() const { return this->Tracking.Haptic; }
+  /// The thresholds, the hysteresis, the frame budget and the haptic force together.
   const vp::TrackingSettings& GetTrackingSettings() const { return this->Tracking; }
 
   vtkMTimeType GetSceneMTime() const { return this->SceneTime.GetMTime(); }

@@ -21,6 +21,11 @@ std::array<double, 3> Ras(const double p[3])
   return { -p[0], -p[1], p[2] };
 }
 
+Json HapticJson(const HapticSample& h)
+{
+  return { { "force_n", h.ForceN }, { "direction", RasJson(h.Direction) }, { "depth_mm", h.DepthMm }, { "rate_mm_s", h.RateMmPerS } };
+}
+
 std::array<unsigned char, 4> Rgba(DangerLevel level)
 {
   const auto c = DangerLevelColour(level);
@@ -60,6 +65,10 @@ std::string LiveFrameJson(const TrackedFrame& frame)
     classes[p.ClassName] = entry;
   }
   out["classes"] = classes;
+  if (frame.Haptic)
+  {
+    out["haptic"] = HapticJson(*frame.Haptic);
+  }
   return out.dump();
 }
 
@@ -76,7 +85,12 @@ std::string PackLiveFrame(const TrackedFrame& frame)
         Ras(p.ClosestPoint) });
     }
   }
-  return PackIgtlString(live::FrameDevice, LiveFrameJson(frame)) + PackIgtlPoints(live::PointsDevice, points);
+  std::string packed = PackIgtlString(live::FrameDevice, LiveFrameJson(frame)) + PackIgtlPoints(live::PointsDevice, points);
+  if (frame.Haptic)
+  {
+    packed += PackIgtlString(live::HapticDevice, HapticJson(*frame.Haptic).dump());
+  }
+  return packed;
 }
 
 std::string PackLiveLost(double timeS, double sincePoseMs)

@@ -16,6 +16,9 @@ namespace live
 constexpr const char* FrameDevice = "VesselProximity";
 /// STRING: each change of the overall danger level, as JSON, when it happens.
 constexpr const char* LevelDevice = "VesselProximityLevel";
+/// STRING: with haptics on, each frame's force for a haptic device's bridge: {"force_n",
+/// "direction" (unit, RAS), "depth_mm", "rate_mm_s"}.
+constexpr const char* HapticDevice = "VesselProximityHaptic";
 /// POINT: "tip", then per class in range its closest point (named for the class), RAS, mm,
 /// coloured by the class's level.
 constexpr const char* PointsDevice = "VesselProximityPoints";
@@ -24,10 +27,11 @@ constexpr const char* PointsDevice = "VesselProximityPoints";
 /// One frame as the peer reads it: {"state": "tracking", "frame", "time", "space": "RAS", "tip",
 /// "level", "level_class", "error_bound_mm", "nearest": {"class", "distance_mm"} or null,
 /// "classes": {"<class>": {"distance_mm", "inside", "level", "point", "surface_mm",
-/// "penetration_depth_mm", "penetration_volume_mm3"}}}: points in RAS (what Slicer shows), null
+/// "penetration_depth_mm", "penetration_volume_mm3"}}, and with haptics on "haptic" (as the
+/// VesselProximityHaptic message)}: points in RAS (what Slicer shows), null
 /// where a class is out of range or a quantity was not computed.
 std::string LiveFrameJson(const TrackedFrame& frame);
-/// The frame's messages, packed: the STRING and the POINT list.
+/// The frame's messages, packed: the STRING, the POINT list, and with haptics on the force.
 std::string PackLiveFrame(const TrackedFrame& frame);
 /// Tracking lost: {"state": "lost", "time", "since_pose_ms"}.
 std::string PackLiveLost(double timeS, double sincePoseMs);

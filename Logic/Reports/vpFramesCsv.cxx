@@ -17,7 +17,7 @@ std::string Number(double value, const char* format = "%.4f")
 
 namespace
 {
-std::string Header(const std::vector<std::string>& classes, bool surface);
+std::string Header(const std::vector<std::string>& classes, bool surface, bool haptic = true);
 } // namespace
 
 void CheckFramesCsvColumns(const std::vector<std::string>& classes)
@@ -38,15 +38,15 @@ void CheckFramesCsvColumns(const std::vector<std::string>& classes)
   }
 }
 
-std::string FramesCsvHeader(const std::vector<std::string>& classes, bool surface)
+std::string FramesCsvHeader(const std::vector<std::string>& classes, bool surface, bool haptic)
 {
   CheckFramesCsvColumns(classes);
-  return Header(classes, surface);
+  return Header(classes, surface, haptic);
 }
 
 namespace
 {
-std::string Header(const std::vector<std::string>& classes, bool surface)
+std::string Header(const std::vector<std::string>& classes, bool surface, bool haptic)
 {
   std::string csv = "frame,time,tip_x,tip_y,tip_z,nearest_class,nearest_mm";
   for (const auto& c : classes)
@@ -63,6 +63,10 @@ std::string Header(const std::vector<std::string>& classes, bool surface)
       csv += "," + c + "_surface_mm," + c + "_penetration_depth_mm," + c + "_penetration_volume_mm3," + c +
         "_penetration_depth_bound_mm," + c + "_penetration_volume_bound_mm3," + c + "_surface_bound_mm";
     }
+  }
+  if (haptic)
+  {
+    csv += ",haptic_force_n,haptic_x,haptic_y,haptic_z";
   }
   csv += "\n";
   return csv;
@@ -107,6 +111,11 @@ std::string FramesCsvRow(const TrackedFrame& f, bool surface)
       }
       csv += "," + (f.Surface[k].InRange ? Number(f.Surface[k].ErrorBoundMm) : "");
     }
+  }
+  if (f.Haptic)
+  {
+    csv += "," + Number(f.Haptic->ForceN) + "," + Number(f.Haptic->Direction[0], "%.6f") + "," +
+      Number(f.Haptic->Direction[1], "%.6f") + "," + Number(f.Haptic->Direction[2], "%.6f");
   }
   csv += "\n";
   return csv;

@@ -15,9 +15,10 @@ namespace vp
 /// class named "nearest" (nearest_mm), "danger" (danger_level), or "x" beside "x_surface"
 /// (x_surface_mm twice).
 void CheckFramesCsvColumns(const std::vector<std::string>& classes);
-/// The header line, for these classes, with the whole surface's columns or without.
-std::string FramesCsvHeader(const std::vector<std::string>& classes, bool surface);
-/// One frame's line, the columns as the header's.
+/// The header line, for these classes, with the whole surface's columns or without, and with the
+/// haptic force's (haptic_force_n, haptic_x/y/z: the force and its unit direction, world) or without.
+std::string FramesCsvHeader(const std::vector<std::string>& classes, bool surface, bool haptic = false);
+/// One frame's line, the columns as the header's (the haptic ones when the frame has a force).
 std::string FramesCsvRow(const TrackedFrame& frame, bool surface);
 } // namespace vp
 

@@ -74,6 +74,12 @@ Json TrackingSummaryJson(const TrackingSummary& s, vtkScalpelTrackingLogic* logi
   }
   out["time_in_level"] = levels;
   out["worst_level"] = DangerLevelName(s.GetWorstLevel());
+  if (s.HasHaptic())
+  {
+    const HapticSettings& h = logic->GetHapticSettings();
+    out["haptic"] = { { "stiffness_n_per_mm", h.StiffnessNPerMm }, { "damping_ns_per_mm", h.DampingNsPerMm },
+      { "max_force_n", s.GetMaxHapticForceN() }, { "frames_with_force", s.GetFramesWithHapticForce() } };
+  }
   Json events = Json::array();
   for (const DangerLevelChange& e : s.GetChanges())
   {

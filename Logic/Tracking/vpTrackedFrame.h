@@ -2,8 +2,10 @@
 #define vpTrackedFrame_h
 
 #include "vpDangerLevels.h"
+#include "vpHapticForce.h"
 #include "vpProximityResult.h"
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -24,6 +26,7 @@ struct TrackedFrame
   std::vector<Penetration> Penetrations; ///< per class: the instrument inside it; empty when not computed
   double FrameMs = 0.0;            ///< wall time of the distance queries of this frame
   bool OverBudget = false;         ///< FrameMs exceeded the tracking logic's frame budget
+  std::optional<HapticSample> Haptic; ///< with haptics on (TrackingSettings::Haptic)
 };
 
 /// A change of the overall danger level between two frames.

@@ -2,6 +2,7 @@
 #define vpTrackingSettings_h
 
 #include "vpDangerLevels.h"
+#include "vpHapticForce.h"
 
 namespace vp
 {
@@ -17,6 +18,8 @@ struct TrackingSettings
   double HysteresisMm = 0.3;
   /// The time one frame may take: one refresh at 60 Hz (the paper's 40 ms is 25 Hz); 0: none.
   double FrameBudgetMs = 16.7;
+  /// The contact force sent to a haptic device (off by default).
+  HapticSettings Haptic;
 };
 } // namespace vp
 

@@ -26,6 +26,12 @@ void TrackingSummary::Add(const TrackedFrame& frame)
 {
   this->FrameMs.Add(frame.FrameMs);
   this->FramesOverBudget += frame.OverBudget ? 1 : 0;
+  if (frame.Haptic)
+  {
+    this->Haptic = true;
+    this->MaxHapticForceN = std::max(this->MaxHapticForceN, frame.Haptic->ForceN);
+    this->FramesWithHapticForce += frame.Haptic->ForceN > 0.0 ? 1 : 0;
+  }
   const auto& classes = frame.Proximity.Classes;
   if (this->Frames == 0)
   {

@@ -68,6 +68,10 @@ public:
   double GetFrameMsQuantile(double q) const { return this->FrameMs.Quantile(q); }
   /// Frames the tracking logic marked as over its frame budget.
   int GetFramesOverBudget() const { return this->FramesOverBudget; }
+  /// With haptics on: the largest force (N) and the frames with one.
+  bool HasHaptic() const { return this->Haptic; }
+  double GetMaxHapticForceN() const { return this->MaxHapticForceN; }
+  int GetFramesWithHapticForce() const { return this->FramesWithHapticForce; }
 
 private:
   int Frames = 0;
@@ -85,6 +89,9 @@ private:
   std::vector<DangerLevelChange> Changes;
   RunningQuantiles FrameMs;
   int FramesOverBudget = 0;
+  bool Haptic = false;
+  double MaxHapticForceN = 0.0;
+  int FramesWithHapticForce = 0;
 };
 } // namespace vp
 

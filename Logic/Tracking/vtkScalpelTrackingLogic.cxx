@@ -94,6 +94,14 @@ void vtkScalpelTrackingLogic::Reset()
 {
   this->Last = vp::TrackedFrame();
   this->FramesProcessed = 0;
+  this->Haptic.Reset();
+}
+
+void vtkScalpelTrackingLogic::SetHapticSettings(const vp::HapticSettings& haptic)
+{
+  haptic.Validate();
+  this->Settings.Haptic = haptic;
+  this->Haptic = vp::HapticForce(haptic);
 }
 
 const vp::TrackedFrame& vtkScalpelTrackingLogic::ProcessPose(const vp::TrackedPose& pose)
@@ -147,6 +155,10 @@ const vp::TrackedFrame& vtkScalpelTrackingLogic::ProcessPose(const vp::TrackedPo
       frame.LevelClass = static_cast<int>(c);
     }
   }
+  if (this->Settings.Haptic.Enabled())
+  {
+    frame.Haptic = this->Haptic.Update(frame);
+  }
   this->Last = std::move(frame);
   ++this->FramesProcessed;
 
@@ -180,6 +192,8 @@ void vtkScalpelTrackingLogic::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "DangerThresholds (caution, warning, danger): " << this->Settings.Thresholds.CautionMm << ", "
      << this->Settings.Thresholds.WarningMm << ", " << this->Settings.Thresholds.DangerMm << " mm\n";
   os << indent << "HysteresisMm: " << this->Settings.HysteresisMm << "\n";
+  os << indent << "HapticStiffnessNPerMm: " << this->Settings.Haptic.StiffnessNPerMm << "\n";
+  os << indent << "HapticDampingNsPerMm: " << this->Settings.Haptic.DampingNsPerMm << "\n";
   os << indent << "FrameBudgetMs: " << this->Settings.FrameBudgetMs << (this->Settings.FrameBudgetMs > 0 ? "" : " (off)") << "\n";
   os << indent << "FramesProcessed: " << this->FramesProcessed << "\n";
 }

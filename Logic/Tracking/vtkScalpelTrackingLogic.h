@@ -69,6 +69,11 @@ public:
   void SetHysteresisMm(double hysteresisMm);
   double GetHysteresisMm() const { return this->Settings.HysteresisMm; }
 
+  /// The contact force for a haptic device (vp::HapticSettings; off by default): each frame's
+  /// TrackedFrame::Haptic when on. Validated with the other settings.
+  void SetHapticSettings(const vp::HapticSettings& haptic);
+  const vp::HapticSettings& GetHapticSettings() const { return this->Settings.Haptic; }
+
   /// Danger thresholds (defaults 10, 5, 2 mm). Validated when the first pose is processed.
   void SetDangerThresholds(const vp::DangerThresholds& thresholds) { this->Settings.Thresholds = thresholds; }
   const vp::DangerThresholds& GetDangerThresholds() const { return this->Settings.Thresholds; }
@@ -97,6 +102,7 @@ protected:
   vp::TrackingSettings Settings;
   vp::TrackedFrame Last;
   int FramesProcessed = 0;
+  vp::HapticForce Haptic;
 
 private:
   vtkScalpelTrackingLogic(const vtkScalpelTrackingLogic&) = delete;

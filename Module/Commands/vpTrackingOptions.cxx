@@ -59,6 +59,18 @@ cli::ParameterGroup TrackingOptions()
         .SetDefault(FormatNumber(Defaults().HysteresisMm))
         .SetLogicName("HysteresisMm"),
       FrameBudgetOption(),
+      Option(cli::ParameterType::Double, "haptic-k",
+        "A haptic device's contact stiffness: the force F = k * depth + c * rate pushes the instrument out of a vessel "
+        "it has entered (frames.csv haptic_force_n, haptic_x/y/z; live sends it); 0: off.")
+        .SetPlaceholder("N/MM")
+        .SetDefault(FormatNumber(Defaults().Haptic.StiffnessNPerMm))
+        .SetLogicName("HapticStiffnessNPerMm"),
+      Option(cli::ParameterType::Double, "haptic-c",
+        "The contact's damping: newton-seconds per mm of the depth's rate (filtered over 20 ms, bounded at 200 mm/s: "
+        "no spike when the depth jumps); 0: off.")
+        .SetPlaceholder("NS/MM")
+        .SetDefault(FormatNumber(Defaults().Haptic.DampingNsPerMm))
+        .SetLogicName("HapticDampingNsPerMm"),
       Switch("no-surface",
         "Skip the whole-instrument distance (the closest approach of any point of the scalpel surface, computed "
         "beside the tip's)."),
@@ -192,6 +204,8 @@ SceneRequest ParseSceneRequest(const cli::ParsedArguments& args)
   request.Tracking.Thresholds = ParseDangerThresholds(args);
   request.Tracking.FrameBudgetMs = ParseFrameBudgetMs(args);
   request.Tracking.HysteresisMm = ParseHysteresisMm(args);
+  request.Tracking.Haptic.StiffnessNPerMm = args.GetNumber("hapticK");
+  request.Tracking.Haptic.DampingNsPerMm = args.GetNumber("hapticC");
   return request;
 }
 } // namespace vp

@@ -105,14 +105,14 @@ protected:
     this->Scalpel = std::string(VP_SOURCE_DIR) + "/Resources/CusaHandpiece.stl";
   }
 
-  /// count poses moving the tip from 40 mm to 1 mm off the sphere, time,m00..m33: each tip
-  /// another, to frames.csv's 4 decimals, so that a live frame is found among track's by its tip.
+  /// count poses moving the tip from 40 mm off the sphere to 5 mm inside it, time,m00..m33: each
+  /// tip another, to frames.csv's 4 decimals, so that a live frame is found among track's by its tip.
   std::string SweepPoses(int count)
   {
     std::string text = "time,m00,m01,m02,m03,m10,m11,m12,m13,m20,m21,m22,m23,m30,m31,m32,m33\n";
     for (int i = 0; i < count; ++i)
     {
-      const double x = 40.0 - 29.0 * i / (count - 1);
+      const double x = 40.0 - 35.0 * i / (count - 1);
       text += vp::test::Number(0.001 * (i + 1)) + ",1,0,0," + vp::test::Number(x) + ",0,1,0,0.5,0,0,1,-0.25,0,0,0,1\n";
     }
     return vp::test::WriteBytes(this->Dir, "poses" + std::to_string(count) + ".csv", text);
@@ -122,6 +122,7 @@ protected:
   pid_t StartLive(const std::vector<std::string>& stream, const std::string& out)
   {
     std::vector<std::string> args = { "live", "--vessels", this->Vessels, "--scalpel", this->Scalpel, "--tool-name", "Stylus" };
+    args.insert(args.end(), this->Extra.begin(), this->Extra.end());
     args.insert(args.end(), stream.begin(), stream.end());
     if (!out.empty())
     {
@@ -153,8 +154,13 @@ protected:
   /// every column but the frame number, the time and the frame's duration.
   std::size_t ExpectFramesEqualTrack(const std::string& liveOut)
   {
+    std::string extra;
+    for (const std::string& e : this->Extra)
+    {
+      extra += " " + e;
+    }
     const ToolRun track = vp::test::RunTool(this->Dir, "track --vessels " + this->Vessels + " --scalpel " + this->Scalpel +
-        " --poses " + this->Dir + "/sent.csv -o " + this->Dir + "/track");
+        " --poses " + this->Dir + "/sent.csv" + extra + " -o " + this->Dir + "/track");
     EXPECT_EQ(track.ExitCode, 0) << track.Err;
     const auto expected = Rows(this->Dir + "/track/frames.csv");
     const auto got = Rows(liveOut + "/frames.csv");
@@ -178,7 +184,9 @@ protected:
       }
       for (std::size_t c = 0; c < header.size(); ++c)
       {
-        if (header[c] == "frame" || header[c] == "time" || header[c] == "frame_ms")
+        // The times are the poses' arrivals in live, the file's in track; the haptic force's
+        // damping follows the depth's rate over them.
+        if (header[c] == "frame" || header[c] == "time" || header[c] == "frame_ms" || header[c] == "haptic_force_n")
         {
           continue;
         }
@@ -199,12 +207,15 @@ protected:
   }
 
   std::string Dir, Vessels, Scalpel;
+  std::vector<std::string> Extra; ///< options both live and track are given
 };
 } // namespace
 
-// A tracker streaming at 50 Hz for 10 s: every pose computed, each frame track's.
+// A tracker streaming at 50 Hz for 10 s: every pose computed, each frame track's; with the haptic
+// force on, its direction too, and its force in the record.
 TEST_F(LiveCommand, At50HzEveryFrameEqualsTrackOnTheSamePoses)
 {
+  this->Extra = { "--haptic-k", "0.5", "--haptic-c", "0.01" };
   const nlohmann::json summary = this->StreamThroughLive(this->SweepPoses(500), 50.0, this->Dir + "/out50");
   const std::size_t frames = this->ExpectFramesEqualTrack(this->Dir + "/out50");
   const auto& link = summary.at("link");
@@ -215,6 +226,7 @@ TEST_F(LiveCommand, At50HzEveryFrameEqualsTrackOnTheSamePoses)
   EXPECT_GT(summary.at("latency_ms").at("p95").get<double>(), 0.0);
   EXPECT_EQ(summary.at("latency_ms").at("frames").get<std::size_t>(), frames);
   EXPECT_NE(Slurp(this->Dir + "/live.out").find("latency pose in -> results out: median"), std::string::npos);
+  EXPECT_GT(summary.at("haptic").at("max_force_n").get<double>(), 1.0) << "the tip ends 5 mm inside";
 }
 
 // At 1 kHz for 10 s the frames cannot keep up on two cores with the whole instrument: the newest
@@ -290,7 +302,7 @@ TEST_F(LiveCommand, AnExampleTrackerKilledMidStreamIsReconnectedAndAClientReadsT
   pid_t tracker = vp::test::StartProgram(VP_IGTL_TRACKER_SERVER, { port, "50" }, this->Dir + "/tracker.out", "/dev/null");
   std::this_thread::sleep_for(std::chrono::milliseconds(200));
   std::vector<std::string> args = { "live", "--vessels", this->Vessels, "--scalpel", this->Scalpel, "--tool-name", "Tracker",
-    "--igtl", "127.0.0.1:" + port, "--igtl-listen", "0", "-o", this->Dir + "/example" };
+    "--igtl", "127.0.0.1:" + port, "--igtl-listen", "0", "--haptic-k", "0.5", "-o", this->Dir + "/example" };
   const pid_t live = vp::test::StartProgram(VP_EXECUTABLE, args, this->Dir + "/live.out", this->Dir + "/live.err");
   ASSERT_TRUE(WaitForText(this->Dir + "/live.err", "live: listening on port "));
   const std::string err = Slurp(this->Dir + "/live.err");
@@ -325,17 +337,24 @@ TEST_F(LiveCommand, AnExampleTrackerKilledMidStreamIsReconnectedAndAClientReadsT
     byFrame[std::stoi(frames[r][0])] = frames[r];
   }
   std::istringstream printed(Slurp(this->Dir + "/client.err"));
-  int strings = 0, tips = 0;
+  int strings = 0, tips = 0, forces = 0;
   for (std::string line; std::getline(printed, line);)
   {
     const auto text = line.find("String: "); // "Encoding: 3; String: {...}"
     if (text != std::string::npos)
     {
       const nlohmann::json frame = nlohmann::json::parse(line.substr(text + 8));
+      if (frame.contains("force_n")) // VesselProximityHaptic
+      {
+        ++forces;
+        EXPECT_EQ(frame.at("direction").size(), 3u);
+        continue;
+      }
       if (frame.at("state") != "tracking")
       {
         continue;
       }
+      EXPECT_TRUE(frame.contains("haptic"));
       ++strings;
       for (const char* key : { "frame", "time", "space", "tip", "level", "level_class", "error_bound_mm", "nearest", "classes" })
       {
@@ -358,6 +377,7 @@ TEST_F(LiveCommand, AnExampleTrackerKilledMidStreamIsReconnectedAndAClientReadsT
   }
   EXPECT_GT(strings, 20);
   EXPECT_GT(tips, 20);
+  EXPECT_LE(std::abs(forces - strings), 1) << "a force message with every frame (the client stopped between two, perhaps)";
 }
 
 // The live bench's report: the latency phase at its rate, its latency beside the frame's own

@@ -234,6 +234,62 @@ TEST_F(TrackCommand, ReportsThePenetrationOfTheWholeInstrument)
   EXPECT_EQ(s["classes"]["hepatic_vein"]["penetration_maximum"]["frames_inside"].get<int>(), 0);
 }
 
+// The haptic force on the same approach: zero while the instrument is outside, k * depth + c * rate
+// (the rate filtered and bounded) inside, pushing back along the instrument; frames.csv and
+// summary.json carry it.
+TEST_F(TrackCommand, AHapticForcePushesTheInstrumentOutOfTheVessel)
+{
+  std::ostringstream poses;
+  poses << "time,x,y,z,qw,qx,qy,qz\n";
+  const double h = std::sqrt(0.5);
+  int frames = 0;
+  for (double x : { 14.0, 12.0, 10.5, 9.5, 8.0, 7.0, 8.0, 10.0, 12.0 })
+  {
+    poses << frames++ * 0.05 << "," << x << ",0,0," << h << ",0," << -h << ",0\n";
+  }
+  const std::string out = this->Dir + "/haptic";
+  const ToolRun r = RunTool(this->Dir, "track --vessels " + this->Vessels + " --scalpel " + this->Tool + " --poses " +
+      this->WriteText("haptic.csv", poses.str()) + " --haptic-k 0.5 --haptic-c 0.01 -o " + out);
+  ASSERT_EQ(r.ExitCode, 0) << r.Err;
+  const auto rows = ReadCsvCells(out + "/frames.csv");
+  auto column = [&](const std::string& name) {
+    const auto it = std::find(rows[0].begin(), rows[0].end(), name);
+    EXPECT_NE(it, rows[0].end()) << name;
+    return static_cast<std::size_t>(it - rows[0].begin());
+  };
+  const std::size_t force = column("haptic_force_n"), depth = column("portal_vein_penetration_depth_mm");
+  double largest = 0.0;
+  for (std::size_t row = 1; row < rows.size(); ++row)
+  {
+    const double d = std::stod(rows[row][depth]);
+    const double f = std::stod(rows[row][force]);
+    largest = std::max(largest, f);
+    if (d == 0.0)
+    {
+      EXPECT_EQ(f, 0.0) << "frame " << row - 1 << ": outside, no force";
+      continue;
+    }
+    // Between k * depth - c * 200 mm/s and k * depth + c * 200 mm/s (the rate's bound), and never
+    // pulling inwards (a fast withdrawal may bring it to 0).
+    EXPECT_LE(f, 0.5 * d + 0.01 * 200.0 + 1e-4) << "frame " << row - 1;
+    EXPECT_GE(f, std::max(0.0, 0.5 * d - 0.01 * 200.0) - 1e-4) << "frame " << row - 1;
+    // Back along the instrument, whose axis points down -x here: the force along +x.
+    EXPECT_NEAR(std::stod(rows[row][column("haptic_x")]), 1.0, 1e-6);
+  }
+  const nlohmann::json s = nlohmann::json::parse(Slurp(out + "/summary.json"));
+  EXPECT_NEAR(s["haptic"]["max_force_n"].get<double>(), largest, 1e-4);
+  EXPECT_EQ(s["haptic"]["frames_with_force"].get<int>(), 4);
+  // Off by default: no columns.
+  const ToolRun plain = RunTool(this->Dir, "track --vessels " + this->Vessels + " --scalpel " + this->Tool + " --poses " +
+      this->Dir + "/haptic.csv -o " + this->Dir + "/plain");
+  ASSERT_EQ(plain.ExitCode, 0);
+  EXPECT_EQ(Slurp(this->Dir + "/plain/frames.csv").find("haptic"), std::string::npos);
+  const ToolRun negative = RunTool(this->Dir, "track --vessels " + this->Vessels + " --scalpel " + this->Tool + " --poses " +
+      this->Dir + "/haptic.csv --haptic-k -1 -o " + this->Dir + "/negative");
+  EXPECT_EQ(negative.ExitCode, 1);
+  EXPECT_NE(negative.Err.find("--haptic-k: must be a stiffness in N/mm, 0 or more"), std::string::npos) << negative.Err;
+}
+
 TEST_F(TrackCommand, CountsTheFramesOverTheBudget)
 {
   const std::string common = "track --vessels " + this->Vessels + " --scalpel " + this->Tool + " --poses " + this->ApproachPoses();

@@ -3,6 +3,7 @@
 // and the summary adds up. Synthetic poses with known answers, as SlicerIGT's pivot test does.
 #include "vpAnalyticShapes.h"
 #include "vpDangerLevels.h"
+#include "vpHapticForce.h"
 #include "vpInputError.h"
 #include "vpRigidTransform.h"
 #include "vpTrackingSummary.h"
@@ -343,4 +344,71 @@ TEST_F(Tracking, SummaryMinimumIsTheDeepestPenetration)
   EXPECT_EQ(summary.GetWorstLevel(), vp::DangerLevel::Breach);
   // Three frames inside, and the one 0.05 mm outside, within the hysteresis: the breach holds.
   EXPECT_EQ(summary.GetFramesInLevel()[static_cast<int>(vp::DangerLevel::Breach)], 4);
+}
+
+namespace
+{
+/// A frame whose tip is depthMm inside a class, its wall towards +y, at time t.
+vp::TrackedFrame FrameInside(double t, double depthMm)
+{
+  vp::TrackedFrame frame;
+  frame.TimeS = t;
+  frame.AxisWorld[0] = 0, frame.AxisWorld[1] = 0, frame.AxisWorld[2] = -1;
+  vp::ClassProximity c;
+  c.ClassName = "portal_vein";
+  c.InRange = true;
+  c.Inside = depthMm > 0.0;
+  c.DistanceMm = std::abs(depthMm);
+  c.ClosestPoint[1] = depthMm > 0.0 ? depthMm : -depthMm; // the wall, +y of the tip at the origin
+  frame.Proximity.Classes.push_back(c);
+  return frame;
+}
+} // namespace
+
+// Kelvin-Voigt against its formula: on a steady push the force is k * depth + c * rate, out of the
+// vessel; outside there is none whatever the rate; a depth that jumps gives no spike beyond the
+// rate's bound.
+TEST(HapticForce, KelvinVoigtOnASteadyPushNoneOutsideAndNoSpike)
+{
+  vp::HapticSettings settings;
+  settings.StiffnessNPerMm = 0.5;
+  settings.DampingNsPerMm = 0.01;
+  vp::HapticForce haptic(settings);
+  // 10 mm/s into the vessel at 100 Hz: after 10 time constants the filtered rate is 10 mm/s.
+  vp::HapticSample last;
+  for (int i = 1; i <= 50; ++i)
+  {
+    last = haptic.Update(FrameInside(0.01 * i, 0.1 * i));
+  }
+  EXPECT_NEAR(last.DepthMm, 5.0, 1e-12);
+  EXPECT_NEAR(last.RateMmPerS, 10.0, 1e-3);
+  EXPECT_NEAR(last.ForceN, 0.5 * 5.0 + 0.01 * 10.0, 1e-5);
+  EXPECT_NEAR(last.Direction[1], 1.0, 1e-12) << "towards the wall";
+  // Pulled out: outside, no force, though the depth fell fast.
+  const vp::HapticSample outside = haptic.Update(FrameInside(0.51, -1.0));
+  EXPECT_EQ(outside.ForceN, 0.0);
+  EXPECT_EQ(outside.Direction[0] + outside.Direction[1] + outside.Direction[2], 0.0);
+  // From outside to 5 mm deep in one 10 ms frame (500 mm/s raw): filtered and bounded.
+  haptic.Reset();
+  haptic.Update(FrameInside(1.0, -2.0));
+  const vp::HapticSample jump = haptic.Update(FrameInside(1.01, 5.0));
+  EXPECT_LE(jump.RateMmPerS, settings.MaxRateMmPerS);
+  EXPECT_LT(jump.ForceN, 0.5 * 5.0 + 0.01 * 500.0) << "no spike: the raw rate is not used";
+  EXPECT_LE(jump.ForceN, 0.5 * 5.0 + 0.01 * settings.MaxRateMmPerS + 1e-12);
+  // The instrument deeper than its tip: pushed back along its axis.
+  vp::TrackedFrame shaft = FrameInside(2.0, -3.0);
+  vp::Penetration p;
+  p.DepthMm = 2.0;
+  shaft.Penetrations.push_back(p);
+  haptic.Reset();
+  const vp::HapticSample back = haptic.Update(shaft);
+  EXPECT_NEAR(back.ForceN, 1.0, 1e-12);
+  EXPECT_NEAR(back.Direction[2], 1.0, 1e-12);
+  // A withdrawal faster than the stiffness holds never pulls inwards.
+  haptic.Reset();
+  haptic.Update(FrameInside(3.0, 4.0));
+  EXPECT_GE(haptic.Update(FrameInside(3.01, 0.5)).ForceN, 0.0);
+  vp::HapticSettings bad;
+  bad.StiffnessNPerMm = -1.0;
+  EXPECT_THROW(bad.Validate(), vp::ParameterError);
 }

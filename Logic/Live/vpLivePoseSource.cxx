@@ -48,6 +48,10 @@ bool LivePoseSource::Next(TrackedPose& pose)
     {
       this->Idle();
     }
+    if (this->Ended && this->Ended())
+    {
+      return false;
+    }
     const double sinceMs = NowMs() - this->LastPoseMs;
     if (this->SeenAny && !this->Lost && sinceMs >= this->StaleMs)
     {

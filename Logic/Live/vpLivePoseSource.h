@@ -33,6 +33,8 @@ public:
   double GetStaleMs() const { return this->StaleMs; }
   /// Called while Next() waits, every 10 ms or so: a front end shows the link's events.
   void SetIdleCallback(std::function<void()> idle) { this->Idle = std::move(idle); }
+  /// The stream also ends when this says so while no pose waits (a recording served to the end).
+  void SetEndCondition(std::function<bool()> ended) { this->Ended = std::move(ended); }
 
 private:
   IgtlLink& Link;
@@ -47,6 +49,7 @@ private:
   bool Lost = false;
   std::size_t Read = 0;
   std::function<void()> Idle;
+  std::function<bool()> Ended;
 };
 } // namespace vp
 

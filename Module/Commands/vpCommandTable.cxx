@@ -19,6 +19,7 @@ const std::vector<CommandEntry>& CommandTable()
     { "distance", DescribeDistanceCommand, RunDistanceCommand },
     { "track", DescribeTrackCommand, RunTrackCommand },
     { "live", DescribeLiveCommand, RunLiveCommand },
+    { "serve", DescribeServeCommand, RunServeCommand },
     { "register", DescribeRegisterCommand, RunRegisterCommand },
     { "bench", DescribeBenchCommand, RunBenchCommand },
     { "phantom", DescribePhantomCommand, RunPhantomCommand },

@@ -22,6 +22,8 @@ cli::ModuleDescription DescribeTrackCommand();
 int RunTrackCommand(const cli::ParsedArguments& args, const ModuleServices& module);
 cli::ModuleDescription DescribeLiveCommand();
 int RunLiveCommand(const cli::ParsedArguments& args, const ModuleServices& module);
+cli::ModuleDescription DescribeServeCommand();
+int RunServeCommand(const cli::ParsedArguments& args, const ModuleServices& module);
 cli::ModuleDescription DescribeRegisterCommand();
 int RunRegisterCommand(const cli::ParsedArguments& args, const ModuleServices& module);
 cli::ModuleDescription DescribeDemoCommand();

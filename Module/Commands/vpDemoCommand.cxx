@@ -83,12 +83,16 @@ cli::ModuleDescription DescribeDemoCommand()
     "is started when there is no display).",
     { { "Options", "",
       { OutputFolderOption("The run's folder.").SetDefault("vesselproximity-demo"),
-        Switch("no-screenshots", "Skip the screenshots."), FrameBudgetOption() } } });
+        Switch("no-screenshots", "Skip the screenshots."), FrameBudgetOption(),
+        Switch("live",
+          "Track live: a tracker server on loopback streams the trajectory over OpenIGTLink at its own times, through the "
+          "live path and back (summary.json adds the latency).") } } });
 }
 
 int RunDemoCommand(const cli::ParsedArguments& args, const ModuleServices& module)
 {
-  const DemoReport report = RunDemoPipeline(module, args.GetString("output"), !args.GetBoolean("noScreenshots"), ParseFrameBudgetMs(args));
+  const DemoReport report =
+    RunDemoPipeline(module, args.GetString("output"), !args.GetBoolean("noScreenshots"), ParseFrameBudgetMs(args), args.GetBoolean("live"));
   PrintDemoTable(report);
   return 0;
 }

@@ -8,6 +8,11 @@
 #include "vpInputError.h"
 #include "vpLiverPhantom.h"
 #include "vpPoseFile.h"
+#include "vpIgtlLink.h"
+#include "vpIgtlPoseStreamer.h"
+#include "vpLivePoseSource.h"
+#include "vpLiveResults.h"
+#include "vpRunningQuantiles.h"
 #include "vpTrackingRecorder.h"
 #include "vpTrackingSession.h"
 #include "vpVesselModelSet.h"
@@ -26,6 +31,8 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <atomic>
+#include <thread>
 #include <cstdio>
 #include <functional>
 #include <iostream>
@@ -151,7 +158,7 @@ std::vector<NamedMesh> DemoVessels(const DemoReport& report)
 
 /// Both engines on every frame: the z-buffer engine answers, the exact engine checks; the exact
 /// engine alone without a Vulkan device.
-void TrackDemo(const ModuleServices& module, DemoReport& report, double frameBudgetMs, RunFolder& run)
+void TrackDemo(const ModuleServices& module, DemoReport& report, double frameBudgetMs, bool live, RunFolder& run)
 {
   SceneRequest request;
   request.Vessels = DemoVessels(report);
@@ -173,10 +180,52 @@ void TrackDemo(const ModuleServices& module, DemoReport& report, double frameBud
   });
   logic->GetTrackingLogic()->AddObserver(vtkScalpelTrackingLogic::FrameProcessedEvent, onFrame);
   TrackingRecorder recorder(logic, scene.Vessels);
-  PoseListSource poses(report.Trajectory.Poses, report.PosesFile);
-  if (recorder.Run(poses, run))
+  if (!live)
+  {
+    PoseListSource poses(report.Trajectory.Poses, report.PosesFile);
+    if (recorder.Run(poses, run))
+    {
+      report.Summary = recorder.GetReport();
+    }
+    return;
+  }
+  // The loop an operating room has, on loopback: a tracker server streams the trajectory at its
+  // own times; the live path reads it, computes each frame and sends the results back.
+  const std::string device = "ScalpelToPatient";
+  IgtlPoseStreamer tracker(0, device);
+  IgtlLinkSettings settings;
+  settings.ConnectPort = tracker.GetPort();
+  settings.ToolName = device;
+  settings.Reading = SettlePoseReading(PoseReading());
+  IgtlLink link(settings);
+  std::atomic<bool> stop{ false };
+  std::atomic<double> doneMs{ 0.0 };
+  std::thread streaming([&] {
+    PoseListSource trajectory(report.Trajectory.Poses, report.PosesFile);
+    tracker.Stream(trajectory, 1.0, 10.0, stop);
+    doneMs = NowMs();
+  });
+  LivePoseSource poses(link, "the demo's tracker on 127.0.0.1:" + std::to_string(tracker.GetPort()), 200.0);
+  // The stream ends a moment after the tracker's last pose (its messages still on their way).
+  poses.SetEndCondition([&] { return doneMs > 0.0 && NowMs() - doneMs > 200.0; });
+  RunningQuantiles latency;
+  recorder.SetFrameObserver([&](const TrackedFrame& frame) {
+    link.Send(PackLiveFrame(frame));
+    latency.Add(NowMs() - poses.GetLastArrivalMs());
+  });
+  recorder.SetReportAddition([&](nlohmann::ordered_json& doc) {
+    doc["latency_ms"] = { { "median", latency.Quantile(0.5) }, { "p95", latency.Quantile(0.95) }, { "max", latency.Quantile(1.0) },
+      { "frames", latency.Count() } };
+    const IgtlLinkCounts counts = link.GetCounts();
+    doc["link"] = { { "poses", counts.Poses }, { "poses_dropped", counts.Dropped }, { "rejected", counts.RejectedTotal() } };
+  });
+  const bool ran = recorder.Run(poses, run);
+  stop = true;
+  streaming.join();
+  if (ran)
   {
     report.Summary = recorder.GetReport();
+    report.Frames = recorder.GetSummary().GetNumberOfFrames();
   }
 }
 } // namespace
@@ -220,7 +269,7 @@ void BuildDemoModels(DemoReport& report, RunFolder& run)
   }
 }
 
-DemoReport RunDemoPipeline(const ModuleServices& module, const std::string& outDir, bool screenshots, double frameBudgetMs)
+DemoReport RunDemoPipeline(const ModuleServices& module, const std::string& outDir, bool screenshots, double frameBudgetMs, bool live)
 {
   DemoReport report;
   report.OutDir = outDir;
@@ -244,8 +293,9 @@ DemoReport RunDemoPipeline(const ModuleServices& module, const std::string& outD
         WriteFileAtomically(run.File("poses.csv"), FormatPoseCsv(report.Trajectory.Poses));
         report.Frames = static_cast<int>(report.Trajectory.Poses.size());
       } },
-    { "track: every frame through the z-buffer engine, checked by the exact engine",
-      [&] { TrackDemo(module, report, frameBudgetMs, run); } },
+    { live ? "track live: the trajectory over OpenIGTLink (loopback) through the live path and back"
+           : "track: every frame through the z-buffer engine, checked by the exact engine",
+      [&] { TrackDemo(module, report, frameBudgetMs, live, run); } },
     { "screenshots of the key frames",
       screenshots ? std::function<void()>([&] { RenderKeyFrames(module, report, report.Trajectory.Poses, shots); }) : nullptr },
   };

@@ -47,10 +47,12 @@ struct DemoReport
 /// built-in CUSA handpiece; the demo trajectory, also written as a pose file; a tracking session
 /// with both engines on every frame (frames.csv, summary.json, distance.png); screenshots of the key frames rendered
 /// off-screen (a virtual display is started when there is none). Progress goes to stderr. Throws vp::InputError when something cannot be written.
-/// frameBudgetMs goes to the track stage (--frame-budget-ms). The module creates the logic of
-/// every stage and the overlays of the screenshots.
-DemoReport RunDemoPipeline(
-  const ModuleServices& module, const std::string& outDir, bool screenshots, double frameBudgetMs = TrackingSettings().FrameBudgetMs);
+/// frameBudgetMs goes to the track stage (--frame-budget-ms). live: the track stage takes the
+/// trajectory from a tracker server on loopback, over OpenIGTLink, through the live path, and
+/// sends the results back (its summary adds the latency). The module creates the logic of every
+/// stage and the overlays of the screenshots.
+DemoReport RunDemoPipeline(const ModuleServices& module, const std::string& outDir, bool screenshots,
+  double frameBudgetMs = TrackingSettings().FrameBudgetMs, bool live = false);
 
 /// The module's logic over the demo's built vessel models and scalpel, with the exact engine and
 /// the tip only (the whole surface off): what the screenshots show and the self-test checks.

@@ -120,3 +120,30 @@ TEST(DemoCommand, AnInterruptedDemoLeavesThePreviousRunAsItWas)
   }
   std::filesystem::remove_all(tmp);
 }
+
+// demo --live: the trajectory from a tracker server on loopback, over OpenIGTLink, through the
+// live path and back, at its own 50 Hz: every pose a frame, the same dangers as the demo found
+// offline (the poses travel as float: the distances agree to a few micrometres).
+TEST(DemoCommand, LiveTakesTheTrajectoryOverOpenIgtlinkAndFindsTheSameDangers)
+{
+  const std::string tmp = vp::test::MakeTempDir("demo_live");
+  const auto live = vp::test::RunTool(tmp, "demo --live --no-screenshots -o " + tmp + "/live");
+  ASSERT_EQ(live.ExitCode, 0) << live.Err;
+  const auto offline = vp::test::RunTool(tmp, "demo --no-screenshots -o " + tmp + "/offline");
+  ASSERT_EQ(offline.ExitCode, 0) << offline.Err;
+  const nlohmann::json a = nlohmann::json::parse(vp::test::Slurp(tmp + "/live/summary.json"));
+  const nlohmann::json b = nlohmann::json::parse(vp::test::Slurp(tmp + "/offline/summary.json"));
+  const int poses = a.at("link").at("poses").get<int>();
+  EXPECT_EQ(poses, b.at("frames").get<int>()) << "every pose of the trajectory came";
+  EXPECT_EQ(a.at("frames").get<int>() + a.at("link").at("poses_dropped").get<int>(), poses);
+  EXPECT_LE(a.at("link").at("poses_dropped").get<int>(), poses / 50);
+  EXPECT_EQ(a.at("link").at("rejected").get<int>(), 0);
+  EXPECT_EQ(a.at("latency_ms").at("frames").get<int>(), a.at("frames").get<int>());
+  EXPECT_EQ(a.at("worst_level"), b.at("worst_level"));
+  for (const char* c : { "portal_vein", "hepatic_vein", "hepatic_artery" })
+  {
+    EXPECT_NEAR(a.at("classes").at(c).at("tip_minimum").at("distance_mm").get<double>(),
+      b.at("classes").at(c).at("tip_minimum").at("distance_mm").get<double>(), 0.01) << c;
+  }
+  EXPECT_NE(live.Out.find("track live: the trajectory over OpenIGTLink"), std::string::npos);
+}

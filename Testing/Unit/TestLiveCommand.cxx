@@ -397,3 +397,70 @@ TEST_F(LiveCommand, TheBenchMeasuresLatencyBesideTheFramesOwnTime)
   EXPECT_GE(phase.at("latency_ms").at("median").get<double>(), phase.at("frame_ms").at("median").get<double>());
   EXPECT_FALSE(live.contains("sustained"));
 }
+
+// PLUS's own recording served over OpenIGTLink at its own times (ten times faster), as
+// PlusServer's saved-data source would: live computes the same frames as track on the recording.
+TEST_F(LiveCommand, APlusRecordingServedAtItsOwnTimesGivesTracksFrames)
+{
+  const std::string data = vp::test::TestDataDir();
+  if (data.empty())
+  {
+    GTEST_SKIP() << "VP_TEST_DATA not set: the PLUS recordings are in ../shared/data/plus";
+  }
+  const std::string recording = data + "/plus/EightLandmarkPointsTrackedForPhantomRegistration.igs.mha";
+  // A vessel where the stylus works: its origin moves 92 to 246 mm from (4, -19, 48) in the
+  // reference's frame, so a sphere of 150 mm there puts most frames within range.
+  this->Vessels = "portal_vein=" + vp::test::WriteMeshFile(this->Dir, "near.stl", vp::MakeSphere(centre, 150.0, 48, 96));
+  const int port = FreePort();
+  const pid_t server = vp::test::StartProgram(VP_EXECUTABLE,
+    { "serve", "--poses", recording, "--tool", "Stylus", "--reference", "Reference", "--igtl-listen", std::to_string(port), "--device",
+      "StylusToReference", "--speed", "10" },
+    this->Dir + "/serve.out", this->Dir + "/serve.err");
+  ASSERT_TRUE(WaitForText(this->Dir + "/serve.err", "waiting for a client")) << Slurp(this->Dir + "/serve.err");
+  std::vector<std::string> args = { "live", "--vessels", this->Vessels, "--scalpel", this->Scalpel, "--tool-name", "StylusToReference",
+    "--igtl", "127.0.0.1:" + std::to_string(port), "-o", this->Dir + "/served" };
+  const pid_t live = vp::test::StartProgram(VP_EXECUTABLE, args, this->Dir + "/live.out", this->Dir + "/live.err");
+  EXPECT_EQ(WaitFor(server, 60.0), 0) << Slurp(this->Dir + "/serve.err");
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  kill(live, SIGINT);
+  ASSERT_EQ(WaitFor(live, 30.0), 0) << Slurp(this->Dir + "/live.err");
+  EXPECT_NE(Slurp(this->Dir + "/serve.out").find("served 1000 of 1000 poses"), std::string::npos) << Slurp(this->Dir + "/serve.out");
+  const nlohmann::json summary = nlohmann::json::parse(Slurp(this->Dir + "/served/summary.json"));
+  EXPECT_EQ(summary.at("link").at("poses").get<int>(), 1000);
+  // track on the recording itself; the served poses went as float, so the tips agree to 1e-4.
+  const ToolRun track = vp::test::RunTool(this->Dir, "track --vessels " + this->Vessels + " --scalpel " + this->Scalpel + " --poses " +
+      recording + " --tool Stylus --reference Reference -o " + this->Dir + "/recorded");
+  ASSERT_EQ(track.ExitCode, 0) << track.Err;
+  const auto expected = Rows(this->Dir + "/recorded/frames.csv");
+  const auto got = Rows(this->Dir + "/served/frames.csv");
+  ASSERT_EQ(got.size() - 1 + summary.at("link").at("poses_dropped").get<std::size_t>(), 1000u);
+  std::size_t next = 1;
+  for (std::size_t r = 1; r < got.size(); ++r)
+  {
+    auto near = [&](std::size_t e) {
+      for (int a = 2; a <= 4; ++a)
+      {
+        if (std::abs(std::stod(got[r][a]) - std::stod(expected[e][a])) > 2e-4)
+        {
+          return false;
+        }
+      }
+      return true;
+    };
+    while (next < expected.size() && !near(next))
+    {
+      ++next;
+    }
+    ASSERT_LT(next, expected.size()) << "live frame " << got[r][0] << " is no recorded pose after the one before";
+    // portal_vein_mm: empty out of range (the phantom lies far from this sphere), as track says.
+    if (got[r][7].empty() || expected[next][7].empty())
+    {
+      EXPECT_EQ(got[r][7], expected[next][7]) << "portal_vein_mm of live frame " << got[r][0];
+    }
+    else
+    {
+      EXPECT_NEAR(std::stod(got[r][7]), std::stod(expected[next][7]), 2e-4) << "portal_vein_mm of live frame " << got[r][0];
+    }
+    ++next;
+  }
+}

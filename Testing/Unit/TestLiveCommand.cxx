@@ -410,6 +410,7 @@ TEST_F(LiveCommand, APlusRecordingServedAtItsOwnTimesGivesTracksFrames)
   const std::string recording = data + "/plus/EightLandmarkPointsTrackedForPhantomRegistration.igs.mha";
   // A vessel where the stylus works: its origin moves 92 to 246 mm from (4, -19, 48) in the
   // reference's frame, so a sphere of 150 mm there puts most frames within range.
+  const double centre[3] = { 4, -19, 48 };
   this->Vessels = "portal_vein=" + vp::test::WriteMeshFile(this->Dir, "near.stl", vp::MakeSphere(centre, 150.0, 48, 96));
   const int port = FreePort();
   const pid_t server = vp::test::StartProgram(VP_EXECUTABLE,

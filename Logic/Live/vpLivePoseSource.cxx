@@ -29,40 +29,54 @@ bool LivePoseSource::Next(TrackedPose& pose)
 {
   while (true)
   {
-    if (SignalHold::Pending() || (this->DurationS > 0.0 && NowMs() - this->StartMs >= 1000.0 * this->DurationS))
+    const Step step = this->Poll(pose, WaitSliceMs);
+    if (step == Step::Ended)
     {
       return false;
     }
-    double arrivalMs = 0.0;
-    if (this->Link.WaitForPose(WaitSliceMs, pose, arrivalMs))
+    if (step != Step::Nothing)
     {
-      this->SeenAny = true;
-      this->Lost = false;
-      this->LastPoseMs = arrivalMs;
-      this->LastPoseTimeS = pose.TimeS;
-      this->LastArrivalMs = arrivalMs;
-      ++this->Read;
-      return true;
-    }
-    if (this->Idle)
-    {
-      this->Idle();
-    }
-    if (this->Ended && this->Ended())
-    {
-      return false;
-    }
-    const double sinceMs = NowMs() - this->LastPoseMs;
-    if (this->SeenAny && !this->Lost && sinceMs >= this->StaleMs)
-    {
-      this->Lost = true;
-      pose = TrackedPose();
-      pose.Lost = true;
-      pose.TimeS = this->LastPoseTimeS + sinceMs / 1000.0;
-      this->LastArrivalMs = NowMs();
-      ++this->Read;
       return true;
     }
   }
+}
+
+LivePoseSource::Step LivePoseSource::Poll(TrackedPose& pose, double waitMs)
+{
+  if (SignalHold::Pending() || (this->DurationS > 0.0 && NowMs() - this->StartMs >= 1000.0 * this->DurationS))
+  {
+    return Step::Ended;
+  }
+  double arrivalMs = 0.0;
+  if (this->Link.WaitForPose(waitMs, pose, arrivalMs))
+  {
+    this->SeenAny = true;
+    this->Lost = false;
+    this->LastPoseMs = arrivalMs;
+    this->LastPoseTimeS = pose.TimeS;
+    this->LastArrivalMs = arrivalMs;
+    ++this->Read;
+    return Step::Pose;
+  }
+  if (this->Idle)
+  {
+    this->Idle();
+  }
+  if (this->Ended && this->Ended())
+  {
+    return Step::Ended;
+  }
+  const double sinceMs = NowMs() - this->LastPoseMs;
+  if (this->SeenAny && !this->Lost && sinceMs >= this->StaleMs)
+  {
+    this->Lost = true;
+    pose = TrackedPose();
+    pose.Lost = true;
+    pose.TimeS = this->LastPoseTimeS + sinceMs / 1000.0;
+    this->LastArrivalMs = NowMs();
+    ++this->Read;
+    return Step::Lost;
+  }
+  return Step::Nothing;
 }
 } // namespace vp

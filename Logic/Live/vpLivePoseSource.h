@@ -22,6 +22,17 @@ public:
   LivePoseSource(IgtlLink& link, std::string name, double staleMs, double durationS = 0.0);
 
   bool Next(TrackedPose& pose) override;
+
+  /// One step of Next() that waits at most waitMs, for a front end with a loop of its own (the
+  /// viewer's timer): a pose, a loss (once per loss), nothing yet, or the end.
+  enum class Step
+  {
+    Pose,
+    Lost,
+    Nothing,
+    Ended,
+  };
+  Step Poll(TrackedPose& pose, double waitMs);
   std::size_t PosesRead() const override { return this->Read; }
   const std::string& GetName() const override { return this->Name; }
   bool EndsOnSignal() const override { return true; }

@@ -8,9 +8,9 @@
 #include "vpIgtlLink.h"
 #include "vpInputError.h"
 #include "vpLivePoseSource.h"
+#include "vpLiveOptions.h"
 #include "vpLiveResults.h"
 #include "vpPoseFile.h"
-#include "vpRegistrationFile.h"
 #include "vpRunFolder.h"
 #include "vpRunningQuantiles.h"
 #include "vpSignalHold.h"
@@ -34,19 +34,6 @@ namespace vp
 {
 namespace
 {
-/// "HOST:PORT" (the host may be a name or an IPv4 address).
-std::pair<std::string, int> ParseHostPort(const std::string& text)
-{
-  const auto colon = text.rfind(':');
-  char* end = nullptr;
-  const long port = colon == std::string::npos ? -1 : std::strtol(text.c_str() + colon + 1, &end, 10);
-  if (colon == std::string::npos || colon == 0 || end == text.c_str() + colon + 1 || *end != '\0' || port < 1 || port > 65535)
-  {
-    throw InputError("--igtl", "expected HOST:PORT (a port 1 to 65535), got '" + text + "'");
-  }
-  return { text.substr(0, colon), static_cast<int>(port) };
-}
-
 /// The link's counts for summary.json and the terminal.
 nlohmann::ordered_json CountsJson(const IgtlLinkCounts& counts)
 {
@@ -93,7 +80,8 @@ cli::ModuleDescription DescribeLiveCommand()
   {
     scalpel.push_back(p);
   }
-  const std::vector<cli::Parameter> reading = PoseReadingOptions();
+  std::vector<cli::Parameter> stream = LiveStreamOptions(true, true);
+  stream.push_back(OutputFolderOption("The run's folder: frames.csv (flushed every second), summary.json, distance.png."));
   return cli::ModuleDescription::Subcommand("vesselproximity live",
     "track a live OpenIGTLink stream (PLUS, a tracker, 3D Slicer) and send the results back",
     "Takes the scalpel's pose from a live OpenIGTLink stream, computes each frame as track does and sends it back to "
@@ -103,28 +91,7 @@ cli::ModuleDescription DescribeLiveCommand()
       ". Runs until Ctrl-C (or --duration-s); with -o, the run's frames.csv, summary.json and distance.png.",
     {
       { "Inputs", "", { VesselsOption().SetRequired(), RepairSwitch() } },
-      { "Stream", "",
-        {
-          Option(ParameterType::String, "igtl", "Connect to a tracker's OpenIGTLink server (PlusServer), reconnecting when it is lost.")
-            .SetPlaceholder("HOST:PORT"),
-          Option(ParameterType::Integer, "igtl-listen", "Serve on this port for clients (3D Slicer, a tracker client); 0: any free port.")
-            .SetPlaceholder("PORT")
-            .SetLogicName("ListenPort"),
-          Option(ParameterType::String, "tool-name",
-            "The TRANSFORM device (or QTDATA/TDATA element) carrying the scalpel's pose, e.g. StylusToTracker.")
-            .SetPlaceholder("NAME")
-            .SetLogicName("ToolName")
-            .SetRequired(),
-          reading[0],
-          reading[1],
-          reading[5],
-          Option(ParameterType::Double, "stale-ms", "No pose for this long is tracking lost: said, sent to the peers and recorded.")
-            .SetPlaceholder("MS")
-            .SetDefault("200")
-            .SetLogicName("StaleMs"),
-          Option(ParameterType::Double, "duration-s", "Stop after this long (0: at Ctrl-C).").SetPlaceholder("S").SetDefault("0"),
-          OutputFolderOption("The run's folder: frames.csv (flushed every second), summary.json, distance.png."),
-        } },
+      { "Stream", "", stream },
       { "Scalpel", "", scalpel },
       EngineOptions({ "exact", "zbuffer", "both" }),
       TrackingOptions(),
@@ -135,48 +102,9 @@ int RunLiveCommand(const cli::ParsedArguments& args, const ModuleServices& modul
 {
   // Ctrl-C is the session's end, not its interruption: held from here, answered at the end.
   SignalHold hold;
-  IgtlLinkSettings link;
-  if (!args.IsSet("igtl") && !args.IsSet("igtlListen"))
-  {
-    throw InputError("--igtl/--igtl-listen", "give --igtl HOST:PORT (a tracker's server), --igtl-listen PORT, or both");
-  }
-  if (args.IsSet("igtl"))
-  {
-    std::tie(link.ConnectHost, link.ConnectPort) = ParseHostPort(args.GetString("igtl"));
-  }
-  if (args.IsSet("igtlListen"))
-  {
-    link.ListenPort = args.GetInteger("igtlListen");
-    if (link.ListenPort < 0 || link.ListenPort > 65535)
-    {
-      throw InputError("--igtl-listen", "expected a port 0 to 65535, got " + std::to_string(link.ListenPort));
-    }
-  }
-  link.ToolName = args.GetString("toolName");
-  PoseReading reading;
-  if (args.IsSet("poseSpace"))
-  {
-    reading.Space = args.GetString("poseSpace") == "RAS" ? PoseSpace::RAS : PoseSpace::LPS;
-  }
-  if (args.IsSet("poseUnits"))
-  {
-    reading.MillimetresPerUnit = args.GetString("poseUnits") == "m" ? 1000.0 : 1.0;
-  }
-  if (args.IsSet("registration"))
-  {
-    reading.Registration = ReadTrackerRegistration(args.GetString("registration"));
-  }
-  link.Reading = SettlePoseReading(reading);
-  const double staleMs = args.GetNumber("staleMs");
-  const double durationS = args.GetNumber("durationS");
-  if (!(staleMs > 0.0))
-  {
-    throw InputError("--stale-ms", "expected a time in ms above 0, got '" + args.GetString("staleMs") + "'");
-  }
-  if (!(durationS >= 0.0))
-  {
-    throw InputError("--duration-s", "expected a time in s, 0 or more, got '" + args.GetString("durationS") + "'");
-  }
+  const IgtlLinkSettings link = ParseLiveStream(args);
+  const double staleMs = ParseStaleMs(args);
+  const double durationS = ParseDurationS(args);
 
   const double start = NowMs();
   SceneRequest request = ParseSceneRequest(args);

@@ -5,9 +5,13 @@
 #include "vpCommands.h"
 #include "vpDangerLevels.h"
 #include "vpEngineOptions.h"
+#include "vpIgtlLink.h"
 #include "vpInputError.h"
+#include "vpLiveOptions.h"
+#include "vpLivePoseSource.h"
 #include "vpPointCsv.h"
 #include "vpPoseFile.h"
+#include "vpSignalHold.h"
 #include "vpTrackingOptions.h"
 #include "vpVirtualDisplay.h"
 #include "vtkScalpelModel.h"
@@ -21,6 +25,8 @@
 
 #include <cstdlib>
 #include <iostream>
+#include <memory>
+#include <optional>
 
 namespace vp
 {
@@ -137,6 +143,7 @@ cli::ModuleDescription DescribeViewCommand()
             .SetChannel(cli::Channel::Output)
             .SetPlaceholder("FILE.png"),
         } },
+      { "Live stream", "", LiveStreamOptions(false, false) },
       EngineOptions({ "exact", "zbuffer" }),
       TrackingOptions(),
     });
@@ -144,6 +151,12 @@ cli::ModuleDescription DescribeViewCommand()
 
 int RunViewCommand(const cli::ParsedArguments& args, const ModuleServices& module)
 {
+  // A live view ends at Ctrl-C: held, then answered once the window is closed.
+  std::optional<SignalHold> hold;
+  if (WantsLiveStream(args))
+  {
+    hold.emplace();
+  }
   SceneRequest request = ParseSceneRequest(args);
   request.LiverFile = args.GetString("liver");
   const auto size = ParseSize(args.GetString("size"));
@@ -154,6 +167,23 @@ int RunViewCommand(const cli::ParsedArguments& args, const ModuleServices& modul
   if (args.IsSet("poses"))
   {
     poses = ReadPoseFile(args.GetString("poses"), ParsePoseReading(args));
+  }
+  const bool live = WantsLiveStream(args);
+  std::optional<IgtlLinkSettings> stream;
+  double staleMs = 0.0, durationS = 0.0;
+  if (live)
+  {
+    if (args.IsSet("poses"))
+    {
+      throw InputError("--poses/--igtl", "give recorded poses or a live stream, not both");
+    }
+    stream = ParseLiveStream(args);
+    staleMs = ParseStaleMs(args);
+    durationS = ParseDurationS(args);
+    if (!screenshot.empty() && durationS <= 0.0)
+    {
+      throw InputError("--duration-s", "say how long to follow the stream before the screenshot");
+    }
   }
   const int first = args.IsSet("pose") ? args.GetInteger("pose") : 0;
   if (args.IsSet("pose") && first >= static_cast<int>(poses.size()))
@@ -193,6 +223,43 @@ int RunViewCommand(const cli::ParsedArguments& args, const ModuleServices& modul
     view->SetScalpelPose(StartingPose(logic));
   }
   view->PressKeys(keys);
+  // The stream opens once the window is ready: no pose waits on a build.
+  std::unique_ptr<IgtlLink> link;
+  std::unique_ptr<LivePoseSource> source;
+  if (stream)
+  {
+    link = std::make_unique<IgtlLink>(*stream);
+    source = std::make_unique<LivePoseSource>(*link, stream->ToolName, staleMs, durationS);
+    source->SetIdleCallback([&link] {
+      for (const std::string& event : link->TakeEvents())
+      {
+        std::cerr << "view: " << event << "\n";
+      }
+    });
+    view->SetLiveSource(source.get());
+    if (link->GetListenPort() >= 0)
+    {
+      std::cerr << "view: listening on port " << link->GetListenPort() << "\n";
+    }
+  }
+  if (!screenshot.empty() && source)
+  {
+    view->FollowLiveFor(durationS);
+    SignalHold::Answer();
+    view->SaveScreenshot(screenshot);
+    if (view->GetTrackingLost())
+    {
+      std::cout << "wrote " << screenshot << ": tracking lost at the end (the last frame, " << logic->GetLastFrame().TimeS
+                << " s, is not shown as current)\n";
+    }
+    else
+    {
+      PrintScreenshotLine(screenshot, logic);
+    }
+    std::cout << (view->GetTrackingLost() ? "tracking lost: no distance shown as current\n" : "tracking\n");
+    std::cout << FrameTimesText(frames, budgetMs) << "\n";
+    return 0;
+  }
   if (!screenshot.empty())
   {
     view->SaveScreenshot(screenshot);
@@ -202,6 +269,7 @@ int RunViewCommand(const cli::ParsedArguments& args, const ModuleServices& modul
   }
   std::cout << vtkVesselProximityView::KeyHelp();
   view->Start();
+  SignalHold::Answer(); // a live session's Ctrl-C ended it
   std::cout << FrameTimesText(frames, budgetMs) << "\n";
   return 0;
 }

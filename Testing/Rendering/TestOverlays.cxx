@@ -289,6 +289,32 @@ TEST(Overlays, ReadoutShowsTheInstrumentBesideTheTip)
   EXPECT_EQ(readout->GetLineText(1).find("tool"), std::string::npos) << readout->GetLineText(1);
 }
 
+// A live stream that stopped: the readout says so and shows no distance as current, until the
+// next frame gives them back.
+TEST(Overlays, TrackingLostShowsNoDistanceAsCurrent)
+{
+  vtkNew<vtkProximityReadoutRepresentation> readout;
+  readout->SetClasses({ "portal_vein", "hepatic_vein" }, { { 0, 0.6, 0.8 }, { 0.4, 0.2, 0.7 } });
+  vp::ProximityResult proximity;
+  proximity.Classes.resize(2);
+  proximity.Classes[0].ClassName = "portal_vein";
+  proximity.Classes[0].InRange = true;
+  proximity.Classes[0].DistanceMm = 4.2;
+  proximity.Classes[1].ClassName = "hepatic_vein";
+  readout->ShowFrame(proximity, { vp::DangerLevel::Warning, vp::DangerLevel::Safe }, vp::DangerLevel::Warning);
+  EXPECT_NE(readout->GetLineText(1).find("4.2 mm"), std::string::npos);
+  readout->ShowTrackingLost(250.0);
+  EXPECT_EQ(readout->GetLineText(0), "TRACKING LOST (no pose for 250 ms)");
+  for (int line = 1; line <= 2; ++line)
+  {
+    EXPECT_EQ(readout->GetLineText(line).find("mm"), std::string::npos) << readout->GetLineText(line);
+    EXPECT_EQ(readout->GetLineText(line).back(), '-') << readout->GetLineText(line);
+  }
+  readout->ShowFrame(proximity, { vp::DangerLevel::Warning, vp::DangerLevel::Safe }, vp::DangerLevel::Warning);
+  EXPECT_EQ(readout->GetLineText(0), "WARNING");
+  EXPECT_NE(readout->GetLineText(1).find("4.2 mm"), std::string::npos);
+}
+
 // The live plot writes the instrument's largest penetration volume in its window at the line's
 // deepest point: two plots of the same lines, one with a volume and one without, differ there.
 TEST(Overlays, ThePlotWritesTheInstrumentsPenetrationVolumeAtItsDeepest)

@@ -465,3 +465,32 @@ TEST_F(LiveCommand, APlusRecordingServedAtItsOwnTimesGivesTracksFrames)
     ++next;
   }
 }
+
+// The viewer follows the stream: mid-stream it tracks; in a pause longer than --stale-ms it says
+// tracking lost and shows no distance as current (a screenshot taken there says so).
+TEST_F(LiveCommand, TheViewerFollowsTheStreamAndSaysWhenTrackingIsLost)
+{
+  const std::string poses = this->SweepPoses(60);
+  for (const auto& [seconds, expected] : { std::make_pair(0.3, std::string("tracking\n")),
+         std::make_pair(1.5, std::string("tracking lost: no distance shown as current\n")) })
+  {
+    const int port = FreePort();
+    const pid_t peer = vp::test::StartProgram(VP_IGTL_PEER,
+      { "serve", std::to_string(port), poses, "50", "Stylus", this->Dir + "/sent.csv", "29", "2000" }, this->Dir + "/peer.out",
+      this->Dir + "/peer.err");
+    ASSERT_TRUE(WaitForText(this->Dir + "/peer.out", "port "));
+    const ToolRun view = vp::test::RunTool(this->Dir, "view --vessels " + this->Vessels + " --scalpel " + this->Scalpel +
+        " --igtl 127.0.0.1:" + std::to_string(port) + " --tool-name Stylus --duration-s " + vp::test::Number(seconds) +
+        " --size 320x200 --screenshot " + this->Dir + "/view.png");
+    EXPECT_EQ(view.ExitCode, 0) << view.Err;
+    EXPECT_NE(view.Out.find(expected), std::string::npos) << seconds << " s: " << view.Out;
+    EXPECT_TRUE(vp::test::FileExists(this->Dir + "/view.png"));
+    kill(peer, SIGKILL);
+    WaitFor(peer, 5.0);
+  }
+  // A stream and recorded poses together are refused in one line.
+  const ToolRun both = vp::test::RunTool(this->Dir, "view --vessels " + this->Vessels + " --igtl 127.0.0.1:1 --tool-name Stylus --poses " +
+      poses + " --screenshot " + this->Dir + "/no.png");
+  EXPECT_EQ(both.ExitCode, 1);
+  EXPECT_NE(both.Err.find("--poses/--igtl: give recorded poses or a live stream, not both"), std::string::npos) << both.Err;
+}

@@ -150,6 +150,18 @@ void vtkProximityReadoutRepresentation::ShowFrame(const vp::ProximityResult& pro
   }
 }
 
+void vtkProximityReadoutRepresentation::ShowTrackingLost(double sinceMs)
+{
+  char text[96];
+  std::snprintf(text, sizeof(text), "TRACKING LOST (no pose for %.0f ms)", sinceMs);
+  this->SetLine(0, text);
+  for (std::size_t c = 0; c < this->ClassNames.size(); ++c)
+  {
+    std::snprintf(text, sizeof(text), "%-15s      -", Readable(this->ClassNames[c]).c_str());
+    this->SetLine(static_cast<int>(c) + 1, text);
+  }
+}
+
 void vtkProximityReadoutRepresentation::ShowFrameTime(double frameMs, bool overBudget, double budgetMs)
 {
   char text[96] = "";

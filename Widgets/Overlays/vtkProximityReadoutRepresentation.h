@@ -35,6 +35,10 @@ public:
   void ShowFrame(const vp::ProximityResult& proximity, const std::vector<vp::DangerLevel>& classLevels,
     vp::DangerLevel overall, const std::vector<vp::SurfaceProximity>& surface = {},
     const std::vector<vp::Penetration>& penetrations = {});
+  /// A live stream gave no pose for sinceMs: the headline says TRACKING LOST and each class line
+  /// loses its distance ("portal vein      -"), so that the last distance is never read as current.
+  /// The next ShowFrame gives them back.
+  void ShowTrackingLost(double sinceMs);
   /// Shows the last line only for a frame over its budget ("frame 23.4 ms, over the 16.7 ms
   /// budget"); empty otherwise, so a frame in time costs no text update.
   void ShowFrameTime(double frameMs, bool overBudget, double budgetMs);

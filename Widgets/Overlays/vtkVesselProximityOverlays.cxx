@@ -147,6 +147,12 @@ void vtkVesselProximityOverlays::ShowFrame(const vp::TrackedFrame& frame)
   this->Plot->AddFrame(frame);
 }
 
+void vtkVesselProximityOverlays::ShowTrackingLost(double sinceMs)
+{
+  this->ClosestLine->Hide();
+  this->Readout->ShowTrackingLost(sinceMs);
+}
+
 void vtkVesselProximityOverlays::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);

@@ -52,6 +52,9 @@ public:
   /// Shows a frame; called for each FrameProcessedEvent, public for a viewer that replays
   /// recorded frames without the logic.
   void ShowFrame(const vp::TrackedFrame& frame);
+  /// A live stream gave no pose for sinceMs: the readout says so and shows no distance, and the
+  /// closest-point line is hidden, until the next frame.
+  void ShowTrackingLost(double sinceMs);
 
   vtkVesselModelsRepresentation* GetVessels() const;
   vtkScalpelDangerRepresentation* GetScalpel() const;

@@ -1,6 +1,8 @@
 #include "vtkVesselProximityView.h"
 
+#include "vpClock.h"
 #include "vpInputError.h"
+#include "vpLivePoseSource.h"
 #include "vpOutputFile.h"
 #include "vpTrackingSession.h"
 #include "vtkScalpelKeyboardMouseStyle.h"
@@ -203,8 +205,70 @@ void vtkVesselProximityView::SetPlaying(bool playing)
   }
 }
 
+bool vtkVesselProximityView::FollowLive(double waitMs, bool& ended)
+{
+  ended = false;
+  bool changed = false;
+  vp::TrackedPose pose;
+  // Everything waiting is taken (the source keeps only the newest pose): one render for it all.
+  for (double wait = waitMs;; wait = 0.0)
+  {
+    const vp::LivePoseSource::Step step = this->Live->Poll(pose, wait);
+    if (step == vp::LivePoseSource::Step::Pose)
+    {
+      this->TrackingLost = false;
+      this->Process(pose.ModelToWorld, pose.TimeS);
+      changed = true;
+    }
+    else if (step == vp::LivePoseSource::Step::Lost)
+    {
+      this->TrackingLost = true;
+      this->Overlays->ShowTrackingLost(vp::NowMs() - this->Live->GetLastArrivalMs() + this->Live->GetStaleMs());
+      changed = true;
+    }
+    else
+    {
+      ended = step == vp::LivePoseSource::Step::Ended;
+      return changed;
+    }
+  }
+}
+
+void vtkVesselProximityView::FollowLiveFor(double seconds)
+{
+  if (!this->Live)
+  {
+    return;
+  }
+  for (const double until = vp::NowMs() + 1000.0 * seconds; vp::NowMs() < until;)
+  {
+    bool ended = false;
+    if (this->FollowLive(10.0, ended))
+    {
+      this->Render();
+    }
+    if (ended)
+    {
+      return;
+    }
+  }
+}
+
 void vtkVesselProximityView::OnTimer()
 {
+  if (this->Live)
+  {
+    bool ended = false;
+    if (this->FollowLive(0.0, ended))
+    {
+      this->Render();
+    }
+    if (ended)
+    {
+      this->Interactor->TerminateApp(); // Ctrl-C or the duration: the session is over
+    }
+    return;
+  }
   if (!this->Playing)
   {
     return;
@@ -283,6 +347,10 @@ void vtkVesselProximityView::Start()
   onTimer->SetCallback([](vtkObject*, unsigned long, void* self, void*) { static_cast<vtkVesselProximityView*>(self)->OnTimer(); });
   this->Interactor->Initialize();
   this->Interactor->AddObserver(vtkCommand::TimerEvent, onTimer);
+  if (this->Live)
+  {
+    this->TimerId = this->Interactor->CreateRepeatingTimer(10); // a pose is shown within 10 ms of its arrival
+  }
   this->Render();
   this->Interactor->Start();
 }

@@ -22,6 +22,7 @@ class vtkVesselProximityOverlays;
 namespace vp
 {
 class TrackingSession;
+class LivePoseSource;
 }
 
 /// A 3D view of the module: the overlays of a vtkVesselProximityLogic in a render window, with
@@ -70,6 +71,16 @@ public:
   void SetPlaying(bool playing);
   bool GetPlaying() const { return this->Playing; }
 
+  /// Follows a live stream (vp::LivePoseSource, which must outlive the view): each pose it gives
+  /// is shown as it comes, a loss as "tracking lost" (vtkVesselProximityOverlays::ShowTrackingLost:
+  /// no distance is shown as current). Start() looks at it every 10 ms; FollowLiveFor() follows
+  /// it without a window loop, for screenshots and scripts.
+  void SetLiveSource(vp::LivePoseSource* source) { this->Live = source; }
+  /// Follows the stream for seconds, or until it ends, rendering after each change.
+  void FollowLiveFor(double seconds);
+  /// Whether the stream's last word was a loss (nothing shown as current).
+  bool GetTrackingLost() const { return this->TrackingLost; }
+
   /// Frames the vessels from anterior, superior up.
   void ResetCamera();
   void Render();
@@ -106,6 +117,8 @@ protected:
   std::unique_ptr<vp::TrackingSession> Session;
   bool Playing = false;
   int TimerId = -1;
+  vp::LivePoseSource* Live = nullptr;
+  bool TrackingLost = false;
   int ScreenshotCount = 0;
   vtkSmartPointer<vtkImageData> LastScreenshot;
   std::string ScreenshotPrefix = "vesselproximity-screenshot-";
@@ -115,6 +128,9 @@ private:
   void operator=(const vtkVesselProximityView&) = delete;
   void Process(const std::array<double, 16>& modelToWorld, double timeS);
   void OnTimer();
+  /// Takes what the live stream has (waiting at most waitMs for the first): whether anything
+  /// changed, and false in ended when the stream is over.
+  bool FollowLive(double waitMs, bool& ended);
 };
 
 #endif

@@ -1,0 +1,126 @@
+#include "vpLiveOptions.h"
+
+#include "vpArguments.h"
+#include "vpInputError.h"
+#include "vpPoseFile.h"
+#include "vpRegistrationFile.h"
+#include "vpTrackingOptions.h"
+
+#include <cstdlib>
+
+namespace vp
+{
+namespace
+{
+/// "HOST:PORT" (the host may be a name or an IPv4 address).
+std::pair<std::string, int> ParseHostPort(const std::string& text)
+{
+  const auto colon = text.rfind(':');
+  char* end = nullptr;
+  const long port = colon == std::string::npos ? -1 : std::strtol(text.c_str() + colon + 1, &end, 10);
+  if (colon == std::string::npos || colon == 0 || end == text.c_str() + colon + 1 || *end != '\0' || port < 1 || port > 65535)
+  {
+    throw InputError("--igtl", "expected HOST:PORT (a port 1 to 65535), got '" + text + "'");
+  }
+  return { text.substr(0, colon), static_cast<int>(port) };
+}
+} // namespace
+
+std::vector<cli::Parameter> LiveStreamOptions(bool toolRequired, bool withReading)
+{
+  using cli::ParameterType;
+  const std::vector<cli::Parameter> reading = PoseReadingOptions();
+  cli::Parameter tool = Option(ParameterType::String, "tool-name",
+    "The TRANSFORM device (or QTDATA/TDATA element) carrying the scalpel's pose, e.g. StylusToTracker.")
+                          .SetPlaceholder("NAME")
+                          .SetLogicName("ToolName");
+  if (toolRequired)
+  {
+    tool.SetRequired();
+  }
+  std::vector<cli::Parameter> options = {
+    Option(ParameterType::String, "igtl", "Connect to a tracker's OpenIGTLink server (PlusServer), reconnecting when it is lost.")
+      .SetPlaceholder("HOST:PORT"),
+    Option(ParameterType::Integer, "igtl-listen", "Serve on this port for clients (3D Slicer, a tracker client); 0: any free port.")
+      .SetPlaceholder("PORT")
+      .SetLogicName("ListenPort"),
+    tool,
+    Option(ParameterType::Double, "stale-ms", "No pose for this long is tracking lost: said, sent to the peers and recorded.")
+      .SetPlaceholder("MS")
+      .SetDefault("200")
+      .SetLogicName("StaleMs"),
+    Option(ParameterType::Double, "duration-s", "Stop after this long (0: at Ctrl-C).").SetPlaceholder("S").SetDefault("0"),
+  };
+  if (withReading)
+  {
+    options.insert(options.begin() + 3, { reading[0], reading[1], reading[5] });
+  }
+  return options;
+}
+
+bool WantsLiveStream(const cli::ParsedArguments& args)
+{
+  return args.IsSet("igtl") || args.IsSet("igtlListen");
+}
+
+IgtlLinkSettings ParseLiveStream(const cli::ParsedArguments& args)
+{
+  IgtlLinkSettings link;
+  if (!WantsLiveStream(args))
+  {
+    throw InputError("--igtl/--igtl-listen", "give --igtl HOST:PORT (a tracker's server), --igtl-listen PORT, or both");
+  }
+  if (args.IsSet("igtl"))
+  {
+    std::tie(link.ConnectHost, link.ConnectPort) = ParseHostPort(args.GetString("igtl"));
+  }
+  if (args.IsSet("igtlListen"))
+  {
+    link.ListenPort = args.GetInteger("igtlListen");
+    if (link.ListenPort < 0 || link.ListenPort > 65535)
+    {
+      throw InputError("--igtl-listen", "expected a port 0 to 65535, got " + std::to_string(link.ListenPort));
+    }
+  }
+  if (!args.IsSet("toolName"))
+  {
+    throw InputError("--tool-name", "name the tool whose pose the stream carries (a TRANSFORM device or a tracking element)");
+  }
+  link.ToolName = args.GetString("toolName");
+  PoseReading reading;
+  if (args.IsSet("poseSpace"))
+  {
+    reading.Space = args.GetString("poseSpace") == "RAS" ? PoseSpace::RAS : PoseSpace::LPS;
+  }
+  if (args.IsSet("poseUnits"))
+  {
+    reading.MillimetresPerUnit = args.GetString("poseUnits") == "m" ? 1000.0 : 1.0;
+  }
+  if (args.IsSet("registration"))
+  {
+    reading.Registration = ReadTrackerRegistration(args.GetString("registration"));
+  }
+  link.Reading = SettlePoseReading(reading);
+  return link;
+}
+
+double ParseStaleMs(const cli::ParsedArguments& args)
+{
+  const double staleMs = args.GetNumber("staleMs");
+  if (!(staleMs > 0.0))
+  {
+    throw InputError("--stale-ms", "expected a time in ms above 0, got '" + args.GetString("staleMs") + "'");
+  }
+  return staleMs;
+}
+
+double ParseDurationS(const cli::ParsedArguments& args)
+{
+  const double durationS = args.GetNumber("durationS");
+  if (!(durationS >= 0.0))
+  {
+    throw InputError("--duration-s", "expected a time in s, 0 or more, got '" + args.GetString("durationS") + "'");
+  }
+  return durationS;
+}
+} // namespace vp

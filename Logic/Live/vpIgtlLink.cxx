@@ -247,6 +247,9 @@ void IgtlLink::ConnectLoop()
       ++this->Counts.Connections;
     }
     this->Note("connected to " + name);
+    // A tracking-data server streams once asked (PLUS and the library's examples do so).
+    const std::string start = PackIgtlStartTracking(10);
+    socket->Send(start.data(), static_cast<int>(start.size()));
     this->ServePeer(*peer);
     {
       std::lock_guard<std::mutex> lock(this->Mutex);

@@ -21,7 +21,8 @@ namespace vp
 struct IgtlLinkSettings
 {
   /// ConnectHost and ConnectPort: a server to connect to (a tracker's, PlusServer), as Slicer
-  /// connects to PLUS; reconnected with a growing pause (0.1 s to 2 s) whenever it is lost.
+  /// connects to PLUS; reconnected with a growing pause (0.1 s to 2 s) whenever it is lost. On
+  /// connecting, the link asks it for tracking data (STT_TDATA, STT_QTDATA, every 10 ms).
   /// ConnectPort 0: none.
   std::string ConnectHost = "127.0.0.1";
   int ConnectPort = 0;

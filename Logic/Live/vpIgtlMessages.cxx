@@ -248,4 +248,15 @@ std::string PackIgtlTransform(const std::string& device, const std::array<double
   message->SetMatrix(m);
   return Packed(message.GetPointer());
 }
+
+std::string PackIgtlStartTracking(int resolutionMs)
+{
+  auto matrices = igtl::StartTrackingDataMessage::New();
+  matrices->SetDeviceName("");
+  matrices->SetResolution(resolutionMs);
+  auto quaternions = igtl::StartQuaternionTrackingDataMessage::New();
+  quaternions->SetDeviceName("");
+  quaternions->SetResolution(resolutionMs);
+  return Packed(matrices.GetPointer()) + Packed(quaternions.GetPointer());
+}
 } // namespace vp

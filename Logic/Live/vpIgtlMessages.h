@@ -63,6 +63,10 @@ struct IgtlPoint
 std::string PackIgtlString(const std::string& device, const std::string& text);
 std::string PackIgtlPoints(const std::string& device, const std::vector<IgtlPoint>& points);
 std::string PackIgtlTransform(const std::string& device, const std::array<double, 16>& matrix);
+/// The requests a tracking-data server waits for before it streams (STT_TDATA and STT_QTDATA, one
+/// pose every resolutionMs): sent to a server on connecting; one that streams TRANSFORMs
+/// unasked ignores them, as OpenIGTLink has a receiver ignore any type it does not know.
+std::string PackIgtlStartTracking(int resolutionMs);
 } // namespace vp
 
 #endif

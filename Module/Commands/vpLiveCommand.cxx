@@ -59,6 +59,26 @@ nlohmann::ordered_json LatencyJson(const RunningQuantiles& latency)
     { "frames", latency.Count() } };
 }
 
+/// A session without a single pose: said in one line with what did come.
+void ThrowWhenNoPoseCame(IgtlLink& link)
+{
+  const IgtlLinkCounts counts = link.GetCounts();
+  if (counts.Poses > 0)
+  {
+    return;
+  }
+  std::size_t ignored = 0;
+  for (const auto& [which, count] : counts.Ignored)
+  {
+    ignored += count;
+  }
+  const IgtlLinkSettings& s = link.GetSettings();
+  throw InputError(s.ConnectPort > 0 ? s.ConnectHost + ":" + std::to_string(s.ConnectPort) : "port " + std::to_string(link.GetListenPort()),
+    "no pose of " + s.ToolName + " came (" + std::to_string(counts.Messages) + " message(s): " +
+      std::to_string(counts.RejectedTotal()) + " rejected, " + std::to_string(ignored) + " of other types or tools; " +
+      std::to_string(counts.Connections) + " connection(s))");
+}
+
 void PrintEvents(IgtlLink& link)
 {
   for (const std::string& event : link.TakeEvents())
@@ -197,7 +217,15 @@ int RunLiveCommand(const cli::ParsedArguments& args, const ModuleServices& modul
       doc["stale_ms"] = staleMs;
       doc["link"] = CountsJson(stream.GetCounts());
     });
-    recorder.Run(poses, *run);
+    try
+    {
+      recorder.Run(poses, *run);
+    }
+    catch (const InputError&)
+    {
+      ThrowWhenNoPoseCame(stream);
+      throw;
+    }
     run->Commit();
     report = recorder.GetReport();
     frames = static_cast<std::size_t>(recorder.GetSummary().GetNumberOfFrames());
@@ -207,6 +235,10 @@ int RunLiveCommand(const cli::ParsedArguments& args, const ModuleServices& modul
   {
     TrackingSession session(proximity);
     session.Run(poses, onFrame, onLost);
+    if (session.GetNumberOfFrames() == 0)
+    {
+      ThrowWhenNoPoseCame(stream);
+    }
     frames = session.GetNumberOfFrames();
     lostPoses = session.GetNumberOfLostPoses();
   }

@@ -494,3 +494,37 @@ TEST_F(LiveCommand, TheViewerFollowsTheStreamAndSaysWhenTrackingIsLost)
   EXPECT_EQ(both.ExitCode, 1);
   EXPECT_NE(both.Err.find("--poses/--igtl: give recorded poses or a live stream, not both"), std::string::npos) << both.Err;
 }
+
+// The library's own tracking-data servers (TDATA and QTDATA, three channels each) stream once
+// asked (STT_TDATA, STT_QTDATA): live asks on connecting, and takes the element named by
+// --tool-name. The QTDATA example's quaternions are 12% off unit length (0.88): each is refused,
+// counted and said, never turned into a pose.
+TEST_F(LiveCommand, TheExampleTrackingDataServersStreamWhenAskedAndTheNamedElementIsTaken)
+{
+  auto run = [&](const char* server) {
+    const int port = FreePort();
+    const pid_t tracker = vp::test::StartProgram(server, { std::to_string(port) }, "/dev/null", this->Dir + "/server.err");
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    const ToolRun live = vp::test::RunTool(this->Dir, "live --vessels " + this->Vessels + " --scalpel " + this->Scalpel +
+        " --igtl 127.0.0.1:" + std::to_string(port) + " --tool-name \"Channel 1\" --duration-s 1.5 -o " + this->Dir + "/channels");
+    kill(tracker, SIGKILL);
+    WaitFor(tracker, 5.0);
+    return std::make_pair(live, port);
+  };
+  const auto [matrices, port] = run(VP_IGTL_TRACKING_DATA_SERVER);
+  ASSERT_EQ(matrices.ExitCode, 0) << matrices.Err;
+  const nlohmann::json link = nlohmann::json::parse(Slurp(this->Dir + "/channels/summary.json")).at("link");
+  EXPECT_GT(link.at("poses").get<int>(), 10) << link.dump();
+  EXPECT_TRUE(link.at("rejected").empty()) << link.dump();
+  EXPECT_EQ(link.at("messages").get<int>(), link.at("poses").get<int>()) << "each message carries Channel 1";
+  const auto [quaternions, qport] = run(VP_IGTL_QUATERNION_TRACKING_DATA_SERVER);
+  EXPECT_EQ(quaternions.ExitCode, 1);
+  EXPECT_NE(quaternions.Err.find("live: skipped a message from 127.0.0.1:" + std::to_string(qport) +
+              ": the quaternion is not of unit length (such messages are counted from now on)"),
+    std::string::npos)
+    << quaternions.Err;
+  EXPECT_NE(quaternions.Err.find("vesselproximity: error: 127.0.0.1:" + std::to_string(qport) + ": no pose of Channel 1 came ("),
+    std::string::npos)
+    << quaternions.Err;
+  EXPECT_NE(quaternions.Err.find(" rejected, 0 of other types or tools; 1 connection(s))"), std::string::npos) << quaternions.Err;
+}

@@ -91,15 +91,6 @@ void PrintEvents(IgtlLink& link)
 cli::ModuleDescription DescribeLiveCommand()
 {
   using cli::ParameterType;
-  std::vector<cli::Parameter> scalpel = {
-    Option(ParameterType::File, "scalpel", "The scalpel's surface model (STL, VTK, VTP or OBJ), in model coordinates.")
-      .SetChannel(cli::Channel::Input)
-      .SetRequired(),
-  };
-  for (const cli::Parameter& p : ScalpelTipOptions())
-  {
-    scalpel.push_back(p);
-  }
   std::vector<cli::Parameter> stream = LiveStreamOptions(true, true);
   stream.push_back(OutputFolderOption("The run's folder: frames.csv (flushed every second), summary.json, distance.png."));
   return cli::ModuleDescription::Subcommand("vesselproximity live",
@@ -112,7 +103,7 @@ cli::ModuleDescription DescribeLiveCommand()
     {
       { "Inputs", "", { VesselsOption().SetRequired(), RepairSwitch() } },
       { "Stream", "", stream },
-      { "Scalpel", "", scalpel },
+      { "Scalpel", "", ScalpelOptions() },
       EngineOptions({ "exact", "zbuffer", "both" }),
       TrackingOptions(),
     });

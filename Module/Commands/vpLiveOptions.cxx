@@ -3,7 +3,6 @@
 #include "vpArguments.h"
 #include "vpInputError.h"
 #include "vpPoseFile.h"
-#include "vpRegistrationFile.h"
 #include "vpTrackingOptions.h"
 
 #include <cstdlib>
@@ -87,19 +86,7 @@ IgtlLinkSettings ParseLiveStream(const cli::ParsedArguments& args)
     throw InputError("--tool-name", "name the tool whose pose the stream carries (a TRANSFORM device or a tracking element)");
   }
   link.ToolName = args.GetString("toolName");
-  PoseReading reading;
-  if (args.IsSet("poseSpace"))
-  {
-    reading.Space = args.GetString("poseSpace") == "RAS" ? PoseSpace::RAS : PoseSpace::LPS;
-  }
-  if (args.IsSet("poseUnits"))
-  {
-    reading.MillimetresPerUnit = args.GetString("poseUnits") == "m" ? 1000.0 : 1.0;
-  }
-  if (args.IsSet("registration"))
-  {
-    reading.Registration = ReadTrackerRegistration(args.GetString("registration"));
-  }
+  const PoseReading reading = ParsePoseFrame(args);
   link.Reading = SettlePoseReading(reading);
   return link;
 }

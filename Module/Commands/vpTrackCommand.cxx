@@ -103,15 +103,6 @@ void PrintSummary(const TrackingRecorder& session, vtkVesselProximityLogic* prox
 cli::ModuleDescription DescribeTrackCommand()
 {
   using cli::ParameterType;
-  std::vector<cli::Parameter> scalpel = {
-    Option(ParameterType::File, "scalpel", "The scalpel's surface model (STL, VTK, VTP or OBJ), in model coordinates.")
-      .SetChannel(cli::Channel::Input)
-      .SetRequired(),
-  };
-  for (const cli::Parameter& p : ScalpelTipOptions())
-  {
-    scalpel.push_back(p);
-  }
   return cli::ModuleDescription::Subcommand("vesselproximity track",
     "replay tracked scalpel poses: frames.csv, summary.json, distance.png, danger levels",
     "Replays tracked scalpel poses against the vessels and writes OUTDIR/frames.csv (one row per pose), "
@@ -126,7 +117,7 @@ cli::ModuleDescription DescribeTrackCommand()
             .SetRequired(),
           OutputFolderOption("The run's folder: frames.csv, summary.json, distance.png.").SetRequired() } },
       { "Poses", "", PoseReadingOptionsWithStrict() },
-      { "Scalpel", "", scalpel },
+      { "Scalpel", "", ScalpelOptions() },
       EngineOptions({ "exact", "zbuffer", "both" }),
       TrackingOptions(),
     });

@@ -32,6 +32,20 @@ std::vector<cli::Parameter> ScalpelTipOptions()
   };
 }
 
+std::vector<cli::Parameter> ScalpelOptions()
+{
+  std::vector<cli::Parameter> scalpel = {
+    Option(cli::ParameterType::File, "scalpel", "The scalpel's surface model (STL, VTK, VTP or OBJ), in model coordinates.")
+      .SetChannel(cli::Channel::Input)
+      .SetRequired(),
+  };
+  for (const cli::Parameter& p : ScalpelTipOptions())
+  {
+    scalpel.push_back(p);
+  }
+  return scalpel;
+}
+
 cli::Parameter FrameBudgetOption()
 {
   return Option(cli::ParameterType::Double, "frame-budget-ms",
@@ -110,7 +124,7 @@ std::vector<cli::Parameter> PoseReadingOptions()
   };
 }
 
-PoseReading ParsePoseReading(const cli::ParsedArguments& args)
+PoseReading ParsePoseFrame(const cli::ParsedArguments& args)
 {
   PoseReading reading;
   if (args.IsSet("poseSpace"))
@@ -121,16 +135,22 @@ PoseReading ParsePoseReading(const cli::ParsedArguments& args)
   {
     reading.MillimetresPerUnit = args.GetString("poseUnits") == "m" ? 1000.0 : 1.0;
   }
+  if (args.IsSet("registration"))
+  {
+    reading.Registration = ReadTrackerRegistration(args.GetString("registration"));
+  }
+  return reading;
+}
+
+PoseReading ParsePoseReading(const cli::ParsedArguments& args)
+{
+  PoseReading reading = ParsePoseFrame(args);
   if (args.IsSet("timeUnits"))
   {
     reading.SecondsPerUnit = args.GetString("timeUnits") == "ms" ? 0.001 : 1.0;
   }
   reading.ToolName = args.GetString("tool");
   reading.ReferenceName = args.GetString("reference");
-  if (args.IsSet("registration"))
-  {
-    reading.Registration = ReadTrackerRegistration(args.GetString("registration"));
-  }
   return reading;
 }
 

@@ -14,10 +14,12 @@ namespace vp
 {
 /// --tip X,Y,Z and --axis X,Y,Z: the scalpel's tip and axis in model coordinates.
 std::vector<cli::Parameter> ScalpelTipOptions();
+/// --scalpel FILE (required) and the tip options: the instrument of track and live.
+std::vector<cli::Parameter> ScalpelOptions();
 /// --frame-budget-ms MS, default the parameter set's (16.7, one refresh at 60 Hz; 0: no budget).
 cli::Parameter FrameBudgetOption();
-/// What tracking shares (track, view): --danger-mm, --hysteresis-mm, --frame-budget-ms and
-/// --no-surface, with the parameter set's defaults.
+/// What tracking shares (track, live, view): --danger-mm, --hysteresis-mm, --frame-budget-ms,
+/// --haptic-k, --haptic-c and --no-surface, with the parameter set's defaults.
 cli::ParameterGroup TrackingOptions();
 
 /// --pose-space LPS|RAS, --pose-units mm|m and --time-units s|ms: how a pose file's numbers are
@@ -25,6 +27,9 @@ cli::ParameterGroup TrackingOptions();
 std::vector<cli::Parameter> PoseReadingOptions();
 /// What those options say (each unset when not given).
 PoseReading ParsePoseReading(const cli::ParsedArguments& args);
+/// The frame, units and registration alone (--pose-space, --pose-units, --registration), for a
+/// stream that has no times or tools to read.
+PoseReading ParsePoseFrame(const cli::ParsedArguments& args);
 
 /// --danger-mm C,W,D, validated: throws InputError naming the option.
 DangerThresholds ParseDangerThresholds(const cli::ParsedArguments& args);

@@ -195,7 +195,11 @@ TEST_F(TrackCommand, WritesTheDocumentedRecord)
 // The tool goes 3 mm into the sphere and out: frames.csv carries the penetration of the whole
 // instrument (depth and volume against the closed form, within their stated bounds), 0 with its
 // bound 0 while apart, and summary.json the deepest frame.
-TEST_F(TrackCommand, ReportsThePenetrationOfTheWholeInstrument)
+namespace
+{
+/// Nine poses at 20 Hz taking the tool's tip from 14 mm off the sphere's centre to 7 mm (3 mm inside
+/// its wall) and back to 12, the tool pointing down -x.
+std::string IntoTheSphereAndOut()
 {
   std::ostringstream poses;
   poses << "time,x,y,z,qw,qx,qy,qz\n";
@@ -205,9 +209,16 @@ TEST_F(TrackCommand, ReportsThePenetrationOfTheWholeInstrument)
   {
     poses << frames++ * 0.05 << "," << x << ",0,0," << h << ",0," << -h << ",0\n";
   }
+  return poses.str();
+}
+} // namespace
+
+TEST_F(TrackCommand, ReportsThePenetrationOfTheWholeInstrument)
+{
+  const int frames = 9;
   const std::string out = this->Dir + "/into";
   const ToolRun r = RunTool(this->Dir, "track --vessels " + this->Vessels + " --scalpel " + this->Tool + " --poses " +
-      this->WriteText("into.csv", poses.str()) + " -o " + out);
+      this->WriteText("into.csv", IntoTheSphereAndOut()) + " -o " + out);
   ASSERT_EQ(r.ExitCode, 0) << r.Err;
   const auto rows = ReadCsvCells(out + "/frames.csv");
   ASSERT_EQ(rows.size(), static_cast<std::size_t>(frames + 1));
@@ -239,17 +250,9 @@ TEST_F(TrackCommand, ReportsThePenetrationOfTheWholeInstrument)
 // summary.json carry it.
 TEST_F(TrackCommand, AHapticForcePushesTheInstrumentOutOfTheVessel)
 {
-  std::ostringstream poses;
-  poses << "time,x,y,z,qw,qx,qy,qz\n";
-  const double h = std::sqrt(0.5);
-  int frames = 0;
-  for (double x : { 14.0, 12.0, 10.5, 9.5, 8.0, 7.0, 8.0, 10.0, 12.0 })
-  {
-    poses << frames++ * 0.05 << "," << x << ",0,0," << h << ",0," << -h << ",0\n";
-  }
   const std::string out = this->Dir + "/haptic";
   const ToolRun r = RunTool(this->Dir, "track --vessels " + this->Vessels + " --scalpel " + this->Tool + " --poses " +
-      this->WriteText("haptic.csv", poses.str()) + " --haptic-k 0.5 --haptic-c 0.01 -o " + out);
+      this->WriteText("haptic.csv", IntoTheSphereAndOut()) + " --haptic-k 0.5 --haptic-c 0.01 -o " + out);
   ASSERT_EQ(r.ExitCode, 0) << r.Err;
   const auto rows = ReadCsvCells(out + "/frames.csv");
   auto column = [&](const std::string& name) {

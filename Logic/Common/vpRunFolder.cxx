@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <ctime>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
@@ -29,6 +30,7 @@ namespace vp
 namespace
 {
 const char* LockName = ".lock";
+const char* KeepName = ".keep-if-killed";
 const char* PlanName = ".vesselproximity-plan.json";
 
 // "dicom/" is the folder dicom, "frames.csv" a file.
@@ -249,6 +251,38 @@ void RollForward(const std::string& target, const std::string& commit)
 }
 
 /// A commit a killed run left is completed; the staging folders of dead runs are removed.
+/// A dead run's staging folder: removed, or when it asked to be kept (RunFolder::KeepIfKilled)
+/// moved beside the runs as "interrupted-<its last change>", its own files left out.
+void RemoveOrKeep(const fs::path& staging)
+{
+  std::error_code ec;
+  if (!fs::exists(staging / KeepName, ec))
+  {
+    fs::remove_all(staging, ec);
+    return;
+  }
+  fs::remove(staging / KeepName, ec);
+  fs::remove(staging / LockName, ec);
+  // Named for when it was found (UTC) and the process that wrote it.
+  char when[32];
+  const std::time_t now = std::time(nullptr);
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  std::strftime(when, sizeof when, "%Y%m%dT%H%M%SZ", &utc);
+  const std::string pid = staging.filename().string().substr(std::string(RunFolder::StagingPrefix()).size());
+  const std::string name = RunFolder::InterruptedPrefix() + std::string(when) + "-" + pid;
+  fs::path kept = staging.parent_path() / name;
+  for (int n = 2; fs::exists(kept, ec); ++n)
+  {
+    kept = staging.parent_path() / (name + "-" + std::to_string(n));
+  }
+  fs::rename(staging, kept, ec);
+  if (ec)
+  {
+    fs::remove_all(staging, ec);
+  }
+}
+
 void Recover(const std::string& target)
 {
   std::error_code ec;
@@ -263,7 +297,7 @@ void Recover(const std::string& target)
     if (name.rfind(RunFolder::StagingPrefix(), 0) == 0 && fs::is_directory(fs::symlink_status(entry.path(), ec)) &&
       OwnerGone(entry.path()))
     {
-      fs::remove_all(entry.path(), ec);
+      RemoveOrKeep(entry.path());
     }
   }
 }
@@ -329,7 +363,10 @@ void RunFolder::Begin()
   const Json marker = ReadJsonOrNull(this->TargetPath + "/" + MarkerName());
   this->Previous = marker.is_object() ? EntriesOf(marker.value("entries", Json::array())) : std::vector<Entry>();
   std::error_code ec;
-  fs::remove_all(this->StagingPath, ec); // left by a killed process that had our pid
+  if (fs::exists(this->StagingPath, ec))
+  {
+    RemoveOrKeep(this->StagingPath); // left by a killed process that had our pid
+  }
   if (!fs::create_directory(this->StagingPath, ec))
   {
     throw InputError(this->TargetPath, "cannot write here: " + ec.message());
@@ -338,6 +375,19 @@ void RunFolder::Begin()
   if (this->LockFd < 0 || ::flock(this->LockFd, LOCK_EX | LOCK_NB) != 0)
   {
     throw InputError(this->TargetPath, std::string("cannot write here: ") + std::strerror(errno));
+  }
+  if (this->Keep)
+  {
+    std::ofstream(this->StagingPath + "/" + KeepName) << "a run that streams what it records: kept if its process is killed\n";
+  }
+}
+
+void RunFolder::KeepIfKilled()
+{
+  this->Keep = true;
+  if (this->Begun)
+  {
+    std::ofstream(this->StagingPath + "/" + KeepName) << "a run that streams what it records: kept if its process is killed\n";
   }
 }
 

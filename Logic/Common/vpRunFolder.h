@@ -64,6 +64,11 @@ public:
   std::string Folder(const std::string& name);
   /// Puts the run's files in place; throws InputError(target, ...) when it cannot.
   void Commit();
+  /// A run that streams what it records (a live session) keeps it if its process is killed: the
+  /// next run in the folder moves the dead run's staging folder to "interrupted-<UTC time>-<pid>"
+  /// (its frames.csv as far as it was flushed), which no later run removes, rather than deleting it.
+  /// Call before Begin() or after.
+  void KeepIfKilled();
 
   const std::string& Target() const { return this->TargetPath; }
   /// The run's files ("name") and folders ("name/") noted so far, in the order given.
@@ -84,6 +89,9 @@ public:
   static const char* MarkerName() { return ".vesselproximity-run.json"; }
   static const char* CommitName() { return ".vesselproximity-commit"; }
   static const char* StagingPrefix() { return ".vesselproximity-partial-"; }
+  /// Where a killed run that was to be kept (KeepIfKilled) is moved: "interrupted-", when it was
+  /// found and its process.
+  static const char* InterruptedPrefix() { return "interrupted-"; }
 
 private:
   std::string TargetPath;
@@ -95,6 +103,7 @@ private:
   int LockFd = -1;                 // the staging folder's lock, held while the run lives
   std::unique_ptr<SignalHold> Signals; // from Begin() to the commit or the end
   bool Begun = false;
+  bool Keep = false;
   bool CreatedTarget = false;
   void Release();
   /// Notes an entry of the run ("name" or "name/") and returns its path: staged once begun.

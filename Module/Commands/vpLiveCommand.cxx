@@ -131,6 +131,7 @@ int RunLiveCommand(const cli::ParsedArguments& args, const ModuleServices& modul
   if (!outDir.empty())
   {
     run = std::make_unique<RunFolder>(outDir, "summary.json");
+    run->KeepIfKilled(); // a crash keeps the rows flushed so far (interrupted-*/ after the next run)
     std::vector<std::string> inputs = { request.ScalpelFile };
     for (const NamedMesh& vessel : request.Vessels)
     {

@@ -306,6 +306,10 @@ TEST_F(LiveCommand, EachMalformedMessageIsSkippedAndCounted)
 // the frames as JSON STRINGs and the closest points as a POINT list.
 TEST_F(LiveCommand, AnExampleTrackerKilledMidStreamIsReconnectedAndAClientReadsTheResults)
 {
+  // The example's tip circles 50 to 71 mm from the origin: a vessel of radius 42 there is 8 to 29
+  // mm away, so the level goes from safe to caution and back.
+  const double centre[3] = { 0, 0, 0 };
+  this->Vessels = "portal_vein=" + vp::test::WriteMeshFile(this->Dir, "big.stl", vp::MakeSphere(centre, 42.0, 48, 96));
   const int trackerPort = FreePort();
   const std::string port = std::to_string(trackerPort);
   pid_t tracker = vp::test::StartProgram(VP_IGTL_TRACKER_SERVER, { port, "50" }, this->Dir + "/tracker.out", "/dev/null");
@@ -346,7 +350,7 @@ TEST_F(LiveCommand, AnExampleTrackerKilledMidStreamIsReconnectedAndAClientReadsT
     byFrame[std::stoi(frames[r][0])] = frames[r];
   }
   std::istringstream printed(Slurp(this->Dir + "/client.err"));
-  int strings = 0, tips = 0, forces = 0, closest = 0;
+  int strings = 0, tips = 0, forces = 0, closest = 0, changes = 0;
   nlohmann::json lastFrame; // the POINT list follows its frame's STRING
   std::string element;      // the POINT element being printed
   for (std::string line; std::getline(printed, line);)
@@ -374,6 +378,12 @@ TEST_F(LiveCommand, AnExampleTrackerKilledMidStreamIsReconnectedAndAClientReadsT
     if (text != std::string::npos)
     {
       const nlohmann::json frame = nlohmann::json::parse(line.substr(text + 8));
+      if (frame.contains("to")) // VesselProximityLevel: a change, when it happens
+      {
+        ++changes;
+        EXPECT_NE(frame.at("from"), frame.at("to"));
+        continue;
+      }
       if (frame.contains("force_n")) // VesselProximityHaptic
       {
         ++forces;
@@ -409,6 +419,7 @@ TEST_F(LiveCommand, AnExampleTrackerKilledMidStreamIsReconnectedAndAClientReadsT
   EXPECT_GT(strings, 20);
   EXPECT_GT(tips, 20);
   EXPECT_GT(closest, 5) << "the example's circle comes within range of the sphere on some frames";
+  EXPECT_GE(changes, 2) << "into caution and out of it, each said when it happened";
   EXPECT_LE(std::abs(forces - strings), 1) << "a force message with every frame (the client stopped between two, perhaps)";
 }
 

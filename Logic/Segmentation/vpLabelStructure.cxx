@@ -151,6 +151,7 @@ LabelStructures StructuresOf(const LabelGrid& grid, const std::string& source, c
   {
     LabelStructure s;
     s.Name = values.size() == 1 ? singleName : "label " + std::to_string(v);
+    s.OnlyValue = values.size() == 1;
     s.Source = source;
     s.LabelValue = v;
     s.Grid = grid;

@@ -65,6 +65,9 @@ struct LabelStructure
   std::string Name;   ///< as the source names it: folder, SEG segment label, Segment<N>_Name, or "label N"
   std::string Source; ///< the file or folder it came from
   int LabelValue = 0;
+  /// The labelmap held this value alone: its name is its source's (a mask's folder or file, or a
+  /// temporary file Slicer named), so a table may know it by its value instead.
+  bool OnlyValue = false;
   CodedConcept Category; ///< DICOM SEG coded anatomy; empty for other formats
   CodedConcept Type;
   LabelGrid Grid; ///< Grid.Labels is null for a structure listed but not read (not wanted)

@@ -15,7 +15,8 @@ namespace vp
 /// knows the names found in our data (IRCADb's portalvein, portalvein1, venoussystem, venacava,
 /// artery, liver), SNOMED codes as DICOM SEG and Slicer carry them, and TotalSegmentator's label
 /// ids. A structure matches by coded type first, then by name (case, '_' and '-' ignored), then,
-/// only when the labelmap had no names ("label N"), by value.
+/// only when the labelmap had no names ("label N") or held one value under its file's name (a
+/// mask, a temporary file Slicer wrote), by value.
 class VesselLabelTable
 {
 public:

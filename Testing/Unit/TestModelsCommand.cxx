@@ -120,6 +120,31 @@ TEST_F(ModelsCommand, WritesOneClosedStlPerClassAndListsTheRest)
   EXPECT_EQ(nlohmann::json::parse(vp::test::Slurp(ras + "/models.json"))["space"], "RAS");
 }
 
+// A labelmap of one value under a name nobody chose (Slicer hands a CLI its volume as a
+// temporary file): a table that names the value makes it that structure (issue 33, item 3); a
+// mask of another value stays unmapped, listed.
+TEST_F(ModelsCommand, AOneValueLabelmapIsTheStructureItsValueNames)
+{
+  const std::string folder = this->Dir + "/single";
+  vp::LabelGrid grid = vp::test::MakeGrid(this->Dims, this->Geometry, [](const double p[3]) { return std::hypot(p[0] + 30, p[1] - 40) < 5 ? 2 : 0; });
+  grid.Identity = this->Patient;
+  vp::DicomLabelSeriesWriter::Write(grid, folder + "/ABCDEF_inputVolume", "ABCDEF_inputVolume");
+  const std::string table = vp::test::WriteBytes(this->Dir, "table.json",
+    "{\"classes\": [{\"class\": \"portal_vein\", \"names\": [\"portal vein\"], \"values\": [2]}]}");
+  const std::string out = this->Dir + "/single_out";
+  const ToolRun r = RunTool(this->Dir, "models " + folder + "/ABCDEF_inputVolume --labels " + table + " -o " + out);
+  ASSERT_EQ(r.ExitCode, 0) << r.Err;
+  const auto doc = nlohmann::json::parse(vp::test::Slurp(out + "/models.json"));
+  ASSERT_EQ(doc["structures"].size(), 1u);
+  EXPECT_EQ(doc["structures"][0]["class"], "portal_vein");
+  EXPECT_EQ(doc["structures"][0]["label"], 2);
+  EXPECT_TRUE(vp::test::FileExists(out + "/portal_vein.stl"));
+  // The default table names 2 for nothing: the structure is listed, not taken.
+  const ToolRun plain = RunTool(this->Dir, "models " + folder + "/ABCDEF_inputVolume -o " + this->Dir + "/single_plain");
+  EXPECT_EQ(plain.ExitCode, 1);
+  EXPECT_NE(plain.Err.find("no vessel or liver structure"), std::string::npos) << plain.Err;
+}
+
 // An output folder holds one run (issue 16): a re-run with fewer classes removes the class the
 // new run has no more (the old hepatic_vein.stl beside a models.json without it was how a
 // researcher measured against the wrong anatomy), keeps the user's own files, and an interrupt

@@ -238,6 +238,10 @@ void IgtlLink::ConnectLoop()
     pauseMs = 100.0;
     auto socket = AdoptedSocket::New();
     socket->Adopt(descriptor);
+    // A tracking-data server streams once asked (PLUS and the library's examples do so); asked
+    // before the peer is listed, so that no frame's results are sent in the middle of the request.
+    const std::string start = PackIgtlStartTracking(10);
+    socket->Send(start.data(), static_cast<int>(start.size()));
     auto peer = std::make_shared<Peer>();
     peer->Socket = socket.GetPointer();
     peer->Name = name;
@@ -247,9 +251,6 @@ void IgtlLink::ConnectLoop()
       ++this->Counts.Connections;
     }
     this->Note("connected to " + name);
-    // A tracking-data server streams once asked (PLUS and the library's examples do so).
-    const std::string start = PackIgtlStartTracking(10);
-    socket->Send(start.data(), static_cast<int>(start.size()));
     this->ServePeer(*peer);
     {
       std::lock_guard<std::mutex> lock(this->Mutex);

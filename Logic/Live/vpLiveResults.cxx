@@ -106,4 +106,28 @@ std::string PackLiveLevelChange(const DangerLevelChange& change)
     { "distance_mm", change.DistanceMm } };
   return PackIgtlString(live::LevelDevice, out.dump());
 }
+
+Json LiveLatencyJson(const RunningQuantiles& latencyMs)
+{
+  if (latencyMs.Count() == 0)
+  {
+    return nullptr;
+  }
+  return { { "median", latencyMs.Quantile(0.5) }, { "p95", latencyMs.Quantile(0.95) }, { "max", latencyMs.Quantile(1.0) },
+    { "frames", latencyMs.Count() } };
+}
+
+Json LiveLinkJson(const IgtlLinkCounts& counts)
+{
+  Json out;
+  out["messages"] = counts.Messages;
+  out["poses"] = counts.Poses;
+  out["poses_dropped"] = counts.Dropped;
+  out["rejected"] = counts.Rejected;
+  out["ignored"] = counts.Ignored;
+  out["connections"] = counts.Connections;
+  out["connections_lost"] = counts.ConnectionsLost;
+  out["send_failures"] = counts.SendFailures;
+  return out;
+}
 } // namespace vp

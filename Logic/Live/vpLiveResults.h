@@ -1,7 +1,11 @@
 #ifndef vpLiveResults_h
 #define vpLiveResults_h
 
+#include "vpIgtlLink.h"
+#include "vpRunningQuantiles.h"
 #include "vpTrackedFrame.h"
+
+#include <nlohmann/json.hpp>
 
 #include <string>
 
@@ -37,6 +41,12 @@ std::string PackLiveFrame(const TrackedFrame& frame);
 std::string PackLiveLost(double timeS, double sincePoseMs);
 /// A level change: {"frame", "time", "from", "to", "class", "distance_mm"}.
 std::string PackLiveLevelChange(const DangerLevelChange& change);
+
+/// What a live run adds to summary.json: "latency_ms", pose in -> results out, {median, p95, max,
+/// frames} (null without a frame), and "link", the link's counts {messages, poses,
+/// poses_dropped, rejected and ignored by reason, connections, connections_lost, send_failures}.
+nlohmann::ordered_json LiveLatencyJson(const RunningQuantiles& latencyMs);
+nlohmann::ordered_json LiveLinkJson(const IgtlLinkCounts& counts);
 } // namespace vp
 
 #endif

@@ -278,6 +278,7 @@ bool IsItkTransformFileName(const std::string& fileName)
 
 Matrix4 ReadItkLinearTransform(const std::string& fileName)
 {
+  const std::string ext = ExtensionOf(fileName);
   const auto io = TransformIOFor(fileName);
   std::error_code error;
   if (!std::filesystem::is_regular_file(fileName, error))
@@ -290,9 +291,8 @@ Matrix4 ReadItkLinearTransform(const std::string& fileName)
   }
   if (!io->CanReadFile(fileName.c_str()))
   {
-    throw InputError(fileName, "not a transform file ITK can read as " + ExtensionOf(fileName).substr(1));
+    throw InputError(fileName, "not a transform file ITK can read as " + ext.substr(1));
   }
-  const std::string ext = ExtensionOf(fileName);
   if (ext == ".h5" || ext == ".hdf5")
   {
     CheckHdf5TransformFile(fileName);
@@ -332,15 +332,11 @@ Matrix4 ReadItkLinearTransform(const std::string& fileName)
   auto parts = itk::CompositeTransform<double, 3>::New();
   for (auto part = std::next(transforms.begin(), composite ? 1 : 0); part != transforms.end(); ++part)
   {
+    // Every part's type was checked to be a linear 3-D one before ITK read the file.
     auto* component = dynamic_cast<Transform3*>(part->GetPointer());
     if (!component)
     {
       throw InputError(fileName, "holds " + (*part)->GetTransformTypeAsString() + ", not a 3-D transform of points");
-    }
-    if (component->GetTransformCategory() != Transform3::TransformCategoryEnum::Linear)
-    {
-      throw InputError(fileName, "holds " + component->GetTransformTypeAsString() +
-          ", not a linear transform: a registration here is rigid");
     }
     parts->AddTransform(component);
   }

@@ -37,35 +37,35 @@ TrackerRegistration ReadTrackerRegistration(const std::string& fileName)
 {
   TrackerRegistration registration;
   registration.FileName = fileName;
+  Matrix4 patientToTracker{};
+  std::string notRigid; // the refusal's words, each file's own
   if (IsItkTransformFileName(fileName))
   {
-    const Matrix4 fromParent = ReadItkLinearTransform(fileName);
-    const std::string problem = RigidTransformProblem(fromParent);
-    if (!problem.empty())
-    {
-      throw InputError(fileName, "the transform is not rigid: " + problem);
-    }
     // Slicer's tracker-to-RAS is F * inverse(fromParent) * F (F: x and y negated, ITK's LPS to
     // RAS); from the tracker's numbers as RAS to the patient's LPS that is F * it * F, so the
     // Fs cancel and only the inversion of ITK's resampling sense remains.
-    registration.TrackerToPatient = InvertTransform(fromParent);
+    patientToTracker = ReadItkLinearTransform(fileName);
+    notRigid = "the transform is not rigid";
     registration.TrackerSpace = PoseSpace::RAS;
     registration.Kind = "a 3D Slicer transform";
-    return registration;
   }
-  if (!EndsWith(LowerCase(fileName), ".json"))
+  else if (EndsWith(LowerCase(fileName), ".json"))
+  {
+    patientToTracker = ReadModelToWorld(fileName, "a registration (register's RESULT.json)");
+    notRigid = "model_to_world is not a rigid transform";
+    registration.TrackerSpace = PoseSpace::LPS;
+    registration.Kind = "register's result";
+  }
+  else
   {
     throw InputError(fileName, "not a registration: expected register's RESULT.json or a 3D Slicer transform (.h5, .tfm, .txt)");
   }
-  const Matrix4 m = ReadModelToWorld(fileName, "a registration (register's RESULT.json)");
-  const std::string problem = RigidTransformProblem(m);
+  const std::string problem = RigidTransformProblem(patientToTracker);
   if (!problem.empty())
   {
-    throw InputError(fileName, "model_to_world is not a rigid transform: " + problem);
+    throw InputError(fileName, notRigid + ": " + problem);
   }
-  registration.TrackerToPatient = InvertTransform(m);
-  registration.TrackerSpace = PoseSpace::LPS;
-  registration.Kind = "register's result";
+  registration.TrackerToPatient = InvertTransform(patientToTracker);
   return registration;
 }
 } // namespace vp

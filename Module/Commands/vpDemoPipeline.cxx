@@ -214,10 +214,8 @@ void TrackDemo(const ModuleServices& module, DemoReport& report, double frameBud
     latency.Add(NowMs() - poses.GetLastArrivalMs());
   });
   recorder.SetReportAddition([&](nlohmann::ordered_json& doc) {
-    doc["latency_ms"] = { { "median", latency.Quantile(0.5) }, { "p95", latency.Quantile(0.95) }, { "max", latency.Quantile(1.0) },
-      { "frames", latency.Count() } };
-    const IgtlLinkCounts counts = link.GetCounts();
-    doc["link"] = { { "poses", counts.Poses }, { "poses_dropped", counts.Dropped }, { "rejected", counts.RejectedTotal() } };
+    doc["latency_ms"] = LiveLatencyJson(latency);
+    doc["link"] = LiveLinkJson(link.GetCounts());
   });
   const bool ran = recorder.Run(poses, run);
   stop = true;

@@ -34,31 +34,6 @@ namespace vp
 {
 namespace
 {
-/// The link's counts for summary.json and the terminal.
-nlohmann::ordered_json CountsJson(const IgtlLinkCounts& counts)
-{
-  nlohmann::ordered_json out;
-  out["messages"] = counts.Messages;
-  out["poses"] = counts.Poses;
-  out["poses_dropped"] = counts.Dropped;
-  out["rejected"] = counts.Rejected;
-  out["ignored"] = counts.Ignored;
-  out["connections"] = counts.Connections;
-  out["connections_lost"] = counts.ConnectionsLost;
-  out["send_failures"] = counts.SendFailures;
-  return out;
-}
-
-nlohmann::ordered_json LatencyJson(const RunningQuantiles& latency)
-{
-  if (latency.Count() == 0)
-  {
-    return nullptr;
-  }
-  return { { "median", latency.Quantile(0.5) }, { "p95", latency.Quantile(0.95) }, { "max", latency.Quantile(1.0) },
-    { "frames", latency.Count() } };
-}
-
 /// A session without a single pose: said in one line with what did come.
 void ThrowWhenNoPoseCame(IgtlLink& link)
 {
@@ -79,13 +54,6 @@ void ThrowWhenNoPoseCame(IgtlLink& link)
       std::to_string(counts.Connections) + " connection(s))");
 }
 
-void PrintEvents(IgtlLink& link)
-{
-  for (const std::string& event : link.TakeEvents())
-  {
-    std::cerr << "live: " << event << "\n";
-  }
-}
 } // namespace
 
 cli::ModuleDescription DescribeLiveCommand()
@@ -161,7 +129,7 @@ int RunLiveCommand(const cli::ParsedArguments& args, const ModuleServices& modul
   }
   std::cerr << "live: waiting for " << link.ToolName << "; Ctrl-C ends the session\n";
   LivePoseSource poses(stream, name, staleMs, durationS);
-  poses.SetIdleCallback([&stream] { PrintEvents(stream); });
+  poses.SetIdleCallback([&stream] { PrintLinkEvents("live", stream); });
 
   // Each change of level goes to the peers when it happens, as the logic announces it.
   vtkNew<vtkCallbackCommand> onChange;
@@ -182,7 +150,7 @@ int RunLiveCommand(const cli::ParsedArguments& args, const ModuleServices& modul
     {
       summary.Add(frame);
     }
-    PrintEvents(stream);
+    PrintLinkEvents("live", stream);
     if (NowMs() - lastStatusMs > 1000.0)
     {
       lastStatusMs = NowMs();
@@ -205,9 +173,9 @@ int RunLiveCommand(const cli::ParsedArguments& args, const ModuleServices& modul
     recorder.SetFrameObserver(onFrame);
     recorder.SetLostObserver(onLost);
     recorder.SetReportAddition([&](nlohmann::ordered_json& doc) {
-      doc["latency_ms"] = LatencyJson(latency);
+      doc["latency_ms"] = LiveLatencyJson(latency);
       doc["stale_ms"] = staleMs;
-      doc["link"] = CountsJson(stream.GetCounts());
+      doc["link"] = LiveLinkJson(stream.GetCounts());
     });
     try
     {
@@ -235,7 +203,7 @@ int RunLiveCommand(const cli::ParsedArguments& args, const ModuleServices& modul
     lostPoses = session.GetNumberOfLostPoses();
   }
   tracking->RemoveObserver(observer);
-  PrintEvents(stream);
+  PrintLinkEvents("live", stream);
   const IgtlLinkCounts counts = stream.GetCounts();
   const int signal = SignalHold::Answer(); // the session ended as asked: the signal is not raised again
   std::printf("%zu frames; %zu message(s), %zu pose(s) of %s, %zu dropped (a newer one came first), %zu rejected, "

@@ -6,6 +6,7 @@
 #include "vpTrackingOptions.h"
 
 #include <cstdlib>
+#include <iostream>
 
 namespace vp
 {
@@ -75,11 +76,7 @@ IgtlLinkSettings ParseLiveStream(const cli::ParsedArguments& args)
   }
   if (args.IsSet("igtlListen"))
   {
-    link.ListenPort = args.GetInteger("igtlListen");
-    if (link.ListenPort < 0 || link.ListenPort > 65535)
-    {
-      throw InputError("--igtl-listen", "expected a port 0 to 65535, got " + std::to_string(link.ListenPort));
-    }
+    link.ListenPort = ParseListenPort(args);
   }
   if (!args.IsSet("toolName"))
   {
@@ -89,6 +86,24 @@ IgtlLinkSettings ParseLiveStream(const cli::ParsedArguments& args)
   const PoseReading reading = ParsePoseFrame(args);
   link.Reading = SettlePoseReading(reading);
   return link;
+}
+
+int ParseListenPort(const cli::ParsedArguments& args)
+{
+  const int port = args.GetInteger("igtlListen");
+  if (port < 0 || port > 65535)
+  {
+    throw InputError("--igtl-listen", "expected a port 0 to 65535, got " + std::to_string(port));
+  }
+  return port;
+}
+
+void PrintLinkEvents(const std::string& command, IgtlLink& link)
+{
+  for (const std::string& event : link.TakeEvents())
+  {
+    std::cerr << command << ": " << event << "\n";
+  }
 }
 
 double ParseStaleMs(const cli::ParsedArguments& args)

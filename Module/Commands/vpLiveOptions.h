@@ -6,6 +6,7 @@
 #include "vpCliDescription.h"
 #include "vpIgtlLink.h"
 
+#include <string>
 #include <vector>
 
 namespace vp
@@ -19,6 +20,10 @@ std::vector<cli::Parameter> LiveStreamOptions(bool toolRequired, bool withReadin
 bool WantsLiveStream(const cli::ParsedArguments& args);
 /// The link those options describe; throws InputError naming the option.
 IgtlLinkSettings ParseLiveStream(const cli::ParsedArguments& args);
+/// --igtl-listen PORT, 0 to 65535; throws InputError naming the option.
+int ParseListenPort(const cli::ParsedArguments& args);
+/// The link's events since the last call, a line each on stderr after "command: ".
+void PrintLinkEvents(const std::string& command, IgtlLink& link);
 /// --stale-ms (above 0) and --duration-s (0 or more); throw InputError naming the option.
 double ParseStaleMs(const cli::ParsedArguments& args);
 double ParseDurationS(const cli::ParsedArguments& args);

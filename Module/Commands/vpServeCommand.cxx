@@ -4,6 +4,7 @@
 #include "vpCommands.h"
 #include "vpIgtlPoseStreamer.h"
 #include "vpInputError.h"
+#include "vpLiveOptions.h"
 #include "vpPoseFile.h"
 #include "vpSignalHold.h"
 #include "vpTrackingOptions.h"
@@ -47,11 +48,7 @@ cli::ModuleDescription DescribeServeCommand()
 int RunServeCommand(const cli::ParsedArguments& args, const ModuleServices&)
 {
   SignalHold hold; // Ctrl-C ends the stream, answered below
-  const int port = args.GetInteger("igtlListen");
-  if (port < 0 || port > 65535)
-  {
-    throw InputError("--igtl-listen", "expected a port 0 to 65535, got " + std::to_string(port));
-  }
+  const int port = ParseListenPort(args);
   const double speed = args.GetNumber("speed");
   if (!(speed > 0.0))
   {

@@ -230,12 +230,7 @@ int RunViewCommand(const cli::ParsedArguments& args, const ModuleServices& modul
   {
     link = std::make_unique<IgtlLink>(*stream);
     source = std::make_unique<LivePoseSource>(*link, stream->ToolName, staleMs, durationS);
-    source->SetIdleCallback([&link] {
-      for (const std::string& event : link->TakeEvents())
-      {
-        std::cerr << "view: " << event << "\n";
-      }
-    });
+    source->SetIdleCallback([&link] { PrintLinkEvents("view", *link); });
     view->SetLiveSource(source.get());
     if (link->GetListenPort() >= 0)
     {

@@ -136,7 +136,7 @@ TEST(DemoCommand, LiveTakesTheTrajectoryOverOpenIgtlinkAndFindsTheSameDangers)
   const int poses = a.at("link").at("poses").get<int>();
   EXPECT_EQ(poses, b.at("frames").get<int>()) << "every pose of the trajectory came";
   EXPECT_EQ(a.at("frames").get<int>() + a.at("link").at("poses_dropped").get<int>(), poses);
-  EXPECT_EQ(a.at("link").at("rejected").get<int>(), 0);
+  EXPECT_TRUE(a.at("link").at("rejected").empty()) << "no message rejected, for any reason";
   EXPECT_EQ(a.at("latency_ms").at("frames").get<int>(), a.at("frames").get<int>());
   EXPECT_EQ(a.at("worst_level"), b.at("worst_level"));
   // Every pose computed (a Release build keeps up with 50 Hz many times over): the closest

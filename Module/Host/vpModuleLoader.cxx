@@ -42,10 +42,14 @@ std::string OneLine(std::string text)
   return text;
 }
 
-bool IsSharedLibrary(const fs::path& file)
+/// lib<Name>Module.so, as Slicer tells its loadable modules (lib qSlicer<Name>Module.so) from the
+/// libraries beside them: installed, the module's folder also holds the logic library it links.
+bool IsModuleLibrary(const fs::path& file)
 {
   const std::string name = file.filename().string();
-  return name.size() > 3 && name.compare(name.size() - 3, 3, ".so") == 0;
+  const std::string suffix = "Module.so";
+  return name.size() > 3 + suffix.size() && name.compare(0, 3, "lib") == 0 &&
+    name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 } // namespace
 
@@ -60,7 +64,18 @@ std::vector<std::string> ModuleLoader::SearchPath(const std::string& explicitPat
   {
     return SplitPath(env);
   }
-  return { (fs::path(ProgramFolder()) / ".." / "lib" / "vesselproximity-modules").lexically_normal().string() };
+  // The build tree's folder, else the installed tree's (VP_INSTALLED_MODULE_DIR, relative to bin/).
+  const fs::path program = ProgramFolder();
+  const fs::path built = (program / ".." / "lib" / "vesselproximity-modules").lexically_normal();
+#ifdef VP_INSTALLED_MODULE_DIR
+  const fs::path installed = (program / VP_INSTALLED_MODULE_DIR).lexically_normal();
+  std::error_code ec;
+  if (!fs::is_directory(built, ec) && fs::is_directory(installed, ec))
+  {
+    return { installed.string() };
+  }
+#endif
+  return { built.string() };
 }
 
 std::vector<LoadedModule> ModuleLoader::Load(const std::vector<std::string>& folders)
@@ -77,7 +92,7 @@ std::vector<LoadedModule> ModuleLoader::Load(const std::vector<std::string>& fol
     std::vector<fs::path> libraries;
     for (const auto& entry : fs::directory_iterator(folder, ec))
     {
-      if (entry.is_regular_file(ec) && IsSharedLibrary(entry.path()))
+      if (entry.is_regular_file(ec) && IsModuleLibrary(entry.path()))
       {
         libraries.push_back(entry.path());
       }
@@ -118,7 +133,7 @@ std::vector<LoadedModule> ModuleLoader::Load(const std::vector<std::string>& fol
     {
       joined += (joined.empty() ? "" : ":") + folder;
     }
-    throw ModuleLoadError("module path " + joined + ": no loadable module there (lib*.so exporting " VP_MODULE_ENTRY_POINT ")");
+    throw ModuleLoadError("module path " + joined + ": no loadable module there (lib*Module.so exporting " VP_MODULE_ENTRY_POINT ")");
   }
   return modules;
 }

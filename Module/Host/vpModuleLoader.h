@@ -25,8 +25,9 @@ struct LoadedModule
   const vpModuleDescriptor* Descriptor = nullptr;
 };
 
-/// Finds and loads loadable modules the way Slicer loads its qt-loadable-modules: every shared
-/// library (lib*.so) in the folders of the module path is opened and asked for its descriptor.
+/// Finds and loads loadable modules the way Slicer loads its qt-loadable-modules: every module
+/// library (lib<Name>Module.so; the libraries beside them are not modules) in the folders of the
+/// module path is opened and asked for its descriptor.
 ///
 /// Strict on purpose: a library in a module folder that does not open, has no entry point or
 /// speaks another API version is an error, not a silent skip, because a clinician's tool that
@@ -36,7 +37,8 @@ class ModuleLoader
 {
 public:
   /// The module path: explicitPath ("DIR[:DIR...]", from --module-path) when given, else
-  /// VP_MODULE_PATH, else the folder beside the program: <exe>/../lib/vesselproximity-modules.
+  /// VP_MODULE_PATH, else the folder beside the program: <exe>/../lib/vesselproximity-modules in
+  /// the build tree, <exe>/../lib/Slicer-X.Y/qt-loadable-modules in an installed one.
   static std::vector<std::string> SearchPath(const std::string& explicitPath);
 
   /// Loads every module in the folders. Throws ModuleLoadError for a missing folder, a library

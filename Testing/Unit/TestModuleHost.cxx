@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 
 namespace
 {
@@ -76,14 +77,17 @@ TEST(ModuleHost, RefusesABrokenLibrary)
   EXPECT_EQ(CountLines(run.Err), 1) << run.Err;
   EXPECT_NE(run.Err.find("libVesselProximityModule.so: cannot load module library"), std::string::npos) << run.Err;
 
-  // A real shared library that is not a module (zlib's).
+  // A real shared library that is not a module (zlib's), named as modules are; beside a module, a
+  // library not so named is not a module (the installed module folder holds the logic library).
   std::filesystem::create_directories(tmp + "/foreign");
+  std::filesystem::create_directories(tmp + "/beside");
   bool copied = false;
   for (const char* zlib : { "/usr/lib/x86_64-linux-gnu/libz.so.1", "/lib/x86_64-linux-gnu/libz.so.1", "/usr/lib/libz.so.1" })
   {
     if (vp::test::FileExists(zlib))
     {
-      std::filesystem::copy_file(zlib, tmp + "/foreign/libz.so");
+      std::filesystem::copy_file(zlib, tmp + "/foreign/libzModule.so");
+      std::filesystem::copy_file(zlib, tmp + "/beside/libz.so");
       copied = true;
       break;
     }
@@ -93,8 +97,19 @@ TEST(ModuleHost, RefusesABrokenLibrary)
     run = vp::test::RunTool(tmp, "--module-path " + tmp + "/foreign --help");
     EXPECT_EQ(run.ExitCode, 5);
     EXPECT_EQ(CountLines(run.Err), 1) << run.Err;
-    EXPECT_NE(run.Err.find("libz.so: not a VesselProximity module (no vpGetLoadableModule entry point)"), std::string::npos)
+    EXPECT_NE(run.Err.find("libzModule.so: not a VesselProximity module (no vpGetLoadableModule entry point)"), std::string::npos)
       << run.Err;
+    const std::string modules = std::filesystem::path(VP_EXECUTABLE).parent_path().parent_path().string() +
+      "/lib/vesselproximity-modules";
+    run = vp::test::RunTool(tmp, "--module-path " + tmp + "/beside:" + modules + " --help");
+    EXPECT_EQ(run.ExitCode, 0) << run.Err;
+    run = vp::test::RunTool(tmp, "--module-path " + tmp + "/beside --help");
+    EXPECT_EQ(run.ExitCode, 5);
+    EXPECT_NE(run.Err.find("/beside: no loadable module there (lib*Module.so exporting"), std::string::npos) << run.Err;
+  }
+  else
+  {
+    std::cout << "[  SKIPPED ] no libz.so.1 found to stand for a foreign library\n";
   }
   std::filesystem::remove_all(tmp);
 }

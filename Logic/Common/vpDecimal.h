@@ -1,6 +1,10 @@
 #ifndef vpDecimal_h
 #define vpDecimal_h
 
+#include <cmath>
+#include <cstdlib>
+#include <string>
+
 namespace vp
 {
 /// The end of a plain decimal number at p ([+-]digits[.digits][e[+-]digits], or [+-].digits...),
@@ -51,6 +55,18 @@ inline const char* ScanDecimal(const char* p)
   }
   // "0x10": the 0 is a number, and what follows it is not.
   return q;
+}
+
+/// Whether text is one plain decimal number and nothing else (ScanDecimal), finite; its value.
+inline bool ParseDecimal(const std::string& text, double& value)
+{
+  const char* begin = text.c_str();
+  if (text.empty() || ScanDecimal(begin) != begin + text.size())
+  {
+    return false;
+  }
+  value = std::strtod(begin, nullptr);
+  return std::isfinite(value);
 }
 } // namespace vp
 

@@ -4,6 +4,8 @@
 
 #include <cerrno>
 #include <cstring>
+#include <fstream>
+#include <sstream>
 #include <sys/stat.h>
 
 namespace vp
@@ -24,5 +26,23 @@ std::uint64_t RegularFileSize(const std::string& fileName, const std::string& if
     throw InputError(fileName, ifSpecial);
   }
   return static_cast<std::uint64_t>(info.st_size);
+}
+std::string ReadSmallFile(const std::string& fileName, const std::string& what, std::uint64_t maxBytes)
+{
+  const std::uint64_t size = RegularFileSize(fileName, "is a folder, not a " + what,
+    "is not a regular file (a device, pipe or socket), not a " + what);
+  if (size > maxBytes)
+  {
+    throw InputError(fileName, "is " + std::to_string(size) + " bytes: not a " + what + " (at most " +
+        std::to_string(maxBytes >> 20) + " MB)");
+  }
+  std::ifstream in(fileName, std::ios::binary);
+  if (!in)
+  {
+    throw InputError(fileName, "cannot be opened");
+  }
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
 }
 } // namespace vp

@@ -11,6 +11,12 @@ namespace vp
 /// with "no such file" (or the system's reason) when it cannot be looked at, ifFolder when it is
 /// a folder, ifSpecial when it is a device, a pipe or a socket.
 std::uint64_t RegularFileSize(const std::string& fileName, const std::string& ifFolder, const std::string& ifSpecial);
+
+/// The whole of a small file that names what it is (a colour table, a point list): a regular
+/// file (RegularFileSize, its messages "is a folder, not a WHAT" and "is not a regular file (a
+/// device, pipe or socket), not a WHAT") of at most maxBytes ("is N bytes: not a WHAT (at most
+/// M MB)"). Throws InputError(fileName, ...).
+std::string ReadSmallFile(const std::string& fileName, const std::string& what, std::uint64_t maxBytes);
 } // namespace vp
 
 #endif

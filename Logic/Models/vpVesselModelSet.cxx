@@ -2,6 +2,7 @@
 
 #include "vpOutputFile.h"
 #include "vpClock.h"
+#include "vpColorTableFile.h"
 #include "vpInputError.h"
 #include "vpRunFolder.h"
 #include "vpSegmentationImport.h"
@@ -90,27 +91,74 @@ void CheckOnePatient(const std::vector<LabelStructures>& imports)
 
 } // namespace
 
+namespace
+{
+/// A structure the labelmap left unnamed ("label N", or its only value under its file's name)
+/// takes the colour table's name for its value when the label table knows that name; one it does
+/// not know stays unnamed, so that the table's values still place it.
+void NameUnnamedStructures(
+  LabelStructures& structures, const std::map<int, std::string>& colorNames, const VesselLabelTable& table)
+{
+  for (LabelStructure& s : structures)
+  {
+    const auto named = colorNames.find(s.LabelValue);
+    if (named != colorNames.end() && !table.ClassOfName(named->second).empty() &&
+      (s.OnlyValue || s.Name == "label " + std::to_string(s.LabelValue)))
+    {
+      s.Name = named->second;
+      s.OnlyValue = false;
+    }
+  }
+}
+
+/// Why nothing became a model, and what would name the structures.
+std::string NothingMappedText(const std::vector<const LabelStructure*>& unmapped, bool hadColorTable)
+{
+  std::string values;
+  bool unnamed = true;
+  for (const LabelStructure* s : unmapped)
+  {
+    unnamed = unnamed && (s->OnlyValue || s->Name == "label " + std::to_string(s->LabelValue));
+    values += (values.empty() ? "" : ", ") + (s->OnlyValue ? std::to_string(s->LabelValue) : s->Name);
+  }
+  if (unnamed)
+  {
+    return "no vessel or liver structure found: the labelmap names none of its values (" + values + ")" +
+      (hadColorTable ? ", the colour table names none of them as a vessel or the liver," : "") +
+      " and the label table knows none by value; give the labelmap's colour table (Slicer writes it as .ctbl) "
+      "naming them (portal vein, hepatic artery, hepatic vein, liver), or a label table of your own";
+  }
+  return "no vessel or liver structure found (" + std::to_string(unmapped.size()) + " structure(s): " + values +
+    "; none in the label table); name them in a label table of your own";
+}
+} // namespace
+
 VesselModelSet BuildVesselModels(
   const std::vector<std::string>& inputs, const VesselModelParameters& parameters, const ProgressReporter& progress)
 {
   parameters.Validate();
   const VesselLabelTable table =
     parameters.LabelTableFile.empty() ? VesselLabelTable::Default() : VesselLabelTable::Load(parameters.LabelTableFile);
+  const std::map<int, std::string> colorNames =
+    parameters.ColorTableFile.empty() ? std::map<int, std::string>() : ReadColorTableNames(parameters.ColorTableFile);
   VesselModelSet set;
   set.Inputs = inputs;
   set.Parameters = parameters;
   // Read: only the structures the table can place are worth their voxels.
   const double start = NowMs();
+  const double readShare = 0.4;
   for (const std::string& input : inputs)
   {
     const double t0 = NowMs();
     set.Imports.push_back(ImportSegmentation(input, [&](const std::string& name) { return !table.ClassOfName(name).empty(); }));
+    NameUnnamedStructures(set.Imports.back(), colorNames, table);
     if (!parameters.AllowMixedPatients)
     {
       CheckOnePatient(set.Imports); // before the input's line: a refusal is one line
     }
     progress(input + ": " + std::to_string(set.Imports.back().size()) + " structure(s) read in " +
-      FixedText(NowMs() - t0, "%.0f") + " ms");
+      FixedText(NowMs() - t0, "%.0f") + " ms",
+      readShare * static_cast<double>(set.Imports.size()) / static_cast<double>(inputs.size()));
   }
   set.ReadMs = NowMs() - start;
 
@@ -131,12 +179,11 @@ VesselModelSet BuildVesselModels(
   }
   for (const LabelStructure* s : set.Unmapped)
   {
-    progress("not a vessel class in the label table, skipped: " + s->Name + " (" + s->Source + ")");
+    progress("not a vessel class in the label table, skipped: " + s->Name + " (" + s->Source + ")", readShare);
   }
   if (byClass.empty())
   {
-    throw InputError(inputs.front(), "no vessel or liver structure found (" + std::to_string(set.Unmapped.size()) +
-        " structure(s), none in the label table); name them in a label table of your own");
+    throw InputError(inputs.front(), NothingMappedText(set.Unmapped, !colorNames.empty()));
   }
   for (const std::string& cls : table.Classes())
   {
@@ -146,7 +193,8 @@ VesselModelSet BuildVesselModels(
       set.Models.push_back(BuildClassModel(it->second, parameters));
       const VesselClassModel& m = set.Models.back();
       progress(cls + ": " + std::to_string(m.Voxels) + " voxels -> " + std::to_string(m.Surface->GetNumberOfPolys()) +
-        " triangles in " + FixedText(m.BuildMs, "%.0f") + " ms");
+        " triangles in " + FixedText(m.BuildMs, "%.0f") + " ms",
+        readShare + (1.0 - readShare) * static_cast<double>(set.Models.size()) / static_cast<double>(byClass.size()));
     }
   }
   set.TotalMs = NowMs() - start;

@@ -25,6 +25,9 @@ struct VesselModelParameters
   double DecimationFactor = 0.0; ///< fraction of triangles removed, 0..0.99
   MeshSpace FileSpace = MeshSpace::LPS;
   std::string LabelTableFile; ///< empty: the built-in Resources/VesselLabels.json
+  /// A 3D Slicer colour table (.ctbl, ReadColorTableNames) naming the label values of unnamed
+  /// labelmaps: its names are matched before the label table's values. Empty: none.
+  std::string ColorTableFile;
   /// Whether inputs of different patients or frames of reference may be built into one set of
   /// models (default false: refused, ParameterError("AllowMixedPatients")).
   bool AllowMixedPatients = false;
@@ -60,8 +63,10 @@ struct VesselModelSet
   double ReadMs = 0.0, TotalMs = 0.0;
 };
 
-/// What a long build says as it goes ("portal_vein: 1234 voxels -> 5678 triangles in 12 ms").
-using ProgressReporter = std::function<void(const std::string&)>;
+/// What a long build says as it goes ("portal_vein: 1234 voxels -> 5678 triangles in 12 ms"), with
+/// the share of the work done by then, 0 to 1 (reading the inputs is taken as 0.4 of it, building
+/// the classes' surfaces as the rest), for a progress bar (Slicer's <filter-progress>).
+using ProgressReporter = std::function<void(const std::string& line, double fractionDone)>;
 
 /// Reads each input (a folder of DICOM label series, a DICOM SEG, NRRD, .seg.nrrd or NIfTI
 /// labelmap), maps its structures to classes through the label table, and builds one closed

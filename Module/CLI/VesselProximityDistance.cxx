@@ -3,17 +3,27 @@
 // program returns the distance to each vessel class through the return-parameter file and,
 // when asked, writes the distance command's JSON report.
 #include "vpCliDescription.h"
+#include "vpCliVessels.h"
 #include "vpOutputFile.h"
 #include "vpClock.h"
 #include "vpDistanceEngineFactory.h"
+#include "vpDefaultScalpel.h"
 #include "vpInputError.h"
+#include "vpMarkupsFile.h"
+#include "vpRegistrationFile.h"
+#include "vpScalpelLoader.h"
 #include "vpTipDistanceQuery.h"
+#include "vtkScalpelModel.h"
 
 #include <vtkObject.h>
 
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <optional>
+#include <sstream>
 #include <limits>
 
 #ifndef VP_VERSION
@@ -22,63 +32,57 @@
 
 namespace
 {
+namespace fs = std::filesystem;
 using vp::cli::Channel;
 using vp::cli::Parameter;
 using vp::cli::ParameterType;
 
-/// The vessel classes, each with the parameter that brings its model and the one that returns
-/// its distance.
-struct VesselClass
+/// The return parameter of a class's distance ("portalVeinDistanceMm").
+std::string DistanceResult(const vp::cli::VesselClassParameter& v)
 {
-  const char* Parameter;
-  const char* ClassName;
-  const char* DistanceResult;
-  const char* Label;
-};
-const VesselClass Vessels[] = {
-  { "portalVein", "portal_vein", "portalVeinDistanceMm", "Portal vein" },
-  { "hepaticArtery", "hepatic_artery", "hepaticArteryDistanceMm", "Hepatic artery" },
-  { "hepaticVein", "hepatic_vein", "hepaticVeinDistanceMm", "Hepatic vein" },
-};
+  return std::string(v.Parameter) + "DistanceMm";
+}
 
 /// -1 marks "no answer" in the distance results: distances are never negative, and Slicer's
 /// number fields show -1 where NaN would show as garbage or be clamped.
 const char* NoDistance = "-1";
 
-vp::cli::ParameterGroup ModelsGroup()
-{
-  vp::cli::ParameterGroup models{ "Vessel models", "Surface models of the vessel systems; give at least one", {} };
-  for (const VesselClass& v : Vessels)
-  {
-    models.Parameters.push_back(Parameter(ParameterType::Geometry, v.Parameter)
-                                  .SetTypeAttribute("model")
-                                  .SetFileExtensions(".stl,.vtk,.vtp,.obj")
-                                  .SetLongFlag(v.Parameter)
-                                  .SetLogicName("Vessels")
-                                  .SetChannel(Channel::Input)
-                                  .SetLabel(v.Label)
-                                  .SetDescription(std::string(v.Label) + " surface model (class " + v.ClassName +
-                                    "): STL, VTK, VTP or OBJ; a SPACE=RAS/LPS header tag is honoured, untagged "
-                                    "files are LPS."));
-  }
-  return models;
-}
-
 vp::cli::ParameterGroup ScalpelGroup()
 {
-  vp::cli::ParameterGroup scalpel{ "Scalpel", "Tip position and direction of the scalpel", {} };
+  vp::cli::ParameterGroup scalpel{ "Scalpel", "Where the tip is: a point, a point list, or the tracked tool's transform", {} };
   scalpel.Parameters.push_back(Parameter(ParameterType::Point, "tip")
                                  .SetCoordinateSystem("lps")
                                  .SetLongFlag("tip")
-                                 .SetRequired()
                                  .SetLabel("Scalpel tip")
-                                 .SetDescription("The scalpel tip, one point (Slicer passes it in LPS). Required."));
+                                 .SetDescription("The scalpel tip, one point (Slicer passes it in LPS). Give this, a tip "
+                                                 "point list or the scalpel's transform."));
+  scalpel.Parameters.push_back(Parameter(ParameterType::PointFile, "tipFile")
+                                 .SetCoordinateSystem("lps")
+                                 .SetFileExtensions(".mrk.json,.fcsv")
+                                 .SetLongFlag("tipFile")
+                                 .SetChannel(Channel::Input)
+                                 .SetLabel("Scalpel tip (point list)")
+                                 .SetDescription("A point list whose first defined point is the tip (markups JSON or "
+                                                 ".fcsv, in the file's coordinate system)."));
+  scalpel.Parameters.push_back(Parameter(ParameterType::Transform, "scalpelPose")
+                                 .SetTypeAttribute("linear")
+                                 .SetFileExtensions(".h5")
+                                 .SetLongFlag("scalpelPose")
+                                 .SetChannel(Channel::Input)
+                                 .SetLabel("Scalpel transform")
+                                 .SetDescription("The tracked tool's transform, tool to patient (as a tracked tool "
+                                                 "arrives in Slicer: StylusToReference, after the tracker's registration), "
+                                                 "rigid. The tip and axis are the scalpel model's, carried by it."));
+  scalpel.Parameters.push_back(vp::cli::ScalpelModelParameter("With the scalpel transform: the instrument in its own "
+                                                                 "coordinates, tip and axis found from its shape. Default: "
+                                                                 "the built-in CUSA handpiece."));
   scalpel.Parameters.push_back(Parameter(ParameterType::DoubleVector, "axis")
                                  .SetLongFlag("axis")
                                  .SetLogicName("Axis")
                                  .SetLabel("Scalpel axis")
                                  .SetDescription("Direction the scalpel points, x,y,z in LPS (need not be unit "
-                                                 "length), for the directional distance along it. Optional."));
+                                                 "length), for the directional distance along it. Optional (with the "
+                                                 "scalpel transform: the model's axis)."));
   return scalpel;
 }
 
@@ -101,6 +105,22 @@ vp::cli::ParameterGroup EngineGroup()
                                 .SetDescription("Classes further from the tip than this return -1.")
                                 .SetDefault(vp::cli::FormatNumber(vtkVesselDistanceEngine::DefaultRangeMm))
                                 .SetRange(1.0, 1000.0, 1.0));
+  engine.Parameters.push_back(Parameter(ParameterType::PointFile, "closestPoints")
+                                .SetCoordinateSystem("lps")
+                                .SetFileExtensions(".mrk.json")
+                                .SetLongFlag("closestPoints")
+                                .SetChannel(Channel::Output)
+                                .SetLabel("Closest points")
+                                .SetDescription("A point list: per vessel class within range its closest point to the "
+                                                "tip, labelled with the class and the distance, and the tip itself."));
+  engine.Parameters.push_back(Parameter(ParameterType::Table, "resultsTable")
+                                .SetFileExtensions(".csv")
+                                .SetLongFlag("resultsTable")
+                                .SetChannel(Channel::Output)
+                                .SetLabel("Results table")
+                                .SetDescription("A table, a row per vessel class: distance, inside, in range, closest "
+                                                "point (LPS), directional distance, error bound, engine (nan: no answer "
+                                                "within range)."));
   engine.Parameters.push_back(Parameter(ParameterType::File, "report")
                                 .SetFileExtensions(".json")
                                 .SetLongFlag("report")
@@ -128,9 +148,9 @@ vp::cli::ParameterGroup ResultsGroup()
     "True when the tip is inside the nearest vessel (closed models only).", "false");
   result(ParameterType::DoubleVector, "nearestPoint", "Nearest point (LPS)",
     "Closest point on the nearest class, x,y,z in LPS; empty when none is within range.", "");
-  for (const VesselClass& v : Vessels)
+  for (const vp::cli::VesselClassParameter& v : vp::cli::VesselClassParameters())
   {
-    result(ParameterType::Float, v.DistanceResult, (std::string(v.Label) + " distance (mm)").c_str(),
+    result(ParameterType::Float, DistanceResult(v).c_str(), (std::string(v.Label) + " distance (mm)").c_str(),
       std::string("Distance to the ") + v.ClassName + " model; -1 when not given or beyond the range.", NoDistance);
   }
   result(ParameterType::Float, "directionalDistanceMm", "Directional distance (mm)",
@@ -149,7 +169,7 @@ vp::cli::ParameterGroup ResultsGroup()
 vp::cli::ModuleDescription Describe()
 {
   auto d = vp::cli::ModuleDescription::VesselProximity(
-    "VesselProximityDistance", "Vessel Proximity Distance", VP_VERSION, { ModelsGroup(), ScalpelGroup(), EngineGroup(), ResultsGroup() });
+    "VesselProximityDistance", "Vessel Proximity Distance", VP_VERSION, { vp::cli::VesselModelsGroup(), ScalpelGroup(), EngineGroup(), ResultsGroup() });
   d.Description =
     "Distance from a scalpel tip to the nearest surface point of each vessel system (portal vein, "
     "hepatic artery, hepatic vein), for liver surgery navigation. The exact engine answers from a "
@@ -157,10 +177,42 @@ vp::cli::ModuleDescription Describe()
     "answers within a stated error bound. Coordinates are LPS millimetres. A class whose model is not "
     "given, or that lies beyond the range, returns -1. Exit codes: 0 success, 1 bad input, 2 bad usage, "
     "3 internal error, 4 no usable Vulkan device (zbuffer, both). Same as `vesselproximity distance`.";
-  d.Acknowledgements =
-    "Implements and extends Noborio et al., \"Comparison of GPU-based and CPU-based Algorithms for "
-    "Determining the Minimum Distance between a CUSA Scalpel and Blood Vessels\".";
   return d;
+}
+
+/// The tip (LPS) from exactly one of --tip, --tipFile and --scalpelPose; with the transform, the
+/// scalpel model's axis too, unless --axis gave one.
+std::array<double, 3> TipOf(const vp::cli::ParsedArguments& args, std::optional<std::array<double, 3>>& axis)
+{
+  const int given = args.IsSet("tip") + args.IsSet("tipFile") + args.IsSet("scalpelPose");
+  if (given != 1)
+  {
+    throw vp::cli::UsageError("--tip/--tipFile/--scalpelPose",
+      given == 0 ? "give the tip: a point, a point list or the scalpel's transform" : "give only one of them");
+  }
+  if (args.IsSet("scalpel") && !args.IsSet("scalpelPose"))
+  {
+    throw vp::cli::UsageError("--scalpel", "the scalpel model is carried by --scalpelPose; give that too");
+  }
+  if (args.IsSet("tip"))
+  {
+    return args.GetPoint("tip");
+  }
+  if (args.IsSet("tipFile"))
+  {
+    return vp::ReadMarkupsPoints(args.GetString("tipFile")).front().PositionLps;
+  }
+  const vp::TrackerRegistration pose = vp::ReadTrackerRegistration(args.GetString("scalpelPose"));
+  const vtkSmartPointer<vtkScalpelModel> scalpel = args.IsSet("scalpel")
+    ? vp::LoadScalpel(args.GetString("scalpel"), vp::ScalpelTipDefinition())
+    : vp::MakeDefaultScalpel();
+  const double* tip = scalpel->GetTipMm();
+  const double* direction = scalpel->GetAxis();
+  if (!axis)
+  {
+    axis = vp::TransformDirection(pose.TrackerToPatient, { direction[0], direction[1], direction[2] });
+  }
+  return vp::TransformPoint(pose.TrackerToPatient, { tip[0], tip[1], tip[2] });
 }
 
 vp::TipDistanceRequest ParseRequest(const vp::cli::ParsedArguments& args)
@@ -171,7 +223,6 @@ vp::TipDistanceRequest ParseRequest(const vp::cli::ParsedArguments& args)
   settings.RangeMm = args.GetNumber("rangeMm");
   request.Engine = vp::MakeDistanceEngine(settings); // no device: exit 4 (ReportFailure)
   request.CompareWithExact = settings.Method == "both";
-  request.TipsMm.push_back(args.GetPoint("tip"));
   if (args.IsSet("axis"))
   {
     const std::vector<double> axis = args.GetNumbers("axis");
@@ -181,25 +232,8 @@ vp::TipDistanceRequest ParseRequest(const vp::cli::ParsedArguments& args)
     }
     request.Axis = std::array<double, 3>{ axis[0], axis[1], axis[2] };
   }
+  request.TipsMm.push_back(TipOf(args, request.Axis));
   return request;
-}
-
-/// The models given, each from its own parameter: file names are names, commas and all.
-std::vector<std::pair<std::string, std::string>> GivenModels(const vp::cli::ParsedArguments& args)
-{
-  std::vector<std::pair<std::string, std::string>> vessels;
-  for (const VesselClass& v : Vessels)
-  {
-    if (args.IsSet(v.Parameter))
-    {
-      vessels.emplace_back(v.ClassName, args.GetString(v.Parameter));
-    }
-  }
-  if (vessels.empty())
-  {
-    throw vp::cli::UsageError("--portalVein/--hepaticArtery/--hepaticVein", "give at least one vessel model");
-  }
-  return vessels;
 }
 
 void SetResults(const vp::ProximityResult& r, double rangeMm, vp::cli::ReturnValues& results)
@@ -214,13 +248,13 @@ void SetResults(const vp::ProximityResult& r, double rangeMm, vp::cli::ReturnVal
     results.Set("nearestInside", n.Inside && *n.Inside);
   }
   double directional = std::numeric_limits<double>::infinity();
-  for (const VesselClass& v : Vessels)
+  for (const vp::cli::VesselClassParameter& v : vp::cli::VesselClassParameters())
   {
     for (const vp::ClassProximity& c : r.Classes)
     {
       if (c.ClassName == v.ClassName && c.InRange)
       {
-        results.Set(v.DistanceResult, c.DistanceMm);
+        results.Set(DistanceResult(v), c.DistanceMm);
       }
       directional = c.ClassName == v.ClassName && c.DirectionalMm ? std::min(directional, *c.DirectionalMm) : directional;
     }
@@ -232,9 +266,63 @@ void SetResults(const vp::ProximityResult& r, double rangeMm, vp::cli::ReturnVal
   results.Set("errorBoundMm", r.ErrorBoundMm);
 }
 
+/// The tip and, per class within range, its closest point labelled "portal_vein 3.21 mm" (a
+/// z-buffer answer "<= 3.21 mm": it may overstate the danger by its bound, never understate it).
+std::vector<vp::MarkupsPoint> ClosestPoints(const vp::ProximityResult& r, const std::array<double, 3>& tip)
+{
+  std::vector<vp::MarkupsPoint> points = { { "tip", "the scalpel tip", tip } };
+  for (const vp::ClassProximity& c : r.Classes)
+  {
+    if (!c.InRange)
+    {
+      continue;
+    }
+    const bool inside = c.Inside && *c.Inside;
+    const std::string distance = vp::cli::FormatNumber(std::round(c.DistanceMm * 100.0) / 100.0) + " mm";
+    points.push_back({ c.ClassName + " " + (inside ? distance + " inside" : (r.ErrorBoundMm > 0 ? "<= " : "") + distance),
+      "closest point of " + c.ClassName + " to the tip" +
+        (r.ErrorBoundMm > 0 ? ", within " + vp::cli::FormatNumber(r.ErrorBoundMm) + " mm" : std::string(", exact")),
+      { c.ClosestPoint[0], c.ClosestPoint[1], c.ClosestPoint[2] } });
+  }
+  return points;
+}
+
+/// The results as a table node (CSV) with its schema beside it (name.schema.tsv), which Slicer
+/// reads to type the columns: without it every column is text and none can be plotted or sorted.
+void WriteResultsTable(const std::string& fileName, const vp::ProximityResult& r, const std::string& method)
+{
+  std::ostringstream csv;
+  csv << "class,distance_mm,inside,in_range,closest_x_lps,closest_y_lps,closest_z_lps,directional_mm,error_bound_mm,engine\n";
+  for (const vp::ClassProximity& c : r.Classes)
+  {
+    // "nan" where there is no answer: an empty cell of a number column reads as 0, a distance
+    // this table never measured.
+    csv << c.ClassName << "," << (c.InRange ? vp::cli::FormatNumber(c.DistanceMm) : "nan") << ","
+        << (c.Inside ? (*c.Inside ? "true" : "false") : "") << "," << (c.InRange ? "true" : "false");
+    for (int a = 0; a < 3; ++a)
+    {
+      csv << "," << (c.InRange ? vp::cli::FormatNumber(c.ClosestPoint[a]) : "nan");
+    }
+    csv << "," << (c.DirectionalMm ? vp::cli::FormatNumber(*c.DirectionalMm) : "nan") << ","
+        << vp::cli::FormatNumber(r.ErrorBoundMm) << "," << method << "\n";
+  }
+  std::string schema = "columnName\ttype\tunit\n";
+  for (const char* column : { "class", "distance_mm", "inside", "in_range", "closest_x_lps", "closest_y_lps",
+         "closest_z_lps", "directional_mm", "error_bound_mm", "engine" })
+  {
+    const std::string name = column;
+    const bool text = name == "class" || name == "engine";
+    const bool flag = name == "inside" || name == "in_range";
+    schema += name + "\t" + (text ? "string" : flag ? "bit" : "double") + "\t" + (text || flag ? "" : "mm") + "\n";
+  }
+  const fs::path table(fileName);
+  vp::WriteFileAtomically((table.parent_path() / (table.stem().string() + ".schema.tsv")).string(), schema);
+  vp::WriteFileAtomically(fileName, csv.str());
+}
+
 void Run(const vp::cli::ParsedArguments& args, vp::cli::ReturnValues& results)
 {
-  const std::vector<std::pair<std::string, std::string>> models = GivenModels(args);
+  const std::vector<std::pair<std::string, std::string>> models = vp::cli::GivenVesselModels(args);
   vp::TipDistanceRequest request = ParseRequest(args);
   const double loadStart = vp::NowMs();
   request.Vessels = vp::LoadVesselMeshes(models);
@@ -244,8 +332,18 @@ void Run(const vp::cli::ParsedArguments& args, vp::cli::ReturnValues& results)
   {
     vp::WriteFileAtomically(args.GetString("report"), vp::TipDistanceReportJson(request, answer, false, loadMs).dump(2) + "\n");
   }
-  SetResults(answer.Results.at(0), request.Engine->GetRangeMm(), results);
-  results.Set("methodUsed", std::string(request.Engine->GetMethodName()));
+  const vp::ProximityResult& result = answer.Results.at(0);
+  const std::string method = request.Engine->GetMethodName();
+  if (args.IsSet("closestPoints"))
+  {
+    vp::WriteFileAtomically(args.GetString("closestPoints"), vp::MarkupsJsonText(ClosestPoints(result, request.TipsMm[0])));
+  }
+  if (args.IsSet("resultsTable"))
+  {
+    WriteResultsTable(args.GetString("resultsTable"), result, method);
+  }
+  SetResults(result, request.Engine->GetRangeMm(), results);
+  results.Set("methodUsed", method);
 }
 } // namespace
 

@@ -1,13 +1,18 @@
 // VesselProximityModels: `vesselproximity models` as a 3D Slicer CLI module. Slicer hands over a
-// labelmap volume (a temporary .nrrd); the program writes one closed surface per vessel class
-// into the output folder and returns how many it wrote.
+// labelmap volume (a temporary .nrrd) and its colour table (a temporary .ctbl: the volume's file
+// carries no names); the program writes one closed surface per vessel class where Slicer asks for
+// each model node (and, for scripts, into a folder) and returns how many it built.
 #include "vpCliDescription.h"
+#include "vpCliProgress.h"
 #include "vpInputError.h"
 #include "vpRunFolder.h"
 #include "vpVesselModelSet.h"
+#include "vtkVesselMeshWriter.h"
 
+#include <vtkNew.h>
 #include <vtkObject.h>
 
+#include <algorithm>
 #include <iostream>
 
 #ifndef VP_VERSION
@@ -32,13 +37,16 @@ vp::cli::ParameterGroup IoGroup()
                             .SetDescription("Labelmap whose voxel values are structures, geometry in the file's "
                                             "frame (.nrrd as Slicer passes it; .seg.nrrd, .nii and .nii.gz too). "
                                             "Required."));
-  io.Parameters.push_back(Parameter(ParameterType::Directory, "outputDirectory")
-                            .SetLongFlag("outputDirectory")
-                            .SetChannel(Channel::Output)
-                            .SetRequired()
-                            .SetLabel("Output folder")
-                            .SetDescription("Folder for <class>.stl per vessel class and models.json; created "
-                                            "when missing. Nothing is written when the run fails. Required."));
+  io.Parameters.push_back(Parameter(ParameterType::Table, "colorTable")
+                            .SetTypeAttribute("color")
+                            .SetFileExtensions(".ctbl")
+                            .SetLongFlag("colorTable")
+                            .SetLogicName("ColorTableFile")
+                            .SetChannel(Channel::Input)
+                            .SetLabel("Colour table")
+                            .SetDescription("The labelmap's colour table (its names for the label values, such as "
+                                            "portal vein, hepatic artery, hepatic vein, liver): Slicer passes the "
+                                            "volume without them. Matched before the label table's values."));
   io.Parameters.push_back(Parameter(ParameterType::File, "labelTable")
                             .SetLongFlag("labelTable")
                             .SetLogicName("LabelTableFile")
@@ -50,6 +58,44 @@ vp::cli::ParameterGroup IoGroup()
                                             "(IRCADb names, SNOMED codes, TotalSegmentator values 5 liver, 63 "
                                             "inferior vena cava as hepatic_vein, 64 portal vein)."));
   return io;
+}
+
+/// The classes a model output can bring into the scene, each its own model node.
+struct ModelOutput
+{
+  const char* Parameter;
+  const char* ClassName;
+  const char* Label;
+};
+const ModelOutput ModelOutputs[] = {
+  { "portalVeinModel", "portal_vein", "Portal vein model" },
+  { "hepaticArteryModel", "hepatic_artery", "Hepatic artery model" },
+  { "hepaticVeinModel", "hepatic_vein", "Hepatic vein model" },
+  { "liverModel", "liver", "Liver model" },
+};
+
+vp::cli::ParameterGroup ModelsGroup()
+{
+  vp::cli::ParameterGroup models{ "Models", "Where the models go: scene model nodes, and a folder for scripts", {} };
+  for (const ModelOutput& m : ModelOutputs)
+  {
+    models.Parameters.push_back(Parameter(ParameterType::Geometry, m.Parameter)
+                                  .SetTypeAttribute("model")
+                                  .SetFileExtensions(".stl")
+                                  .SetLongFlag(m.Parameter)
+                                  .SetChannel(Channel::Output)
+                                  .SetLabel(m.Label)
+                                  .SetDescription(std::string("The ") + m.ClassName +
+                                    " surface as a model node (STL, its header tagged with its space). The run "
+                                    "is refused, writing nothing, when the labelmap has no such structure."));
+  }
+  models.Parameters.push_back(Parameter(ParameterType::Directory, "outputDirectory")
+                                .SetLongFlag("outputDirectory")
+                                .SetChannel(Channel::Output)
+                                .SetLabel("Output folder")
+                                .SetDescription("Also a folder with <class>.stl per class found and models.json (for "
+                                                "scripts; created when missing). Optional: give it or a model."));
+  return models;
 }
 
 vp::cli::ParameterGroup SurfaceGroup()
@@ -107,42 +153,82 @@ vp::cli::ParameterGroup ResultsGroup()
 vp::cli::ModuleDescription Describe()
 {
   auto d = vp::cli::ModuleDescription::VesselProximity(
-    "VesselProximityModels", "Vessel Proximity Models", VP_VERSION, { IoGroup(), SurfaceGroup(), ResultsGroup() });
+    "VesselProximityModels", "Vessel Proximity Models", VP_VERSION, { IoGroup(), ModelsGroup(), SurfaceGroup(), ResultsGroup() });
   d.Description =
     "Builds closed vessel surface models from a labelmap for scalpel-to-vessel distance "
     "measurement in liver surgery: one STL per vessel class found (portal_vein, hepatic_artery, "
-    "hepatic_vein; liver too when present) and models.json, written to the output folder. "
+    "hepatic_vein; liver too when present), each a model node in the scene and, with an output folder, "
+    "an STL there with models.json. "
     "Structures map to classes through a label table; in an unnamed labelmap (as Slicer passes "
-    "one) only by label value, so give a table unless the values are TotalSegmentator's. "
+    "one) by the names its colour table gives the values, else by value through the label table. "
     "Surfaces follow Slicer's closed-surface conversion: discrete flying edges, windowed-sinc "
     "smoothing, optional decimation. Same as `vesselproximity models`.";
-  d.Acknowledgements =
-    "Method after Noborio et al., \"Comparison of GPU-based and CPU-based Algorithms for Determining "
-    "the Minimum Distance between a CUSA Scalpel and Blood Vessels\". Surface generation follows 3D "
-    "Slicer's labelmap-to-closed-surface conversion.";
   return d;
 }
 
 void Run(const vp::cli::ParsedArguments& args, vp::cli::ReturnValues& results)
 {
-  vp::RunFolder run(args.GetString("outputDirectory"), "models.json");
-  run.SetInputs({ args.GetString("inputVolume"), args.IsSet("labelTable") ? args.GetString("labelTable") : std::string() });
+  std::vector<const ModelOutput*> wanted;
+  for (const ModelOutput& m : ModelOutputs)
+  {
+    if (args.IsSet(m.Parameter))
+    {
+      wanted.push_back(&m);
+    }
+  }
+  if (wanted.empty() && !args.IsSet("outputDirectory"))
+  {
+    throw vp::cli::UsageError("--portalVeinModel/.../--outputDirectory", "give a model to create or an output folder");
+  }
+  vp::cli::FilterProgress progress("VesselProximityModels");
   vp::VesselModelParameters parameters;
   parameters.SmoothingFactor = args.GetNumber("smoothing");
   parameters.SmoothingIterations = args.GetInteger("smoothingIterations");
   parameters.DecimationFactor = args.GetNumber("decimation");
   parameters.FileSpace = args.GetString("space") == "RAS" ? vp::MeshSpace::RAS : vp::MeshSpace::LPS;
   parameters.LabelTableFile = args.IsSet("labelTable") ? args.GetString("labelTable") : std::string();
-  const vp::VesselModelSet set = vp::BuildVesselModels({ args.GetString("inputVolume") }, parameters,
-    [](const std::string& line) { std::cerr << "models: " << line << "\n"; });
-  vp::WriteVesselModels(set, run);
+  parameters.ColorTableFile = args.IsSet("colorTable") ? args.GetString("colorTable") : std::string();
+  const std::string input = args.GetString("inputVolume");
+  const vp::VesselModelSet set = vp::BuildVesselModels({ input }, parameters, [&](const std::string& line, double done) {
+    std::cout << "models: " << line << "\n";
+    progress.Stage("Building the surfaces", done * 0.95);
+  });
+  // Every asked-for model is found before any is written: a run is whole or writes nothing.
+  std::vector<std::pair<const ModelOutput*, const vp::VesselClassModel*>> writes;
   std::string classes;
   for (const vp::VesselClassModel& m : set.Models)
   {
     classes += (classes.empty() ? "" : ",") + m.ClassName;
   }
+  for (const ModelOutput* out : wanted)
+  {
+    const auto found = std::find_if(set.Models.begin(), set.Models.end(),
+      [&](const vp::VesselClassModel& m) { return m.ClassName == out->ClassName; });
+    if (found == set.Models.end())
+    {
+      throw vp::InputError(input, std::string("no ") + out->ClassName + " structure in the labelmap (asked for by --" +
+          out->Parameter + "); it has " + (classes.empty() ? std::string("none") : classes) +
+          ": leave that output unset, or name the structure in the colour or label table");
+    }
+    writes.emplace_back(out, &*found);
+  }
+  for (const auto& [out, model] : writes)
+  {
+    vtkNew<vtkVesselMeshWriter> writer;
+    writer->SetFileName(args.GetString(out->Parameter));
+    writer->SetInputData(model->Surface);
+    writer->SetFileSpace(parameters.FileSpace);
+    writer->Write();
+  }
+  if (args.IsSet("outputDirectory"))
+  {
+    vp::RunFolder run(args.GetString("outputDirectory"), "models.json");
+    run.SetInputs({ input, parameters.LabelTableFile, parameters.ColorTableFile });
+    vp::WriteVesselModels(set, run);
+  }
   results.Set("numberOfModels", static_cast<int>(set.Models.size()));
   results.Set("modelClasses", classes);
+  progress.Finish();
 }
 } // namespace
 

@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <cctype>
 #include <charconv>
+#include <filesystem>
+#include <map>
 #include <set>
 #include <stdexcept>
 
@@ -16,6 +18,7 @@ namespace cli
 {
 namespace
 {
+namespace fs = std::filesystem;
 // Flags the runner answers itself, and the one Slicer passes to shared-object modules: a table
 // may not take them over.
 const std::set<std::string> ReservedLongFlags = { "xml", "help", "version", "returnparameterfile",
@@ -51,6 +54,12 @@ const char* TagOf(ParameterType type)
       return "image";
     case ParameterType::Geometry:
       return "geometry";
+    case ParameterType::Transform:
+      return "transform";
+    case ParameterType::Table:
+      return "table";
+    case ParameterType::PointFile:
+      return "pointfile";
   }
   return "string";
 }
@@ -195,9 +204,51 @@ ModuleDescription ModuleDescription::VesselProximity(
   d.Category = "IGT";
   d.Title = std::move(title);
   d.Version = std::move(version);
+  d.DocumentationUrl = cli::DocumentationUrl();
+  d.License = "Apache-2.0";
   d.Contributor = "VesselProximity developers";
+  d.Acknowledgements = MethodAcknowledgement();
   d.Groups = std::move(groups);
   return d;
+}
+
+std::string MethodAcknowledgement()
+{
+  // No double quote, backslash or line break: GenerateCLP pastes this text raw into a C string.
+  return "Implements and extends the method of Noborio et al., 'Comparison of GPU-based and CPU-based "
+         "Algorithms for Determining the Minimum Distance between a CUSA Scalpel and Blood Vessels'. Surface "
+         "generation follows 3D Slicer's labelmap-to-closed-surface conversion.";
+}
+
+std::string DocumentationUrl()
+{
+#ifdef VP_DOCUMENTATION_URL
+  if (*VP_DOCUMENTATION_URL)
+  {
+    return VP_DOCUMENTATION_URL;
+  }
+#endif
+  // The README beside an installed tree (the CLI in lib/Slicer-X.Y/cli-modules, the README in
+  // share/doc/VesselProximity), else the source tree's when run from the build tree: a clinical
+  // workstation is often offline, and a link that works there beats a web page it cannot reach.
+  std::error_code ec;
+  const fs::path program = fs::read_symlink("/proc/self/exe", ec);
+  std::vector<fs::path> candidates;
+  if (!ec)
+  {
+    candidates.push_back(program.parent_path() / "../../../share/doc/VesselProximity/README.md");
+  }
+#ifdef VP_SOURCE_README
+  candidates.push_back(VP_SOURCE_README);
+#endif
+  for (const fs::path& readme : candidates)
+  {
+    if (fs::is_regular_file(readme, ec))
+    {
+      return "file://" + fs::weakly_canonical(readme, ec).string();
+    }
+  }
+  return std::string();
 }
 
 ModuleDescription ModuleDescription::Subcommand(
@@ -346,9 +397,21 @@ void CheckKind(const ModuleDescription& description, const Parameter& p)
   {
     Fail(description, p, "constraints are for numbers, minimum <= maximum");
   }
-  if (p.GetType() == ParameterType::Point && p.GetCoordinateSystem() != "lps" && p.GetCoordinateSystem() != "ras")
+  if ((p.GetType() == ParameterType::Point || p.GetType() == ParameterType::PointFile) &&
+    p.GetCoordinateSystem() != "lps" && p.GetCoordinateSystem() != "ras")
   {
-    Fail(description, p, "a point needs coordinateSystem lps or ras");
+    Fail(description, p, "a point or point file needs coordinateSystem lps or ras");
+  }
+  // Slicer picks the node kind of these by their type attribute (SEM's parser refuses other types;
+  // a table without one is a table node).
+  const std::map<ParameterType, std::set<std::string>> types = { { ParameterType::Image, { "scalar", "label", "vector" } },
+    { ParameterType::Geometry, { "model" } }, { ParameterType::Transform, { "linear" } },
+    { ParameterType::Table, { "", "color" } } };
+  const auto known = types.find(p.GetType());
+  if (known != types.end() && !known->second.count(p.GetTypeAttribute()))
+  {
+    Fail(description, p, std::string("a ") + TagOf(p.GetType()) + " needs a type Slicer knows (" +
+        JoinElements(std::vector<std::string>(known->second.begin(), known->second.end()), ", ") + ")");
   }
 }
 

@@ -47,6 +47,9 @@ enum class ParameterType
   Directory,         ///< <directory>
   Image,             ///< <image type="...">: a volume file (Slicer writes .nrrd)
   Geometry,          ///< <geometry type="model">: a surface file
+  Transform,         ///< <transform type="linear">: a transform file (Slicer writes ITK's .h5)
+  Table,             ///< <table type="color"> (a colour table, .ctbl), or <table> (a table node, .csv/.tsv)
+  PointFile,         ///< <pointfile>: a markups file of points in CoordinateSystem
 };
 
 /// SEM tag of a type ("string-enumeration").
@@ -86,7 +89,7 @@ public:
   /// The fileExtensions="..." attribute (".json", ".stl,.vtk"): the first is the format Slicer
   /// writes an input in and expects an output in.
   Parameter& SetFileExtensions(std::string extensions);
-  /// The coordinateSystem="..." attribute of a point: "lps" or "ras".
+  /// The coordinateSystem="..." attribute of a point or point file: "lps" or "ras".
   Parameter& SetCoordinateSystem(std::string system);
   /// Refused when absent (SEM has no such element: the description says so, and the program
   /// reports a missing one as a usage error).
@@ -178,13 +181,21 @@ struct ModuleDescription
   /// The index (positional) parameters, in index order.
   std::vector<const Parameter*> IndexParameters() const;
 
-  /// One of this project's programs: category IGT, our contributor line, the given groups.
+  /// One of this project's programs: category IGT, our documentation link, licence, contributor
+  /// line and acknowledgement, the given groups.
   static ModuleDescription VesselProximity(
     std::string program, std::string title, std::string version, std::vector<ParameterGroup> groups);
   /// A subcommand of the vesselproximity program: its title is the line the program's --help lists.
   static ModuleDescription Subcommand(
     std::string program, std::string title, std::string description, std::vector<ParameterGroup> groups);
 };
+
+/// The acknowledgement of the method our programs carry (GenerateCLP-safe: no double quote,
+/// backslash or line break).
+std::string MethodAcknowledgement();
+/// VP_DOCUMENTATION_URL when the build sets one, else a file:// link to the README installed
+/// beside the program (share/doc/VesselProximity) or, in the build tree, the source tree's.
+std::string DocumentationUrl();
 
 /// Checks the table itself: names unique C identifiers, flags unique and not the built-in ones,
 /// indices 0..n-1, every parameter reachable (a flag, a longflag or an index) unless it is a

@@ -141,11 +141,11 @@ void WriteParameterTag(std::ostream& out, const Parameter& p)
   {
     out << " multiple=\"true\"";
   }
-  else if (p.GetType() == ParameterType::Point)
+  else if (p.GetType() == ParameterType::Point || p.GetType() == ParameterType::PointFile)
   {
     out << " multiple=\"false\"";
   }
-  if (p.GetType() == ParameterType::Point)
+  if (p.GetType() == ParameterType::Point || p.GetType() == ParameterType::PointFile)
   {
     out << " coordinateSystem=\"" << EscapeXml(p.GetCoordinateSystem()) << "\"";
   }

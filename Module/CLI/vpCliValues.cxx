@@ -50,7 +50,8 @@ bool IsNumeric(ParameterType type)
 bool IsData(ParameterType type)
 {
   return type == ParameterType::File || type == ParameterType::Directory || type == ParameterType::Image ||
-    type == ParameterType::Geometry;
+    type == ParameterType::Geometry || type == ParameterType::Transform || type == ParameterType::Table ||
+    type == ParameterType::PointFile;
 }
 
 bool ParseDouble(const std::string& text, double& value)
@@ -201,6 +202,9 @@ void CheckValue(const Parameter& p, const std::string& value)
     case ParameterType::Directory:
     case ParameterType::Image:
     case ParameterType::Geometry:
+    case ParameterType::Transform:
+    case ParameterType::Table:
+    case ParameterType::PointFile:
       if (value.empty())
       {
         throw InputError(p.DisplayName(), "needs a path, got an empty one");

@@ -244,7 +244,7 @@ void BuildDemoModels(DemoReport& report, RunFolder& run)
 {
   const std::string staged = run.Folder("dicom");
   VesselModelSet set = BuildVesselModels(
-    { staged }, VesselModelParameters(), [](const std::string& line) { std::cerr << "models: " << line << "\n"; });
+    { staged }, VesselModelParameters(), [](const std::string& line, double) { std::cerr << "models: " << line << "\n"; });
   const auto retarget = [&](std::string& path) {
     path = path.rfind(staged, 0) == 0 ? report.DicomFolder + path.substr(staged.size()) : path;
   };

@@ -49,6 +49,12 @@ cli::ModuleDescription DescribeModelsCommand()
           Option(ParameterType::File, "labels", "The label table (default: the built-in Resources/VesselLabels.json).")
             .SetChannel(cli::Channel::Input)
             .SetPlaceholder("TABLE.json"),
+          Option(ParameterType::File, "colors",
+            "A 3D Slicer colour table (.ctbl, or Slicer's .txt colour files) naming the label values of an unnamed labelmap "
+            "(\"2 portal_vein ...\"): its names are matched before the label table's values.")
+            .SetChannel(cli::Channel::Input)
+            .SetLogicName("ColorTableFile")
+            .SetPlaceholder("COLORS.ctbl"),
           OutputFolderOption("The run's folder: one STL per class and models.json.").SetRequired(),
           Switch("allow-mixed",
             "Build inputs of different patients or frames of reference into one set of models (refused without it).")
@@ -81,6 +87,7 @@ int RunModelsCommand(const cli::ParsedArguments& args, const ModuleServices&)
   RunFolder run(outDir, "models.json");
   std::vector<std::string> inputs = args.GetStrings("inputs");
   inputs.push_back(args.GetString("labels"));
+  inputs.push_back(args.GetString("colors"));
   run.SetInputs(inputs); // never removed or written over, even inside the output folder
   VesselModelParameters parameters;
   parameters.FileSpace = args.GetString("space") == "RAS" ? MeshSpace::RAS : MeshSpace::LPS;
@@ -88,10 +95,11 @@ int RunModelsCommand(const cli::ParsedArguments& args, const ModuleServices&)
   parameters.DecimationFactor = args.GetNumber("decimation");
   parameters.SmoothingIterations = args.GetInteger("smoothingIterations");
   parameters.LabelTableFile = args.GetString("labels");
+  parameters.ColorTableFile = args.GetString("colors");
   parameters.AllowMixedPatients = args.GetBoolean("allowMixed");
   // Every line is said once its step is done: a line before a refusal would make its one line two.
   const VesselModelSet set = BuildVesselModels(
-    args.GetStrings("inputs"), parameters, [](const std::string& line) { std::cerr << "models: " << line << "\n"; });
+    args.GetStrings("inputs"), parameters, [](const std::string& line, double) { std::cerr << "models: " << line << "\n"; });
   WriteVesselModels(set, run);
   PrintModels(set, outDir);
   std::cerr << "models: done in " << FixedText(set.TotalMs, "%.0f") << " ms\n";

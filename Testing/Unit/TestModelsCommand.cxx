@@ -143,6 +143,19 @@ TEST_F(ModelsCommand, AOneValueLabelmapIsTheStructureItsValueNames)
   const ToolRun plain = RunTool(this->Dir, "models " + folder + "/ABCDEF_inputVolume -o " + this->Dir + "/single_plain");
   EXPECT_EQ(plain.ExitCode, 1);
   EXPECT_NE(plain.Err.find("no vessel or liver structure"), std::string::npos) << plain.Err;
+  EXPECT_NE(plain.Err.find("give the labelmap's colour table"), std::string::npos) << plain.Err;
+  // A colour table names it (Slicer's colour file as it writes one), before any label table.
+  const std::string colors = vp::test::WriteBytes(this->Dir, "colors.ctbl",
+    "# Color table file colors.ctbl\n# 3 values\n0 Background 0 0 0 0\n2 Portal_vein 0 151 206 255\n");
+  const ToolRun named = RunTool(this->Dir, "models " + folder + "/ABCDEF_inputVolume --colors " + colors + " -o " + this->Dir + "/single_colors");
+  ASSERT_EQ(named.ExitCode, 0) << named.Err;
+  EXPECT_TRUE(vp::test::FileExists(this->Dir + "/single_colors/portal_vein.stl"));
+  // A colour file that is not one: one line naming it and the line.
+  const std::string bad = vp::test::WriteBytes(this->Dir, "bad.ctbl", "2 portal vein 0 151 206 255\n");
+  const ToolRun refused = RunTool(this->Dir, "models " + folder + "/ABCDEF_inputVolume --colors " + bad + " -o " + this->Dir + "/single_bad");
+  EXPECT_EQ(refused.ExitCode, 1);
+  EXPECT_NE(refused.Err.find("bad.ctbl: line 1: expected 'value name r g b a', got 7 field(s)"), std::string::npos) << refused.Err;
+  EXPECT_FALSE(vp::test::FileExists(this->Dir + "/single_bad"));
 }
 
 // An output folder holds one run (issue 16): a re-run with fewer classes removes the class the

@@ -5,14 +5,21 @@
 // a non-zero exit and nothing written.
 #include "vpBuiltInPhantom.h"
 #include "vpCliDescription.h"
+#include "vpDefaultScalpel.h"
+#include "vpItkTransformFile.h"
+#include "vpMarkupsFile.h"
 #include "vpInputError.h"
 #include "vpStlFormat.h"
 #include "vpTestSupport.h"
 #include "vtkVesselMeshReader.h"
+#include "vtkScalpelModel.h"
 #include "vtkVesselMeshWriter.h"
 
+#include <vtkDelimitedTextReader.h>
 #include <vtkNew.h>
 #include <vtkPolyData.h>
+#include <vtkSTLReader.h>
+#include <vtkTable.h>
 #include <vtkXMLDataElement.h>
 #include <vtkXMLDataParser.h>
 
@@ -38,6 +45,7 @@ using vp::test::ToolRun;
 
 const std::string ModelsProgram = VP_CLI_MODELS;
 const std::string DistanceProgram = VP_CLI_DISTANCE;
+const std::string TrackProgram = VP_CLI_TRACK;
 
 std::string Quote(const std::string& text)
 {
@@ -58,7 +66,7 @@ ToolRun RunCli(const std::string& dir, const std::string& program, const std::ve
     command += " " + Quote(a);
   }
   const std::string out = dir + "/stdout.txt", err = dir + "/stderr.txt";
-  const int status = std::system((command + " >" + out + " 2>" + err).c_str());
+  const int status = std::system((command + " >" + Quote(out) + " 2>" + Quote(err)).c_str());
   return { WIFEXITED(status) ? WEXITSTATUS(status) : -1, Slurp(out), Slurp(err) };
 }
 
@@ -89,6 +97,7 @@ struct SemParameter
 {
   std::string Tag, Name, Flag, LongFlag, Channel, Default, Label, Description;
   std::string TypeAttribute, CoordinateSystem, Multiple;
+  std::map<std::string, std::string> Attributes; ///< every attribute of the tag, as written
   int Index = -1;
   std::vector<std::string> Elements;
   bool HasConstraints = false;
@@ -106,6 +115,7 @@ struct SemParameter
 
 struct SemModule
 {
+  std::string Text;                  ///< the document as printed
   std::vector<std::string> TopLevel; ///< element names under <executable>, in order
   std::map<std::string, std::string> Info;
   std::vector<SemParameter> Parameters;
@@ -115,6 +125,7 @@ struct SemModule
 SemModule ParseSem(const std::string& xml)
 {
   SemModule module;
+  module.Text = xml;
   vtkNew<vtkXMLDataParser> parser;
   parser->SetIgnoreCharacterData(0);
   std::istringstream stream(xml);
@@ -147,6 +158,10 @@ SemModule ParseSem(const std::string& xml)
       sp.TypeAttribute = p->GetAttribute("type") ? p->GetAttribute("type") : "";
       sp.CoordinateSystem = p->GetAttribute("coordinateSystem") ? p->GetAttribute("coordinateSystem") : "";
       sp.Multiple = p->GetAttribute("multiple") ? p->GetAttribute("multiple") : "";
+      for (int a = 0; a < p->GetNumberOfAttributes(); ++a)
+      {
+        sp.Attributes[p->GetAttributeName(a)] = p->GetAttributeValue(a);
+      }
       for (int m = 0; m < p->GetNumberOfNestedElements(); ++m)
       {
         vtkXMLDataElement* f = p->GetNestedElement(m);
@@ -202,7 +217,7 @@ std::vector<std::string> SlicerCommandLine(const SemModule& module, const std::m
     return it == values.end() ? p.Default : it->second;
   };
   static const std::set<std::string> whenSet = { "file", "directory", "string", "integer-vector", "float-vector",
-    "double-vector", "string-vector", "image", "geometry", "transform", "table", "measurement", "point", "region" };
+    "double-vector", "string-vector", "image", "geometry", "transform", "table", "measurement", "pointfile", "point", "region" };
   std::map<int, std::string> indexed;
   for (const SemParameter& p : module.Parameters)
   {
@@ -258,12 +273,17 @@ double Number(const std::map<std::string, std::string>& values, const std::strin
 }
 
 /// A labelmap as Slicer writes one for a CLI: NRRD, 16-bit, LPS space, raw little-endian voxels.
-/// 24^3 voxels of 1 mm, origin (-12,-12,-12): a ball of 64 (portal vein by TotalSegmentator's
-/// value) at (-5,-5,0), one of 63 (inferior vena cava, the hepatic_vein class) at (5,5,0), and
-/// one of 7 (no class in the built-in table) at (5,-5,5).
-std::string WriteLabelmap(const std::string& dir)
+/// 24^3 voxels of 1 mm, origin (-12,-12,-12): four balls with the given values, the portal vein
+/// at (-5,-5,0), the hepatic vein at (5,5,0), the hepatic artery at (5,-5,5), the liver at
+/// (-5,5,-4) (a value 0 leaves that ball out).
+struct BallValues
 {
-  const std::string path = dir + "/labels.nrrd";
+  int PortalVein, HepaticVein, HepaticArtery, Liver;
+};
+
+std::string WriteLabelmap(const std::string& dir, const std::string& name, const BallValues& v)
+{
+  const std::string path = dir + "/" + name;
   std::ofstream out(path, std::ios::binary);
   out << "NRRD0004\n"
          "type: short\n"
@@ -283,11 +303,69 @@ std::string WriteLabelmap(const std::string& dir)
         auto within = [&](double x, double y, double z, double r) {
           return (p[0] - x) * (p[0] - x) + (p[1] - y) * (p[1] - y) + (p[2] - z) * (p[2] - z) <= r * r;
         };
-        const std::int16_t label = within(-5, -5, 0, 4) ? 64 : within(5, 5, 0, 4) ? 63 : within(5, -5, 5, 3) ? 7 : 0;
+        const std::int16_t label = within(-5, -5, 0, 4) ? v.PortalVein
+          : within(5, 5, 0, 4)                          ? v.HepaticVein
+          : within(5, -5, 5, 3)                         ? v.HepaticArtery
+          : within(-5, 5, -4, 3)                        ? v.Liver
+                                                        : 0;
         const unsigned char bytes[2] = { static_cast<unsigned char>(label & 0xff), static_cast<unsigned char>(label >> 8) };
         out.write(reinterpret_cast<const char*>(bytes), 2);
       }
   return path;
+}
+
+/// Where each ball's model must lie, in the labelmap's LPS frame.
+const std::map<std::string, std::array<double, 3>> BallCentres = { { "portal_vein", { -5, -5, 0 } },
+  { "hepatic_vein", { 5, 5, 0 } }, { "hepatic_artery", { 5, -5, 5 } }, { "liver", { -5, 5, -4 } } };
+
+/// A colour table as Slicer's vtkMRMLColorTableStorageNode writes one for a CLI.
+std::string WriteColorTable(const std::string& path, const std::vector<std::pair<int, std::string>>& names)
+{
+  std::ofstream out(path);
+  out << "# Color table file " << path << "\n# " << names.size() + 1 << " values\n0 Background 0 0 0 0\n";
+  for (const auto& [value, name] : names)
+  {
+    out << value << " " << name << " 128 174 128 255\n";
+  }
+  return path;
+}
+
+/// Checks a model Slicer would read back (VTK's STL reader): its header names LPS and it sits
+/// where its ball is.
+void ExpectModelAt(const std::string& stl, const std::array<double, 3>& centre)
+{
+  SCOPED_TRACE(stl);
+  ASSERT_TRUE(fs::exists(stl));
+  EXPECT_EQ(vp::ParseSpaceTag(Slurp(stl).substr(0, 80)), vp::MeshSpace::LPS);
+  vtkNew<vtkSTLReader> reader;
+  reader->SetFileName(stl.c_str());
+  reader->Update();
+  ASSERT_GT(reader->GetOutput()->GetNumberOfPolys(), 100);
+  double bounds[6];
+  reader->GetOutput()->GetBounds(bounds);
+  for (int a = 0; a < 3; ++a)
+  {
+    EXPECT_NEAR((bounds[2 * a] + bounds[2 * a + 1]) / 2, centre[a], 0.5) << "axis " << a;
+  }
+}
+
+/// The progress Slicer reads from stdout: a start, fractions that never go back, and the end.
+void ExpectFilterProgress(const std::string& out)
+{
+  EXPECT_NE(out.find("<filter-start><filter-name>"), std::string::npos) << out;
+  EXPECT_NE(out.find("<filter-comment>"), std::string::npos) << out;
+  EXPECT_NE(out.find("<filter-progress>1</filter-progress>\n<filter-end>"), std::string::npos) << out;
+  double last = -1.0;
+  int count = 0;
+  for (std::size_t at = out.find("<filter-progress>"); at != std::string::npos; at = out.find("<filter-progress>", at + 1))
+  {
+    const double fraction = std::stod(out.substr(at + 17));
+    EXPECT_GE(fraction, last);
+    EXPECT_LE(fraction, 1.0);
+    last = fraction;
+    ++count;
+  }
+  EXPECT_GE(count, 3);
 }
 
 class SlicerCli : public ::testing::Test
@@ -295,7 +373,9 @@ class SlicerCli : public ::testing::Test
 protected:
   void SetUp() override
   {
-    this->Dir = vp::test::MakeTempDir("slicercli");
+    // Slicer's temporary folder can be anywhere a user's name and language put it.
+    this->Dir = vp::test::MakeTempDir("slicercli") + "/Slicer's temp, Überprüfung";
+    fs::create_directories(this->Dir);
     for (const auto& vessel : vp::MakeBuiltInVessels())
     {
       vtkNew<vtkVesselMeshWriter> writer;
@@ -303,13 +383,18 @@ protected:
       writer->SetInputData(vessel.second);
       writer->Write();
     }
-    this->Labelmap = WriteLabelmap(this->Dir);
-    // Values 64, 7, 63 to three classes, in this order.
+    // 64 portal vein and 63 inferior vena cava by TotalSegmentator's values, 7 in no built-in
+    // class, 5 the liver.
+    this->Labelmap = WriteLabelmap(this->Dir, "labels.nrrd", { 64, 63, 7, 5 });
+    // Values 64, 7, 63, 5 to four classes, in this order.
     this->LabelTable = this->Dir + "/table.json";
     std::ofstream(this->LabelTable) << R"({"classes":[
       {"class":"portal_vein","values":[64]},
       {"class":"hepatic_artery","values":[7]},
-      {"class":"hepatic_vein","values":[63]}]})";
+      {"class":"hepatic_vein","values":[63]},
+      {"class":"liver","values":[5]}]})";
+    this->ColorTable = WriteColorTable(this->Dir + "/12345_vtkMRMLColorTableNodeB.ctbl",
+      { { 5, "Liver" }, { 7, "Hepatic_artery" }, { 63, "Hepatic_vein" }, { 64, "Portal_vein" } });
   }
 
   SemModule Xml(const std::string& program)
@@ -325,17 +410,103 @@ protected:
   /// What a Slicer user sets in each module's panel for a full run.
   std::map<std::string, std::string> ModelsValues(const std::string& out) const
   {
-    return { { "inputVolume", this->Labelmap }, { "outputDirectory", out }, { "labelTable", this->LabelTable } };
+    return { { "inputVolume", this->Labelmap }, { "outputDirectory", out }, { "labelTable", this->LabelTable },
+      { "colorTable", this->ColorTable }, { "portalVeinModel", this->Temporary("vtkMRMLModelNodeB.stl") },
+      { "hepaticArteryModel", this->Temporary("vtkMRMLModelNodeC.stl") },
+      { "hepaticVeinModel", this->Temporary("vtkMRMLModelNodeD.stl") }, { "liverModel", this->Temporary("vtkMRMLModelNodeE.stl") } };
   }
   std::map<std::string, std::string> DistanceValues() const
   {
     return { { "portalVein", this->Phantom("portal_vein") }, { "hepaticArtery", this->Phantom("hepatic_artery") },
       { "hepaticVein", this->Phantom("hepatic_vein") }, { "tip", "30,0,10" }, { "axis", "0,0,-1" },
-      { "report", this->Dir + "/report.json" } };
+      { "report", this->Dir + "/report.json" }, { "closestPoints", this->Temporary("vtkMRMLMarkupsFiducialNodeB.mrk.json") },
+      { "resultsTable", this->Temporary("vtkMRMLTableNodeB.csv") } };
   }
+  /// A name as Slicer gives a node's temporary file: <pid>_<node ID, digits as letters><ext>.
+  std::string Temporary(const std::string& node) const { return this->Dir + "/BCDE_" + node; }
 
-  std::string Dir, Labelmap, LabelTable;
+  std::string Dir, Labelmap, LabelTable, ColorTable;
 };
+
+/// ModuleDescriptionParser's own rules for the attributes of each tag (SlicerExecutionModel,
+/// ModuleDescriptionParser.cxx, startElement): an attribute it does not list for the tag is an
+/// error that fails the whole parse for the data tags (Slicer then does not offer the module),
+/// and its values are checked: multiple, hidden and aggregate are true or false; an image's,
+/// geometry's, transform's and table's type one of its few; a point's coordinate system ijk, lps
+/// or ras (Slicer itself runs only lps and ras).
+void ExpectParserAcceptsAttributes(const SemParameter& p)
+{
+  static const std::map<std::string, std::set<std::string>> allowed = {
+    { "point", { "multiple", "coordinateSystem" } },
+    { "pointfile", { "multiple", "type", "fileExtensions", "coordinateSystem" } },
+    { "geometry", { "multiple", "aggregate", "type", "fileExtensions", "reference" } },
+    { "table", { "multiple", "reference", "hidden", "type", "fileExtensions" } },
+    { "transform", { "multiple", "type", "fileExtensions", "reference" } },
+    { "image", { "multiple", "type", "fileExtensions", "hidden", "reference" } },
+    { "file", { "multiple", "fileExtensions" } },
+    { "directory", { "multiple" } },
+  };
+  static const std::map<std::string, std::set<std::string>> types = {
+    { "image", { "any", "scalar", "label", "tensor", "diffusion-weighted", "vector", "signal", "multichannel",
+                 "dynamic-contrast-enhanced" } },
+    { "geometry", { "fiberbundle", "model" } },
+    { "transform", { "linear", "nonlinear", "bspline" } },
+    { "table", { "color" } },
+    { "pointfile", { "point", "line", "angle", "curve", "any" } },
+  };
+  const auto tag = allowed.find(p.Tag);
+  for (const auto& [name, value] : p.Attributes)
+  {
+    SCOPED_TRACE(p.Tag + " " + name + "=" + value);
+    if (tag != allowed.end())
+    {
+      EXPECT_TRUE(tag->second.count(name)) << "the parser refuses this attribute on this tag";
+    }
+    else
+    {
+      EXPECT_TRUE(name == "hidden" || name == "multiple") << "ignored by the parser: a mistake";
+    }
+    if (name == "multiple" || name == "hidden" || name == "aggregate")
+    {
+      EXPECT_TRUE(value == "true" || value == "false");
+    }
+    if (name == "type" && types.count(p.Tag))
+    {
+      EXPECT_TRUE(types.at(p.Tag).count(value)) << "not a type the parser knows";
+    }
+    if (name == "coordinateSystem")
+    {
+      EXPECT_TRUE(value == "lps" || value == "ras");
+    }
+  }
+}
+
+/// GenerateCLP (what Slicer's own CLIs are built with) pastes the XML into C++: the whole file
+/// as one string with only '"' escaped, the contributor, acknowledgements and version raw inside
+/// quotes, string defaults with '"' escaped but line breaks raw. So: no backslash anywhere, no
+/// carriage return, no '"' or line break in those three, none in a default; numeric defaults are
+/// C++ numbers; the first line starts with "<?xml " (a byte-order mark fails the parser).
+void ExpectGenerateClpCompiles(const SemModule& m)
+{
+  EXPECT_EQ(m.Text.rfind("<?xml ", 0), 0u);
+  EXPECT_EQ(m.Text.find('\\'), std::string::npos) << "a backslash becomes an escape sequence";
+  EXPECT_EQ(m.Text.find('\r'), std::string::npos);
+  for (const char* field : { "contributor", "acknowledgements", "version" })
+  {
+    const std::string text = m.Info.at(field);
+    EXPECT_EQ(text.find_first_of("\"\n"), std::string::npos) << field << ": " << text;
+  }
+  for (const SemParameter& p : m.Parameters)
+  {
+    EXPECT_EQ(p.Default.find('\n'), std::string::npos) << p.Name;
+    if (p.Tag == "integer" || p.Tag == "float" || p.Tag == "double")
+    {
+      std::size_t used = 0;
+      EXPECT_NO_THROW(std::stod(p.Default, &used)) << p.Name;
+      EXPECT_EQ(used, p.Default.size()) << p.Name << " default " << p.Default << " is not a C++ number";
+    }
+  }
+}
 
 /// Element order, required elements, unique names, a way to pass every non-return parameter,
 /// enumeration defaults among their elements, defaults within constraints, indices 0..n-1.
@@ -355,6 +526,11 @@ void ExpectWellFormedSem(const SemModule& m, const std::string& program)
   EXPECT_FALSE(m.Info.at("title").empty());
   EXPECT_FALSE(m.Info.at("description").empty());
   EXPECT_FALSE(m.Info.at("version").empty());
+  EXPECT_EQ(m.Info.at("documentation-url").rfind("file:///", 0), 0u) << m.Info.at("documentation-url");
+  EXPECT_TRUE(fs::exists(m.Info.at("documentation-url").substr(7))) << "the link leads to the README";
+  EXPECT_EQ(m.Info.at("license"), "Apache-2.0");
+  EXPECT_NE(m.Info.at("acknowledgements").find("Noborio"), std::string::npos);
+  ExpectGenerateClpCompiles(m);
   ASSERT_FALSE(m.Parameters.empty());
 
   static const std::set<std::string> tags = { "integer", "float", "double", "boolean", "string", "integer-vector",
@@ -403,15 +579,17 @@ void ExpectWellFormedSem(const SemModule& m, const std::string& program)
       EXPECT_LE(p.Minimum, std::stod(p.Default));
       EXPECT_GE(p.Maximum, std::stod(p.Default));
     }
-    if (p.Tag == "image" || p.Tag == "geometry" || p.Tag == "file" || p.Tag == "directory")
+    static const std::set<std::string> data = { "image", "geometry", "file", "directory", "transform", "table", "pointfile" };
+    if (data.count(p.Tag))
     {
-      EXPECT_TRUE(p.Channel == "input" || p.Channel == "output") << "data needs a channel";
+      EXPECT_TRUE(p.Channel == "input" || p.Channel == "output") << "data needs a channel (Slicer shows no widget without one)";
     }
-    if (p.Tag == "point")
+    if (p.Tag == "point" || p.Tag == "pointfile")
     {
       EXPECT_EQ(p.CoordinateSystem, "lps") << "the engines work in LPS";
       EXPECT_EQ(p.Multiple, "false");
     }
+    ExpectParserAcceptsAttributes(p);
   }
   int expected = 0;
   for (int index : indices)
@@ -448,6 +626,25 @@ TEST_F(SlicerCli, XmlIsWellFormedSlicerExecutionModel)
     EXPECT_EQ(find(distance, vessel).TypeAttribute, "model");
   }
   EXPECT_EQ(find(distance, "tip").Tag, "point");
+  EXPECT_EQ(find(distance, "tipFile").Tag, "pointfile");
+  EXPECT_EQ(find(distance, "scalpelPose").Tag, "transform");
+  EXPECT_EQ(find(distance, "scalpelPose").TypeAttribute, "linear");
+  EXPECT_EQ(find(distance, "closestPoints").Tag, "pointfile");
+  EXPECT_EQ(find(distance, "closestPoints").Channel, "output");
+  EXPECT_EQ(find(distance, "resultsTable").Tag, "table");
+  EXPECT_EQ(find(distance, "resultsTable").Channel, "output");
+  EXPECT_EQ(find(models, "colorTable").Tag, "table");
+  EXPECT_EQ(find(models, "colorTable").TypeAttribute, "color");
+  for (const char* model : { "portalVeinModel", "hepaticArteryModel", "hepaticVeinModel", "liverModel" })
+  {
+    EXPECT_EQ(find(models, model).Tag, "geometry");
+    EXPECT_EQ(find(models, model).TypeAttribute, "model");
+    EXPECT_EQ(find(models, model).Channel, "output");
+  }
+  const SemModule track = this->Xml(TrackProgram);
+  ExpectWellFormedSem(track, TrackProgram);
+  EXPECT_EQ(find(track, "registration").Tag, "transform");
+  EXPECT_EQ(find(track, "framesTable").Tag, "table");
   EXPECT_EQ(find(distance, "method").Elements, (std::vector<std::string>{ "exact", "zbuffer", "both", "auto" }));
   EXPECT_EQ(find(distance, "rangeMm").Default, "50");
   for (const char* result : { "nearestClass", "nearestDistanceMm", "portalVeinDistanceMm", "hepaticArteryDistanceMm",
@@ -459,7 +656,7 @@ TEST_F(SlicerCli, XmlIsWellFormedSlicerExecutionModel)
 
 TEST_F(SlicerCli, HelpListsEveryDeclaredParameter)
 {
-  for (const std::string& program : { ModelsProgram, DistanceProgram })
+  for (const std::string& program : { ModelsProgram, DistanceProgram, TrackProgram })
   {
     const SemModule m = this->Xml(program);
     const ToolRun r = RunCli(this->Dir, program, { "--help" });
@@ -485,10 +682,23 @@ TEST_F(SlicerCli, AcceptsEveryParameterItDeclares)
     std::map<std::string, std::string> Values;
     std::vector<std::string> Required; // parameters of the minimal run
   };
+  auto trackValues = std::map<std::string, std::string>{ { "portalVein", this->Phantom("portal_vein") },
+    { "hepaticArtery", this->Phantom("hepatic_artery") }, { "hepaticVein", this->Phantom("hepatic_vein") },
+    { "poses", VP_SOURCE_DIR "/Testing/Data/approach_poses.csv" }, { "framesTable", this->Dir + "/accept_frames.csv" },
+    { "summary", this->Dir + "/accept_summary.json" }, { "plot", this->Dir + "/accept.png" },
+    { "outputDirectory", this->Dir + "/accept_track" }, { "scalpel", this->Dir + "/scalpel.stl" },
+    { "registration", this->Dir + "/identity.tfm" } };
+  vp::WriteDefaultScalpel(this->Dir);
+  fs::rename(this->Dir + "/CusaHandpiece.stl", this->Dir + "/scalpel.stl");
+  fs::remove(this->Dir + "/CusaHandpiece.json");
+  vp::WriteItkLinearTransform(this->Dir + "/identity.tfm", { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 });
   const std::vector<Program> programs = {
-    { ModelsProgram, this->ModelsValues(this->Dir + "/accept_models"), { "inputVolume", "outputDirectory" } },
+    { ModelsProgram, this->ModelsValues(this->Dir + "/accept_models"), { "inputVolume", "outputDirectory", "colorTable" } },
     { DistanceProgram, this->DistanceValues(), { "portalVein", "tip" } },
+    { TrackProgram, trackValues, { "portalVein", "poses" } },
   };
+  // Alternatives to the minimal run's --tip, each run in its own test (a second tip is refused).
+  const std::set<std::string> alternatives = { "tipFile", "scalpelPose", "scalpel" };
   for (const Program& program : programs)
   {
     const SemModule m = this->Xml(program.Path);
@@ -511,7 +721,8 @@ TEST_F(SlicerCli, AcceptsEveryParameterItDeclares)
     EXPECT_EQ(minimal.ExitCode, 0) << minimal.Err;
     for (const SemParameter& p : m.Parameters)
     {
-      if (p.IsReturn() || std::count(program.Required.begin(), program.Required.end(), p.Name))
+      if (p.IsReturn() || std::count(program.Required.begin(), program.Required.end(), p.Name) ||
+        (program.Path == DistanceProgram && alternatives.count(p.Name)))
       {
         continue;
       }
@@ -582,49 +793,96 @@ TEST_F(SlicerCli, ModelsRunsAsSlicerRunsIt)
 {
   const SemModule m = this->Xml(ModelsProgram);
   const std::string out = this->Dir + "/models", params = this->Dir + "/models.params";
-  const auto args = SlicerCommandLine(m, this->ModelsValues(out), params);
+  const auto values = this->ModelsValues(out);
+  const auto args = SlicerCommandLine(m, values, params);
   ASSERT_EQ(args.back(), this->Labelmap) << "the index argument comes last";
   const ToolRun r = RunCli(this->Dir, ModelsProgram, args);
   ASSERT_EQ(r.ExitCode, 0) << r.Err;
   EXPECT_EQ(r.Err, "") << "progress goes to stdout: Slicer logs stderr as errors";
+  ExpectFilterProgress(r.Out);
 
-  const auto values = ReadReturnFile(params);
-  EXPECT_EQ(values.at("numberOfModels"), "3");
-  EXPECT_EQ(values.at("modelClasses"), "portal_vein,hepatic_artery,hepatic_vein");
-  EXPECT_NE(r.Out.find("numberOfModels = 3"), std::string::npos) << "results printed too";
+  const auto returned = ReadReturnFile(params);
+  EXPECT_EQ(returned.at("numberOfModels"), "4");
+  EXPECT_EQ(returned.at("modelClasses"), "portal_vein,hepatic_artery,hepatic_vein,liver");
+  EXPECT_NE(r.Out.find("numberOfModels = 4"), std::string::npos) << "results printed too";
+  // Every declared output was produced: each model node's file, and the folder.
+  for (const auto& [parameter, cls] : std::map<std::string, std::string>{ { "portalVeinModel", "portal_vein" },
+         { "hepaticArteryModel", "hepatic_artery" }, { "hepaticVeinModel", "hepatic_vein" }, { "liverModel", "liver" } })
+  {
+    ExpectModelAt(values.at(parameter), BallCentres.at(cls));
+    ExpectModelAt(out + "/" + cls + ".stl", BallCentres.at(cls));
+  }
 
   const auto doc = nlohmann::json::parse(Slurp(out + "/models.json"));
   EXPECT_EQ(doc["space"], "LPS");
   EXPECT_EQ(doc["parameters"]["smoothing"], 0.5);
   EXPECT_EQ(doc["parameters"]["smoothing_iterations"], 20);
-  // Each model sits where its ball is in the labelmap's LPS frame.
-  const std::map<std::string, std::array<double, 3>> centres = { { "portal_vein", { -5, -5, 0 } },
-    { "hepatic_vein", { 5, 5, 0 } }, { "hepatic_artery", { 5, -5, 5 } } };
-  for (const auto& c : centres)
-  {
-    SCOPED_TRACE(c.first);
-    const std::string stl = out + "/" + c.first + ".stl";
-    EXPECT_EQ(vp::ParseSpaceTag(Slurp(stl).substr(0, 80)), vp::MeshSpace::LPS);
-    vtkNew<vtkVesselMeshReader> reader;
-    reader->SetFileName(stl);
-    reader->Read();
-    double bounds[6];
-    reader->GetOutput()->GetBounds(bounds);
-    for (int a = 0; a < 3; ++a)
-    {
-      EXPECT_NEAR((bounds[2 * a] + bounds[2 * a + 1]) / 2, c.second[a], 0.5) << "axis " << a;
-    }
-  }
 
-  // The built-in table knows 64 and 63 by value, not 7; RAS flips the files' frame.
+  // The built-in table knows 64, 63 and 5 by value, not 7; RAS flips the files' frame.
   auto defaults = this->ModelsValues(this->Dir + "/models_ras");
-  defaults.erase("labelTable");
+  for (const char* name : { "labelTable", "colorTable", "portalVeinModel", "hepaticArteryModel", "hepaticVeinModel", "liverModel" })
+  {
+    defaults.erase(name);
+  }
   defaults["space"] = "RAS";
   const ToolRun ras = RunCli(this->Dir, ModelsProgram, SlicerCommandLine(m, defaults, params));
   ASSERT_EQ(ras.ExitCode, 0) << ras.Err;
-  EXPECT_EQ(ReadReturnFile(params).at("numberOfModels"), "2");
-  EXPECT_EQ(ReadReturnFile(params).at("modelClasses"), "portal_vein,hepatic_vein");
+  EXPECT_EQ(ReadReturnFile(params).at("numberOfModels"), "3");
+  EXPECT_EQ(ReadReturnFile(params).at("modelClasses"), "portal_vein,hepatic_vein,liver");
   EXPECT_EQ(vp::ParseSpaceTag(Slurp(this->Dir + "/models_ras/portal_vein.stl").substr(0, 80)), vp::MeshSpace::RAS);
+}
+
+// What a Slicer user has: a labelmap volume whose values mean something only through its colour
+// table (Slicer's own: 1 liver, 2 portal vein, 3 hepatic vein, 4 hepatic artery), and model nodes
+// to fill. No label table, no folder.
+TEST_F(SlicerCli, ModelsNamesTheLabelsByTheColourTableAndFillsModelNodes)
+{
+  const SemModule m = this->Xml(ModelsProgram);
+  const std::string labelmap = WriteLabelmap(this->Dir, "BCDE_vtkMRMLLabelMapVolumeNodeB.nrrd", { 2, 3, 4, 1 });
+  const std::string colours = WriteColorTable(this->Dir + "/BCDE_vtkMRMLColorTableNodeC.ctbl",
+    { { 1, "liver" }, { 2, "portal_vein" }, { 3, "hepatic_vein" }, { 4, "hepatic_artery" }, { 9, "tumor" } });
+  const std::string params = this->Dir + "/colours.params";
+  std::map<std::string, std::string> values = { { "inputVolume", labelmap },
+    { "portalVeinModel", this->Temporary("vtkMRMLModelNodeF.stl") }, { "hepaticArteryModel", this->Temporary("vtkMRMLModelNodeG.stl") },
+    { "hepaticVeinModel", this->Temporary("vtkMRMLModelNodeH.stl") } };
+
+  // Without the colour table the values name nothing, and the refusal says what to give.
+  ToolRun r = RunCli(this->Dir, ModelsProgram, SlicerCommandLine(m, values, params));
+  EXPECT_EQ(r.ExitCode, 1) << r.Err;
+  EXPECT_EQ(Lines(r.Err), 1) << r.Err;
+  EXPECT_NE(r.Err.find("names none of its values (label 1, label 2, label 3, label 4)"), std::string::npos) << r.Err;
+  EXPECT_NE(r.Err.find("give the labelmap's colour table"), std::string::npos) << r.Err;
+  EXPECT_FALSE(fs::exists(values.at("portalVeinModel"))) << "nothing written";
+
+  values["colorTable"] = colours;
+  r = RunCli(this->Dir, ModelsProgram, SlicerCommandLine(m, values, params));
+  ASSERT_EQ(r.ExitCode, 0) << r.Err;
+  EXPECT_EQ(r.Err, "");
+  ExpectFilterProgress(r.Out);
+  EXPECT_EQ(ReadReturnFile(params).at("modelClasses"), "portal_vein,hepatic_vein,hepatic_artery,liver");
+  ExpectModelAt(values.at("portalVeinModel"), BallCentres.at("portal_vein"));
+  ExpectModelAt(values.at("hepaticArteryModel"), BallCentres.at("hepatic_artery"));
+  ExpectModelAt(values.at("hepaticVeinModel"), BallCentres.at("hepatic_vein"));
+
+  // A model node asked for a structure the labelmap lacks: refused, nothing written.
+  fs::remove(values.at("portalVeinModel"));
+  const std::string noLiver = WriteLabelmap(this->Dir, "BCDE_vtkMRMLLabelMapVolumeNodeD.nrrd", { 2, 3, 4, 0 });
+  values["inputVolume"] = noLiver;
+  values["liverModel"] = this->Temporary("vtkMRMLModelNodeI.stl");
+  r = RunCli(this->Dir, ModelsProgram, SlicerCommandLine(m, values, params));
+  EXPECT_EQ(r.ExitCode, 1) << r.Err;
+  EXPECT_EQ(Lines(r.Err), 1) << r.Err;
+  EXPECT_NE(r.Err.find("no liver structure in the labelmap (asked for by --liverModel)"), std::string::npos) << r.Err;
+  EXPECT_FALSE(fs::exists(values.at("portalVeinModel")));
+  EXPECT_FALSE(fs::exists(values.at("liverModel")));
+
+  // A labelmap of the portal vein alone (one value): the colour table's name for it counts.
+  const std::string alone = WriteLabelmap(this->Dir, "BCDE_vtkMRMLLabelMapVolumeNodeE.nrrd", { 2, 0, 0, 0 });
+  r = RunCli(this->Dir, ModelsProgram, SlicerCommandLine(m,
+    { { "inputVolume", alone }, { "colorTable", colours }, { "portalVeinModel", values.at("portalVeinModel") } }, params));
+  ASSERT_EQ(r.ExitCode, 0) << r.Err;
+  EXPECT_EQ(ReadReturnFile(params).at("modelClasses"), "portal_vein");
+  ExpectModelAt(values.at("portalVeinModel"), BallCentres.at("portal_vein"));
 }
 
 // The phantom's known answers: the tip (30,0,10) is 4 mm above the portal vein torus (ring 30,
@@ -715,6 +973,147 @@ TEST_F(SlicerCli, DistanceTakesAModelWhoseFileNameHasAComma)
   EXPECT_NEAR(Number(v, "portalVeinDistanceMm"), 4.0, 1e-6);
 }
 
+/// A table Slicer would read back (VTK's delimited-text reader, the first row the header).
+vtkSmartPointer<vtkTable> ReadCsvTable(const std::string& file)
+{
+  vtkNew<vtkDelimitedTextReader> reader;
+  reader->SetFileName(file.c_str());
+  reader->SetFieldDelimiterCharacters(",");
+  reader->SetHaveHeaders(true);
+  reader->Update();
+  return reader->GetOutput();
+}
+
+/// The row of a table whose first column holds key.
+vtkIdType RowOf(vtkTable* table, const std::string& key)
+{
+  for (vtkIdType row = 0; row < table->GetNumberOfRows(); ++row)
+  {
+    if (table->GetValue(row, 0).ToString() == key)
+    {
+      return row;
+    }
+  }
+  return -1;
+}
+
+// The IGT way: the tool's transform node (tool to patient, as Slicer writes it: ITK's LPS "from
+// parent") carries the built-in scalpel's tip to (30,0,10); the closest points come back as a point
+// list node and the answers as a table node, each read as Slicer reads them. A tip point list
+// (.fcsv in LPS, markups JSON in RAS) gives the same answers.
+TEST_F(SlicerCli, DistanceTakesTheToolTransformAndReturnsPointsAndATable)
+{
+  const SemModule m = this->Xml(DistanceProgram);
+  const std::string params = this->Dir + "/igt.params";
+  const double* tipModel = vp::MakeDefaultScalpel()->GetTipMm();
+  // Tool to patient: a quarter turn about S, then the translation that puts the tip at (30,0,10).
+  const std::array<double, 3> rotated = { -tipModel[1], tipModel[0], tipModel[2] };
+  const vp::Matrix4 toolToPatient = { 0, -1, 0, 30 - rotated[0], 1, 0, 0, 0 - rotated[1], 0, 0, 1, 10 - rotated[2], 0, 0, 0, 1 };
+  const std::string pose = this->Temporary("vtkMRMLLinearTransformNodeB.h5");
+  vp::WriteItkLinearTransform(pose, vp::InvertTransform(toolToPatient));
+
+  auto values = this->DistanceValues();
+  values.erase("tip");
+  values.erase("axis");
+  values["scalpelPose"] = pose;
+  ToolRun r = RunCli(this->Dir, DistanceProgram, SlicerCommandLine(m, values, params));
+  ASSERT_EQ(r.ExitCode, 0) << r.Err;
+  EXPECT_EQ(r.Err, "");
+  auto v = ReadReturnFile(params);
+  EXPECT_NEAR(Number(v, "portalVeinDistanceMm"), 4.0, 1e-6);
+  EXPECT_NEAR(Number(v, "hepaticArteryDistanceMm"), 12.5, 0.05);
+
+  // The point list: the tip, then per class its closest point, labelled, in LPS.
+  const auto points = vp::ReadMarkupsPoints(values.at("closestPoints"));
+  ASSERT_EQ(points.size(), 4u);
+  EXPECT_EQ(points[0].Label, "tip");
+  for (int a = 0; a < 3; ++a)
+  {
+    EXPECT_NEAR(points[0].PositionLps[a], (std::array<double, 3>{ 30, 0, 10 })[a], 1e-9);
+    EXPECT_NEAR(points[1].PositionLps[a], (std::array<double, 3>{ 30, 0, 6 })[a], 1e-6);
+  }
+  EXPECT_EQ(points[1].Label, "portal_vein 4 mm");
+  const auto markups = nlohmann::json::parse(Slurp(values.at("closestPoints")));
+  EXPECT_EQ(markups["markups"][0]["type"], "Fiducial") << "Slicer makes the node class from it";
+  EXPECT_EQ(markups["markups"][0]["coordinateSystem"], "LPS");
+
+  // The table, typed by its schema.
+  const auto table = ReadCsvTable(values.at("resultsTable"));
+  ASSERT_EQ(table->GetNumberOfRows(), 3);
+  ASSERT_EQ(table->GetNumberOfColumns(), 10);
+  const vtkIdType portal = RowOf(table, "portal_vein");
+  ASSERT_GE(portal, 0);
+  EXPECT_EQ(table->GetValueByName(portal, "distance_mm").ToDouble(), Number(v, "portalVeinDistanceMm"));
+  EXPECT_EQ(table->GetValueByName(portal, "inside").ToString(), "false");
+  EXPECT_NEAR(table->GetValueByName(portal, "closest_z_lps").ToDouble(), 6.0, 1e-6);
+  EXPECT_EQ(table->GetValueByName(portal, "engine").ToString(), "exact");
+  const std::string schema = Slurp(this->Temporary("vtkMRMLTableNodeB.schema.tsv"));
+  EXPECT_NE(schema.find("columnName\ttype"), std::string::npos) << schema;
+  EXPECT_NE(schema.find("distance_mm\tdouble\tmm"), std::string::npos) << schema;
+
+  // A tip point list, as Slicer writes one: .fcsv in LPS, and markups JSON in RAS.
+  const std::string fcsv = this->Temporary("vtkMRMLMarkupsFiducialNodeC.fcsv");
+  std::ofstream(fcsv) << "# Markups fiducial file version = 5.8\n# CoordinateSystem = LPS\n"
+                         "# columns = id,x,y,z,ow,ox,oy,oz,vis,sel,lock,label,desc,associatedNodeID\n"
+                         "1,30,0,10,0,0,0,1,1,1,0,F-1,,\n";
+  const std::string json = this->Temporary("vtkMRMLMarkupsFiducialNodeD.mrk.json");
+  std::ofstream(json) << R"({"markups":[{"type":"Fiducial","coordinateSystem":"RAS","controlPoints":[
+    {"label":"F-1","position":[-30.0,0.0,10.0],"positionStatus":"defined"}]}]})";
+  for (const std::string& file : { fcsv, json })
+  {
+    SCOPED_TRACE(file);
+    r = RunCli(this->Dir, DistanceProgram,
+      { "--returnparameterfile", params, "--portalVein", this->Phantom("portal_vein"), "--tipFile", file });
+    ASSERT_EQ(r.ExitCode, 0) << r.Err;
+    v = ReadReturnFile(params);
+    EXPECT_NEAR(Number(v, "portalVeinDistanceMm"), 4.0, 1e-6);
+  }
+}
+
+// A recorded session reviewed in Slicer: three poses of the built-in scalpel lowering its tip
+// from (30,0,20) to (30,0,10): the portal vein torus (top at z 6) 14, 9, 4 mm below, the artery
+// cylinder (axis y=0, z=25, radius 2.5) 2.5, 7.5, 12.5 mm above.
+TEST_F(SlicerCli, TrackRunsAsSlicerRunsIt)
+{
+  const SemModule m = this->Xml(TrackProgram);
+  ExpectWellFormedSem(m, TrackProgram);
+  const double* tip = vp::MakeDefaultScalpel()->GetTipMm();
+  const std::string poses = this->Dir + "/poses.csv";
+  {
+    std::ofstream out(poses);
+    out << "time,x,y,z,qw,qx,qy,qz\n";
+    for (int i = 0; i < 3; ++i)
+    {
+      out << 0.1 * i << "," << 30 - tip[0] << "," << -tip[1] << "," << 20 - 5 * i - tip[2] << ",1,0,0,0\n";
+    }
+  }
+  const std::string params = this->Dir + "/track.params";
+  const std::map<std::string, std::string> values = { { "portalVein", this->Phantom("portal_vein") },
+    { "hepaticArtery", this->Phantom("hepatic_artery") }, { "hepaticVein", this->Phantom("hepatic_vein") },
+    { "poses", poses }, { "framesTable", this->Temporary("vtkMRMLTableNodeC.csv") },
+    { "summary", this->Dir + "/summary.json" }, { "plot", this->Dir + "/distance.png" } };
+  const ToolRun r = RunCli(this->Dir, TrackProgram, SlicerCommandLine(m, values, params));
+  ASSERT_EQ(r.ExitCode, 0) << r.Err;
+  EXPECT_EQ(r.Err, "");
+  ExpectFilterProgress(r.Out);
+  const auto v = ReadReturnFile(params);
+  EXPECT_EQ(v.at("frames"), "3");
+  EXPECT_NEAR(Number(v, "portalVeinMinimumMm"), 4.0, 1e-6);
+  EXPECT_NEAR(Number(v, "hepaticArteryMinimumMm"), 2.5, 0.05);
+  EXPECT_NE(v.at("worstLevel"), "safe");
+
+  const auto frames = ReadCsvTable(values.at("framesTable"));
+  EXPECT_EQ(frames->GetNumberOfRows(), 3);
+  const auto summary = nlohmann::json::parse(Slurp(values.at("summary")));
+  EXPECT_EQ(summary["frames"], 3);
+  EXPECT_EQ(Slurp(values.at("plot")).substr(1, 3), "PNG");
+  for (const auto& entry : fs::directory_iterator(this->Dir))
+  {
+    EXPECT_EQ(entry.path().filename().string().rfind(".vesselproximity-track-", 0), std::string::npos)
+      << "the working folder is gone: " << entry.path();
+  }
+}
+
 // Bad input: exit 1 (a value or file) or 2 (usage), one line naming the parameter or file, and
 // nothing written: no output folder, report or return-parameter file.
 TEST_F(SlicerCli, BadInputIsOneLineAndWritesNothing)
@@ -723,6 +1122,10 @@ TEST_F(SlicerCli, BadInputIsOneLineAndWritesNothing)
   const std::string out = this->Dir + "/bad_models";
   const std::string badTable = this->Dir + "/bad_table.json";
   std::ofstream(badTable) << "{ not json";
+  const std::string badFcsv = this->Dir + "/old.fcsv", badJson = this->Dir + "/bad.mrk.json", badColours = this->Dir + "/bad.ctbl";
+  std::ofstream(badFcsv) << "F-1,30,0,10,1,1\n"; // Slicer 3's layout
+  std::ofstream(badJson) << R"({"markups":[{"type":"Fiducial","controlPoints":[{"position":[1,2]}]}]})";
+  std::ofstream(badColours) << "# Color table file x\n# 3 values\n1 liver 300 0 0 255\n";
   struct Case
   {
     std::string Program;
@@ -742,7 +1145,13 @@ TEST_F(SlicerCli, BadInputIsOneLineAndWritesNothing)
     { DistanceProgram, { "--portalVein", pv, "--tip", "1,2,3", "--axis", "0,0,0" }, 1, "--axis", "zero" },
     { DistanceProgram, { "--portalVein", pv, "--tip", "1,2,3", "--axis", "0,1" }, 1, "--axis", "three" },
     { DistanceProgram, { "--tip", "1,2,3" }, 2, "--portalVein", "at least one" },
-    { DistanceProgram, { "--portalVein", pv }, 2, "--tip", "required" },
+    { DistanceProgram, { "--portalVein", pv }, 2, "--tip", "give the tip" },
+    { DistanceProgram, { "--portalVein", pv, "--tip", "1,2,3", "--tipFile", this->Dir + "/tip.fcsv" }, 2, "--tipFile",
+      "only one" },
+    { DistanceProgram, { "--portalVein", pv, "--tipFile", badFcsv }, 1, "old.fcsv", "version" },
+    { DistanceProgram, { "--portalVein", pv, "--tipFile", badJson }, 1, "bad.mrk.json", "position" },
+    { DistanceProgram, { "--portalVein", pv, "--scalpelPose", this->LabelTable }, 1, "table.json", "" },
+    { DistanceProgram, { "--portalVein", pv, "--tip", "1,2,3", "--scalpel", pv }, 2, "--scalpel", "--scalpelPose" },
     { DistanceProgram, { "--portalVein", pv, "--tip" }, 2, "--tip", "needs a value" },
     { DistanceProgram, { "--portalVein", pv, "--portalVein", pv, "--tip", "1,2,3" }, 2, "--portalVein", "twice" },
     { ModelsProgram, { this->Dir + "/missing.nrrd", "--outputDirectory", out }, 1, "missing.nrrd", "" },
@@ -751,7 +1160,10 @@ TEST_F(SlicerCli, BadInputIsOneLineAndWritesNothing)
     { ModelsProgram, { this->Labelmap, "--outputDirectory", out, "--smoothingIterations", "2.5" }, 1,
       "--smoothingIterations", "whole number" },
     { ModelsProgram, { this->Labelmap, "--outputDirectory", out, "--space", "ijk" }, 1, "--space", "LPS, RAS" },
-    { ModelsProgram, { this->Labelmap }, 2, "--outputDirectory", "required" },
+    { ModelsProgram, { this->Labelmap }, 2, "--outputDirectory", "give a model to create or an output folder" },
+    { ModelsProgram, { this->Labelmap, "--outputDirectory", out, "--colorTable", badColours }, 1, "bad.ctbl", "line 3" },
+    { TrackProgram, { "--portalVein", pv, "--poses", this->LabelTable, "--summary", report }, 1, "table.json", "" },
+    { TrackProgram, { "--portalVein", pv }, 2, "--poses", "required" },
     { ModelsProgram, { "--outputDirectory", out }, 2, "inputVolume", "required" },
   };
   for (const Case& c : cases)

@@ -1,0 +1,281 @@
+// VesselProximityTrack: `vesselproximity track` as a 3D Slicer CLI module, so that a recorded
+// session is reviewed in Slicer. Slicer hands over the vessel models and the scalpel (temporary
+// files), the recorded poses (a pose file, or a PLUS/Slicer sequence export) and optionally the
+// tracker-to-patient registration (a linear transform node); the program writes the frames table
+// (shown as a table node), the summary and the plot, and returns the run's closest approaches.
+#include "vpCliDescription.h"
+#include "vpCliProgress.h"
+#include "vpCliVessels.h"
+#include "vpClock.h"
+#include "vpDangerLevels.h"
+#include "vpInputError.h"
+#include "vpPoseFile.h"
+#include "vpRegistrationFile.h"
+#include "vpRunFolder.h"
+#include "vpTrackingRecorder.h"
+#include "vtkVesselProximityLogic.h"
+
+#include <vtkObject.h>
+#include <vtkSmartPointer.h>
+
+#include <filesystem>
+#include <unistd.h>
+
+#ifndef VP_VERSION
+#define VP_VERSION "0.1.0"
+#endif
+
+namespace
+{
+namespace fs = std::filesystem;
+using vp::cli::Channel;
+using vp::cli::Parameter;
+using vp::cli::ParameterType;
+
+vp::cli::ParameterGroup RecordingGroup()
+{
+  vp::cli::ParameterGroup recording{ "Recording", "The tracked poses, the scalpel and the registration", {} };
+  recording.Parameters.push_back(Parameter(ParameterType::File, "poses")
+                                   .SetLongFlag("poses")
+                                   .SetChannel(Channel::Input)
+                                   .SetFileExtensions(".csv,.json,.mha,.nrrd")
+                                   .SetRequired()
+                                   .SetLabel("Tracked poses")
+                                   .SetDescription("The recorded scalpel poses, tool to tracker (or to the patient when "
+                                                   "no registration is given): a pose file (CSV or JSON, as `vesselproximity "
+                                                   "track` reads it) or a tracked sequence (PLUS or Slicer .igs.mha, "
+                                                   ".igs.nrrd). Required."));
+  recording.Parameters.push_back(Parameter(ParameterType::String, "toolName")
+                                   .SetLongFlag("toolName")
+                                   .SetLabel("Tool name")
+                                   .SetDescription("In a tracked sequence, the tool whose transform is the scalpel "
+                                                   "(Stylus for StylusToTracker); empty: the only one."));
+  recording.Parameters.push_back(Parameter(ParameterType::Transform, "registration")
+                                   .SetTypeAttribute("linear")
+                                   .SetLongFlag("registration")
+                                   .SetChannel(Channel::Input)
+                                   .SetLabel("Tracker to patient")
+                                   .SetDescription("The registration of the tracker to the patient (a linear transform "
+                                                   "node, rigid). The poses are then read as RAS, Slicer's frame. Optional: "
+                                                   "without it the poses are the patient's, LPS."));
+  recording.Parameters.push_back(vp::cli::ScalpelModelParameter("The instrument's surface in its own coordinates, tip "
+                                                                   "found from its shape. Optional: the built-in CUSA "
+                                                                   "handpiece."));
+  return recording;
+}
+
+vp::cli::ParameterGroup SettingsGroup()
+{
+  const vp::DangerThresholds defaults;
+  vp::cli::ParameterGroup settings{ "Settings", "Engine and danger levels", {} };
+  settings.Parameters.push_back(Parameter(ParameterType::StringEnumeration, "method")
+                                  .SetLongFlag("method")
+                                  .SetLogicName("Method")
+                                  .SetLabel("Method")
+                                  .SetDescription("exact: BVH, exact. zbuffer: Vulkan depth layers, within the error "
+                                                  "bound. both: z-buffer checked against exact every frame.")
+                                  .SetDefault("exact")
+                                  .SetElements({ "exact", "zbuffer", "both" }));
+  auto threshold = [&](const char* name, const char* label, double value, const char* text) {
+    settings.Parameters.push_back(Parameter(ParameterType::Float, name)
+                                    .SetLongFlag(name)
+                                    .SetLabel(label)
+                                    .SetDescription(text)
+                                    .SetDefault(vp::cli::FormatNumber(value))
+                                    .SetRange(0.1, 100.0, 0.5));
+  };
+  threshold("cautionMm", "Caution (mm)", defaults.CautionMm, "Caution below this distance.");
+  threshold("warningMm", "Warning (mm)", defaults.WarningMm, "Warning below this distance.");
+  threshold("dangerMm", "Danger (mm)", defaults.DangerMm, "Danger below this distance (breach: inside a vessel).");
+  return settings;
+}
+
+vp::cli::ParameterGroup OutputsGroup()
+{
+  vp::cli::ParameterGroup outputs{ "Outputs", "The review of the recording", {} };
+  outputs.Parameters.push_back(Parameter(ParameterType::Table, "framesTable")
+                                 .SetFileExtensions(".csv")
+                                 .SetLongFlag("framesTable")
+                                 .SetChannel(Channel::Output)
+                                 .SetLabel("Frames table")
+                                 .SetDescription("One row per pose: time, tip (LPS mm), per class the distance, "
+                                                 "closest point and danger level (frames.csv of `vesselproximity track`)."));
+  outputs.Parameters.push_back(Parameter(ParameterType::File, "summary")
+                                 .SetFileExtensions(".json")
+                                 .SetLongFlag("summary")
+                                 .SetChannel(Channel::Output)
+                                 .SetLabel("Summary")
+                                 .SetDescription("summary.json: per class the closest approach and when, time at each "
+                                                 "level, level changes, frame times. Optional."));
+  outputs.Parameters.push_back(Parameter(ParameterType::File, "plot")
+                                 .SetFileExtensions(".png")
+                                 .SetLongFlag("plot")
+                                 .SetChannel(Channel::Output)
+                                 .SetLabel("Distance plot")
+                                 .SetDescription("distance.png: distance over time per class with the danger bands. "
+                                                 "Optional."));
+  outputs.Parameters.push_back(Parameter(ParameterType::Directory, "outputDirectory")
+                                 .SetLongFlag("outputDirectory")
+                                 .SetChannel(Channel::Output)
+                                 .SetLabel("Output folder")
+                                 .SetDescription("Also keep the whole run (frames.csv, summary.json, distance.png) in "
+                                                 "this folder, as `vesselproximity track -o` does. Optional."));
+  return outputs;
+}
+
+vp::cli::ParameterGroup ResultsGroup()
+{
+  vp::cli::ParameterGroup out{ "Results", "The run's closest approaches (-1: never within range)", {} };
+  out.Parameters.push_back(Parameter(ParameterType::Integer, "frames")
+                             .SetChannel(Channel::Output)
+                             .SetLabel("Frames")
+                             .SetDescription("Poses replayed.")
+                             .SetDefault("0"));
+  out.Parameters.push_back(Parameter(ParameterType::String, "worstLevel")
+                             .SetChannel(Channel::Output)
+                             .SetLabel("Worst level")
+                             .SetDescription("The worst danger level reached: safe, caution, warning, danger or breach."));
+  for (const vp::cli::VesselClassParameter& v : vp::cli::VesselClassParameters())
+  {
+    out.Parameters.push_back(Parameter(ParameterType::Float, std::string(v.Parameter) + "MinimumMm")
+                               .SetChannel(Channel::Output)
+                               .SetLabel(std::string(v.Label) + " closest (mm)")
+                               .SetDescription(std::string("The tip's smallest distance to the ") + v.ClassName +
+                                 " over the run (penetration depth when inside); -1 when never within range.")
+                               .SetDefault("-1"));
+  }
+  return out;
+}
+
+vp::cli::ModuleDescription Describe()
+{
+  auto d = vp::cli::ModuleDescription::VesselProximity("VesselProximityTrack", "Vessel Proximity Track", VP_VERSION,
+    { vp::cli::VesselModelsGroup(), RecordingGroup(), SettingsGroup(), OutputsGroup(), ResultsGroup() });
+  d.Description =
+    "Reviews a recorded tracking session: replays the scalpel's poses against the vessel models and writes, per "
+    "frame, the tip's and the whole instrument's distance to each vessel class with its danger level (a table Slicer "
+    "shows), the run's summary and a distance plot. Same as `vesselproximity track`.";
+  return d;
+}
+
+/// A private folder for the run beside where Slicer wants the table: on the same file system, so
+/// each output is put in place by a rename.
+std::string StagingFolder(const std::string& near)
+{
+  std::string pattern = (fs::absolute(near).parent_path() / ".vesselproximity-track-XXXXXX").string();
+  if (!mkdtemp(pattern.data()))
+  {
+    throw vp::InputError(near, "cannot make a working folder beside it");
+  }
+  return pattern;
+}
+
+/// Copies a file of the run to where Slicer reads it back, whole or not at all.
+void PlaceOutput(const std::string& from, const std::string& to)
+{
+  std::error_code ec;
+  const std::string partial = to + ".partial";
+  fs::copy_file(from, partial, fs::copy_options::overwrite_existing, ec);
+  if (!ec)
+  {
+    fs::rename(partial, to, ec);
+  }
+  if (ec)
+  {
+    fs::remove(partial);
+    throw vp::InputError(to, "cannot be written: " + ec.message());
+  }
+}
+
+void Run(const vp::cli::ParsedArguments& args, vp::cli::ReturnValues& results)
+{
+  const double start = vp::NowMs();
+  vp::cli::FilterProgress progress("VesselProximityTrack");
+  vp::SceneRequest request;
+  for (const auto& [className, file] : vp::cli::GivenVesselModels(args))
+  {
+    request.Vessels.push_back({ className, file, nullptr, std::nullopt });
+  }
+  request.ScalpelFile = args.IsSet("scalpel") ? args.GetString("scalpel") : std::string();
+  request.Engine.Method = args.GetString("method");
+  request.CompareWithExact = request.Engine.Method == "both";
+  request.Tracking.Thresholds = { args.GetNumber("cautionMm"), args.GetNumber("warningMm"), args.GetNumber("dangerMm") };
+  request.Tracking.Thresholds.Validate("--cautionMm/--warningMm/--dangerMm");
+
+  vp::PoseReading reading;
+  reading.ToolName = args.GetString("toolName");
+  if (args.IsSet("registration"))
+  {
+    reading.Registration = vp::ReadTrackerRegistration(args.GetString("registration"));
+  }
+  const std::string posesFile = args.GetString("poses");
+  const std::size_t poseCount = vp::PoseStream::CountPoses(posesFile, reading);
+
+  const bool keep = args.IsSet("outputDirectory");
+  const std::string where = keep ? args.GetString("outputDirectory")
+                                 : StagingFolder(args.IsSet("framesTable") ? args.GetString("framesTable") : posesFile);
+  struct Cleanup
+  {
+    std::string Folder;
+    ~Cleanup()
+    {
+      std::error_code ec;
+      fs::remove_all(this->Folder, ec);
+    }
+  } cleanup{ keep ? std::string() : where };
+  vp::RunFolder run(where, "summary.json");
+  std::vector<std::string> inputs = { posesFile, request.ScalpelFile };
+  for (const vp::NamedMesh& vessel : request.Vessels)
+  {
+    inputs.push_back(vessel.FileName);
+  }
+  run.SetInputs(inputs);
+
+  vtkNew<vtkVesselProximityLogic> proximity;
+  const vp::OpenedScene scene = proximity->OpenScene(request);
+  progress.Stage("Replaying the poses", 0.1); // the poses, models and scalpel read and checked
+  vp::TrackingRecorder session(proximity, scene.Vessels);
+  session.SetLoadAndBuildMs(vp::NowMs() - start);
+  session.SetProgress([&](std::size_t done, std::size_t expected) {
+    progress.Stage("Replaying the poses", 0.1 + 0.85 * static_cast<double>(done) / static_cast<double>(expected));
+  });
+  vp::PoseStream poses(posesFile, poseCount, reading);
+  if (!session.Run(poses, run))
+  {
+    throw vp::InputError(posesFile, "the replay was interrupted");
+  }
+  progress.Stage("Writing the outputs", 0.97);
+  run.Commit();
+  for (const auto& [parameter, file] : { std::pair<const char*, const char*>{ "framesTable", "frames.csv" },
+         { "summary", "summary.json" }, { "plot", "distance.png" } })
+  {
+    if (args.IsSet(parameter))
+    {
+      PlaceOutput((fs::path(where) / file).string(), args.GetString(parameter));
+    }
+  }
+
+  const vp::TrackingSummary& summary = session.GetSummary();
+  results.Set("frames", summary.GetNumberOfFrames());
+  results.Set("worstLevel", std::string(vp::DangerLevelName(summary.GetWorstLevel())));
+  for (const vp::cli::VesselClassParameter& v : vp::cli::VesselClassParameters())
+  {
+    for (std::size_t c = 0; c < summary.GetClassNames().size(); ++c)
+    {
+      const vp::ClassMinimum& m = summary.GetTipMinimum()[c];
+      if (summary.GetClassNames()[c] == v.ClassName && m.Seen)
+      {
+        results.Set(std::string(v.Parameter) + "MinimumMm", m.DistanceMm);
+      }
+    }
+  }
+  progress.Finish();
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  // Errors are reported as one line each; VTK's console chatter would break that.
+  vtkObject::GlobalWarningDisplayOff();
+  return vp::cli::RunProgram(Describe(), argc, argv, Run);
+}

@@ -1,10 +1,13 @@
 #include "vpEngineBenchmark.h"
 
+#include "vpPenetrationBenchmark.h"
+
 #include "vpLiveBenchmark.h"
 
 #include "vpDistanceEngineFactory.h"
 #include "vpExactBenchmark.h"
 #include "vpMeshRefinement.h"
+#include "vpPenetrationBenchmark.h"
 #include "vpReplayBenchmark.h"
 #include "vpZBufferBenchmark.h"
 
@@ -86,6 +89,10 @@ BenchJson RunBenchmark(const BenchmarkRequest& request)
       ? PosesNearVessels(request.Vessels, static_cast<std::size_t>(request.Queries), request.Seed, request.Scalpel)
       : request.Poses;
     report["live"] = BenchLive(request.Vessels, request.Scalpel, poses, request.Live);
+  }
+  if (request.Parts.count("penetration"))
+  {
+    report["penetration"] = BenchPenetration(request.PenetrationPoses, &request.ZBufferSettings);
   }
   return report;
 }

@@ -19,7 +19,7 @@ namespace vp
 /// What `vesselproximity bench` measures, typed.
 struct BenchmarkRequest
 {
-  /// exact, zbuffer, replay and/or live.
+  /// exact, zbuffer, replay, live and/or penetration.
   std::set<std::string> Parts;
   /// Triangles per class each vessel is grown to (longest-edge bisection: same surface).
   std::vector<std::size_t> SizesTriangles;
@@ -38,6 +38,8 @@ struct BenchmarkRequest
   std::vector<TrackedPose> Poses;
   /// The live part's rates and durations (it uses the replay's instrument and poses).
   LiveBenchSettings Live;
+  /// The penetration sweep's poses (0.2 to 10 mm deep).
+  int PenetrationPoses = 100;
 };
 
 /// The z-buffer engine the settings describe, its device opened: a missing one fails before any
@@ -45,8 +47,9 @@ struct BenchmarkRequest
 vtkSmartPointer<vtkZBufferVesselDistance> MakeBenchZBuffer(const DistanceEngineSettings& settings);
 
 /// The engines side by side in one run: report["sizes"] (BenchExact per size), report["zbuffer"]
-/// (BenchZBuffer per size and ZBufferReport) and report["replay"] (BenchReplay), each when its
-/// part is asked for. Progress on stderr.
+/// (BenchZBuffer per size and ZBufferReport), report["replay"] (BenchReplay), report["live"] and
+/// report["penetration"] (BenchPenetration, with the z-buffer settings), each when its part is
+/// asked for. Progress on stderr.
 BenchJson RunBenchmark(const BenchmarkRequest& request);
 } // namespace vp
 

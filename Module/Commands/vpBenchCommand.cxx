@@ -55,22 +55,22 @@ std::vector<std::size_t> ParseSizes(const std::string& text)
   return sizes;
 }
 
-/// --engines: a list of exact, zbuffer, replay and live.
+/// --engines: a list of exact, zbuffer, replay, live and penetration.
 std::set<std::string> ParseBenchEngines(const cli::ParsedArguments& args)
 {
   std::set<std::string> engineNames;
   std::istringstream engineList(args.GetString("engines"));
   for (std::string name; std::getline(engineList, name, ',');)
   {
-    if (name != "exact" && name != "zbuffer" && name != "replay" && name != "live")
+    if (name != "exact" && name != "zbuffer" && name != "replay" && name != "live" && name != "penetration")
     {
-      throw InputError("--engines", "expected a list of exact, zbuffer, replay and live, got '" + name + "'");
+      throw InputError("--engines", "expected a list of exact, zbuffer, replay, live and penetration, got '" + name + "'");
     }
     engineNames.insert(name);
   }
   if (engineNames.empty())
   {
-    throw InputError("--engines", "expected a list of exact, zbuffer, replay and live");
+    throw InputError("--engines", "expected a list of exact, zbuffer, replay, live and penetration");
   }
   return engineNames;
 }
@@ -103,6 +103,41 @@ void PrintLiveTable(const Json& live)
       p["poses_dropped"].get<std::size_t>(), p["rejected"].get<std::size_t>(), triple(p["latency_ms"]).c_str(),
       triple(p["frame_ms"]).c_str(), memory);
   }
+}
+
+/// The penetration sweep: per engine and depth band the frame's median and p95 and the volume's
+/// largest error, then the totals against the closed forms and the bounds.
+void PrintPenetrationTable(const Json& sweep)
+{
+  std::printf("\npenetration sweep (%d poses), full frame through the logic:\n", sweep["poses"].get<int>());
+  std::printf("  %-9s %-10s %22s %16s %10s\n", "engine", "depth mm", "frame ms median/p95", "volume error", "relative");
+  for (const char* engine : { "exact", "zbuffer" })
+  {
+    if (!sweep.contains(engine))
+    {
+      continue;
+    }
+    const Json& e = sweep[engine];
+    if (e.contains("unavailable"))
+    {
+      std::printf("  %-9s %s\n", engine, e["unavailable"].get<std::string>().c_str());
+      continue;
+    }
+    for (const Json& b : e["bands"])
+    {
+      std::printf("  %-9s %4.1f-%-5.1f %10.3f / %-9.3f %12.2f mm3 %9.1f%%\n", engine, b["depth_from_mm"].get<double>(),
+        b["depth_to_mm"].get<double>(), b["median_ms"].get<double>(), b["p95_ms"].get<double>(),
+        b["max_volume_error_mm3"].get<double>(), 100.0 * b["max_volume_error_relative"].get<double>());
+    }
+    std::printf("  %-9s all        %10.3f / %-9.3f  depth error <= %.3f mm, volume <= %.1f%% from 1 mm; %d outside their "
+                "bound, %d below the truth beyond it, %d unknown\n",
+      engine, e["frame_ms"]["median_ms"].get<double>(), e["frame_ms"]["p95_ms"].get<double>(), e["max_depth_error_mm"].get<double>(),
+      100.0 * e["max_volume_error_relative_from_1mm"].get<double>(), e["answers_outside_their_bound"].get<int>(),
+      e["answers_below_truth_beyond_bound"].get<int>(), e["answers_unknown"].get<int>());
+  }
+  const Json& f = sweep["fcl_primitives"];
+  std::printf("  FCL's convex primitives (depth only): %.4f / %.4f ms, depth error <= %.4f mm\n", f["median_ms"].get<double>(),
+    f["p95_ms"].get<double>(), f["max_depth_error_mm"].get<double>());
 }
 
 /// The replay's instrument: --scalpel (tip from --tip, its JSON or the finder), else a plain shaft.
@@ -313,6 +348,10 @@ void PrintBenchReport(Json& report)
   {
     PrintLiveTable(report["live"]);
   }
+  if (report.contains("penetration"))
+  {
+    PrintPenetrationTable(report["penetration"]);
+  }
 }
 
 } // namespace
@@ -357,6 +396,10 @@ cli::ModuleDescription DescribeBenchCommand()
     "thread streams the replay's poses at --live-rate-hz for --live-seconds, then at --sustained-rate-hz for "
     "--sustained-seconds, and reads the results back; per frame the latency from a pose's arrival to its results "
     "sent, beside the frame's own compute time, the poses dropped, and the resident memory after 5 s and at the end. "
+    "penetration: a closed cylinder tool (radius 1.5 mm) pushed 0.2 to 10 mm into a sphere vessel (radius 10 mm) "
+    "of three classes, --penetration-poses steps: the full frame (tip, whole instrument, penetration) through the logic, "
+    "exact and (with a Vulkan device) z-buffer, median and p95 per depth band, the penetration depth and volume against "
+    "their closed forms and stated bounds, beside FCL's penetration depth of the convex primitives.\n"
     "Progress goes to stderr.",
     {
       { "Workload", "",
@@ -365,8 +408,8 @@ cli::ModuleDescription DescribeBenchCommand()
           count("queries", "2000", "Random tips (and tracked steps, and replayed frames)."),
           count("brute-queries", "30", "Of those, how many the brute-force reference answers."),
           count("seed", "1", "The random seed."),
-          Option(ParameterType::String, "engines", "Which parts to run: a list of exact, zbuffer, replay and live.")
-            .SetPlaceholder("exact,zbuffer,replay,live")
+          Option(ParameterType::String, "engines", "Which parts to run: a list of exact, zbuffer, replay, live and penetration.")
+            .SetPlaceholder("exact,zbuffer,replay,live,penetration")
             .SetDefault("exact,zbuffer") } },
       { "Replay", "", replay },
       { "Live", "",
@@ -377,6 +420,8 @@ cli::ModuleDescription DescribeBenchCommand()
             .SetPlaceholder("S")
             .SetDefault("60")
             .SetRange(0, 3600, 1) } },
+      { "Penetration", "",
+        { count("penetration-poses", "100", "Depths of the penetration sweep, 0.2 to 10 mm.") } },
       engine,
       { "Output", "",
         { Switch("json", "Print the report as JSON instead of a table."),
@@ -410,6 +455,7 @@ int RunBenchCommand(const cli::ParsedArguments& args, const ModuleServices&)
     request.Poses = args.IsSet("poses") ? ReadPoseFile(args.GetString("poses"), ParsePoseReading(args)) : std::vector<TrackedPose>();
   }
   request.Queries = args.GetInteger("queries");
+  request.PenetrationPoses = args.GetInteger("penetrationPoses");
   request.BruteQueries = std::min(request.Queries, args.GetInteger("bruteQueries"));
   request.Seed = static_cast<unsigned>(args.GetInteger("seed"));
   request.Vessels = args.IsSet("vessels") ? LoadVesselMeshes(ParsePairs(args.GetString("vessels"), "--vessels")) : BuiltInVessels();

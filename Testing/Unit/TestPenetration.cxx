@@ -7,6 +7,7 @@
 #include "vtkScalpelPenetration.h"
 #include "vtkZBufferSurfaceDistance.h"
 #include "vtkZBufferVesselDistance.h"
+#include "vpTestSupport.h"
 #include "vpVulkanTestSupport.h"
 
 #include <gtest/gtest.h>
@@ -15,7 +16,11 @@
 #include <vtkPolyData.h>
 
 #include <cmath>
+#include <filesystem>
 #include <functional>
+#include <iostream>
+
+#include <nlohmann/json.hpp>
 
 namespace
 {
@@ -288,4 +293,39 @@ TEST(Penetration, TheZBufferLayersGiveTheKnownOverlapWithinTheirBounds)
   EXPECT_EQ(apart.VolumeBoundMm3, 0.0);
   EXPECT_EQ(apart.DepthMm, 0.0);
   EXPECT_EQ(apart.DepthBoundMm, 0.0);
+}
+
+// bench --engines penetration (issue 35's sweep) measures; this checks what it reports, not how
+// fast: every answer of both engines keeps its stated bound against the closed forms and none is
+// below the truth beyond it, the depth is the push within its bound, and FCL's own depth of the
+// convex primitives is the push.
+TEST(Penetration, TheBenchmarksSweepAnswersWithinTheirBounds)
+{
+  const std::string dir = vp::test::MakeTempDir("penetration_bench");
+  const std::string report = dir + "/penetration.json";
+  const vp::test::ToolRun r = vp::test::RunTool(dir, "bench --engines penetration --penetration-poses 12 -o " + report);
+  ASSERT_EQ(r.ExitCode, 0) << r.Err;
+  const auto doc = nlohmann::json::parse(vp::test::Slurp(report))["penetration"];
+  EXPECT_EQ(doc["poses"], 12);
+  for (const char* engine : { "exact", "zbuffer" })
+  {
+    SCOPED_TRACE(engine);
+    const auto& e = doc[engine];
+    if (e.contains("unavailable"))
+    {
+      std::cout << "[  SKIPPED ] the z-buffer's sweep: " << e["unavailable"].get<std::string>() << "\n";
+      continue;
+    }
+    EXPECT_EQ(e["per_pose"].size(), 12u);
+    EXPECT_EQ(e["answers_outside_their_bound"], 0);
+    EXPECT_EQ(e["answers_below_truth_beyond_bound"], 0);
+    EXPECT_EQ(e["answers_unknown"], 0);
+    for (const auto& row : e["per_pose"])
+    {
+      const double push = row[0], depth = row[2], depthBound = row[3];
+      EXPECT_NEAR(depth, push, depthBound + 0.01) << "push " << push;
+    }
+  }
+  EXPECT_LT(doc["fcl_primitives"]["max_depth_error_mm"].get<double>(), 1e-3);
+  std::filesystem::remove_all(dir);
 }

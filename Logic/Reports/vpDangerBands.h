@@ -4,6 +4,7 @@
 #include "vpDangerLevels.h"
 #include "vpDistancePlot.h"
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -15,11 +16,24 @@ namespace vp
 /// for plots where a penetration is drawn as a negative distance.
 std::vector<PlotBand> DangerBands(const DangerThresholds& thresholds, double rangeMm, bool breachBelowZero = false);
 
-/// The colour of a vessel class's plot line: a hue near the class's display colour (portal vein
-/// cyan, hepatic artery red, hepatic vein violet), saturated enough to stand out on the
-/// white-to-blue bands, which the dark-blue hepatic veins' own colour would not. Other classes
-/// take a palette colour by their index.
-Rgb PlotSeriesColour(const std::string& className, int classIndex);
+/// The display colour of a vessel class, the same in the scene, the readout and the plot: the
+/// default label table's (as Slicer's colour tables give the anatomy: portal vein blue, hepatic
+/// artery red, hepatic vein dark blue, liver tan); a class the table does not know takes a
+/// palette colour by its index. The plot rims each line in black or white against its band.
+Rgb ClassDisplayColour(const std::string& className, int classIndex);
+
+/// The viewer's background behind the readout (the top of its gradient) and the colour a class's
+/// readout line is written in there: its display colour lifted towards white until its WCAG
+/// contrast against that background is at least 4.5 (the dark-blue hepatic veins' own colour is
+/// 1.3 there).
+const Rgb ViewBackgroundTop = { 64, 69, 92 };
+const Rgb ViewBackgroundBottom = { 13, 15, 26 };
+Rgb ReadoutTextColour(const Rgb& classColour);
+
+/// CIE L*a*b* (D65) of an sRGB colour, and the CIE76 distance of two colours (about 2.3 is a just
+/// noticeable difference; the levels keep 20 or more from every class colour).
+std::array<double, 3> CieLab(const Rgb& colour);
+double CieLabDistance(const Rgb& a, const Rgb& b);
 } // namespace vp
 
 #endif

@@ -87,7 +87,7 @@ private:
 
 /// Black or white, whichever has the higher WCAG contrast ratio against the band under a line:
 /// the rim that keeps a line readable where its own colour is close to the band's (the artery's
-/// red on the breach band, the portal vein's blue on the danger band).
+/// red on the magenta breach band, the hepatic vein's dark blue on the dark gray warning band).
 Rgb RimColour(const Rgb& under)
 {
   return ContrastRatio(under, Black) >= ContrastRatio(under, White) ? Black : White;

@@ -98,7 +98,7 @@ void DistancePlotRecorder::Samples(std::vector<double>& times, std::vector<PlotS
   series.clear();
   for (std::size_t c = 0; c < this->Classes.size(); ++c)
   {
-    const Rgb colour = PlotSeriesColour(this->Classes[c], static_cast<int>(c));
+    const Rgb colour = ClassDisplayColour(this->Classes[c], static_cast<int>(c));
     series.push_back({ this->Classes[c] + " (tip)", colour, {} });
     if (this->Surface)
     {

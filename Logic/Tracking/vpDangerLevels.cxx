@@ -42,13 +42,13 @@ std::array<unsigned char, 3> DangerLevelColour(DangerLevel level)
     case DangerLevel::Safe:
       return { 255, 255, 255 };
     case DangerLevel::Caution:
-      return { 200, 200, 200 };
+      return { 190, 190, 190 }; // 23 CIELAB units below white (200 was 19)
     case DangerLevel::Warning:
       return { 120, 120, 120 };
     case DangerLevel::Danger:
-      return { 40, 90, 230 };
+      return { 255, 220, 0 };
     case DangerLevel::Breach:
-      return { 220, 30, 30 };
+      return { 255, 0, 255 };
   }
   return { 0, 0, 0 };
 }

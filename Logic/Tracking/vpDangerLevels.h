@@ -33,7 +33,11 @@ struct DangerThresholds
 
 /// "safe", "caution", "warning", "danger", "breach": the names files and events use.
 const char* DangerLevelName(DangerLevel level);
-/// The paper's display colours, white -> light gray -> dark gray -> blue, and red for a breach.
+/// The scalpel's colour at each level: the paper's white -> light gray -> dark gray, then yellow
+/// for danger and magenta for a breach. The paper's blue danger and red breach were the hepatic
+/// veins' blue and the artery's red (CIELAB distances 15 and 13): "the tool is in danger" read
+/// as "the tool is over a vein". Every level is at least 40 CIELAB units from every class colour
+/// of the default label table (DisplayColours test).
 std::array<unsigned char, 3> DangerLevelColour(DangerLevel level);
 
 /// The level of one class's answer. Conservative for approximate engines: the distance less the

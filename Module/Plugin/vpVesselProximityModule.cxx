@@ -15,7 +15,7 @@ std::string vpVesselProximityModule::HelpText() const
          "labelmaps (DICOM series, DICOM SEG, NRRD, .seg.nrrd, NIfTI), registers the scalpel (landmarks, ICP, pivot "
          "calibration) and, for every tracked pose, answers through an exact engine (Embree BVH, double precision) "
          "or the Vulkan z-buffer engine of Noborio et al. with a stated error bound that never understates danger. "
-         "Overlays: the scalpel coloured by danger level (white, light gray, dark gray, blue; red inside a vessel), "
+         "Overlays: the scalpel coloured by danger level (white, light gray, dark gray, yellow; magenta inside a vessel), "
          "a line to the closest vessel point with its distance, a readout per vessel class and the distance over "
          "time.";
 }

@@ -2,6 +2,7 @@
 // the built-in phantom (torus portal vein, cylinder artery, sphere hepatic vein) with the
 // built-in CUSA handpiece, at poses whose answers are known analytically.
 #include "vpBuiltInPhantom.h"
+#include "vpDangerBands.h"
 #include "vpDangerLevels.h"
 #include "vpDefaultScalpel.h"
 #include "vpImageComparison.h"
@@ -92,7 +93,7 @@ TEST(Overlays, FollowTheLogicAndRecolourOnlyOnLevelChanges)
   overlays->SetRenderer(renderer);
   overlays->SetLogic(logic);
 
-  // Vessel actors in the label table's colours.
+  // Vessel actors in the label table's colours, the same as the plot's lines (one colour per class).
   const vp::VesselLabelTable table = vp::VesselLabelTable::Default();
   for (const char* c : { "portal_vein", "hepatic_artery", "hepatic_vein" })
   {
@@ -101,7 +102,8 @@ TEST(Overlays, FollowTheLogicAndRecolourOnlyOnLevelChanges)
     const double* rgb = actor->GetProperty()->GetColor();
     for (int k = 0; k < 3; ++k)
     {
-      EXPECT_NEAR(rgb[k], table.Color(c)[k], 1e-12) << c;
+      EXPECT_NEAR(rgb[k], vp::ClassDisplayColour(c, 0)[k] / 255.0, 1e-12) << c;
+      EXPECT_NEAR(rgb[k], table.Color(c)[k], 0.5 / 255.0) << c;
     }
   }
 

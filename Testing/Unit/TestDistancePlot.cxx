@@ -231,7 +231,7 @@ TEST(DistancePlot, LinesAreReadableOnEveryDangerBand)
   int index = 0;
   for (const char* name : { "portal_vein", "hepatic_artery", "hepatic_vein", "other" })
   {
-    const vp::Rgb colour = vp::PlotSeriesColour(name, index++);
+    const vp::Rgb colour = vp::ClassDisplayColour(name, index++);
     all.push_back({ std::string(name) + " (tip)", colour, {} });
     all.push_back({ std::string(name) + " (instrument)", vp::InstrumentColour(colour), {} });
   }

@@ -117,7 +117,7 @@ void vtkDistancePlotRepresentation::Redraw()
   std::vector<vp::PlotSeries> series;
   for (std::size_t c = 0; c < this->ClassNames.size(); ++c)
   {
-    const vp::Rgb colour = vp::PlotSeriesColour(this->ClassNames[c], static_cast<int>(c));
+    const vp::Rgb colour = vp::ClassDisplayColour(this->ClassNames[c], static_cast<int>(c));
     series.push_back({ this->ClassNames[c], colour, { this->ValuesMm[c].begin(), this->ValuesMm[c].end() } });
     if (this->ShowsInstrument)
     {

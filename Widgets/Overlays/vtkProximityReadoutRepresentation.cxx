@@ -1,5 +1,7 @@
 #include "vtkProximityReadoutRepresentation.h"
 
+#include "vpDangerBands.h"
+
 #include <vtkCoordinate.h>
 #include <vtkNew.h>
 #include <vtkObjectFactory.h>
@@ -9,6 +11,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdio>
 
 vtkStandardNewMacro(vtkProximityReadoutRepresentation);
@@ -59,9 +62,12 @@ void vtkProximityReadoutRepresentation::SetClasses(
     text->SetFontFamilyToCourier(); // columns line up
     text->SetBold(i == 0);
     text->SetShadow(true);
-    // Class colours are for surfaces; lifted halfway to white they stay readable on the dark view.
+    // Class colours are for surfaces; lifted towards white until they read on the view's background
+    // (WCAG contrast 4.5), the same hue as the class's model and plot line.
     const std::array<double, 3> c = i == 0 || i - 1 >= colours.size() ? std::array<double, 3>{ 1, 1, 1 } : colours[i - 1];
-    text->SetColor(0.5 + 0.5 * c[0], 0.5 + 0.5 * c[1], 0.5 + 0.5 * c[2]);
+    const vp::Rgb readable = vp::ReadoutTextColour({ static_cast<unsigned char>(std::lround(255 * c[0])),
+      static_cast<unsigned char>(std::lround(255 * c[1])), static_cast<unsigned char>(std::lround(255 * c[2])) });
+    text->SetColor(readable[0] / 255.0, readable[1] / 255.0, readable[2] / 255.0);
     if (frameTimeLine)
     {
       text->SetColor(1.0, 0.65, 0.2); // amber: a late answer, not a vessel

@@ -18,7 +18,8 @@ class vtkRenderer;
 /// A pose only changes the actor's user matrix: the surface is never copied or transformed, so
 /// a moving tool costs the GPU a uniform, not a re-upload. The colour changes only when the
 /// level does (GetNumberOfColourChanges() counts them). Default colours are the paper's white ->
-/// light gray -> dark gray -> blue, and red for a breach (vp::DangerLevelColour).
+/// light gray -> dark gray, then yellow for danger and magenta for a breach, hues no vessel class
+/// has (vp::DangerLevelColour).
 class vtkScalpelDangerRepresentation : public vtkObject
 {
 public:

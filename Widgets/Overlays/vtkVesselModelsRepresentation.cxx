@@ -1,6 +1,6 @@
 #include "vtkVesselModelsRepresentation.h"
 
-#include "vpVesselLabelTable.h"
+#include "vpDangerBands.h"
 
 #include <vtkActor.h>
 #include <vtkNew.h>
@@ -13,6 +13,14 @@
 #include <algorithm>
 
 vtkStandardNewMacro(vtkVesselModelsRepresentation);
+
+namespace
+{
+std::array<double, 3> Fraction(const vp::Rgb& c)
+{
+  return { c[0] / 255.0, c[1] / 255.0, c[2] / 255.0 };
+}
+} // namespace
 
 vtkVesselModelsRepresentation::vtkVesselModelsRepresentation() = default;
 vtkVesselModelsRepresentation::~vtkVesselModelsRepresentation() = default;
@@ -37,7 +45,7 @@ void vtkVesselModelsRepresentation::SetVessel(const std::string& className, vtkP
     Entry entry{ className, vtkSmartPointer<vtkActor>::New() };
     vtkNew<vtkPolyDataMapper> mapper;
     entry.Actor->SetMapper(mapper);
-    this->Style(entry, vp::VesselLabelTable::Default().Color(className));
+    this->Style(entry, Fraction(vp::ClassDisplayColour(className, static_cast<int>(this->Entries.size()))));
     for (vtkRenderer* renderer : this->Renderers)
     {
       renderer->AddActor(entry.Actor);
@@ -74,7 +82,7 @@ std::array<double, 3> vtkVesselModelsRepresentation::GetClassColour(const std::s
       return { c[0], c[1], c[2] };
     }
   }
-  return vp::VesselLabelTable::Default().Color(className);
+  return Fraction(vp::ClassDisplayColour(className, static_cast<int>(this->Entries.size())));
 }
 
 void vtkVesselModelsRepresentation::AddToRenderer(vtkRenderer* renderer)

@@ -1,6 +1,7 @@
 #include "vtkVesselProximityView.h"
 
 #include "vpClock.h"
+#include "vpDangerBands.h"
 #include "vpInputError.h"
 #include "vpLivePoseSource.h"
 #include "vpOutputFile.h"
@@ -40,8 +41,9 @@ vtkVesselProximityView::vtkVesselProximityView()
   // Slicer's 3D view background: a vertical gradient, here darker so the white and gray levels
   // of the scalpel stand out.
   this->Renderer->GradientBackgroundOn();
-  this->Renderer->SetBackground(0.05, 0.06, 0.10);
-  this->Renderer->SetBackground2(0.25, 0.27, 0.36);
+  // The readout's text colours are chosen against these (vp::ReadoutTextColour).
+  this->Renderer->SetBackground(vp::ViewBackgroundBottom[0] / 255.0, vp::ViewBackgroundBottom[1] / 255.0, vp::ViewBackgroundBottom[2] / 255.0);
+  this->Renderer->SetBackground2(vp::ViewBackgroundTop[0] / 255.0, vp::ViewBackgroundTop[1] / 255.0, vp::ViewBackgroundTop[2] / 255.0);
   this->Window->AddRenderer(this->Renderer);
   this->Window->SetWindowName("VesselProximity");
   // Smooth edges without multisampling, whose result differs between GL drivers.

@@ -146,7 +146,7 @@ TEST(Overlays, FollowTheLogicAndRecolourOnlyOnLevelChanges)
   EXPECT_EQ(changes, 4);
   EXPECT_EQ(previous, vp::DangerLevel::Breach);
   EXPECT_EQ(overlays->GetScalpel()->GetNumberOfColourChanges() - colourChangesBefore, 4);
-  EXPECT_EQ(overlays->GetReadout()->GetLineText(0), "BREACH");
+  EXPECT_EQ(overlays->GetReadout()->GetLineText(0), "BREACH   exact engine") << "the engine that answered is named";
   EXPECT_EQ(overlays->GetPlot()->GetNumberOfSamples(), 41);
   // 41 poses, one build: nothing is rebuilt because the scalpel moved.
   EXPECT_EQ(logic->GetNumberOfBuilds(), 1);
@@ -289,6 +289,33 @@ TEST(Overlays, ReadoutShowsTheInstrumentBesideTheTip)
   // Without the whole instrument: the tip alone, as before.
   readout->ShowFrame(proximity, { vp::DangerLevel::Breach, vp::DangerLevel::Warning }, vp::DangerLevel::Breach);
   EXPECT_EQ(readout->GetLineText(1).find("tool"), std::string::npos) << readout->GetLineText(1);
+}
+
+// The screen says whose numbers they are: the engine, and for the z-buffer its bound, each class's
+// distance as the interval the truth lies in (its "0.0 mm danger" was a tip 0.032 mm outside).
+TEST(Overlays, TheReadoutNamesItsEngineAndShowsABoundAsAnInterval)
+{
+  vtkNew<vtkProximityReadoutRepresentation> readout;
+  readout->SetClasses({ "portal_vein", "hepatic_vein" }, { { 0, 0.6, 0.8 }, { 0.4, 0.2, 0.7 } });
+  vp::ProximityResult proximity;
+  proximity.Classes.resize(2);
+  proximity.Classes[0].ClassName = "portal_vein";
+  proximity.Classes[0].InRange = true;
+  proximity.Classes[0].DistanceMm = 0.2;
+  proximity.Classes[1].ClassName = "hepatic_vein";
+  proximity.Classes[1].InRange = true;
+  proximity.Classes[1].DistanceMm = 3.3;
+  proximity.ErrorBoundMm = 0.347;
+  readout->SetEngine("zbuffer");
+  readout->ShowFrame(proximity, { vp::DangerLevel::Danger, vp::DangerLevel::Warning }, vp::DangerLevel::Danger);
+  EXPECT_EQ(readout->GetLineText(0), "DANGER   z-buffer engine, within 0.35 mm");
+  EXPECT_NE(readout->GetLineText(1).find("0.0-0.5 mm"), std::string::npos) << readout->GetLineText(1);
+  EXPECT_NE(readout->GetLineText(2).find("3.0-3.6 mm"), std::string::npos) << readout->GetLineText(2);
+  proximity.ErrorBoundMm = 0.0;
+  readout->SetEngine("exact");
+  readout->ShowFrame(proximity, { vp::DangerLevel::Danger, vp::DangerLevel::Warning }, vp::DangerLevel::Danger);
+  EXPECT_EQ(readout->GetLineText(0), "DANGER   exact engine");
+  EXPECT_NE(readout->GetLineText(1).find(" 0.2 mm"), std::string::npos) << readout->GetLineText(1);
 }
 
 // A live stream that stopped: the readout says so and shows no distance as current, until the

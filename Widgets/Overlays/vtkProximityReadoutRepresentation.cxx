@@ -121,11 +121,22 @@ void vtkProximityReadoutRepresentation::SetLine(int i, const std::string& text)
   }
 }
 
+void vtkProximityReadoutRepresentation::SetEngine(const std::string& methodName)
+{
+  this->EngineName = methodName;
+  this->Modified();
+}
+
 void vtkProximityReadoutRepresentation::ShowFrame(const vp::ProximityResult& proximity,
   const std::vector<vp::DangerLevel>& classLevels, vp::DangerLevel overall, const std::vector<vp::SurfaceProximity>& surface,
   const std::vector<vp::Penetration>& penetrations)
 {
-  this->SetLine(0, Upper(vp::DangerLevelName(overall)));
+  // Three engines' numbers read alike unless the screen says whose they are and how sure.
+  const double bound = proximity.ErrorBoundMm;
+  char headline[128];
+  std::snprintf(headline, sizeof(headline), bound > 0 ? "%-8s %s engine, within %.2f mm" : "%-8s %s engine",
+    Upper(vp::DangerLevelName(overall)).c_str(), this->EngineName == "zbuffer" ? "z-buffer" : this->EngineName.c_str(), bound);
+  this->SetLine(0, this->EngineName.empty() ? Upper(vp::DangerLevelName(overall)) : std::string(headline));
   for (std::size_t c = 0; c < this->ClassNames.size() && c < proximity.Classes.size(); ++c)
   {
     const vp::ClassProximity& p = proximity.Classes[c];
@@ -138,7 +149,16 @@ void vtkProximityReadoutRepresentation::ShowFrame(const vp::ProximityResult& pro
     else
     {
       const bool inside = p.Inside && *p.Inside;
-      std::snprintf(text, sizeof(text), "%-15s %6.1f mm%s  %s", name.c_str(), p.DistanceMm, inside ? " inside" : "",
+      char distance[48];
+      if (bound > 0)
+      {
+        std::snprintf(distance, sizeof(distance), "%.1f-%.1f", std::max(0.0, p.DistanceMm - bound), p.DistanceMm + bound);
+      }
+      else
+      {
+        std::snprintf(distance, sizeof(distance), "%.1f", p.DistanceMm);
+      }
+      std::snprintf(text, sizeof(text), "%-15s %9s mm%s  %s", name.c_str(), distance, inside ? " inside" : "",
         c < classLevels.size() ? vp::DangerLevelName(classLevels[c]) : "");
     }
     std::string line = text;

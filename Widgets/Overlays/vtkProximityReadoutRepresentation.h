@@ -28,6 +28,10 @@ public:
 
   /// Declares the classes (in the engine's order) with their display colours (RGB 0..1).
   void SetClasses(const std::vector<std::string>& names, const std::vector<std::array<double, 3>>& colours);
+  /// The engine that answers ("exact", "zbuffer"; empty: not said), named in the headline
+  /// beside the overall level with what its numbers are: exact, or within the frame's error
+  /// bound, each class's distance then shown as the interval the truth lies in ("1.1-1.9 mm").
+  void SetEngine(const std::string& methodName);
   /// Shows a frame's answers: per class distance, inside and level; the overall level heads it.
   /// With the whole instrument measured (surface and penetrations not empty), each class line also
   /// gives the instrument's distance ("tool 2.6 mm") or, inside, its depth and volume ("tool 1.0 mm
@@ -61,6 +65,7 @@ protected:
   std::vector<vtkRenderer*> Renderers;
   int FontSize = 18;
   int TextUpdates = 0;
+  std::string EngineName;
 
 private:
   vtkProximityReadoutRepresentation(const vtkProximityReadoutRepresentation&) = delete;

@@ -6,6 +6,7 @@
 #include "vtkScalpelDangerRepresentation.h"
 #include "vtkScalpelModel.h"
 #include "vtkVesselModelsRepresentation.h"
+#include "vtkVesselDistanceEngine.h"
 #include "vtkVesselProximityLogic.h"
 
 #include <vtkCallbackCommand.h>
@@ -80,6 +81,7 @@ void vtkVesselProximityOverlays::UpdateFromScene()
     colours.push_back(this->Vessels->GetClassColour(names.back()));
   }
   this->Readout->SetClasses(names, colours);
+  this->Readout->SetEngine(this->Logic->GetDistanceEngine() ? this->Logic->GetDistanceEngine()->GetMethodName() : "");
   this->Plot->SetClasses(names);
   this->Plot->SetDangerThresholds(this->Logic->GetDangerThresholds());
   if (vtkScalpelModel* scalpel = this->Logic->GetScalpel())

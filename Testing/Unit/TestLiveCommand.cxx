@@ -45,12 +45,19 @@ int FreePort()
 }
 
 /// Waits (10 s at most) for text to appear in a file a child writes.
-bool WaitForText(const std::string& file, const std::string& text, double seconds = 10.0)
+/// Waits until file holds text at least times times (seconds at most).
+bool WaitForText(const std::string& file, const std::string& text, double seconds = 10.0, int times = 1)
 {
   const auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds(static_cast<int>(1000 * seconds));
   while (std::chrono::steady_clock::now() < until)
   {
-    if (Slurp(file).find(text) != std::string::npos)
+    const std::string content = Slurp(file);
+    int found = 0;
+    for (std::size_t at = content.find(text); at != std::string::npos; at = content.find(text, at + 1))
+    {
+      ++found;
+    }
+    if (found >= times)
     {
       return true;
     }
@@ -328,7 +335,11 @@ TEST_F(LiveCommand, AnExampleTrackerKilledMidStreamIsReconnectedAndAClientReadsT
   WaitFor(tracker, 5.0);
   ASSERT_TRUE(WaitForText(this->Dir + "/live.err", "lost; reconnecting"));
   tracker = vp::test::StartProgram(VP_IGTL_TRACKER_SERVER, { port, "50" }, "/dev/null", "/dev/null");
-  std::this_thread::sleep_for(std::chrono::milliseconds(3000)); // the example sends 100 poses a connection, at 50 Hz
+  // Counted from the reconnection, not the restart: the link's back-off (up to 2 s) on a loaded
+  // sanitizer build once left too little of the example's stream (it sends 100 poses a
+  // connection, at 50 Hz).
+  ASSERT_TRUE(WaitForText(this->Dir + "/live.err", "live: connected to 127.0.0.1:" + port, 15.0, 2)) << Slurp(this->Dir + "/live.err");
+  std::this_thread::sleep_for(std::chrono::milliseconds(2500));
   kill(client, SIGKILL);
   WaitFor(client, 5.0);
   kill(live, SIGINT);

@@ -180,7 +180,7 @@ bool TrackingRecorder::Run(PoseSource& poses, RunFolder& run)
     this->ReportAddition(doc);
   }
 
-  plot->Write(run.File("distance.png"), tracking->GetDangerThresholds(), engine->GetRangeMm());
+  plot->Write(run.File("distance.png"), tracking->GetDangerThresholds());
   WriteFileAtomically(run.File("summary.json"), doc.dump(2) + "\n");
   this->Report = std::move(doc);
   return true;

@@ -8,11 +8,10 @@
 
 namespace vp
 {
-std::vector<PlotBand> DangerBands(const DangerThresholds& t, double rangeMm, bool breachBelowZero)
+std::vector<PlotBand> DangerBands(const DangerThresholds& t, bool breachBelowZero)
 {
   std::vector<PlotBand> bands;
-  const double top = std::max(rangeMm, t.CautionMm);
-  const double edges[5] = { 0.0, t.DangerMm, t.WarningMm, t.CautionMm, top };
+  const double edges[5] = { 0.0, t.DangerMm, t.WarningMm, t.CautionMm, std::numeric_limits<double>::infinity() };
   for (int l = 0; l < 4; ++l)
   {
     const auto level = static_cast<DangerLevel>(3 - l);

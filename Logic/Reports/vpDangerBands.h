@@ -11,10 +11,13 @@
 namespace vp
 {
 /// The plot's background: one band per danger level below the caution threshold and the safe
-/// band up to max(rangeMm, caution), in the level's display colour. The same bands in the report
+/// band above it, open-ended ("safe (> 10 mm)"), in the level's display colour, so that the axis
+/// follows the data (AutomaticYMax: up to the data's largest value, never below the caution
+/// threshold, so every threshold stays in view) rather than the engine's range: a run that stays
+/// within 5 mm is no longer a flat line at the bottom of 0-55 mm. The same bands in the report
 /// (distance.png) and in the viewer's live plot. With breachBelowZero, a breach band below 0 too,
 /// for plots where a penetration is drawn as a negative distance.
-std::vector<PlotBand> DangerBands(const DangerThresholds& thresholds, double rangeMm, bool breachBelowZero = false);
+std::vector<PlotBand> DangerBands(const DangerThresholds& thresholds, bool breachBelowZero = false);
 
 /// The display colour of a vessel class, the same in the scene, the readout and the plot: the
 /// default label table's (as Slicer's colour tables give the anatomy: portal vein blue, hepatic

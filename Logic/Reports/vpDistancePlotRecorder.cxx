@@ -128,12 +128,12 @@ void DistancePlotRecorder::Samples(std::vector<double>& times, std::vector<PlotS
   }
 }
 
-void DistancePlotRecorder::Write(const std::string& fileName, const DangerThresholds& thresholds, double rangeMm) const
+void DistancePlotRecorder::Write(const std::string& fileName, const DangerThresholds& thresholds) const
 {
   std::vector<double> times;
   std::vector<PlotSeries> series;
   this->Samples(times, series);
-  const std::vector<PlotBand> bands = DangerBands(thresholds, rangeMm, LowestValueMm(series) < 0);
+  const std::vector<PlotBand> bands = DangerBands(thresholds, LowestValueMm(series) < 0);
   DistancePlotOptions options;
   options.Title = this->Surface ? "Tip and instrument distance to each vessel class over time (inside: below 0)"
                                 : "Tip distance to each vessel class over time (inside: below 0)";

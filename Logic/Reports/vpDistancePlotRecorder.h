@@ -34,8 +34,9 @@ public:
   /// What the plot draws: the times and, per line (per class the tip's, then with the surface
   /// the instrument's), a value at each.
   void Samples(std::vector<double>& timesS, std::vector<PlotSeries>& series) const;
-  /// Writes the PNG: the recorded lines over the danger bands of thresholds up to rangeMm.
-  void Write(const std::string& fileName, const DangerThresholds& thresholds, double rangeMm) const;
+  /// Writes the PNG: the recorded lines over the danger bands of thresholds, the axis up to the
+  /// data's largest value (never below the caution threshold).
+  void Write(const std::string& fileName, const DangerThresholds& thresholds) const;
   /// Frames per bucket now (1 while every frame is kept).
   std::size_t FramesPerBucket() const { return this->Width; }
 

@@ -226,7 +226,7 @@ TEST(DistancePlot, PenetrationIsDrawnBelowTheZeroLine)
 // the band: across the line, some pixel contrasts with the band by WCAG's 3:1 for graphics.
 TEST(DistancePlot, LinesAreReadableOnEveryDangerBand)
 {
-  const auto bands = vp::DangerBands(vp::DangerThresholds{}, 20.0, true);
+  const auto bands = vp::DangerBands(vp::DangerThresholds{}, true);
   std::vector<vp::PlotSeries> all;
   int index = 0;
   for (const char* name : { "portal_vein", "hepatic_artery", "hepatic_vein", "other" })
@@ -378,6 +378,22 @@ TEST(DistancePlot, AutomaticYAxisCoversTheDataAndEveryBand)
   EXPECT_GT(frame.YMaxMm, 10); // above the safe band's lower edge, so the band shows
   vp::RenderDistancePlot({ 0, 1 }, { { "vein", Red, { 3, 37 } } }, DangerBands(), Options(800, 400, 25), &frame);
   EXPECT_EQ(frame.YMaxMm, 25);
+}
+
+// The report's axis follows the data, every threshold in view (issue 34: a run within 5 mm was a
+// flat line at the bottom of a 0-55 mm axis, fixed by the engine's 50 mm range).
+TEST(DistancePlot, TheReportsAxisFollowsTheDataWithEveryThresholdInView)
+{
+  const vp::DangerThresholds thresholds;
+  const auto bands = vp::DangerBands(thresholds);
+  vp::DistancePlotFrame frame;
+  vp::RenderDistancePlot({ 0, 1, 2 }, { { "vein", Red, { 4.5, 3.0, 4.0 } } }, bands, Options(800, 400, 0), &frame);
+  EXPECT_GT(frame.YMaxMm, thresholds.CautionMm) << "the caution threshold stays in view";
+  EXPECT_LE(frame.YMaxMm, 15.0) << "the data fill the plot";
+  vp::RenderDistancePlot({ 0, 1 }, { { "vein", Red, { 3, 37 } } }, bands, Options(800, 400, 0), &frame);
+  EXPECT_GE(frame.YMaxMm, 37);
+  EXPECT_LE(frame.YMaxMm, 45);
+  EXPECT_TRUE(std::isinf(bands.back().ToMm)) << "the safe band is open-ended";
 }
 
 TEST(DistancePlot, NiceTickStepIsOneTwoOrFiveTimesAPowerOfTen)

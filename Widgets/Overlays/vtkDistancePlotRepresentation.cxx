@@ -138,7 +138,7 @@ void vtkDistancePlotRepresentation::Redraw()
   // Fixed below zero too: 5 mm under the wall, deeper in 5 mm steps only when something goes deeper.
   options.YMinStepMm = 5.0;
   this->Mapper->SetInputData(vp::RenderDistancePlot(
-    times, series, vp::DangerBands(this->Thresholds, options.YMaxMm, vp::LowestValueMm(series) < 0), options));
+    times, series, vp::DangerBands(this->Thresholds, vp::LowestValueMm(series) < 0), options));
   ++this->Redraws;
   this->Stale = false;
 }

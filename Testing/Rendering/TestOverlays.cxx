@@ -134,7 +134,7 @@ TEST(Overlays, FollowTheLogicAndRecolourOnlyOnLevelChanges)
     EXPECT_NEAR(p.DistanceMm, std::abs(z - 6.0), 0.05) << "frame " << i;
     ASSERT_TRUE(overlays->GetClosestPointLine()->IsShown());
     char label[64];
-    std::snprintf(label, sizeof(label), z < 6.0 ? "%.1f mm inside" : "%.1f mm", p.DistanceMm);
+    std::snprintf(label, sizeof(label), z < 6.0 ? "portal vein %.1f mm inside" : "portal vein %.1f mm", p.DistanceMm);
     EXPECT_EQ(overlays->GetClosestPointLine()->GetLabelText(), label);
     // The readout's portal line carries the same number.
     char number[32];
@@ -534,4 +534,18 @@ TEST(OverlayImagesComparison, TellsDifferentLevelsApart)
   ASSERT_TRUE(d.SameSize) << "the breach baseline is missing or of another size";
   EXPECT_GT(d.FractionDifferent, 0.01);
   std::filesystem::remove_all(tmp);
+}
+
+// The closest-point line says which vessel it points at, and a z-buffer distance as its interval.
+TEST(Overlays, TheClosestPointLineNamesItsVesselAndShowsABoundAsAnInterval)
+{
+  vtkNew<vtkClosestPointLineRepresentation> line;
+  const double tip[3] = { 0, 0, 0 }, point[3] = { 0, 0, 1.5 };
+  line->SetLine(tip, point, 1.5, false, "hepatic_artery", 0.347);
+  EXPECT_EQ(line->GetLabelText(), "hepatic artery 1.2-1.8 mm");
+  line->SetLine(tip, point, 1.0, true, "portal_vein");
+  EXPECT_EQ(line->GetLabelText(), "portal vein 1.0 mm inside");
+  EXPECT_TRUE(line->IsShown());
+  line->Hide();
+  EXPECT_FALSE(line->IsShown());
 }

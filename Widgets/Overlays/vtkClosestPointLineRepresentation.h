@@ -12,10 +12,13 @@ class vtkLineSource;
 class vtkRenderer;
 class vtkTextActor;
 
-/// A line from the scalpel tip to the closest vessel point, with the distance written beside its
-/// middle ("4.2 mm", or "1.0 mm inside" for a breach). The label is drawn over the scene, never
-/// hidden behind a vessel: the number matters most exactly when the tip is among them.
-/// Moving it rewrites two points of a two-point line; it hides itself when nothing is in range.
+/// A line from the scalpel tip to the closest vessel point, with the vessel and the distance
+/// written beside its middle ("portal vein 4.2 mm", "portal vein 1.0 mm inside" for a breach, a
+/// z-buffer answer as the interval the truth lies in: "portal vein 1.1-1.9 mm") in white, the
+/// line in the class's colour with a dot of fixed screen size at each end, so that it shows at any zoom even when the
+/// line itself is a few pixels long. The label is drawn over the scene, never hidden behind a
+/// vessel: the number matters most exactly when the tip is among them. Moving it rewrites two
+/// points of a two-point line; it hides itself when nothing is in range.
 class vtkClosestPointLineRepresentation : public vtkObject
 {
 public:
@@ -23,12 +26,15 @@ public:
   vtkTypeMacro(vtkClosestPointLineRepresentation, vtkObject);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  /// Shows the line from tip to point (LPS mm) labelled with the distance.
-  void SetLine(const double tipMm[3], const double pointMm[3], double distanceMm, bool inside);
+  /// Shows the line from tip to point (LPS mm) labelled with the class and the distance (within
+  /// boundMm of the truth; 0: exact).
+  void SetLine(const double tipMm[3], const double pointMm[3], double distanceMm, bool inside,
+    const std::string& className = std::string(), double boundMm = 0.0);
   /// Hides line and label (no class in range).
   void Hide();
   bool IsShown() const;
-  /// RGB 0..1 of line and label (default yellow, readable on the dark view and the vessels).
+  /// RGB 0..1 of the line and its dots (default white; the overlays give the nearest class's
+  /// readout colour). The label stays white.
   void SetColour(double r, double g, double b);
   /// The label's text, as drawn.
   std::string GetLabelText() const;
@@ -44,6 +50,7 @@ protected:
   vtkSmartPointer<vtkActor> LineActor;
   vtkSmartPointer<vtkTextActor> Label;
   vtkSmartPointer<vtkCoordinate> LabelAnchor; ///< the line's middle, in world coordinates
+  vtkSmartPointer<vtkActor> EndsActor;        ///< the two ends as dots of a fixed screen size
 
 private:
   vtkClosestPointLineRepresentation(const vtkClosestPointLineRepresentation&) = delete;

@@ -1,5 +1,6 @@
 #include "vtkVesselProximityOverlays.h"
 
+#include "vpDangerBands.h"
 #include "vtkClosestPointLineRepresentation.h"
 #include "vtkDistancePlotRepresentation.h"
 #include "vtkProximityReadoutRepresentation.h"
@@ -10,6 +11,8 @@
 #include "vtkVesselProximityLogic.h"
 
 #include <vtkCallbackCommand.h>
+
+#include <cmath>
 #include <vtkObjectFactory.h>
 #include <vtkRenderer.h>
 
@@ -137,7 +140,16 @@ void vtkVesselProximityOverlays::ShowFrame(const vp::TrackedFrame& frame)
   if (nearest >= 0)
   {
     const vp::ClassProximity& p = frame.Proximity.Classes[nearest];
-    this->ClosestLine->SetLine(frame.TipMm, p.ClosestPoint, p.DistanceMm, p.Inside && *p.Inside);
+    this->ClosestLine->SetLine(frame.TipMm, p.ClosestPoint, p.DistanceMm, p.Inside && *p.Inside, p.ClassName,
+      frame.Proximity.ErrorBoundMm);
+    if (p.ClassName != this->LineClass) // the line wears the nearest class's readout colour
+    {
+      this->LineClass = p.ClassName;
+      const std::array<double, 3> scene = this->Vessels->GetClassColour(p.ClassName);
+      const vp::Rgb c = vp::ReadoutTextColour({ static_cast<unsigned char>(std::lround(255 * scene[0])),
+        static_cast<unsigned char>(std::lround(255 * scene[1])), static_cast<unsigned char>(std::lround(255 * scene[2])) });
+      this->ClosestLine->SetColour(c[0] / 255.0, c[1] / 255.0, c[2] / 255.0);
+    }
   }
   else
   {

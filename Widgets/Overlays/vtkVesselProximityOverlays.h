@@ -6,6 +6,8 @@
 #include <vtkObject.h>
 #include <vtkSmartPointer.h>
 
+#include <string>
+
 class vtkCallbackCommand;
 class vtkClosestPointLineRepresentation;
 class vtkDistancePlotRepresentation;
@@ -77,6 +79,7 @@ protected:
   vtkSmartPointer<vtkCallbackCommand> LevelObserver;
   unsigned long FrameTag = 0;
   unsigned long LevelTag = 0;
+  std::string LineClass; ///< the class whose colour the closest-point line wears
 
 private:
   vtkVesselProximityOverlays(const vtkVesselProximityOverlays&) = delete;

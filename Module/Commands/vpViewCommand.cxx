@@ -136,6 +136,12 @@ cli::ModuleDescription DescribeViewCommand()
           PoseReadingOptions()[5],
           Option(ParameterType::Integer, "pose", "The pose shown first, from 0.").SetPlaceholder("N").SetRange(0, 1000000000, 1),
           Option(ParameterType::String, "size", "The window's size in pixels (64..8192 each).").SetPlaceholder("WxH").SetDefault("1280x800"),
+          Option(ParameterType::StringEnumeration, "view",
+            "Where the camera looks from (the world is LPS): anterior (superior up, as Slicer's 3D view), lateral (from the "
+            "patient's right), superior (from above, anterior up), tool (beside the scalpel, the tip in the middle, every frame) or "
+            "follow (the camera moves with the tip). A cube in the lower left corner names the patient's directions.")
+            .SetDefault("anterior")
+            .SetElements({ "anterior", "lateral", "superior", "tool", "follow" }),
           Option(ParameterType::String, "keys", "Keys pressed before the window opens (VTK key names: Left, Up, Prior, i, n, ...).")
             .SetPlaceholder("K,K,..."),
           Option(ParameterType::File, "screenshot",
@@ -209,6 +215,9 @@ int RunViewCommand(const cli::ParsedArguments& args, const ModuleServices& modul
   view->SetOffScreen(!screenshot.empty());
   view->SetSizePx(size.first, size.second);
   view->SetLogic(logic);
+  vtkVesselProximityView::CameraPreset preset = vtkVesselProximityView::CameraPreset::Anterior;
+  vtkVesselProximityView::ParseCameraPreset(args.GetString("view"), preset); // an enumeration: checked by the parser
+  view->SetCameraPreset(preset);
   if (scene.Liver)
   {
     view->SetLiverSurface(scene.Liver);

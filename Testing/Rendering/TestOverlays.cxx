@@ -34,6 +34,8 @@
 
 #include <gtest/gtest.h>
 
+#include <map>
+
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -549,3 +551,98 @@ TEST(Overlays, TheClosestPointLineNamesItsVesselAndShowsABoundAsAnInterval)
   line->Hide();
   EXPECT_FALSE(line->IsShown());
 }
+
+// ---- camera presets ---------------------------------------------------------------------------
+
+namespace
+{
+/// The phantom at the warning pose, through a view with the preset, 960 x 600: the camera's
+/// direction of projection and focal point, and the picture.
+std::string RenderPreset(
+  const std::string& tmp, vtkVesselProximityView::CameraPreset preset, double direction[3], double focal[3], double tip[3])
+{
+  auto logic = MakePhantomLogic(tmp);
+  vtkNew<vtkVesselProximityView> view;
+  view->SetOffScreen(true);
+  view->SetSizePx(960, 600);
+  view->SetLogic(logic);
+  view->SetCameraPreset(preset);
+  std::vector<vp::TrackedPose> poses;
+  for (int i = 0; 20.0 - 0.5 * i >= 10.0 - 1e-9; ++i)
+  {
+    poses.push_back(Pose(0.02 * i, TipDownAt(20.0 - 0.5 * i)));
+  }
+  view->SetPoses(poses);
+  for (int i = 0; i < view->GetNumberOfPoses(); ++i)
+  {
+    view->ShowPose(i);
+  }
+  const std::string file = tmp + "/view_" + vtkVesselProximityView::CameraPresetName(preset) + ".png";
+  view->SaveScreenshot(file);
+  view->GetRenderer()->GetActiveCamera()->GetDirectionOfProjection(direction);
+  view->GetRenderer()->GetActiveCamera()->GetFocalPoint(focal);
+  std::copy(logic->GetLastFrame().TipMm, logic->GetLastFrame().TipMm + 3, tip);
+  return file;
+}
+} // namespace
+
+class CameraPresetImages : public ::testing::TestWithParam<vtkVesselProximityView::CameraPreset>
+{
+protected:
+  void SetUp() override
+  {
+    if (!this->Display.Ensure())
+    {
+      GTEST_SKIP() << "no display for rendering: " << this->Display.GetProblem();
+    }
+  }
+  vp::VirtualDisplay Display;
+};
+
+// Each preset looks from where it says (the world is LPS; the scalpel points down, -z), and its
+// picture, with the orientation marker naming the direction seen, matches
+// its baseline.
+TEST_P(CameraPresetImages, LookFromWhereTheySayAndMatchTheBaseline)
+{
+  using Preset = vtkVesselProximityView::CameraPreset;
+  const Preset preset = GetParam();
+  const std::string name = vtkVesselProximityView::CameraPresetName(preset);
+  const std::string tmp = vp::test::MakeTempDir("camera_" + name);
+  double direction[3], focal[3], tip[3];
+  const std::string actual = RenderPreset(tmp, preset, direction, focal, tip);
+  const std::map<Preset, std::array<double, 3>> looking = { { Preset::Anterior, { 0, 1, 0 } }, { Preset::Lateral, { 1, 0, 0 } },
+    { Preset::Superior, { 0, 0, -1 } }, { Preset::Tool, { 0, 1, 0 } }, { Preset::Follow, { 0, 1, 0 } } };
+  for (int k = 0; k < 3; ++k)
+  {
+    EXPECT_NEAR(direction[k], looking.at(preset)[k], 1e-9) << name << " axis " << k;
+  }
+  if (preset == Preset::Tool || preset == Preset::Follow)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      EXPECT_NEAR(focal[k], tip[k], 1e-6) << name << ": the tip in the middle";
+    }
+  }
+  const std::string baseline = BaselineDir() + "/view_" + name + ".png";
+  if (std::getenv("VP_UPDATE_BASELINES"))
+  {
+    std::filesystem::copy_file(actual, baseline, std::filesystem::copy_options::overwrite_existing);
+    GTEST_SKIP() << "baseline written: " << baseline;
+  }
+  const vp::ImageDifference d = vp::CompareImages(actual, baseline, tmp + "/view_" + name + "_difference.png");
+  EXPECT_TRUE(d.SameSize) << actual << " vs " << baseline;
+  EXPECT_LT(d.FractionDifferent, 0.005) << "actual " << actual << ", difference image beside it";
+  EXPECT_LT(d.MeanAbsDifference, 1.0) << actual;
+  if (!HasFailure())
+  {
+    std::filesystem::remove_all(tmp);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Presets, CameraPresetImages,
+  ::testing::Values(vtkVesselProximityView::CameraPreset::Anterior, vtkVesselProximityView::CameraPreset::Lateral,
+    vtkVesselProximityView::CameraPreset::Superior, vtkVesselProximityView::CameraPreset::Tool,
+    vtkVesselProximityView::CameraPreset::Follow),
+  [](const ::testing::TestParamInfo<vtkVesselProximityView::CameraPreset>& info) {
+    return std::string(vtkVesselProximityView::CameraPresetName(info.param));
+  });

@@ -13,6 +13,7 @@
 #include "vtkScalpelDangerRepresentation.h"
 #include "vtkVesselProximityOverlays.h"
 
+#include <vtkAnnotatedCubeActor.h>
 #include <vtkCallbackCommand.h>
 #include <vtkCamera.h>
 #include <vtkNew.h>
@@ -20,6 +21,7 @@
 #include <vtkPNGWriter.h>
 #include <vtkUnsignedCharArray.h>
 #include <vtkPolyData.h>
+#include <vtkProperty.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderWindowInteractor.h>
 #include <vtkRenderer.h>
@@ -45,6 +47,31 @@ vtkVesselProximityView::vtkVesselProximityView()
   this->Renderer->SetBackground(vp::ViewBackgroundBottom[0] / 255.0, vp::ViewBackgroundBottom[1] / 255.0, vp::ViewBackgroundBottom[2] / 255.0);
   this->Renderer->SetBackground2(vp::ViewBackgroundTop[0] / 255.0, vp::ViewBackgroundTop[1] / 255.0, vp::ViewBackgroundTop[2] / 255.0);
   this->Window->AddRenderer(this->Renderer);
+  // The orientation marker: directions as the world (LPS) has them, +x left, +y posterior, +z
+  // superior; drawn last, over the scene, in the lower left corner.
+  this->MarkerRenderer = vtkSmartPointer<vtkRenderer>::New();
+  this->MarkerRenderer->SetViewport(0.0, 0.0, 0.14, 0.22);
+  this->MarkerRenderer->SetLayer(1);
+  this->MarkerRenderer->InteractiveOff();
+  vtkNew<vtkAnnotatedCubeActor> cube;
+  cube->SetXPlusFaceText("L");
+  cube->SetXMinusFaceText("R");
+  cube->SetYPlusFaceText("P");
+  cube->SetYMinusFaceText("A");
+  cube->SetZPlusFaceText("S");
+  cube->SetZMinusFaceText("I");
+  cube->SetFaceTextScale(0.65);
+  cube->GetCubeProperty()->SetColor(0.30, 0.32, 0.40);
+  cube->GetTextEdgesProperty()->SetColor(0.9, 0.9, 0.9);
+  cube->GetTextEdgesProperty()->SetLineWidth(1.5);
+  for (vtkProperty* face : { cube->GetXPlusFaceProperty(), cube->GetXMinusFaceProperty(), cube->GetYPlusFaceProperty(),
+         cube->GetYMinusFaceProperty(), cube->GetZPlusFaceProperty(), cube->GetZMinusFaceProperty() })
+  {
+    face->SetColor(1.0, 1.0, 1.0);
+  }
+  this->MarkerRenderer->AddActor(cube);
+  this->Window->SetNumberOfLayers(2);
+  this->Window->AddRenderer(this->MarkerRenderer);
   this->Window->SetWindowName("VesselProximity");
   // Smooth edges without multisampling, whose result differs between GL drivers.
   this->Window->SetMultiSamples(0);
@@ -139,6 +166,7 @@ void vtkVesselProximityView::Process(const std::array<double, 16>& modelToWorld,
   pose.TimeS = timeS;
   pose.ModelToWorld = modelToWorld;
   this->Session->Process(pose);
+  this->FollowScalpel();
 }
 
 void vtkVesselProximityView::ShowPose(int i)
@@ -284,6 +312,45 @@ void vtkVesselProximityView::OnTimer()
   this->Render();
 }
 
+const char* vtkVesselProximityView::CameraPresetName(CameraPreset preset)
+{
+  switch (preset)
+  {
+    case CameraPreset::Anterior:
+      return "anterior";
+    case CameraPreset::Lateral:
+      return "lateral";
+    case CameraPreset::Superior:
+      return "superior";
+    case CameraPreset::Tool:
+      return "tool";
+    case CameraPreset::Follow:
+      return "follow";
+  }
+  return "anterior";
+}
+
+bool vtkVesselProximityView::ParseCameraPreset(const std::string& name, CameraPreset& preset)
+{
+  for (CameraPreset p : { CameraPreset::Anterior, CameraPreset::Lateral, CameraPreset::Superior, CameraPreset::Tool,
+         CameraPreset::Follow })
+  {
+    if (name == CameraPresetName(p))
+    {
+      preset = p;
+      return true;
+    }
+  }
+  return false;
+}
+
+void vtkVesselProximityView::SetCameraPreset(CameraPreset preset)
+{
+  this->Preset = preset;
+  this->ResetCamera();
+  this->Modified();
+}
+
 void vtkVesselProximityView::ResetCamera()
 {
   // Frame the vessels only: the scalpel's handle is long and would push them into a corner.
@@ -291,10 +358,23 @@ void vtkVesselProximityView::ResetCamera()
   vtkVesselProximityLogic* logic = this->GetLogic();
   const bool haveVessels = logic && logic->GetVesselBounds(bounds);
   vtkCamera* camera = this->Renderer->GetActiveCamera();
-  // LPS: anterior is -y, superior +z; the patient's right appears on the left, as in Slicer.
+  // LPS: anterior is -y, the patient's right -x, superior +z; from anterior the patient's right
+  // appears on the left, as in Slicer.
   camera->SetFocalPoint(0, 0, 0);
-  camera->SetPosition(0, -1, 0);
-  camera->SetViewUp(0, 0, 1);
+  switch (this->Preset)
+  {
+    case CameraPreset::Lateral:
+      camera->SetPosition(-1, 0, 0);
+      camera->SetViewUp(0, 0, 1);
+      break;
+    case CameraPreset::Superior:
+      camera->SetPosition(0, 0, 1);
+      camera->SetViewUp(0, -1, 0);
+      break;
+    default:
+      camera->SetPosition(0, -1, 0);
+      camera->SetViewUp(0, 0, 1);
+  }
   if (haveVessels)
   {
     this->Renderer->ResetCamera(bounds);
@@ -303,10 +383,66 @@ void vtkVesselProximityView::ResetCamera()
   {
     this->Renderer->ResetCamera();
   }
+  this->FollowScalpel();
+}
+
+void vtkVesselProximityView::FollowScalpel()
+{
+  vtkVesselProximityLogic* logic = this->GetLogic();
+  if ((this->Preset != CameraPreset::Tool && this->Preset != CameraPreset::Follow) || !logic || !logic->GetScalpel())
+  {
+    return;
+  }
+  double tip[3], axis[3];
+  logic->GetScalpel()->GetTipInWorld(tip);
+  logic->GetScalpel()->GetAxisInWorld(axis);
+  vtkCamera* camera = this->Renderer->GetActiveCamera();
+  const double distance = camera->GetDistance();
+  if (this->Preset == CameraPreset::Follow)
+  {
+    // Same direction and distance, the tip in the middle.
+    double direction[3];
+    camera->GetDirectionOfProjection(direction);
+    camera->SetFocalPoint(tip);
+    camera->SetPosition(tip[0] - distance * direction[0], tip[1] - distance * direction[1], tip[2] - distance * direction[2]);
+    return;
+  }
+  // Beside the tool, on its anterior side (its superior side when it points anterior or
+  // posterior), the tip in the middle and the shaft pointing down the screen: looking down the axis
+  // the handpiece would hide everything (the tutorial's end-on dark disc).
+  double side[3] = { 0, -1, 0 };
+  double along = side[0] * axis[0] + side[1] * axis[1] + side[2] * axis[2];
+  if (std::abs(along) > 0.9)
+  {
+    side[1] = 0;
+    side[2] = 1;
+    along = axis[2];
+  }
+  for (int k = 0; k < 3; ++k)
+  {
+    side[k] -= along * axis[k];
+  }
+  const double norm = std::sqrt(side[0] * side[0] + side[1] * side[1] + side[2] * side[2]);
+  const double back = std::clamp(distance, 40.0, 150.0);
+  camera->SetFocalPoint(tip);
+  camera->SetPosition(tip[0] + back * side[0] / norm, tip[1] + back * side[1] / norm, tip[2] + back * side[2] / norm);
+  camera->SetViewUp(-axis[0], -axis[1], -axis[2]);
+  camera->OrthogonalizeViewUp();
+  this->Renderer->ResetCameraClippingRange();
 }
 
 void vtkVesselProximityView::Render()
 {
+  // The marker turns with the main camera: same direction and up, at a fixed distance.
+  vtkCamera* main = this->Renderer->GetActiveCamera();
+  vtkCamera* marker = this->MarkerRenderer->GetActiveCamera();
+  double direction[3];
+  main->GetDirectionOfProjection(direction);
+  marker->SetFocalPoint(0, 0, 0);
+  marker->SetPosition(-4 * direction[0], -4 * direction[1], -4 * direction[2]);
+  marker->SetViewUp(main->GetViewUp());
+  marker->SetViewAngle(30);
+  this->MarkerRenderer->ResetCameraClippingRange();
   this->Window->Render();
 }
 

@@ -81,7 +81,25 @@ public:
   /// Whether the stream's last word was a loss (nothing shown as current).
   bool GetTrackingLost() const { return this->TrackingLost; }
 
-  /// Frames the vessels from anterior, superior up.
+  /// Where the camera looks from (patient directions, the world being LPS): anterior (the default,
+  /// superior up, as Slicer's 3D view), lateral (from the patient's right, superior up), superior
+  /// (from above, anterior up), tool (beside the scalpel on its anterior side, the tip in the
+  /// middle and the shaft pointing up the screen, each frame) or follow (the camera keeps its direction and distance and moves with the tip, each
+  /// frame). The first three frame the vessels once.
+  enum class CameraPreset
+  {
+    Anterior,
+    Lateral,
+    Superior,
+    Tool,
+    Follow
+  };
+  /// The preset's name as --view takes it ("anterior"), and back (false for an unknown one).
+  static const char* CameraPresetName(CameraPreset preset);
+  static bool ParseCameraPreset(const std::string& name, CameraPreset& preset);
+  void SetCameraPreset(CameraPreset preset);
+  CameraPreset GetCameraPreset() const { return this->Preset; }
+  /// Frames the vessels from the preset's direction.
   void ResetCamera();
   void Render();
   /// Renders and writes the window as a PNG (whole or not at all). Throws vp::InputError
@@ -122,11 +140,17 @@ protected:
   int ScreenshotCount = 0;
   vtkSmartPointer<vtkImageData> LastScreenshot;
   std::string ScreenshotPrefix = "vesselproximity-screenshot-";
+  CameraPreset Preset = CameraPreset::Anterior;
+  /// The orientation marker: a cube labelled with the patient's directions (L/R, A/P, S/I) in the
+  /// lower left corner, its own renderer turned with the main camera before each render.
+  vtkSmartPointer<vtkRenderer> MarkerRenderer;
 
 private:
   vtkVesselProximityView(const vtkVesselProximityView&) = delete;
   void operator=(const vtkVesselProximityView&) = delete;
   void Process(const std::array<double, 16>& modelToWorld, double timeS);
+  /// The tool and follow presets: the camera put where the scalpel now asks.
+  void FollowScalpel();
   void OnTimer();
   /// Takes what the live stream has (waiting at most waitMs for the first): whether anything
   /// changed, and false in ended when the stream is over.

@@ -403,6 +403,18 @@ std::vector<LegendEntry> LegendEntries(const std::vector<PlotSeries>& series, co
   return legend;
 }
 
+/// Width and height of the legend drawn whole.
+std::array<int, 2> LegendSize(const std::vector<LegendEntry>& legend)
+{
+  std::array<int, 2> size = { 0, 0 };
+  for (const LegendEntry& e : legend)
+  {
+    size[0] = std::max(size[0], LegendSwatchPx + GapPx + e.Text.Width() + 2 * GapPx);
+    size[1] += std::max(e.Text.Height(), 12) + GapPx;
+  }
+  return size;
+}
+
 Layout LayOut(const std::vector<double>& timesS, const std::vector<PlotSeries>& series,
   const std::vector<PlotBand>& bands, const DistancePlotOptions& options)
 {
@@ -434,12 +446,9 @@ Layout LayOut(const std::vector<double>& timesS, const std::vector<PlotSeries>& 
   }
 
   layout.Legend = LegendEntries(series, bands);
-  int legendWidth = 0;
-  for (const LegendEntry& e : layout.Legend)
-  {
-    legendWidth = std::max(legendWidth, LegendSwatchPx + GapPx + e.Text.Width() + 2 * GapPx);
-  }
-  legendWidth = std::min(legendWidth, options.WidthPx * 2 / 5); // long names are cut, not the plot
+  const std::array<int, 2> legendSize = LegendSize(layout.Legend);
+  const int legendWidth = std::min(legendSize[0], options.WidthPx * 2 / 5); // long names are cut, not the plot
+  f.LegendWhole = legendWidth == legendSize[0] && f.TopPx + 1 >= legendSize[1];
   f.LeftPx = GapPx + (layout.YLabel.Image ? layout.YLabel.Width() + GapPx : 0) + yTickWidth + GapPx + TickLengthPx;
   f.RightPx = std::max(f.LeftPx + 1, options.WidthPx - 1 - GapPx - legendWidth - 2 * GapPx);
   std::tie(f.TimeMinS, f.TimeMaxS) = TimeRange(timesS);
@@ -496,6 +505,11 @@ void DrawLabels(Canvas& canvas, const Layout& layout, int heightPx)
   DrawLegend(canvas, layout.Legend, p.X1 + 1 + 2 * GapPx, p.Y1);
 }
 } // namespace
+
+std::array<int, 2> LegendSizePx(const std::vector<PlotSeries>& series, const std::vector<PlotBand>& bands)
+{
+  return LegendSize(LegendEntries(series, bands));
+}
 
 double LowestValueMm(const std::vector<PlotSeries>& series)
 {

@@ -70,6 +70,8 @@ struct DistancePlotFrame
   double TimeMaxS = 1;
   double YMaxMm = 1;
   double YMinMm = 0;
+  /// Every legend entry was drawn whole: no name cut at the right, no row below the image.
+  bool LegendWhole = true;
 
   /// Pixel coordinates as doubles; pixel i has its centre at i.
   double XOf(double timeS) const;
@@ -84,6 +86,10 @@ double LowestValueMm(const std::vector<PlotSeries>& series);
 /// two colours (1 to 21; 3 is WCAG's minimum for graphics). The plot's lines are rimmed by them.
 double RelativeLuminance(const Rgb& colour);
 double ContrastRatio(const Rgb& a, const Rgb& b);
+
+/// The width and height in pixels of the legend as RenderDistancePlot draws it whole (every
+/// series, then every band): an inset that must show its legend sizes itself by it.
+std::array<int, 2> LegendSizePx(const std::vector<PlotSeries>& series, const std::vector<PlotBand>& bands);
 
 /// Renders the plot into unsigned char RGB pixels of options.WidthPx x options.HeightPx.
 /// Text is ASCII only (the embedded font has no other glyphs). Times that are not finite are

@@ -552,6 +552,36 @@ TEST(Overlays, TheClosestPointLineNamesItsVesselAndShowsABoundAsAnInterval)
   EXPECT_FALSE(line->IsShown());
 }
 
+// The inset plot keeps its legend whole at any window size the view gives it (at 1000 x 700 the
+// instrument's entries and the bands were cut off).
+TEST(Overlays, TheInsetPlotsLegendIsWholeAtAnyWindowSize)
+{
+  vp::VirtualDisplay display;
+  if (!display.Ensure())
+  {
+    GTEST_SKIP() << "no display for rendering: " << display.GetProblem();
+  }
+  const std::string tmp = vp::test::MakeTempDir("plot_legend");
+  auto logic = MakePhantomLogic(tmp);
+  for (const auto& size : { std::array<int, 2>{ 1000, 700 }, std::array<int, 2>{ 640, 400 }, std::array<int, 2>{ 1920, 1080 } })
+  {
+    vtkNew<vtkVesselProximityView> view;
+    view->SetOffScreen(true);
+    view->SetSizePx(size[0], size[1]);
+    view->SetLogic(logic);
+    for (int i = 0; i <= 30; ++i)
+    {
+      view->SetScalpelPose(TipDownAt(20.0 - 0.5 * i)); // into the tube: every band, both lines
+    }
+    vtkDistancePlotRepresentation* plot = view->GetOverlays()->GetPlot();
+    EXPECT_TRUE(plot->GetFrame().LegendWhole) << size[0] << " x " << size[1];
+    int dims[3];
+    plot->GetImage()->GetDimensions(dims);
+    EXPECT_LE(dims[0], size[0] * 13 / 20) << "the inset leaves the scene most of the window";
+  }
+  std::filesystem::remove_all(tmp);
+}
+
 // ---- camera presets ---------------------------------------------------------------------------
 
 namespace

@@ -127,9 +127,13 @@ void vtkDistancePlotRepresentation::Redraw()
         { this->InstrumentValuesMm[c].begin(), this->InstrumentValuesMm[c].end() }, vp::InstrumentVolumeNote(largest) });
     }
   }
+  const std::vector<vp::PlotBand> bands = vp::DangerBands(this->Thresholds, vp::LowestValueMm(series) < 0);
+  // Never smaller than its legend needs (the legend takes at most 2/5 of the width; its rows hang
+  // from the top of the plot area, under the title): a window of 1000 x 700 cut it off.
+  const std::array<int, 2> legend = vp::LegendSizePx(series, bands);
   vp::DistancePlotOptions options;
-  options.WidthPx = this->WidthPx;
-  options.HeightPx = this->HeightPx;
+  options.WidthPx = std::max(this->WidthPx, legend[0] * 5 / 2 + 1);
+  options.HeightPx = std::max(this->HeightPx, legend[1] + 40);
   options.Title = this->ShowsInstrument ? "tip and instrument distance (mm)" : "tip distance (mm)";
   options.YLabel = "";
   // A fixed scale: a plot that rescales with every frame is hard to read at a glance.
@@ -137,10 +141,15 @@ void vtkDistancePlotRepresentation::Redraw()
   const std::vector<double> times(this->Times.begin(), this->Times.end());
   // Fixed below zero too: 5 mm under the wall, deeper in 5 mm steps only when something goes deeper.
   options.YMinStepMm = 5.0;
-  this->Mapper->SetInputData(vp::RenderDistancePlot(
-    times, series, vp::DangerBands(this->Thresholds, vp::LowestValueMm(series) < 0), options));
+  this->Mapper->SetInputData(vp::RenderDistancePlot(times, series, bands, options, &this->Frame));
   ++this->Redraws;
   this->Stale = false;
+}
+
+const vp::DistancePlotFrame& vtkDistancePlotRepresentation::GetFrame()
+{
+  this->RedrawIfStale();
+  return this->Frame;
 }
 
 vtkImageData* vtkDistancePlotRepresentation::GetImage()

@@ -2,6 +2,7 @@
 #define vtkDistancePlotRepresentation_h
 
 #include "vpDangerLevels.h"
+#include "vpDistancePlot.h"
 #include "vpProximityResult.h"
 #include "vtkScalpelTrackingLogic.h"
 
@@ -49,8 +50,10 @@ public:
   void ClearHistory();
   int GetNumberOfSamples() const { return static_cast<int>(this->Times.size()); }
   int GetNumberOfRedraws() const { return this->Redraws; }
-  /// The plot as it stands now (drawn first when a frame came since the last drawing).
+  /// The plot as it stands now (drawn first when a frame came since the last drawing), and where
+  /// its parts went (its legend whole or not). The image is never smaller than its legend needs.
   vtkImageData* GetImage();
+  const vp::DistancePlotFrame& GetFrame();
 
   void AddToRenderer(vtkRenderer* renderer);
   void RemoveFromRenderer(vtkRenderer* renderer);
@@ -70,6 +73,7 @@ protected:
   int WidthPx = 480;
   int HeightPx = 240;
   int Redraws = 0;
+  vp::DistancePlotFrame Frame;
   bool Stale = true; ///< something changed since the plot was last drawn
   vtkSmartPointer<vtkImageMapper> Mapper;
   vtkSmartPointer<vtkActor2D> Actor;

@@ -1,14 +1,12 @@
 #include "vpDistancePlot.h"
 
 #include "vpInputError.h"
-#include "vpOutputFile.h"
+#include "vpPngFile.h"
 
 #include <vtkFreeTypeTools.h>
 #include <vtkNew.h>
-#include <vtkPNGWriter.h>
 #include <vtkStdString.h>
 #include <vtkTextProperty.h>
-#include <vtkUnsignedCharArray.h>
 
 #include <algorithm>
 #include <cmath>
@@ -623,16 +621,6 @@ void WriteDistancePlotPng(const std::string& fileName, const std::vector<double>
   const std::vector<PlotSeries>& series, const std::vector<PlotBand>& bands,
   const DistancePlotOptions& options)
 {
-  vtkNew<vtkPNGWriter> writer;
-  writer->SetInputData(RenderDistancePlot(timesS, series, bands, options));
-  writer->WriteToMemoryOn(); // the file itself goes through WriteFileAtomically: whole or not at all
-  writer->Write();
-  vtkUnsignedCharArray* bytes = writer->GetResult();
-  if (!bytes || bytes->GetNumberOfValues() == 0)
-  {
-    throw InputError(fileName, "cannot write: PNG encoding failed");
-  }
-  WriteFileAtomically(fileName,
-    std::string(reinterpret_cast<const char*>(bytes->GetPointer(0)), static_cast<std::size_t>(bytes->GetNumberOfValues())));
+  WritePngAtomically(RenderDistancePlot(timesS, series, bands, options), fileName);
 }
 } // namespace vp

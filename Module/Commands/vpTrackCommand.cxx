@@ -8,12 +8,15 @@
 #include "vpEngineOptions.h"
 #include "vpFramesCsv.h"
 #include "vpInputError.h"
+#include "vpKeyFrameShots.h"
+#include "vpKeyFrames.h"
 #include "vpPoseFile.h"
 #include "vpScalpelLoader.h"
 #include "vpTrackingOptions.h"
 #include "vpTrackingRecorder.h"
 #include "vtkScalpelTrackingLogic.h"
 #include "vtkVesselProximityLogic.h"
+#include "vpVirtualDisplay.h"
 
 #include <cstdio>
 #include <iostream>
@@ -120,6 +123,14 @@ cli::ModuleDescription DescribeTrackCommand()
       { "Scalpel", "", ScalpelOptions() },
       EngineOptions({ "exact", "zbuffer", "both" }),
       TrackingOptions(),
+      { "Pictures", "",
+        { Switch("screenshots",
+            "Also OUTDIR/screenshots/ of the key frames (the first and last, each level change, the closest approach to "
+            "each class, the instrument's deepest penetration into each, the first pose the tracker lost) and "
+            "OUTDIR/keyframes.png, a contact sheet of them (rendered off-screen; Xvfb is started when there is no display)."),
+          Option(ParameterType::StringEnumeration, "view", "The screenshots' camera, as view --view takes it.")
+            .SetDefault("anterior")
+            .SetElements({ "anterior", "lateral", "superior", "tool", "follow" }) } },
     });
 }
 
@@ -143,6 +154,13 @@ int RunTrackCommand(const cli::ParsedArguments& args, const ModuleServices& modu
     classes.push_back(vessel.ClassName);
   }
   CheckFramesCsvColumns(classes); // before anything is read or said
+  // Pictures need a display: one that cannot be had refuses the run before it computes anything.
+  const bool screenshots = args.GetBoolean("screenshots");
+  VirtualDisplay display;
+  if (screenshots && !display.Ensure())
+  {
+    throw InputError("--screenshots", display.GetProblem());
+  }
   // What the run reads is never removed or written over, even in its own output folder.
   std::vector<std::string> inputs = { posesFile, request.ScalpelFile, ScalpelDefinitionFileFor(request.ScalpelFile) };
   for (const NamedMesh& vessel : request.Vessels)
@@ -163,10 +181,34 @@ int RunTrackCommand(const cli::ParsedArguments& args, const ModuleServices& modu
   session.SetProgress([](std::size_t done, std::size_t expected) {
     std::fprintf(stderr, "track: frame %zu of %zu (%.0f%%)\n", done, expected, 100.0 * done / expected);
   });
+  KeyFrameFinder keys;
+  if (screenshots)
+  {
+    session.SetFrameObserver([&keys](const TrackedFrame& f) { keys.AddFrame(f); });
+    session.SetLostObserver([&keys](const TrackedPose&) { keys.AddLost(); });
+  }
   PoseStream poses(posesFile, poseCount, reading);
   if (!session.Run(poses, run))
   {
     return 1; // the RunFolder removes what was written, then the signal acts
+  }
+  std::size_t shots = 0;
+  if (screenshots)
+  {
+    std::fprintf(stderr, "track: rendering the key frames\n");
+    KeyFrameShotRequest pictures;
+    pictures.Logic = proximity;
+    pictures.Poses = ReadPoseFile(posesFile, reading);
+    pictures.Keys = keys.GetKeyFrames();
+    vtkVesselProximityView::ParseCameraPreset(args.GetString("view"), pictures.Camera); // an enumeration: checked
+    pictures.Folder = run.Folder("screenshots");
+    pictures.ContactSheetFile = run.File("keyframes.png");
+    shots = RenderKeyFrameShots(module, pictures).size();
+    if (keys.GetLevelChangesLeftOut() > 0)
+    {
+      std::fprintf(stderr, "track: %zu more level change(s) not pictured (the first %zu are)\n", keys.GetLevelChangesLeftOut(),
+        KeyFrameFinder::MaximumLevelChanges);
+    }
   }
   ReportTrajectoryWarnings(session.GetWarnings(), strict, posesFile);
   if (strict)
@@ -181,6 +223,11 @@ int RunTrackCommand(const cli::ParsedArguments& args, const ModuleServices& modu
               << proximity->GetDistanceEngine()->GetErrorBoundMm() << " mm\n";
   }
   PrintSummary(session, proximity, outDir);
+  if (screenshots)
+  {
+    std::printf("wrote %zu key frame(s) in %s/screenshots/ and their contact sheet %s/keyframes.png\n", shots, outDir.c_str(),
+      outDir.c_str());
+  }
   return 0;
 }
 } // namespace vp

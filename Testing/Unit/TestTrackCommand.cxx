@@ -1277,3 +1277,42 @@ TEST_F(PoseForms, ARegistrationTakesTrackerPosesIntoThePatient)
   EXPECT_FALSE(vp::test::FileExists(this->Dir + "/mirror"));
 }
 } // namespace
+
+// Pictures of the user's own run (issue 34): the approach in and out gives a screenshot at the
+// start, at the instrument's deepest in the far hepatic vein (the 80 mm shaft runs through it from
+// the start), at each level change in and out, at the closest approach and at the end, and a
+// contact sheet of them, 3 to a row.
+TEST_F(TrackCommand, ScreenshotsShowTheKeyFramesAndAContactSheet)
+{
+  const std::string out = this->Dir + "/pictured";
+  const ToolRun r = RunTool(this->Dir, "track --vessels " + this->Vessels + " --scalpel " + this->Tool + " --poses " +
+      this->ApproachPoses() + " -o " + out + " --screenshots");
+  ASSERT_EQ(r.ExitCode, 0) << r.Err;
+  std::vector<std::string> names;
+  for (const auto& entry : std::filesystem::directory_iterator(out + "/screenshots"))
+  {
+    names.push_back(entry.path().filename().string());
+  }
+  std::sort(names.begin(), names.end());
+  std::vector<std::string> reasons;
+  for (const std::string& name : names)
+  {
+    EXPECT_EQ(name.rfind("frame", 0), 0u) << name;
+    EXPECT_EQ(name.substr(name.size() - 4), ".png") << name;
+    reasons.push_back(name.substr(10, name.size() - 14)); // frameNNNN_<reason>.png
+  }
+  EXPECT_EQ(reasons, (std::vector<std::string>{ "start", "deepest_hepatic_vein", "caution", "warning", "danger",
+                       "closest_portal_vein", "warning", "caution", "safe", "end" }));
+  // The contact sheet: ten thumbnails of 420 x 262 (the 1280 x 800 screenshots), three to a row,
+  // each with a 26-pixel caption, 12 pixels apart: 1308 x 1212.
+  const std::string sheet = vp::test::Slurp(out + "/keyframes.png");
+  ASSERT_GT(sheet.size(), 24u);
+  EXPECT_EQ(sheet.substr(1, 3), "PNG");
+  auto bigEndian = [&](std::size_t at) {
+    return (static_cast<unsigned char>(sheet[at]) << 24) | (static_cast<unsigned char>(sheet[at + 1]) << 16) |
+      (static_cast<unsigned char>(sheet[at + 2]) << 8) | static_cast<unsigned char>(sheet[at + 3]);
+  };
+  EXPECT_EQ(bigEndian(16), 1308);
+  EXPECT_EQ(bigEndian(20), 1212);
+  EXPECT_NE(r.Out.find("wrote 10 key frame(s)"), std::string::npos) << r.Out;
+}

@@ -4,7 +4,7 @@
 #include "vpDangerBands.h"
 #include "vpInputError.h"
 #include "vpLivePoseSource.h"
-#include "vpOutputFile.h"
+#include "vpPngFile.h"
 #include "vpTrackingSession.h"
 #include "vtkScalpelKeyboardMouseStyle.h"
 #include "vtkScalpelModel.h"
@@ -18,8 +18,6 @@
 #include <vtkCamera.h>
 #include <vtkNew.h>
 #include <vtkObjectFactory.h>
-#include <vtkPNGWriter.h>
-#include <vtkUnsignedCharArray.h>
 #include <vtkPolyData.h>
 #include <vtkProperty.h>
 #include <vtkRenderWindow.h>
@@ -176,6 +174,16 @@ void vtkVesselProximityView::ShowPose(int i)
     return;
   }
   this->CurrentPose = i;
+  if (this->Poses[i].Lost)
+  {
+    // A pose the tracker lost is no pose: the overlays say so and show no distance as current.
+    vtkVesselProximityLogic* logic = this->GetLogic();
+    const double lastS = logic && logic->GetTrackingLogic()->GetNumberOfFrames() > 0 ? logic->GetLastFrame().TimeS : this->Poses[i].TimeS;
+    this->Overlays->ShowTrackingLost(1000.0 * std::max(0.0, this->Poses[i].TimeS - lastS));
+    this->TrackingLost = true;
+    return;
+  }
+  this->TrackingLost = false;
   this->Process(this->Poses[i].ModelToWorld, this->Poses[i].TimeS);
 }
 
@@ -462,19 +470,7 @@ std::string vtkVesselProximityView::SaveScreenshot(const std::string& requested)
   grab->ReadFrontBufferOff();
   grab->Update();
   this->LastScreenshot = grab->GetOutput();
-  // Encoded in memory, then written as every output is (vp::WriteFileAtomically): whole or not at
-  // all, through a link, never replacing a device or a pipe with a regular file.
-  vtkNew<vtkPNGWriter> writer;
-  writer->WriteToMemoryOn();
-  writer->SetInputConnection(grab->GetOutputPort());
-  writer->Write();
-  vtkUnsignedCharArray* bytes = writer->GetResult();
-  if (writer->GetErrorCode() != 0 || !bytes || bytes->GetNumberOfValues() == 0)
-  {
-    throw vp::InputError(file, "cannot write the screenshot: PNG encoding failed");
-  }
-  vp::WriteFileAtomically(
-    file, std::string(reinterpret_cast<const char*>(bytes->GetPointer(0)), static_cast<std::size_t>(bytes->GetNumberOfValues())));
+  vp::WritePngAtomically(this->LastScreenshot, file);
   return file;
 }
 

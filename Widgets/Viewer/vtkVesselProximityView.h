@@ -58,7 +58,8 @@ public:
   /// Recorded poses for replay (n, b, space); the first is shown by ShowPose(0).
   void SetPoses(const std::vector<vp::TrackedPose>& poses);
   int GetNumberOfPoses() const { return static_cast<int>(this->Poses.size()); }
-  /// Shows recorded pose i: the logic computes its frame, the overlays follow.
+  /// Shows recorded pose i: the logic computes its frame, the overlays follow; a pose the tracker
+  /// lost (TrackedPose::Lost) shows "tracking lost" instead.
   void ShowPose(int i);
   int GetCurrentPose() const { return this->CurrentPose; }
   /// Moves the scalpel from where it is by a world displacement (mm) and computes the frame.

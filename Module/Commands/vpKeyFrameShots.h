@@ -1,0 +1,37 @@
+#ifndef vpKeyFrameShots_h
+#define vpKeyFrameShots_h
+
+#include "vpKeyFrames.h"
+#include "vpPoseFile.h"
+#include "vtkVesselProximityView.h"
+
+#include <string>
+#include <vector>
+
+class vtkPolyData;
+class vtkVesselProximityLogic;
+
+namespace vp
+{
+struct ModuleServices;
+
+/// Pictures of a run's key frames (vp::KeyFrameFinder): the poses replayed through an off-screen
+/// view of the logic with the module's overlays, a screenshot at each key frame
+/// (folder/frameNNNN_<name>.png) and a contact sheet of them all, captioned with frame, time and
+/// reason. Needs a display (a virtual one is started when there is none; the caller asks first).
+struct KeyFrameShotRequest
+{
+  vtkVesselProximityLogic* Logic = nullptr; ///< its scene open
+  vtkPolyData* Liver = nullptr;             ///< may be null
+  std::vector<TrackedPose> Poses;
+  std::vector<KeyFrame> Keys;
+  vtkVesselProximityView::CameraPreset Camera = vtkVesselProximityView::CameraPreset::Anterior;
+  std::string Folder;            ///< where the screenshots go
+  std::string ContactSheetFile;  ///< the contact sheet (keyframes.png)
+};
+
+/// The screenshots written, in pose order.
+std::vector<std::string> RenderKeyFrameShots(const ModuleServices& module, const KeyFrameShotRequest& request);
+} // namespace vp
+
+#endif

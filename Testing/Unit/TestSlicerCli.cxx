@@ -1005,7 +1005,8 @@ TEST_F(SlicerCli, DistanceTakesTheToolTransformAndReturnsPointsAndATable)
 {
   const SemModule m = this->Xml(DistanceProgram);
   const std::string params = this->Dir + "/igt.params";
-  const double* tipModel = vp::MakeDefaultScalpel()->GetTipMm();
+  const auto scalpel = vp::MakeDefaultScalpel();
+  const double* tipModel = scalpel->GetTipMm();
   // Tool to patient: a quarter turn about S, then the translation that puts the tip at (30,0,10).
   const std::array<double, 3> rotated = { -tipModel[1], tipModel[0], tipModel[2] };
   const vp::Matrix4 toolToPatient = { 0, -1, 0, 30 - rotated[0], 1, 0, 0, 0 - rotated[1], 0, 0, 1, 10 - rotated[2], 0, 0, 0, 1 };
@@ -1077,7 +1078,8 @@ TEST_F(SlicerCli, TrackRunsAsSlicerRunsIt)
 {
   const SemModule m = this->Xml(TrackProgram);
   ExpectWellFormedSem(m, TrackProgram);
-  const double* tip = vp::MakeDefaultScalpel()->GetTipMm();
+  const auto scalpel = vp::MakeDefaultScalpel();
+  const double* tip = scalpel->GetTipMm();
   const std::string poses = this->Dir + "/poses.csv";
   {
     std::ofstream out(poses);

@@ -38,11 +38,14 @@ vp::OpenedScene vtkVesselProximityLogic::OpenScene(const vp::SceneRequest& reque
   vp::OpenedScene scene;
   vp::CheckVesselClassNames(request.Vessels);
   vtkSmartPointer<vtkVesselDistanceEngine> engine = vp::MakeDistanceEngine(request.Engine, &scene.EngineNote);
+  this->StartStage("reading the vessels");
   scene.Vessels = vp::LoadVesselMeshes(request.Vessels);
   if (request.RepairVessels)
   {
+    this->StartStage("repairing the vessels");
     vp::RepairVesselMeshes(scene.Vessels);
   }
+  this->StartStage("reading the scalpel");
   if (!request.LiverFile.empty())
   {
     vtkNew<vtkVesselMeshReader> reader;
@@ -76,6 +79,11 @@ vp::OpenedScene vtkVesselProximityLogic::OpenScene(const vp::SceneRequest& reque
   this->ResetTracking();
   scene.PenetrationUnknown = this->Penetration && !this->Penetration->IsToolClosed();
   return scene;
+}
+
+void vtkVesselProximityLogic::StartStage(const std::string& stage)
+{
+  this->InvokeEvent(StageStartedEvent, const_cast<char*>(stage.c_str()));
 }
 
 void vtkVesselProximityLogic::SetParameters(vtkVesselProximityParameters* parameters)
@@ -223,6 +231,7 @@ void vtkVesselProximityLogic::Build()
   }
   for (vtkVesselDistanceEngine* e : engines)
   {
+    this->StartStage(std::string("building the ") + e->GetMethodName() + " engine");
     e->RemoveAllVessels();
     for (int i = 0; i < this->GetNumberOfVessels(); ++i)
     {
@@ -237,6 +246,7 @@ void vtkVesselProximityLogic::Build()
   this->Tracking->SetDistanceEngine(engine);
   if (surface)
   {
+    this->StartStage("sampling the instrument");
     this->BuildInstrument(engine);
   }
   else

@@ -6,6 +6,7 @@
 #include "vtkScalpelTrackingLogic.h"
 #include "vtkVesselProximityParameters.h"
 
+#include <vtkCommand.h>
 #include <vtkObject.h>
 #include <vtkSmartPointer.h>
 
@@ -42,6 +43,13 @@ public:
   static vtkVesselProximityLogic* New();
   vtkTypeMacro(vtkVesselProximityLogic, vtkObject);
   void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  enum
+  {
+    /// A stage of opening or building the scene starts; call data: its name (const char*,
+    /// "reading the vessels", "building the exact engine", ...), for a front end's progress.
+    StageStartedEvent = vtkCommand::UserEvent + 1301
+  };
 
   /// Opens the scene a front end asks for and leaves the logic ready to track: the engine made
   /// first (its Vulkan device opened before any file is read), the vessels read and repaired as
@@ -130,6 +138,8 @@ private:
   /// What a change of the parameter set invalidates: the built engines (scene), or only the
   /// tracking logic's per-frame settings.
   void ApplyParameters();
+  /// StageStartedEvent with the stage's name.
+  void StartStage(const std::string& stage);
   void operator=(const vtkVesselProximityLogic&) = delete;
 };
 

@@ -25,6 +25,33 @@ void ReportSurfaceDefects(const std::string& command, vtkVesselDistanceEngine* e
 /// checked, since a line before a refusal would make its one line two.
 void ReportOpenedScene(
   const std::string& command, vtkVesselProximityLogic* proximity, const OpenedScene& scene, const std::string& scalpelFile);
+/// Progress on stderr for a command's long stages: the logic's stages of opening the scene
+/// (vtkVesselProximityLogic::StageStartedEvent) and the frames (FramesDone). On a terminal, one
+/// line rewritten in place ("track: building the exact engine", then a bar "track: frames
+/// [#####.....] 52% 477/918"), cleared when it is destroyed, so that a refusal's one line stands
+/// alone; otherwise plain lines, and only for what took over a second: a stage's line when it
+/// ends ("track: building the exact engine: 1.4 s"), the frames' each second.
+class StageProgress
+{
+public:
+  StageProgress(std::string command, vtkVesselProximityLogic* logic);
+  ~StageProgress();
+  StageProgress(const StageProgress&) = delete;
+  StageProgress& operator=(const StageProgress&) = delete;
+  /// The stage now starting (also called by the logic's events).
+  void Stage(const std::string& name);
+  /// The frames so far (called once a second at most by the session).
+  void FramesDone(std::size_t done, std::size_t expected);
+  /// Ends the current stage (its plain line when it took over a second; a terminal's line cleared).
+  void Finish();
+
+private:
+  std::string Command, Current;
+  double StartedMs = 0.0;
+  bool Terminal = false, Dirty = false;
+  vtkVesselProximityLogic* Logic = nullptr;
+  unsigned long Tag = 0;
+};
 } // namespace vp
 
 #endif

@@ -112,7 +112,11 @@ int RunLiveCommand(const cli::ParsedArguments& args, const ModuleServices& modul
     run->SetInputs(inputs);
   }
   vtkSmartPointer<vtkVesselProximityLogic> proximity = module.CreateLogic();
-  const OpenedScene scene = proximity->OpenScene(request);
+  OpenedScene scene;
+  {
+    StageProgress progress("live", proximity); // a window or a stream waits on these: say what they are
+    scene = proximity->OpenScene(request);
+  }
   ReportOpenedScene("live", proximity, scene, request.ScalpelFile);
 
   // The scene is built before the stream is opened: no pose waits on a build.

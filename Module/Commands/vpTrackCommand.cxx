@@ -169,7 +169,9 @@ int RunTrackCommand(const cli::ParsedArguments& args, const ModuleServices& modu
   }
   run.SetInputs(inputs);
   vtkSmartPointer<vtkVesselProximityLogic> proximity = module.CreateLogic();
+  StageProgress progress("track", proximity);
   const OpenedScene scene = proximity->OpenScene(request);
+  progress.Finish();
   // Under --strict the run may yet be refused after its frames: its one line comes alone.
   const bool strict = args.GetBoolean("strict");
   if (!strict)
@@ -178,9 +180,7 @@ int RunTrackCommand(const cli::ParsedArguments& args, const ModuleServices& modu
   }
   TrackingRecorder session(proximity, scene.Vessels);
   session.SetLoadAndBuildMs(NowMs() - start);
-  session.SetProgress([](std::size_t done, std::size_t expected) {
-    std::fprintf(stderr, "track: frame %zu of %zu (%.0f%%)\n", done, expected, 100.0 * done / expected);
-  });
+  session.SetProgress([&progress](std::size_t done, std::size_t expected) { progress.FramesDone(done, expected); });
   KeyFrameFinder keys;
   if (screenshots)
   {
@@ -192,10 +192,11 @@ int RunTrackCommand(const cli::ParsedArguments& args, const ModuleServices& modu
   {
     return 1; // the RunFolder removes what was written, then the signal acts
   }
+  progress.Finish();
   std::size_t shots = 0;
   if (screenshots)
   {
-    std::fprintf(stderr, "track: rendering the key frames\n");
+    progress.Stage("rendering the key frames");
     KeyFrameShotRequest pictures;
     pictures.Logic = proximity;
     pictures.Poses = ReadPoseFile(posesFile, reading);
@@ -204,6 +205,7 @@ int RunTrackCommand(const cli::ParsedArguments& args, const ModuleServices& modu
     pictures.Folder = run.Folder("screenshots");
     pictures.ContactSheetFile = run.File("keyframes.png");
     shots = RenderKeyFrameShots(module, pictures).size();
+    progress.Finish();
     if (keys.GetLevelChangesLeftOut() > 0)
     {
       std::fprintf(stderr, "track: %zu more level change(s) not pictured (the first %zu are)\n", keys.GetLevelChangesLeftOut(),

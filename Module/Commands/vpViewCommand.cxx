@@ -197,7 +197,11 @@ int RunViewCommand(const cli::ParsedArguments& args, const ModuleServices& modul
     throw InputError("--pose", "no pose " + std::to_string(first) + " (the pose file has " + std::to_string(poses.size()) + ")");
   }
   vtkSmartPointer<vtkVesselProximityLogic> logic = module.CreateLogic();
-  const OpenedScene scene = logic->OpenScene(request);
+  OpenedScene scene;
+  {
+    StageProgress progress("view", logic); // a window or a stream waits on these: say what they are
+    scene = logic->OpenScene(request);
+  }
   ReportEngineNote(scene.EngineNote);
   // Every frame the window shows, for the frame times said when it closes.
   TrackingSummary frames;

@@ -1316,3 +1316,32 @@ TEST_F(TrackCommand, ScreenshotsShowTheKeyFramesAndAContactSheet)
   EXPECT_EQ(bigEndian(20), 1212);
   EXPECT_NE(r.Out.find("wrote 10 key frame(s)"), std::string::npos) << r.Out;
 }
+
+// Progress (issue 34): on a terminal each stage of opening the scene is shown in one line
+// rewritten in place and cleared before the summary; in a log (not a terminal) only what took
+// over a second gets a line, so this small run says nothing but its summary's lines.
+TEST_F(TrackCommand, ShowsItsStagesOnATerminalAndOnlyLongOnesInALog)
+{
+  const std::string poses = this->ApproachPoses();
+  const std::string args = "track --vessels " + this->Vessels + " --scalpel " + this->Tool + " --poses " + poses;
+  // script(1) gives the program a terminal; what it wrote comes back in the typescript.
+  const std::string typescript = this->Dir + "/typescript";
+  const std::string command = "script -qec '" + std::string(VP_EXECUTABLE) + " " + args + " -o " + this->Dir + "/on_tty' " +
+    typescript + " >/dev/null 2>&1";
+  ASSERT_EQ(std::system(command.c_str()), 0);
+  const std::string seen = vp::test::Slurp(typescript);
+  std::size_t at = 0;
+  for (const char* stage : { "track: reading the vessels", "track: reading the scalpel", "track: building the exact engine",
+         "track: sampling the instrument" })
+  {
+    const std::size_t found = seen.find(std::string("\r\033[K") + stage, at);
+    ASSERT_NE(found, std::string::npos) << stage << " in order, rewritten in place:\n" << seen;
+    at = found;
+  }
+  EXPECT_NE(seen.find("\r\033[K", at + 1), std::string::npos) << "the line is cleared before the summary";
+
+  const ToolRun log = RunTool(this->Dir, args + " -o " + this->Dir + "/in_log");
+  ASSERT_EQ(log.ExitCode, 0) << log.Err;
+  EXPECT_EQ(log.Err.find("\033"), std::string::npos) << "no terminal codes in a log";
+  EXPECT_EQ(log.Err.find("track: building"), std::string::npos) << "nothing took a second: " << log.Err;
+}

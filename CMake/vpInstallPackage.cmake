@@ -58,5 +58,9 @@ write_basic_package_version_file(${CMAKE_BINARY_DIR}/VesselProximityConfigVersio
 install(FILES ${CMAKE_BINARY_DIR}/VesselProximityConfig.cmake ${CMAKE_BINARY_DIR}/VesselProximityConfigVersion.cmake
   DESTINATION ${VP_INSTALL_CMAKE_DIR})
 
-# What the CLIs' documentation-url points at once installed, and the licence.
-install(FILES ${PROJECT_SOURCE_DIR}/README.md ${PROJECT_SOURCE_DIR}/LICENSE DESTINATION ${CMAKE_INSTALL_DATADIR}/doc/VesselProximity)
+# What the CLIs' documentation-url points at once installed (the README, and the guides and
+# pictures it links to, in the same places relative to it), and the licence.
+set(VP_INSTALL_DOC_DIR ${CMAKE_INSTALL_DATADIR}/doc/VesselProximity)
+install(FILES ${PROJECT_SOURCE_DIR}/README.md ${PROJECT_SOURCE_DIR}/LICENSE DESTINATION ${VP_INSTALL_DOC_DIR})
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/Documentation DESTINATION ${VP_INSTALL_DOC_DIR})
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/Resources/Documentation DESTINATION ${VP_INSTALL_DOC_DIR}/Resources)

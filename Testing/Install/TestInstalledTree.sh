@@ -21,7 +21,9 @@ for f in "$cli/VesselProximityModels" "$cli/VesselProximityDistance" "$cli/Vesse
   "$slicer/qt-loadable-modules/libVesselProximityModule.so" "$slicer/qt-loadable-modules/libVesselProximityLogic.so" \
   "$slicer/qt-loadable-modules/libVesselProximityWidgets.so" "$slicer/qt-loadable-modules/libVesselProximityPhantom.so" \
   "$moved/bin/vesselproximity" "$moved/include/VesselProximity/vtkVesselProximityLogic.h" \
-  "$moved/lib/cmake/VesselProximity/VesselProximityConfig.cmake" "$moved/share/doc/VesselProximity/README.md"; do
+  "$moved/lib/cmake/VesselProximity/VesselProximityConfig.cmake" "$moved/share/doc/VesselProximity/README.md" \
+  "$moved/share/doc/VesselProximity/Documentation/UserGuide.md" \
+  "$moved/share/doc/VesselProximity/Resources/Documentation/demo_breach.png"; do
   [ -e "$f" ] || fail "not installed: ${f#$moved/}"
 done
 

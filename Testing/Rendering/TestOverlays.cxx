@@ -616,6 +616,13 @@ std::string RenderPreset(
 }
 } // namespace
 
+// Names the preset in test listings (ctest shows it) instead of its bytes; found by ADL beside
+// the enumeration's class.
+void PrintTo(const vtkVesselProximityView::CameraPreset& preset, std::ostream* os)
+{
+  *os << vtkVesselProximityView::CameraPresetName(preset);
+}
+
 class CameraPresetImages : public ::testing::TestWithParam<vtkVesselProximityView::CameraPreset>
 {
 protected:

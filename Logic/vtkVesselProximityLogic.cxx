@@ -317,12 +317,18 @@ const vp::TrackedFrame& vtkVesselProximityLogic::ProcessPose(const vp::TrackedPo
     this->SceneChanged = true;
   }
   this->Build();
-  const vp::TrackedFrame& frame = this->Tracking->ProcessPose(pose);
-  if (this->GetCompareWithExact() && this->Exact != this->GetDistanceEngine())
+  // The exact answer first, so that whoever hears of the frame (the overlays) can show it beside
+  // the approximate one; the frame's own time counts the engine's query alone.
+  if (this->GetCompareWithExact() && this->Exact != this->GetDistanceEngine() && !pose.Lost)
   {
-    this->Exact->ComputeProximity(frame.TipMm, frame.AxisWorld, this->LastExact);
+    vtkScalpelModel* scalpel = this->Tracking->GetScalpel();
+    scalpel->SetModelToWorld(pose.ModelToWorld);
+    double tip[3], axis[3];
+    scalpel->GetTipInWorld(tip);
+    scalpel->GetAxisInWorld(axis);
+    this->Exact->ComputeProximity(tip, axis, this->LastExact);
   }
-  return frame;
+  return this->Tracking->ProcessPose(pose);
 }
 
 bool vtkVesselProximityLogic::WantsSurfaceDistance() const

@@ -313,6 +313,13 @@ TEST(Overlays, TheReadoutNamesItsEngineAndShowsABoundAsAnInterval)
   EXPECT_EQ(readout->GetLineText(0), "DANGER   z-buffer engine, within 0.35 mm");
   EXPECT_NE(readout->GetLineText(1).find("0.0-0.5 mm"), std::string::npos) << readout->GetLineText(1);
   EXPECT_NE(readout->GetLineText(2).find("3.0-3.6 mm"), std::string::npos) << readout->GetLineText(2);
+  // With the exact engine's answer computed beside it (--method both), that too.
+  vp::ProximityResult exact = proximity;
+  exact.ErrorBoundMm = 0.0;
+  exact.Classes[0].DistanceMm = 0.032;
+  readout->ShowFrame(proximity, { vp::DangerLevel::Danger, vp::DangerLevel::Warning }, vp::DangerLevel::Danger, {}, {}, &exact);
+  EXPECT_NE(readout->GetLineText(1).find("0.0-0.5 mm  danger  (exact 0.0)"), std::string::npos) << readout->GetLineText(1);
+  EXPECT_NE(readout->GetLineText(2).find("(exact 3.3)"), std::string::npos) << readout->GetLineText(2);
   proximity.ErrorBoundMm = 0.0;
   readout->SetEngine("exact");
   readout->ShowFrame(proximity, { vp::DangerLevel::Danger, vp::DangerLevel::Warning }, vp::DangerLevel::Danger);

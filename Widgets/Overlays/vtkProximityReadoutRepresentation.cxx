@@ -13,6 +13,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 
 vtkStandardNewMacro(vtkProximityReadoutRepresentation);
 
@@ -129,7 +130,7 @@ void vtkProximityReadoutRepresentation::SetEngine(const std::string& methodName)
 
 void vtkProximityReadoutRepresentation::ShowFrame(const vp::ProximityResult& proximity,
   const std::vector<vp::DangerLevel>& classLevels, vp::DangerLevel overall, const std::vector<vp::SurfaceProximity>& surface,
-  const std::vector<vp::Penetration>& penetrations)
+  const std::vector<vp::Penetration>& penetrations, const vp::ProximityResult* exact)
 {
   // Three engines' numbers read alike unless the screen says whose they are and how sure.
   const double bound = proximity.ErrorBoundMm;
@@ -160,6 +161,13 @@ void vtkProximityReadoutRepresentation::ShowFrame(const vp::ProximityResult& pro
       }
       std::snprintf(text, sizeof(text), "%-15s %9s mm%s  %s", name.c_str(), distance, inside ? " inside" : "",
         c < classLevels.size() ? vp::DangerLevelName(classLevels[c]) : "");
+      if (exact && c < exact->Classes.size() && exact->Classes[c].InRange)
+      {
+        const vp::ClassProximity& e = exact->Classes[c];
+        char exactText[64];
+        std::snprintf(exactText, sizeof(exactText), "  (exact %.1f%s)", e.DistanceMm, e.Inside && *e.Inside ? " inside" : "");
+        std::strncat(text, exactText, sizeof(text) - std::strlen(text) - 1);
+      }
     }
     std::string line = text;
     if (c < penetrations.size() && penetrations[c].Known && penetrations[c].VolumeMm3 > 0.0)

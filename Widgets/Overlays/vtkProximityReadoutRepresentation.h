@@ -36,9 +36,11 @@ public:
   /// With the whole instrument measured (surface and penetrations not empty), each class line also
   /// gives the instrument's distance ("tool 2.6 mm") or, inside, its depth and volume ("tool 1.0 mm
   /// in, 3.7 mm3").
+  /// With exact (the exact engine's answer for the same pose, when it was computed beside an
+  /// approximate one), each class line gives the exact distance too ("exact 0.2").
   void ShowFrame(const vp::ProximityResult& proximity, const std::vector<vp::DangerLevel>& classLevels,
     vp::DangerLevel overall, const std::vector<vp::SurfaceProximity>& surface = {},
-    const std::vector<vp::Penetration>& penetrations = {});
+    const std::vector<vp::Penetration>& penetrations = {}, const vp::ProximityResult* exact = nullptr);
   /// A live stream gave no pose for sinceMs: the headline says TRACKING LOST and each class line
   /// loses its distance ("portal vein      -"), so that the last distance is never read as current.
   /// The next ShowFrame gives them back.

@@ -155,7 +155,10 @@ void vtkVesselProximityOverlays::ShowFrame(const vp::TrackedFrame& frame)
   {
     this->ClosestLine->Hide();
   }
-  this->Readout->ShowFrame(frame.Proximity, frame.ClassLevels, frame.Level, frame.Surface, frame.Penetrations);
+  // The exact answer beside an approximate one when the logic computed both for this pose.
+  const bool both = this->Logic && this->Logic->GetCompareWithExact() && frame.Proximity.ErrorBoundMm > 0;
+  this->Readout->ShowFrame(frame.Proximity, frame.ClassLevels, frame.Level, frame.Surface, frame.Penetrations,
+    both ? &this->Logic->GetLastExactProximity() : nullptr);
   this->Readout->ShowFrameTime(frame.FrameMs, frame.OverBudget,
     this->Logic ? this->Logic->GetTrackingLogic()->GetFrameBudgetMs() : 0.0);
   this->Plot->AddFrame(frame);

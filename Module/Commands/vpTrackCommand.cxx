@@ -72,6 +72,12 @@ void PrintSummary(const TrackingRecorder& session, vtkVesselProximityLogic* prox
   const std::size_t frameCount = static_cast<std::size_t>(summary.GetNumberOfFrames());
   std::printf("%zu frames over %.2f s, method %s on %s, error bound %.3f mm\n", frameCount, summary.GetDurationS(),
     engine->GetMethodName(), engine->GetDeviceDescription().c_str(), engine->GetErrorBoundMm());
+  if (engine->GetErrorBoundMm() > 0)
+  {
+    // A bounded answer is not an exact number: say so where the numbers are read.
+    std::printf("  (%s distances: the truth lies within %.3f mm of each; a distance of 0 may be a tip just outside)\n",
+      engine->GetMethodName(), engine->GetErrorBoundMm());
+  }
   std::printf("  %-16s %16s %10s %20s\n", "class", "tip minimum mm", "at time", surface ? "whole surface mm" : "");
   for (std::size_t c = 0; c < classes.size(); ++c)
   {

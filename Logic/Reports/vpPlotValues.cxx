@@ -40,7 +40,7 @@ std::string InstrumentVolumeNote(double largestVolumeMm3)
     return std::string();
   }
   char note[48];
-  std::snprintf(note, sizeof note, largestVolumeMm3 < 10.0 ? "up to %.1f mm3 in" : "up to %.0f mm3 in", largestVolumeMm3);
+  std::snprintf(note, sizeof note, largestVolumeMm3 < 10.0 ? "up to %.1f mm^3 in" : "up to %.0f mm^3 in", largestVolumeMm3);
   return note;
 }
 

@@ -286,7 +286,7 @@ TEST(Overlays, ReadoutShowsTheInstrumentBesideTheTip)
   penetrations[0].DepthMm = 1.02;
   penetrations[0].VolumeMm3 = 3.71;
   readout->ShowFrame(proximity, { vp::DangerLevel::Breach, vp::DangerLevel::Warning }, vp::DangerLevel::Breach, surface, penetrations);
-  EXPECT_NE(readout->GetLineText(1).find("tool 1.0 mm in, 3.7 mm3"), std::string::npos) << readout->GetLineText(1);
+  EXPECT_NE(readout->GetLineText(1).find("tool 1.0 mm in, 3.7 mm^3"), std::string::npos) << readout->GetLineText(1);
   EXPECT_NE(readout->GetLineText(2).find("tool 2.6 mm"), std::string::npos) << readout->GetLineText(2);
   // Without the whole instrument: the tip alone, as before.
   readout->ShowFrame(proximity, { vp::DangerLevel::Breach, vp::DangerLevel::Warning }, vp::DangerLevel::Breach);
@@ -398,7 +398,7 @@ TEST(Overlays, ThePlotWritesTheInstrumentsPenetrationVolumeAtItsDeepest)
       }
     }
   }
-  EXPECT_EQ(vp::InstrumentVolumeNote(3.7), "up to 3.7 mm3 in");
+  EXPECT_EQ(vp::InstrumentVolumeNote(3.7), "up to 3.7 mm^3 in");
   EXPECT_EQ(vp::InstrumentVolumeNote(0.0), "");
   EXPECT_GT(differing, 50) << "the volume is not written";
   // Only a line of text differs, in the lower half (below the zero line, where the instrument's

@@ -121,7 +121,7 @@ TEST(DistancePlotRecorder, TheInstrumentLineCarriesTheRunsLargestVolume)
   ASSERT_EQ(series.size(), 4u);
   EXPECT_EQ(series[0].DeepestNote, "") << "the tip's line";
   EXPECT_EQ(series[1].Name, "portal_vein (instrument)");
-  EXPECT_EQ(series[1].DeepestNote, "up to 4.5 mm3 in");
+  EXPECT_EQ(series[1].DeepestNote, "up to 4.5 mm^3 in");
   EXPECT_EQ(series[1].ValuesMm[2], -0.5);
   EXPECT_EQ(series[3].DeepestNote, "") << "an unknown volume is no volume";
 }

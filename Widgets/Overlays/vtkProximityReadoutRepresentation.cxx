@@ -172,7 +172,7 @@ void vtkProximityReadoutRepresentation::ShowFrame(const vp::ProximityResult& pro
     std::string line = text;
     if (c < penetrations.size() && penetrations[c].Known && penetrations[c].VolumeMm3 > 0.0)
     {
-      std::snprintf(text, sizeof(text), "  | tool %.1f mm in, %.1f mm3", penetrations[c].DepthMm, penetrations[c].VolumeMm3);
+      std::snprintf(text, sizeof(text), "  | tool %.1f mm in, %.1f mm^3", penetrations[c].DepthMm, penetrations[c].VolumeMm3);
       line += text;
     }
     else if (c < surface.size() && surface[c].InRange)

@@ -59,7 +59,7 @@ StageProgress::~StageProgress()
 
 void StageProgress::Stage(const std::string& name)
 {
-  this->Finish();
+  this->EndStage();
   this->Current = name;
   this->StartedMs = NowMs();
   if (this->Terminal)
@@ -73,6 +73,7 @@ void StageProgress::FramesDone(std::size_t done, std::size_t expected)
 {
   if (this->Current != "frames")
   {
+    this->Finish(); // the stages before the frames succeeded: their lines may be said
     this->Stage("frames");
   }
   const double share = expected > 0 ? static_cast<double>(done) / static_cast<double>(expected) : 0.0;
@@ -89,7 +90,7 @@ void StageProgress::FramesDone(std::size_t done, std::size_t expected)
   }
 }
 
-void StageProgress::Finish()
+void StageProgress::EndStage()
 {
   if (this->Current.empty())
   {
@@ -103,8 +104,20 @@ void StageProgress::Finish()
   }
   else if (seconds > 1.0 && this->Current != "frames")
   {
-    std::fprintf(stderr, "%s: %s: %.1f s\n", this->Command.c_str(), this->Current.c_str(), seconds);
+    char line[256];
+    std::snprintf(line, sizeof line, "%s: %s: %.1f s\n", this->Command.c_str(), this->Current.c_str(), seconds);
+    this->Pending.push_back(line);
   }
   this->Current.clear();
+}
+
+void StageProgress::Finish()
+{
+  this->EndStage();
+  for (const std::string& line : this->Pending)
+  {
+    std::fputs(line.c_str(), stderr);
+  }
+  this->Pending.clear();
 }
 } // namespace vp

@@ -29,8 +29,9 @@ void ReportOpenedScene(
 /// (vtkVesselProximityLogic::StageStartedEvent) and the frames (FramesDone). On a terminal, one
 /// line rewritten in place ("track: building the exact engine", then a bar "track: frames
 /// [#####.....] 52% 477/918"), cleared when it is destroyed, so that a refusal's one line stands
-/// alone; otherwise plain lines, and only for what took over a second: a stage's line when it
-/// ends ("track: building the exact engine: 1.4 s"), the frames' each second.
+/// alone; otherwise plain lines, and only for what took over a second: a stage's line
+/// ("track: building the exact engine: 1.4 s") once the stages so far have succeeded (Finish(),
+/// so that a refusal's one line stands alone there too), the frames' each second.
 class StageProgress
 {
 public:
@@ -42,10 +43,13 @@ public:
   void Stage(const std::string& name);
   /// The frames so far (called once a second at most by the session).
   void FramesDone(std::size_t done, std::size_t expected);
-  /// Ends the current stage (its plain line when it took over a second; a terminal's line cleared).
+  /// Ends the current stage and says, in a log, the stages so far that took over a second (a
+  /// terminal's line is cleared). Call once they succeeded.
   void Finish();
 
 private:
+  void EndStage();
+  std::vector<std::string> Pending; ///< a log's stage lines, said by Finish()
   std::string Command, Current;
   double StartedMs = 0.0;
   bool Terminal = false, Dirty = false;

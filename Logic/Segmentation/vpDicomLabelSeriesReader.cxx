@@ -10,12 +10,15 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <exception>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <thread>
 
 namespace fs = std::filesystem;
 
@@ -203,22 +206,54 @@ LabelGrid DicomLabelSeriesReader::ReadSeries(const std::string& folder)
   {
     throw InputError(folder, "no DICOM files in this folder");
   }
-  std::vector<Slice> slices;
-  slices.reserve(files.size());
-  for (const auto& path : files)
+  // The first slice alone: with the number of files it tells the series' size before the others
+  // are read. Then the rest on every core (DCMTK reads separate files independently): a
+  // 260-slice series of five structures took 9.4 s on one.
+  std::vector<Slice> slices(files.size());
+  slices[0] = ReadSlice(folder, files[0]);
+  const double voxels = double(slices.front().Rows) * double(slices.front().Columns) * double(files.size());
+  if (voxels > MaxSeriesVoxels)
   {
-    slices.push_back(ReadSlice(folder, path));
-    const double voxels = double(slices.front().Rows) * double(slices.front().Columns) * double(files.size());
-    if (slices.size() == 1 && voxels > MaxSeriesVoxels)
+    throw InputError(folder, std::to_string(files.size()) + " slices of " + std::to_string(slices.front().Columns) + " x " +
+        std::to_string(slices.front().Rows) + " pixels: " + NumberText(voxels, 4) + " voxels, more than the " +
+        NumberText(MaxSeriesVoxels, 4) + " this reader takes");
+  }
+  std::vector<std::exception_ptr> failures(files.size());
+  std::atomic<std::size_t> next{ 1 };
+  const auto work = [&] {
+    for (std::size_t i = next++; i < files.size(); i = next++)
     {
-      // Known from the first slice and the number of files, before the others are read.
-      throw InputError(folder, std::to_string(files.size()) + " slices of " + std::to_string(slices.front().Columns) + " x " +
-          std::to_string(slices.front().Rows) + " pixels: " + NumberText(voxels, 4) + " voxels, more than the " +
-          NumberText(MaxSeriesVoxels, 4) + " this reader takes");
+      try
+      {
+        slices[i] = ReadSlice(folder, files[i]);
+      }
+      catch (...)
+      {
+        failures[i] = std::current_exception();
+      }
     }
-    if (slices.back().SeriesUid != slices.front().SeriesUid)
+  };
+  const std::size_t threads = std::min<std::size_t>({ std::max(1u, std::thread::hardware_concurrency()), 8, files.size() - 1 });
+  std::vector<std::thread> pool;
+  for (std::size_t t = 1; t < threads; ++t)
+  {
+    pool.emplace_back(work);
+  }
+  work();
+  for (std::thread& thread : pool)
+  {
+    thread.join();
+  }
+  // The first problem in file order, as a reading one by one would have met it.
+  for (std::size_t i = 1; i < files.size(); ++i)
+  {
+    if (failures[i])
     {
-      throw InputError(folder, "more than one series (" + slices.front().File + " and " + slices.back().File +
+      std::rethrow_exception(failures[i]);
+    }
+    if (slices[i].SeriesUid != slices.front().SeriesUid)
+    {
+      throw InputError(folder, "more than one series (" + slices.front().File + " and " + slices[i].File +
           " differ in SeriesInstanceUID); give each series its own folder");
     }
   }

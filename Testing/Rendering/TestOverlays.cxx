@@ -488,7 +488,10 @@ std::string BaselineDir()
 }
 } // namespace
 
-class OverlayImages : public ::testing::TestWithParam<Shot>
+/// An image test: a display to render on (skipped, saying why, without one), and the picture
+/// compared with its baseline (or, with VP_UPDATE_BASELINES, written as the baseline).
+template <typename Param>
+class ImageTest : public ::testing::TestWithParam<Param>
 {
 protected:
   void SetUp() override
@@ -498,30 +501,38 @@ protected:
       GTEST_SKIP() << "no display for rendering: " << this->Display.GetProblem();
     }
   }
+  /// Tolerance: antialiased edges and text may move by a pixel between GL drivers; a changed
+  /// colour, a missing actor or a moved overlay changes far more than 0.5% of the pixels. The
+  /// temporary folder goes when the picture matches.
+  void ExpectBaseline(const std::string& actual, const std::string& baselineName, const std::string& tmp)
+  {
+    const std::string baseline = BaselineDir() + "/" + baselineName;
+    if (std::getenv("VP_UPDATE_BASELINES"))
+    {
+      std::filesystem::copy_file(actual, baseline, std::filesystem::copy_options::overwrite_existing);
+      GTEST_SKIP() << "baseline written: " << baseline;
+    }
+    const vp::ImageDifference d = vp::CompareImages(actual, baseline, actual.substr(0, actual.size() - 4) + "_difference.png");
+    EXPECT_TRUE(d.SameSize) << actual << " vs " << baseline;
+    EXPECT_LT(d.FractionDifferent, 0.005) << "actual " << actual << ", difference image beside it";
+    EXPECT_LT(d.MeanAbsDifference, 1.0) << actual;
+    if (!this->HasFailure())
+    {
+      std::filesystem::remove_all(tmp);
+    }
+  }
   vp::VirtualDisplay Display;
+};
+
+class OverlayImages : public ImageTest<Shot>
+{
 };
 
 TEST_P(OverlayImages, MatchTheBaseline)
 {
   const Shot shot = GetParam();
   const std::string tmp = vp::test::MakeTempDir(std::string("image_") + shot.Name);
-  const std::string actual = RenderShot(tmp, shot);
-  const std::string baseline = BaselineDir() + "/overlays_" + shot.Name + ".png";
-  if (std::getenv("VP_UPDATE_BASELINES"))
-  {
-    std::filesystem::copy_file(actual, baseline, std::filesystem::copy_options::overwrite_existing);
-    GTEST_SKIP() << "baseline written: " << baseline;
-  }
-  const vp::ImageDifference d = vp::CompareImages(actual, baseline, tmp + "/" + shot.Name + "_difference.png");
-  EXPECT_TRUE(d.SameSize) << actual << " vs " << baseline;
-  // Tolerance: antialiased edges and text may move by a pixel between GL drivers; a changed
-  // colour, a missing actor or a moved overlay changes far more than 0.5% of the pixels.
-  EXPECT_LT(d.FractionDifferent, 0.005) << "actual " << actual << ", difference image beside it";
-  EXPECT_LT(d.MeanAbsDifference, 1.0) << actual;
-  if (!HasFailure())
-  {
-    std::filesystem::remove_all(tmp);
-  }
+  this->ExpectBaseline(RenderShot(tmp, shot), std::string("overlays_") + shot.Name + ".png", tmp);
 }
 
 INSTANTIATE_TEST_SUITE_P(Poses, OverlayImages,
@@ -630,17 +641,8 @@ void PrintTo(const vtkVesselProximityView::CameraPreset& preset, std::ostream* o
   *os << vtkVesselProximityView::CameraPresetName(preset);
 }
 
-class CameraPresetImages : public ::testing::TestWithParam<vtkVesselProximityView::CameraPreset>
+class CameraPresetImages : public ImageTest<vtkVesselProximityView::CameraPreset>
 {
-protected:
-  void SetUp() override
-  {
-    if (!this->Display.Ensure())
-    {
-      GTEST_SKIP() << "no display for rendering: " << this->Display.GetProblem();
-    }
-  }
-  vp::VirtualDisplay Display;
 };
 
 // Each preset looks from where it says (the world is LPS; the scalpel points down, -z), and its
@@ -667,20 +669,7 @@ TEST_P(CameraPresetImages, LookFromWhereTheySayAndMatchTheBaseline)
       EXPECT_NEAR(focal[k], tip[k], 1e-6) << name << ": the tip in the middle";
     }
   }
-  const std::string baseline = BaselineDir() + "/view_" + name + ".png";
-  if (std::getenv("VP_UPDATE_BASELINES"))
-  {
-    std::filesystem::copy_file(actual, baseline, std::filesystem::copy_options::overwrite_existing);
-    GTEST_SKIP() << "baseline written: " << baseline;
-  }
-  const vp::ImageDifference d = vp::CompareImages(actual, baseline, tmp + "/view_" + name + "_difference.png");
-  EXPECT_TRUE(d.SameSize) << actual << " vs " << baseline;
-  EXPECT_LT(d.FractionDifferent, 0.005) << "actual " << actual << ", difference image beside it";
-  EXPECT_LT(d.MeanAbsDifference, 1.0) << actual;
-  if (!HasFailure())
-  {
-    std::filesystem::remove_all(tmp);
-  }
+  this->ExpectBaseline(actual, "view_" + name + ".png", tmp);
 }
 
 INSTANTIATE_TEST_SUITE_P(Presets, CameraPresetImages,

@@ -413,8 +413,9 @@ std::array<int, 2> LegendSize(const std::vector<LegendEntry>& legend)
   return size;
 }
 
-Layout LayOut(const std::vector<double>& timesS, const std::vector<PlotSeries>& series,
-  const std::vector<PlotBand>& bands, const DistancePlotOptions& options)
+/// The layout of an image of widthPx x heightPx, the legend's entries already rendered.
+Layout LayOut(const std::vector<double>& timesS, const std::vector<PlotSeries>& series, const std::vector<PlotBand>& bands,
+  const DistancePlotOptions& options, std::vector<LegendEntry> legend, int widthPx, int heightPx)
 {
   Layout layout;
   layout.Title = RenderText(options.Title, 18, true);
@@ -423,7 +424,7 @@ Layout LayOut(const std::vector<double>& timesS, const std::vector<PlotSeries>& 
   DistancePlotFrame& f = layout.Frame;
   const int tickTextHeight = RenderText("0123456789", 12).Height();
   f.BottomPx = TickLengthPx + GapPx + tickTextHeight + GapPx + (layout.XLabel.Image ? layout.XLabel.Height() + GapPx : 0);
-  f.TopPx = options.HeightPx - 1 - GapPx - (layout.Title.Image ? layout.Title.Height() + GapPx : GapPx);
+  f.TopPx = heightPx - 1 - GapPx - (layout.Title.Image ? layout.Title.Height() + GapPx : GapPx);
   f.TopPx = std::max(f.TopPx, f.BottomPx + 1);
   const int maxYTicks = std::max(2, (f.TopPx - f.BottomPx) / 40);
   f.YMaxMm = options.YMaxMm > 0 ? options.YMaxMm : AutomaticYMax(series, bands, maxYTicks);
@@ -443,12 +444,12 @@ Layout LayOut(const std::vector<double>& timesS, const std::vector<PlotSeries>& 
     yTickWidth = std::max(yTickWidth, layout.YTickTexts.back().Width());
   }
 
-  layout.Legend = LegendEntries(series, bands);
+  layout.Legend = std::move(legend);
   const std::array<int, 2> legendSize = LegendSize(layout.Legend);
-  const int legendWidth = std::min(legendSize[0], options.WidthPx * 2 / 5); // long names are cut, not the plot
+  const int legendWidth = std::min(legendSize[0], widthPx * 2 / 5); // long names are cut, not the plot
   f.LegendWhole = legendWidth == legendSize[0] && f.TopPx + 1 >= legendSize[1];
   f.LeftPx = GapPx + (layout.YLabel.Image ? layout.YLabel.Width() + GapPx : 0) + yTickWidth + GapPx + TickLengthPx;
-  f.RightPx = std::max(f.LeftPx + 1, options.WidthPx - 1 - GapPx - legendWidth - 2 * GapPx);
+  f.RightPx = std::max(f.LeftPx + 1, widthPx - 1 - GapPx - legendWidth - 2 * GapPx);
   std::tie(f.TimeMinS, f.TimeMaxS) = TimeRange(timesS);
   layout.XStep = NiceTickStep(f.TimeMaxS - f.TimeMinS, std::max(2, (f.RightPx - f.LeftPx) / 80));
   layout.Plot = { f.LeftPx, f.BottomPx, f.RightPx, f.TopPx };
@@ -503,11 +504,6 @@ void DrawLabels(Canvas& canvas, const Layout& layout, int heightPx)
   DrawLegend(canvas, layout.Legend, p.X1 + 1 + 2 * GapPx, p.Y1);
 }
 } // namespace
-
-std::array<int, 2> LegendSizePx(const std::vector<PlotSeries>& series, const std::vector<PlotBand>& bands)
-{
-  return LegendSize(LegendEntries(series, bands));
-}
 
 double LowestValueMm(const std::vector<PlotSeries>& series)
 {
@@ -584,13 +580,22 @@ vtkSmartPointer<vtkImageData> RenderDistancePlot(const std::vector<double>& time
         " values for " + std::to_string(timesS.size()) + " times");
     }
   }
+  // The legend's entries rendered once: they size the image when it grows to fit them.
+  std::vector<LegendEntry> legend = LegendEntries(series, bands);
+  int widthPx = options.WidthPx, heightPx = options.HeightPx;
+  if (options.GrowToFitLegend)
+  {
+    const std::array<int, 2> legendSize = LegendSize(legend);
+    widthPx = std::max(widthPx, legendSize[0] * 5 / 2 + 1);
+    heightPx = std::max(heightPx, legendSize[1] + 40);
+  }
   auto image = vtkSmartPointer<vtkImageData>::New();
-  image->SetDimensions(options.WidthPx, options.HeightPx, 1);
+  image->SetDimensions(widthPx, heightPx, 1);
   image->AllocateScalars(VTK_UNSIGNED_CHAR, 3);
-  Canvas canvas(image, options.WidthPx, options.HeightPx);
+  Canvas canvas(image, widthPx, heightPx);
   FillRect(canvas, canvas.Whole(), White);
 
-  const Layout layout = LayOut(timesS, series, bands, options);
+  const Layout layout = LayOut(timesS, series, bands, options, std::move(legend), widthPx, heightPx);
   DrawBands(canvas, bands, layout.Frame, layout.Plot);
   if (layout.Frame.YMinMm < 0)
   {
@@ -599,7 +604,7 @@ vtkSmartPointer<vtkImageData> RenderDistancePlot(const std::vector<double>& time
     FillRect(canvas, { layout.Plot.X0, zero, layout.Plot.X1, zero }, Frame);
   }
   std::vector<unsigned char> under = canvas.Copy();
-  const Canvas bandsOnly(under.data(), options.WidthPx, options.HeightPx);
+  const Canvas bandsOnly(under.data(), widthPx, heightPx);
   for (const PlotSeries& s : series)
   {
     DrawSeries(canvas, bandsOnly, timesS, s, layout.Frame, layout.Plot);
@@ -609,7 +614,7 @@ vtkSmartPointer<vtkImageData> RenderDistancePlot(const std::vector<double>& time
     DrawDeepestNote(canvas, bandsOnly, timesS, s, layout.Frame, layout.Plot);
   }
   DrawAxes(canvas, layout);
-  DrawLabels(canvas, layout, options.HeightPx);
+  DrawLabels(canvas, layout, heightPx);
   if (frame)
   {
     *frame = layout.Frame;

@@ -55,6 +55,10 @@ struct DistancePlotOptions
   /// When the axis goes below zero by itself (YMinMm 0), its bottom is a multiple of this (mm);
   /// 0 (default): of the tick step. A live plot sets it, so its scale moves only in whole steps.
   double YMinStepMm = 0;
+  /// The image grows beyond WidthPx x HeightPx as far as its legend needs to be drawn whole (the
+  /// legend takes at most 2/5 of the width, its rows hang from the plot area's top): an inset that
+  /// must show every entry. Default false: the size is as given, a long legend cut.
+  bool GrowToFitLegend = false;
 };
 
 /// Where the data went in the image: the plot area in vtkImageData pixel indices (row 0 at the
@@ -86,10 +90,6 @@ double LowestValueMm(const std::vector<PlotSeries>& series);
 /// two colours (1 to 21; 3 is WCAG's minimum for graphics). The plot's lines are rimmed by them.
 double RelativeLuminance(const Rgb& colour);
 double ContrastRatio(const Rgb& a, const Rgb& b);
-
-/// The width and height in pixels of the legend as RenderDistancePlot draws it whole (every
-/// series, then every band): an inset that must show its legend sizes itself by it.
-std::array<int, 2> LegendSizePx(const std::vector<PlotSeries>& series, const std::vector<PlotBand>& bands);
 
 /// Renders the plot into unsigned char RGB pixels of options.WidthPx x options.HeightPx.
 /// Text is ASCII only (the embedded font has no other glyphs). Times that are not finite are

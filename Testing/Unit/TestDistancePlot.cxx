@@ -493,3 +493,29 @@ TEST(DistancePlotRecorder, ALostPoseIsAGapOnEveryLine)
   EXPECT_FALSE(std::isnan(series[0].ValuesMm[0]));
   EXPECT_FALSE(std::isnan(series[0].ValuesMm[2]));
 }
+
+// An inset that must show its whole legend grows as far as the legend needs; without the option
+// the size is as given and a long legend is cut.
+TEST(DistancePlot, AnImageGrowsToFitItsLegendWhenAsked)
+{
+  const auto bands = vp::DangerBands(vp::DangerThresholds{}, true);
+  std::vector<vp::PlotSeries> series;
+  for (const char* name : { "portal_vein (instrument)", "hepatic_artery (instrument)", "hepatic_vein (instrument)" })
+  {
+    series.push_back({ name, Red, { 3, 4 } });
+  }
+  vp::DistancePlotFrame frame;
+  auto options = Options(300, 150);
+  const auto cut = vp::RenderDistancePlot({ 0, 1 }, series, bands, options, &frame);
+  EXPECT_FALSE(frame.LegendWhole);
+  int dims[3];
+  cut->GetDimensions(dims);
+  EXPECT_EQ(dims[0], 300);
+  EXPECT_EQ(dims[1], 150);
+  options.GrowToFitLegend = true;
+  const auto grown = vp::RenderDistancePlot({ 0, 1 }, series, bands, options, &frame);
+  EXPECT_TRUE(frame.LegendWhole);
+  grown->GetDimensions(dims);
+  EXPECT_GT(dims[0], 300);
+  EXPECT_GT(dims[1], 150);
+}

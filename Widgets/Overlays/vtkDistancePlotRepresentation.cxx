@@ -128,12 +128,11 @@ void vtkDistancePlotRepresentation::Redraw()
     }
   }
   const std::vector<vp::PlotBand> bands = vp::DangerBands(this->Thresholds, vp::LowestValueMm(series) < 0);
-  // Never smaller than its legend needs (the legend takes at most 2/5 of the width; its rows hang
-  // from the top of the plot area, under the title): a window of 1000 x 700 cut it off.
-  const std::array<int, 2> legend = vp::LegendSizePx(series, bands);
   vp::DistancePlotOptions options;
-  options.WidthPx = std::max(this->WidthPx, legend[0] * 5 / 2 + 1);
-  options.HeightPx = std::max(this->HeightPx, legend[1] + 40);
+  options.WidthPx = this->WidthPx;
+  options.HeightPx = this->HeightPx;
+  // Never smaller than its legend needs: a window of 1000 x 700 cut it off.
+  options.GrowToFitLegend = true;
   options.Title = this->ShowsInstrument ? "tip and instrument distance (mm)" : "tip distance (mm)";
   options.YLabel = "";
   // A fixed scale: a plot that rescales with every frame is hard to read at a glance.

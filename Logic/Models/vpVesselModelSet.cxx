@@ -102,8 +102,7 @@ void NameUnnamedStructures(
   for (LabelStructure& s : structures)
   {
     const auto named = colorNames.find(s.LabelValue);
-    if (named != colorNames.end() && !table.ClassOfName(named->second).empty() &&
-      (s.OnlyValue || s.Name == "label " + std::to_string(s.LabelValue)))
+    if (named != colorNames.end() && !table.ClassOfName(named->second).empty() && s.IsUnnamed())
     {
       s.Name = named->second;
       s.OnlyValue = false;
@@ -118,7 +117,7 @@ std::string NothingMappedText(const std::vector<const LabelStructure*>& unmapped
   bool unnamed = true;
   for (const LabelStructure* s : unmapped)
   {
-    unnamed = unnamed && (s->OnlyValue || s->Name == "label " + std::to_string(s->LabelValue));
+    unnamed = unnamed && s->IsUnnamed();
     values += (values.empty() ? "" : ", ") + (s->OnlyValue ? std::to_string(s->LabelValue) : s->Name);
   }
   if (unnamed)

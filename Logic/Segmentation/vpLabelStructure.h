@@ -71,6 +71,10 @@ struct LabelStructure
   CodedConcept Category; ///< DICOM SEG coded anatomy; empty for other formats
   CodedConcept Type;
   LabelGrid Grid; ///< Grid.Labels is null for a structure listed but not read (not wanted)
+
+  /// The source gave it no name of its own: "label N" of a multi-value labelmap, or the only value
+  /// of one named after its file. Only its value (or a colour table's name for it) says what it is.
+  bool IsUnnamed() const { return this->OnlyValue || this->Name == "label " + std::to_string(this->LabelValue); }
 };
 
 /// Everything one import produced, in the order the source lists it.

@@ -145,7 +145,7 @@ std::string VesselLabelTable::ClassOf(const LabelStructure& structure) const
   }
   // An unnamed label, or a labelmap of one value whose name (its file's) the table does not know:
   // the value is all that says what it is (Slicer hands a CLI a temporary file of a volume).
-  if (structure.Name == "label " + std::to_string(structure.LabelValue) || structure.OnlyValue)
+  if (structure.IsUnnamed())
   {
     const auto it = this->ByValue.find(structure.LabelValue);
     if (it != this->ByValue.end())

@@ -9,9 +9,7 @@ void KeyFrameFinder::AddFrame(const TrackedFrame& frame)
   {
     this->Keys.emplace(pose, "start");
   }
-  this->AnyFrame = true;
-  this->LastFrame = pose;
-  if (this->HaveLevel && frame.Level != this->Level)
+  else if (frame.Level != this->Level)
   {
     if (this->Changes++ < MaximumLevelChanges)
     {
@@ -22,7 +20,8 @@ void KeyFrameFinder::AddFrame(const TrackedFrame& frame)
       ++this->ChangesLeftOut;
     }
   }
-  this->HaveLevel = true;
+  this->AnyFrame = true;
+  this->LastFrame = pose;
   this->Level = frame.Level;
   for (std::size_t c = 0; c < frame.Proximity.Classes.size(); ++c)
   {

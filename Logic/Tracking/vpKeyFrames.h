@@ -37,15 +37,14 @@ public:
 
 private:
   std::size_t Poses = 0;
-  bool HaveLevel = false;
-  DangerLevel Level = DangerLevel::Safe;
+  bool AnyFrame = false;
+  std::size_t LastFrame = 0;
+  DangerLevel Level = DangerLevel::Safe; ///< the last frame's
   std::size_t Changes = 0, ChangesLeftOut = 0;
   std::multimap<std::size_t, std::string> Keys;
   std::map<std::string, std::pair<double, std::size_t>> Closest; ///< signed mm (inside negative), pose
   std::map<std::string, std::pair<double, std::size_t>> Deepest; ///< depth mm, pose
   bool LostSeen = false;
-  std::size_t LastFrame = 0;
-  bool AnyFrame = false;
 };
 } // namespace vp
 

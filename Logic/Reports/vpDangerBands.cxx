@@ -25,15 +25,24 @@ std::vector<PlotBand> DangerBands(const DangerThresholds& t, bool breachBelowZer
   return bands;
 }
 
+Rgb ToRgb(const std::array<double, 3>& fraction)
+{
+  return { static_cast<unsigned char>(std::lround(255 * fraction[0])), static_cast<unsigned char>(std::lround(255 * fraction[1])),
+    static_cast<unsigned char>(std::lround(255 * fraction[2])) };
+}
+
+std::array<double, 3> ToFraction(const Rgb& colour)
+{
+  return { colour[0] / 255.0, colour[1] / 255.0, colour[2] / 255.0 };
+}
+
 Rgb ClassDisplayColour(const std::string& className, int classIndex)
 {
   static const VesselLabelTable table = VesselLabelTable::Default();
   const auto& classes = table.Classes();
   if (std::find(classes.begin(), classes.end(), className) != classes.end())
   {
-    const std::array<double, 3> c = table.Color(className);
-    return { static_cast<unsigned char>(std::lround(255 * c[0])), static_cast<unsigned char>(std::lround(255 * c[1])),
-      static_cast<unsigned char>(std::lround(255 * c[2])) };
+    return ToRgb(table.Color(className));
   }
   static const Rgb palette[] = { { 40, 160, 60 }, { 120, 120, 0 }, { 0, 160, 140 }, { 150, 90, 40 } };
   const int n = static_cast<int>(sizeof(palette) / sizeof(palette[0]));

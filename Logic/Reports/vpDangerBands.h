@@ -19,6 +19,10 @@ namespace vp
 /// for plots where a penetration is drawn as a negative distance.
 std::vector<PlotBand> DangerBands(const DangerThresholds& thresholds, bool breachBelowZero = false);
 
+/// A colour's bytes from VTK's 0..1 components (rounded), and VTK's components from its bytes.
+Rgb ToRgb(const std::array<double, 3>& fraction);
+std::array<double, 3> ToFraction(const Rgb& colour);
+
 /// The display colour of a vessel class, the same in the scene, the readout and the plot: the
 /// default label table's (as Slicer's colour tables give the anatomy: portal vein blue, hepatic
 /// artery red, hepatic vein dark blue, liver tan); a class the table does not know takes a

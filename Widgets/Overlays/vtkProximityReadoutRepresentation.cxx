@@ -11,7 +11,6 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cmath>
 #include <cstdio>
 #include <cstring>
 
@@ -66,9 +65,7 @@ void vtkProximityReadoutRepresentation::SetClasses(
     // Class colours are for surfaces; lifted towards white until they read on the view's background
     // (WCAG contrast 4.5), the same hue as the class's model and plot line.
     const std::array<double, 3> c = i == 0 || i - 1 >= colours.size() ? std::array<double, 3>{ 1, 1, 1 } : colours[i - 1];
-    const vp::Rgb readable = vp::ReadoutTextColour({ static_cast<unsigned char>(std::lround(255 * c[0])),
-      static_cast<unsigned char>(std::lround(255 * c[1])), static_cast<unsigned char>(std::lround(255 * c[2])) });
-    text->SetColor(readable[0] / 255.0, readable[1] / 255.0, readable[2] / 255.0);
+    text->SetColor(vp::ToFraction(vp::ReadoutTextColour(vp::ToRgb(c))).data());
     if (frameTimeLine)
     {
       text->SetColor(1.0, 0.65, 0.2); // amber: a late answer, not a vessel

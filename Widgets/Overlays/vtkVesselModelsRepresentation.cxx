@@ -14,14 +14,6 @@
 
 vtkStandardNewMacro(vtkVesselModelsRepresentation);
 
-namespace
-{
-std::array<double, 3> Fraction(const vp::Rgb& c)
-{
-  return { c[0] / 255.0, c[1] / 255.0, c[2] / 255.0 };
-}
-} // namespace
-
 vtkVesselModelsRepresentation::vtkVesselModelsRepresentation() = default;
 vtkVesselModelsRepresentation::~vtkVesselModelsRepresentation() = default;
 
@@ -45,7 +37,7 @@ void vtkVesselModelsRepresentation::SetVessel(const std::string& className, vtkP
     Entry entry{ className, vtkSmartPointer<vtkActor>::New() };
     vtkNew<vtkPolyDataMapper> mapper;
     entry.Actor->SetMapper(mapper);
-    this->Style(entry, Fraction(vp::ClassDisplayColour(className, static_cast<int>(this->Entries.size()))));
+    this->Style(entry, vp::ToFraction(vp::ClassDisplayColour(className, static_cast<int>(this->Entries.size()))));
     for (vtkRenderer* renderer : this->Renderers)
     {
       renderer->AddActor(entry.Actor);
@@ -82,7 +74,7 @@ std::array<double, 3> vtkVesselModelsRepresentation::GetClassColour(const std::s
       return { c[0], c[1], c[2] };
     }
   }
-  return Fraction(vp::ClassDisplayColour(className, static_cast<int>(this->Entries.size())));
+  return vp::ToFraction(vp::ClassDisplayColour(className, static_cast<int>(this->Entries.size())));
 }
 
 void vtkVesselModelsRepresentation::AddToRenderer(vtkRenderer* renderer)

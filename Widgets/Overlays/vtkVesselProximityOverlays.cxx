@@ -11,8 +11,6 @@
 #include "vtkVesselProximityLogic.h"
 
 #include <vtkCallbackCommand.h>
-
-#include <cmath>
 #include <vtkObjectFactory.h>
 #include <vtkRenderer.h>
 
@@ -145,10 +143,8 @@ void vtkVesselProximityOverlays::ShowFrame(const vp::TrackedFrame& frame)
     if (p.ClassName != this->LineClass) // the line wears the nearest class's readout colour
     {
       this->LineClass = p.ClassName;
-      const std::array<double, 3> scene = this->Vessels->GetClassColour(p.ClassName);
-      const vp::Rgb c = vp::ReadoutTextColour({ static_cast<unsigned char>(std::lround(255 * scene[0])),
-        static_cast<unsigned char>(std::lround(255 * scene[1])), static_cast<unsigned char>(std::lround(255 * scene[2])) });
-      this->ClosestLine->SetColour(c[0] / 255.0, c[1] / 255.0, c[2] / 255.0);
+      const std::array<double, 3> c = vp::ToFraction(vp::ReadoutTextColour(vp::ToRgb(this->Vessels->GetClassColour(p.ClassName))));
+      this->ClosestLine->SetColour(c[0], c[1], c[2]);
     }
   }
   else

@@ -42,8 +42,8 @@ vtkVesselProximityView::vtkVesselProximityView()
   // of the scalpel stand out.
   this->Renderer->GradientBackgroundOn();
   // The readout's text colours are chosen against these (vp::ReadoutTextColour).
-  this->Renderer->SetBackground(vp::ViewBackgroundBottom[0] / 255.0, vp::ViewBackgroundBottom[1] / 255.0, vp::ViewBackgroundBottom[2] / 255.0);
-  this->Renderer->SetBackground2(vp::ViewBackgroundTop[0] / 255.0, vp::ViewBackgroundTop[1] / 255.0, vp::ViewBackgroundTop[2] / 255.0);
+  this->Renderer->SetBackground(vp::ToFraction(vp::ViewBackgroundBottom).data());
+  this->Renderer->SetBackground2(vp::ToFraction(vp::ViewBackgroundTop).data());
   this->Window->AddRenderer(this->Renderer);
   // The orientation marker: directions as the world (LPS) has them, +x left, +y posterior, +z
   // superior; drawn last, over the scene, in the lower left corner.

@@ -1,5 +1,6 @@
 #include "vpPlotValues.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <limits>
 
@@ -42,6 +43,20 @@ std::string InstrumentVolumeNote(double largestVolumeMm3)
   char note[48];
   std::snprintf(note, sizeof note, largestVolumeMm3 < 10.0 ? "up to %.1f mm^3 in" : "up to %.0f mm^3 in", largestVolumeMm3);
   return note;
+}
+
+std::string DistanceText(double distanceMm, double boundMm, int decimals)
+{
+  char text[64];
+  if (boundMm > 0)
+  {
+    std::snprintf(text, sizeof text, "%.*f-%.*f", decimals, std::max(0.0, distanceMm - boundMm), decimals, distanceMm + boundMm);
+  }
+  else
+  {
+    std::snprintf(text, sizeof text, "%.*f", decimals, distanceMm);
+  }
+  return text;
 }
 
 Rgb InstrumentColour(const Rgb& c)

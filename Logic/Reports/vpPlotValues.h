@@ -23,6 +23,10 @@ double InstrumentVolumeMm3(const TrackedFrame& frame, std::size_t c);
 /// penetration volume over the frames the line shows, "up to 3.7 mm3 in"; empty when none. The
 /// depth is the line itself, below zero.
 std::string InstrumentVolumeNote(double largestVolumeMm3);
+/// A distance as the screen shows it, in mm to `decimals` places: the value ("1.5") from an exact
+/// engine, or, from one that answers within boundMm of the truth, the interval the truth lies in
+/// ("1.1-1.9", never below 0), so that a bound is never read as an exact number.
+std::string DistanceText(double distanceMm, double boundMm, int decimals = 1);
 /// The instrument's line: the class's hue, lighter, beside the tip's.
 Rgb InstrumentColour(const Rgb& classColour);
 } // namespace vp

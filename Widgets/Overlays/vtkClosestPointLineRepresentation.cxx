@@ -1,5 +1,7 @@
 #include "vtkClosestPointLineRepresentation.h"
 
+#include "vpPlotValues.h"
+
 #include <vtkActor.h>
 #include <vtkCoordinate.h>
 #include <vtkLineSource.h>
@@ -12,7 +14,6 @@
 #include <vtkTextProperty.h>
 
 #include <algorithm>
-#include <cstdio>
 
 vtkStandardNewMacro(vtkClosestPointLineRepresentation);
 
@@ -59,18 +60,9 @@ void vtkClosestPointLineRepresentation::SetLine(
   this->Line->SetPoint1(tip[0], tip[1], tip[2]);
   this->Line->SetPoint2(point[0], point[1], point[2]);
   this->LabelAnchor->SetValue(0.5 * (tip[0] + point[0]), 0.5 * (tip[1] + point[1]), 0.5 * (tip[2] + point[2]));
-  char distance[48];
-  if (boundMm > 0)
-  {
-    std::snprintf(distance, sizeof(distance), "%.1f-%.1f mm", std::max(0.0, distanceMm - boundMm), distanceMm + boundMm);
-  }
-  else
-  {
-    std::snprintf(distance, sizeof(distance), "%.1f mm", distanceMm);
-  }
   std::string name = className;
   std::replace(name.begin(), name.end(), '_', ' ');
-  const std::string text = (name.empty() ? "" : name + " ") + distance + (inside ? " inside" : "");
+  const std::string text = (name.empty() ? "" : name + " ") + vp::DistanceText(distanceMm, boundMm) + " mm" + (inside ? " inside" : "");
   if (this->GetLabelText() != text)
   {
     this->Label->SetInput(text.c_str());

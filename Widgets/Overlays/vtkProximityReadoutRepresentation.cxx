@@ -1,6 +1,7 @@
 #include "vtkProximityReadoutRepresentation.h"
 
 #include "vpDangerBands.h"
+#include "vpPlotValues.h"
 
 #include <vtkCoordinate.h>
 #include <vtkNew.h>
@@ -147,16 +148,8 @@ void vtkProximityReadoutRepresentation::ShowFrame(const vp::ProximityResult& pro
     else
     {
       const bool inside = p.Inside && *p.Inside;
-      char distance[48];
-      if (bound > 0)
-      {
-        std::snprintf(distance, sizeof(distance), "%.1f-%.1f", std::max(0.0, p.DistanceMm - bound), p.DistanceMm + bound);
-      }
-      else
-      {
-        std::snprintf(distance, sizeof(distance), "%.1f", p.DistanceMm);
-      }
-      std::snprintf(text, sizeof(text), "%-15s %9s mm%s  %s", name.c_str(), distance, inside ? " inside" : "",
+      std::snprintf(text, sizeof(text), "%-15s %9s mm%s  %s", name.c_str(), vp::DistanceText(p.DistanceMm, bound).c_str(),
+        inside ? " inside" : "",
         c < classLevels.size() ? vp::DangerLevelName(classLevels[c]) : "");
       if (exact && c < exact->Classes.size() && exact->Classes[c].InRange)
       {

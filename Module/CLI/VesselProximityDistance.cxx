@@ -10,6 +10,7 @@
 #include "vpDefaultScalpel.h"
 #include "vpInputError.h"
 #include "vpMarkupsFile.h"
+#include "vpPlotValues.h"
 #include "vpRegistrationFile.h"
 #include "vpScalpelLoader.h"
 #include "vpTipDistanceQuery.h"
@@ -266,8 +267,9 @@ void SetResults(const vp::ProximityResult& r, double rangeMm, vp::cli::ReturnVal
   results.Set("errorBoundMm", r.ErrorBoundMm);
 }
 
-/// The tip and, per class within range, its closest point labelled "portal_vein 3.21 mm" (a
-/// z-buffer answer "<= 3.21 mm": it may overstate the danger by its bound, never understate it).
+/// The tip and, per class within range, its closest point labelled "portal_vein 3.21 mm", a
+/// z-buffer answer with the interval its truth lies in ("portal_vein 2.86-3.56 mm"), as the
+/// readout shows it.
 std::vector<vp::MarkupsPoint> ClosestPoints(const vp::ProximityResult& r, const std::array<double, 3>& tip)
 {
   std::vector<vp::MarkupsPoint> points = { { "tip", "the scalpel tip", tip } };
@@ -278,8 +280,10 @@ std::vector<vp::MarkupsPoint> ClosestPoints(const vp::ProximityResult& r, const 
       continue;
     }
     const bool inside = c.Inside && *c.Inside;
-    const std::string distance = vp::cli::FormatNumber(std::round(c.DistanceMm * 100.0) / 100.0) + " mm";
-    points.push_back({ c.ClassName + " " + (inside ? distance + " inside" : (r.ErrorBoundMm > 0 ? "<= " : "") + distance),
+    const std::string distance = (r.ErrorBoundMm > 0 ? vp::DistanceText(c.DistanceMm, r.ErrorBoundMm, 2)
+                                                     : vp::cli::FormatNumber(std::round(c.DistanceMm * 100.0) / 100.0)) +
+      " mm";
+    points.push_back({ c.ClassName + " " + distance + (inside ? " inside" : ""),
       "closest point of " + c.ClassName + " to the tip" +
         (r.ErrorBoundMm > 0 ? ", within " + vp::cli::FormatNumber(r.ErrorBoundMm) + " mm" : std::string(", exact")),
       { c.ClosestPoint[0], c.ClosestPoint[1], c.ClosestPoint[2] } });

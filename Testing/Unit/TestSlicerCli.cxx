@@ -30,8 +30,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <map>
 #include <set>
 #include <sstream>
@@ -1052,6 +1054,27 @@ TEST_F(SlicerCli, DistanceTakesTheToolTransformAndReturnsPointsAndATable)
   EXPECT_NE(schema.find("columnName\ttype"), std::string::npos) << schema;
   EXPECT_NE(schema.find("distance_mm\tdouble\tmm"), std::string::npos) << schema;
 
+  // A z-buffer answer is labelled with the interval its truth lies in, the exact 4 mm inside it.
+  auto zbuffer = values;
+  zbuffer["method"] = "zbuffer";
+  zbuffer["closestPoints"] = this->Temporary("vtkMRMLMarkupsFiducialNodeZ.mrk.json");
+  zbuffer.erase("resultsTable");
+  zbuffer.erase("report");
+  const ToolRun z = RunCli(this->Dir, DistanceProgram, SlicerCommandLine(m, zbuffer, params));
+  if (z.ExitCode == 4)
+  {
+    std::cout << "[  SKIPPED ] the z-buffer's label: " << z.Err;
+  }
+  else
+  {
+    ASSERT_EQ(z.ExitCode, 0) << z.Err;
+    const std::string label = vp::ReadMarkupsPoints(zbuffer.at("closestPoints")).at(1).Label;
+    double low = 0, high = 0;
+    ASSERT_EQ(std::sscanf(label.c_str(), "portal_vein %lf-%lf mm", &low, &high), 2) << label;
+    EXPECT_LE(low, 4.0) << label;
+    EXPECT_GE(high, 4.0) << label;
+    EXPECT_NEAR(high - low, 2 * Number(ReadReturnFile(params), "errorBoundMm"), 0.011) << label;
+  }
   // A tip point list, as Slicer writes one: .fcsv in LPS, and markups JSON in RAS.
   const std::string fcsv = this->Temporary("vtkMRMLMarkupsFiducialNodeC.fcsv");
   std::ofstream(fcsv) << "# Markups fiducial file version = 5.8\n# CoordinateSystem = LPS\n"

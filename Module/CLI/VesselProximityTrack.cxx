@@ -9,6 +9,7 @@
 #include "vpClock.h"
 #include "vpDangerLevels.h"
 #include "vpInputError.h"
+#include "vpOutputFile.h"
 #include "vpPoseFile.h"
 #include "vpRegistrationFile.h"
 #include "vpRunFolder.h"
@@ -19,6 +20,8 @@
 #include <vtkSmartPointer.h>
 
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <unistd.h>
 
 #ifndef VP_VERSION
@@ -170,21 +173,18 @@ std::string StagingFolder(const std::string& near)
   return pattern;
 }
 
-/// Copies a file of the run to where Slicer reads it back, whole or not at all.
+/// Copies a file of the run to where Slicer reads it back, as every output is written (whole or
+/// not at all, never replacing a device or a pipe: vp::WriteFileAtomically).
 void PlaceOutput(const std::string& from, const std::string& to)
 {
-  std::error_code ec;
-  const std::string partial = to + ".partial";
-  fs::copy_file(from, partial, fs::copy_options::overwrite_existing, ec);
-  if (!ec)
+  std::ifstream in(from, std::ios::binary);
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  if (!in)
   {
-    fs::rename(partial, to, ec);
+    throw vp::InputError(from, "cannot be read back from the run's folder");
   }
-  if (ec)
-  {
-    fs::remove(partial);
-    throw vp::InputError(to, "cannot be written: " + ec.message());
-  }
+  vp::WriteFileAtomically(to, bytes.str());
 }
 
 void Run(const vp::cli::ParsedArguments& args, vp::cli::ReturnValues& results)

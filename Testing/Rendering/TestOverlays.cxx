@@ -265,19 +265,37 @@ TEST(Overlays, AViewTakesTheModulesOverlays)
 
 // With the whole instrument measured, each class line says where the instrument is: its distance,
 // or inside, its depth and volume.
-TEST(Overlays, ReadoutShowsTheInstrumentBesideTheTip)
+namespace
 {
-  vtkNew<vtkProximityReadoutRepresentation> readout;
-  readout->SetClasses({ "portal_vein", "hepatic_vein" }, { { 0, 0.6, 0.8 }, { 0.4, 0.2, 0.7 } });
+/// The readout's tests' frame: the portal vein at portalMm, the hepatic vein at hepaticMm (NaN:
+/// out of range).
+vp::ProximityResult PortalAndHepaticVein(double portalMm, double hepaticMm)
+{
   vp::ProximityResult proximity;
   proximity.Classes.resize(2);
   proximity.Classes[0].ClassName = "portal_vein";
   proximity.Classes[0].InRange = true;
-  proximity.Classes[0].DistanceMm = 0.6;
-  proximity.Classes[0].Inside = true;
+  proximity.Classes[0].DistanceMm = portalMm;
   proximity.Classes[1].ClassName = "hepatic_vein";
-  proximity.Classes[1].InRange = true;
-  proximity.Classes[1].DistanceMm = 3.3;
+  proximity.Classes[1].InRange = !std::isnan(hepaticMm);
+  proximity.Classes[1].DistanceMm = std::isnan(hepaticMm) ? 0.0 : hepaticMm;
+  return proximity;
+}
+
+/// A readout of those two classes, in colours of their own.
+vtkSmartPointer<vtkProximityReadoutRepresentation> PortalAndHepaticVeinReadout()
+{
+  auto readout = vtkSmartPointer<vtkProximityReadoutRepresentation>::New();
+  readout->SetClasses({ "portal_vein", "hepatic_vein" }, { { 0, 0.6, 0.8 }, { 0.4, 0.2, 0.7 } });
+  return readout;
+}
+} // namespace
+
+TEST(Overlays, ReadoutShowsTheInstrumentBesideTheTip)
+{
+  const auto readout = PortalAndHepaticVeinReadout();
+  vp::ProximityResult proximity = PortalAndHepaticVein(0.6, 3.3);
+  proximity.Classes[0].Inside = true;
   std::vector<vp::SurfaceProximity> surface(2);
   surface[0].InRange = true;
   surface[1].InRange = true;
@@ -297,16 +315,8 @@ TEST(Overlays, ReadoutShowsTheInstrumentBesideTheTip)
 // distance as the interval the truth lies in (its "0.0 mm danger" was a tip 0.032 mm outside).
 TEST(Overlays, TheReadoutNamesItsEngineAndShowsABoundAsAnInterval)
 {
-  vtkNew<vtkProximityReadoutRepresentation> readout;
-  readout->SetClasses({ "portal_vein", "hepatic_vein" }, { { 0, 0.6, 0.8 }, { 0.4, 0.2, 0.7 } });
-  vp::ProximityResult proximity;
-  proximity.Classes.resize(2);
-  proximity.Classes[0].ClassName = "portal_vein";
-  proximity.Classes[0].InRange = true;
-  proximity.Classes[0].DistanceMm = 0.2;
-  proximity.Classes[1].ClassName = "hepatic_vein";
-  proximity.Classes[1].InRange = true;
-  proximity.Classes[1].DistanceMm = 3.3;
+  const auto readout = PortalAndHepaticVeinReadout();
+  vp::ProximityResult proximity = PortalAndHepaticVein(0.2, 3.3);
   proximity.ErrorBoundMm = 0.347;
   readout->SetEngine("zbuffer");
   readout->ShowFrame(proximity, { vp::DangerLevel::Danger, vp::DangerLevel::Warning }, vp::DangerLevel::Danger);
@@ -331,14 +341,8 @@ TEST(Overlays, TheReadoutNamesItsEngineAndShowsABoundAsAnInterval)
 // next frame gives them back.
 TEST(Overlays, TrackingLostShowsNoDistanceAsCurrent)
 {
-  vtkNew<vtkProximityReadoutRepresentation> readout;
-  readout->SetClasses({ "portal_vein", "hepatic_vein" }, { { 0, 0.6, 0.8 }, { 0.4, 0.2, 0.7 } });
-  vp::ProximityResult proximity;
-  proximity.Classes.resize(2);
-  proximity.Classes[0].ClassName = "portal_vein";
-  proximity.Classes[0].InRange = true;
-  proximity.Classes[0].DistanceMm = 4.2;
-  proximity.Classes[1].ClassName = "hepatic_vein";
+  const auto readout = PortalAndHepaticVeinReadout();
+  const vp::ProximityResult proximity = PortalAndHepaticVein(4.2, NAN);
   readout->ShowFrame(proximity, { vp::DangerLevel::Warning, vp::DangerLevel::Safe }, vp::DangerLevel::Warning);
   EXPECT_NE(readout->GetLineText(1).find("4.2 mm"), std::string::npos);
   readout->ShowTrackingLost(250.0);

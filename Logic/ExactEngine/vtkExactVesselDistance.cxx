@@ -71,6 +71,10 @@ struct QueryState
   double Closest[3];
   vp::TriangleFeature Feature;
   double SlackMm;
+  /// Nodes farther than the best so far less this are not searched: 0 for the nearest triangle,
+  /// more for a distance known to that tolerance (a point deep inside, where many triangles are
+  /// nearly equidistant and an exact search reads them all).
+  double ToleranceMm = 0.0;
 };
 
 /// A ray from origin along direction up to tfar, in the tree's coordinates, with no hit yet.
@@ -136,10 +140,28 @@ bool VisitTriangle(RTCPointQueryFunctionArguments* args)
 {
   auto* state = static_cast<QueryState*>(args->userPtr);
   const auto& tri = state->Surface->Triangle(args->primID);
+  const double* a = state->Surface->Point(tri[0]);
+  const double* b = state->Surface->Point(tri[1]);
+  const double* c = state->Surface->Point(tri[2]);
+  // The triangle's plane is no farther than the triangle: where the plane cannot beat the best,
+  // the triangle cannot either (deep inside a vessel, most of the triangles the tree shows; a
+  // triangle within the tolerance is still taken, for it narrows the search more).
+  if (std::isfinite(state->Best2))
+  {
+    double ab[3], ac[3], ap[3], n[3];
+    vp::Sub3(b, a, ab);
+    vp::Sub3(c, a, ac);
+    vp::Sub3(state->Point, a, ap);
+    vp::Cross3(ab, ac, n);
+    const double along = vp::Dot3(n, ap);
+    if (along * along >= state->Best2 * vp::Dot3(n, n))
+    {
+      return false;
+    }
+  }
   double q[3];
   vp::TriangleFeature feature;
-  const double d2 = vp::ClosestPointOnTriangle(state->Point, state->Surface->Point(tri[0]),
-    state->Surface->Point(tri[1]), state->Surface->Point(tri[2]), q, feature);
+  const double d2 = vp::ClosestPointOnTriangle(state->Point, a, b, c, q, feature);
   if (d2 >= state->Best2)
   {
     return false;
@@ -150,7 +172,7 @@ bool VisitTriangle(RTCPointQueryFunctionArguments* args)
   state->Closest[1] = q[1];
   state->Closest[2] = q[2];
   state->Feature = feature;
-  return ShrinkQueryRadius(args, std::sqrt(d2), state->SlackMm);
+  return ShrinkQueryRadius(args, std::max(0.0, std::sqrt(d2) - state->ToleranceMm), state->SlackMm);
 }
 
 struct VisitorState
@@ -184,11 +206,12 @@ void RunPointQuery(const ClassTree& tree, const double centre[3], double radiusM
 /// first. Embree also shows triangles just outside a sphere (their leaf's box reaches in), so
 /// the best found is the nearest only once it lies within the sphere searched; until then the
 /// next sphere is the smaller of twice the last and the best.
-QueryState FindNearestTriangle(const ClassTree& tree, const vp::VesselSurface& surface, const double point[3], double radiusMm)
+QueryState FindNearestTriangle(const ClassTree& tree, const vp::VesselSurface& surface, const double point[3],
+  double radiusMm, double toleranceMm = 0.0, double startMm = InitialSearchRadiusMm)
 {
   QueryState state{ &surface, { point[0], point[1], point[2] }, std::numeric_limits<double>::infinity(), -1, { 0, 0, 0 },
-    vp::TriangleFeature::Face, tree.SlackMm };
-  for (double r = std::min(radiusMm, InitialSearchRadiusMm);;)
+    vp::TriangleFeature::Face, tree.SlackMm, toleranceMm };
+  for (double r = std::min(radiusMm, startMm);;)
   {
     RunPointQuery(tree, point, r, &VisitTriangle, &state);
     const double best = std::sqrt(state.Best2);
@@ -403,7 +426,8 @@ void vtkExactVesselDistance::VisitTrianglesNear(
 }
 
 double vtkExactVesselDistance::NearestDistanceWithin(
-  int classIndex, const double point[3], double radiusMm, std::optional<bool>* inside) const
+  int classIndex, const double point[3], double radiusMm, std::optional<bool>* inside, double wallPoint[3],
+  double outwardNormal[3]) const
 {
   this->EnsureBuilt();
   const auto c = static_cast<std::size_t>(classIndex);
@@ -411,12 +435,50 @@ double vtkExactVesselDistance::NearestDistanceWithin(
   const QueryState state = FindNearestTriangle(this->Impl->Trees.at(c), surface, point, radiusMm);
   const double best = std::sqrt(state.Best2);
   const bool found = state.Triangle >= 0 && best <= radiusMm;
+  const std::optional<bool> in =
+    found ? surface.IsInside(point, static_cast<std::size_t>(state.Triangle), state.Closest, state.Feature) : std::nullopt;
   if (inside)
   {
-    *inside = found ? surface.IsInside(point, static_cast<std::size_t>(state.Triangle), state.Closest, state.Feature)
-                    : std::nullopt;
+    *inside = in;
+  }
+  if (wallPoint && found)
+  {
+    std::copy(state.Closest, state.Closest + 3, wallPoint);
+  }
+  if (outwardNormal && in)
+  {
+    if (best > 1e-9)
+    {
+      for (int a = 0; a < 3; ++a)
+      {
+        outwardNormal[a] = (*in ? state.Closest[a] - point[a] : point[a] - state.Closest[a]) / best;
+      }
+    }
+    else
+    {
+      const double* n = surface.OutwardNormal(static_cast<std::size_t>(state.Triangle));
+      std::copy(n, n + 3, outwardNormal);
+    }
   }
   return found ? best : std::numeric_limits<double>::infinity();
+}
+
+double vtkExactVesselDistance::DistanceUpperBoundWithin(
+  int classIndex, const double point[3], double knownWithinMm, double toleranceMm, double wallPoint[3]) const
+{
+  this->EnsureBuilt();
+  const auto c = static_cast<std::size_t>(classIndex);
+  // A wall known within a distance is found in one search of that sphere; else they grow.
+  const double start = std::isfinite(knownWithinMm) ? knownWithinMm : InitialSearchRadiusMm;
+  const double radiusMm = std::isfinite(knownWithinMm) ? knownWithinMm : std::numeric_limits<double>::max();
+  const QueryState state = FindNearestTriangle(
+    this->Impl->Trees.at(c), *this->Surfaces.at(c), point, radiusMm, std::max(0.0, toleranceMm), start);
+  const double best = std::sqrt(state.Best2);
+  if (wallPoint)
+  {
+    std::copy(state.Closest, state.Closest + 3, wallPoint);
+  }
+  return state.Triangle >= 0 && best <= radiusMm ? best : std::numeric_limits<double>::infinity();
 }
 
 bool vtkExactVesselDistance::VoteInside(int classIndex, const double point[3], double distanceMm, bool& uncertain) const

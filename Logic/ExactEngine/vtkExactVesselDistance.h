@@ -51,9 +51,23 @@ public:
   void VisitTrianglesNear(int classIndex, const double centre[3], double radiusMm, const TriangleVisitor& visit) const;
   /// Distance from point to the nearest triangle of class classIndex, or +infinity when none lies
   /// within radiusMm. inside (may be null) receives whether point is inside the class's surface
-  /// (empty for an open surface, or when nothing lies within radiusMm).
-  double NearestDistanceWithin(
-    int classIndex, const double point[3], double radiusMm, std::optional<bool>* inside = nullptr) const;
+  /// (empty for an open surface, or when nothing lies within radiusMm). When a triangle lies
+  /// within radiusMm, wallPoint (may be null) receives the nearest point of the surface and
+  /// outwardNormal (may be null; closed surfaces) the surface's outward direction there: from the
+  /// point to the wall for a point inside, away from it for one outside, the triangle's own
+  /// normal for a point on it.
+  double NearestDistanceWithin(int classIndex, const double point[3], double radiusMm,
+    std::optional<bool>* inside = nullptr, double wallPoint[3] = nullptr, double outwardNormal[3] = nullptr) const;
+  /// The distance from point to class classIndex's surface to a tolerance: at least the truth
+  /// and at most toleranceMm more. Deep inside a vessel many triangles are nearly equidistant (at
+  /// a sphere's centre, all), and the exact search reads them all; this one skips every tree node
+  /// that cannot beat the best by more than the tolerance. knownWithinMm: a distance the surface
+  /// is known to lie within (a neighbour's distance plus the step between them), searched in one
+  /// sphere; +infinity when none is known (+infinity is returned when none lies within it). No
+  /// inside: the triangle found need not be the nearest. wallPoint (may be null) receives the
+  /// point of the surface at the distance returned.
+  double DistanceUpperBoundWithin(int classIndex, const double point[3], double knownWithinMm, double toleranceMm,
+    double wallPoint[3] = nullptr) const;
   /// The inside vote (vp::InsideVote) of class classIndex at point, whatever its surface, for an
   /// engine that cannot decide inside on a surface that is not closed (the z-buffer's one ray).
   /// distanceMm is the point's distance to the surface (a point on it is outside).

@@ -55,6 +55,9 @@ public:
   const std::vector<std::array<std::int32_t, 3>>& TriangleArray() const { return this->Triangles; }
   const double* Bounds() const { return this->BoundsMm.data(); }
 
+  /// The unit outward normal of triangle t of a closed surface (null for an open one).
+  const double* OutwardNormal(std::size_t t) const { return this->Closed ? this->FaceNormals[t].data() : nullptr; }
+
   /// Whether point p lies inside the closed surface, given its closest point on triangle t and
   /// the feature holding it. Empty for open surfaces; false on the surface itself
   /// (within 1e-9 mm, a picometre).

@@ -15,6 +15,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
+#include <optional>
 #include <random>
 #include <thread>
 
@@ -268,6 +270,52 @@ TEST(ExactDistance, RangeAndMovingTipHint)
   exact->ComputeProximity(b, nullptr, cold);
   EXPECT_TRUE(moved.Classes[0].InRange);
   EXPECT_DOUBLE_EQ(moved.Classes[0].DistanceMm, cold.Classes[0].DistanceMm) << "the hint changes speed, not answers";
+}
+
+// Deep inside, the search to a tolerance (the penetration's deepest-cell search): never below the
+// brute-force distance, at most the tolerance above it, its wall point on the mesh at that
+// distance; a known bound searched in one sphere, and nothing when the wall lies beyond it. The
+// outward direction at the nearest point points out of the sphere, from inside, outside and on it.
+TEST(ExactDistance, ToAToleranceDeepInsideNeverBelowTheTruth)
+{
+  const double c[3] = { 0, 0, 0 };
+  auto mesh = vtkSmartPointer<vtkPolyData>(vp::MakeSphere(c, 10.0, 96, 192));
+  auto exact = ExactFor(mesh);
+  auto brute = BruteFor(mesh);
+  std::mt19937 random(35);
+  std::uniform_real_distribution<double> coordinate(-5.0, 5.0);
+  for (int i = 0; i < 40; ++i)
+  {
+    const double p[3] = { i == 0 ? 0.0 : coordinate(random), i == 0 ? 0.0 : coordinate(random), i == 0 ? 0.0 : coordinate(random) };
+    const double truth = Query(brute, p).DistanceMm;
+    for (double tolerance : { 0.0, 0.05, 0.5 })
+    {
+      double wall[3];
+      const double d = exact->DistanceUpperBoundWithin(0, p, std::numeric_limits<double>::infinity(), tolerance, wall);
+      EXPECT_GE(d, truth - 1e-12) << "point " << i;
+      EXPECT_LE(d, truth + tolerance + 1e-9) << "point " << i;
+      EXPECT_NEAR(Norm(p, wall), d, 1e-9);
+      EXPECT_LT(Query(brute, wall).DistanceMm, 1e-9);
+      EXPECT_LE(exact->DistanceUpperBoundWithin(0, p, truth + 0.5, tolerance), truth + tolerance + 1e-9);
+      EXPECT_EQ(exact->DistanceUpperBoundWithin(0, p, 0.5 * truth, tolerance), std::numeric_limits<double>::infinity());
+    }
+    std::optional<bool> inside;
+    double wall[3], outward[3];
+    const double d = exact->NearestDistanceWithin(0, p, 1e6, &inside, wall, outward);
+    EXPECT_NEAR(d, truth, 1e-12);
+    ASSERT_TRUE(inside.value_or(false));
+    for (int a = 0; a < 3; ++a)
+    {
+      EXPECT_NEAR(outward[a], (wall[a] - p[a]) / d, 1e-12);
+    }
+  }
+  const double out[3] = { 0, 12, 0 };
+  double wall[3], outward[3];
+  const double d = exact->NearestDistanceWithin(0, out, 1e6, nullptr, wall, outward);
+  EXPECT_NEAR(outward[1], (out[1] - wall[1]) / d, 1e-12);
+  EXPECT_GT(outward[1], 0.99);
+  exact->NearestDistanceWithin(0, wall, 1e6, nullptr, nullptr, outward); // on the wall: its normal
+  EXPECT_GT(outward[1], 0.99);
 }
 
 TEST(ExactDistance, DirectionalDistanceAlongTheAxis)

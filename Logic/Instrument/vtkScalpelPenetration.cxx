@@ -1,5 +1,6 @@
 #include "vtkScalpelPenetration.h"
 
+#include "vpCellCoverage.h"
 #include "vpCellDistanceField.h"
 #include "vpInputError.h"
 #include "vtkZBufferSurfaceDistance.h"
@@ -11,7 +12,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <optional>
+#include <queue>
 
 vtkStandardNewMacro(vtkScalpelPenetration);
 
@@ -35,9 +38,10 @@ struct Node
   Kind Type = Kind::Cell;
   bool InTool = false;   ///< Cell: its centre is inside the instrument
   bool NearTool = false; ///< Cell: its centre is within a half diagonal of the instrument's wall
+  vp::WallPlane ToolWall; ///< Cell near the instrument's wall: that wall, as a plane
   int FirstChild = -1;   ///< Mixed: its children are Nodes[FirstChild, FirstChild + ChildCount)
   int ChildCount = 0;
-  long long CellsInTool = 0;
+  double ToolCells = 0.0; ///< cells' worth of the instrument in the cube: whole cells, and the shares of those its wall cuts
   long long CellsNearTool = 0;
 };
 
@@ -47,7 +51,7 @@ struct Cube
   double Centre[3];
   int Level;
   const Node* Explicit; ///< null for an implied cube (all cells inside, none near the wall)
-  long long CellsInTool() const { return this->Explicit ? this->Explicit->CellsInTool : 1LL << (3 * this->Level); }
+  double ToolCells() const { return this->Explicit ? this->Explicit->ToolCells : std::ldexp(1.0, 3 * this->Level); }
   long long CellsNearTool() const { return this->Explicit ? this->Explicit->CellsNearTool : 0; }
 };
 } // namespace
@@ -89,7 +93,8 @@ struct vtkScalpelPenetration::Lattice
   int Build(const vtkExactVesselDistance* tool, const double centre[3], int level)
   {
     std::optional<bool> inside;
-    const double d = tool->NearestDistanceWithin(0, centre, AnywhereMm, &inside);
+    vp::WallPlane wall;
+    const double d = tool->NearestDistanceWithin(0, centre, AnywhereMm, &inside, nullptr, wall.OutwardNormal);
     const double r = this->HalfDiagonalMm(0);
     Node node;
     std::copy(centre, centre + 3, node.Centre);
@@ -103,7 +108,9 @@ struct vtkScalpelPenetration::Lattice
       {
         return -1;
       }
-      node.CellsInTool = node.InTool ? 1 : 0;
+      wall.OffsetMm = node.InTool ? d : -d;
+      node.ToolWall = wall;
+      node.ToolCells = node.NearTool ? vp::CellShareInside(wall, this->CellMm) : 1.0;
       node.CellsNearTool = node.NearTool ? 1 : 0;
     }
     else if (d > this->HalfDiagonalMm(level) + r)
@@ -113,7 +120,7 @@ struct vtkScalpelPenetration::Lattice
         return -1; // wholly outside the instrument
       }
       node.Type = Kind::Full;
-      node.CellsInTool = 1LL << (3 * level);
+      node.ToolCells = std::ldexp(1.0, 3 * level);
     }
     else
     {
@@ -139,7 +146,7 @@ struct vtkScalpelPenetration::Lattice
       node.ChildCount = static_cast<int>(kept.size());
       for (const Node& k : kept)
       {
-        node.CellsInTool += k.CellsInTool;
+        node.ToolCells += k.ToolCells;
         node.CellsNearTool += k.CellsNearTool;
         this->Nodes.push_back(k);
       }
@@ -151,6 +158,21 @@ struct vtkScalpelPenetration::Lattice
 
 namespace
 {
+/// What the walk knows of the vessel wall at a point: its distance lies in [Low, High], and
+/// Inside, when known, says on which side the point is.
+struct Answer
+{
+  double Low = 0.0;
+  double High = 0.0;
+  std::optional<bool> Inside;
+  /// The wall lies within the radius asked: Low and High are the query's own (for the exact
+  /// engine, equal and exact). Otherwise only Low (the radius) is the query's.
+  bool Near = false;
+  /// Near, exact engine: the wall as a plane, in the instrument's (the lattice's) axes.
+  bool HasWall = false;
+  vp::WallPlane Wall;
+};
+
 /// One pose and one class: the walk of the instrument's octree in the world. The vessel wall's
 /// distance comes from the exact engine, or, from the z-buffer's distance field, as an interval
 /// [Low, High] with inside from its layers (right wherever the wall is farther than NearMm).
@@ -161,33 +183,111 @@ struct Walk
   int Class;
   const std::array<double, 16>& M;
   double NearMm; ///< a cell nearer the wall than this is counted as uncertain
-  long long CellsInBoth = 0;
+  double CellsInBoth = 0.0; ///< cells' worth of the instrument inside the vessel
   long long CellsUncertain = 0;
   double DepthMm = 0.0;
 
-  struct Answer
+  void ToWorld(const double model[3], double w[3]) const
   {
-    double Low;  ///< the wall is at least this far
-    double High; ///< and at most this far
-    bool Inside;
-  };
-  Answer Query(const double model[3]) const
-  {
-    double w[3];
     for (int r = 0; r < 3; ++r)
     {
       w[r] = this->M[4 * r] * model[0] + this->M[4 * r + 1] * model[1] + this->M[4 * r + 2] * model[2] + this->M[4 * r + 3];
     }
+  }
+
+  /// Whether the wall lies within radiusMm of the point, and if so where and on which side. The
+  /// exact engine searches no farther (a bounded search is cheap however deep the point); the
+  /// field answers everywhere at once.
+  Answer Near(const double model[3], double radiusMm)
+  {
+    double w[3];
+    this->ToWorld(model, w);
+    Answer a;
     if (this->Field)
     {
-      Answer a;
       this->Field->Bounds(this->Class, w, a.Low, a.High);
       a.Inside = this->Field->Inside(this->Class, w);
+      a.Near = a.Low <= radiusMm;
       return a;
     }
-    std::optional<bool> inside;
-    const double d = this->Vessels->NearestDistanceWithin(this->Class, w, AnywhereMm, &inside);
-    return { d, d, inside.value_or(false) };
+    std::array<double, 3> wall;
+    double normal[3];
+    const double d = this->Vessels->NearestDistanceWithin(this->Class, w, radiusMm, &a.Inside, wall.data(), normal);
+    a.Near = std::isfinite(d);
+    if (a.Near && a.Inside)
+    {
+      this->WallPoints.push_back(wall);
+      // Into the lattice's axes: the pose is rigid, its inverse rotation the transpose.
+      a.HasWall = true;
+      a.Wall.OffsetMm = *a.Inside ? d : -d;
+      for (int c = 0; c < 3; ++c)
+      {
+        a.Wall.OutwardNormal[c] = this->M[c] * normal[0] + this->M[4 + c] * normal[1] + this->M[8 + c] * normal[2];
+      }
+    }
+    a.Low = a.Near ? d : radiusMm;
+    a.High = d;
+    return a;
+  }
+
+  /// An upper bound on the wall's distance at a point known to be inside, within the engine's
+  /// tolerance of the truth (exact: DeepSearchToleranceMm; field: its interval). The exact
+  /// engine's wall point is kept for WallBoundMm.
+  double DeepHigh(const double model[3], double knownWithinMm)
+  {
+    double w[3];
+    this->ToWorld(model, w);
+    if (this->Field)
+    {
+      double low, high;
+      this->Field->Bounds(this->Class, w, low, high);
+      return high;
+    }
+    std::array<double, 3> wall;
+    // The bound is the walk's own arithmetic: a hair wider, lest rounding leave the wall outside.
+    double high = this->Vessels->DistanceUpperBoundWithin(
+      this->Class, w, knownWithinMm * (1.0 + 1e-9) + 1e-9, vtkScalpelPenetration::DeepSearchToleranceMm, wall.data());
+    if (!std::isfinite(high))
+    {
+      high = this->Vessels->DistanceUpperBoundWithin(
+        this->Class, w, std::numeric_limits<double>::infinity(), vtkScalpelPenetration::DeepSearchToleranceMm, wall.data());
+    }
+    if (std::isfinite(high))
+    {
+      this->WallPoints.push_back(wall);
+    }
+    return high;
+  }
+
+  /// Points of the vessel wall found so far (world): the distance from any point to the wall is
+  /// at most its distance to each, a bound for free that spares the queries it already rules out.
+  std::vector<std::array<double, 3>> WallPoints{};
+  double WallBoundMm(const double model[3]) const
+  {
+    double w[3];
+    this->ToWorld(model, w);
+    double best2 = std::numeric_limits<double>::infinity();
+    for (const auto& p : this->WallPoints)
+    {
+      const double d2 = (w[0] - p[0]) * (w[0] - p[0]) + (w[1] - p[1]) * (w[1] - p[1]) + (w[2] - p[2]) * (w[2] - p[2]);
+      best2 = std::min(best2, d2);
+    }
+    return std::sqrt(best2);
+  }
+
+  /// The field's share of a cell inside (vp::CellDistanceField::InsideShare), as its column.
+  double FieldShare(const double model[3], double halfMm) const
+  {
+    double w[3];
+    this->ToWorld(model, w);
+    return this->Field ? this->Field->InsideShare(this->Class, w, halfMm) : 0.0;
+  }
+
+  /// Whether a point is inside, wherever the wall (one unbounded search).
+  bool InsideAnywhere(const double model[3])
+  {
+    const Answer a = this->Near(model, AnywhereMm);
+    return a.Inside.value_or(false);
   }
 };
 } // namespace
@@ -291,77 +391,82 @@ bool vtkScalpelPenetration::GetToolVolumeMm3(double& volume, double& bound) cons
   }
   const Node& root = this->Tool->Nodes[static_cast<std::size_t>(this->Tool->Root)];
   const double cell3 = std::pow(this->Tool->CellMm, 3);
-  volume = cell3 * static_cast<double>(root.CellsInTool);
+  volume = cell3 * root.ToolCells;
   bound = cell3 * static_cast<double>(root.CellsNearTool);
   return true;
 }
 
 namespace
 {
-/// The deepest cell of a cube known to lie wholly inside the vessel: children farthest from the
-/// wall first, and none whose farthest cell cannot beat the depth found.
-template <typename L>
-void Deepest(const L& lattice, Walk& walk, const Cube& cube)
+/// A cube wholly inside the vessel, waiting for the search of the deepest cell: no cell centre in
+/// it lies farther from the wall than Key (for a cell, its centre's own distance).
+struct Pending
 {
-  Cube children[8];
-  const int count = lattice.Children(cube, children);
-  std::pair<double, int> order[8]; // the farthest the wall can be
-  for (int k = 0; k < count; ++k)
-  {
-    order[k] = { walk.Query(children[k].Centre).High, k };
-  }
-  for (int k = 1; k < count; ++k) // at most eight: farthest from the wall first
-  {
-    for (int j = k; j > 0 && order[j - 1].first < order[j].first; --j)
-    {
-      std::swap(order[j - 1], order[j]);
-    }
-  }
-  for (int k = 0; k < count; ++k)
-  {
-    const Cube& child = children[order[k].second];
-    if (child.Level == 0)
-    {
-      walk.DepthMm = std::max(walk.DepthMm, order[k].first);
-    }
-    else if (order[k].first + lattice.HalfDiagonalMm(child.Level) > walk.DepthMm)
-    {
-      Deepest(lattice, walk, child);
-    }
-  }
+  double Key;
+  Cube Where;
+  bool Queried; ///< Key comes from the cube's own centre, not yet only from its parent's
+  std::size_t WallPointsSeen = 0; ///< Walk::WallPoints already in Key (unqueried)
+  bool operator<(const Pending& other) const { return this->Key < other.Key; }
+};
+using PendingQueue = std::priority_queue<Pending>;
+
+/// The key of a cube whose centre's distance is at most high: its cells reach a half diagonal
+/// farther (a cell's key is its centre's own).
+template <typename L>
+double KeyOf(const L& lattice, double high, int level)
+{
+  return level == 0 ? high : high + lattice.HalfDiagonalMm(level);
 }
 
+/// Counts the cells inside both solids, and sends the cubes wholly inside the vessel to the
+/// deepest cell's search. Only cubes the vessel wall may cross are split; a cube's query searches
+/// no farther than its own reach, so its cost does not grow with how deep it lies. Where the
+/// exact engine finds no wall within that reach, the cube lies on its parent's side (the segment
+/// between their centres is shorter than the reach): parentInside.
 template <typename L>
-void Visit(const L& lattice, Walk& walk, const Cube& cube)
+void Visit(const L& lattice, Walk& walk, const Cube& cube, std::optional<bool> parentInside, double parentHigh,
+  PendingQueue& deepest)
 {
-  const Walk::Answer a = walk.Query(cube.Centre);
-  const double r = walk.NearMm;
-  const double reach = lattice.HalfDiagonalMm(cube.Level);
-  const bool inside = a.Inside;
+  const double reach = cube.Level == 0 ? 0.0 : lattice.HalfDiagonalMm(cube.Level);
+  const Answer a = walk.Near(cube.Centre, reach + walk.NearMm);
+  const bool inside = a.Inside ? *a.Inside : parentInside ? *parentInside : walk.InsideAnywhere(cube.Centre);
+  // Where the wall is beyond the query's reach, the parent's centre bounds this one's distance.
+  const double offset = lattice.HalfDiagonalMm(cube.Level);
+  const bool queried = std::isfinite(a.High);
+  const double high = queried ? a.High : parentHigh + offset;
   if (cube.Level == 0)
   {
-    const bool inTool = cube.Explicit ? cube.Explicit->InTool : true;
     const bool nearTool = cube.Explicit ? cube.Explicit->NearTool : false;
-    const bool nearVessel = a.Low <= r;
-    walk.CellsInBoth += inTool && inside ? 1 : 0;
+    const bool nearVessel = a.Near;
+    // The cell's share in both: whole where no wall crosses it, else its share behind each wall
+    // (behind both where both cross it and both are known as planes).
+    if (nearVessel && nearTool && a.HasWall)
+    {
+      walk.CellsInBoth += vp::CellShareInsideBoth(cube.Explicit->ToolWall, a.Wall, lattice.CellMm);
+    }
+    else
+    {
+      const double toolShare = cube.Explicit ? cube.Explicit->ToolCells : 1.0;
+      const double vesselShare = !nearVessel ? (inside ? 1.0 : 0.0)
+        : a.HasWall                          ? vp::CellShareInside(a.Wall, lattice.CellMm)
+                                             : walk.FieldShare(cube.Centre, 0.5 * lattice.CellMm);
+      walk.CellsInBoth += toolShare * vesselShare;
+    }
     walk.CellsUncertain += (nearTool || nearVessel) && (inside || nearVessel) ? 1 : 0;
     if (inside)
     {
-      walk.DepthMm = std::max(walk.DepthMm, a.High);
+      deepest.push({ high, cube, queried, 0 });
     }
     return;
   }
-  if (a.Low > reach + r)
+  if (!a.Near)
   {
     // The vessel wall is farther than any of the cube's cells reaches: all inside, or all out.
     if (inside)
     {
-      walk.CellsInBoth += cube.CellsInTool();
+      walk.CellsInBoth += cube.ToolCells();
       walk.CellsUncertain += cube.CellsNearTool();
-      if (a.High + reach > walk.DepthMm)
-      {
-        Deepest(lattice, walk, cube);
-      }
+      deepest.push({ KeyOf(lattice, high, cube.Level), cube, queried, 0 });
     }
     return;
   }
@@ -369,7 +474,53 @@ void Visit(const L& lattice, Walk& walk, const Cube& cube)
   const int count = lattice.Children(cube, children);
   for (int k = 0; k < count; ++k)
   {
-    Visit(lattice, walk, children[k]);
+    Visit(lattice, walk, children[k], a.Inside ? a.Inside : std::optional<bool>(inside), a.High, deepest);
+  }
+}
+
+/// The deepest cell centre of the cubes wholly inside the vessel, best first: a cube is opened
+/// only while its key beats the deepest found, and its children are queried only when their
+/// parent's bound says they might. Keys never fall below the truth, so no deeper cell is missed;
+/// the depth is at most the engine's tolerance above the deepest cell's.
+template <typename L>
+void FindDeepest(const L& lattice, Walk& walk, PendingQueue& queue)
+{
+  while (!queue.empty())
+  {
+    const Pending top = queue.top();
+    queue.pop();
+    if (top.Key <= walk.DepthMm)
+    {
+      return;
+    }
+    if (!top.Queried)
+    {
+      if (walk.WallPoints.size() > top.WallPointsSeen)
+      {
+        const double key = KeyOf(lattice, walk.WallBoundMm(top.Where.Centre), top.Where.Level);
+        if (key < top.Key)
+        {
+          queue.push({ key, top.Where, false, walk.WallPoints.size() });
+          continue;
+        }
+      }
+      const double centreBound = top.Where.Level == 0 ? top.Key : top.Key - lattice.HalfDiagonalMm(top.Where.Level);
+      queue.push({ KeyOf(lattice, walk.DeepHigh(top.Where.Centre, centreBound), top.Where.Level), top.Where, true });
+      continue;
+    }
+    if (top.Where.Level == 0)
+    {
+      walk.DepthMm = top.Key;
+      continue;
+    }
+    const double high = top.Key - lattice.HalfDiagonalMm(top.Where.Level);
+    Cube children[8];
+    const int count = lattice.Children(top.Where, children);
+    for (int k = 0; k < count; ++k)
+    {
+      const int level = children[k].Level;
+      queue.push({ KeyOf(lattice, high + lattice.HalfDiagonalMm(level), level), children[k], false, 0 });
+    }
   }
 }
 } // namespace
@@ -394,7 +545,8 @@ void vtkScalpelPenetration::ComputePenetration(const std::array<double, 16>& m,
     throw std::logic_error("vtkScalpelPenetration: the z-buffer's field does not match the vessel classes");
   }
   const double nearMm = field ? std::max(lattice.HalfDiagonalMm(0), 2.0 * field->GetLayerGrid().ErrorBoundMm()) : lattice.HalfDiagonalMm(0);
-  const double depthBoundMm = field ? lattice.HalfDiagonalMm(0) + 2.0 * field->BoundMm() : lattice.HalfDiagonalMm(0);
+  const double depthBoundMm =
+    lattice.HalfDiagonalMm(0) + (field ? 2.0 * field->BoundMm() : vtkScalpelPenetration::DeepSearchToleranceMm);
   out.assign(static_cast<std::size_t>(classes), vp::Penetration());
   const double cell3 = std::pow(lattice.CellMm, 3);
   for (int c = 0; c < classes; ++c)
@@ -410,17 +562,22 @@ void vtkScalpelPenetration::ComputePenetration(const std::array<double, 16>& m,
       continue; // nothing within range: nothing overlaps
     }
     Walk walk{ field ? nullptr : this->Vessels.GetPointer(), field.get(), c, m, nearMm };
+    std::optional<bool> rootInside;
     if (surface[static_cast<std::size_t>(c)].DistanceMm > 0.0)
     {
       // The walls do not meet: the instrument is wholly inside the vessel, or wholly outside.
-      if (!walk.Query(lattice.SurfacePoint).Inside)
+      if (!walk.InsideAnywhere(lattice.SurfacePoint))
       {
         continue;
       }
+      rootInside = true;
     }
     const Node& root = lattice.Nodes[static_cast<std::size_t>(lattice.Root)];
-    Visit(lattice, walk, Cube{ { root.Centre[0], root.Centre[1], root.Centre[2] }, root.Level, &root });
-    p.VolumeMm3 = cell3 * static_cast<double>(walk.CellsInBoth);
+    PendingQueue deepest;
+    Visit(lattice, walk, Cube{ { root.Centre[0], root.Centre[1], root.Centre[2] }, root.Level, &root }, rootInside,
+      std::numeric_limits<double>::infinity(), deepest);
+    FindDeepest(lattice, walk, deepest);
+    p.VolumeMm3 = cell3 * walk.CellsInBoth;
     p.VolumeBoundMm3 = cell3 * static_cast<double>(walk.CellsUncertain);
     p.DepthMm = walk.DepthMm;
     p.DepthBoundMm = walk.CellsInBoth + walk.CellsUncertain > 0 ? depthBoundMm : 0.0;

@@ -18,19 +18,24 @@ class vtkZBufferSurfaceDistance;
 /// How far an instrument is inside each vessel class: the volume of the instrument inside the
 /// class (mm³) and the depth of its deepest point (mm, the distance to the vessel wall), each with
 /// a bound. The paper (Table 1) lists both among the z-buffer's strengths; this is the exact
-/// engine's answer, to a stated bound.
+/// engine's answer, to a stated bound, in time that does not grow with how deep the instrument is.
 ///
 /// The instrument's solid is sampled once, in model coordinates, on a lattice of CellSizeMm cubes
 /// held in an octree: a cube whose centre lies farther from the instrument's wall than its half
 /// diagonal is uniformly inside (kept whole) or outside (dropped), so only the cells the wall cuts
-/// are classified one by one. Per pose and class, the same octree is walked in the world: a cube
-/// farther from the vessel wall than its half diagonal plus a cell's is uniformly inside or
-/// outside the vessel and is counted whole (one exact point query, with inside, from the vessel
-/// engine); only cubes the wall passes are split down to cells. With r the half diagonal of a cell:
-/// - VolumeMm3 = cell volume x cells whose centre is inside both; VolumeBoundMm3 = cell volume x
+/// are classified one by one, each with its share inside (the wall as a plane, vp::WallPlane).
+/// Per pose and class, the same octree is walked in the world: each cube asks the vessel engine
+/// for the wall within its own reach only (a bounded search, as cheap deep inside as near the
+/// wall); where none is, the cube lies wholly on its parent's side and is counted whole. Only
+/// cubes the wall passes are split down to cells, each counted by its share behind both walls.
+/// The deepest cell is then searched best first among the cubes wholly inside, each opened only
+/// while its bound (a wall point's distance, or its centre's distance plus its half diagonal)
+/// can beat the deepest found. With r the half diagonal of a cell:
+/// - VolumeMm3 = cell volume x the cells' shares inside both; VolumeBoundMm3 = cell volume x
 ///   cells within r of either wall that may meet both solids (only those can be counted wrongly);
 /// - DepthMm = the largest distance to the vessel wall of a cell centre inside the vessel and
-///   inside (or within r of) the instrument; DepthBoundMm = r, either way (distance is 1-Lipschitz).
+///   inside (or within r of) the instrument, up to DeepSearchToleranceMm above it;
+///   DepthBoundMm = r + that tolerance (distance is 1-Lipschitz; never below the truth by more).
 /// Nothing is computed where the surfaces neither touch nor nest: a class whose whole-instrument
 /// distance is above 0 is tested at one instrument point only (is the instrument entirely inside?).
 ///
@@ -49,8 +54,9 @@ public:
   /// When set, the walk reads the z-buffer's distance field and its layers' inside instead of
   /// the exact engine (which still says which classes are closed): the paper's superimposition
   /// of the instrument's cells on the vessels' layers. A cell counts as uncertain while the wall
-  /// may lie within a layer cell's diagonal (0.69 mm) of it; the depth is the deepest cell's upper
-  /// bound, DepthBoundMm the lattice's half diagonal plus the field's interval. Default: none.
+  /// may lie within a layer cell's diagonal (0.69 mm) of it, and counts its column's share inside
+  /// the layers (a slice the wall crosses, half); the depth is the deepest cell's upper bound,
+  /// DepthBoundMm the lattice's half diagonal plus the field's interval. Default: none.
   void SetZBufferSurface(vtkZBufferSurfaceDistance* surface);
   vtkZBufferSurfaceDistance* GetZBufferSurface() const;
   /// The instrument surface in model coordinates (closed, for an inside).
@@ -59,6 +65,13 @@ public:
   /// default cell. Smaller cells cost more, as the cube of the edge near the walls' crossing.
   void SetCellSizeMm(double cellMm);
   double GetCellSizeMm() const { return this->CellSizeMm; }
+
+  /// The exact engine's tolerance in the search for the deepest cell (mm): deep inside a vessel,
+  /// where many triangles are nearly equidistant (at a sphere's centre, all), an exact nearest
+  /// search reads them all; the search skips the tree nodes that cannot beat the best by more.
+  /// The depth may be this much above the deepest cell's, never below; the cells of the volume
+  /// are classified exactly.
+  static constexpr double DeepSearchToleranceMm = 0.05;
 
   /// Samples the instrument now (the first query does otherwise); GetBuildTimeMs() says how long.
   void Build();

@@ -167,6 +167,7 @@ CellDistanceField::CellDistanceField(const DepthLayerGrid& grid, int classes, co
   {
     // Per column, bit z: the parity of the crossings below slice z, or a crossing in it.
     this->InsideBits = InsideParity(crossings, grid.Pixels() * static_cast<std::size_t>(classes), words);
+    this->CrossingBits.assign(crossings.begin(), crossings.begin() + static_cast<std::ptrdiff_t>(layerWords));
   }
   const int n[3] = { grid.Nx, grid.Ny, grid.Nz };
   // Padded on every side: the layers' box ends two cells past the vessels, and a point just
@@ -317,6 +318,35 @@ bool CellDistanceField::Inside(int cls, const double p[3]) const
   const int x = static_cast<int>(u[0]), y = static_cast<int>(u[1]), z = static_cast<int>(u[2]);
   const std::size_t column = static_cast<std::size_t>(cls) * g.Pixels() + static_cast<std::size_t>(y) * g.Nx + x;
   return (this->InsideBits[column * g.Words() + static_cast<std::size_t>(z >> 5)] >> (z & 31)) & 1u;
+}
+
+double CellDistanceField::InsideShare(int cls, const double p[3], double halfDepthMm) const
+{
+  if (this->InsideBits.empty() || !(halfDepthMm > 0.0))
+  {
+    return 0.0;
+  }
+  const DepthLayerGrid& g = this->Layers;
+  const double u[2] = { (p[0] - g.OriginMm[0]) / g.PixelMm, (p[1] - g.OriginMm[1]) / g.PixelMm };
+  if (!(u[0] >= 0.0 && u[1] >= 0.0 && u[0] < g.Nx && u[1] < g.Ny))
+  {
+    return 0.0;
+  }
+  const std::size_t column =
+    static_cast<std::size_t>(cls) * g.Pixels() + static_cast<std::size_t>(u[1]) * g.Nx + static_cast<std::size_t>(u[0]);
+  const std::uint32_t* inside = this->InsideBits.data() + column * g.Words();
+  const std::uint32_t* crossed = this->CrossingBits.data() + column * g.Words();
+  const double from = (p[2] - halfDepthMm - g.OriginMm[2]) / g.SliceMm;
+  const double to = (p[2] + halfDepthMm - g.OriginMm[2]) / g.SliceMm;
+  double share = 0.0;
+  for (int z = std::max(0, static_cast<int>(std::floor(from))); z < g.Nz && z < to; ++z)
+  {
+    const double overlap = std::min(to, z + 1.0) - std::max(from, static_cast<double>(z));
+    const auto word = static_cast<std::size_t>(z >> 5);
+    const std::uint32_t bit = 1u << (z & 31);
+    share += overlap * ((crossed[word] & bit) ? 0.5 : (inside[word] & bit) ? 1.0 : 0.0);
+  }
+  return share / (to - from);
 }
 
 bool CellDistanceField::NearestMarkedPoint(int cls, const double p[3], double pointMm[3]) const

@@ -52,6 +52,12 @@ public:
   /// False for every point when the field was built without crossings.
   bool Inside(int cls, const double p[3]) const;
   bool HasInside() const { return !this->InsideBits.empty(); }
+  /// The share of the segment of length 2 halfDepthMm about p along z (the layers' depth axis)
+  /// that is inside class cls, as the layers say: a slice wholly inside counts whole, a slice the
+  /// surface crosses half (the crossing lies anywhere in it), one outside not at all. Inside()
+  /// counts a crossed slice whole, the safe side for one point; for a volume that is a bias of
+  /// half a slice across every wall, this is none on average. 0 without crossings.
+  double InsideShare(int cls, const double p[3], double halfDepthMm) const;
   /// The layers' grid the field was built from.
   const DepthLayerGrid& GetLayerGrid() const { return this->Layers; }
 
@@ -72,7 +78,8 @@ public:
   int NumberOfClasses() const { return this->Classes; }
   std::size_t MemoryBytes() const
   {
-    return this->Values.size() + this->InsideBits.size() * sizeof(std::uint32_t) + this->Far.MemoryBytes();
+    return this->Values.size() + (this->InsideBits.size() + this->CrossingBits.size()) * sizeof(std::uint32_t) +
+      this->Far.MemoryBytes();
   }
 
 private:
@@ -93,6 +100,7 @@ private:
   std::vector<std::uint8_t> Values; // [class][y][x][z]: D / u rounded down, 255 beyond the reach
   DepthLayerGrid Layers;
   std::vector<std::uint32_t> InsideBits; // [class][pixel][word] of the layers: Inside() per cell
+  std::vector<std::uint32_t> CrossingBits; // the same layout: the surface crosses the cell
   BlockDistanceField Far;
 };
 } // namespace vp

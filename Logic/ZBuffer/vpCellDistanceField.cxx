@@ -152,7 +152,8 @@ void MarkOccupiedCells(const vp::DepthLayerGrid& grid, const std::vector<std::ui
 namespace vp
 {
 CellDistanceField::CellDistanceField(const DepthLayerGrid& grid, int classes, const std::vector<std::uint32_t>& occupancy,
-  const std::vector<std::uint32_t>& crossings, std::size_t maxCellsPerClass, double farBlockMm)
+  const std::vector<std::uint32_t>& crossings, const std::vector<std::uint32_t>& crossingPlaces, std::size_t maxCellsPerClass,
+  double farBlockMm)
   : Classes(classes)
   , Layers(grid)
   , Far(grid, classes, occupancy, farBlockMm)
@@ -168,6 +169,13 @@ CellDistanceField::CellDistanceField(const DepthLayerGrid& grid, int classes, co
     // Per column, bit z: the parity of the crossings below slice z, or a crossing in it.
     this->InsideBits = InsideParity(crossings, grid.Pixels() * static_cast<std::size_t>(classes), words);
     this->CrossingBits.assign(crossings.begin(), crossings.begin() + static_cast<std::ptrdiff_t>(layerWords));
+    if (crossingPlaces.size() >= 2 * layerWords)
+    {
+      const auto half = crossingPlaces.begin();
+      const auto quarter = crossingPlaces.begin() + static_cast<std::ptrdiff_t>(crossingPlaces.size() / 2);
+      this->CrossingHalfBits.assign(half, half + static_cast<std::ptrdiff_t>(layerWords));
+      this->CrossingQuarterBits.assign(quarter, quarter + static_cast<std::ptrdiff_t>(layerWords));
+    }
   }
   const int n[3] = { grid.Nx, grid.Ny, grid.Nz };
   // Padded on every side: the layers' box ends two cells past the vessels, and a point just
@@ -336,15 +344,43 @@ double CellDistanceField::InsideShare(int cls, const double p[3], double halfDep
     static_cast<std::size_t>(cls) * g.Pixels() + static_cast<std::size_t>(u[1]) * g.Nx + static_cast<std::size_t>(u[0]);
   const std::uint32_t* inside = this->InsideBits.data() + column * g.Words();
   const std::uint32_t* crossed = this->CrossingBits.data() + column * g.Words();
+  const bool placed = !this->CrossingHalfBits.empty();
+  const std::uint32_t* half = placed ? this->CrossingHalfBits.data() + column * g.Words() : nullptr;
+  const std::uint32_t* quarter = placed ? this->CrossingQuarterBits.data() + column * g.Words() : nullptr;
   const double from = (p[2] - halfDepthMm - g.OriginMm[2]) / g.SliceMm;
   const double to = (p[2] + halfDepthMm - g.OriginMm[2]) / g.SliceMm;
-  double share = 0.0;
-  for (int z = std::max(0, static_cast<int>(std::floor(from))); z < g.Nz && z < to; ++z)
+  auto overlap = [&](double low, double high) { return std::max(0.0, std::min(to, high) - std::max(from, low)); };
+  const int first = std::max(0, static_cast<int>(std::floor(from)));
+  // Inside just below the first slice: the parity of the crossings below it.
+  bool insideBelow = false;
+  for (int w = 0; w < (first >> 5); ++w)
   {
-    const double overlap = std::min(to, z + 1.0) - std::max(from, static_cast<double>(z));
+    insideBelow ^= (__builtin_popcount(crossed[w]) & 1) != 0;
+  }
+  if (first & 31)
+  {
+    insideBelow ^= (__builtin_popcount(crossed[first >> 5] & ((1u << (first & 31)) - 1u)) & 1) != 0;
+  }
+  double share = 0.0;
+  for (int z = first; z < g.Nz && z < to; ++z)
+  {
     const auto word = static_cast<std::size_t>(z >> 5);
     const std::uint32_t bit = 1u << (z & 31);
-    share += overlap * ((crossed[word] & bit) ? 0.5 : (inside[word] & bit) ? 1.0 : 0.0);
+    if (!(crossed[word] & bit))
+    {
+      share += (inside[word] & bit) ? overlap(z, z + 1.0) : 0.0;
+      continue;
+    }
+    if (placed)
+    {
+      const double at = z + (((half[word] & bit) ? 2 : 0) + ((quarter[word] & bit) ? 1 : 0) + 0.5) / 4.0;
+      share += insideBelow ? overlap(z, at) : overlap(at, z + 1.0);
+    }
+    else
+    {
+      share += 0.5 * overlap(z, z + 1.0);
+    }
+    insideBelow = !insideBelow;
   }
   return share / (to - from);
 }

@@ -37,9 +37,10 @@ public:
   CellDistanceField() = default;
   /// occupancy: the layers' bits, [class][pixel][word] (vtkZBufferVesselDistance::CopyOccupancy);
   /// crossings: their crossing bits in the same layout (CopyCrossings), or empty when Inside()
-  /// is not wanted.
+  /// is not wanted; crossingPlaces: where in its slice each lies (CopyCrossingPlaces), or empty.
   CellDistanceField(const DepthLayerGrid& grid, int classes, const std::vector<std::uint32_t>& occupancy,
-    const std::vector<std::uint32_t>& crossings, std::size_t maxCellsPerClass = std::size_t(1) << 26,
+    const std::vector<std::uint32_t>& crossings, const std::vector<std::uint32_t>& crossingPlaces,
+    std::size_t maxCellsPerClass = std::size_t(1) << 26,
     double farBlockMm = 1.6);
 
   /// Bounds on the distance from p (mm) to class cls's surface; both +infinity when the class
@@ -53,10 +54,11 @@ public:
   bool Inside(int cls, const double p[3]) const;
   bool HasInside() const { return !this->InsideBits.empty(); }
   /// The share of the segment of length 2 halfDepthMm about p along z (the layers' depth axis)
-  /// that is inside class cls, as the layers say: a slice wholly inside counts whole, a slice the
-  /// surface crosses half (the crossing lies anywhere in it), one outside not at all. Inside()
-  /// counts a crossed slice whole, the safe side for one point; for a volume that is a bias of
-  /// half a slice across every wall, this is none on average. 0 without crossings.
+  /// that is inside class cls, as the layers say: a slice wholly inside counts whole, one outside
+  /// not at all, and a slice the surface crosses up to or from its crossing, placed at the middle
+  /// of its quarter (within an eighth of a slice; half the slice where the places are not known).
+  /// Inside() counts a crossed slice whole, the safe side for one point; for a volume that is a
+  /// bias of half a slice across every wall. 0 without crossings.
   double InsideShare(int cls, const double p[3], double halfDepthMm) const;
   /// The layers' grid the field was built from.
   const DepthLayerGrid& GetLayerGrid() const { return this->Layers; }
@@ -78,7 +80,9 @@ public:
   int NumberOfClasses() const { return this->Classes; }
   std::size_t MemoryBytes() const
   {
-    return this->Values.size() + (this->InsideBits.size() + this->CrossingBits.size()) * sizeof(std::uint32_t) +
+    return this->Values.size() +
+      (this->InsideBits.size() + this->CrossingBits.size() + this->CrossingHalfBits.size() + this->CrossingQuarterBits.size()) *
+      sizeof(std::uint32_t) +
       this->Far.MemoryBytes();
   }
 
@@ -101,6 +105,7 @@ private:
   DepthLayerGrid Layers;
   std::vector<std::uint32_t> InsideBits; // [class][pixel][word] of the layers: Inside() per cell
   std::vector<std::uint32_t> CrossingBits; // the same layout: the surface crosses the cell
+  std::vector<std::uint32_t> CrossingHalfBits, CrossingQuarterBits; // and in which quarter
   BlockDistanceField Far;
 };
 } // namespace vp

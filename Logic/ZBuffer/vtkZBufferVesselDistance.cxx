@@ -414,18 +414,26 @@ void vtkZBufferVesselDistance::AnswerAll(
 
 void vtkZBufferVesselDistance::CopyOccupancy(std::vector<std::uint32_t>& words) const
 {
-  this->CopyLayer(false, words);
+  this->CopyLayer(0, words);
 }
 
 void vtkZBufferVesselDistance::CopyCrossings(std::vector<std::uint32_t>& words) const
 {
-  this->CopyLayer(true, words);
+  this->CopyLayer(1, words);
 }
 
-void vtkZBufferVesselDistance::CopyLayer(bool crossings, std::vector<std::uint32_t>& words) const
+void vtkZBufferVesselDistance::CopyCrossingPlaces(std::vector<std::uint32_t>& places) const
+{
+  std::vector<std::uint32_t> quarters;
+  this->CopyLayer(2, places);
+  this->CopyLayer(3, quarters);
+  places.insert(places.end(), quarters.begin(), quarters.end());
+}
+
+void vtkZBufferVesselDistance::CopyLayer(int plane, std::vector<std::uint32_t>& words) const
 {
   std::lock_guard<std::mutex> lock(this->Impl->Lock);
-  this->Impl->CopyLayer(crossings, words);
+  this->Impl->CopyLayer(plane, words);
 }
 
 double vtkZBufferVesselDistance::WriteCeilings(

@@ -82,7 +82,7 @@ struct vtkZBufferVesselDistance::Internals
   bool Rendered = false;
   int Renders = 0;
   double LastRenderMs = 0.0;
-  std::unique_ptr<vp::GpuBuffer> Occupancy, Crossings, DepthRanges, TileRanges;
+  std::unique_ptr<vp::GpuBuffer> Occupancy, Crossings, CrossingHalves, CrossingQuarters, DepthRanges, TileRanges;
 
   // Query.
   double OrderRangeMm = -1.0;
@@ -157,8 +157,9 @@ struct vtkZBufferVesselDistance::Internals
 
   std::uint32_t Classes() const { return static_cast<std::uint32_t>(this->FirstTriangle.size()); }
 
-  // The occupancy or the crossings, copied to the host (lock held).
-  void CopyLayer(bool crossings, std::vector<std::uint32_t>& words);
+  // One of the layers' bit planes (vtkZBufferVesselDistance::LayerPlane), copied to the host
+  // (lock held).
+  void CopyLayer(int plane, std::vector<std::uint32_t>& words);
 
   // The ceilings' blocks for the current rendering, and no answer remembered from an older one.
   // None for a rendering's first submission: a one-shot query (`distance --tip`) does not wait

@@ -75,12 +75,15 @@ void vtkZBufferVesselDistance::Internals::CreateLayers(VkDeviceSize layerBytes)
     std::max(classes, 1u) * 4ull;
   this->Occupancy = std::make_unique<vp::GpuBuffer>(context, layerBytes, Placement::Device);
   this->Crossings = std::make_unique<vp::GpuBuffer>(context, layerBytes, Placement::Device);
+  this->CrossingHalves = std::make_unique<vp::GpuBuffer>(context, layerBytes, Placement::Device);
+  this->CrossingQuarters = std::make_unique<vp::GpuBuffer>(context, layerBytes, Placement::Device);
   this->DepthRanges = std::make_unique<vp::GpuBuffer>(context, rangeBytes, Placement::Device);
   this->TileRanges = std::make_unique<vp::GpuBuffer>(context, tileBytes, Placement::Device);
 
   this->Raster = std::make_unique<vp::ComputeKernel>(
-    context, RasterizeLayers_comp, RasterizeLayers_comp_size, 4, static_cast<std::uint32_t>(sizeof(RasterParameters)));
-  this->Raster->BindBuffers({ this->Positions->Handle(), this->Indices->Handle(), this->Occupancy->Handle(), this->Crossings->Handle() });
+    context, RasterizeLayers_comp, RasterizeLayers_comp_size, 6, static_cast<std::uint32_t>(sizeof(RasterParameters)));
+  this->Raster->BindBuffers({ this->Positions->Handle(), this->Indices->Handle(), this->Occupancy->Handle(),
+    this->Crossings->Handle(), this->CrossingHalves->Handle(), this->CrossingQuarters->Handle() });
   this->Columns = std::make_unique<vp::ComputeKernel>(
     context, SummarizeColumns_comp, SummarizeColumns_comp_size, 2, static_cast<std::uint32_t>(sizeof(ColumnParameters)));
   this->Columns->BindBuffers({ this->Occupancy->Handle(), this->DepthRanges->Handle() });
@@ -123,6 +126,8 @@ void vtkZBufferVesselDistance::Internals::Render()
   this->Context->Submit([&](VkCommandBuffer cmd) {
     vkCmdFillBuffer(cmd, this->Occupancy->Handle(), 0, VK_WHOLE_SIZE, 0u);
     vkCmdFillBuffer(cmd, this->Crossings->Handle(), 0, VK_WHOLE_SIZE, 0u);
+    vkCmdFillBuffer(cmd, this->CrossingHalves->Handle(), 0, VK_WHOLE_SIZE, 0u);
+    vkCmdFillBuffer(cmd, this->CrossingQuarters->Handle(), 0, VK_WHOLE_SIZE, 0u);
     vp::ComputeKernel::Barrier(cmd);
     for (std::uint32_t c = 0; c < classes; ++c)
     {
@@ -143,10 +148,12 @@ void vtkZBufferVesselDistance::Internals::Render()
   this->LastRenderMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
-void vtkZBufferVesselDistance::Internals::CopyLayer(bool crossings, std::vector<std::uint32_t>& words)
+void vtkZBufferVesselDistance::Internals::CopyLayer(int plane, std::vector<std::uint32_t>& words)
 {
   words.clear();
-  const vp::GpuBuffer* layer = crossings ? this->Crossings.get() : this->Occupancy.get();
+  const vp::GpuBuffer* planes[] = { this->Occupancy.get(), this->Crossings.get(), this->CrossingHalves.get(),
+    this->CrossingQuarters.get() };
+  const vp::GpuBuffer* layer = planes[plane];
   if (!this->Rendered || !layer)
   {
     return;

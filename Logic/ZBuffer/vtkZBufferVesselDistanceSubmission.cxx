@@ -37,6 +37,8 @@ void vtkZBufferVesselDistance::Internals::Release()
   this->Indices.reset();
   this->Occupancy.reset();
   this->Crossings.reset();
+  this->CrossingHalves.reset();
+  this->CrossingQuarters.reset();
   this->DepthRanges.reset();
   this->TileRanges.reset();
   this->Order.reset();

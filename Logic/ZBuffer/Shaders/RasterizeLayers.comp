@@ -13,6 +13,10 @@ layout(std430, binding = 0) readonly buffer Positions { float Position[]; };
 layout(std430, binding = 1) readonly buffer Indices { uint Index[]; };
 layout(std430, binding = 2) buffer Occupancy { uint Occupied[]; };
 layout(std430, binding = 3) buffer Crossings { uint Crossing[]; };
+// Where in its slice the crossing lies, in quarters (a slice with one crossing: its parity bits
+// are the quarter's two bits; the penetration's volume places the wall by them).
+layout(std430, binding = 4) buffer CrossingHalves { uint CrossingHalf[]; };
+layout(std430, binding = 5) buffer CrossingQuarters { uint CrossingQuarter[]; };
 
 layout(push_constant) uniform Parameters
 {
@@ -191,7 +195,18 @@ void main()
           if (w < float(P.Nz))
           {
             int s = clamp(int(floor(w)), 0, P.Nz - 1);
-            atomicXor(Crossing[base + uint(s >> 5)], 1u << uint(s & 31));
+            uint word = base + uint(s >> 5);
+            uint bit = 1u << uint(s & 31);
+            atomicXor(Crossing[word], bit);
+            int quarter = clamp(int(floor((w - float(s)) * 4.0)), 0, 3);
+            if ((quarter & 2) != 0)
+            {
+              atomicXor(CrossingHalf[word], bit);
+            }
+            if ((quarter & 1) != 0)
+            {
+              atomicXor(CrossingQuarter[word], bit);
+            }
           }
         }
       }

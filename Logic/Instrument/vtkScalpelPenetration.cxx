@@ -3,6 +3,7 @@
 #include "vpCellCoverage.h"
 #include "vpCellDistanceField.h"
 #include "vpInputError.h"
+#include "vpTriangleGeometry.h"
 #include "vtkZBufferSurfaceDistance.h"
 
 #include <vtkNew.h>
@@ -269,8 +270,7 @@ struct Walk
     double best2 = std::numeric_limits<double>::infinity();
     for (const auto& p : this->WallPoints)
     {
-      const double d2 = (w[0] - p[0]) * (w[0] - p[0]) + (w[1] - p[1]) * (w[1] - p[1]) + (w[2] - p[2]) * (w[2] - p[2]);
-      best2 = std::min(best2, d2);
+      best2 = std::min(best2, vp::Distance2(w, p.data()));
     }
     return std::sqrt(best2);
   }

@@ -279,12 +279,12 @@ void vtkZBufferSurfaceDistance::Build()
     s.FieldRenders != this->ZBuffer->GetNumberOfRenders() || s.FieldBlockMm != this->BlockMm ||
     s.FieldMaxCells != this->MaxFieldCells)
   {
-    std::vector<std::uint32_t> occupancy, crossings, places;
+    std::vector<std::uint32_t> occupancy, crossings, halves, quarters;
     this->ZBuffer->CopyOccupancy(occupancy);
-    this->ZBuffer->CopyCrossings(crossings);     // for the penetration's inside
-    this->ZBuffer->CopyCrossingPlaces(places); // and its volume's cells at the walls
-    s.Field = std::make_shared<const vp::CellDistanceField>(
-      grid, this->ZBuffer->GetNumberOfVessels(), occupancy, crossings, places, this->MaxFieldCells, this->BlockMm);
+    this->ZBuffer->CopyCrossings(crossings);              // for the penetration's inside
+    this->ZBuffer->CopyCrossingPlaces(halves, quarters); // and its volume's cells at the walls
+    s.Field = std::make_shared<const vp::CellDistanceField>(grid, this->ZBuffer->GetNumberOfVessels(), occupancy,
+      crossings, halves, quarters, this->MaxFieldCells, this->BlockMm);
     s.FieldFrom = this->ZBuffer;
     s.FieldAt = this->ZBuffer->GetMTime();
     s.FieldRenders = this->ZBuffer->GetNumberOfRenders();

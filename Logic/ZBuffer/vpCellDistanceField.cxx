@@ -152,8 +152,8 @@ void MarkOccupiedCells(const vp::DepthLayerGrid& grid, const std::vector<std::ui
 namespace vp
 {
 CellDistanceField::CellDistanceField(const DepthLayerGrid& grid, int classes, const std::vector<std::uint32_t>& occupancy,
-  const std::vector<std::uint32_t>& crossings, const std::vector<std::uint32_t>& crossingPlaces, std::size_t maxCellsPerClass,
-  double farBlockMm)
+  const std::vector<std::uint32_t>& crossings, const std::vector<std::uint32_t>& crossingHalves,
+  const std::vector<std::uint32_t>& crossingQuarters, std::size_t maxCellsPerClass, double farBlockMm)
   : Classes(classes)
   , Layers(grid)
   , Far(grid, classes, occupancy, farBlockMm)
@@ -169,12 +169,11 @@ CellDistanceField::CellDistanceField(const DepthLayerGrid& grid, int classes, co
     // Per column, bit z: the parity of the crossings below slice z, or a crossing in it.
     this->InsideBits = InsideParity(crossings, grid.Pixels() * static_cast<std::size_t>(classes), words);
     this->CrossingBits.assign(crossings.begin(), crossings.begin() + static_cast<std::ptrdiff_t>(layerWords));
-    if (crossingPlaces.size() >= 2 * layerWords)
+    if (crossingHalves.size() >= layerWords && crossingQuarters.size() >= layerWords)
     {
-      const auto half = crossingPlaces.begin();
-      const auto quarter = crossingPlaces.begin() + static_cast<std::ptrdiff_t>(crossingPlaces.size() / 2);
-      this->CrossingHalfBits.assign(half, half + static_cast<std::ptrdiff_t>(layerWords));
-      this->CrossingQuarterBits.assign(quarter, quarter + static_cast<std::ptrdiff_t>(layerWords));
+      const auto words = static_cast<std::ptrdiff_t>(layerWords);
+      this->CrossingHalfBits.assign(crossingHalves.begin(), crossingHalves.begin() + words);
+      this->CrossingQuarterBits.assign(crossingQuarters.begin(), crossingQuarters.begin() + words);
     }
   }
   const int n[3] = { grid.Nx, grid.Ny, grid.Nz };
@@ -342,7 +341,6 @@ double CellDistanceField::InsideShare(int cls, const double p[3], double halfDep
   }
   const std::size_t column =
     static_cast<std::size_t>(cls) * g.Pixels() + static_cast<std::size_t>(u[1]) * g.Nx + static_cast<std::size_t>(u[0]);
-  const std::uint32_t* inside = this->InsideBits.data() + column * g.Words();
   const std::uint32_t* crossed = this->CrossingBits.data() + column * g.Words();
   const bool placed = !this->CrossingHalfBits.empty();
   const std::uint32_t* half = placed ? this->CrossingHalfBits.data() + column * g.Words() : nullptr;
@@ -368,7 +366,7 @@ double CellDistanceField::InsideShare(int cls, const double p[3], double halfDep
     const std::uint32_t bit = 1u << (z & 31);
     if (!(crossed[word] & bit))
     {
-      share += (inside[word] & bit) ? overlap(z, z + 1.0) : 0.0;
+      share += insideBelow ? overlap(z, z + 1.0) : 0.0; // no crossing: the slice is as below it
       continue;
     }
     if (placed)

@@ -37,10 +37,11 @@ public:
   CellDistanceField() = default;
   /// occupancy: the layers' bits, [class][pixel][word] (vtkZBufferVesselDistance::CopyOccupancy);
   /// crossings: their crossing bits in the same layout (CopyCrossings), or empty when Inside()
-  /// is not wanted; crossingPlaces: where in its slice each lies (CopyCrossingPlaces), or empty.
+  /// is not wanted; crossingHalves and crossingQuarters: in which quarter of its slice each lies
+  /// (CopyCrossingPlaces), or empty.
   CellDistanceField(const DepthLayerGrid& grid, int classes, const std::vector<std::uint32_t>& occupancy,
-    const std::vector<std::uint32_t>& crossings, const std::vector<std::uint32_t>& crossingPlaces,
-    std::size_t maxCellsPerClass = std::size_t(1) << 26,
+    const std::vector<std::uint32_t>& crossings, const std::vector<std::uint32_t>& crossingHalves,
+    const std::vector<std::uint32_t>& crossingQuarters, std::size_t maxCellsPerClass = std::size_t(1) << 26,
     double farBlockMm = 1.6);
 
   /// Bounds on the distance from p (mm) to class cls's surface; both +infinity when the class

@@ -414,23 +414,21 @@ void vtkZBufferVesselDistance::AnswerAll(
 
 void vtkZBufferVesselDistance::CopyOccupancy(std::vector<std::uint32_t>& words) const
 {
-  this->CopyLayer(0, words);
+  this->CopyLayer(LayerPlane::Occupancy, words);
 }
 
 void vtkZBufferVesselDistance::CopyCrossings(std::vector<std::uint32_t>& words) const
 {
-  this->CopyLayer(1, words);
+  this->CopyLayer(LayerPlane::Crossings, words);
 }
 
-void vtkZBufferVesselDistance::CopyCrossingPlaces(std::vector<std::uint32_t>& places) const
+void vtkZBufferVesselDistance::CopyCrossingPlaces(std::vector<std::uint32_t>& halves, std::vector<std::uint32_t>& quarters) const
 {
-  std::vector<std::uint32_t> quarters;
-  this->CopyLayer(2, places);
-  this->CopyLayer(3, quarters);
-  places.insert(places.end(), quarters.begin(), quarters.end());
+  this->CopyLayer(LayerPlane::CrossingHalves, halves);
+  this->CopyLayer(LayerPlane::CrossingQuarters, quarters);
 }
 
-void vtkZBufferVesselDistance::CopyLayer(int plane, std::vector<std::uint32_t>& words) const
+void vtkZBufferVesselDistance::CopyLayer(LayerPlane plane, std::vector<std::uint32_t>& words) const
 {
   std::lock_guard<std::mutex> lock(this->Impl->Lock);
   this->Impl->CopyLayer(plane, words);

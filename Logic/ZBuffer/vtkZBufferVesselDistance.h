@@ -178,10 +178,10 @@ public:
   /// per slice: their parity below a slice says inside), in the same layout; empty before the
   /// first rendering.
   void CopyCrossings(std::vector<std::uint32_t>& words) const;
-  /// Where in its slice each crossing lies, in quarters: two planes in the crossings' layout, one
-  /// after the other, the quarter's high bit then its low bit (for a slice one crossing marks:
-  /// with more, their parities). Empty before the first rendering.
-  void CopyCrossingPlaces(std::vector<std::uint32_t>& places) const;
+  /// Where in its slice each crossing lies, in quarters: two planes in the crossings' layout, the
+  /// quarter's high bit (halves) and its low bit (quarters), for a slice one crossing marks (with
+  /// more, their parities). Empty before the first rendering.
+  void CopyCrossingPlaces(std::vector<std::uint32_t>& halves, std::vector<std::uint32_t>& quarters) const;
   /// Tips per GPU submission (after a query): up to 4,096 on a GPU, where the tips of a batch
   /// run side by side, 256 on a CPU device, fewer when their records would pass 256 MB (a long
   /// range on small cells).
@@ -213,9 +213,16 @@ private:
   vtkZBufferVesselDistance(const vtkZBufferVesselDistance&) = delete;
   void operator=(const vtkZBufferVesselDistance&) = delete;
   void Invalidate();
-  /// A bit plane of the layers, copied to the host: 0 occupancy, 1 crossings, 2 and 3 the
-  /// crossings' quarter.
-  void CopyLayer(int plane, std::vector<std::uint32_t>& words) const;
+  /// The layers' bit planes (Shaders/DepthLayersCommon.glsl).
+  enum class LayerPlane
+  {
+    Occupancy,
+    Crossings,
+    CrossingHalves,
+    CrossingQuarters
+  };
+  /// A bit plane of the layers, copied to the host.
+  void CopyLayer(LayerPlane plane, std::vector<std::uint32_t>& words) const;
   /// Width of one of the paper's distance bins; 0 when they are off.
   double BinWidthMm() const;
   /// Throws InputError unless each half of the moving box holds the range plus a cell.

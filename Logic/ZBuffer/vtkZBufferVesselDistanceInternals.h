@@ -157,9 +157,8 @@ struct vtkZBufferVesselDistance::Internals
 
   std::uint32_t Classes() const { return static_cast<std::uint32_t>(this->FirstTriangle.size()); }
 
-  // One of the layers' bit planes (vtkZBufferVesselDistance::LayerPlane), copied to the host
-  // (lock held).
-  void CopyLayer(int plane, std::vector<std::uint32_t>& words);
+  // One of the layers' bit planes, copied to the host (lock held).
+  void CopyLayer(LayerPlane plane, std::vector<std::uint32_t>& words);
 
   // The ceilings' blocks for the current rendering, and no answer remembered from an older one.
   // None for a rendering's first submission: a one-shot query (`distance --tip`) does not wait

@@ -99,7 +99,7 @@ const vp::BlockDistanceField* vtkZBufferVesselDistance::Internals::PrepareCeilin
   }
   const auto start = std::chrono::steady_clock::now();
   std::vector<std::uint32_t> occupancy;
-  this->CopyLayer(false, occupancy);
+  this->CopyLayer(LayerPlane::Occupancy, occupancy);
   // Blocks of 4 cells, at least 1.6 mm: about a 64th of the cells (a few MB at 0.4 mm), and
   // the bound a few millimetres above the truth, which leaves a tip a few hundred tiles of
   // a 50 mm range's thousands.

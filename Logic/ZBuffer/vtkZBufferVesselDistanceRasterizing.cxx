@@ -148,12 +148,12 @@ void vtkZBufferVesselDistance::Internals::Render()
   this->LastRenderMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
-void vtkZBufferVesselDistance::Internals::CopyLayer(int plane, std::vector<std::uint32_t>& words)
+void vtkZBufferVesselDistance::Internals::CopyLayer(LayerPlane plane, std::vector<std::uint32_t>& words)
 {
   words.clear();
   const vp::GpuBuffer* planes[] = { this->Occupancy.get(), this->Crossings.get(), this->CrossingHalves.get(),
     this->CrossingQuarters.get() };
-  const vp::GpuBuffer* layer = planes[plane];
+  const vp::GpuBuffer* layer = planes[static_cast<int>(plane)];
   if (!this->Rendered || !layer)
   {
     return;

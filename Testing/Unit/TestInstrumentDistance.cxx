@@ -311,7 +311,7 @@ TEST(CellDistanceField, BoundsTheDistanceToAnySurfaceThroughTheMarkedCells)
   const std::vector<std::uint32_t> occupancy = RandomOccupancy(grid, 10, 11, marked);
   for (const std::size_t maxCells : { std::size_t(1) << 26, std::size_t(20000) })
   {
-    const vp::CellDistanceField field(grid, 2, occupancy, {}, {}, maxCells, 1.0);
+    const vp::CellDistanceField field(grid, 2, occupancy, {}, {}, {}, maxCells, 1.0);
     const int k = field.LayerCellsPerCell();
     EXPECT_TRUE(maxCells > 20000 ? k == 1 : k > 1) << k;
     EXPECT_NEAR(field.FineReachMm(), 16.0 * k * grid.PixelMm, 1e-12);

@@ -57,7 +57,13 @@ public:
       return;
     }
     unsigned char* p = this->Pixels + 3 * (static_cast<std::size_t>(y) * this->Width + x);
-    alpha = std::min(alpha, 1.0);
+    if (alpha >= 1.0)
+    {
+      // Opaque: the pixel is not read, so the first fill of a fresh image reads no uninitialised
+      // memory (valgrind followed those bytes into every colour drawn after).
+      std::copy(colour.begin(), colour.end(), p);
+      return;
+    }
     for (int c = 0; c < 3; ++c)
     {
       p[c] = static_cast<unsigned char>(std::lround(p[c] + (colour[c] - p[c]) * alpha));

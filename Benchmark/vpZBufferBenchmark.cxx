@@ -217,6 +217,53 @@ Json TileListing(vtkZBufferVesselDistance* zbuffer, const BenchPoints& tips)
   return out;
 }
 
+/// A batch through each query pass, taking turns on the same engine (five rounds): per tile with
+/// its tiles listed (the GPU's batches before the per-answer walk), per pixel listed, and the
+/// walk per answer; tips per second on the host's clock and on the device's, and the answers
+/// that differ from the per-tile pass (none may).
+Json BatchPasses(vtkZBufferVesselDistance* zbuffer, const BenchPoints& tips)
+{
+  struct Pass
+  {
+    const char* Name;
+    int QueryPass;
+  };
+  constexpr Pass Passes[] = { { "per_tile_listed", vtkZBufferVesselDistance::QueryPassPerTile },
+    { "per_pixel_listed", vtkZBufferVesselDistance::QueryPassPerPixel },
+    { "per_answer", vtkZBufferVesselDistance::QueryPassPerAnswer } };
+  constexpr int Count = static_cast<int>(sizeof Passes / sizeof Passes[0]);
+  std::vector<double> ms[Count], deviceMs[Count];
+  std::vector<ProximityResult> answers[Count];
+  zbuffer->SetTileListing(vtkZBufferVesselDistance::TileListingOn);
+  for (int run = 0; run < 5; ++run)
+  {
+    for (int p = 0; p < Count; ++p)
+    {
+      zbuffer->SetQueryPass(Passes[p].QueryPass);
+      const double start = NowMs();
+      zbuffer->ComputeProximityBatch(tips, nullptr, answers[p]);
+      ms[p].push_back(NowMs() - start);
+      deviceMs[p].push_back(zbuffer->GetLastCallTimes().DeviceMs);
+    }
+  }
+  zbuffer->SetTileListing(vtkZBufferVesselDistance::TileListingByDevice);
+  zbuffer->SetQueryPass(vtkZBufferVesselDistance::QueryPassByDevice);
+  Json out;
+  for (int p = 0; p < Count; ++p)
+  {
+    Json side;
+    side["batched"] = Timing(ms[p]);
+    side["device"] = Timing(deviceMs[p]);
+    side["tips_per_second"] = 1000.0 * static_cast<double>(tips.size()) / std::max(1e-9, Quantile(ms[p], 0.5));
+    side["device_tips_per_second"] =
+      1000.0 * static_cast<double>(tips.size()) / std::max(1e-9, Quantile(deviceMs[p], 0.5));
+    side["answers_differing_from_per_tile"] = CountDifferingAnswers(answers[p], answers[0]);
+    out[Passes[p].Name] = side;
+  }
+  out["tips"] = tips.size();
+  return out;
+}
+
 /// The paper's layers (nearest and farthest depth only) on the same tips.
 Json PaperMode(vtkZBufferVesselDistance* zbuffer, const BenchPoints& tips)
 {
@@ -311,6 +358,8 @@ BenchJson BenchZBuffer(vtkZBufferVesselDistance* zbuffer, const std::vector<Name
   entry["ceilings"] = Ceilings(zbuffer, tips, track);
   std::fprintf(stderr, ", tile listing");
   entry["tile_listing"] = TileListing(zbuffer, tips);
+  std::fprintf(stderr, ", batch passes");
+  entry["batch_passes"] = BatchPasses(zbuffer, tips);
   std::fprintf(stderr, ", moving box");
   entry["moving_box"] = MovingBox(zbuffer, track);
   std::fprintf(stderr, "\n");

@@ -1,5 +1,6 @@
 #include "vtkZBufferVesselDistanceInternals.h"
 
+#include "vpClock.h"
 #include "vpInputError.h"
 #include "vpPhysicalLimits.h"
 #include "vpQueryState.h"
@@ -133,9 +134,9 @@ void vtkZBufferVesselDistance::SetDistanceBins(int bins)
 
 void vtkZBufferVesselDistance::SetQueryPass(int pass)
 {
-  if (pass != QueryPassByDevice && pass != QueryPassPerTile && pass != QueryPassPerPixel)
+  if (pass != QueryPassByDevice && pass != QueryPassPerTile && pass != QueryPassPerPixel && pass != QueryPassPerAnswer)
   {
-    throw vp::InputError("query pass", "must be by device, per tile or per pixel");
+    throw vp::InputError("query pass", "must be by device, per tile, per pixel or per answer");
   }
   this->QueryPass = pass;
   this->Modified();
@@ -223,6 +224,12 @@ double vtkZBufferVesselDistance::GetLastRenderTimeMs() const
 std::size_t vtkZBufferVesselDistance::GetBatchCapacity() const
 {
   return this->Impl->Capacity;
+}
+
+vtkZBufferVesselDistance::CallTimes vtkZBufferVesselDistance::GetLastCallTimes() const
+{
+  std::lock_guard<std::mutex> lock(this->Impl->Lock);
+  return this->Impl->LastCall;
 }
 
 double vtkZBufferVesselDistance::GetLastQueryDeviceMs() const
@@ -378,6 +385,14 @@ void vtkZBufferVesselDistance::AnswerAll(
   const std::array<double, 3>* axis = axes ? axes->data() : nullptr;
   std::lock_guard<std::mutex> lock(this->Impl->Lock);
   Internals& s = *this->Impl;
+  s.LastCall = CallTimes{};
+  const double startMs = vp::NowMs();
+  struct Total // the call's time, however it returns
+  {
+    CallTimes& Times;
+    double StartMs;
+    ~Total() { this->Times.TotalMs = vp::NowMs() - this->StartMs; }
+  } total{ s.LastCall, startMs };
   s.TipQuery = bins;
   const double binWidth = bins ? this->BinWidthMm() : 0.0;
   for (vp::ProximityResult& r : results)
@@ -506,9 +521,12 @@ void vtkZBufferVesselDistance::AnswerBatch(const std::array<double, 3>* tips, st
   // workgroup per listed tile is work for every invocation.
   const bool listPerPixel = this->QueryPass != QueryPassPerTile &&
     (this->QueryPass == QueryPassPerPixel || !s.Context->IsCpuDevice());
-  const bool list = this->TileListing == TileListingOn ||
-    (this->TileListing == TileListingByDevice && (n > PerPixelMaxTips || s.Context->IsCpuDevice()));
-  const int listing = list ? (listPerPixel ? 2 : 1) : 0;
+  // A batch on a GPU walks per answer: its answers fill the device without splitting any.
+  const bool walk = this->QueryPass == QueryPassPerAnswer ||
+    (this->QueryPass == QueryPassByDevice && !s.Context->IsCpuDevice() && n > PerPixelMaxTips);
+  const bool list = !walk && (this->TileListing == TileListingOn ||
+    (this->TileListing == TileListingByDevice && (n > PerPixelMaxTips || s.Context->IsCpuDevice())));
+  const int listing = walk ? WalkPerAnswer : list ? (listPerPixel ? 2 : 1) : 0;
   // Without a list, a batch first visits its near tiles, so that the best falls before the rest
   // start. A list needs no such pass: the ceilings alone leave a few tiles per tip to list
   // (IRCADb patient 1, 0.4 mm cells: 24 of 2,691 per tip, 20 after a near pass of 2 tiles,
@@ -537,7 +555,11 @@ void vtkZBufferVesselDistance::AnswerBatch(const std::array<double, 3>* tips, st
   }
   s.LastTiles = tiles * classes;
   s.LastTilesInRange = orderCount * classes;
+  const double submitMs = vp::NowMs();
   s.PreparedQueryFor(q, n, perPixel, listing, nearEntries, laneSlots).Submit();
+  s.LastCall.SubmitWaitMs += vp::NowMs() - submitMs;
+  s.LastCall.DeviceMs = s.LastCall.DeviceMs < 0.0 || s.Context->DeviceMs() < 0.0 ? -1.0 : s.LastCall.DeviceMs + s.Context->DeviceMs();
+  ++s.LastCall.Submissions;
   s.LastTilesListed = static_cast<const std::uint32_t*>(s.HostState->Mapped())[7];
   this->ReadAnswers(tips, count, axes != nullptr, searchMm, q.Bins, binWidth, results);
 }
@@ -646,7 +668,10 @@ void vtkZBufferVesselDistance::PrintSelf(ostream& os, vtkIndent indent)
      << this->MovingBoxSizeMm[2] << "\n";
   os << indent << "DistanceBins: " << this->DistanceBins << "\n";
   os << indent << "QueryPass: "
-     << (this->QueryPass == QueryPassPerTile ? "PerTile" : this->QueryPass == QueryPassPerPixel ? "PerPixel" : "(by device)")
+     << (this->QueryPass == QueryPassPerTile      ? "PerTile"
+            : this->QueryPass == QueryPassPerPixel ? "PerPixel"
+            : this->QueryPass == QueryPassPerAnswer ? "PerAnswer"
+                                                    : "(by device)")
      << "\n";
   os << indent << "TileListing: "
      << (this->TileListing == TileListingOff ? "Off" : this->TileListing == TileListingOn ? "On" : "(by device)") << "\n";

@@ -85,14 +85,17 @@ public:
   {
     QueryPassByDevice = 0,
     QueryPassPerTile = 1,
-    QueryPassPerPixel = 2
+    QueryPassPerPixel = 2,
+    QueryPassPerAnswer = 3
   };
   /// How the query's pass visits the pixels near the tip: PerTile, one invocation walking the 64
   /// pixels of a tile (for CPU devices, where a workgroup with a barrier runs as coroutines), or
   /// PerPixel, one invocation per pixel (the paper's thread per pixel, for GPUs, where the
-  /// per-tile walk is a chain of dependent reads). The answers are the same, bit for bit. Default
-  /// QueryPassByDevice: on a GPU PerPixel for submissions of up to 8 tips and PerTile for larger
-  /// ones (whose tiles fill the device anyway), PerTile on a CPU device.
+  /// per-tile walk is a chain of dependent reads), or PerAnswer, one invocation per tip and class
+  /// walking its tiles one after another (for batches on a GPU, whose answers fill the device
+  /// without splitting any: no atomics shared between invocations, no list of tiles). The answers
+  /// are the same, bit for bit. Default QueryPassByDevice: on a GPU PerPixel for submissions of
+  /// up to 8 tips and PerAnswer for larger ones, PerTile on a CPU device.
   void SetQueryPass(int pass);
   int GetQueryPass() const { return this->QueryPass; }
   enum TileListings
@@ -190,6 +193,20 @@ public:
   /// device's timestamps), in ms; negative when the device keeps no timestamps or before the
   /// first query. Beside the host's time, it tells what a query's round trip costs.
   double GetLastQueryDeviceMs() const;
+  /// Where the latest call's time went (ComputeProximity, ComputeProximityBatch, ...), in ms:
+  /// the device's own time summed over its submissions (negative without timestamps), the host's
+  /// wait for them (submission to fence, device time included), the host's inside votes on
+  /// surfaces that are not closed (five rays a tip and class), and the whole call.
+  struct CallTimes
+  {
+    double DeviceMs = 0.0;
+    double SubmitWaitMs = 0.0;
+    double VotesMs = 0.0;
+    double TotalMs = 0.0;
+    std::size_t Submissions = 0;
+    std::size_t Votes = 0;
+  };
+  CallTimes GetLastCallTimes() const;
   /// Tiles per tip within the latest submission's highest ceiling (summed over the classes: what
   /// it dispatched without a list), and the tiles of the order table within its search times the
   /// classes (what it dispatched without ceilings).

@@ -41,6 +41,8 @@ constexpr std::int32_t GpuDirectionalLanes = 64;
 // 1,000 tips 1.95 ms per pixel, 0.57 per tile (the per-pixel pass paid a workgroup for every tile
 // of the order table, nearly all of which it then skipped: the list leaves only the others).
 constexpr std::uint32_t PerPixelMaxTips = 8;
+/// The query's listing argument for the per-answer walk (0: none, 1: listed per tile, 2: per pixel).
+constexpr int WalkPerAnswer = 3;
 // A larger batch without a list first visits, for every tip, the tiles within this many tiles of its own: on a
 // GPU all of a dispatch's tiles run at once, so a far tile would start before a near one had
 // lowered the best; after this first dispatch most far tiles are skipped at once.
@@ -116,10 +118,11 @@ struct vtkZBufferVesselDistance::Internals
   int LastRender = -1;
   int SubmissionsOnRender = 0;
   std::uint32_t LastTiles = 0, LastTilesInRange = 0, LastTilesListed = 0;
+  vtkZBufferVesselDistance::CallTimes LastCall;
   // Tips per submission for the current order table (PrepareOrder).
   std::uint32_t Capacity = 0;
 
-  std::unique_ptr<vp::ComputeKernel> Raster, Columns, Tiles, Query, QueryPerPixel, Reduce;
+  std::unique_ptr<vp::ComputeKernel> Raster, Columns, Tiles, Query, QueryPerPixel, QueryPerAnswer, Reduce;
   // The query's submissions, each recorded once for one batch size and one set of parameters
   // (the whole instrument's search asks for a few ranges and sizes again and again).
   struct PreparedQuery
@@ -149,7 +152,7 @@ struct vtkZBufferVesselDistance::Internals
     const std::vector<std::pair<std::string, vtkSmartPointer<vtkPolyData>>>& meshes);
   // The votes run on the host, five rays each: a batch's on all cores (Embree's queries are
   // thread-safe), so that a batch on a defective surface does not wait for them one by one.
-  void VoteInside(const std::vector<InsideVote>& votes, const std::array<double, 3>* tips, vp::ProximityResult* results) const;
+  void VoteInside(const std::vector<InsideVote>& votes, const std::array<double, 3>* tips, vp::ProximityResult* results);
 
   vp::VulkanContext& Device(const std::string& selector);
 

@@ -3,6 +3,8 @@
 // for the classes whose surface is not closed.
 #include "vtkZBufferVesselDistanceInternals.h"
 
+#include "vpClock.h"
+
 #include <vtkSMPTools.h>
 
 #include <algorithm>
@@ -31,6 +33,7 @@ void vtkZBufferVesselDistance::Internals::Release()
   this->Tiles.reset();
   this->Query.reset();
   this->QueryPerPixel.reset();
+  this->QueryPerAnswer.reset();
   this->Reduce.reset();
   this->Points.reset();
   this->Positions.reset();
@@ -62,8 +65,9 @@ void vtkZBufferVesselDistance::Internals::Release()
   this->Capacity = 0;
 }
 
-void vtkZBufferVesselDistance::Internals::VoteInside(const std::vector<InsideVote>& votes, const std::array<double, 3>* tips, vp::ProximityResult* results) const
+void vtkZBufferVesselDistance::Internals::VoteInside(const std::vector<InsideVote>& votes, const std::array<double, 3>* tips, vp::ProximityResult* results)
 {
+  const double startMs = vp::NowMs();
   auto vote = [&](vtkIdType begin, vtkIdType end) {
     for (vtkIdType k = begin; k < end; ++k)
     {
@@ -80,6 +84,8 @@ void vtkZBufferVesselDistance::Internals::VoteInside(const std::vector<InsideVot
   {
     vote(0, static_cast<vtkIdType>(votes.size()));
   }
+  this->LastCall.VotesMs += vp::NowMs() - startMs;
+  this->LastCall.Votes += votes.size();
 }
 
 void vtkZBufferVesselDistance::Internals::WritePoints(const std::array<double, 3>* tips, std::size_t count, const std::array<double, 3>* axes)
@@ -144,20 +150,32 @@ vp::PreparedCommands& vtkZBufferVesselDistance::Internals::PreparedQueryFor(cons
         vp::ComputeKernel::Barrier(cmd);
       };
       const VkDeviceSize second = sizeof(VkDispatchIndirectCommand);
-      if (nearEntries > 0)
+      if (listing == WalkPerAnswer)
       {
-        visit(VisitOrderedTiles, perPixel, 0, nearEntries, 0, *this->DispatchSizes, 0);
-      }
-      if (listing == 0)
-      {
-        visit(VisitOrderedTiles, perPixel, nearEntries, orderCount, laneSlots, *this->DispatchSizes, second);
+        // An invocation per answer; the stage's EndEntry holds the answers.
+        QueryParameters part = q;
+        part.Stage = WalkAnswers;
+        part.EndEntry = static_cast<std::int32_t>(answers);
+        this->QueryPerAnswer->Record(cmd, &part, (answers + 63) / 64);
+        vp::ComputeKernel::Barrier(cmd);
       }
       else
       {
-        // The listing: workgroups per answer (DispatchSizes' second), each looping over its
-        // share of the answer's lanes and entries.
-        visit(SelectTiles, false, nearEntries, orderCount, 0, *this->DispatchSizes, second);
-        visit(VisitListedTiles, listing == 2, 0, 0, 0, *this->TileListSize, 4);
+        if (nearEntries > 0)
+        {
+          visit(VisitOrderedTiles, perPixel, 0, nearEntries, 0, *this->DispatchSizes, 0);
+        }
+        if (listing == 0)
+        {
+          visit(VisitOrderedTiles, perPixel, nearEntries, orderCount, laneSlots, *this->DispatchSizes, second);
+        }
+        else
+        {
+          // The listing: workgroups per answer (DispatchSizes' second), each looping over its
+          // share of the answer's lanes and entries.
+          visit(SelectTiles, false, nearEntries, orderCount, 0, *this->DispatchSizes, second);
+          visit(VisitListedTiles, listing == 2, 0, 0, 0, *this->TileListSize, 4);
+        }
       }
       this->Reduce->Record(cmd, &copy, (answers + 63) / 64); // into the host-visible answers, and resets
       vp::ComputeKernel::Barrier(cmd);

@@ -244,6 +244,12 @@ void PrintZBufferQueries(const Json& z)
       s["batched"]["p95_ms"].get<double>(), s["batched"]["tips_per_second"].get<double>(),
       s["exact_batched"]["tips_per_second"].get<double>(), s["batched"]["tips"].get<std::size_t>(),
       s["batch_capacity"].get<std::size_t>(), s["batched"]["answers_differing_from_single_queries"].get<int>());
+    const Json& b = s["batched"];
+    std::printf("%10s | of which: device %.2f ms (%.0f tips/s on the device), host wait %.2f ms, %zu inside votes %.2f ms, "
+                "%zu submissions\n",
+      "", b["device_ms"]["median_ms"].get<double>(), b["device_tips_per_second"].get<double>(),
+      b["submit_wait_ms"]["median_ms"].get<double>(), b["votes"].get<std::size_t>(), b["votes_ms"]["median_ms"].get<double>(),
+      b["submissions"].get<std::size_t>());
   }
   std::printf("%10s | %-8s %22s %22s %22s %12s\n", "tris/class", "ceilings", "off med / p95 ms", "on med / p95 ms",
     "device off / on med", "tiles (med)");
@@ -277,6 +283,19 @@ void PrintZBufferQueries(const Json& z)
         w["single"]["median_ms"].get<double>(), w["single"]["p95_ms"].get<double>(),
         w["single_device"]["median_ms"].get<double>(), w["single_device"]["p95_ms"].get<double>(),
         t["answers_differing"].get<int>());
+    }
+  }
+  std::printf("%10s | %-16s %14s %14s %16s %18s %10s\n", "tris/class", "batch pass", "med ms", "p95 ms", "tips/s",
+    "device tips/s", "differing");
+  for (const Json& s : z["sizes"])
+  {
+    const Json& b = s["batch_passes"];
+    for (const char* pass : { "per_tile_listed", "per_pixel_listed", "per_answer" })
+    {
+      const Json& w = b[pass];
+      std::printf("%10zu | %-16s %14.2f %14.2f %16.0f %18.0f %10d\n", s["triangles_per_class"].get<std::size_t>(), pass,
+        w["batched"]["median_ms"].get<double>(), w["batched"]["p95_ms"].get<double>(), w["tips_per_second"].get<double>(),
+        w["device_tips_per_second"].get<double>(), w["answers_differing_from_per_tile"].get<int>());
     }
   }
 }

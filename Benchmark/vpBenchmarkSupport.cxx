@@ -20,7 +20,7 @@ Json Timing(const std::vector<double>& ms)
 
 Json BenchBatch(vtkVesselDistanceEngine* engine, const BenchPoints& tips, const std::vector<ProximityResult>* singles)
 {
-  std::vector<double> ms, deviceMs, waitMs, votesMs;
+  std::vector<double> ms, deviceMs, waitMs, votesMs, ceilingsMs, readMs;
   std::vector<ProximityResult> batch;
   auto* zbuffer = vtkZBufferVesselDistance::SafeDownCast(engine);
   std::size_t votes = 0, submissions = 0;
@@ -35,6 +35,8 @@ Json BenchBatch(vtkVesselDistanceEngine* engine, const BenchPoints& tips, const 
       deviceMs.push_back(t.DeviceMs);
       waitMs.push_back(t.SubmitWaitMs);
       votesMs.push_back(t.VotesMs);
+      ceilingsMs.push_back(t.CeilingsMs);
+      readMs.push_back(t.ReadMs);
       votes = t.Votes;
       submissions = t.Submissions;
     }
@@ -49,6 +51,8 @@ Json BenchBatch(vtkVesselDistanceEngine* engine, const BenchPoints& tips, const 
     out["device_ms"] = Timing(deviceMs);
     out["submit_wait_ms"] = Timing(waitMs);
     out["votes_ms"] = Timing(votesMs);
+    out["ceilings_ms"] = Timing(ceilingsMs);
+    out["read_ms"] = Timing(readMs);
     out["votes"] = votes;
     out["submissions"] = submissions;
     out["device_tips_per_second"] =

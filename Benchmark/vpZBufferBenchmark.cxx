@@ -217,10 +217,32 @@ Json TileListing(vtkZBufferVesselDistance* zbuffer, const BenchPoints& tips)
   return out;
 }
 
-/// A batch through each query pass, taking turns on the same engine (five rounds): per tile with
-/// its tiles listed (the GPU's batches before the per-answer walk), per pixel listed, and the
-/// walk per answer; tips per second on the host's clock and on the device's, and the answers
-/// that differ from the per-tile pass (none may).
+/// Where a single tip's time goes (GetLastCallTimes), median over the tips: the whole call, the
+/// device's part, the host's wait for it (the device's part included), the inside votes, the
+/// ceilings and the answers read; what is left is the results' set-up and the submission's
+/// recording.
+Json SingleTipTimes(vtkZBufferVesselDistance* zbuffer, const BenchPoints& tips)
+{
+  std::vector<double> total, device, wait, votes, ceilings, read;
+  ProximityResult r;
+  for (const auto& tip : tips)
+  {
+    zbuffer->ComputeProximity(tip.data(), nullptr, r);
+    const vtkZBufferVesselDistance::CallTimes t = zbuffer->GetLastCallTimes();
+    total.push_back(t.TotalMs);
+    device.push_back(t.DeviceMs);
+    wait.push_back(t.SubmitWaitMs);
+    votes.push_back(t.VotesMs);
+    ceilings.push_back(t.CeilingsMs);
+    read.push_back(t.ReadMs);
+  }
+  return { { "total", Timing(total) }, { "device", Timing(device) }, { "submit_wait", Timing(wait) },
+    { "votes", Timing(votes) }, { "ceilings", Timing(ceilings) }, { "read", Timing(read) } };
+}
+
+/// A batch through each query pass with its tiles listed, taking turns on the same engine (five
+/// rounds): per tile and per pixel; tips per second on the host's clock and on the device's, and
+/// the answers that differ from the per-tile pass (none may).
 Json BatchPasses(vtkZBufferVesselDistance* zbuffer, const BenchPoints& tips)
 {
   struct Pass
@@ -229,8 +251,7 @@ Json BatchPasses(vtkZBufferVesselDistance* zbuffer, const BenchPoints& tips)
     int QueryPass;
   };
   constexpr Pass Passes[] = { { "per_tile_listed", vtkZBufferVesselDistance::QueryPassPerTile },
-    { "per_pixel_listed", vtkZBufferVesselDistance::QueryPassPerPixel },
-    { "per_answer", vtkZBufferVesselDistance::QueryPassPerAnswer } };
+    { "per_pixel_listed", vtkZBufferVesselDistance::QueryPassPerPixel } };
   constexpr int Count = static_cast<int>(sizeof Passes / sizeof Passes[0]);
   std::vector<double> ms[Count], deviceMs[Count];
   std::vector<ProximityResult> answers[Count];
@@ -360,6 +381,7 @@ BenchJson BenchZBuffer(vtkZBufferVesselDistance* zbuffer, const std::vector<Name
   entry["tile_listing"] = TileListing(zbuffer, tips);
   std::fprintf(stderr, ", batch passes");
   entry["batch_passes"] = BatchPasses(zbuffer, tips);
+  entry["single_tip_times"] = SingleTipTimes(zbuffer, tips);
   std::fprintf(stderr, ", moving box");
   entry["moving_box"] = MovingBox(zbuffer, track);
   std::fprintf(stderr, "\n");

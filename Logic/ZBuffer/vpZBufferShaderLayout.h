@@ -26,7 +26,7 @@ constexpr int CoarseTiles = 4;
 /// A tile's edge in pixels (SummarizeTiles.comp's TilePx for the fine tiles; the grid's own).
 constexpr int TilePx = DepthLayerGrid::TilePx;
 /// The query's stages (QueryProximityCommon.glsl).
-constexpr std::int32_t VisitOrderedTiles = 0, SelectTiles = 1, VisitListedTiles = 2, WalkAnswers = 3;
+constexpr std::int32_t VisitOrderedTiles = 0, SelectTiles = 1, VisitListedTiles = 2;
 
 /// RasterizeLayers.comp's Parameters.
 struct RasterParameters
@@ -117,10 +117,10 @@ inline std::vector<ShaderBlock> ShaderBlocks()
     { "RasterParameters", sizeof(RasterParameters), { "RasterizeLayers.comp" } },
     { "ColumnParameters", sizeof(ColumnParameters), { "SummarizeColumns.comp" } },
     { "TileParameters", sizeof(TileParameters), { "SummarizeTiles.comp" } },
-    { "QueryParameters", sizeof(QueryParameters), { "QueryProximity.comp", "QueryProximityPerPixel.comp", "QueryProximityPerAnswer.comp" } },
+    { "QueryParameters", sizeof(QueryParameters), { "QueryProximity.comp", "QueryProximityPerPixel.comp" } },
     { "ReduceParameters", sizeof(ReduceParameters), { "ReduceProximity.comp" } },
-    { "PointRecord", sizeof(PointRecord), { "QueryProximity.comp", "QueryProximityPerPixel.comp", "QueryProximityPerAnswer.comp" } },
-    { "AnswerCeiling", sizeof(AnswerCeiling), { "QueryProximity.comp", "QueryProximityPerPixel.comp", "QueryProximityPerAnswer.comp" } },
+    { "PointRecord", sizeof(PointRecord), { "QueryProximity.comp", "QueryProximityPerPixel.comp" } },
+    { "AnswerCeiling", sizeof(AnswerCeiling), { "QueryProximity.comp", "QueryProximityPerPixel.comp" } },
   };
 }
 

@@ -8,6 +8,7 @@
 
 
 #include <vtkObjectFactory.h>
+#include <vtkSMPThreadLocal.h>
 #include <vtkSMPTools.h>
 
 #include <algorithm>
@@ -134,9 +135,9 @@ void vtkZBufferVesselDistance::SetDistanceBins(int bins)
 
 void vtkZBufferVesselDistance::SetQueryPass(int pass)
 {
-  if (pass != QueryPassByDevice && pass != QueryPassPerTile && pass != QueryPassPerPixel && pass != QueryPassPerAnswer)
+  if (pass != QueryPassByDevice && pass != QueryPassPerTile && pass != QueryPassPerPixel)
   {
-    throw vp::InputError("query pass", "must be by device, per tile, per pixel or per answer");
+    throw vp::InputError("query pass", "must be by device, per tile or per pixel");
   }
   this->QueryPass = pass;
   this->Modified();
@@ -229,7 +230,15 @@ std::size_t vtkZBufferVesselDistance::GetBatchCapacity() const
 vtkZBufferVesselDistance::CallTimes vtkZBufferVesselDistance::GetLastCallTimes() const
 {
   std::lock_guard<std::mutex> lock(this->Impl->Lock);
-  return this->Impl->LastCall;
+  Internals& s = *this->Impl;
+  const CallTimes before = s.LastCall;
+  if (s.LastCall.Submissions > 0)
+  {
+    s.AddDeviceMs(s.Context->DeviceMs()); // the last submission's
+  }
+  const CallTimes times = s.LastCall;
+  s.LastCall = before; // asked twice, the same answer
+  return times;
 }
 
 double vtkZBufferVesselDistance::GetLastQueryDeviceMs() const
@@ -373,15 +382,62 @@ void vtkZBufferVesselDistance::ComputeProximityBatchWithin(
   this->AnswerAll(points, nullptr, std::min(searchMm, this->RangeMm), false, results);
 }
 
+namespace
+{
+/// fn(begin, end) over [0, count): on every core for a batch, on this thread for a few (a task
+/// costs more than a few answers). A batch's host work per tip (its results, ceilings and
+/// answers read) was most of its time on a GPU: 20,000 tips at 1.5M triangles per class on an
+/// H100 took 82 ms, 3.5 of them on the device.
+template <typename Fn>
+void ForEachAnswer(std::size_t count, const Fn& fn)
+{
+  if (count >= 64)
+  {
+    vtkSMPTools::For(0, static_cast<vtkIdType>(count), [&](vtkIdType begin, vtkIdType end) {
+      fn(static_cast<std::size_t>(begin), static_cast<std::size_t>(end));
+    });
+  }
+  else
+  {
+    fn(0, count);
+  }
+}
+
+/// The largest of fn(begin, end) over [0, count), split as ForEachAnswer splits it (a thread's
+/// share made only for a batch: it costs a single tip microseconds).
+template <typename Fn>
+double MaxOverAnswers(std::size_t count, const Fn& fn)
+{
+  if (count < 64)
+  {
+    return fn(0, count);
+  }
+  vtkSMPThreadLocal<double> largest(-std::numeric_limits<double>::infinity());
+  ForEachAnswer(count, [&](std::size_t begin, std::size_t end) {
+    double& mine = largest.Local();
+    mine = std::max(mine, fn(begin, end));
+  });
+  double all = -std::numeric_limits<double>::infinity();
+  for (double x : largest)
+  {
+    all = std::max(all, x);
+  }
+  return all;
+}
+} // namespace
+
 void vtkZBufferVesselDistance::AnswerAll(
   const Points& tips, const Points* axes, double searchMm, bool bins, std::vector<vp::ProximityResult>& results) const
 {
   const std::size_t count = tips.size();
   results.resize(count);
-  for (std::size_t i = 0; i < count; ++i)
-  {
-    this->BeginResult(tips[i].data(), results[i]);
-  }
+  this->EnsureBuilt(); // before any thread starts
+  ForEachAnswer(count, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i)
+    {
+      this->BeginResult(tips[i].data(), results[i]);
+    }
+  });
   const std::array<double, 3>* axis = axes ? axes->data() : nullptr;
   std::lock_guard<std::mutex> lock(this->Impl->Lock);
   Internals& s = *this->Impl;
@@ -466,8 +522,10 @@ double vtkZBufferVesselDistance::WriteCeilings(
   constexpr double Unknown = std::numeric_limits<double>::infinity();
   // The device's distances are floats from float coordinates: margins far above their rounding.
   auto above = [](double mm) { return mm * (1.0 + 1e-5) + 1e-3; };
-  double highest = -1.0; // the farthest any answer needs to look (none: below 0)
-  for (std::size_t i = 0; i < count; ++i)
+  // The farthest any answer needs to look (none: below 0).
+  return MaxOverAnswers(count, [&](std::size_t begin, std::size_t end) {
+  double highest = -1.0;
+  for (std::size_t i = begin; i < end; ++i)
   {
     const double* tip = tips[i].data();
     for (std::uint32_t c = 0; c < classes; ++c)
@@ -490,6 +548,7 @@ double vtkZBufferVesselDistance::WriteCeilings(
     }
   }
   return highest;
+  });
 }
 
 void vtkZBufferVesselDistance::AnswerBatch(const std::array<double, 3>* tips, std::size_t count,
@@ -515,18 +574,19 @@ void vtkZBufferVesselDistance::AnswerBatch(const std::array<double, 3>* tips, st
       (this->QueryPass == QueryPassByDevice && !s.Context->IsCpuDevice() && count <= PerPixelMaxTips)) &&
     orderCount + laneGroups <= s.Context->Limits().maxComputeWorkGroupCount[0];
   const std::uint32_t n = static_cast<std::uint32_t>(count);
+  const double ceilingsMs = vp::NowMs();
   const double reachMm = this->WriteCeilings(tips, count, searchMm);
+  s.LastCall.CeilingsMs += vp::NowMs() - ceilingsMs;
   const std::uint32_t tiles = reachMm < 0.0 ? 0 : std::min(orderCount, s.FineTable.Within(reachMm));
-  // The listed tiles are visited per pixel where the order table would be: on a GPU, where a
-  // workgroup per listed tile is work for every invocation.
-  const bool listPerPixel = this->QueryPass != QueryPassPerTile &&
-    (this->QueryPass == QueryPassPerPixel || !s.Context->IsCpuDevice());
-  // A batch on a GPU walks per answer: its answers fill the device without splitting any.
-  const bool walk = this->QueryPass == QueryPassPerAnswer ||
-    (this->QueryPass == QueryPassByDevice && !s.Context->IsCpuDevice() && n > PerPixelMaxTips);
-  const bool list = !walk && (this->TileListing == TileListingOn ||
-    (this->TileListing == TileListingByDevice && (n > PerPixelMaxTips || s.Context->IsCpuDevice())));
-  const int listing = walk ? WalkPerAnswer : list ? (listPerPixel ? 2 : 1) : 0;
+  // The listed tiles are visited per pixel where the order table would be: for a few tips on a
+  // GPU, where a workgroup per listed tile is work for every invocation. A batch's listed tiles
+  // fill a GPU per tile too, at less of its time (20,000 tips at 1.5M triangles per class on an
+  // H100: 3.5 ms per tile, 4.4 ms per pixel; bench's batch passes).
+  const bool listPerPixel = this->QueryPass == QueryPassPerPixel ||
+    (this->QueryPass == QueryPassByDevice && !s.Context->IsCpuDevice() && n <= PerPixelMaxTips);
+  const bool list = this->TileListing == TileListingOn ||
+    (this->TileListing == TileListingByDevice && (n > PerPixelMaxTips || s.Context->IsCpuDevice()));
+  const int listing = list ? (listPerPixel ? 2 : 1) : 0;
   // Without a list, a batch first visits its near tiles, so that the best falls before the rest
   // start. A list needs no such pass: the ceilings alone leave a few tiles per tip to list
   // (IRCADb patient 1, 0.4 mm cells: 24 of 2,691 per tip, 20 after a near pass of 2 tiles,
@@ -555,13 +615,20 @@ void vtkZBufferVesselDistance::AnswerBatch(const std::array<double, 3>* tips, st
   }
   s.LastTiles = tiles * classes;
   s.LastTilesInRange = orderCount * classes;
+  if (s.LastCall.Submissions > 0)
+  {
+    // The previous submission's device time, before this one's stamps replace it (the last
+    // one's is read only when asked: reading the stamps costs a query microseconds).
+    s.AddDeviceMs(s.Context->DeviceMs());
+  }
   const double submitMs = vp::NowMs();
   s.PreparedQueryFor(q, n, perPixel, listing, nearEntries, laneSlots).Submit();
   s.LastCall.SubmitWaitMs += vp::NowMs() - submitMs;
-  s.LastCall.DeviceMs = s.LastCall.DeviceMs < 0.0 || s.Context->DeviceMs() < 0.0 ? -1.0 : s.LastCall.DeviceMs + s.Context->DeviceMs();
   ++s.LastCall.Submissions;
   s.LastTilesListed = static_cast<const std::uint32_t*>(s.HostState->Mapped())[7];
+  const double readMs = vp::NowMs(), votesBeforeMs = s.LastCall.VotesMs;
   this->ReadAnswers(tips, count, axes != nullptr, searchMm, q.Bins, binWidth, results);
+  s.LastCall.ReadMs += vp::NowMs() - readMs - (s.LastCall.VotesMs - votesBeforeMs);
 }
 
 void vtkZBufferVesselDistance::ReadAnswers(const std::array<double, 3>* tips, std::size_t count, bool axes,
@@ -571,55 +638,92 @@ void vtkZBufferVesselDistance::ReadAnswers(const std::array<double, 3>* tips, st
   const std::uint32_t classes = s.Classes();
   const vp::DepthLayerGrid& g = s.Grid;
   const auto* hostState = static_cast<const std::uint32_t*>(s.HostState->Mapped());
-  std::vector<InsideVote> votes; // the answers on surfaces that are not closed
+  // What each answer still needs once read (on every core): nothing, its answer beyond the
+  // range, or a vote on a surface that is not closed. Those follow in order, on this thread.
+  enum Next : std::uint8_t
+  {
+    Done,
+    BeyondRange,
+    Vote
+  };
+  std::vector<Next> next(count * classes, Done);
+  ForEachAnswer(count, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i)
+    {
+      const double* tip = tips[i].data();
+      for (std::uint32_t c = 0; c < classes; ++c)
+      {
+        vp::ClassProximity& out = results[i].Classes[c];
+        const std::uint32_t* cs = hostState + (i * classes + c) * StateStride;
+        const float directional = Bits(cs[2]);
+        if (axes && std::isfinite(directional) && directional <= searchMm)
+        {
+          out.DirectionalMm = directional;
+        }
+        const double cellMm = ChosenCellMm(cs);
+        const double distance = cellMm <= searchMm ? ReportedDistanceMm(cs, cellMm, g.HalfDiagonalMm(), bins, binWidth) : 0.0;
+        if (!(cellMm <= searchMm) || distance > this->RangeMm)
+        {
+          next[i * classes + c] = BeyondRange;
+          continue;
+        }
+        out.InRange = true;
+        // On a surface that is not closed the one ray's parity is no answer (an opening it passes
+        // through turns it): the exact engine's vote over five rays decides there.
+        if (this->Surfaces[c]->IsClosed())
+        {
+          out.Inside = cs[1] != 0u;
+        }
+        else
+        {
+          next[i * classes + c] = Vote;
+        }
+        out.DistanceMm = distance;
+        ClosestPointInChosenCell(g, tip, cs, out.ClosestPoint);
+        out.TriangleId = -1;
+      }
+    }
+  });
+  std::vector<InsideVote> votes;
+  std::vector<InsideVote> beyond; // the answers beyond the range (no distance)
+  bool deep = false;              // whether one of them needs the exact engine of every class
   for (std::size_t i = 0; i < count; ++i)
   {
-    const double* tip = tips[i].data();
     for (std::uint32_t c = 0; c < classes; ++c)
     {
-      vp::ClassProximity& out = results[i].Classes[c];
       const std::uint32_t* cs = hostState + (i * classes + c) * StateStride;
-      const float directional = Bits(cs[2]);
-      if (axes && std::isfinite(directional) && directional <= searchMm)
-      {
-        out.DirectionalMm = directional;
-      }
       const double cellMm = ChosenCellMm(cs);
-      if (!(cellMm <= searchMm))
-      {
-        this->AnswerBeyondRange(c, tip, cs[1] != 0u, out);
-        continue;
-      }
-      if (c < s.Last.size())
+      if (cellMm <= searchMm && c < s.Last.size())
       {
         // That cell stays marked until the next rendering: no later answer is farther than it.
         Internals::LastAnswer& last = s.Last[c];
         last.Known = true;
-        std::copy(tip, tip + 3, last.TipMm);
+        std::copy(tips[i].data(), tips[i].data() + 3, last.TipMm);
         last.CellMm = cellMm;
       }
-      const double distance = ReportedDistanceMm(cs, cellMm, g.HalfDiagonalMm(), bins, binWidth);
-      if (distance > this->RangeMm)
+      if (next[i * classes + c] == BeyondRange)
       {
-        this->AnswerBeyondRange(c, tip, cs[1] != 0u, out);
-        continue;
+        beyond.push_back({ i, c, 0.0 });
+        deep = deep || (s.TipQuery && s.ExactIndex[c] < 0 && cs[1] != 0u);
       }
-      out.InRange = true;
-      // On a surface that is not closed the one ray's parity is no answer (an opening it passes
-      // through turns it): the exact engine's vote over five rays decides there.
-      if (this->Surfaces[c]->IsClosed())
-      {
-        out.Inside = cs[1] != 0u;
-      }
-      else
+      else if (next[i * classes + c] == Vote)
       {
         votes.push_back({ i, c, cellMm + g.HalfDiagonalMm() });
       }
-      out.DistanceMm = distance;
-      ClosestPointInChosenCell(g, tip, cs, out.ClosestPoint);
-      out.TriangleId = -1;
     }
   }
+  if (deep)
+  {
+    this->EnsureDeepEngine(); // before any thread starts
+  }
+  ForEachAnswer(beyond.size(), [&](std::size_t begin, std::size_t end) {
+    for (std::size_t k = begin; k < end; ++k)
+    {
+      const InsideVote& b = beyond[k];
+      const std::uint32_t* cs = hostState + (b.Tip * classes + b.Class) * StateStride;
+      this->AnswerBeyondRange(b.Class, tips[b.Tip].data(), cs[1] != 0u, results[b.Tip].Classes[b.Class]);
+    }
+  });
   s.VoteInside(votes, tips, results);
 }
 
@@ -645,6 +749,13 @@ void vtkZBufferVesselDistance::AnswerBeyondRange(
   {
     return;
   }
+  this->EnsureDeepEngine();
+  s.Deep->FindDepthBeyondRange(static_cast<int>(c), tip, out);
+}
+
+void vtkZBufferVesselDistance::EnsureDeepEngine() const
+{
+  Internals& s = *this->Impl;
   if (!s.Deep)
   {
     s.Deep = vtkSmartPointer<vtkExactVesselDistance>::New();
@@ -654,7 +765,6 @@ void vtkZBufferVesselDistance::AnswerBeyondRange(
     }
     s.Deep->Build();
   }
-  s.Deep->FindDepthBeyondRange(static_cast<int>(c), tip, out);
 }
 
 void vtkZBufferVesselDistance::PrintSelf(ostream& os, vtkIndent indent)
@@ -668,10 +778,7 @@ void vtkZBufferVesselDistance::PrintSelf(ostream& os, vtkIndent indent)
      << this->MovingBoxSizeMm[2] << "\n";
   os << indent << "DistanceBins: " << this->DistanceBins << "\n";
   os << indent << "QueryPass: "
-     << (this->QueryPass == QueryPassPerTile      ? "PerTile"
-            : this->QueryPass == QueryPassPerPixel ? "PerPixel"
-            : this->QueryPass == QueryPassPerAnswer ? "PerAnswer"
-                                                    : "(by device)")
+     << (this->QueryPass == QueryPassPerTile ? "PerTile" : this->QueryPass == QueryPassPerPixel ? "PerPixel" : "(by device)")
      << "\n";
   os << indent << "TileListing: "
      << (this->TileListing == TileListingOff ? "Off" : this->TileListing == TileListingOn ? "On" : "(by device)") << "\n";

@@ -41,8 +41,6 @@ constexpr std::int32_t GpuDirectionalLanes = 64;
 // 1,000 tips 1.95 ms per pixel, 0.57 per tile (the per-pixel pass paid a workgroup for every tile
 // of the order table, nearly all of which it then skipped: the list leaves only the others).
 constexpr std::uint32_t PerPixelMaxTips = 8;
-/// The query's listing argument for the per-answer walk (0: none, 1: listed per tile, 2: per pixel).
-constexpr int WalkPerAnswer = 3;
 // A larger batch without a list first visits, for every tip, the tiles within this many tiles of its own: on a
 // GPU all of a dispatch's tiles run at once, so a far tile would start before a near one had
 // lowered the best; after this first dispatch most far tiles are skipped at once.
@@ -119,10 +117,15 @@ struct vtkZBufferVesselDistance::Internals
   int SubmissionsOnRender = 0;
   std::uint32_t LastTiles = 0, LastTilesInRange = 0, LastTilesListed = 0;
   vtkZBufferVesselDistance::CallTimes LastCall;
+  /// One submission's device time into LastCall's (which stays negative once one is unknown).
+  void AddDeviceMs(double ms)
+  {
+    this->LastCall.DeviceMs = this->LastCall.DeviceMs < 0.0 || ms < 0.0 ? -1.0 : this->LastCall.DeviceMs + ms;
+  }
   // Tips per submission for the current order table (PrepareOrder).
   std::uint32_t Capacity = 0;
 
-  std::unique_ptr<vp::ComputeKernel> Raster, Columns, Tiles, Query, QueryPerPixel, QueryPerAnswer, Reduce;
+  std::unique_ptr<vp::ComputeKernel> Raster, Columns, Tiles, Query, QueryPerPixel, Reduce;
   // The query's submissions, each recorded once for one batch size and one set of parameters
   // (the whole instrument's search asks for a few ranges and sizes again and again).
   struct PreparedQuery

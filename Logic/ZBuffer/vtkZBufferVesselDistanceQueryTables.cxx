@@ -62,7 +62,7 @@ void vtkZBufferVesselDistance::Internals::PrepareOrder(double rangeMm)
   // At most one listed tile per answer and entry: half the records' bytes.
   this->TileList = std::make_unique<vp::GpuBuffer>(*this->Context, recordBytesPerTip * this->Capacity / 2, Placement::Device);
   this->TileListSize = std::make_unique<vp::GpuBuffer>(*this->Context, 16, Placement::Device);
-  for (vp::ComputeKernel* query : { this->Query.get(), this->QueryPerPixel.get(), this->QueryPerAnswer.get() })
+  for (vp::ComputeKernel* query : { this->Query.get(), this->QueryPerPixel.get() })
   {
     query->BindBuffers({ this->Occupancy->Handle(), this->Crossings->Handle(), this->DepthRanges->Handle(),
       this->TileRanges->Handle(), this->Order->Handle(), this->State->Handle(), this->Records->Handle(),

@@ -7,7 +7,6 @@
 #include "vpInputError.h"
 
 #include "RasterizeLayers_comp_spv.h"
-#include "QueryProximityPerAnswer_comp_spv.h"
 #include "QueryProximityPerPixel_comp_spv.h"
 #include "QueryProximity_comp_spv.h"
 #include "ReduceProximity_comp_spv.h"
@@ -95,8 +94,6 @@ void vtkZBufferVesselDistance::Internals::CreateLayers(VkDeviceSize layerBytes)
     context, QueryProximity_comp, QueryProximity_comp_size, 14, static_cast<std::uint32_t>(sizeof(QueryParameters)));
   this->QueryPerPixel = std::make_unique<vp::ComputeKernel>(context, QueryProximityPerPixel_comp,
     QueryProximityPerPixel_comp_size, 14, static_cast<std::uint32_t>(sizeof(QueryParameters)));
-  this->QueryPerAnswer = std::make_unique<vp::ComputeKernel>(context, QueryProximityPerAnswer_comp,
-    QueryProximityPerAnswer_comp_size, 14, static_cast<std::uint32_t>(sizeof(QueryParameters)));
   this->Reduce = std::make_unique<vp::ComputeKernel>(
     context, ReduceProximity_comp, ReduceProximity_comp_size, 5, static_cast<std::uint32_t>(sizeof(ReduceParameters)));
 }

@@ -33,7 +33,6 @@ void vtkZBufferVesselDistance::Internals::Release()
   this->Tiles.reset();
   this->Query.reset();
   this->QueryPerPixel.reset();
-  this->QueryPerAnswer.reset();
   this->Reduce.reset();
   this->Points.reset();
   this->Positions.reset();
@@ -150,32 +149,20 @@ vp::PreparedCommands& vtkZBufferVesselDistance::Internals::PreparedQueryFor(cons
         vp::ComputeKernel::Barrier(cmd);
       };
       const VkDeviceSize second = sizeof(VkDispatchIndirectCommand);
-      if (listing == WalkPerAnswer)
+      if (nearEntries > 0)
       {
-        // An invocation per answer; the stage's EndEntry holds the answers.
-        QueryParameters part = q;
-        part.Stage = WalkAnswers;
-        part.EndEntry = static_cast<std::int32_t>(answers);
-        this->QueryPerAnswer->Record(cmd, &part, (answers + 63) / 64);
-        vp::ComputeKernel::Barrier(cmd);
+        visit(VisitOrderedTiles, perPixel, 0, nearEntries, 0, *this->DispatchSizes, 0);
+      }
+      if (listing == 0)
+      {
+        visit(VisitOrderedTiles, perPixel, nearEntries, orderCount, laneSlots, *this->DispatchSizes, second);
       }
       else
       {
-        if (nearEntries > 0)
-        {
-          visit(VisitOrderedTiles, perPixel, 0, nearEntries, 0, *this->DispatchSizes, 0);
-        }
-        if (listing == 0)
-        {
-          visit(VisitOrderedTiles, perPixel, nearEntries, orderCount, laneSlots, *this->DispatchSizes, second);
-        }
-        else
-        {
-          // The listing: workgroups per answer (DispatchSizes' second), each looping over its
-          // share of the answer's lanes and entries.
-          visit(SelectTiles, false, nearEntries, orderCount, 0, *this->DispatchSizes, second);
-          visit(VisitListedTiles, listing == 2, 0, 0, 0, *this->TileListSize, 4);
-        }
+        // The listing: workgroups per answer (DispatchSizes' second), each looping over its
+        // share of the answer's lanes and entries.
+        visit(SelectTiles, false, nearEntries, orderCount, 0, *this->DispatchSizes, second);
+        visit(VisitListedTiles, listing == 2, 0, 0, 0, *this->TileListSize, 4);
       }
       this->Reduce->Record(cmd, &copy, (answers + 63) / 64); // into the host-visible answers, and resets
       vp::ComputeKernel::Barrier(cmd);

@@ -246,10 +246,10 @@ void PrintZBufferQueries(const Json& z)
       s["batch_capacity"].get<std::size_t>(), s["batched"]["answers_differing_from_single_queries"].get<int>());
     const Json& b = s["batched"];
     std::printf("%10s | of which: device %.2f ms (%.0f tips/s on the device), host wait %.2f ms, %zu inside votes %.2f ms, "
-                "%zu submissions\n",
+                "ceilings %.2f ms, answers read %.2f ms, %zu submissions\n",
       "", b["device_ms"]["median_ms"].get<double>(), b["device_tips_per_second"].get<double>(),
       b["submit_wait_ms"]["median_ms"].get<double>(), b["votes"].get<std::size_t>(), b["votes_ms"]["median_ms"].get<double>(),
-      b["submissions"].get<std::size_t>());
+      b["ceilings_ms"]["median_ms"].get<double>(), b["read_ms"]["median_ms"].get<double>(), b["submissions"].get<std::size_t>());
   }
   std::printf("%10s | %-8s %22s %22s %22s %12s\n", "tris/class", "ceilings", "off med / p95 ms", "on med / p95 ms",
     "device off / on med", "tiles (med)");
@@ -285,12 +285,23 @@ void PrintZBufferQueries(const Json& z)
         t["answers_differing"].get<int>());
     }
   }
+  std::printf("%10s | single tip, median / p95 ms: %-s\n", "tris/class", "call, device, host wait, votes, ceilings, answers read");
+  for (const Json& s : z["sizes"])
+  {
+    const Json& t = s["single_tip_times"];
+    std::printf("%10zu |", s["triangles_per_class"].get<std::size_t>());
+    for (const char* part : { "total", "device", "submit_wait", "votes", "ceilings", "read" })
+    {
+      std::printf(" %.4f / %.4f%s", t[part]["median_ms"].get<double>(), t[part]["p95_ms"].get<double>(),
+        part[0] == 'r' && part[1] == 'e' ? "\n" : ",");
+    }
+  }
   std::printf("%10s | %-16s %14s %14s %16s %18s %10s\n", "tris/class", "batch pass", "med ms", "p95 ms", "tips/s",
     "device tips/s", "differing");
   for (const Json& s : z["sizes"])
   {
     const Json& b = s["batch_passes"];
-    for (const char* pass : { "per_tile_listed", "per_pixel_listed", "per_answer" })
+    for (const char* pass : { "per_tile_listed", "per_pixel_listed" })
     {
       const Json& w = b[pass];
       std::printf("%10zu | %-16s %14.2f %14.2f %16.0f %18.0f %10d\n", s["triangles_per_class"].get<std::size_t>(), pass,

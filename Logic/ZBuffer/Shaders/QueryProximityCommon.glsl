@@ -97,7 +97,6 @@ layout(push_constant) uniform Parameters
 const int VisitOrderedTiles = 0; // the order table's entries FirstEntry..EndEntry, after the lanes
 const int SelectTiles = 1;       // the same entries, listed when they have to be visited
 const int VisitListedTiles = 2;  // the tiles listed
-const int WalkAnswers = 3;       // an invocation per answer walks its tiles (QueryProximityPerAnswer.comp)
 
 // This invocation's point (set first thing in main), the least of the range and its answer's
 // ceiling, and the end of its entries (BeginAnswer).

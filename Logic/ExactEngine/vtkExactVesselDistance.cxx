@@ -400,6 +400,18 @@ bool vtkExactVesselDistance::FindDepthBeyondRange(int classIndex, const double t
       return false; // outside the class's box: outside the class
     }
   }
+  if (!surface.IsClosed() && this->VoteOnOpenSurfaces)
+  {
+    // The vote the answer would take, first: a tip it finds outside needs no search for the
+    // nearest wall, which, unbounded, costs many times the vote's five rays (the z-buffer's
+    // batches ask this of every answer beyond the range). The wall's distance only turns the
+    // vote to "outside" on the surface, where this answer is "outside" anyway.
+    bool uncertain = false;
+    if (!VoteInsideTree(this->Impl->Trees[c], tip, std::numeric_limits<double>::infinity(), uncertain) && !uncertain)
+    {
+      return false;
+    }
+  }
   const QueryState state =
     FindNearestTriangle(this->Impl->Trees[c], surface, tip, std::numeric_limits<double>::infinity());
   if (state.Triangle < 0)

@@ -3,6 +3,7 @@
 // (a hole, a crack, a fin on an edge, a patch wound the wrong way, a duplicated sheet) still tells every tip 0.2 mm or more inside from every tip 0.2 mm
 // or more outside, in the exact engine (Embree's rays) and the brute force (every triangle in
 // double), and the surface reports what is wrong with it.
+#include "vpAnalyticShapes.h"
 #include "vpBuiltInPhantom.h"
 #include "vpDangerLevels.h"
 #include "vpTriangleGeometry.h"
@@ -233,6 +234,67 @@ TEST(InsideOnDefectiveMeshes, TheZBufferTakesTheVoteAndEveryInsideTipIsABreach)
     EXPECT_EQ(batch[i].Classes[0].Inside, single.Classes[0].Inside) << "tip " << i;
     EXPECT_EQ(batch[i].Classes[0].InsideUncertain, single.Classes[0].InsideUncertain) << "tip " << i;
     EXPECT_EQ(*batch[i].Classes[0].Inside, i < c.Inside.size()) << "tip " << i;
+  }
+}
+
+// Beyond the range on an open surface (the vote decides inside): a tip 25 mm deep is a breach
+// with its depth, a tip outside the vessel but inside its box is out of range, from the exact
+// engine and the z-buffer, alone and in a batch. The vote now comes before the unbounded search
+// for the wall, which only an inside tip needs.
+TEST(InsideOnDefectiveMeshes, BeyondTheRangeAnOpenVesselsInsideTipHasItsDepthAndAnOutsideOneNone)
+{
+  VP_REQUIRE_VULKAN();
+  const double centre[3] = { 0, 0, 0 };
+  vtkSmartPointer<vtkPolyData> closed = vp::MakeSphere(centre, 30.0, 32, 64);
+  vtkNew<vtkCellArray> cells;
+  vtkIdType n = 0;
+  const vtkIdType* ids = nullptr;
+  for (vtkIdType t = 0; t < closed->GetNumberOfCells(); ++t)
+  {
+    closed->GetCellPoints(t, n, ids);
+    if (t != closed->GetNumberOfCells() / 3) // one triangle gone: a hole, the surface open
+    {
+      cells->InsertNextCell(n, ids);
+    }
+  }
+  vtkNew<vtkPolyData> open;
+  open->SetPoints(closed->GetPoints());
+  open->SetPolys(cells);
+  const std::vector<std::array<double, 3>> tips = { { 0, 0, 5 }, { 28, 28, 0 }, { -27, 27, 5 }, { 1, -2, -3 } };
+  const bool inside[] = { true, false, false, true };
+  const std::vector<vtkSmartPointer<vtkVesselDistanceEngine>> engines = { vtkSmartPointer<vtkExactVesselDistance>::New(),
+    vtkSmartPointer<vtkZBufferVesselDistance>::New() };
+  for (vtkVesselDistanceEngine* e : engines)
+  {
+    e->SetRangeMm(5.0);
+    e->AddVessel("portal_vein", open);
+    e->Build();
+    std::vector<vp::ProximityResult> batch;
+    std::vector<std::array<double, 3>> many; // 64: a batch that runs on every core
+    for (int k = 0; k < 64; ++k)
+    {
+      many.push_back(tips[static_cast<std::size_t>(k) % tips.size()]);
+    }
+    e->ComputeProximityBatch(many, nullptr, batch);
+    for (std::size_t i = 0; i < many.size(); ++i)
+    {
+      const std::size_t which = i % tips.size();
+      vp::ProximityResult single;
+      e->ComputeProximity(many[i].data(), nullptr, single);
+      for (const vp::ProximityResult* r : { &single, &batch[i] })
+      {
+        const vp::ClassProximity& c = r->Classes[0];
+        const std::string where = std::string(e->GetClassName()) + ", tip " + std::to_string(which) + (r == &single ? "" : " in a batch");
+        EXPECT_EQ(c.InRange, inside[which]) << where;
+        EXPECT_EQ(c.Inside.value_or(false), inside[which]) << where;
+        if (inside[which])
+        {
+          const double depth = 30.0 - std::sqrt(vp::Distance2(many[i].data(), centre));
+          // The wall's depth: the facets lie up to 0.15 mm inside the sphere of radius 30.
+          EXPECT_NEAR(c.DistanceMm, depth - 0.07, 0.09) << where;
+        }
+      }
+    }
   }
 }
 

@@ -20,10 +20,10 @@ Json Timing(const std::vector<double>& ms)
 
 Json BenchBatch(vtkVesselDistanceEngine* engine, const BenchPoints& tips, const std::vector<ProximityResult>* singles)
 {
-  std::vector<double> ms, deviceMs, waitMs, votesMs, ceilingsMs, readMs;
+  std::vector<double> ms;
   std::vector<ProximityResult> batch;
   auto* zbuffer = vtkZBufferVesselDistance::SafeDownCast(engine);
-  std::size_t votes = 0, submissions = 0;
+  CallTimeSeries parts;
   for (int run = 0; run < 5; ++run)
   {
     const double start = NowMs();
@@ -31,14 +31,7 @@ Json BenchBatch(vtkVesselDistanceEngine* engine, const BenchPoints& tips, const 
     ms.push_back(NowMs() - start);
     if (zbuffer)
     {
-      const vtkZBufferVesselDistance::CallTimes t = zbuffer->GetLastCallTimes();
-      deviceMs.push_back(t.DeviceMs);
-      waitMs.push_back(t.SubmitWaitMs);
-      votesMs.push_back(t.VotesMs);
-      ceilingsMs.push_back(t.CeilingsMs);
-      readMs.push_back(t.ReadMs);
-      votes = t.Votes;
-      submissions = t.Submissions;
+      parts.Add(zbuffer->GetLastCallTimes());
     }
   }
   Json out = Timing(ms);
@@ -47,22 +40,39 @@ Json BenchBatch(vtkVesselDistanceEngine* engine, const BenchPoints& tips, const 
   if (zbuffer)
   {
     // Where a batch's time goes: the device's own work, the host's wait for it, and the host's
-    // inside votes (open surfaces); the device's rate is what the kernel alone would give.
-    out["device_ms"] = Timing(deviceMs);
-    out["submit_wait_ms"] = Timing(waitMs);
-    out["votes_ms"] = Timing(votesMs);
-    out["ceilings_ms"] = Timing(ceilingsMs);
-    out["read_ms"] = Timing(readMs);
-    out["votes"] = votes;
-    out["submissions"] = submissions;
-    out["device_tips_per_second"] =
-      1000.0 * static_cast<double>(tips.size()) / std::max(1e-9, Quantile(deviceMs, 0.5));
+    // parts; the device's rate is what the kernel alone would give.
+    out["parts"] = parts.Json();
+    out["device_tips_per_second"] = 1000.0 * static_cast<double>(tips.size()) / std::max(1e-9, parts.DeviceMedianMs());
   }
   if (singles)
   {
     out["answers_differing_from_single_queries"] = CountDifferingAnswers(batch, *singles);
   }
   return out;
+}
+
+void CallTimeSeries::Add(const vtkZBufferVesselDistance::CallTimes& t)
+{
+  this->Total.push_back(t.TotalMs);
+  this->Device.push_back(t.DeviceMs);
+  this->Wait.push_back(t.SubmitWaitMs);
+  this->Votes.push_back(t.VotesMs);
+  this->Ceilings.push_back(t.CeilingsMs);
+  this->Read.push_back(t.ReadMs);
+  this->LastVotes = t.Votes;
+  this->LastSubmissions = t.Submissions;
+}
+
+BenchJson CallTimeSeries::Json() const
+{
+  return { { "total", Timing(this->Total) }, { "device", Timing(this->Device) }, { "submit_wait", Timing(this->Wait) },
+    { "votes", Timing(this->Votes) }, { "ceilings", Timing(this->Ceilings) }, { "read", Timing(this->Read) },
+    { "votes_in_last_call", this->LastVotes }, { "submissions_in_last_call", this->LastSubmissions } };
+}
+
+double CallTimeSeries::DeviceMedianMs() const
+{
+  return Quantile(this->Device, 0.5);
 }
 
 int CountDifferingAnswers(const std::vector<ProximityResult>& a, const std::vector<ProximityResult>& b)

@@ -7,13 +7,12 @@
 #include "vpProximityResult.h"
 #include "vpVesselMeshSet.h"
 #include "vtkVesselDistanceEngine.h"
+#include "vtkZBufferVesselDistance.h"
 
 #include <nlohmann/json.hpp>
 
 #include <array>
 #include <vector>
-
-class vtkZBufferVesselDistance;
 
 namespace vp
 {
@@ -27,6 +26,21 @@ BenchJson Timing(const std::vector<double>& ms);
 /// (from the median batch). With singles, also how many answers differ from them in any way
 /// (there must be none: a batch is the single queries, bit for bit).
 BenchJson BenchBatch(vtkVesselDistanceEngine* engine, const BenchPoints& tips, const std::vector<ProximityResult>* singles);
+
+/// A z-buffer's calls by part (vtkZBufferVesselDistance::GetLastCallTimes), one call after
+/// another: Json() gives each part's median and p95 (total, device, submit_wait, votes, ceilings,
+/// read, in ms) and the last call's votes and submissions.
+class CallTimeSeries
+{
+public:
+  void Add(const vtkZBufferVesselDistance::CallTimes& t);
+  BenchJson Json() const;
+  double DeviceMedianMs() const;
+
+private:
+  std::vector<double> Total, Device, Wait, Votes, Ceilings, Read;
+  std::size_t LastVotes = 0, LastSubmissions = 0;
+};
 
 /// Class answers of two runs over the same tips that differ in range, distance or inside.
 int CountDifferingAnswers(const std::vector<ProximityResult>& a, const std::vector<ProximityResult>& b);

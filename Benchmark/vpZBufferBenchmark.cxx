@@ -223,21 +223,14 @@ Json TileListing(vtkZBufferVesselDistance* zbuffer, const BenchPoints& tips)
 /// recording.
 Json SingleTipTimes(vtkZBufferVesselDistance* zbuffer, const BenchPoints& tips)
 {
-  std::vector<double> total, device, wait, votes, ceilings, read;
+  CallTimeSeries parts;
   ProximityResult r;
   for (const auto& tip : tips)
   {
     zbuffer->ComputeProximity(tip.data(), nullptr, r);
-    const vtkZBufferVesselDistance::CallTimes t = zbuffer->GetLastCallTimes();
-    total.push_back(t.TotalMs);
-    device.push_back(t.DeviceMs);
-    wait.push_back(t.SubmitWaitMs);
-    votes.push_back(t.VotesMs);
-    ceilings.push_back(t.CeilingsMs);
-    read.push_back(t.ReadMs);
+    parts.Add(zbuffer->GetLastCallTimes());
   }
-  return { { "total", Timing(total) }, { "device", Timing(device) }, { "submit_wait", Timing(wait) },
-    { "votes", Timing(votes) }, { "ceilings", Timing(ceilings) }, { "read", Timing(read) } };
+  return parts.Json();
 }
 
 /// A batch through each query pass with its tiles listed, taking turns on the same engine (five

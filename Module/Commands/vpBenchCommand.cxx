@@ -245,11 +245,13 @@ void PrintZBufferQueries(const Json& z)
       s["exact_batched"]["tips_per_second"].get<double>(), s["batched"]["tips"].get<std::size_t>(),
       s["batch_capacity"].get<std::size_t>(), s["batched"]["answers_differing_from_single_queries"].get<int>());
     const Json& b = s["batched"];
+    const Json& p = b["parts"];
     std::printf("%10s | of which: device %.2f ms (%.0f tips/s on the device), host wait %.2f ms, %zu inside votes %.2f ms, "
                 "ceilings %.2f ms, answers read %.2f ms, %zu submissions\n",
-      "", b["device_ms"]["median_ms"].get<double>(), b["device_tips_per_second"].get<double>(),
-      b["submit_wait_ms"]["median_ms"].get<double>(), b["votes"].get<std::size_t>(), b["votes_ms"]["median_ms"].get<double>(),
-      b["ceilings_ms"]["median_ms"].get<double>(), b["read_ms"]["median_ms"].get<double>(), b["submissions"].get<std::size_t>());
+      "", p["device"]["median_ms"].get<double>(), b["device_tips_per_second"].get<double>(),
+      p["submit_wait"]["median_ms"].get<double>(), p["votes_in_last_call"].get<std::size_t>(),
+      p["votes"]["median_ms"].get<double>(), p["ceilings"]["median_ms"].get<double>(), p["read"]["median_ms"].get<double>(),
+      p["submissions_in_last_call"].get<std::size_t>());
   }
   std::printf("%10s | %-8s %22s %22s %22s %12s\n", "tris/class", "ceilings", "off med / p95 ms", "on med / p95 ms",
     "device off / on med", "tiles (med)");

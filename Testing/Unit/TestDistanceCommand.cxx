@@ -6,6 +6,7 @@
 #include "vpStlFormat.h"
 #include "vpModelTestSupport.h"
 #include "vpTestSupport.h"
+#include "vpVulkanTestSupport.h"
 
 #include <vtkNew.h>
 
@@ -141,6 +142,39 @@ TEST_F(DistanceCommand, BenchRefusesABadFineCellInOneLine)
     EXPECT_NE(r.Err.find("--fine-cell"), std::string::npos) << r.Err;
     EXPECT_FALSE(std::ifstream(out).good()) << value;
   }
+}
+
+// bench says where a z-buffer batch's and a single tip's time go (issue 35: on a GPU the host's
+// part had been 100 of a batch's 103 ms), and a batch's answers are the same through either pass.
+TEST_F(DistanceCommand, BenchSplitsAZBufferCallIntoItsParts)
+{
+  VP_REQUIRE_VULKAN();
+  const std::string out = this->Dir + "/bench_parts.json";
+  const ToolRun r = RunTool(this->Dir, "bench --engines zbuffer --sizes 2000 --queries 100 --brute-queries 2 -o " + out);
+  ASSERT_EQ(r.ExitCode, 0) << r.Err;
+  const auto size = nlohmann::json::parse(vp::test::Slurp(out))["zbuffer"]["sizes"][0];
+  const auto& batch = size["batched"];
+  const auto& parts = batch["parts"];
+  const double total = parts["total"]["median_ms"].get<double>();
+  EXPECT_NEAR(total, batch["median_ms"].get<double>(), 0.5 * batch["median_ms"].get<double>());
+  EXPECT_GT(parts["device"]["median_ms"].get<double>(), 0.0) << "lavapipe keeps timestamps";
+  EXPECT_LE(parts["device"]["median_ms"].get<double>(), parts["submit_wait"]["median_ms"].get<double>() * 1.01 + 0.01)
+    << "the host waits for the device";
+  EXPECT_EQ(parts["submissions_in_last_call"].get<std::size_t>(), (100u + 255u) / 256u) << "256 tips a submission on lavapipe";
+  double sum = 0.0;
+  for (const char* part : { "submit_wait", "votes", "ceilings", "read" })
+  {
+    EXPECT_GE(parts[part]["median_ms"].get<double>(), 0.0) << part;
+    sum += parts[part]["median_ms"].get<double>();
+  }
+  EXPECT_LE(sum, total * 1.2 + 0.05) << "the parts lie within the call";
+  EXPECT_GT(batch["device_tips_per_second"].get<double>(), batch["tips_per_second"].get<double>() * 0.99);
+  for (const char* pass : { "per_tile_listed", "per_pixel_listed" })
+  {
+    EXPECT_EQ(size["batch_passes"][pass]["answers_differing_from_per_tile"].get<int>(), 0) << pass;
+  }
+  EXPECT_EQ(size["single_tip_times"]["total"]["queries"].get<std::size_t>(), 100u);
+  EXPECT_EQ(size["single_tip_times"]["submissions_in_last_call"].get<std::size_t>(), 1u);
 }
 
 TEST_F(DistanceCommand, TipsFileRasSpaceAndBruteAgree)

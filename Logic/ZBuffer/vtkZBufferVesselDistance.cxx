@@ -524,30 +524,30 @@ double vtkZBufferVesselDistance::WriteCeilings(
   auto above = [](double mm) { return mm * (1.0 + 1e-5) + 1e-3; };
   // The farthest any answer needs to look (none: below 0).
   return MaxOverAnswers(count, [&](std::size_t begin, std::size_t end) {
-  double highest = -1.0;
-  for (std::size_t i = begin; i < end; ++i)
-  {
-    const double* tip = tips[i].data();
-    for (std::uint32_t c = 0; c < classes; ++c)
+    double highest = -1.0;
+    for (std::size_t i = begin; i < end; ++i)
     {
-      double bound = blocks ? blocks->UpperBoundMm(static_cast<int>(c), tip) : Unknown;
-      const Internals::LastAnswer& last = s.Last[c];
-      if (last.Known)
+      const double* tip = tips[i].data();
+      for (std::uint32_t c = 0; c < classes; ++c)
       {
-        bound = std::min(bound, last.CellMm + std::sqrt(vp::Distance2(tip, last.TipMm)));
-      }
-      bound = above(bound);
-      const float mm = bound < searchMm ? std::nextafter(static_cast<float>(bound), None) : None;
-      ceiling[i * classes + c] = AnswerCeiling{ mm, std::min(orderCount, s.FineTable.Within(mm)) };
-      // A class whose marked cells all lie beyond the search needs no tile (it is out of range,
-      // as the tiles would have found): its ceiling does not size the dispatch.
-      if (!blocks || blocks->LowerBoundMm(static_cast<int>(c), tip) <= above(searchMm))
-      {
-        highest = std::max(highest, std::min(bound, searchMm));
+        double bound = blocks ? blocks->UpperBoundMm(static_cast<int>(c), tip) : Unknown;
+        const Internals::LastAnswer& last = s.Last[c];
+        if (last.Known)
+        {
+          bound = std::min(bound, last.CellMm + std::sqrt(vp::Distance2(tip, last.TipMm)));
+        }
+        bound = above(bound);
+        const float mm = bound < searchMm ? std::nextafter(static_cast<float>(bound), None) : None;
+        ceiling[i * classes + c] = AnswerCeiling{ mm, std::min(orderCount, s.FineTable.Within(mm)) };
+        // A class whose marked cells all lie beyond the search needs no tile (it is out of range,
+        // as the tiles would have found): its ceiling does not size the dispatch.
+        if (!blocks || blocks->LowerBoundMm(static_cast<int>(c), tip) <= above(searchMm))
+        {
+          highest = std::max(highest, std::min(bound, searchMm));
+        }
       }
     }
-  }
-  return highest;
+    return highest;
   });
 }
 
@@ -685,7 +685,7 @@ void vtkZBufferVesselDistance::ReadAnswers(const std::array<double, 3>* tips, st
     }
   });
   std::vector<InsideVote> votes;
-  std::vector<InsideVote> beyond; // the answers beyond the range (no distance)
+  std::vector<std::pair<std::size_t, std::uint32_t>> beyond; // (tip, class) beyond the range
   bool deep = false;              // whether one of them needs the exact engine of every class
   for (std::size_t i = 0; i < count; ++i)
   {
@@ -703,7 +703,7 @@ void vtkZBufferVesselDistance::ReadAnswers(const std::array<double, 3>* tips, st
       }
       if (next[i * classes + c] == BeyondRange)
       {
-        beyond.push_back({ i, c, 0.0 });
+        beyond.emplace_back(i, c);
         deep = deep || (s.TipQuery && s.ExactIndex[c] < 0 && cs[1] != 0u);
       }
       else if (next[i * classes + c] == Vote)
@@ -719,9 +719,9 @@ void vtkZBufferVesselDistance::ReadAnswers(const std::array<double, 3>* tips, st
   ForEachAnswer(beyond.size(), [&](std::size_t begin, std::size_t end) {
     for (std::size_t k = begin; k < end; ++k)
     {
-      const InsideVote& b = beyond[k];
-      const std::uint32_t* cs = hostState + (b.Tip * classes + b.Class) * StateStride;
-      this->AnswerBeyondRange(b.Class, tips[b.Tip].data(), cs[1] != 0u, results[b.Tip].Classes[b.Class]);
+      const auto [i, c] = beyond[k];
+      const std::uint32_t* cs = hostState + (i * classes + c) * StateStride;
+      this->AnswerBeyondRange(c, tips[i].data(), cs[1] != 0u, results[i].Classes[c]);
     }
   });
   s.VoteInside(votes, tips, results);

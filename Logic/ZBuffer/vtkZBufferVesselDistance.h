@@ -195,7 +195,9 @@ public:
   /// Where the latest call's time went (ComputeProximity, ComputeProximityBatch, ...), in ms:
   /// the device's own time summed over its submissions (negative without timestamps), the host's
   /// wait for them (submission to fence, device time included), the host's inside votes on
-  /// surfaces that are not closed (five rays a tip and class), and the whole call.
+  /// surfaces that are not closed (five rays a tip and class in range; the answers beyond the
+  /// range, votes and all, count as read), the ceilings, the answers read, and the whole call
+  /// (from the engine's lock; the results' set-up before it is the caller's).
   struct CallTimes
   {
     double DeviceMs = 0.0;

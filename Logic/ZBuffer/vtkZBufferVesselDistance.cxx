@@ -9,7 +9,6 @@
 
 #include <vtkObjectFactory.h>
 #include <vtkSMPThreadLocal.h>
-#include <vtkSMPTools.h>
 
 #include <algorithm>
 #include <array>
@@ -230,14 +229,12 @@ std::size_t vtkZBufferVesselDistance::GetBatchCapacity() const
 vtkZBufferVesselDistance::CallTimes vtkZBufferVesselDistance::GetLastCallTimes() const
 {
   std::lock_guard<std::mutex> lock(this->Impl->Lock);
-  Internals& s = *this->Impl;
-  const CallTimes before = s.LastCall;
-  if (s.LastCall.Submissions > 0)
+  const Internals& s = *this->Impl;
+  CallTimes times = s.LastCall;
+  if (times.Submissions > 0)
   {
-    s.AddDeviceMs(s.Context->DeviceMs()); // the last submission's
+    Internals::AddDeviceMs(times, s.Context->DeviceMs()); // the last submission's
   }
-  const CallTimes times = s.LastCall;
-  s.LastCall = before; // asked twice, the same answer
   return times;
 }
 
@@ -384,25 +381,6 @@ void vtkZBufferVesselDistance::ComputeProximityBatchWithin(
 
 namespace
 {
-/// fn(begin, end) over [0, count): on every core for a batch, on this thread for a few (a task
-/// costs more than a few answers). A batch's host work per tip (its results, ceilings and
-/// answers read) was most of its time on a GPU: 20,000 tips at 1.5M triangles per class on an
-/// H100 took 82 ms, 3.5 of them on the device.
-template <typename Fn>
-void ForEachAnswer(std::size_t count, const Fn& fn)
-{
-  if (count >= 64)
-  {
-    vtkSMPTools::For(0, static_cast<vtkIdType>(count), [&](vtkIdType begin, vtkIdType end) {
-      fn(static_cast<std::size_t>(begin), static_cast<std::size_t>(end));
-    });
-  }
-  else
-  {
-    fn(0, count);
-  }
-}
-
 /// The largest of fn(begin, end) over [0, count), split as ForEachAnswer splits it (a thread's
 /// share made only for a batch: it costs a single tip microseconds).
 template <typename Fn>
@@ -619,7 +597,7 @@ void vtkZBufferVesselDistance::AnswerBatch(const std::array<double, 3>* tips, st
   {
     // The previous submission's device time, before this one's stamps replace it (the last
     // one's is read only when asked: reading the stamps costs a query microseconds).
-    s.AddDeviceMs(s.Context->DeviceMs());
+    Internals::AddDeviceMs(s.LastCall, s.Context->DeviceMs());
   }
   const double submitMs = vp::NowMs();
   s.PreparedQueryFor(q, n, perPixel, listing, nearEntries, laneSlots).Submit();

@@ -5,8 +5,6 @@
 
 #include "vpClock.h"
 
-#include <vtkSMPTools.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -67,22 +65,14 @@ void vtkZBufferVesselDistance::Internals::Release()
 void vtkZBufferVesselDistance::Internals::VoteInside(const std::vector<InsideVote>& votes, const std::array<double, 3>* tips, vp::ProximityResult* results)
 {
   const double startMs = vp::NowMs();
-  auto vote = [&](vtkIdType begin, vtkIdType end) {
-    for (vtkIdType k = begin; k < end; ++k)
+  ForEachAnswer(votes.size(), [&](std::size_t begin, std::size_t end) {
+    for (std::size_t k = begin; k < end; ++k)
     {
-      const InsideVote& v = votes[static_cast<std::size_t>(k)];
+      const InsideVote& v = votes[k];
       vp::ClassProximity& out = results[v.Tip].Classes[v.Class];
       out.Inside = this->Votes->VoteInside(this->ExactIndex[v.Class], tips[v.Tip].data(), v.DistanceMm, out.InsideUncertain);
     }
-  };
-  if (votes.size() >= 64)
-  {
-    vtkSMPTools::For(0, static_cast<vtkIdType>(votes.size()), vote);
-  }
-  else
-  {
-    vote(0, static_cast<vtkIdType>(votes.size()));
-  }
+  });
   this->LastCall.VotesMs += vp::NowMs() - startMs;
   this->LastCall.Votes += votes.size();
 }

@@ -292,11 +292,13 @@ void PrintZBufferQueries(const Json& z)
   {
     const Json& t = s["single_tip_times"];
     std::printf("%10zu |", s["triangles_per_class"].get<std::size_t>());
+    const char* separator = "";
     for (const char* part : { "total", "device", "submit_wait", "votes", "ceilings", "read" })
     {
-      std::printf(" %.4f / %.4f%s", t[part]["median_ms"].get<double>(), t[part]["p95_ms"].get<double>(),
-        part[0] == 'r' && part[1] == 'e' ? "\n" : ",");
+      std::printf("%s %.4f / %.4f", separator, t[part]["median_ms"].get<double>(), t[part]["p95_ms"].get<double>());
+      separator = ",";
     }
+    std::printf("\n");
   }
   std::printf("%10s | %-16s %14s %14s %16s %18s %10s\n", "tris/class", "batch pass", "med ms", "p95 ms", "tips/s",
     "device tips/s", "differing");

@@ -6,15 +6,10 @@
 # refined), the batch through each query pass side by side, where its time goes (device, host
 # wait, inside votes), beside the single tip and the exact engine on the host's cores.
 set -u
-out=${OUT:-/tmp/out}
-mkdir -p "$out"
-nvidia-smi --query-gpu=timestamp,clocks.sm,utilization.gpu --format=csv -lms 250 > "$out/smi.csv" 2>/dev/null &
-smi=$!
-nvidia-smi -L > "$out/gpu.txt" 2>&1
-lscpu | head -20 > "$out/cpu.txt"
+source Benchmark/Device/RecordMachine.sh
 v=portal_vein=.gpu/ircadb/portalvein.vtk,hepatic_artery=.gpu/ircadb/artery.vtk,hepatic_vein=.gpu/ircadb/venoussystem.vtk
 timeout 400 $VP bench --engines zbuffer --sizes 1500000 --queries 20000 --brute-queries 3 --vessels $v \
   -o "$out/batch.json" > "$out/batch.txt" 2>&1
 echo "bench rc=$?" >> "$out/batch.txt"
-kill $smi
+stop_recording
 tail -n 30 "$out/batch.txt"

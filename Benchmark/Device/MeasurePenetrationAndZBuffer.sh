@@ -6,15 +6,10 @@
 # logic, FCL's primitives) twice (100 and 400 poses), with nvidia-smi sampling the SM clock, then
 # the single tip from 150k to 4.5M triangles and the batch rate, bounded in time.
 set -u
-out=${OUT:-/tmp/out}
-mkdir -p "$out"
-nvidia-smi --query-gpu=timestamp,clocks.sm,utilization.gpu --format=csv -lms 250 > "$out/smi.csv" 2>/dev/null &
-smi=$!
-nvidia-smi -L > "$out/gpu.txt" 2>&1
-lscpu | head -20 > "$out/cpu.txt"
+source Benchmark/Device/RecordMachine.sh
 $VP bench --engines penetration -o "$out/penetration100.json" > "$out/penetration100.txt" 2>&1
 $VP bench --engines penetration --penetration-poses 400 -o "$out/penetration400.json" > "$out/penetration400.txt" 2>&1
 timeout 300 $VP bench --engines zbuffer --sizes 150000,4500000 --queries 500 --brute-queries 5 --vessels portal_vein=.gpu/ircadb/portalvein.vtk,hepatic_artery=.gpu/ircadb/artery.vtk,hepatic_vein=.gpu/ircadb/venoussystem.vtk -o "$out/zbuffer.json" > "$out/zbuffer.txt" 2>&1
 echo "zbuffer rc=$?" >> "$out/zbuffer.txt"
-kill $smi
+stop_recording
 tail -n 30 "$out/penetration100.txt" "$out/penetration400.txt"; tail -n 40 "$out/zbuffer.txt"

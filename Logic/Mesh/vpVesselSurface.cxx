@@ -48,7 +48,7 @@ void Normalize(std::array<double, 3>& v)
 /// Pairs the sorted directed edges: each shared edge links its two triangles (neighbours, and
 /// their pieces in parent); what cannot pair is counted as a defect, with the pieces.
 MeshDefects PairEdges(const std::vector<DirectedEdge>& edges, std::vector<std::array<std::int32_t, 3>>& neighbours,
-  std::vector<std::int32_t>& parent)
+  std::vector<std::int32_t>& parent, std::vector<std::array<std::int32_t, 2>>& oddEdges)
 {
   MeshDefects defects;
   for (std::size_t i = 0; i < edges.size();)
@@ -57,6 +57,10 @@ MeshDefects PairEdges(const std::vector<DirectedEdge>& edges, std::vector<std::a
     while (j < edges.size() && edges[j].Key == edges[i].Key)
     {
       ++j;
+    }
+    if ((j - i) % 2 == 1)
+    {
+      oddEdges.push_back({ static_cast<std::int32_t>(edges[i].Key >> 32), static_cast<std::int32_t>(edges[i].Key & 0xFFFFFFFFu) });
     }
     if (j - i == 1)
     {
@@ -167,7 +171,7 @@ void VesselSurface::BuildTopology()
   std::vector<std::array<std::int32_t, 3>> neighbours(nt, { -1, -1, -1 });
   std::vector<std::int32_t> parent(nt);
   std::iota(parent.begin(), parent.end(), 0);
-  this->DefectCounts = PairEdges(edges, neighbours, parent);
+  this->DefectCounts = PairEdges(edges, neighbours, parent, this->OddEdgeList);
   this->Closed = !this->DefectCounts.Any();
   if (!this->Closed)
   {

@@ -49,6 +49,9 @@ public:
   bool IsClosed() const { return this->Closed; }
   /// The defects that keep it from being closed (none when closed).
   const MeshDefects& Defects() const { return this->DefectCounts; }
+  /// The edges held by an odd number of triangles (point ids): a hole's rim, a fin's edge. Empty
+  /// when closed. Where a ray sweeps over one, the parity of its crossings turns.
+  const std::vector<std::array<std::int32_t, 2>>& OddEdges() const { return this->OddEdgeList; }
   const double* Point(std::int32_t id) const { return this->Points[id].data(); }
   const std::array<std::int32_t, 3>& Triangle(std::size_t t) const { return this->Triangles[t]; }
   const std::vector<std::array<double, 3>>& PointArray() const { return this->Points; }
@@ -71,6 +74,7 @@ private:
   std::array<double, 6> BoundsMm{};
   bool Closed = false;
   MeshDefects DefectCounts;
+  std::vector<std::array<std::int32_t, 2>> OddEdgeList;
   // Only filled for closed surfaces.
   std::vector<std::array<double, 3>> FaceNormals;     // unit, outward
   std::vector<std::array<std::int32_t, 3>> Neighbours; // across edge ab, bc, ca

@@ -1,0 +1,306 @@
+#include "vpInsideVoteField.h"
+
+#include "vpClock.h"
+#include "vpInsideVote.h"
+#include "vpTriangleGeometry.h"
+#include "vpVesselSurface.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numeric>
+
+namespace vp
+{
+namespace
+{
+/// How much wider than the geometry the marks are (mm): the rays are cast in float, relative to
+/// the tree's centre, so their origins and the triangles they meet are off by some 1e-5 mm.
+constexpr double WidenMm = 1e-3;
+/// Beyond this many cells swept per cell of the field, it is not built (see the constructor).
+constexpr double MaxSweepsPerCell = 4.0;
+
+std::uint32_t FindRoot(std::vector<std::uint32_t>& parent, std::uint32_t r)
+{
+  while (parent[r] != r)
+  {
+    parent[r] = parent[parent[r]];
+    r = parent[r];
+  }
+  return r;
+}
+
+/// The edges whose shadows turn a ray's parity: those of an odd number of triangles, and every
+/// edge of a triangle without area (the rays never meet it, so its neighbour's edge is a rim).
+std::vector<std::array<std::int32_t, 2>> EdgesToSweep(const VesselSurface& surface)
+{
+  std::vector<std::array<std::int32_t, 2>> edges = surface.OddEdges();
+  for (const auto& tri : surface.TriangleArray())
+  {
+    double ab[3], ac[3], n[3];
+    Sub3(surface.Point(tri[1]), surface.Point(tri[0]), ab);
+    Sub3(surface.Point(tri[2]), surface.Point(tri[0]), ac);
+    Cross3(ab, ac, n);
+    const double longest2 = std::max({ Dot3(ab, ab), Dot3(ac, ac), Distance2(surface.Point(tri[1]), surface.Point(tri[2])) });
+    if (Dot3(n, n) <= 1e-18 * longest2 * longest2)
+    {
+      edges.push_back({ tri[0], tri[1] });
+      edges.push_back({ tri[1], tri[2] });
+      edges.push_back({ tri[2], tri[0] });
+    }
+  }
+  return edges;
+}
+} // namespace
+
+InsideVoteField::InsideVoteField(
+  const VesselSurface& surface, double cellMm, double padMm, std::size_t maxCells, const RayVote& vote)
+{
+  const double startMs = NowMs();
+  const double* b = surface.Bounds();
+  this->EdgeMm = cellMm;
+  for (int attempt = 0; attempt < 8; ++attempt)
+  {
+    double cells = 1.0;
+    for (int a = 0; a < 3; ++a)
+    {
+      this->OriginMm[a] = b[2 * a] - padMm;
+      this->Dims[a] = std::max(1, static_cast<int>(std::ceil((b[2 * a + 1] - b[2 * a] + 2.0 * padMm) / this->EdgeMm)));
+      cells *= this->Dims[a];
+    }
+    if (cells <= static_cast<double>(maxCells))
+    {
+      break;
+    }
+    this->EdgeMm *= std::cbrt(cells / static_cast<double>(maxCells)) * 1.01;
+  }
+  const std::size_t cells = static_cast<std::size_t>(this->Dims[0]) * this->Dims[1] * this->Dims[2];
+  const std::vector<std::array<std::int32_t, 2>> edges = EdgesToSweep(surface);
+  this->Swept = edges.size();
+  // A surface of many rims (a triangle soup, every edge its own) would have its field marked
+  // nearly whole, at a cost of many times its rays: it keeps its rays.
+  double diagonal = 0.0;
+  for (int a = 0; a < 3; ++a)
+  {
+    diagonal += this->Dims[a] * this->Dims[a] * this->EdgeMm * this->EdgeMm;
+  }
+  const double steps = std::ceil(std::sqrt(diagonal) / (0.5 * this->EdgeMm)) + 1.0;
+  double sweeps = 0.0;
+  for (const auto& edge : edges)
+  {
+    sweeps += InsideVote::Rays * steps * std::ceil(std::sqrt(Distance2(surface.Point(edge[0]), surface.Point(edge[1]))) / this->EdgeMm);
+  }
+  if (sweeps > MaxSweepsPerCell * static_cast<double>(cells))
+  {
+    this->Dims[0] = this->Dims[1] = this->Dims[2] = 0;
+    this->BuildTimeMs = NowMs() - startMs;
+    return;
+  }
+  this->State.assign(cells, Clear);
+  this->MarkTriangles(surface);
+  this->MarkShadows(surface, edges);
+  this->VoteRegions(vote);
+  this->BuildTimeMs = NowMs() - startMs;
+}
+
+void InsideVoteField::MarkBox(const double lo[3], const double hi[3])
+{
+  int l[3], u[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    l[a] = std::max(0, static_cast<int>(std::floor((lo[a] - WidenMm - this->OriginMm[a]) / this->EdgeMm)));
+    u[a] = std::min(this->Dims[a] - 1, static_cast<int>(std::floor((hi[a] + WidenMm - this->OriginMm[a]) / this->EdgeMm)));
+    if (l[a] > u[a])
+    {
+      return;
+    }
+  }
+  for (int k = l[2]; k <= u[2]; ++k)
+  {
+    for (int j = l[1]; j <= u[1]; ++j)
+    {
+      std::uint8_t* row = this->State.data() + (static_cast<std::size_t>(k) * this->Dims[1] + j) * this->Dims[0];
+      std::fill(row + l[0], row + u[0] + 1, static_cast<std::uint8_t>(Marked));
+    }
+  }
+}
+
+void InsideVoteField::MarkTriangles(const VesselSurface& surface)
+{
+  const double h = this->EdgeMm;
+  for (const auto& tri : surface.TriangleArray())
+  {
+    const double* p[3] = { surface.Point(tri[0]), surface.Point(tri[1]), surface.Point(tri[2]) };
+    int l[3], u[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      const double lo = std::min({ p[0][a], p[1][a], p[2][a] }) - WidenMm;
+      const double hi = std::max({ p[0][a], p[1][a], p[2][a] }) + WidenMm;
+      l[a] = std::max(0, static_cast<int>(std::floor((lo - this->OriginMm[a]) / h)));
+      u[a] = std::min(this->Dims[a] - 1, static_cast<int>(std::floor((hi - this->OriginMm[a]) / h)));
+    }
+    // A cell the triangle's plane misses holds none of it: a large triangle marks only the cells
+    // along its plane, not its whole box.
+    double ab[3], ac[3], n[3];
+    Sub3(p[1], p[0], ab);
+    Sub3(p[2], p[0], ac);
+    Cross3(ab, ac, n);
+    const double reach = 0.5 * h * (std::abs(n[0]) + std::abs(n[1]) + std::abs(n[2])) + WidenMm * std::sqrt(Dot3(n, n));
+    for (int k = l[2]; k <= u[2]; ++k)
+    {
+      for (int j = l[1]; j <= u[1]; ++j)
+      {
+        for (int i = l[0]; i <= u[0]; ++i)
+        {
+          const double c[3] = { this->OriginMm[0] + (i + 0.5) * h - p[0][0], this->OriginMm[1] + (j + 0.5) * h - p[0][1],
+            this->OriginMm[2] + (k + 0.5) * h - p[0][2] };
+          if (std::abs(Dot3(n, c)) <= reach)
+          {
+            this->State[(static_cast<std::size_t>(k) * this->Dims[1] + j) * this->Dims[0] + i] = Marked;
+          }
+        }
+      }
+    }
+  }
+}
+
+void InsideVoteField::MarkShadows(const VesselSurface& surface, const std::vector<std::array<std::int32_t, 2>>& edges)
+{
+  const double h = this->EdgeMm, step = 0.5 * h;
+  double boxHi[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    boxHi[a] = this->OriginMm[a] + this->Dims[a] * h;
+  }
+  for (const auto& edge : edges)
+  {
+    const double* e0 = surface.Point(edge[0]);
+    const double* e1 = surface.Point(edge[1]);
+    // In pieces no longer than a cell, so that a piece's box hugs its shadow.
+    const int pieces = std::max(1, static_cast<int>(std::ceil(std::sqrt(Distance2(e0, e1)) / h)));
+    for (int piece = 0; piece < pieces; ++piece)
+    {
+      double a[3], c[3];
+      for (int x = 0; x < 3; ++x)
+      {
+        a[x] = e0[x] + (e1[x] - e0[x]) * piece / pieces;
+        c[x] = e0[x] + (e1[x] - e0[x]) * (piece + 1) / pieces;
+      }
+      for (const auto& d : InsideVote::Directions)
+      {
+        // The points whose ray meets the piece: the piece swept against the ray's direction,
+        // marked a half cell at a time until it leaves the box.
+        for (double t = 0.0;; t += step)
+        {
+          double lo[3], hi[3];
+          bool outside = false;
+          for (int x = 0; x < 3; ++x)
+          {
+            const double v[4] = { a[x] - t * d[x], c[x] - t * d[x], a[x] - (t + step) * d[x], c[x] - (t + step) * d[x] };
+            lo[x] = *std::min_element(v, v + 4);
+            hi[x] = *std::max_element(v, v + 4);
+            outside = outside || hi[x] < this->OriginMm[x] || lo[x] > boxHi[x];
+          }
+          if (outside)
+          {
+            break; // it moves on away from the box
+          }
+          this->MarkBox(lo, hi);
+        }
+      }
+    }
+  }
+}
+
+void InsideVoteField::VoteRegions(const RayVote& vote)
+{
+  // The clear cells' runs along x, joined to the runs they touch in the rows below (y - 1) and
+  // behind (z - 1): the regions are the union's sets.
+  struct Run
+  {
+    int X0, X1; // [X0, X1)
+    std::size_t Row;
+  };
+  const int nx = this->Dims[0];
+  const std::size_t rows = static_cast<std::size_t>(this->Dims[1]) * this->Dims[2];
+  std::vector<Run> runs;
+  std::vector<std::size_t> rowStart(rows + 1);
+  for (std::size_t row = 0; row < rows; ++row)
+  {
+    rowStart[row] = runs.size();
+    const std::uint8_t* s = this->State.data() + row * nx;
+    for (int x = 0; x < nx;)
+    {
+      if (s[x] != Clear)
+      {
+        ++x;
+        continue;
+      }
+      const int x0 = x;
+      while (x < nx && s[x] == Clear)
+      {
+        ++x;
+      }
+      runs.push_back({ x0, x, row });
+    }
+  }
+  rowStart[rows] = runs.size();
+  std::vector<std::uint32_t> parent(runs.size());
+  std::iota(parent.begin(), parent.end(), 0u);
+  auto join = [&](std::size_t row, std::size_t other) {
+    std::size_t i = rowStart[row], j = rowStart[other];
+    while (i < rowStart[row + 1] && j < rowStart[other + 1])
+    {
+      if (runs[i].X0 < runs[j].X1 && runs[j].X0 < runs[i].X1)
+      {
+        parent[FindRoot(parent, static_cast<std::uint32_t>(i))] = FindRoot(parent, static_cast<std::uint32_t>(j));
+      }
+      (runs[i].X1 < runs[j].X1 ? i : j)++;
+    }
+  };
+  const std::size_t ny = static_cast<std::size_t>(this->Dims[1]);
+  for (std::size_t row = 0; row < rows; ++row)
+  {
+    if (row % ny != 0)
+    {
+      join(row, row - 1);
+    }
+    if (row >= ny)
+    {
+      join(row, row - ny);
+    }
+  }
+  // Each region's vote: the majority of three points of one of its cells (a point in the band
+  // behind a sharp fold, see the class comment, is outvoted); no majority leaves it to the rays.
+  std::vector<std::uint8_t> value(runs.size(), Clear);
+  const double h = this->EdgeMm;
+  for (std::size_t r = 0; r < runs.size(); ++r)
+  {
+    const std::uint32_t root = FindRoot(parent, static_cast<std::uint32_t>(r));
+    if (value[root] == Clear)
+    {
+      const Run& cell = runs[root];
+      const double centre[3] = { this->OriginMm[0] + (cell.X0 + 0.5) * h,
+        this->OriginMm[1] + (static_cast<double>(cell.Row % ny) + 0.5) * h,
+        this->OriginMm[2] + (static_cast<double>(cell.Row / ny) + 0.5) * h };
+      static constexpr double Offsets[3][3] = { { 0.0, 0.0, 0.0 }, { 0.3, 0.2, -0.1 }, { -0.2, -0.3, 0.2 } };
+      std::uint8_t votes[3];
+      for (int s = 0; s < 3; ++s)
+      {
+        const double p[3] = { centre[0] + Offsets[s][0] * h, centre[1] + Offsets[s][1] * h, centre[2] + Offsets[s][2] * h };
+        bool uncertain = false;
+        const bool inside = vote(p, uncertain);
+        votes[s] = static_cast<std::uint8_t>(FirstVote + (inside ? 1 : 0) + (uncertain ? 2 : 0));
+      }
+      value[root] = votes[0] == votes[1] || votes[0] == votes[2] ? votes[0]
+        : votes[1] == votes[2]                      ? votes[1]
+                                                    : static_cast<std::uint8_t>(Marked);
+      ++this->RegionCount;
+    }
+    value[r] = value[root];
+    std::uint8_t* s = this->State.data() + runs[r].Row * nx;
+    std::fill(s + runs[r].X0, s + runs[r].X1, value[r]);
+    this->Voted += value[r] == Marked ? 0 : static_cast<std::size_t>(runs[r].X1 - runs[r].X0);
+  }
+}
+} // namespace vp

@@ -9,6 +9,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdint>
+#include <unordered_map>
 #include <vector>
 
 namespace vp
@@ -25,26 +27,127 @@ double Length2(vtkPoints* p, vtkIdType a, vtkIdType b)
   return (x[0] - y[0]) * (x[0] - y[0]) + (x[1] - y[1]) * (x[1] - y[1]) + (x[2] - y[2]) * (x[2] - y[2]);
 }
 
-void Split(vtkPoints* points, const Tri& t, std::vector<Tri>& out)
+std::uint64_t EdgeKey(vtkIdType a, vtkIdType b)
 {
-  int longest = 0;
-  double best = -1;
-  for (int e = 0; e < 3; ++e)
+  const auto lo = static_cast<std::uint64_t>(std::min(a, b)), hi = static_cast<std::uint64_t>(std::max(a, b));
+  return (lo << 32) | hi;
+}
+
+/// Each edge's midpoint, made once and shared by the triangles on the edge.
+class Midpoints
+{
+public:
+  explicit Midpoints(vtkPoints* points)
+    : Points(points)
   {
-    const double l = Length2(points, t[e], t[(e + 1) % 3]);
-    if (l > best)
+  }
+  vtkIdType Of(vtkIdType a, vtkIdType b)
+  {
+    const auto [it, made] = this->Made.try_emplace(EdgeKey(a, b), 0);
+    if (made)
     {
-      best = l;
-      longest = e;
+      double x[3], y[3];
+      this->Points->GetPoint(a, x);
+      this->Points->GetPoint(b, y);
+      it->second = this->Points->InsertNextPoint(0.5 * (x[0] + y[0]), 0.5 * (x[1] + y[1]), 0.5 * (x[2] + y[2]));
+    }
+    return it->second;
+  }
+
+private:
+  vtkPoints* Points;
+  std::unordered_map<std::uint64_t, vtkIdType> Made;
+};
+
+/// Every triangle into four at its edges' midpoints.
+std::vector<Tri> Quarter(vtkPoints* points, const std::vector<Tri>& tris)
+{
+  Midpoints mid(points);
+  std::vector<Tri> next;
+  next.reserve(tris.size() * 4);
+  for (const Tri& t : tris)
+  {
+    const vtkIdType ab = mid.Of(t[0], t[1]), bc = mid.Of(t[1], t[2]), ca = mid.Of(t[2], t[0]);
+    next.push_back({ t[0], ab, ca });
+    next.push_back({ ab, t[1], bc });
+    next.push_back({ ca, bc, t[2] });
+    next.push_back({ ab, bc, ca });
+  }
+  return next;
+}
+
+/// Bisects edges, the triangles' longest first, each with both its triangles (an edge of more
+/// is left alone) and no triangle twice, until the mesh has at least target triangles or no
+/// edge is left; returns whether any was split.
+bool BisectLongestEdges(vtkPoints* points, std::vector<Tri>& tris, std::size_t target)
+{
+  struct Side
+  {
+    std::uint64_t Key;
+    std::size_t Triangle;
+    int Local; // the edge from corner Local to corner Local + 1
+  };
+  std::vector<Side> sides;
+  sides.reserve(tris.size() * 3);
+  std::vector<std::pair<double, std::size_t>> byLongest(tris.size());
+  std::vector<int> longest(tris.size());
+  for (std::size_t i = 0; i < tris.size(); ++i)
+  {
+    double best = -1.0;
+    for (int e = 0; e < 3; ++e)
+    {
+      sides.push_back({ EdgeKey(tris[i][e], tris[i][(e + 1) % 3]), i, e });
+      const double l = Length2(points, tris[i][e], tris[i][(e + 1) % 3]);
+      if (l > best)
+      {
+        best = l;
+        longest[i] = e;
+      }
+    }
+    byLongest[i] = { -best, i };
+  }
+  std::sort(sides.begin(), sides.end(), [](const Side& x, const Side& y) { return x.Key < y.Key; });
+  std::sort(byLongest.begin(), byLongest.end());
+  std::vector<bool> used(tris.size(), false);
+  std::vector<Tri> added;
+  std::size_t count = tris.size();
+  for (const auto& [negativeLength, i] : byLongest)
+  {
+    if (count >= target)
+    {
+      break;
+    }
+    if (used[i])
+    {
+      continue;
+    }
+    const std::uint64_t key = EdgeKey(tris[i][longest[i]], tris[i][(longest[i] + 1) % 3]);
+    auto first = std::lower_bound(sides.begin(), sides.end(), key, [](const Side& s, std::uint64_t k) { return s.Key < k; });
+    auto last = first;
+    while (last != sides.end() && last->Key == key)
+    {
+      ++last;
+    }
+    if (last - first > 2 || std::any_of(first, last, [&](const Side& s) { return used[s.Triangle]; }))
+    {
+      continue;
+    }
+    double x[3], y[3];
+    points->GetPoint(tris[i][longest[i]], x);
+    points->GetPoint(tris[i][(longest[i] + 1) % 3], y);
+    const vtkIdType m = points->InsertNextPoint(0.5 * (x[0] + y[0]), 0.5 * (x[1] + y[1]), 0.5 * (x[2] + y[2]));
+    for (auto s = first; s != last; ++s)
+    {
+      Tri& t = tris[s->Triangle];
+      const vtkIdType a = t[s->Local], b = t[(s->Local + 1) % 3], c = t[(s->Local + 2) % 3];
+      t = { a, m, c };
+      added.push_back({ m, b, c });
+      used[s->Triangle] = true;
+      ++count;
     }
   }
-  const vtkIdType a = t[longest], b = t[(longest + 1) % 3], c = t[(longest + 2) % 3];
-  double x[3], y[3];
-  points->GetPoint(a, x);
-  points->GetPoint(b, y);
-  const vtkIdType m = points->InsertNextPoint(0.5 * (x[0] + y[0]), 0.5 * (x[1] + y[1]), 0.5 * (x[2] + y[2]));
-  out.push_back({ a, m, c });
-  out.push_back({ m, b, c });
+  tris.insert(tris.end(), added.begin(), added.end());
+  return !added.empty();
 }
 } // namespace
 
@@ -65,46 +168,13 @@ vtkSmartPointer<vtkPolyData> RefineToTriangleCount(vtkPolyData* mesh, std::size_
       tris.push_back({ ids[0], ids[1], ids[2] });
     }
   }
-  // Whole rounds while doubling stays within the target, then the largest of the rest.
-  while (!tris.empty() && tris.size() * 2 <= target)
+  // Whole rounds while quartering stays within the target, then bisections for the rest.
+  while (!tris.empty() && tris.size() * 4 <= target)
   {
-    std::vector<Tri> next;
-    next.reserve(tris.size() * 2);
-    for (const Tri& t : tris)
-    {
-      Split(points, t, next);
-    }
-    tris.swap(next);
+    tris = Quarter(points, tris);
   }
-  if (!tris.empty() && tris.size() < target)
+  while (tris.size() < target && BisectLongestEdges(points, tris, target))
   {
-    const std::size_t extra = target - tris.size();
-    std::vector<std::pair<double, std::size_t>> bySize(tris.size());
-    for (std::size_t i = 0; i < tris.size(); ++i)
-    {
-      bySize[i] = { -std::max({ Length2(points, tris[i][0], tris[i][1]), Length2(points, tris[i][1], tris[i][2]),
-                      Length2(points, tris[i][2], tris[i][0]) }), i };
-    }
-    std::nth_element(bySize.begin(), bySize.begin() + static_cast<std::ptrdiff_t>(extra), bySize.end());
-    std::vector<bool> split(tris.size(), false);
-    for (std::size_t k = 0; k < extra; ++k)
-    {
-      split[bySize[k].second] = true;
-    }
-    std::vector<Tri> next;
-    next.reserve(target);
-    for (std::size_t i = 0; i < tris.size(); ++i)
-    {
-      if (split[i])
-      {
-        Split(points, tris[i], next);
-      }
-      else
-      {
-        next.push_back(tris[i]);
-      }
-    }
-    tris.swap(next);
   }
   return MakeTriangleMesh(points, tris);
 }

@@ -9,11 +9,12 @@
 
 namespace vp
 {
-/// Splits triangles in two across their longest edge, largest first, until the mesh has exactly
-/// targetTriangles (never fewer than it had). The surface is unchanged point for point, so
-/// every distance to it is too: benchmarks use it to grow real vessel meshes to a given size.
-/// New midpoints are not shared with the neighbour across the edge, so the result is not
-/// watertight (its inside test answers "unknown").
+/// Grows a mesh to targetTriangles (one more where the last edge split had two triangles; never
+/// fewer than it had): each triangle into four at its edges' midpoints while that stays within
+/// the target, then edges bisected, the longest first. Every new point is shared by the
+/// triangles on its edge, so the surface is unchanged point for point and so is its topology: a
+/// closed mesh stays closed, a hole stays the same hole (its rim in more edges). Benchmarks use it
+/// to grow real vessel meshes to a given size.
 vtkSmartPointer<vtkPolyData> RefineToTriangleCount(vtkPolyData* mesh, std::size_t targetTriangles);
 } // namespace vp
 

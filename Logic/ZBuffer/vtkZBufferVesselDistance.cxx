@@ -295,7 +295,7 @@ void vtkZBufferVesselDistance::BuildInternal()
     throw vp::DeviceError("Vulkan device '" + context.Device().Name +
       "' has no 64-bit buffer atomics (shaderBufferInt64Atomics), which the z-buffer query needs to pick its answers");
   }
-  s.BuildVotes(this->Surfaces, this->Meshes);
+  s.BuildVotes(this->Surfaces, this->Meshes, this->VoteFieldCellMm);
   double cell = 0.0;
   s.Grid = this->PlaceGrid(s.AnchorMm, cell);
   const std::uint32_t classes = static_cast<std::uint32_t>(this->Surfaces.size());
@@ -761,6 +761,7 @@ void vtkZBufferVesselDistance::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "TileListing: "
      << (this->TileListing == TileListingOff ? "Off" : this->TileListing == TileListingOn ? "On" : "(by device)") << "\n";
   os << indent << "DirectionalLanes: " << this->DirectionalLanes << (this->DirectionalLanes ? "" : " (by device)") << "\n";
+  os << indent << "VoteFieldCellMm: " << this->VoteFieldCellMm << (this->VoteFieldCellMm > 0.0 ? "" : " (none)") << "\n";
   os << indent << "DeviceSelector: " << (this->DeviceSelector.empty() ? "(best)" : this->DeviceSelector) << "\n";
   const vp::DepthLayerGrid& g = this->Impl->Grid;
   os << indent << "Grid: " << g.Nx << " x " << g.Ny << " x " << g.Nz << " cells of " << g.PixelMm << " x "

@@ -170,10 +170,10 @@ struct vtkZBufferVesselDistance::Internals
   bool TipQuery = true;
   static constexpr std::size_t MaxPrepared = 64;
 
-  // The classes whose surface is not closed, in an exact engine of their own for their votes;
-  // and no deep engine until one is needed.
+  // The classes whose surface is not closed, in an exact engine of their own for their votes
+  // (with vote fields of voteFieldCellMm); and no deep engine until one is needed.
   void BuildVotes(const std::vector<std::shared_ptr<const vp::VesselSurface>>& surfaces,
-    const std::vector<std::pair<std::string, vtkSmartPointer<vtkPolyData>>>& meshes);
+    const std::vector<std::pair<std::string, vtkSmartPointer<vtkPolyData>>>& meshes, double voteFieldCellMm);
   // The votes run on the host, five rays each: a batch's on all cores (Embree's queries are
   // thread-safe), so that a batch on a defective surface does not wait for them one by one.
   void VoteInside(const std::vector<InsideVote>& votes, const std::array<double, 3>* tips, vp::ProximityResult* results);

@@ -165,7 +165,7 @@ vp::PreparedCommands& vtkZBufferVesselDistance::Internals::PreparedQueryFor(cons
 }
 
 void vtkZBufferVesselDistance::Internals::BuildVotes(const std::vector<std::shared_ptr<const vp::VesselSurface>>& surfaces,
-  const std::vector<std::pair<std::string, vtkSmartPointer<vtkPolyData>>>& meshes)
+  const std::vector<std::pair<std::string, vtkSmartPointer<vtkPolyData>>>& meshes, double voteFieldCellMm)
 {
   this->Votes = nullptr;
   this->Deep = nullptr;
@@ -177,6 +177,7 @@ void vtkZBufferVesselDistance::Internals::BuildVotes(const std::vector<std::shar
       if (!this->Votes)
       {
         this->Votes = vtkSmartPointer<vtkExactVesselDistance>::New();
+        this->Votes->SetVoteFieldCellMm(voteFieldCellMm);
       }
       this->ExactIndex[c] = this->Votes->GetNumberOfVessels();
       this->Votes->AddVessel(meshes[c].first, meshes[c].second);
@@ -186,5 +187,4 @@ void vtkZBufferVesselDistance::Internals::BuildVotes(const std::vector<std::shar
   {
     this->Votes->Build();
   }
-
 }

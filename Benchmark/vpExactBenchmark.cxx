@@ -1,6 +1,7 @@
 #include "vpExactBenchmark.h"
 
 #include "vpClock.h"
+#include "vpInsideVoteField.h"
 #include "vpQuantile.h"
 #include "vtkBruteForceVesselDistance.h"
 #include "vtkExactVesselDistance.h"
@@ -32,6 +33,11 @@ struct Times
 struct ExactTimes
 {
   Times Random, Tracked, WithoutVote;
+  /// On a surface that is not closed, the vote alone at the random tips: from the inside vote
+  /// field where it holds the tip's (the default), and from the rays only, side by side.
+  Times VoteFromField, VoteFromRays;
+  std::size_t VotesHeld = 0;
+  Json Field;
   std::vector<double> DistanceMm; ///< per random tip: the reference for the others
   bool Closed = true;
 };
@@ -62,6 +68,27 @@ ExactTimes TimeExact(const NamedMesh& vessel, const BenchPoints& tips, const Ben
   // A surface that is not closed has its inside decided by a vote of rays: the same tips
   // without it, for what the vote costs.
   t.Closed = exact->GetSurface(0).IsClosed();
+  auto fielded = vtkSmartPointer<vtkExactVesselDistance>::New();
+  fielded->SetRangeMm(vtkVesselDistanceEngine::DefaultRangeMm); // the field reaches the range
+  fielded->SetVoteFieldCellMm(1.0); // the z-buffer's vote engine's
+  fielded->AddVessel(vessel.ClassName, vessel.Mesh);
+  if (const InsideVoteField* field = t.Closed ? nullptr : (fielded->Build(), fielded->GetVoteField(0)))
+  {
+    for (std::size_t i = 0; i < tips.size(); ++i)
+    {
+      bool uncertain = false, inside = false;
+      t.VotesHeld += field->Lookup(tips[i].data(), inside, uncertain) ? 1 : 0;
+      double start = NowMs();
+      fielded->VoteInside(0, tips[i].data(), t.DistanceMm[i], uncertain);
+      t.VoteFromField.Ms.push_back(NowMs() - start);
+      start = NowMs();
+      exact->VoteInside(0, tips[i].data(), t.DistanceMm[i], uncertain);
+      t.VoteFromRays.Ms.push_back(NowMs() - start);
+    }
+    t.Field = { { "built", field->IsBuilt() }, { "build_ms", field->BuildMs() }, { "cell_mm", field->CellMm() },
+      { "cells", field->Cells() }, { "voted_cells", field->VotedCells() }, { "regions", field->Regions() },
+      { "swept_edges", field->SweptEdges() } };
+  }
   exact->SetVoteOnOpenSurfaces(false);
   for (std::size_t i = 0; !t.Closed && i < tips.size(); ++i)
   {
@@ -127,6 +154,13 @@ Json ClassEntry(const NamedMesh& vessel, const ExactTimes& exact, const Times& l
   {
     exactJson["random_without_inside_vote"] = Timing(exact.WithoutVote.Ms);
     exactJson["inside_vote_cost_ratio"] = MedianRatio(exact.Random.Ms, exact.WithoutVote.Ms);
+    if (!exact.VoteFromField.Ms.empty())
+    {
+      Json vote = { { "from_field", Timing(exact.VoteFromField.Ms) }, { "from_rays", Timing(exact.VoteFromRays.Ms) },
+        { "speedup_field_vs_rays", MedianRatio(exact.VoteFromRays.Ms, exact.VoteFromField.Ms) },
+        { "tips_held_by_field", exact.VotesHeld }, { "field", exact.Field } };
+      exactJson["inside_vote"] = vote;
+    }
   }
   Json entry;
   entry["class"] = vessel.ClassName;

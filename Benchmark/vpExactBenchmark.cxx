@@ -34,7 +34,8 @@ struct ExactTimes
 {
   Times Random, Tracked, WithoutVote;
   /// On a surface that is not closed, the vote alone at the random tips: from the inside vote
-  /// field where it holds the tip's (the default), and from the rays only, side by side.
+  /// field where it holds the tip's (as the z-buffer's vote engine has it), and from the rays
+  /// only (this engine's default), side by side.
   Times VoteFromField, VoteFromRays;
   std::size_t VotesHeld = 0;
   Json Field;

@@ -128,7 +128,9 @@ bool BisectLongestEdges(vtkPoints* points, std::vector<Tri>& tris, std::size_t t
     {
       ++last;
     }
-    if (last - first > 2 || std::any_of(first, last, [&](const Side& s) { return used[s.Triangle]; }))
+    // An edge of more than two triangles, or twice in one (a triangle without area), is left.
+    if (last - first > 2 || (last - first == 2 && first->Triangle == (first + 1)->Triangle) ||
+      std::any_of(first, last, [&](const Side& s) { return used[s.Triangle]; }))
     {
       continue;
     }

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 namespace vp
@@ -58,21 +59,32 @@ InsideVoteField::InsideVoteField(
 {
   const double startMs = NowMs();
   const double* b = surface.Bounds();
-  this->EdgeMm = cellMm;
-  for (int attempt = 0; attempt < 8; ++attempt)
+  // The cell: as asked, or as large as maxCells cells need (in double: a tiny cell would
+  // overflow an int's count of them).
+  double extent[3];
+  for (int a = 0; a < 3; ++a)
   {
-    double cells = 1.0;
+    this->OriginMm[a] = b[2 * a] - padMm;
+    extent[a] = std::max(b[2 * a + 1] - b[2 * a] + 2.0 * padMm, 1e-6);
+  }
+  this->EdgeMm = std::max(cellMm, std::cbrt(extent[0] * extent[1] * extent[2] / static_cast<double>(maxCells)));
+  for (;;)
+  {
+    double cells = 1.0, dims[3];
     for (int a = 0; a < 3; ++a)
     {
-      this->OriginMm[a] = b[2 * a] - padMm;
-      this->Dims[a] = std::max(1, static_cast<int>(std::ceil((b[2 * a + 1] - b[2 * a] + 2.0 * padMm) / this->EdgeMm)));
-      cells *= this->Dims[a];
+      dims[a] = std::max(1.0, std::ceil(extent[a] / this->EdgeMm));
+      cells *= dims[a];
     }
     if (cells <= static_cast<double>(maxCells))
     {
+      for (int a = 0; a < 3; ++a)
+      {
+        this->Dims[a] = static_cast<int>(dims[a]);
+      }
       break;
     }
-    this->EdgeMm *= std::cbrt(cells / static_cast<double>(maxCells)) * 1.01;
+    this->EdgeMm *= 1.01;
   }
   const std::size_t cells = static_cast<std::size_t>(this->Dims[0]) * this->Dims[1] * this->Dims[2];
   const std::vector<std::array<std::int32_t, 2>> edges = EdgesToSweep(surface);
@@ -82,9 +94,9 @@ InsideVoteField::InsideVoteField(
   double diagonal = 0.0;
   for (int a = 0; a < 3; ++a)
   {
-    diagonal += this->Dims[a] * this->Dims[a] * this->EdgeMm * this->EdgeMm;
+    diagonal += extent[a] * extent[a];
   }
-  const double steps = std::ceil(std::sqrt(diagonal) / (0.5 * this->EdgeMm)) + 1.0;
+  const double steps = std::ceil((std::sqrt(diagonal) + this->EdgeMm) / (0.5 * this->EdgeMm)) + 1.0;
   double sweeps = 0.0;
   for (const auto& edge : edges)
   {
@@ -199,7 +211,7 @@ void InsideVoteField::MarkShadows(const VesselSurface& surface, const std::vecto
             const double v[4] = { a[x] - t * d[x], c[x] - t * d[x], a[x] - (t + step) * d[x], c[x] - (t + step) * d[x] };
             lo[x] = *std::min_element(v, v + 4);
             hi[x] = *std::max_element(v, v + 4);
-            outside = outside || hi[x] < this->OriginMm[x] || lo[x] > boxHi[x];
+            outside = outside || hi[x] + WidenMm < this->OriginMm[x] || lo[x] - WidenMm > boxHi[x];
           }
           if (outside)
           {
@@ -270,37 +282,60 @@ void InsideVoteField::VoteRegions(const RayVote& vote)
       join(row, row - ny);
     }
   }
-  // Each region's vote: the majority of three points of one of its cells (a point in the band
-  // behind a sharp fold, see the class comment, is outvoted); no majority leaves it to the rays.
-  std::vector<std::uint8_t> value(runs.size(), Clear);
-  const double h = this->EdgeMm;
+  // Each region's vote: the majority of three points far apart in it (its first cell, a middle
+  // run's middle, its last cell; a band behind a fold, see the class comment, is thin, so that
+  // two of them rarely fall in bands); no majority leaves it to the rays.
+  constexpr std::uint32_t None = std::numeric_limits<std::uint32_t>::max();
+  std::vector<std::uint32_t> first(runs.size(), None), middle(runs.size(), None), last(runs.size()), count(runs.size(), 0);
   for (std::size_t r = 0; r < runs.size(); ++r)
   {
     const std::uint32_t root = FindRoot(parent, static_cast<std::uint32_t>(r));
-    if (value[root] == Clear)
+    parent[r] = root; // from here on every run's parent is its root
+    first[root] = first[root] == None ? static_cast<std::uint32_t>(r) : first[root];
+    last[root] = static_cast<std::uint32_t>(r);
+    ++count[root];
+  }
+  std::vector<std::uint32_t> seen(runs.size(), 0);
+  for (std::size_t r = 0; r < runs.size(); ++r)
+  {
+    const std::uint32_t root = parent[r];
+    middle[root] = seen[root]++ == count[root] / 2 ? static_cast<std::uint32_t>(r) : middle[root];
+  }
+  const double h = this->EdgeMm;
+  std::vector<std::uint8_t> value(runs.size(), Clear);
+  for (std::size_t root = 0; root < runs.size(); ++root)
+  {
+    if (parent[root] != root)
     {
-      const Run& cell = runs[root];
-      const double centre[3] = { this->OriginMm[0] + (cell.X0 + 0.5) * h,
-        this->OriginMm[1] + (static_cast<double>(cell.Row % ny) + 0.5) * h,
-        this->OriginMm[2] + (static_cast<double>(cell.Row / ny) + 0.5) * h };
-      static constexpr double Offsets[3][3] = { { 0.0, 0.0, 0.0 }, { 0.3, 0.2, -0.1 }, { -0.2, -0.3, 0.2 } };
-      std::uint8_t votes[3];
-      for (int s = 0; s < 3; ++s)
-      {
-        const double p[3] = { centre[0] + Offsets[s][0] * h, centre[1] + Offsets[s][1] * h, centre[2] + Offsets[s][2] * h };
-        bool uncertain = false;
-        const bool inside = vote(p, uncertain);
-        votes[s] = static_cast<std::uint8_t>(FirstVote + (inside ? 1 : 0) + (uncertain ? 2 : 0));
-      }
-      value[root] = votes[0] == votes[1] || votes[0] == votes[2] ? votes[0]
-        : votes[1] == votes[2]                      ? votes[1]
-                                                    : static_cast<std::uint8_t>(Marked);
-      ++this->RegionCount;
+      continue;
     }
-    value[r] = value[root];
-    std::uint8_t* s = this->State.data() + runs[r].Row * nx;
-    std::fill(s + runs[r].X0, s + runs[r].X1, value[r]);
-    this->Voted += value[r] == Marked ? 0 : static_cast<std::size_t>(runs[r].X1 - runs[r].X0);
+    // Within their cells, a little off the centre: the samples stay apart when the region is one
+    // cell, and off the grid's planes.
+    static constexpr double Offsets[3][3] = { { 0.0, 0.0, 0.0 }, { 0.3, 0.2, -0.1 }, { -0.2, -0.3, 0.2 } };
+    const Run* sampled[3] = { &runs[first[root]], &runs[middle[root]], &runs[last[root]] };
+    std::uint8_t votes[3];
+    for (int k = 0; k < 3; ++k)
+    {
+      const Run& run = *sampled[k];
+      const int x = k == 0 ? run.X0 : k == 1 ? (run.X0 + run.X1) / 2 : run.X1 - 1;
+      const double p[3] = { this->OriginMm[0] + (x + 0.5 + Offsets[k][0]) * h,
+        this->OriginMm[1] + (static_cast<double>(run.Row % ny) + 0.5 + Offsets[k][1]) * h,
+        this->OriginMm[2] + (static_cast<double>(run.Row / ny) + 0.5 + Offsets[k][2]) * h };
+      bool uncertain = false;
+      const bool inside = vote(p, uncertain);
+      votes[k] = static_cast<std::uint8_t>(FirstVote + (inside ? 1 : 0) + (uncertain ? 2 : 0));
+    }
+    value[root] = votes[0] == votes[1] || votes[0] == votes[2] ? votes[0]
+      : votes[1] == votes[2]                      ? votes[1]
+                                                  : static_cast<std::uint8_t>(Marked);
+    ++this->RegionCount;
+  }
+  for (std::size_t r = 0; r < runs.size(); ++r)
+  {
+    const std::uint8_t v = value[parent[r]];
+    std::uint8_t* cells = this->State.data() + runs[r].Row * nx;
+    std::fill(cells + runs[r].X0, cells + runs[r].X1, v);
+    this->Voted += v == Marked ? 0 : static_cast<std::size_t>(runs[r].X1 - runs[r].X0);
   }
 }
 } // namespace vp

@@ -48,8 +48,8 @@ public:
   /// most votes without a ray (grown where the field would hold more than 2^24 cells, a byte
   /// each; built with the tree when votes are on; set before Build()). Default 0, none: every
   /// vote casts its rays, as the brute force does, so that this engine's answers stay the brute
-  /// force's to the flag (the field differs from the rays in bands micrometres wide behind sharp
-  /// folds). The z-buffer's vote engine sets 1 mm (vtkZBufferVesselDistance::SetVoteFieldCellMm).
+  /// force's to the flag (the field differs from the rays in thin bands behind folds of the
+  /// surface, vp::InsideVoteField). The z-buffer's vote engine sets 1 mm (vtkZBufferVesselDistance::SetVoteFieldCellMm).
   vtkSetMacro(VoteFieldCellMm, double);
   vtkGetMacro(VoteFieldCellMm, double);
   /// Class classIndex's inside vote field, or null (a closed surface, votes off, or no field).

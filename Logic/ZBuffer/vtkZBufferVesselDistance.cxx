@@ -295,7 +295,7 @@ void vtkZBufferVesselDistance::BuildInternal()
     throw vp::DeviceError("Vulkan device '" + context.Device().Name +
       "' has no 64-bit buffer atomics (shaderBufferInt64Atomics), which the z-buffer query needs to pick its answers");
   }
-  s.BuildVotes(this->Surfaces, this->Meshes, this->VoteFieldCellMm);
+  s.BuildVotes(this->Surfaces, this->Meshes, this->VoteFieldCellMm, this->RangeMm);
   double cell = 0.0;
   s.Grid = this->PlaceGrid(s.AnchorMm, cell);
   const std::uint32_t classes = static_cast<std::uint32_t>(this->Surfaces.size());

@@ -142,7 +142,7 @@ public:
   /// closed gets (default 1 mm; 0: none). Where the centre ray's parity is no answer (an opening
   /// it passes through turns it), each answer in range takes the exact engine's vote of five rays
   /// (vp::InsideVote); the field answers most of them without a ray, the same vote, except in
-  /// bands micrometres wide behind a sharp fold where one ray counts the fold's two faces as one
+  /// thin bands behind folds (micrometres behind most) where one ray counts the fold's two faces as one
   /// crossing and the rays disagree (the field there has the vote of either side). A batch's votes
   /// are most of its host work at 1.5M triangles per class. Set before Build().
   vtkSetMacro(VoteFieldCellMm, double);

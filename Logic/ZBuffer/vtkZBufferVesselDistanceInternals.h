@@ -171,9 +171,9 @@ struct vtkZBufferVesselDistance::Internals
   static constexpr std::size_t MaxPrepared = 64;
 
   // The classes whose surface is not closed, in an exact engine of their own for their votes
-  // (with vote fields of voteFieldCellMm); and no deep engine until one is needed.
+  // (with vote fields of voteFieldCellMm reaching rangeMm); and no deep engine until one is needed.
   void BuildVotes(const std::vector<std::shared_ptr<const vp::VesselSurface>>& surfaces,
-    const std::vector<std::pair<std::string, vtkSmartPointer<vtkPolyData>>>& meshes, double voteFieldCellMm);
+    const std::vector<std::pair<std::string, vtkSmartPointer<vtkPolyData>>>& meshes, double voteFieldCellMm, double rangeMm);
   // The votes run on the host, five rays each: a batch's on all cores (Embree's queries are
   // thread-safe), so that a batch on a defective surface does not wait for them one by one.
   void VoteInside(const std::vector<InsideVote>& votes, const std::array<double, 3>* tips, vp::ProximityResult* results);

@@ -165,7 +165,7 @@ vp::PreparedCommands& vtkZBufferVesselDistance::Internals::PreparedQueryFor(cons
 }
 
 void vtkZBufferVesselDistance::Internals::BuildVotes(const std::vector<std::shared_ptr<const vp::VesselSurface>>& surfaces,
-  const std::vector<std::pair<std::string, vtkSmartPointer<vtkPolyData>>>& meshes, double voteFieldCellMm)
+  const std::vector<std::pair<std::string, vtkSmartPointer<vtkPolyData>>>& meshes, double voteFieldCellMm, double rangeMm)
 {
   this->Votes = nullptr;
   this->Deep = nullptr;
@@ -178,6 +178,7 @@ void vtkZBufferVesselDistance::Internals::BuildVotes(const std::vector<std::shar
       {
         this->Votes = vtkSmartPointer<vtkExactVesselDistance>::New();
         this->Votes->SetVoteFieldCellMm(voteFieldCellMm);
+        this->Votes->SetRangeMm(rangeMm); // the field reaches the range beyond each vessel
       }
       this->ExactIndex[c] = this->Votes->GetNumberOfVessels();
       this->Votes->AddVessel(meshes[c].first, meshes[c].second);

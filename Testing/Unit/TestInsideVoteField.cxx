@@ -1,5 +1,5 @@
 // The inside vote field (vp::InsideVoteField): on every surface that is not closed, the vote it
-// holds is the rays' vote, except in the bands some micrometres wide where a ray passes a sharp
+// holds is the rays' vote, except in the thin bands (micrometres behind most folds) where a ray passes a
 // fold (there the rays turn, the field does not); a triangle soup keeps its rays; and the
 // benchmarks' grown meshes keep their topology, so that the field is measured on what a
 // segmentation gives.
@@ -124,7 +124,7 @@ TEST(InsideVoteField, HoldsTheRaysVoteOnEveryDefectiveCopyOfTheBuiltInVessels)
 
 // IRCADb's vessel meshes as given (open: holes where the vessels leave the scan): the field holds
 // 97 % of the points, inside always as the rays say; where the uncertain flag differs, a ray
-// passes within micrometres of a fold (a band).
+// passes close to a fold (a band).
 TEST(InsideVoteField, HoldsTheRaysVoteOnIrcadbVesselsAsGiven)
 {
   const std::string extracted = vp::test::ExtractedDataDir();
@@ -146,7 +146,7 @@ TEST(InsideVoteField, HoldsTheRaysVoteOnIrcadbVesselsAsGiven)
     uncertainOnly += a.UncertainDiffers;
     points += a.Held;
   }
-  EXPECT_LE(uncertainOnly, points / 5000) << "bands are micrometres wide: few points fall in them";
+  EXPECT_LE(uncertainOnly, points / 5000) << "bands are thin: few points fall in them";
 }
 
 // A soup (every triangle with its own points, as an STL whose points were not merged) has every

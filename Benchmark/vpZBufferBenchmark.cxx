@@ -315,6 +315,61 @@ Json MovingBox(vtkZBufferVesselDistance* zbuffer, const BenchPoints& track)
   return out;
 }
 
+/// On surfaces that are not closed, the batch's inside votes from the vote field (the engine's
+/// setting) and from the rays alone (VoteFieldCellMm 0: the engine built again), one after the
+/// other on the same tips, with the answers that differ (in the bands behind folds only, see
+/// vp::InsideVoteField). Empty when every surface is closed. The engine is left as it was.
+Json VotesFromFieldAndRays(vtkZBufferVesselDistance* zbuffer, const std::vector<NamedMesh>& refined, const BenchPoints& tips)
+{
+  Json out;
+  bool open = false;
+  for (int c = 0; c < zbuffer->GetNumberOfVessels(); ++c)
+  {
+    open = open || !zbuffer->GetSurface(c).IsClosed();
+  }
+  const double cellMm = zbuffer->GetVoteFieldCellMm();
+  if (!open || cellMm <= 0.0)
+  {
+    return out;
+  }
+  auto rebuild = [&](double fieldCellMm) {
+    zbuffer->RemoveAllVessels();
+    zbuffer->SetVoteFieldCellMm(fieldCellMm);
+    for (const NamedMesh& vessel : refined)
+    {
+      zbuffer->AddVessel(vessel.ClassName, vessel.Mesh);
+    }
+    zbuffer->Build();
+    zbuffer->BuildQueryCeilings();
+  };
+  std::vector<ProximityResult> answers[2];
+  for (int rays = 0; rays < 2; ++rays)
+  {
+    if (rays == 1)
+    {
+      rebuild(0.0);
+    }
+    out[rays ? "rays" : "field"] = BenchBatch(zbuffer, tips, nullptr);
+    zbuffer->ComputeProximityBatch(tips, nullptr, answers[rays]);
+  }
+  rebuild(cellMm);
+  // The distances must be the same; the inside (or its flag) may differ in a band.
+  int distances = 0, votes = 0;
+  for (std::size_t i = 0; i < answers[0].size() && i < answers[1].size(); ++i)
+  {
+    for (std::size_t c = 0; c < answers[0][i].Classes.size(); ++c)
+    {
+      const ClassProximity& x = answers[0][i].Classes[c];
+      const ClassProximity& y = answers[1][i].Classes[c];
+      distances += x.InRange != y.InRange || x.DistanceMm != y.DistanceMm ? 1 : 0;
+      votes += x.Inside != y.Inside || x.InsideUncertain != y.InsideUncertain ? 1 : 0;
+    }
+  }
+  out["distances_differing"] = distances;
+  out["votes_differing"] = votes;
+  return out;
+}
+
 Json QueryEntries(const QueryTimes& t, double boundMm)
 {
   Json entry;
@@ -375,6 +430,12 @@ BenchJson BenchZBuffer(vtkZBufferVesselDistance* zbuffer, const std::vector<Name
   std::fprintf(stderr, ", batch passes");
   entry["batch_passes"] = BatchPasses(zbuffer, tips);
   entry["single_tip_times"] = SingleTipTimes(zbuffer, tips);
+  std::fprintf(stderr, ", votes");
+  const Json votes = VotesFromFieldAndRays(zbuffer, refined, tips);
+  if (!votes.empty())
+  {
+    entry["batch_votes"] = votes;
+  }
   std::fprintf(stderr, ", moving box");
   entry["moving_box"] = MovingBox(zbuffer, track);
   std::fprintf(stderr, "\n");

@@ -313,6 +313,21 @@ void PrintZBufferQueries(const Json& z)
         w["device_tips_per_second"].get<double>(), w["answers_differing_from_per_tile"].get<int>());
     }
   }
+  for (const Json& s : z["sizes"])
+  {
+    if (s.contains("batch_votes"))
+    {
+      // The inside votes of a batch on open surfaces, from the vote field and from the rays.
+      const Json& v = s["batch_votes"];
+      std::printf("%10zu | batch votes, median / p95 ms: field %.2f / %.2f (batch %.2f / %.2f), rays %.2f / %.2f (batch "
+                  "%.2f / %.2f); votes differing %d, distances %d\n",
+        s["triangles_per_class"].get<std::size_t>(), v["field"]["parts"]["votes"]["median_ms"].get<double>(),
+        v["field"]["parts"]["votes"]["p95_ms"].get<double>(), v["field"]["median_ms"].get<double>(),
+        v["field"]["p95_ms"].get<double>(), v["rays"]["parts"]["votes"]["median_ms"].get<double>(),
+        v["rays"]["parts"]["votes"]["p95_ms"].get<double>(), v["rays"]["median_ms"].get<double>(),
+        v["rays"]["p95_ms"].get<double>(), v["votes_differing"].get<int>(), v["distances_differing"].get<int>());
+    }
+  }
 }
 
 void PrintReplayTable(const Json& r)

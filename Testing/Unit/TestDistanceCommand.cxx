@@ -177,6 +177,33 @@ TEST_F(DistanceCommand, BenchSplitsAZBufferCallIntoItsParts)
   EXPECT_EQ(size["single_tip_times"]["submissions_in_last_call"].get<std::size_t>(), 1u);
 }
 
+// On an open surface (IRCADb's portal vein as given) bench runs the batch with its votes from the
+// vote field and from the rays alone: the same distances, the same number of votes, and the
+// votes themselves the same but in the thin bands behind folds.
+TEST_F(DistanceCommand, BenchTakesTheBatchVotesFromTheFieldBesideTheRays)
+{
+  VP_REQUIRE_VULKAN();
+  const std::string extracted = vp::test::ExtractedDataDir();
+  if (extracted.empty())
+  {
+    GTEST_SKIP() << "VP_TEST_DATA not set or IRCADb archives not extracted: the batch votes on an open surface not tested";
+  }
+  const std::string out = this->Dir + "/bench_votes.json";
+  const ToolRun r = RunTool(this->Dir, "bench --engines zbuffer --sizes 2000 --queries 300 --brute-queries 2 --vessels portal_vein=" +
+      extracted + "/ircadb/3Dircadb1.1/MESHES_VTK/portalvein.vtk -o " + out);
+  ASSERT_EQ(r.ExitCode, 0) << r.Err;
+  EXPECT_NE(r.Out.find("batch votes"), std::string::npos) << r.Out;
+  const auto size = nlohmann::json::parse(vp::test::Slurp(out))["zbuffer"]["sizes"][0];
+  ASSERT_TRUE(size.contains("batch_votes")) << "the portal vein as given is not closed";
+  const auto& v = size["batch_votes"];
+  EXPECT_EQ(v["distances_differing"].get<int>(), 0);
+  EXPECT_LE(v["votes_differing"].get<int>(), 1);
+  const std::size_t votes = v["field"]["parts"]["votes_in_last_call"].get<std::size_t>();
+  EXPECT_GT(votes, 100u) << "most tips lie within the range of the vein";
+  EXPECT_EQ(v["rays"]["parts"]["votes_in_last_call"].get<std::size_t>(), votes);
+  EXPECT_EQ(v["field"]["tips"].get<std::size_t>(), 300u);
+}
+
 TEST_F(DistanceCommand, TipsFileRasSpaceAndBruteAgree)
 {
   const std::string tips = WriteBytes(this->Dir, "tips.csv", "x,y,z\n0,0,15\n# a comment\n\n3,4,-20\n");

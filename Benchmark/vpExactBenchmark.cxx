@@ -73,7 +73,7 @@ ExactTimes TimeExact(const NamedMesh& vessel, const BenchPoints& tips, const Ben
   fielded->SetRangeMm(vtkVesselDistanceEngine::DefaultRangeMm); // the field reaches the range
   fielded->SetVoteFieldCellMm(1.0); // the z-buffer's vote engine's
   fielded->AddVessel(vessel.ClassName, vessel.Mesh);
-  if (const InsideVoteField* field = t.Closed ? nullptr : (fielded->Build(), fielded->GetVoteField(0)))
+  if (const InsideVoteField* field = t.Closed ? nullptr : fielded->GetVoteField(0)) // built when asked
   {
     for (std::size_t i = 0; i < tips.size(); ++i)
     {

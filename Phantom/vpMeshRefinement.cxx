@@ -110,6 +110,7 @@ bool BisectLongestEdges(vtkPoints* points, std::vector<Tri>& tris, std::size_t t
   std::sort(byLongest.begin(), byLongest.end());
   std::vector<bool> used(tris.size(), false);
   std::vector<Tri> added;
+  Midpoints mid(points);
   std::size_t count = tris.size();
   for (const auto& [negativeLength, i] : byLongest)
   {
@@ -134,10 +135,7 @@ bool BisectLongestEdges(vtkPoints* points, std::vector<Tri>& tris, std::size_t t
     {
       continue;
     }
-    double x[3], y[3];
-    points->GetPoint(tris[i][longest[i]], x);
-    points->GetPoint(tris[i][(longest[i] + 1) % 3], y);
-    const vtkIdType m = points->InsertNextPoint(0.5 * (x[0] + y[0]), 0.5 * (x[1] + y[1]), 0.5 * (x[2] + y[2]));
+    const vtkIdType m = mid.Of(tris[i][longest[i]], tris[i][(longest[i] + 1) % 3]);
     for (auto s = first; s != last; ++s)
     {
       Tri& t = tris[s->Triangle];

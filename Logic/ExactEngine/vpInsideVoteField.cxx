@@ -115,17 +115,26 @@ InsideVoteField::InsideVoteField(
   this->BuildTimeMs = NowMs() - startMs;
 }
 
+bool InsideVoteField::CellRange(const double lo[3], const double hi[3], int first[3], int last[3]) const
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    first[a] = std::max(0, static_cast<int>(std::floor((lo[a] - WidenMm - this->OriginMm[a]) / this->EdgeMm)));
+    last[a] = std::min(this->Dims[a] - 1, static_cast<int>(std::floor((hi[a] + WidenMm - this->OriginMm[a]) / this->EdgeMm)));
+    if (first[a] > last[a])
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
 void InsideVoteField::MarkBox(const double lo[3], const double hi[3])
 {
   int l[3], u[3];
-  for (int a = 0; a < 3; ++a)
+  if (!this->CellRange(lo, hi, l, u))
   {
-    l[a] = std::max(0, static_cast<int>(std::floor((lo[a] - WidenMm - this->OriginMm[a]) / this->EdgeMm)));
-    u[a] = std::min(this->Dims[a] - 1, static_cast<int>(std::floor((hi[a] + WidenMm - this->OriginMm[a]) / this->EdgeMm)));
-    if (l[a] > u[a])
-    {
-      return;
-    }
+    return;
   }
   for (int k = l[2]; k <= u[2]; ++k)
   {
@@ -143,13 +152,16 @@ void InsideVoteField::MarkTriangles(const VesselSurface& surface)
   for (const auto& tri : surface.TriangleArray())
   {
     const double* p[3] = { surface.Point(tri[0]), surface.Point(tri[1]), surface.Point(tri[2]) };
-    int l[3], u[3];
+    double lo[3], hi[3];
     for (int a = 0; a < 3; ++a)
     {
-      const double lo = std::min({ p[0][a], p[1][a], p[2][a] }) - WidenMm;
-      const double hi = std::max({ p[0][a], p[1][a], p[2][a] }) + WidenMm;
-      l[a] = std::max(0, static_cast<int>(std::floor((lo - this->OriginMm[a]) / h)));
-      u[a] = std::min(this->Dims[a] - 1, static_cast<int>(std::floor((hi - this->OriginMm[a]) / h)));
+      lo[a] = std::min({ p[0][a], p[1][a], p[2][a] });
+      hi[a] = std::max({ p[0][a], p[1][a], p[2][a] });
+    }
+    int l[3], u[3];
+    if (!this->CellRange(lo, hi, l, u))
+    {
+      continue;
     }
     // A cell the triangle's plane misses holds none of it: a large triangle marks only the cells
     // along its plane, not its whole box.

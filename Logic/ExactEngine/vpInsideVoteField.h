@@ -98,6 +98,9 @@ private:
     cell = (index[2] * this->Dims[1] + index[1]) * this->Dims[0] + index[0];
     return true;
   }
+  /// The cells a box (widened by the float rays' margin) covers, clamped to the field; false
+  /// when none.
+  bool CellRange(const double lo[3], const double hi[3], int first[3], int last[3]) const;
   void MarkBox(const double lo[3], const double hi[3]);
   void MarkTriangles(const VesselSurface& surface);
   void MarkShadows(const VesselSurface& surface, const std::vector<std::array<std::int32_t, 2>>& edges);

@@ -55,7 +55,6 @@ constexpr std::uint32_t CpuBatchCapacity = 256;
 constexpr std::uint32_t GpuBatchCapacity = 4096;
 constexpr VkDeviceSize RecordBudgetBytes = 256ull << 20;
 
-/// An inside answer the exact engine's vote decides: on a surface that is not closed.
 /// fn(begin, end) over [0, count): on every core for a batch (from 64 answers), on this thread
 /// for a few (a task costs more than a few answers). A batch's host work per tip (its results,
 /// ceilings, answers read and votes) was most of its time on a GPU: 20,000 tips at 1.5M
@@ -75,6 +74,7 @@ void ForEachAnswer(std::size_t count, const Fn& fn)
   }
 }
 
+/// An inside answer the exact engine's vote decides: on a surface that is not closed.
 struct InsideVote
 {
   std::size_t Tip;

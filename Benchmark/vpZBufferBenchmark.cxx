@@ -278,6 +278,41 @@ Json BatchPasses(vtkZBufferVesselDistance* zbuffer, const BenchPoints& tips)
   return out;
 }
 
+/// The batch with one submission in flight and with two (the host reading one and writing the
+/// next while the device works), run after run in turn so that both see the device alike, with
+/// their parts and the answers that differ (none: the ceilings may differ, not the answers).
+/// The engine is left at its default (two).
+Json SubmissionsInFlight(vtkZBufferVesselDistance* zbuffer, const BenchPoints& tips)
+{
+  constexpr int Counts[] = { 1, 2 };
+  std::vector<double> ms[2];
+  CallTimeSeries parts[2];
+  std::vector<ProximityResult> answers[2];
+  for (int run = 0; run < 5; ++run)
+  {
+    for (int k = 0; k < 2; ++k)
+    {
+      zbuffer->SetSubmissionsInFlight(Counts[k]);
+      const double start = NowMs();
+      zbuffer->ComputeProximityBatch(tips, nullptr, answers[k]);
+      ms[k].push_back(NowMs() - start);
+      parts[k].Add(zbuffer->GetLastCallTimes());
+    }
+  }
+  zbuffer->SetSubmissionsInFlight(2);
+  Json out;
+  for (int k = 0; k < 2; ++k)
+  {
+    Json side = Timing(ms[k]);
+    side["tips_per_second"] = 1000.0 * static_cast<double>(tips.size()) / std::max(1e-9, Quantile(ms[k], 0.5));
+    side["parts"] = parts[k].Json();
+    out[k == 0 ? "one" : "two"] = side;
+  }
+  out["tips"] = tips.size();
+  out["answers_differing"] = CountDifferingAnswers(answers[1], answers[0]);
+  return out;
+}
+
 /// The paper's layers (nearest and farthest depth only) on the same tips.
 Json PaperMode(vtkZBufferVesselDistance* zbuffer, const BenchPoints& tips)
 {
@@ -430,6 +465,8 @@ BenchJson BenchZBuffer(vtkZBufferVesselDistance* zbuffer, const std::vector<Name
   std::fprintf(stderr, ", batch passes");
   entry["batch_passes"] = BatchPasses(zbuffer, tips);
   entry["single_tip_times"] = SingleTipTimes(zbuffer, tips);
+  std::fprintf(stderr, ", submissions in flight");
+  entry["batch_in_flight"] = SubmissionsInFlight(zbuffer, tips);
   std::fprintf(stderr, ", votes");
   const Json votes = VotesFromFieldAndRays(zbuffer, refined, tips);
   if (!votes.empty())

@@ -69,12 +69,13 @@ struct QueryParameters
   std::int32_t LaneSlots;
   std::int32_t Stage, TilesPerGroup;
   std::int32_t OrderReach, CoarseCount;
+  std::int32_t FirstPoint;
 };
 
 /// ReduceProximity.comp's Parameters.
 struct ReduceParameters
 {
-  std::uint32_t Step, Answers, OrderCount;
+  std::uint32_t Step, Answers, OrderCount, FirstAnswer;
 };
 
 /// What a query reads per point (Points in QueryProximityCommon.glsl, two vec4 a point): the tip
@@ -174,9 +175,11 @@ inline std::vector<ShaderField> ShaderLayoutFields()
     VP_SHADER_FIELD(QueryParameters, TilesPerGroup),
     VP_SHADER_FIELD(QueryParameters, OrderReach),
     VP_SHADER_FIELD(QueryParameters, CoarseCount),
+    VP_SHADER_FIELD(QueryParameters, FirstPoint),
     VP_SHADER_FIELD(ReduceParameters, Step),
     VP_SHADER_FIELD(ReduceParameters, Answers),
     VP_SHADER_FIELD(ReduceParameters, OrderCount),
+    VP_SHADER_FIELD(ReduceParameters, FirstAnswer),
     // Storage buffer records are arrays of vectors in the shaders: their strides.
     ShaderField{ "PointRecord", "Point", sizeof(PointRecord) / 2, true },
     ShaderField{ "AnswerCeiling", "AnswerCeiling", sizeof(AnswerCeiling), true },

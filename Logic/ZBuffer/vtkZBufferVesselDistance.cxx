@@ -17,6 +17,7 @@
 #include <cstring>
 #include <limits>
 #include <mutex>
+#include <optional>
 #include <vector>
 
 vtkStandardNewMacro(vtkZBufferVesselDistance);
@@ -233,7 +234,7 @@ vtkZBufferVesselDistance::CallTimes vtkZBufferVesselDistance::GetLastCallTimes()
   CallTimes times = s.LastCall;
   if (times.Submissions > 0)
   {
-    Internals::AddDeviceMs(times, s.Context->DeviceMs()); // the last submission's
+    Internals::AddDeviceMs(times, s.Context->DeviceMs(s.LastSlot)); // the last submission's
   }
   return times;
 }
@@ -241,7 +242,7 @@ vtkZBufferVesselDistance::CallTimes vtkZBufferVesselDistance::GetLastCallTimes()
 double vtkZBufferVesselDistance::GetLastQueryDeviceMs() const
 {
   std::lock_guard<std::mutex> lock(this->Impl->Lock);
-  return this->Impl->Context && this->Impl->Capacity > 0 ? this->Impl->Context->DeviceMs() : -1.0;
+  return this->Impl->Context && this->Impl->Capacity > 0 ? this->Impl->Context->DeviceMs(this->Impl->LastSlot) : -1.0;
 }
 
 std::size_t vtkZBufferVesselDistance::GetLastQueryTiles() const
@@ -448,17 +449,47 @@ void vtkZBufferVesselDistance::AnswerAll(
         s.Grid = vp::DepthLayerGrid::Centred(tip, this->MovingBoxSizeMm, s.Grid.PixelMm, s.Grid.SliceMm, s.AnchorMm);
         s.Render();
       }
-      this->AnswerBatch(&tips[i], 1, axis ? axis + i : nullptr, searchMm, binWidth, &results[i]);
+      this->FinishBatch(
+        this->StartBatch(&tips[i], 1, axis ? axis + i : nullptr, searchMm, binWidth, &results[i], 0), i + 1 == count);
     }
     return;
   }
   s.PrepareOrder(this->RangeMm);
   const std::size_t capacity = s.Capacity;
+  const auto inFlight = static_cast<std::uint32_t>(this->SubmissionsInFlight);
+  // With two in flight, each submission is started before the previous one is read: the device
+  // works on it while the host reads (and votes on) the one before.
+  std::optional<Submission> running;
+  std::uint32_t started = 0;
   for (std::size_t first = 0; first < count; first += capacity)
   {
     const std::size_t n = std::min(capacity, count - first);
-    this->AnswerBatch(&tips[first], n, axis ? axis + first : nullptr, searchMm, binWidth, &results[first]);
+    const Submission next = this->StartBatch(
+      &tips[first], n, axis ? axis + first : nullptr, searchMm, binWidth, &results[first], started++ % inFlight);
+    if (running)
+    {
+      this->FinishBatch(*running, false);
+    }
+    running = next;
+    if (inFlight == 1)
+    {
+      this->FinishBatch(next, first + n == count);
+      running.reset();
+    }
   }
+  if (running)
+  {
+    this->FinishBatch(*running, true);
+  }
+}
+
+void vtkZBufferVesselDistance::SetSubmissionsInFlight(int submissions)
+{
+  if (submissions < 1 || submissions > static_cast<int>(vp::VulkanContext::Slots))
+  {
+    throw vp::InputError("submissions in flight", "must be 1 or 2");
+  }
+  this->SubmissionsInFlight = submissions; // no Modified(): the answers are the same
 }
 
 void vtkZBufferVesselDistance::CopyOccupancy(std::vector<std::uint32_t>& words) const
@@ -484,12 +515,12 @@ void vtkZBufferVesselDistance::CopyLayer(LayerPlane plane, std::vector<std::uint
 }
 
 double vtkZBufferVesselDistance::WriteCeilings(
-  const std::array<double, 3>* tips, std::size_t count, double searchMm) const
+  const std::array<double, 3>* tips, std::size_t count, double searchMm, std::uint32_t slot) const
 {
   Internals& s = *this->Impl;
   const std::uint32_t classes = s.Classes();
   const std::uint32_t orderCount = s.FineTable.Within(searchMm);
-  auto* ceiling = static_cast<AnswerCeiling*>(s.Ceilings->Mapped());
+  auto* ceiling = static_cast<AnswerCeiling*>(s.Ceilings->Mapped()) + s.FirstPointOf(slot) * classes;
   constexpr float None = std::numeric_limits<float>::infinity();
   if (!this->QueryCeilings || this->BoxMode != FixedAroundVessels)
   {
@@ -529,20 +560,23 @@ double vtkZBufferVesselDistance::WriteCeilings(
   });
 }
 
-void vtkZBufferVesselDistance::AnswerBatch(const std::array<double, 3>* tips, std::size_t count,
-  const std::array<double, 3>* axes, double searchMm, double binWidth, vp::ProximityResult* results) const
+vtkZBufferVesselDistance::Submission vtkZBufferVesselDistance::StartBatch(const std::array<double, 3>* tips,
+  std::size_t count, const std::array<double, 3>* axes, double searchMm, double binWidth, vp::ProximityResult* results,
+  std::uint32_t slot) const
 {
   Internals& s = *this->Impl;
   const std::uint32_t classes = s.Classes();
   s.PrepareOrder(this->RangeMm);
+  s.Context->WaitRecorded(slot); // its buffers are rewritten here (a call that threw may have left it in flight)
   const vp::DepthLayerGrid& g = s.Grid;
   const std::uint32_t orderCount = s.FineTable.Within(searchMm);
-  s.WritePoints(tips, count, axes);
+  s.WritePoints(tips, count, axes, slot);
   QueryParameters q = MakeQueryParameters(g, searchMm, binWidth, this->DistanceBins, orderCount,
     this->LayerMode == PaperNearFar, classes,
     this->DirectionalLanes > 0 ? this->DirectionalLanes : (s.Context->IsCpuDevice() ? 1 : GpuDirectionalLanes));
   q.OrderReach = s.FineTable.Reach;
   q.CoarseCount = static_cast<std::int32_t>(s.CoarseTable.Within(searchMm));
+  q.FirstPoint = static_cast<std::int32_t>(s.FirstPointOf(slot));
 
   // A workgroup per tile: the per-pixel pass needs the device to take that many in one dispatch.
   const std::uint32_t lanes = static_cast<std::uint32_t>(q.DirectionalLanes);
@@ -553,7 +587,7 @@ void vtkZBufferVesselDistance::AnswerBatch(const std::array<double, 3>* tips, st
     orderCount + laneGroups <= s.Context->Limits().maxComputeWorkGroupCount[0];
   const std::uint32_t n = static_cast<std::uint32_t>(count);
   const double ceilingsMs = vp::NowMs();
-  const double reachMm = this->WriteCeilings(tips, count, searchMm);
+  const double reachMm = this->WriteCeilings(tips, count, searchMm, slot);
   s.LastCall.CeilingsMs += vp::NowMs() - ceilingsMs;
   const std::uint32_t tiles = reachMm < 0.0 ? 0 : std::min(orderCount, s.FineTable.Within(reachMm));
   // The listed tiles are visited per pixel where the order table would be: for a few tips on a
@@ -572,7 +606,7 @@ void vtkZBufferVesselDistance::AnswerBatch(const std::array<double, 3>* tips, st
   const std::uint32_t nearEntries =
     n > PerPixelMaxTips && !list ? std::min(orderCount, s.FineTable.Within(NearTiles * TilePx * g.PixelMm)) : 0;
   auto groups = [](bool pixels, std::uint32_t slots) { return pixels ? slots : (slots + 63) / 64; };
-  auto* sizes = static_cast<VkDispatchIndirectCommand*>(s.DispatchSizes->Mapped());
+  auto* sizes = static_cast<VkDispatchIndirectCommand*>(s.DispatchSizes->Mapped()) + 2 * slot;
   sizes[0] = { groups(perPixel, std::min(nearEntries, tiles)), classes, n };
   std::uint32_t laneSlots = 0;
   if (list)
@@ -593,29 +627,47 @@ void vtkZBufferVesselDistance::AnswerBatch(const std::array<double, 3>* tips, st
   }
   s.LastTiles = tiles * classes;
   s.LastTilesInRange = orderCount * classes;
-  if (s.LastCall.Submissions > 0)
-  {
-    // The previous submission's device time, before this one's stamps replace it (the last
-    // one's is read only when asked: reading the stamps costs a query microseconds).
-    Internals::AddDeviceMs(s.LastCall, s.Context->DeviceMs());
-  }
   const double submitMs = vp::NowMs();
-  s.PreparedQueryFor(q, n, perPixel, listing, nearEntries, laneSlots).Submit();
+  s.PreparedQueryFor(q, n, slot, perPixel, listing, nearEntries, laneSlots).Start(slot);
   s.LastCall.SubmitWaitMs += vp::NowMs() - submitMs;
   ++s.LastCall.Submissions;
-  s.LastTilesListed = static_cast<const std::uint32_t*>(s.HostState->Mapped())[7];
+  return Submission{ tips, count, axes != nullptr, searchMm, q.Bins, binWidth, results, slot };
+}
+
+void vtkZBufferVesselDistance::FinishBatch(const Submission& batch, bool lastOfCall) const
+{
+  Internals& s = *this->Impl;
+  const double waitMs = vp::NowMs();
+  s.Context->WaitRecorded(batch.Slot);
+  s.LastCall.SubmitWaitMs += vp::NowMs() - waitMs;
+  s.LastSlot = batch.Slot;
+  if (!lastOfCall)
+  {
+    // Read now, before the slot's next submission replaces its stamps; the call's last one is
+    // read only when asked (reading the stamps costs a single query microseconds).
+    Internals::AddDeviceMs(s.LastCall, s.Context->DeviceMs(batch.Slot));
+  }
+  const auto* answers = static_cast<const std::uint32_t*>(s.HostState->Mapped());
+  s.LastTilesListed = answers[s.FirstPointOf(batch.Slot) * s.Classes() * StateStride + 7];
   const double readMs = vp::NowMs(), votesBeforeMs = s.LastCall.VotesMs;
-  this->ReadAnswers(tips, count, axes != nullptr, searchMm, q.Bins, binWidth, results);
+  this->ReadAnswers(batch);
   s.LastCall.ReadMs += vp::NowMs() - readMs - (s.LastCall.VotesMs - votesBeforeMs);
 }
 
-void vtkZBufferVesselDistance::ReadAnswers(const std::array<double, 3>* tips, std::size_t count, bool axes,
-  double searchMm, int bins, double binWidth, vp::ProximityResult* results) const
+void vtkZBufferVesselDistance::ReadAnswers(const Submission& batch) const
 {
   Internals& s = *this->Impl;
   const std::uint32_t classes = s.Classes();
   const vp::DepthLayerGrid& g = s.Grid;
-  const auto* hostState = static_cast<const std::uint32_t*>(s.HostState->Mapped());
+  const std::array<double, 3>* tips = batch.Tips;
+  const std::size_t count = batch.Count;
+  const bool axes = batch.Axes;
+  const double searchMm = batch.SearchMm;
+  const int bins = batch.Bins;
+  const double binWidth = batch.BinWidthMm;
+  vp::ProximityResult* results = batch.Results;
+  const auto* hostState =
+    static_cast<const std::uint32_t*>(s.HostState->Mapped()) + s.FirstPointOf(batch.Slot) * classes * StateStride;
   // What each answer still needs once read (on every core): nothing, its answer beyond the
   // range, or a vote on a surface that is not closed. Those follow in order, on this thread.
   enum Next : std::uint8_t
@@ -761,6 +813,7 @@ void vtkZBufferVesselDistance::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "TileListing: "
      << (this->TileListing == TileListingOff ? "Off" : this->TileListing == TileListingOn ? "On" : "(by device)") << "\n";
   os << indent << "DirectionalLanes: " << this->DirectionalLanes << (this->DirectionalLanes ? "" : " (by device)") << "\n";
+  os << indent << "SubmissionsInFlight: " << this->SubmissionsInFlight << "\n";
   os << indent << "VoteFieldCellMm: " << this->VoteFieldCellMm << (this->VoteFieldCellMm > 0.0 ? "" : " (none)") << "\n";
   os << indent << "DeviceSelector: " << (this->DeviceSelector.empty() ? "(best)" : this->DeviceSelector) << "\n";
   const vp::DepthLayerGrid& g = this->Impl->Grid;

@@ -147,6 +147,15 @@ public:
   /// are most of its host work at 1.5M triangles per class. Set before Build().
   vtkSetMacro(VoteFieldCellMm, double);
   vtkGetMacro(VoteFieldCellMm, double);
+  /// Submissions of a batch in flight at once: 1 or 2 (default). With two, the host writes the
+  /// next submission's tips and ceilings and reads the previous one's answers (and votes on them)
+  /// while the device works on the current one: a batch then takes about the longer of the
+  /// device's and the host's work, not their sum. A submission's ceilings then start from the
+  /// answers two submissions back, not one; the answers are the same, bit for bit, either way.
+  /// On lavapipe, whose work runs on the host's cores, two were no slower (bench's
+  /// batch_in_flight); one is for benchmarks and tests.
+  void SetSubmissionsInFlight(int submissions);
+  int GetSubmissionsInFlight() const { return this->SubmissionsInFlight; }
   /// Which Vulkan device (see vp::VulkanContext): empty (default) for the best one, an index, or
   /// part of a name.
   void SetDeviceSelector(const std::string& selector);
@@ -203,7 +212,8 @@ public:
   double GetLastQueryDeviceMs() const;
   /// Where the latest call's time went (ComputeProximity, ComputeProximityBatch, ...), in ms:
   /// the device's own time summed over its submissions (negative without timestamps), the host's
-  /// wait for them (submission to fence, device time included), the host's inside votes on
+  /// time submitting and waiting for them (device time included, except what the host spent on
+  /// the other submission in flight), the host's inside votes on
   /// surfaces that are not closed (five rays a tip and class in range; the answers beyond the
   /// range, votes and all, count as read), the ceilings, the answers read, and the whole call
   /// (from the engine's lock; the results' set-up before it is the caller's).
@@ -258,22 +268,27 @@ private:
   void CheckMovingBox(double cellMm) const;
   /// Every tip within searchMm; bins: whether the distance bins apply.
   void AnswerAll(const Points& tips, const Points* axes, double searchMm, bool bins, std::vector<vp::ProximityResult>& results) const;
-  /// Writes each tip's ceilings for the next submission (lock held); returns how far from its tile
-  /// the submission has to look, mm (the highest ceiling of a class not wholly beyond the search;
-  /// below 0: nowhere).
-  double WriteCeilings(const std::array<double, 3>* tips, std::size_t count, double searchMm) const;
-  /// The answers the latest submission left in host-visible memory, into results (lock held),
-  /// with the exact engine's inside vote on the surfaces that are not closed.
+  /// Writes each tip's ceilings for the next submission, in its slot (lock held); returns how far
+  /// from its tile the submission has to look, mm (the highest ceiling of a class not wholly
+  /// beyond the search; below 0: nowhere).
+  double WriteCeilings(const std::array<double, 3>* tips, std::size_t count, double searchMm, std::uint32_t slot) const;
   /// Class c of a tip with no wall within the search: out of range, or inside however deep.
   void AnswerBeyondRange(std::uint32_t c, const double tip[3], bool centreRayInside, vp::ClassProximity& out) const;
   /// The exact engine of every class, made the first time a tip on a closed surface is deeper
   /// than the range (it measures the depth).
   void EnsureDeepEngine() const;
-  void ReadAnswers(const std::array<double, 3>* tips, std::size_t count, bool axes, double searchMm, int bins,
-    double binWidthMm, vp::ProximityResult* results) const;
-  /// One submission for up to GetBatchCapacity() tips on the current layers (lock held, results begun).
-  void AnswerBatch(const std::array<double, 3>* tips, std::size_t count, const std::array<double, 3>* axes, double searchMm,
-    double binWidthMm, vp::ProximityResult* results) const;
+  /// A submission in flight and what reading its answers needs (vtkZBufferVesselDistanceInternals.h).
+  struct Submission;
+  /// Starts one submission for up to GetBatchCapacity() tips on the current layers, in one of
+  /// the context's slots, without waiting for it (lock held, results begun).
+  Submission StartBatch(const std::array<double, 3>* tips, std::size_t count, const std::array<double, 3>* axes,
+    double searchMm, double binWidthMm, vp::ProximityResult* results, std::uint32_t slot) const;
+  /// Waits for a submission and reads its answers from host-visible memory into its results,
+  /// with the exact engine's inside vote on the surfaces that are not closed (lock held). The
+  /// device time of a call's last submission is read only when asked (GetLastCallTimes).
+  void FinishBatch(const Submission& batch, bool lastOfCall) const;
+  /// A finished submission's answers into its results (lock held).
+  void ReadAnswers(const Submission& batch) const;
 
   /// The layers' grid around the vessels (fixed), or centred on their box until the first tip
   /// (moving); anchorMm: the centre of the vessels' box; cellMm: the cell edge chosen.
@@ -287,6 +302,7 @@ private:
   int DistanceBins = 0;
   int DirectionalLanes = 0;
   double VoteFieldCellMm = 1.0;
+  int SubmissionsInFlight = 2;
   int QueryPass = QueryPassByDevice;
   int TileListing = TileListingByDevice;
   bool QueryCeilings = true;

@@ -84,6 +84,18 @@ struct InsideVote
 } // namespace zbuffer
 } // namespace vp
 
+struct vtkZBufferVesselDistance::Submission
+{
+  const std::array<double, 3>* Tips = nullptr;
+  std::size_t Count = 0;
+  bool Axes = false;
+  double SearchMm = 0.0;
+  int Bins = 0;
+  double BinWidthMm = 0.0;
+  vp::ProximityResult* Results = nullptr;
+  std::uint32_t Slot = 0;
+};
+
 struct vtkZBufferVesselDistance::Internals
 {
   using InsideVote = vp::zbuffer::InsideVote;
@@ -117,7 +129,8 @@ struct vtkZBufferVesselDistance::Internals
   std::unique_ptr<vp::GpuBuffer> CoarseOrder, EntryIndex;
   // Per point and class the answer's ceiling (mm), and the sizes of the query's two dispatches
   // (VkDispatchIndirectCommand: the near tiles of a batch, then the lanes and the rest), written
-  // by the host before every submission.
+  // by the host before every submission. These, the points and the host-visible answers hold
+  // one submission per slot of the context (vp::VulkanContext::Slots), Capacity points each.
   std::unique_ptr<vp::GpuBuffer> Ceilings, DispatchSizes;
   // The tiles a submission lists, and the list's size with the workgroup counts of the
   // dispatch that visits them (written by the device; see TileList in the shaders).
@@ -135,6 +148,10 @@ struct vtkZBufferVesselDistance::Internals
   };
   std::vector<LastAnswer> Last;
   int LastRender = -1;
+  // The slot of the latest submission (its device time is read when asked).
+  std::uint32_t LastSlot = 0;
+  // The first point of a slot in the points, ceilings and answers.
+  std::size_t FirstPointOf(std::uint32_t slot) const { return static_cast<std::size_t>(slot) * this->Capacity; }
   int SubmissionsOnRender = 0;
   std::uint32_t LastTiles = 0, LastTilesInRange = 0, LastTilesListed = 0;
   vtkZBufferVesselDistance::CallTimes LastCall;
@@ -152,6 +169,7 @@ struct vtkZBufferVesselDistance::Internals
   struct PreparedQuery
   {
     std::uint32_t Points = 0;
+    std::uint32_t Slot = 0;
     bool PerPixel = false;
     int Listing = 0; // 0: no list; 1: listed tiles visited per tile; 2: per pixel
     QueryParameters Parameters{};
@@ -192,15 +210,16 @@ struct vtkZBufferVesselDistance::Internals
   // the tenths of a second they take on large layers.
   const vp::BlockDistanceField* PrepareCeilings(bool now = false);
 
-  // Each tip in grid units and its unit axis (or zero), where the query reads them.
-  void WritePoints(const std::array<double, 3>* tips, std::size_t count, const std::array<double, 3>* axes);
+  // Each tip in grid units and its unit axis (or zero), where the query in slot `slot` reads them.
+  void WritePoints(const std::array<double, 3>* tips, std::size_t count, const std::array<double, 3>* axes, std::uint32_t slot);
 
   // The query's submission for these parameters, batch size and passes, recorded once: the two
   // dispatches over the order table (their sizes read from DispatchSizes when it runs), then the
   // answers. With a list (listing 1: visited per tile, 2: per pixel), the second dispatch lists
   // the tiles it would have visited and a third, sized by the device, visits them.
-  vp::PreparedCommands& PreparedQueryFor(const QueryParameters& q, std::uint32_t n, bool perPixel, int listing,
-    std::uint32_t nearEntries, std::uint32_t laneSlots);
+  // In slot `slot`: its points, ceilings, dispatch sizes, answers and timestamps.
+  vp::PreparedCommands& PreparedQueryFor(const QueryParameters& q, std::uint32_t n, std::uint32_t slot, bool perPixel,
+    int listing, std::uint32_t nearEntries, std::uint32_t laneSlots);
 
   // The vessels' triangles as the rasteriser reads them: long edges split so that one invocation
   // never walks many pixels; float positions relative to the anchor, so that rounding stays far

@@ -28,6 +28,7 @@ void vtkZBufferVesselDistance::Internals::PrepareOrder(double rangeMm)
   {
     entryOf[static_cast<std::size_t>((order[e][1] + reach) * width + order[e][0] + reach)] = static_cast<std::uint32_t>(e);
   }
+  this->Context->WaitAll();
   this->Prepared.clear(); // it names the buffers replaced here
   this->OrderCount = static_cast<std::uint32_t>(order.size());
   using Placement = vp::GpuBuffer::Placement;
@@ -51,14 +52,15 @@ void vtkZBufferVesselDistance::Internals::PrepareOrder(double rangeMm)
   this->Choices = std::make_unique<vp::GpuBuffer>(*this->Context, 8ull * classes * this->Capacity, Placement::Device);
   // The answers are written there by the device, and the points by the host, for every batch:
   // host-visible, no copy. Every invocation of a query reads its point: in device memory where
-  // the host can write it.
-  this->HostState = std::make_unique<vp::GpuBuffer>(*this->Context, stateBytes, Placement::Host);
-  this->Points =
-    std::make_unique<vp::GpuBuffer>(*this->Context, sizeof(PointRecord) * this->Capacity, Placement::HostToDevice);
+  // the host can write it. A slot each (vp::VulkanContext::Slots), for the submissions in flight.
+  const VkDeviceSize slots = vp::VulkanContext::Slots;
+  this->HostState = std::make_unique<vp::GpuBuffer>(*this->Context, stateBytes * slots, Placement::Host);
+  this->Points = std::make_unique<vp::GpuBuffer>(
+    *this->Context, sizeof(PointRecord) * this->Capacity * slots, Placement::HostToDevice);
   this->Ceilings = std::make_unique<vp::GpuBuffer>(
-    *this->Context, sizeof(AnswerCeiling) * classes * this->Capacity, Placement::HostToDevice);
-  this->DispatchSizes =
-    std::make_unique<vp::GpuBuffer>(*this->Context, 2 * sizeof(VkDispatchIndirectCommand), Placement::HostToDevice);
+    *this->Context, sizeof(AnswerCeiling) * classes * this->Capacity * slots, Placement::HostToDevice);
+  this->DispatchSizes = std::make_unique<vp::GpuBuffer>(
+    *this->Context, 2 * sizeof(VkDispatchIndirectCommand) * slots, Placement::HostToDevice);
   // At most one listed tile per answer and entry: half the records' bytes.
   this->TileList = std::make_unique<vp::GpuBuffer>(*this->Context, recordBytesPerTip * this->Capacity / 2, Placement::Device);
   this->TileListSize = std::make_unique<vp::GpuBuffer>(*this->Context, 16, Placement::Device);
@@ -73,7 +75,7 @@ void vtkZBufferVesselDistance::Internals::PrepareOrder(double rangeMm)
     this->Choices->Handle(), this->TileListSize->Handle() });
   // The state starts reset; every query leaves it so.
   const std::uint32_t answers = this->Capacity * classes;
-  const ReduceParameters reset{ 0, answers, this->OrderCount };
+  const ReduceParameters reset{ 0, answers, this->OrderCount, 0 };
   this->Context->Submit([&](VkCommandBuffer cmd) {
     this->Reduce->Record(cmd, &reset, (answers + 63) / 64);
     vp::ComputeKernel::Barrier(cmd);

@@ -25,6 +25,10 @@ vp::VulkanContext& vtkZBufferVesselDistance::Internals::Device(const std::string
 
 void vtkZBufferVesselDistance::Internals::Release()
 {
+  if (this->Context)
+  {
+    this->Context->WaitAll(); // nothing in flight uses what is freed here
+  }
   this->Prepared.clear(); // before the buffers and kernels it names
   this->Raster.reset();
   this->Columns.reset();
@@ -57,6 +61,7 @@ void vtkZBufferVesselDistance::Internals::Release()
   this->CeilingBuildMs = 0.0;
   this->Last.clear();
   this->LastRender = -1;
+  this->LastSlot = 0;
   this->Rendered = false;
   this->OrderRangeMm = -1.0;
   this->Capacity = 0;
@@ -77,10 +82,11 @@ void vtkZBufferVesselDistance::Internals::VoteInside(const std::vector<InsideVot
   this->LastCall.Votes += votes.size();
 }
 
-void vtkZBufferVesselDistance::Internals::WritePoints(const std::array<double, 3>* tips, std::size_t count, const std::array<double, 3>* axes)
+void vtkZBufferVesselDistance::Internals::WritePoints(
+  const std::array<double, 3>* tips, std::size_t count, const std::array<double, 3>* axes, std::uint32_t slot)
 {
   const vp::DepthLayerGrid& g = this->Grid;
-  auto* points = static_cast<PointRecord*>(this->Points->Mapped());
+  auto* points = static_cast<PointRecord*>(this->Points->Mapped()) + this->FirstPointOf(slot);
   for (std::size_t i = 0; i < count; ++i)
   {
     const double* tip = tips[i].data();
@@ -101,30 +107,34 @@ void vtkZBufferVesselDistance::Internals::WritePoints(const std::array<double, 3
   }
 }
 
-vp::PreparedCommands& vtkZBufferVesselDistance::Internals::PreparedQueryFor(const QueryParameters& q, std::uint32_t n, bool perPixel, int listing,
-  std::uint32_t nearEntries, std::uint32_t laneSlots)
+vp::PreparedCommands& vtkZBufferVesselDistance::Internals::PreparedQueryFor(const QueryParameters& q, std::uint32_t n,
+  std::uint32_t slot, bool perPixel, int listing, std::uint32_t nearEntries, std::uint32_t laneSlots)
 {
   const std::uint32_t orderCount = static_cast<std::uint32_t>(q.OrderCount);
   auto prepared = std::find_if(this->Prepared.begin(), this->Prepared.end(), [&](const PreparedQuery& p) {
-    return p.Points == n && p.PerPixel == perPixel && p.Listing == listing &&
+    return p.Points == n && p.Slot == slot && p.PerPixel == perPixel && p.Listing == listing &&
       std::memcmp(&p.Parameters, &q, sizeof q) == 0;
   });
   if (prepared == this->Prepared.end())
   {
     if (this->Prepared.size() >= MaxPrepared)
     {
+      this->Context->WaitAll(); // the other slot's commands may be in flight
       this->Prepared.clear();
     }
     const std::uint32_t answers = n * this->Classes();
-    const ReduceParameters copy{ 1, answers, orderCount };
+    const ReduceParameters copy{ 1, answers, orderCount,
+      static_cast<std::uint32_t>(this->FirstPointOf(slot) * this->Classes()) };
+    const VkDeviceSize sizesAt = 2 * sizeof(VkDispatchIndirectCommand) * slot;
     PreparedQuery entry;
     entry.Points = n;
+    entry.Slot = slot;
     entry.PerPixel = perPixel;
     entry.Listing = listing;
     entry.Parameters = q;
     entry.Commands = std::make_unique<vp::PreparedCommands>(*this->Context, [&](VkCommandBuffer cmd) {
-      this->Context->ResetStamps(cmd);
-      this->Context->Stamp(cmd, 0);
+      this->Context->ResetStamps(cmd, slot);
+      this->Context->Stamp(cmd, 0, slot);
       // Entries: a workgroup per tile (per pixel) or an invocation per tile (per tile); the
       // lanes come first in the last dispatch, whose size after them follows the ceilings.
       auto visit = [&](std::int32_t stage, bool pixels, std::uint32_t first, std::uint32_t last, std::uint32_t slots,
@@ -141,22 +151,22 @@ vp::PreparedCommands& vtkZBufferVesselDistance::Internals::PreparedQueryFor(cons
       const VkDeviceSize second = sizeof(VkDispatchIndirectCommand);
       if (nearEntries > 0)
       {
-        visit(VisitOrderedTiles, perPixel, 0, nearEntries, 0, *this->DispatchSizes, 0);
+        visit(VisitOrderedTiles, perPixel, 0, nearEntries, 0, *this->DispatchSizes, sizesAt);
       }
       if (listing == 0)
       {
-        visit(VisitOrderedTiles, perPixel, nearEntries, orderCount, laneSlots, *this->DispatchSizes, second);
+        visit(VisitOrderedTiles, perPixel, nearEntries, orderCount, laneSlots, *this->DispatchSizes, sizesAt + second);
       }
       else
       {
         // The listing: workgroups per answer (DispatchSizes' second), each looping over its
         // share of the answer's lanes and entries.
-        visit(SelectTiles, false, nearEntries, orderCount, 0, *this->DispatchSizes, second);
+        visit(SelectTiles, false, nearEntries, orderCount, 0, *this->DispatchSizes, sizesAt + second);
         visit(VisitListedTiles, listing == 2, 0, 0, 0, *this->TileListSize, 4);
       }
       this->Reduce->Record(cmd, &copy, (answers + 63) / 64); // into the host-visible answers, and resets
       vp::ComputeKernel::Barrier(cmd);
-      this->Context->Stamp(cmd, 1);
+      this->Context->Stamp(cmd, 1, slot);
     });
     this->Prepared.push_back(std::move(entry));
     prepared = this->Prepared.end() - 1;

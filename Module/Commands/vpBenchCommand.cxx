@@ -313,6 +313,21 @@ void PrintZBufferQueries(const Json& z)
         w["device_tips_per_second"].get<double>(), w["answers_differing_from_per_tile"].get<int>());
     }
   }
+  std::printf("%10s | %-18s %14s %14s %12s %12s %12s %12s\n", "tris/class", "in flight", "batch med ms", "batch p95 ms",
+    "tips/s", "device ms", "host wait ms", "differing");
+  for (const Json& s : z["sizes"])
+  {
+    // The batch with one submission in flight and with two (the host's work beside the device's).
+    const Json& f = s["batch_in_flight"];
+    for (const char* side : { "one", "two" })
+    {
+      const Json& w = f[side];
+      std::printf("%10zu | %-18s %14.2f %14.2f %12.0f %12.2f %12.2f %12d\n", s["triangles_per_class"].get<std::size_t>(),
+        side, w["median_ms"].get<double>(), w["p95_ms"].get<double>(), w["tips_per_second"].get<double>(),
+        w["parts"]["device"]["median_ms"].get<double>(), w["parts"]["submit_wait"]["median_ms"].get<double>(),
+        f["answers_differing"].get<int>());
+    }
+  }
   for (const Json& s : z["sizes"])
   {
     if (s.contains("batch_votes"))

@@ -177,6 +177,28 @@ TEST_F(DistanceCommand, BenchSplitsAZBufferCallIntoItsParts)
   EXPECT_EQ(size["single_tip_times"]["submissions_in_last_call"].get<std::size_t>(), 1u);
 }
 
+// bench runs a batch of several submissions with one in flight and with two, side by side: the
+// same answers, the same submissions, each side's parts, and a line in the table.
+TEST_F(DistanceCommand, BenchRunsABatchWithOneAndTwoSubmissionsInFlight)
+{
+  VP_REQUIRE_VULKAN();
+  const std::string out = this->Dir + "/bench_in_flight.json";
+  const ToolRun r = RunTool(this->Dir, "bench --engines zbuffer --sizes 2000 --queries 600 --brute-queries 2 -o " + out);
+  ASSERT_EQ(r.ExitCode, 0) << r.Err;
+  EXPECT_NE(r.Out.find("in flight"), std::string::npos) << r.Out;
+  const auto f = nlohmann::json::parse(vp::test::Slurp(out))["zbuffer"]["sizes"][0]["batch_in_flight"];
+  EXPECT_EQ(f["tips"].get<std::size_t>(), 600u);
+  EXPECT_EQ(f["answers_differing"].get<int>(), 0);
+  for (const char* side : { "one", "two" })
+  {
+    const auto& parts = f[side]["parts"];
+    EXPECT_EQ(parts["submissions_in_last_call"].get<std::size_t>(), (600u + 255u) / 256u) << side << ": 256 a submission on lavapipe";
+    EXPECT_EQ(parts["total"]["queries"].get<std::size_t>(), 5u) << side;
+    EXPECT_GT(parts["device"]["median_ms"].get<double>(), 0.0) << side;
+    EXPECT_GT(f[side]["tips_per_second"].get<double>(), 0.0) << side;
+  }
+}
+
 // On an open surface (IRCADb's portal vein as given) bench runs the batch with its votes from the
 // vote field and from the rays alone: the same distances, the same number of votes, and the
 // votes themselves the same but in the thin bands behind folds.

@@ -3,6 +3,8 @@
 // must lie within the engine's stated error bound of the exact one.
 #include "vpAnalyticShapes.h"
 #include "vpBuiltInPhantom.h"
+#include "vpDefectiveMeshes.h"
+#include "vpVesselSurface.h"
 #include "vpTestSupport.h"
 #include "vpVulkanContext.h"
 #include "vpVulkanTestSupport.h"
@@ -242,6 +244,62 @@ TEST(ZBufferDistance, BatchEqualsSingleQueriesBitForBit)
   moving->SetBoxMode(vtkZBufferVesselDistance::MovingWithTip);
   const std::vector<std::array<double, 3>> few(tips.begin(), tips.begin() + 20);
   EXPECT_GT(vp::test::ExpectBatchEqualsSingles(moving, few, "moving box"), 10);
+}
+
+// Two submissions in flight (the host reading one and writing the next while the device runs
+// the other) give the answers of one, bit for bit: batches of several submissions and a part one
+// (each under every query setting, with axes), the whole instrument's search, and a vessel with
+// a hole, whose inside the host votes on while the next submission runs. Slots mixed up (points,
+// ceilings, answers or dispatch sizes of the other submission) would fail here.
+TEST(ZBufferDistance, TwoSubmissionsInFlightGiveTheAnswersOfOne)
+{
+  VP_REQUIRE_VULKAN();
+  Vessels vessels = vp::MakeBuiltInVessels();
+  const vp::VesselSurface closed(vessels[0].first, vessels[0].second);
+  vessels[0].second = vp::test::DefectiveCopies(closed.PointArray(), closed.TriangleArray())[0].Mesh;
+  double b[6];
+  VesselBounds(vessels, b);
+  auto two = Make<vtkZBufferVesselDistance>(vessels, 50.0);
+  auto one = Make<vtkZBufferVesselDistance>(vessels, 50.0);
+  EXPECT_EQ(two->GetSubmissionsInFlight(), 2);
+  one->SetSubmissionsInFlight(1);
+  EXPECT_THROW(one->SetSubmissionsInFlight(0), vp::InputError);
+  EXPECT_THROW(one->SetSubmissionsInFlight(3), vp::InputError);
+  EXPECT_EQ(one->GetSubmissionsInFlight(), 1);
+  vp::ProximityResult first;
+  two->ComputeProximity(b, nullptr, first); // sets the capacity for the device
+  one->ComputeProximity(b, nullptr, first);
+  two->BuildQueryCeilings();
+  one->BuildQueryCeilings();
+  const std::size_t capacity = two->GetBatchCapacity();
+  ASSERT_GE(capacity, 1u);
+  const auto tips = RandomTips(b, 20.0, static_cast<int>(std::min<std::size_t>(3 * capacity + 37, 2000)), 41);
+  const std::size_t submissions = (tips.size() + capacity - 1) / capacity;
+  ASSERT_GE(submissions, 2u) << "the test needs a batch of several submissions";
+  int inRange = 0;
+  UnderEachQuerySetting(two, one, [&](const std::string& what) {
+    inRange += ExpectSameBatches(two, one, tips, what);
+    const auto times = two->GetLastCallTimes();
+    EXPECT_EQ(times.Submissions, submissions) << what;
+    EXPECT_GT(times.Votes, 0u) << what << ": the holed vessel's inside is voted on";
+  });
+  EXPECT_GT(inRange, 3000);
+  // The whole instrument's search: a shorter search, no bins.
+  for (vtkZBufferVesselDistance* e : { two.GetPointer(), one.GetPointer() })
+  {
+    e->SetLayerMode(vtkZBufferVesselDistance::ExactIntervals);
+    e->SetDistanceBins(0);
+  }
+  std::vector<vp::ProximityResult> x, y;
+  two->ComputeProximityBatchWithin(tips, 12.0, x);
+  one->ComputeProximityBatchWithin(tips, 12.0, y);
+  ASSERT_EQ(x.size(), y.size());
+  int within = 0;
+  for (std::size_t i = 0; i < x.size(); ++i)
+  {
+    within += vp::test::ExpectSameAnswer(x[i], y[i], "within 12 mm, tip " + std::to_string(i));
+  }
+  EXPECT_GT(within, 100);
 }
 
 // The query's ceilings (the coarse blocks' bound, and the answer before plus the tip's move) cut

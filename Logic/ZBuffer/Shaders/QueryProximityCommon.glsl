@@ -92,6 +92,9 @@ layout(push_constant) uniform Parameters
   // The order table's reach (tiles from the centre tile) and the coarse order table's length.
   int OrderReach;
   int CoarseCount;
+  // Where this submission's points and ceilings start in theirs (a point's place in its slot:
+  // the host writes the next submission's while the device reads this one's).
+  int FirstPoint;
 } P;
 
 const int VisitOrderedTiles = 0; // the order table's entries FirstEntry..EndEntry, after the lanes
@@ -278,8 +281,9 @@ float AxisGap(float x, float lo, float hi)
 // This invocation's point, in grid units, and its axis.
 void BeginPoint(uint point)
 {
-  Tip = Point[2u * point].xyz;
-  AxisMm = Point[2u * point + 1u].xyz;
+  uint at = 2u * (uint(P.FirstPoint) + point);
+  Tip = Point[at].xyz;
+  AxisMm = Point[at + 1u].xyz;
 }
 
 // The invocations after the last tile: lane 0 answers "inside", every lane its share of the
@@ -307,7 +311,7 @@ void AnswerLane(uint cls, uint stateBase, int lane)
 // The answer this invocation works on (point x classes + class): its ceiling.
 void BeginAnswer(uint answer)
 {
-  uvec2 ceiling = AnswerCeiling[answer];
+  uvec2 ceiling = AnswerCeiling[uint(P.FirstPoint * P.Classes) + answer];
   Ceiling = min(P.RangeMm, uintBitsToFloat(ceiling.x));
   EntryEnd = ceiling.y;
 }

@@ -25,6 +25,7 @@ layout(push_constant) uniform Parameters
   uint Step;
   uint Answers;    // points x classes
   uint OrderCount; // records per answer
+  uint FirstAnswer; // where this submission's answers start in Answers (its slot)
 } P;
 
 const uint StateStride = 32u;
@@ -65,21 +66,22 @@ void main()
   {
     uint64_t choice = Choice[i];
     uint chosen = choice == NoChoice ? NoRecord : uint(choice & 0xFFFFFFFFul);
+    uint to = (P.FirstAnswer + i) * StateStride;
     for (uint w = 0u; w < StateStride; ++w)
     {
-      Answer[base + w] = State[base + w];
+      Answer[to + w] = State[base + w];
     }
-    Answer[base + 3u] = chosen;
+    Answer[to + 3u] = chosen;
     if (i == 0u)
     {
-      Answer[7] = listed;
+      Answer[to + 7u] = listed;
     }
     if (chosen != NoRecord)
     {
       uvec4 r = Record[i * P.OrderCount + chosen];
-      Answer[base + 4u] = r.x;
-      Answer[base + 5u] = r.y;
-      Answer[base + 6u] = r.z;
+      Answer[to + 4u] = r.x;
+      Answer[to + 5u] = r.y;
+      Answer[to + 6u] = r.z;
     }
   }
   Reset(base);

@@ -21,6 +21,9 @@ public:
 
   /// Submits the commands and waits for them.
   void Submit() { this->Context.SubmitRecorded(this->Commands); }
+  /// Submits the commands in one of the context's slots without waiting (VulkanContext::StartRecorded):
+  /// they must not be freed or submitted again before that slot is waited for.
+  void Start(std::uint32_t slot) { this->Context.StartRecorded(this->Commands, slot); }
 
 private:
   VulkanContext& Context;

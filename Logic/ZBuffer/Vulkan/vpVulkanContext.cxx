@@ -377,13 +377,16 @@ void VulkanContext::CreateCommandObjects(const VkQueueFamilyProperties& family)
   Check(vkAllocateCommandBuffers(this->LogicalDevice, &allocInfo, &this->Commands), "vkAllocateCommandBuffers");
   VkFenceCreateInfo fenceInfo{};
   fenceInfo.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO;
-  Check(vkCreateFence(this->LogicalDevice, &fenceInfo, nullptr, &this->Fence), "vkCreateFence");
+  for (VkFence& fence : this->Fences)
+  {
+    Check(vkCreateFence(this->LogicalDevice, &fenceInfo, nullptr, &fence), "vkCreateFence");
+  }
   if (family.timestampValidBits > 0 && this->Properties.limits.timestampPeriod > 0.0f)
   {
     VkQueryPoolCreateInfo stampInfo{};
     stampInfo.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO;
     stampInfo.queryType = VK_QUERY_TYPE_TIMESTAMP;
-    stampInfo.queryCount = 2;
+    stampInfo.queryCount = 2 * Slots;
     Check(vkCreateQueryPool(this->LogicalDevice, &stampInfo, nullptr, &this->Stamps), "vkCreateQueryPool");
     const std::uint32_t valid = family.timestampValidBits;
     this->StampMask = valid >= 64 ? ~0ull : (1ull << valid) - 1ull;
@@ -400,9 +403,12 @@ void VulkanContext::Destroy()
   if (this->LogicalDevice)
   {
     vkDeviceWaitIdle(this->LogicalDevice);
-    if (this->Fence)
+    for (VkFence fence : this->Fences)
     {
-      vkDestroyFence(this->LogicalDevice, this->Fence, nullptr);
+      if (fence)
+      {
+        vkDestroyFence(this->LogicalDevice, fence, nullptr);
+      }
     }
     if (this->Stamps)
     {
@@ -424,7 +430,11 @@ void VulkanContext::Destroy()
     }
   }
   // The instance is the process's (SharedInstance): it stays.
-  this->Fence = VK_NULL_HANDLE;
+  for (std::uint32_t slot = 0; slot < Slots; ++slot)
+  {
+    this->Fences[slot] = VK_NULL_HANDLE;
+    this->Pending[slot] = false;
+  }
   this->Stamps = VK_NULL_HANDLE;
   this->CommandPool = VK_NULL_HANDLE;
   this->LogicalDevice = VK_NULL_HANDLE;
@@ -450,6 +460,7 @@ std::uint32_t VulkanContext::FindMemoryType(
 
 void VulkanContext::Submit(const std::function<void(VkCommandBuffer)>& record)
 {
+  this->WaitAll(); // its command buffer and slot 0 may be in use
   Check(vkResetCommandBuffer(this->Commands, 0), "vkResetCommandBuffer");
   VkCommandBufferBeginInfo begin{};
   begin.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
@@ -462,25 +473,41 @@ void VulkanContext::Submit(const std::function<void(VkCommandBuffer)>& record)
 
 void VulkanContext::SubmitRecorded(VkCommandBuffer commands)
 {
+  this->StartRecorded(commands, 0);
+  this->WaitRecorded(0);
+}
+
+void VulkanContext::StartRecorded(VkCommandBuffer commands, std::uint32_t slot)
+{
   VkSubmitInfo submit{};
   submit.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO;
   submit.commandBufferCount = 1;
   submit.pCommandBuffers = &commands;
-  Check(vkResetFences(this->LogicalDevice, 1, &this->Fence), "vkResetFences");
-  Check(vkQueueSubmit(this->Queue, 1, &submit, this->Fence), "vkQueueSubmit");
+  Check(vkResetFences(this->LogicalDevice, 1, &this->Fences[slot]), "vkResetFences");
+  Check(vkQueueSubmit(this->Queue, 1, &submit, this->Fences[slot]), "vkQueueSubmit");
+  this->Pending[slot] = true;
+}
+
+void VulkanContext::WaitRecorded(std::uint32_t slot)
+{
+  if (!this->Pending[slot])
+  {
+    return;
+  }
   VkResult status = VK_NOT_READY;
   if (!this->IsCpuDevice())
   {
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double, std::milli>(SpinWaitMs);
-    while ((status = vkGetFenceStatus(this->LogicalDevice, this->Fence)) == VK_NOT_READY &&
+    while ((status = vkGetFenceStatus(this->LogicalDevice, this->Fences[slot])) == VK_NOT_READY &&
       std::chrono::steady_clock::now() < deadline)
     {
     }
   }
   if (status != VK_SUCCESS)
   {
-    Check(vkWaitForFences(this->LogicalDevice, 1, &this->Fence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+    Check(vkWaitForFences(this->LogicalDevice, 1, &this->Fences[slot], VK_TRUE, UINT64_MAX), "vkWaitForFences");
   }
+  this->Pending[slot] = false;
   if (!this->ValidationMessage.empty())
   {
     const std::string message = this->ValidationMessage;
@@ -489,27 +516,35 @@ void VulkanContext::SubmitRecorded(VkCommandBuffer commands)
   }
 }
 
-void VulkanContext::ResetStamps(VkCommandBuffer cmd) const
+void VulkanContext::WaitAll()
 {
-  if (this->Stamps)
+  for (std::uint32_t slot = 0; slot < Slots; ++slot)
   {
-    vkCmdResetQueryPool(cmd, this->Stamps, 0, 2);
+    this->WaitRecorded(slot);
   }
 }
 
-void VulkanContext::Stamp(VkCommandBuffer cmd, std::uint32_t which) const
+void VulkanContext::ResetStamps(VkCommandBuffer cmd, std::uint32_t slot) const
 {
   if (this->Stamps)
   {
-    vkCmdWriteTimestamp(
-      cmd, which == 0 ? VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT : VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, this->Stamps, which);
+    vkCmdResetQueryPool(cmd, this->Stamps, 2 * slot, 2);
   }
 }
 
-double VulkanContext::DeviceMs() const
+void VulkanContext::Stamp(VkCommandBuffer cmd, std::uint32_t which, std::uint32_t slot) const
+{
+  if (this->Stamps)
+  {
+    // At the bottom of the pipe: after every earlier command, a queued submission's before it.
+    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, this->Stamps, 2 * slot + which);
+  }
+}
+
+double VulkanContext::DeviceMs(std::uint32_t slot) const
 {
   std::uint64_t ticks[2] = { 0, 0 };
-  if (!this->Stamps || vkGetQueryPoolResults(this->LogicalDevice, this->Stamps, 0, 2, sizeof ticks, ticks,
+  if (!this->Stamps || vkGetQueryPoolResults(this->LogicalDevice, this->Stamps, 2 * slot, 2, sizeof ticks, ticks,
                          sizeof ticks[0], VK_QUERY_RESULT_64_BIT) != VK_SUCCESS)
   {
     return -1.0;

@@ -67,6 +67,18 @@ public:
   /// single query's time on an H100. A CPU device (lavapipe) needs the host's cores for the work
   /// itself, so there the host sleeps at once.
   void SubmitRecorded(VkCommandBuffer commands);
+  /// Submissions that may be in flight at once, each in a slot of its own (fence and timestamps):
+  /// with two, the device runs one while the host reads the one before and writes the next.
+  static constexpr std::uint32_t Slots = 2;
+  /// Submits a recorded command buffer in slot `slot` (< Slots) without waiting: the host goes on
+  /// while the device works. The slot's previous submission must have been waited for. The
+  /// queue runs submissions in order; the commands themselves must order their work after the
+  /// previous submission's where they share buffers (a barrier at the end of each does).
+  void StartRecorded(VkCommandBuffer commands, std::uint32_t slot);
+  /// Waits for slot `slot`'s submission (as SubmitRecorded); at once when none is in flight.
+  void WaitRecorded(std::uint32_t slot);
+  /// Waits for every slot's submission: before what they use is freed or rewritten.
+  void WaitAll();
   /// How long the host polls a GPU's fence before it sleeps, in ms.
   static constexpr double SpinWaitMs = 2.0;
   /// Whether 64-bit atomics on storage buffers are enabled (VK_KHR_shader_atomic_int64 with
@@ -75,13 +87,15 @@ public:
   /// Whether the device is a CPU (lavapipe): its work runs on the host's own cores.
   bool IsCpuDevice() const { return this->Info.Type == "cpu"; }
 
-  /// Timestamps on the device: Stamp(cmd, 0) and Stamp(cmd, 1) recorded around the work of a
-  /// submission (after ResetStamps(cmd), outside any render pass), and DeviceMs() after the
-  /// submission is the device's time between them, in ms; a negative value when the device
-  /// has no compute timestamps.
-  void ResetStamps(VkCommandBuffer cmd) const;
-  void Stamp(VkCommandBuffer cmd, std::uint32_t which) const;
-  double DeviceMs() const;
+  /// Timestamps on the device, per slot: Stamp(cmd, 0, slot) and Stamp(cmd, 1, slot) recorded
+  /// around the work of a submission (after ResetStamps(cmd, slot), outside any render pass), and
+  /// DeviceMs(slot) after the submission is the device's time between them, in ms; a negative
+  /// value when the device has no compute timestamps. Both stamps wait for the commands before
+  /// them, the previous submission's included: a submission queued behind another is timed from
+  /// the other's end, not from its own arrival.
+  void ResetStamps(VkCommandBuffer cmd, std::uint32_t slot = 0) const;
+  void Stamp(VkCommandBuffer cmd, std::uint32_t which, std::uint32_t slot = 0) const;
+  double DeviceMs(std::uint32_t slot = 0) const;
   /// The pool prepared command buffers come from.
   VkCommandPool Pool() const { return this->CommandPool; }
 
@@ -99,8 +113,9 @@ private:
   std::uint32_t QueueFamily = 0;
   VkCommandPool CommandPool = VK_NULL_HANDLE;
   VkCommandBuffer Commands = VK_NULL_HANDLE;
-  VkFence Fence = VK_NULL_HANDLE;
-  VkQueryPool Stamps = VK_NULL_HANDLE; // two timestamps; null without compute timestamps
+  VkFence Fences[Slots] = {};
+  bool Pending[Slots] = {};
+  VkQueryPool Stamps = VK_NULL_HANDLE; // two timestamps a slot; null without compute timestamps
   std::uint64_t StampMask = ~0ull;     // the bits of a timestamp the queue keeps
   VulkanDeviceInfo Info;
   bool Int64Atomics = false;

@@ -4,7 +4,8 @@
 # table and nvidia-smi's clock samples.
 # Issue 35's batch rate: 20,000 tips at 1.5M triangles per class (IRCADb patient 1's vessels,
 # refined), the batch through each query pass side by side, where its time goes (device, host
-# wait, inside votes), beside the single tip and the exact engine on the host's cores.
+# wait, inside votes), with one submission in flight and with two (batch_in_flight: the host's
+# work beside the device's), beside the single tip and the exact engine on the host's cores.
 set -u
 source Benchmark/Device/RecordMachine.sh
 v=portal_vein=.gpu/ircadb/portalvein.vtk,hepatic_artery=.gpu/ircadb/artery.vtk,hepatic_vein=.gpu/ircadb/venoussystem.vtk

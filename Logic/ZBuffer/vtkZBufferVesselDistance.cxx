@@ -230,19 +230,13 @@ std::size_t vtkZBufferVesselDistance::GetBatchCapacity() const
 vtkZBufferVesselDistance::CallTimes vtkZBufferVesselDistance::GetLastCallTimes() const
 {
   std::lock_guard<std::mutex> lock(this->Impl->Lock);
-  const Internals& s = *this->Impl;
-  CallTimes times = s.LastCall;
-  if (times.Submissions > 0)
-  {
-    Internals::AddDeviceMs(times, s.Context->DeviceMs(s.LastSlot)); // the last submission's
-  }
-  return times;
+  return this->Impl->LastCall;
 }
 
 double vtkZBufferVesselDistance::GetLastQueryDeviceMs() const
 {
   std::lock_guard<std::mutex> lock(this->Impl->Lock);
-  return this->Impl->Context && this->Impl->Capacity > 0 ? this->Impl->Context->DeviceMs(this->Impl->LastSlot) : -1.0;
+  return this->Impl->Context && this->Impl->Capacity > 0 ? this->Impl->DeviceMsOf(this->Impl->LastSlot) : -1.0;
 }
 
 std::size_t vtkZBufferVesselDistance::GetLastQueryTiles() const
@@ -449,8 +443,7 @@ void vtkZBufferVesselDistance::AnswerAll(
         s.Grid = vp::DepthLayerGrid::Centred(tip, this->MovingBoxSizeMm, s.Grid.PixelMm, s.Grid.SliceMm, s.AnchorMm);
         s.Render();
       }
-      this->FinishBatch(
-        this->StartBatch(&tips[i], 1, axis ? axis + i : nullptr, searchMm, binWidth, &results[i], 0), i + 1 == count);
+      this->FinishBatch(this->StartBatch(&tips[i], 1, axis ? axis + i : nullptr, searchMm, binWidth, &results[i], 0));
     }
     return;
   }
@@ -468,18 +461,18 @@ void vtkZBufferVesselDistance::AnswerAll(
       &tips[first], n, axis ? axis + first : nullptr, searchMm, binWidth, &results[first], started++ % inFlight);
     if (running)
     {
-      this->FinishBatch(*running, false);
+      this->FinishBatch(*running);
     }
     running = next;
     if (inFlight == 1)
     {
-      this->FinishBatch(next, first + n == count);
+      this->FinishBatch(next);
       running.reset();
     }
   }
   if (running)
   {
-    this->FinishBatch(*running, true);
+    this->FinishBatch(*running);
   }
 }
 
@@ -634,19 +627,14 @@ vtkZBufferVesselDistance::Submission vtkZBufferVesselDistance::StartBatch(const 
   return Submission{ tips, count, axes != nullptr, searchMm, q.Bins, binWidth, results, slot };
 }
 
-void vtkZBufferVesselDistance::FinishBatch(const Submission& batch, bool lastOfCall) const
+void vtkZBufferVesselDistance::FinishBatch(const Submission& batch) const
 {
   Internals& s = *this->Impl;
   const double waitMs = vp::NowMs();
   s.Context->WaitRecorded(batch.Slot);
   s.LastCall.SubmitWaitMs += vp::NowMs() - waitMs;
   s.LastSlot = batch.Slot;
-  if (!lastOfCall)
-  {
-    // Read now, before the slot's next submission replaces its stamps; the call's last one is
-    // read only when asked (reading the stamps costs a single query microseconds).
-    Internals::AddDeviceMs(s.LastCall, s.Context->DeviceMs(batch.Slot));
-  }
+  Internals::AddDeviceMs(s.LastCall, s.DeviceMsOf(batch.Slot)); // the stamps it copied
   const auto* answers = static_cast<const std::uint32_t*>(s.HostState->Mapped());
   s.LastTilesListed = answers[s.FirstPointOf(batch.Slot) * s.Classes() * StateStride + 7];
   const double readMs = vp::NowMs(), votesBeforeMs = s.LastCall.VotesMs;

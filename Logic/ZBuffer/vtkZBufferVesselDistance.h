@@ -152,7 +152,7 @@ public:
   /// while the device works on the current one: a batch then takes about the longer of the
   /// device's and the host's work, not their sum. A submission's ceilings then start from the
   /// answers two submissions back, not one; the answers are the same, bit for bit, either way.
-  /// On lavapipe, whose work runs on the host's cores, two were no slower (bench's
+  /// On lavapipe, whose work runs on the host's cores, two are faster too (bench's
   /// batch_in_flight); one is for benchmarks and tests.
   void SetSubmissionsInFlight(int submissions);
   int GetSubmissionsInFlight() const { return this->SubmissionsInFlight; }
@@ -284,9 +284,8 @@ private:
   Submission StartBatch(const std::array<double, 3>* tips, std::size_t count, const std::array<double, 3>* axes,
     double searchMm, double binWidthMm, vp::ProximityResult* results, std::uint32_t slot) const;
   /// Waits for a submission and reads its answers from host-visible memory into its results,
-  /// with the exact engine's inside vote on the surfaces that are not closed (lock held). The
-  /// device time of a call's last submission is read only when asked (GetLastCallTimes).
-  void FinishBatch(const Submission& batch, bool lastOfCall) const;
+  /// with the exact engine's inside vote on the surfaces that are not closed (lock held).
+  void FinishBatch(const Submission& batch) const;
   /// A finished submission's answers into its results (lock held).
   void ReadAnswers(const Submission& batch) const;
 

@@ -148,8 +148,19 @@ struct vtkZBufferVesselDistance::Internals
   };
   std::vector<LastAnswer> Last;
   int LastRender = -1;
-  // The slot of the latest submission (its device time is read when asked).
+  // The slot of the latest submission (its device time is read when asked), and each slot's
+  // timestamps as its submission copies them (two 64-bit ticks a slot).
   std::uint32_t LastSlot = 0;
+  std::unique_ptr<vp::GpuBuffer> StampCopies;
+  // The device's time for slot `slot`'s latest submission (negative without timestamps).
+  double DeviceMsOf(std::uint32_t slot) const
+  {
+    if (!this->StampCopies)
+    {
+      return -1.0;
+    }
+    return this->Context->StampsMs(static_cast<const std::uint64_t*>(this->StampCopies->Mapped()) + 2 * slot);
+  }
   // The first point of a slot in the points, ceilings and answers.
   std::size_t FirstPointOf(std::uint32_t slot) const { return static_cast<std::size_t>(slot) * this->Capacity; }
   int SubmissionsOnRender = 0;

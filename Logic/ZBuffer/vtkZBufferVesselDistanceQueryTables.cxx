@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstring>
 
 using namespace vp::zbuffer;
 using vp::CoarseAcross;
@@ -61,6 +62,11 @@ void vtkZBufferVesselDistance::Internals::PrepareOrder(double rangeMm)
     *this->Context, sizeof(AnswerCeiling) * classes * this->Capacity * slots, Placement::HostToDevice);
   this->DispatchSizes = std::make_unique<vp::GpuBuffer>(
     *this->Context, 2 * sizeof(VkDispatchIndirectCommand) * slots, Placement::HostToDevice);
+  if (!this->StampCopies)
+  {
+    this->StampCopies = std::make_unique<vp::GpuBuffer>(*this->Context, 2 * sizeof(std::uint64_t) * slots, Placement::Host);
+    std::memset(this->StampCopies->Mapped(), 0, 2 * sizeof(std::uint64_t) * slots);
+  }
   // At most one listed tile per answer and entry: half the records' bytes.
   this->TileList = std::make_unique<vp::GpuBuffer>(*this->Context, recordBytesPerTip * this->Capacity / 2, Placement::Device);
   this->TileListSize = std::make_unique<vp::GpuBuffer>(*this->Context, 16, Placement::Device);

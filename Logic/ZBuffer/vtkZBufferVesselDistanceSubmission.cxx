@@ -53,6 +53,7 @@ void vtkZBufferVesselDistance::Internals::Release()
   this->Records.reset();
   this->HostState.reset();
   this->Ceilings.reset();
+  this->StampCopies.reset();
   this->DispatchSizes.reset();
   this->TileList.reset();
   this->TileListSize.reset();
@@ -165,8 +166,11 @@ vp::PreparedCommands& vtkZBufferVesselDistance::Internals::PreparedQueryFor(cons
         visit(VisitListedTiles, listing == 2, 0, 0, 0, *this->TileListSize, 4);
       }
       this->Reduce->Record(cmd, &copy, (answers + 63) / 64); // into the host-visible answers, and resets
-      vp::ComputeKernel::Barrier(cmd);
+      // The stamp waits for the answers (bottom of the pipe); one barrier then makes the answers
+      // and the stamps' copy visible to the host, and orders the next submission after this one.
       this->Context->Stamp(cmd, 1, slot);
+      this->Context->CopyStamps(cmd, slot, this->StampCopies->Handle(), 2 * sizeof(std::uint64_t) * slot);
+      vp::ComputeKernel::Barrier(cmd);
     });
     this->Prepared.push_back(std::move(entry));
     prepared = this->Prepared.end() - 1;

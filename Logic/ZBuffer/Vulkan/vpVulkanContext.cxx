@@ -541,11 +541,18 @@ void VulkanContext::Stamp(VkCommandBuffer cmd, std::uint32_t which, std::uint32_
   }
 }
 
-double VulkanContext::DeviceMs(std::uint32_t slot) const
+void VulkanContext::CopyStamps(VkCommandBuffer cmd, std::uint32_t slot, VkBuffer buffer, VkDeviceSize offset) const
 {
-  std::uint64_t ticks[2] = { 0, 0 };
-  if (!this->Stamps || vkGetQueryPoolResults(this->LogicalDevice, this->Stamps, 2 * slot, 2, sizeof ticks, ticks,
-                         sizeof ticks[0], VK_QUERY_RESULT_64_BIT) != VK_SUCCESS)
+  if (this->Stamps)
+  {
+    vkCmdCopyQueryPoolResults(cmd, this->Stamps, 2 * slot, 2, buffer, offset, sizeof(std::uint64_t),
+      VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT);
+  }
+}
+
+double VulkanContext::StampsMs(const std::uint64_t ticks[2]) const
+{
+  if (!this->Stamps)
   {
     return -1.0;
   }

@@ -88,14 +88,18 @@ public:
   bool IsCpuDevice() const { return this->Info.Type == "cpu"; }
 
   /// Timestamps on the device, per slot: Stamp(cmd, 0, slot) and Stamp(cmd, 1, slot) recorded
-  /// around the work of a submission (after ResetStamps(cmd, slot), outside any render pass), and
-  /// DeviceMs(slot) after the submission is the device's time between them, in ms; a negative
-  /// value when the device has no compute timestamps. Both stamps wait for the commands before
+  /// around the work of a submission (after ResetStamps(cmd, slot), outside any render pass), then
+  /// CopyStamps(cmd, slot, buffer, offset) writes both (two 64-bit ticks) where the host reads
+  /// them once the submission is done, and StampsMs(ticks) is the device's time between them, in
+  /// ms; a negative value when the device has no compute timestamps. The copy, not
+  /// vkGetQueryPoolResults: lavapipe's waits for the queue to empty, so reading one submission's
+  /// stamps waited for the next one in flight as well. Both stamps wait for the commands before
   /// them, the previous submission's included: a submission queued behind another is timed from
   /// the other's end, not from its own arrival.
   void ResetStamps(VkCommandBuffer cmd, std::uint32_t slot = 0) const;
   void Stamp(VkCommandBuffer cmd, std::uint32_t which, std::uint32_t slot = 0) const;
-  double DeviceMs(std::uint32_t slot = 0) const;
+  void CopyStamps(VkCommandBuffer cmd, std::uint32_t slot, VkBuffer buffer, VkDeviceSize offset) const;
+  double StampsMs(const std::uint64_t ticks[2]) const;
   /// The pool prepared command buffers come from.
   VkCommandPool Pool() const { return this->CommandPool; }
 

@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 
 namespace vp
 {
@@ -160,6 +161,36 @@ Json Ceilings(vtkZBufferVesselDistance* zbuffer, const BenchPoints& tips, const 
   return out;
 }
 
+/// One side of a batch measured in turns: its times, where they went, and its answers.
+struct BatchSide
+{
+  std::vector<double> Ms;
+  CallTimeSeries Parts;
+  std::vector<ProximityResult> Answers;
+};
+
+/// The batch of all tips under each of `sides` settings (setSide(k) sets side k), five rounds,
+/// the sides taking turns within each round so that all see the device alike (a GPU's clock
+/// follows its load).
+std::vector<BatchSide> BatchesInTurn(
+  vtkZBufferVesselDistance* zbuffer, const BenchPoints& tips, int sides, const std::function<void(int)>& setSide)
+{
+  std::vector<BatchSide> out(static_cast<std::size_t>(sides));
+  for (int run = 0; run < 5; ++run)
+  {
+    for (int k = 0; k < sides; ++k)
+    {
+      BatchSide& side = out[static_cast<std::size_t>(k)];
+      setSide(k);
+      const double start = NowMs();
+      zbuffer->ComputeProximityBatch(tips, nullptr, side.Answers);
+      side.Ms.push_back(NowMs() - start);
+      side.Parts.Add(zbuffer->GetLastCallTimes());
+    }
+  }
+  return out;
+}
+
 /// The batch's tiles listed before they are visited, or visited straight from the order table
 /// (SetTileListing), taking turns on the same engine: the batch of all tips five times each way,
 /// single tips in turns of 20, the tiles one submission lists and dispatches per tip, and the
@@ -168,18 +199,10 @@ Json TileListing(vtkZBufferVesselDistance* zbuffer, const BenchPoints& tips)
 {
   constexpr std::size_t Turn = 20;
   constexpr int Listings[2] = { vtkZBufferVesselDistance::TileListingOff, vtkZBufferVesselDistance::TileListingOn };
-  std::vector<double> batchMs[2], ms[2], deviceMs[2];
-  std::vector<ProximityResult> batch[2], single[2];
-  for (int run = 0; run < 5; ++run)
-  {
-    for (int on = 0; on < 2; ++on)
-    {
-      zbuffer->SetTileListing(Listings[on]);
-      const double start = NowMs();
-      zbuffer->ComputeProximityBatch(tips, nullptr, batch[on]);
-      batchMs[on].push_back(NowMs() - start);
-    }
-  }
+  std::vector<double> ms[2], deviceMs[2];
+  std::vector<ProximityResult> single[2];
+  const std::vector<BatchSide> batch =
+    BatchesInTurn(zbuffer, tips, 2, [&](int on) { zbuffer->SetTileListing(Listings[on]); });
   for (std::size_t first = 0; first < tips.size(); first += Turn)
   {
     for (int on = 0; on < 2; ++on)
@@ -202,17 +225,17 @@ Json TileListing(vtkZBufferVesselDistance* zbuffer, const BenchPoints& tips)
   for (int on = 0; on < 2; ++on)
   {
     Json side;
-    side["batched"] = Timing(batchMs[on]);
+    side["batched"] = Timing(batch[on].Ms);
     side["batched_tips_per_second"] =
-      1000.0 * static_cast<double>(tips.size()) / std::max(1e-9, Quantile(batchMs[on], 0.5));
+      1000.0 * static_cast<double>(tips.size()) / std::max(1e-9, Quantile(batch[on].Ms, 0.5));
     side["single"] = Timing(ms[on]);
     side["single_device"] = Timing(deviceMs[on]);
     out[on == 1 ? "on" : "off"] = side;
   }
   out["tiles_dispatched_per_tip"] = zbuffer->GetLastQueryTiles();
   out["tiles_listed_per_tip"] = static_cast<double>(zbuffer->GetLastQueryTilesListed()) / static_cast<double>(std::max<std::size_t>(1, n));
-  out["answers_differing"] = CountDifferingAnswers(batch[0], batch[1]) + CountDifferingAnswers(single[0], single[1]) +
-    CountDifferingAnswers(batch[1], single[1]);
+  out["answers_differing"] = CountDifferingAnswers(batch[0].Answers, batch[1].Answers) +
+    CountDifferingAnswers(single[0], single[1]) + CountDifferingAnswers(batch[1].Answers, single[1]);
   zbuffer->SetTileListing(vtkZBufferVesselDistance::TileListingByDevice);
   return out;
 }
@@ -246,32 +269,21 @@ Json BatchPasses(vtkZBufferVesselDistance* zbuffer, const BenchPoints& tips)
   constexpr Pass Passes[] = { { "per_tile_listed", vtkZBufferVesselDistance::QueryPassPerTile },
     { "per_pixel_listed", vtkZBufferVesselDistance::QueryPassPerPixel } };
   constexpr int Count = static_cast<int>(sizeof Passes / sizeof Passes[0]);
-  std::vector<double> ms[Count], deviceMs[Count];
-  std::vector<ProximityResult> answers[Count];
   zbuffer->SetTileListing(vtkZBufferVesselDistance::TileListingOn);
-  for (int run = 0; run < 5; ++run)
-  {
-    for (int p = 0; p < Count; ++p)
-    {
-      zbuffer->SetQueryPass(Passes[p].QueryPass);
-      const double start = NowMs();
-      zbuffer->ComputeProximityBatch(tips, nullptr, answers[p]);
-      ms[p].push_back(NowMs() - start);
-      deviceMs[p].push_back(zbuffer->GetLastCallTimes().DeviceMs);
-    }
-  }
+  const std::vector<BatchSide> sides =
+    BatchesInTurn(zbuffer, tips, Count, [&](int p) { zbuffer->SetQueryPass(Passes[p].QueryPass); });
   zbuffer->SetTileListing(vtkZBufferVesselDistance::TileListingByDevice);
   zbuffer->SetQueryPass(vtkZBufferVesselDistance::QueryPassByDevice);
   Json out;
   for (int p = 0; p < Count; ++p)
   {
+    const BatchSide& b = sides[static_cast<std::size_t>(p)];
     Json side;
-    side["batched"] = Timing(ms[p]);
-    side["device"] = Timing(deviceMs[p]);
-    side["tips_per_second"] = 1000.0 * static_cast<double>(tips.size()) / std::max(1e-9, Quantile(ms[p], 0.5));
-    side["device_tips_per_second"] =
-      1000.0 * static_cast<double>(tips.size()) / std::max(1e-9, Quantile(deviceMs[p], 0.5));
-    side["answers_differing_from_per_tile"] = CountDifferingAnswers(answers[p], answers[0]);
+    side["batched"] = Timing(b.Ms);
+    side["device"] = b.Parts.Json()["device"];
+    side["tips_per_second"] = 1000.0 * static_cast<double>(tips.size()) / std::max(1e-9, Quantile(b.Ms, 0.5));
+    side["device_tips_per_second"] = 1000.0 * static_cast<double>(tips.size()) / std::max(1e-9, b.Parts.DeviceMedianMs());
+    side["answers_differing_from_per_tile"] = CountDifferingAnswers(b.Answers, sides[0].Answers);
     out[Passes[p].Name] = side;
   }
   out["tips"] = tips.size();
@@ -284,32 +296,20 @@ Json BatchPasses(vtkZBufferVesselDistance* zbuffer, const BenchPoints& tips)
 /// The engine is left at its default (two).
 Json SubmissionsInFlight(vtkZBufferVesselDistance* zbuffer, const BenchPoints& tips)
 {
-  constexpr int Counts[] = { 1, 2 };
-  std::vector<double> ms[2];
-  CallTimeSeries parts[2];
-  std::vector<ProximityResult> answers[2];
-  for (int run = 0; run < 5; ++run)
-  {
-    for (int k = 0; k < 2; ++k)
-    {
-      zbuffer->SetSubmissionsInFlight(Counts[k]);
-      const double start = NowMs();
-      zbuffer->ComputeProximityBatch(tips, nullptr, answers[k]);
-      ms[k].push_back(NowMs() - start);
-      parts[k].Add(zbuffer->GetLastCallTimes());
-    }
-  }
+  const std::vector<BatchSide> sides =
+    BatchesInTurn(zbuffer, tips, 2, [&](int k) { zbuffer->SetSubmissionsInFlight(k + 1); });
   zbuffer->SetSubmissionsInFlight(2);
   Json out;
   for (int k = 0; k < 2; ++k)
   {
-    Json side = Timing(ms[k]);
-    side["tips_per_second"] = 1000.0 * static_cast<double>(tips.size()) / std::max(1e-9, Quantile(ms[k], 0.5));
-    side["parts"] = parts[k].Json();
+    const BatchSide& b = sides[static_cast<std::size_t>(k)];
+    Json side = Timing(b.Ms);
+    side["tips_per_second"] = 1000.0 * static_cast<double>(tips.size()) / std::max(1e-9, Quantile(b.Ms, 0.5));
+    side["parts"] = b.Parts.Json();
     out[k == 0 ? "one" : "two"] = side;
   }
   out["tips"] = tips.size();
-  out["answers_differing"] = CountDifferingAnswers(answers[1], answers[0]);
+  out["answers_differing"] = CountDifferingAnswers(sides[1].Answers, sides[0].Answers);
   return out;
 }
 

@@ -27,7 +27,7 @@ void vtkZBufferVesselDistance::Internals::Release()
 {
   if (this->Context)
   {
-    this->Context->WaitAll(); // nothing in flight uses what is freed here
+    this->Context->Drain(); // nothing in flight uses what is freed here (and, from the destructor, no throw)
   }
   this->Prepared.clear(); // before the buffers and kernels it names
   this->Raster.reset();

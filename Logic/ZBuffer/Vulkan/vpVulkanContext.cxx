@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
+#include <exception>
 #include <mutex>
 #include <sstream>
 
@@ -479,6 +480,7 @@ void VulkanContext::SubmitRecorded(VkCommandBuffer commands)
 
 void VulkanContext::StartRecorded(VkCommandBuffer commands, std::uint32_t slot)
 {
+  this->WaitRecorded(slot); // its fence may not be reset while in use
   VkSubmitInfo submit{};
   submit.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO;
   submit.commandBufferCount = 1;
@@ -518,9 +520,32 @@ void VulkanContext::WaitRecorded(std::uint32_t slot)
 
 void VulkanContext::WaitAll()
 {
+  // Every slot is waited for, even when one's wait throws: the caller frees what they use.
+  std::exception_ptr first;
   for (std::uint32_t slot = 0; slot < Slots; ++slot)
   {
-    this->WaitRecorded(slot);
+    try
+    {
+      this->WaitRecorded(slot);
+    }
+    catch (...)
+    {
+      this->Pending[slot] = false;
+      first = first ? first : std::current_exception();
+    }
+  }
+  if (first)
+  {
+    std::rethrow_exception(first);
+  }
+}
+
+void VulkanContext::Drain() noexcept
+{
+  vkDeviceWaitIdle(this->LogicalDevice); // a lost device returns at once: nothing runs any more
+  for (bool& pending : this->Pending)
+  {
+    pending = false;
   }
 }
 

@@ -71,14 +71,18 @@ public:
   /// with two, the device runs one while the host reads the one before and writes the next.
   static constexpr std::uint32_t Slots = 2;
   /// Submits a recorded command buffer in slot `slot` (< Slots) without waiting: the host goes on
-  /// while the device works. The slot's previous submission must have been waited for. The
+  /// while the device works. The slot's previous submission is waited for first. The
   /// queue runs submissions in order; the commands themselves must order their work after the
   /// previous submission's where they share buffers (a barrier at the end of each does).
   void StartRecorded(VkCommandBuffer commands, std::uint32_t slot);
   /// Waits for slot `slot`'s submission (as SubmitRecorded); at once when none is in flight.
   void WaitRecorded(std::uint32_t slot);
-  /// Waits for every slot's submission: before what they use is freed or rewritten.
+  /// Waits for every slot's submission: before what they use is freed or rewritten. Throws as
+  /// WaitRecorded, once every slot has been waited for.
   void WaitAll();
+  /// Waits for the device to be idle and forgets every submission in flight, throwing nothing:
+  /// for releasing resources from a destructor.
+  void Drain() noexcept;
   /// How long the host polls a GPU's fence before it sleeps, in ms.
   static constexpr double SpinWaitMs = 2.0;
   /// Whether 64-bit atomics on storage buffers are enabled (VK_KHR_shader_atomic_int64 with

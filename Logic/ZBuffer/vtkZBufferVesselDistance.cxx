@@ -635,8 +635,7 @@ void vtkZBufferVesselDistance::FinishBatch(const Submission& batch) const
   s.LastCall.SubmitWaitMs += vp::NowMs() - waitMs;
   s.LastSlot = batch.Slot;
   Internals::AddDeviceMs(s.LastCall, s.DeviceMsOf(batch.Slot)); // the stamps it copied
-  const auto* answers = static_cast<const std::uint32_t*>(s.HostState->Mapped());
-  s.LastTilesListed = answers[s.FirstPointOf(batch.Slot) * s.Classes() * StateStride + 7];
+  s.LastTilesListed = s.AnswersOf(batch.Slot)[7]; // the first answer's word 7 (ReduceProximity.comp)
   const double readMs = vp::NowMs(), votesBeforeMs = s.LastCall.VotesMs;
   this->ReadAnswers(batch);
   s.LastCall.ReadMs += vp::NowMs() - readMs - (s.LastCall.VotesMs - votesBeforeMs);
@@ -654,8 +653,7 @@ void vtkZBufferVesselDistance::ReadAnswers(const Submission& batch) const
   const int bins = batch.Bins;
   const double binWidth = batch.BinWidthMm;
   vp::ProximityResult* results = batch.Results;
-  const auto* hostState =
-    static_cast<const std::uint32_t*>(s.HostState->Mapped()) + s.FirstPointOf(batch.Slot) * classes * StateStride;
+  const std::uint32_t* hostState = s.AnswersOf(batch.Slot);
   // What each answer still needs once read (on every core): nothing, its answer beyond the
   // range, or a vote on a surface that is not closed. Those follow in order, on this thread.
   enum Next : std::uint8_t

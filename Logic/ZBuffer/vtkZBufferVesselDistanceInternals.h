@@ -148,8 +148,8 @@ struct vtkZBufferVesselDistance::Internals
   };
   std::vector<LastAnswer> Last;
   int LastRender = -1;
-  // The slot of the latest submission (its device time is read when asked), and each slot's
-  // timestamps as its submission copies them (two 64-bit ticks a slot).
+  // The slot of the latest submission read (GetLastQueryDeviceMs), and each slot's timestamps as
+  // its submission copies them (two 64-bit ticks a slot).
   std::uint32_t LastSlot = 0;
   std::unique_ptr<vp::GpuBuffer> StampCopies;
   // The device's time for slot `slot`'s latest submission (negative without timestamps).
@@ -163,6 +163,12 @@ struct vtkZBufferVesselDistance::Internals
   }
   // The first point of a slot in the points, ceilings and answers.
   std::size_t FirstPointOf(std::uint32_t slot) const { return static_cast<std::size_t>(slot) * this->Capacity; }
+  // A slot's answers as the device left them: StateStride words per point and class.
+  const std::uint32_t* AnswersOf(std::uint32_t slot) const
+  {
+    return static_cast<const std::uint32_t*>(this->HostState->Mapped()) +
+      this->FirstPointOf(slot) * this->Classes() * vp::zbuffer::StateStride;
+  }
   int SubmissionsOnRender = 0;
   std::uint32_t LastTiles = 0, LastTilesInRange = 0, LastTilesListed = 0;
   vtkZBufferVesselDistance::CallTimes LastCall;

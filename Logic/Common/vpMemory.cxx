@@ -4,6 +4,7 @@
 
 #include <fstream>
 #include <limits>
+#include <sys/mman.h>
 #include <sys/resource.h>
 #include <unistd.h>
 
@@ -44,5 +45,21 @@ void CheckMemoryFor(std::uint64_t bytes, const std::string& source, const std::s
     throw InputError(source, what + " needs about " + NumberText(static_cast<double>(bytes) / 1e9, 3) + " GB, more than the " +
         NumberText(static_cast<double>(available) / 1e9, 3) + " GB this process has left");
   }
+}
+
+void AdviseHugePages(const void* data, std::size_t bytes)
+{
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+  constexpr std::uintptr_t Huge = std::uintptr_t(2) << 20;
+  const std::uintptr_t begin = (reinterpret_cast<std::uintptr_t>(data) + Huge - 1) & ~(Huge - 1);
+  const std::uintptr_t end = (reinterpret_cast<std::uintptr_t>(data) + bytes) & ~(Huge - 1);
+  if (data && end > begin)
+  {
+    madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE); // advice only: a refusal changes nothing
+  }
+#else
+  (void)data;
+  (void)bytes;
+#endif
 }
 } // namespace vp

@@ -2,6 +2,7 @@
 
 #include "vpClock.h"
 #include "vpInsideVote.h"
+#include "vpMemory.h"
 #include "vpTriangleGeometry.h"
 #include "vpVesselSurface.h"
 
@@ -108,7 +109,7 @@ InsideVoteField::InsideVoteField(
     this->BuildTimeMs = NowMs() - startMs;
     return;
   }
-  this->State.assign(cells, Clear);
+  AssignOnHugePages(this->State, cells, static_cast<std::uint8_t>(Clear)); // looked up at random places by batches
   this->MarkTriangles(surface);
   this->MarkShadows(surface, edges);
   this->VoteRegions(vote);

@@ -1,5 +1,6 @@
 #include "vpBlockDistanceField.h"
 
+#include "vpMemory.h"
 #include "vpSquaredDistanceTransform.h"
 
 #include <algorithm>
@@ -79,6 +80,20 @@ void MinimumOverNeighbours(std::vector<double>& field, const int P[3], const std
     }
   }
 }
+
+/// A block's gap and the point's distance to the blocks' box: the lower bound.
+double Lower(double gap, double outside)
+{
+  return std::max(outside, gap - outside);
+}
+
+/// And the upper: the gap plus the diagonals of the two blocks.
+double Upper(double gap, double outside, double diagonal)
+{
+  // The float gap may lie a rounding below the true one; the cells' coverage tolerance (a
+  // thousandth of a cell each side) is well inside the 1e-3 diagonal added.
+  return outside + gap * (1.0 + 1e-6) + 2.0 * diagonal * 1.001 + 1e-4;
+}
 } // namespace
 
 namespace vp
@@ -105,7 +120,7 @@ BlockDistanceField::BlockDistanceField(
   const int P[3] = { this->Dims[0] + 2, this->Dims[1] + 2, this->Dims[2] + 2 };
   const std::size_t padded = static_cast<std::size_t>(P[0]) * P[1] * P[2];
   const std::size_t blocks = static_cast<std::size_t>(this->Dims[0]) * this->Dims[1] * this->Dims[2];
-  this->Gaps.assign(blocks * classes, std::numeric_limits<float>::infinity());
+  vp::AssignOnHugePages(this->Gaps, blocks * classes, std::numeric_limits<float>::infinity());
   this->Marked.assign(classes, 0);
   std::vector<double> field;
   auto at = [&](int x, int y, int zz) { return (static_cast<std::size_t>(zz) * P[1] + y) * P[0] + x; };
@@ -140,7 +155,6 @@ BlockDistanceField::BlockDistanceField(
     const std::size_t stride[3] = { 1, static_cast<std::size_t>(P[0]), static_cast<std::size_t>(P[0]) * P[1] };
     SquaredDistanceAlongAxes(field, P, stride, this->EdgeMm);
     MinimumOverNeighbours(field, P, stride);
-    float* gap = this->Gaps.data() + static_cast<std::size_t>(c) * blocks;
     for (int zz = 0; zz < this->Dims[2]; ++zz)
     {
       for (int y = 0; y < this->Dims[1]; ++y)
@@ -154,14 +168,14 @@ BlockDistanceField::BlockDistanceField(
           {
             f = std::nextafter(f, 0.0f);
           }
-          gap[(static_cast<std::size_t>(zz) * this->Dims[1] + y) * this->Dims[0] + x] = f;
+          this->Gaps[((static_cast<std::size_t>(zz) * this->Dims[1] + y) * this->Dims[0] + x) * classes + c] = f;
         }
       }
     }
   }
 }
 
-double BlockDistanceField::GapMm(int cls, const double p[3], double& outsideMm) const
+const float* BlockDistanceField::GapsAt(const double p[3], double& outsideMm) const
 {
   // Outside the blocks' box, the point is at least its distance to the box from every marked
   // cell, and at least the gap of the box point nearest it less that distance.
@@ -183,10 +197,33 @@ double BlockDistanceField::GapMm(int cls, const double p[3], double& outsideMm) 
     outside2 += gapMm * gapMm;
     index[k] = std::min(this->Dims[k] - 1, std::max(0, static_cast<int>(std::floor(clamped))));
   }
-  const std::size_t blocks = static_cast<std::size_t>(this->Dims[0]) * this->Dims[1] * this->Dims[2];
   outsideMm = std::sqrt(outside2);
-  return this->Gaps[static_cast<std::size_t>(cls) * blocks +
-    (static_cast<std::size_t>(index[2]) * this->Dims[1] + index[1]) * this->Dims[0] + index[0]];
+  return this->Gaps.data() +
+    ((static_cast<std::size_t>(index[2]) * this->Dims[1] + index[1]) * this->Dims[0] + index[0]) * this->Classes;
+}
+
+void BlockDistanceField::Prefetch(const double p[3]) const
+{
+  double outside = 0.0;
+  __builtin_prefetch(this->GapsAt(p, outside));
+}
+
+double BlockDistanceField::DiagonalMm() const
+{
+  return std::sqrt(this->EdgeMm[0] * this->EdgeMm[0] + this->EdgeMm[1] * this->EdgeMm[1] + this->EdgeMm[2] * this->EdgeMm[2]);
+}
+
+void BlockDistanceField::BoundsMm(const double p[3], double* lowerMm, double* upperMm) const
+{
+  double outside = 0.0;
+  const float* gaps = this->Classes > 0 ? this->GapsAt(p, outside) : nullptr;
+  const double diagonal = this->DiagonalMm();
+  for (int c = 0; c < this->Classes; ++c)
+  {
+    const bool none = this->Marked[c] == 0;
+    lowerMm[c] = none ? Inf : Lower(gaps[c], outside);
+    upperMm[c] = none ? Inf : Upper(gaps[c], outside, diagonal);
+  }
 }
 
 double BlockDistanceField::LowerBoundMm(int cls, const double p[3]) const
@@ -196,8 +233,8 @@ double BlockDistanceField::LowerBoundMm(int cls, const double p[3]) const
     return Inf;
   }
   double outside = 0.0;
-  const double gap = this->GapMm(cls, p, outside);
-  return std::max(outside, gap - outside);
+  const double gap = this->GapsAt(p, outside)[cls];
+  return Lower(gap, outside);
 }
 
 double BlockDistanceField::UpperBoundMm(int cls, const double p[3]) const
@@ -207,13 +244,10 @@ double BlockDistanceField::UpperBoundMm(int cls, const double p[3]) const
     return Inf;
   }
   double outside = 0.0;
-  const double gap = this->GapMm(cls, p, outside);
-  const double diagonal =
-    std::sqrt(this->EdgeMm[0] * this->EdgeMm[0] + this->EdgeMm[1] * this->EdgeMm[1] + this->EdgeMm[2] * this->EdgeMm[2]);
-  // The float gap may lie a rounding below the true one; the cells' coverage tolerance (a
-  // thousandth of a cell each side) is well inside the 1e-3 diagonal added.
-  return outside + gap * (1.0 + 1e-6) + 2.0 * diagonal * 1.001 + 1e-4;
+  const double gap = this->GapsAt(p, outside)[cls];
+  return Upper(gap, outside, this->DiagonalMm());
 }
+
 bool BlockDistanceField::StepTowardMarked(int cls, double p[3]) const
 {
   if (this->Marked.empty() || this->Marked[cls] == 0)
@@ -230,9 +264,9 @@ bool BlockDistanceField::StepTowardMarked(int cls, double p[3]) const
     }
     index[k] = static_cast<int>(u);
   }
-  const std::size_t blocks = static_cast<std::size_t>(this->Dims[0]) * this->Dims[1] * this->Dims[2];
-  const float* gaps = this->Gaps.data() + static_cast<std::size_t>(cls) * blocks;
-  auto gapAt = [&](int x, int y, int z) { return gaps[(static_cast<std::size_t>(z) * this->Dims[1] + y) * this->Dims[0] + x]; };
+  auto gapAt = [&](int x, int y, int z) {
+    return this->Gaps[((static_cast<std::size_t>(z) * this->Dims[1] + y) * this->Dims[0] + x) * this->Classes + cls];
+  };
   float lowest = gapAt(index[0], index[1], index[2]);
   if (lowest == 0.0f)
   {

@@ -35,6 +35,12 @@ public:
   /// At least the distance from p (mm) to class cls's surface: the gap plus the diagonals of the
   /// two blocks (a marked block holds surface); +infinity when the class has none.
   double UpperBoundMm(int cls, const double p[3]) const;
+  /// Both bounds for every class at once (NumberOfClasses() values each): the classes' gaps of a
+  /// block lie side by side, so a batch's random tips cost one cache miss each, not one a class.
+  void BoundsMm(const double p[3], double* lowerMm, double* upperMm) const;
+  /// Asks the memory for p's block ahead of BoundsMm(p): a batch prefetches a few tips ahead, so
+  /// that their cache misses overlap instead of following one another.
+  void Prefetch(const double p[3]) const;
   /// Moves p to the centre of the neighbouring block with the least gap when that is less than
   /// p's block's: a step toward the marked cells (the gap falls with every step until it is 0).
   /// False when p is outside the blocks' box, its gap is 0, or no neighbour is nearer.
@@ -46,8 +52,9 @@ public:
   std::size_t MemoryBytes() const { return this->Gaps.size() * sizeof(float); }
 
 private:
-  /// The gap of the block nearest p (mm) and p's distance to the blocks' box.
-  double GapMm(int cls, const double p[3], double& outsideMm) const;
+  /// The classes' gaps of the block nearest p (mm), and p's distance to the blocks' box.
+  const float* GapsAt(const double p[3], double& outsideMm) const;
+  double DiagonalMm() const;
 
   DepthLayerGrid Grid;
   int Classes = 0;
@@ -55,7 +62,7 @@ private:
   int Dims[3] = { 0, 0, 0 };
   double EdgeMm[3] = { 0, 0, 0 };
   std::vector<std::size_t> Marked;
-  std::vector<float> Gaps; // [class][z][y][x], mm
+  std::vector<float> Gaps; // [z][y][x][class], mm
 };
 } // namespace vp
 

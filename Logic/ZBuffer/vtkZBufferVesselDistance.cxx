@@ -527,12 +527,22 @@ double vtkZBufferVesselDistance::WriteCeilings(
   // The farthest any answer needs to look (none: below 0).
   return MaxOverAnswers(count, [&](std::size_t begin, std::size_t end) {
     double highest = -1.0;
+    std::vector<double> lower(classes, -Unknown), upper(classes, Unknown);
     for (std::size_t i = begin; i < end; ++i)
     {
       const double* tip = tips[i].data();
+      if (blocks)
+      {
+        // Random tips each miss the cache: the one a few tips ahead is on its way meanwhile.
+        if (i + CeilingPrefetchTips < end)
+        {
+          blocks->Prefetch(tips[i + CeilingPrefetchTips].data());
+        }
+        blocks->BoundsMm(tip, lower.data(), upper.data());
+      }
       for (std::uint32_t c = 0; c < classes; ++c)
       {
-        double bound = blocks ? blocks->UpperBoundMm(static_cast<int>(c), tip) : Unknown;
+        double bound = upper[c];
         const Internals::LastAnswer& last = s.Last[c];
         if (last.Known)
         {
@@ -543,7 +553,7 @@ double vtkZBufferVesselDistance::WriteCeilings(
         ceiling[i * classes + c] = AnswerCeiling{ mm, std::min(orderCount, s.FineTable.Within(mm)) };
         // A class whose marked cells all lie beyond the search needs no tile (it is out of range,
         // as the tiles would have found): its ceiling does not size the dispatch.
-        if (!blocks || blocks->LowerBoundMm(static_cast<int>(c), tip) <= above(searchMm))
+        if (lower[c] <= above(searchMm))
         {
           highest = std::max(highest, std::min(bound, searchMm));
         }

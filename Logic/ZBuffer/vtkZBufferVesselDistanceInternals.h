@@ -54,6 +54,9 @@ constexpr double NearTiles = 2.0;
 constexpr std::uint32_t CpuBatchCapacity = 256;
 constexpr std::uint32_t GpuBatchCapacity = 4096;
 constexpr VkDeviceSize RecordBudgetBytes = 256ull << 20;
+// How far ahead of the tip whose ceilings it writes a batch asks for a later tip's blocks (their
+// random places in some 10 MB of blocks each miss the cache).
+constexpr std::size_t CeilingPrefetchTips = 8;
 
 /// fn(begin, end) over [0, count): on every core for a batch (from 64 answers), on this thread
 /// for a few (a task costs more than a few answers). A batch's host work per tip (its results,

@@ -255,7 +255,8 @@ bool InGrid(const vp::DepthLayerGrid& grid, const double p[3])
 // The block field's bounds, against the distance to every marked cell's box: the lower never
 // above it (or the search would skip a nearer sample) and, for blocks of two cells, never more
 // than two block diagonals below it within the grid (or it would prune nothing); the upper never
-// below the farthest a surface through the marked cells can be. Points inside and outside.
+// below the farthest a surface through the marked cells can be. Points inside and outside; the
+// bounds of every class at once (BoundsMm) equal each class's.
 TEST(BlockDistanceField, BoundsTheDistanceToTheMarkedCells)
 {
   vp::DepthLayerGrid grid;
@@ -277,8 +278,12 @@ TEST(BlockDistanceField, BoundsTheDistanceToTheMarkedCells)
   for (int i = 0; i < 3000; ++i)
   {
     const double p[3] = { x(random), y(random), z(random) };
+    double lower[2], upper[2];
+    field.BoundsMm(p, lower, upper); // every class at once: the same bounds
     for (int c = 0; c < 2; ++c)
     {
+      ASSERT_EQ(lower[c], field.LowerBoundMm(c, p));
+      ASSERT_EQ(upper[c], field.UpperBoundMm(c, p));
       double nearest, farthest;
       SurfaceDistanceLimits(grid, marked, c, p, nearest, farthest);
       const double bound = field.LowerBoundMm(c, p);

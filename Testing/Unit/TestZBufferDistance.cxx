@@ -4,6 +4,7 @@
 #include "vpAnalyticShapes.h"
 #include "vpBuiltInPhantom.h"
 #include "vpDefectiveMeshes.h"
+#include "vpTileOrder.h"
 #include "vpVesselSurface.h"
 #include "vpTestSupport.h"
 #include "vpVulkanContext.h"
@@ -21,6 +22,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <random>
 
@@ -192,6 +194,44 @@ Vessels StackedTubes()
   return { { "portal_vein", vtkSmartPointer<vtkPolyData>(append->GetOutput()) } };
 }
 } // namespace
+
+// The order table's prefix within a search, found in constant time from the squared gap, is
+// std::upper_bound's over the gaps for every search: at each gap, a rounding either side of it,
+// between gaps, beyond the last, below zero, infinite and NaN; on a table longer than the grid
+// allows (reach clamped) and on tiles of a fractional edge.
+TEST(TileOrder, WithinIsTheBinarySearchsPrefix)
+{
+  const vp::TileOrder tables[] = { vp::NearestFirst(50.0, 8.0, 0.4, 1000), vp::NearestFirst(50.0, 32.0, 0.4, 9),
+    vp::NearestFirst(7.3, 8.0, 0.1337, 1000) };
+  for (const vp::TileOrder& order : tables)
+  {
+    ASSERT_FALSE(order.GapMm.empty());
+    auto expected = [&](double mm) {
+      return static_cast<std::uint32_t>(std::upper_bound(order.GapMm.begin(), order.GapMm.end(), mm) - order.GapMm.begin());
+    };
+    std::vector<double> searches = { -1.0, -0.0, 0.0, 1e-300, std::numeric_limits<double>::infinity(),
+      std::numeric_limits<double>::quiet_NaN(), 1e9, order.GapMm.back() * 2.0 };
+    for (double gap : order.GapMm)
+    {
+      for (double mm : { gap, std::nextafter(gap, -1.0), std::nextafter(gap, 1e300), gap * 1.5 + 0.01 })
+      {
+        searches.push_back(mm);
+      }
+    }
+    std::mt19937 random(3);
+    std::uniform_real_distribution<double> anywhere(0.0, order.GapMm.back() * 1.1);
+    for (int i = 0; i < 2000; ++i)
+    {
+      searches.push_back(anywhere(random));
+    }
+    for (double mm : searches)
+    {
+      ASSERT_EQ(order.Within(mm), expected(mm)) << "search " << mm << " mm";
+    }
+    EXPECT_EQ(order.Within(order.GapMm.back()), order.GapMm.size());
+    EXPECT_LT(order.Within(0.0), order.GapMm.size());
+  }
+}
 
 TEST(ZBufferDistance, ReportsItsDevice)
 {

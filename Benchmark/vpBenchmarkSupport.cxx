@@ -55,6 +55,9 @@ void CallTimeSeries::Add(const vtkZBufferVesselDistance::CallTimes& t)
 {
   this->Total.push_back(t.TotalMs);
   this->Device.push_back(t.DeviceMs);
+  this->Listing.push_back(t.DeviceListingMs);
+  this->Visiting.push_back(t.DeviceVisitingMs);
+  this->Reducing.push_back(t.DeviceReducingMs);
   this->Wait.push_back(t.SubmitWaitMs);
   this->Votes.push_back(t.VotesMs);
   this->Ceilings.push_back(t.CeilingsMs);
@@ -65,7 +68,9 @@ void CallTimeSeries::Add(const vtkZBufferVesselDistance::CallTimes& t)
 
 BenchJson CallTimeSeries::Json() const
 {
-  return { { "total", Timing(this->Total) }, { "device", Timing(this->Device) }, { "submit_wait", Timing(this->Wait) },
+  return { { "total", Timing(this->Total) }, { "device", Timing(this->Device) },
+    { "device_listing", Timing(this->Listing) }, { "device_visiting", Timing(this->Visiting) },
+    { "device_reducing", Timing(this->Reducing) }, { "submit_wait", Timing(this->Wait) },
     { "votes", Timing(this->Votes) }, { "ceilings", Timing(this->Ceilings) }, { "read", Timing(this->Read) },
     { "votes_in_last_call", this->LastVotes }, { "submissions_in_last_call", this->LastSubmissions } };
 }

@@ -38,7 +38,7 @@ public:
   double DeviceMedianMs() const;
 
 private:
-  std::vector<double> Total, Device, Wait, Votes, Ceilings, Read;
+  std::vector<double> Total, Device, Listing, Visiting, Reducing, Wait, Votes, Ceilings, Read;
   std::size_t LastVotes = 0, LastSubmissions = 0;
 };
 

@@ -644,7 +644,7 @@ void vtkZBufferVesselDistance::FinishBatch(const Submission& batch) const
   s.Context->WaitRecorded(batch.Slot);
   s.LastCall.SubmitWaitMs += vp::NowMs() - waitMs;
   s.LastSlot = batch.Slot;
-  Internals::AddDeviceMs(s.LastCall, s.DeviceMsOf(batch.Slot)); // the stamps it copied
+  s.AddDeviceMs(s.LastCall, batch.Slot); // the stamps it copied
   s.LastTilesListed = s.AnswersOf(batch.Slot)[7]; // the first answer's word 7 (ReduceProximity.comp)
   const double readMs = vp::NowMs(), votesBeforeMs = s.LastCall.VotesMs;
   this->ReadAnswers(batch);

@@ -218,9 +218,14 @@ public:
   /// surfaces that are not closed (five rays a tip and class in range; the answers beyond the
   /// range, votes and all, count as read), the ceilings, the answers read, and the whole call
   /// (from the engine's lock; the results' set-up before it is the caller's).
+  /// The device's time by stage, summed likewise: listing the tiles to visit (0 without a list),
+  /// visiting them (the pixels' distances), and handing the answers to the host (the reduction).
   struct CallTimes
   {
     double DeviceMs = 0.0;
+    double DeviceListingMs = 0.0;
+    double DeviceVisitingMs = 0.0;
+    double DeviceReducingMs = 0.0;
     double SubmitWaitMs = 0.0;
     double VotesMs = 0.0;
     double CeilingsMs = 0.0; // the host's bounds per tip and class (SetQueryCeilings)

@@ -152,17 +152,27 @@ struct vtkZBufferVesselDistance::Internals
   std::vector<LastAnswer> Last;
   int LastRender = -1;
   // The slot of the latest submission read (GetLastQueryDeviceMs), and each slot's timestamps as
-  // its submission copies them (two 64-bit ticks a slot).
+  // its submission copies them (StampsPerSlot 64-bit ticks a slot: its start, its tiles listed,
+  // visited, and its end).
   std::uint32_t LastSlot = 0;
   std::unique_ptr<vp::GpuBuffer> StampCopies;
-  // The device's time for slot `slot`'s latest submission (negative without timestamps).
-  double DeviceMsOf(std::uint32_t slot) const
+  enum StampOf : std::uint32_t
+  {
+    SubmissionStart,
+    TilesListed,
+    TilesVisited,
+    SubmissionEnd
+  };
+  // The device's time for slot `slot`'s latest submission between two of its stamps (negative
+  // without timestamps).
+  double DeviceMsOf(std::uint32_t slot, std::uint32_t from = SubmissionStart, std::uint32_t to = SubmissionEnd) const
   {
     if (!this->StampCopies)
     {
       return -1.0;
     }
-    return this->Context->StampsMs(static_cast<const std::uint64_t*>(this->StampCopies->Mapped()) + 2 * slot);
+    return this->Context->StampsMs(
+      static_cast<const std::uint64_t*>(this->StampCopies->Mapped()) + vp::VulkanContext::StampsPerSlot * slot, from, to);
   }
   // The first point of a slot in the points, ceilings and answers.
   std::size_t FirstPointOf(std::uint32_t slot) const { return static_cast<std::size_t>(slot) * this->Capacity; }
@@ -175,10 +185,15 @@ struct vtkZBufferVesselDistance::Internals
   int SubmissionsOnRender = 0;
   std::uint32_t LastTiles = 0, LastTilesInRange = 0, LastTilesListed = 0;
   vtkZBufferVesselDistance::CallTimes LastCall;
-  /// One submission's device time added to a call's (which stays negative once one is unknown).
-  static void AddDeviceMs(vtkZBufferVesselDistance::CallTimes& call, double ms)
+  /// One submission's device times (whole and by stage) added to a call's (which stay negative
+  /// once one is unknown).
+  void AddDeviceMs(vtkZBufferVesselDistance::CallTimes& call, std::uint32_t slot) const
   {
-    call.DeviceMs = call.DeviceMs < 0.0 || ms < 0.0 ? -1.0 : call.DeviceMs + ms;
+    auto add = [](double& sum, double ms) { sum = sum < 0.0 || ms < 0.0 ? -1.0 : sum + ms; };
+    add(call.DeviceMs, this->DeviceMsOf(slot));
+    add(call.DeviceListingMs, this->DeviceMsOf(slot, SubmissionStart, TilesListed));
+    add(call.DeviceVisitingMs, this->DeviceMsOf(slot, TilesListed, TilesVisited));
+    add(call.DeviceReducingMs, this->DeviceMsOf(slot, TilesVisited, SubmissionEnd));
   }
   // Tips per submission for the current order table (PrepareOrder).
   std::uint32_t Capacity = 0;

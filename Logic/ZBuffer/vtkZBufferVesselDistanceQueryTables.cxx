@@ -64,8 +64,9 @@ void vtkZBufferVesselDistance::Internals::PrepareOrder(double rangeMm)
     *this->Context, 2 * sizeof(VkDispatchIndirectCommand) * slots, Placement::HostToDevice);
   if (!this->StampCopies)
   {
-    this->StampCopies = std::make_unique<vp::GpuBuffer>(*this->Context, 2 * sizeof(std::uint64_t) * slots, Placement::Host);
-    std::memset(this->StampCopies->Mapped(), 0, 2 * sizeof(std::uint64_t) * slots);
+    const VkDeviceSize stampBytes = vp::VulkanContext::StampsPerSlot * sizeof(std::uint64_t) * slots;
+    this->StampCopies = std::make_unique<vp::GpuBuffer>(*this->Context, stampBytes, Placement::Host);
+    std::memset(this->StampCopies->Mapped(), 0, stampBytes);
   }
   // At most one listed tile per answer and entry: half the records' bytes.
   this->TileList = std::make_unique<vp::GpuBuffer>(*this->Context, recordBytesPerTip * this->Capacity / 2, Placement::Device);

@@ -135,7 +135,11 @@ vp::PreparedCommands& vtkZBufferVesselDistance::Internals::PreparedQueryFor(cons
     entry.Parameters = q;
     entry.Commands = std::make_unique<vp::PreparedCommands>(*this->Context, [&](VkCommandBuffer cmd) {
       this->Context->ResetStamps(cmd, slot);
-      this->Context->Stamp(cmd, 0, slot);
+      this->Context->Stamp(cmd, SubmissionStart, slot);
+      if (listing == 0)
+      {
+        this->Context->Stamp(cmd, TilesListed, slot); // none listed: every stamp is written, or its copy would wait
+      }
       // Entries: a workgroup per tile (per pixel) or an invocation per tile (per tile); the
       // lanes come first in the last dispatch, whose size after them follows the ceilings.
       auto visit = [&](std::int32_t stage, bool pixels, std::uint32_t first, std::uint32_t last, std::uint32_t slots,
@@ -163,13 +167,16 @@ vp::PreparedCommands& vtkZBufferVesselDistance::Internals::PreparedQueryFor(cons
         // The listing: workgroups per answer (DispatchSizes' second), each looping over its
         // share of the answer's lanes and entries.
         visit(SelectTiles, false, nearEntries, orderCount, 0, *this->DispatchSizes, sizesAt + second);
+        this->Context->Stamp(cmd, TilesListed, slot);
         visit(VisitListedTiles, listing == 2, 0, 0, 0, *this->TileListSize, 4);
       }
+      this->Context->Stamp(cmd, TilesVisited, slot);
       this->Reduce->Record(cmd, &copy, (answers + 63) / 64); // into the host-visible answers, and resets
       // The stamp waits for the answers (bottom of the pipe); one barrier then makes the answers
       // and the stamps' copy visible to the host, and orders the next submission after this one.
-      this->Context->Stamp(cmd, 1, slot);
-      this->Context->CopyStamps(cmd, slot, this->StampCopies->Handle(), 2 * sizeof(std::uint64_t) * slot);
+      this->Context->Stamp(cmd, SubmissionEnd, slot);
+      this->Context->CopyStamps(
+        cmd, slot, this->StampCopies->Handle(), vp::VulkanContext::StampsPerSlot * sizeof(std::uint64_t) * slot);
       vp::ComputeKernel::Barrier(cmd);
     });
     this->Prepared.push_back(std::move(entry));

@@ -246,9 +246,11 @@ void PrintZBufferQueries(const Json& z)
       s["batch_capacity"].get<std::size_t>(), s["batched"]["answers_differing_from_single_queries"].get<int>());
     const Json& b = s["batched"];
     const Json& p = b["parts"];
-    std::printf("%10s | of which: device %.2f ms (%.0f tips/s on the device), host wait %.2f ms, %zu inside votes %.2f ms, "
-                "ceilings %.2f ms, answers read %.2f ms, %zu submissions\n",
+    std::printf("%10s | of which: device %.2f ms (%.0f tips/s on the device; listing %.2f, visiting %.2f, reducing %.2f), "
+                "host wait %.2f ms, %zu inside votes %.2f ms, ceilings %.2f ms, answers read %.2f ms, %zu submissions\n",
       "", p["device"]["median_ms"].get<double>(), b["device_tips_per_second"].get<double>(),
+      p["device_listing"]["median_ms"].get<double>(), p["device_visiting"]["median_ms"].get<double>(),
+      p["device_reducing"]["median_ms"].get<double>(),
       p["submit_wait"]["median_ms"].get<double>(), p["votes_in_last_call"].get<std::size_t>(),
       p["votes"]["median_ms"].get<double>(), p["ceilings"]["median_ms"].get<double>(), p["read"]["median_ms"].get<double>(),
       p["submissions_in_last_call"].get<std::size_t>());

@@ -145,7 +145,8 @@ TEST_F(DistanceCommand, BenchRefusesABadFineCellInOneLine)
 }
 
 // bench says where a z-buffer batch's and a single tip's time go (issue 35: on a GPU the host's
-// part had been 100 of a batch's 103 ms), and a batch's answers are the same through either pass.
+// part had been 100 of a batch's 103 ms), the device's by stage, and a batch's answers are the
+// same through either pass.
 TEST_F(DistanceCommand, BenchSplitsAZBufferCallIntoItsParts)
 {
   VP_REQUIRE_VULKAN();
@@ -168,6 +169,12 @@ TEST_F(DistanceCommand, BenchSplitsAZBufferCallIntoItsParts)
     sum += parts[part]["median_ms"].get<double>();
   }
   EXPECT_LE(sum, total * 1.2 + 0.05) << "the parts lie within the call";
+  for (const char* stage : { "device_listing", "device_visiting", "device_reducing" })
+  {
+    EXPECT_GE(parts[stage]["median_ms"].get<double>(), 0.0) << stage;
+    EXPECT_LE(parts[stage]["median_ms"].get<double>(), parts["device"]["p95_ms"].get<double>() * 1.01 + 0.01) << stage;
+  }
+  EXPECT_GT(parts["device_visiting"]["median_ms"].get<double>(), 0.0);
   EXPECT_GT(batch["device_tips_per_second"].get<double>(), batch["tips_per_second"].get<double>() * 0.99);
   for (const char* pass : { "per_tile_listed", "per_pixel_listed" })
   {

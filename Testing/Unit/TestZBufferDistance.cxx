@@ -342,6 +342,54 @@ TEST(ZBufferDistance, TwoSubmissionsInFlightGiveTheAnswersOfOne)
   EXPECT_GT(within, 100);
 }
 
+// A call's device time by stage (GetLastCallTimes): listing, visiting and reducing together are
+// the whole, stamp by stamp, over a batch of several submissions; without a list its listing is
+// nothing, with one it is work; a single tip and a batch each visit.
+TEST(ZBufferDistance, DeviceTimeSplitsIntoItsStages)
+{
+  VP_REQUIRE_VULKAN();
+  Vessels vessels = vp::MakeBuiltInVessels();
+  double b[6];
+  VesselBounds(vessels, b);
+  auto engine = Make<vtkZBufferVesselDistance>(vessels, 50.0);
+  vp::ProximityResult single;
+  engine->ComputeProximity(b, nullptr, single);
+  const std::size_t capacity = engine->GetBatchCapacity();
+  const auto tips = RandomTips(b, 20.0, static_cast<int>(std::min<std::size_t>(2 * capacity + 5, 1000)), 43);
+  std::vector<vp::ProximityResult> answers;
+  for (int listing : { vtkZBufferVesselDistance::TileListingOn, vtkZBufferVesselDistance::TileListingOff })
+  {
+    engine->SetTileListing(listing);
+    engine->ComputeProximityBatch(tips, nullptr, answers);
+    const auto t = engine->GetLastCallTimes();
+    const std::string what = listing == vtkZBufferVesselDistance::TileListingOn ? "listed" : "not listed";
+    if (t.DeviceMs < 0.0)
+    {
+      GTEST_SKIP() << "the device keeps no timestamps";
+    }
+    EXPECT_GE(t.Submissions, 2u) << what;
+    EXPECT_GT(t.DeviceMs, 0.0) << what;
+    EXPECT_GE(t.DeviceListingMs, 0.0) << what;
+    EXPECT_GT(t.DeviceVisitingMs, 0.0) << what;
+    EXPECT_GE(t.DeviceReducingMs, 0.0) << what;
+    EXPECT_NEAR(t.DeviceListingMs + t.DeviceVisitingMs + t.DeviceReducingMs, t.DeviceMs, 1e-6 * t.DeviceMs + 1e-9) << what;
+    if (listing == vtkZBufferVesselDistance::TileListingOn)
+    {
+      EXPECT_GT(t.DeviceListingMs, 0.0) << what;
+    }
+    else
+    {
+      EXPECT_LT(t.DeviceListingMs, 0.02 * t.DeviceMs + 1e-3) << what << ": two stamps, nothing between them";
+    }
+  }
+  engine->SetTileListing(vtkZBufferVesselDistance::TileListingByDevice);
+  engine->ComputeProximity(b, nullptr, single);
+  const auto t = engine->GetLastCallTimes();
+  EXPECT_EQ(t.Submissions, 1u);
+  EXPECT_GT(t.DeviceVisitingMs, 0.0);
+  EXPECT_NEAR(t.DeviceListingMs + t.DeviceVisitingMs + t.DeviceReducingMs, t.DeviceMs, 1e-6 * t.DeviceMs + 1e-9);
+}
+
 // The query's ceilings (the coarse blocks' bound, and the answer before plus the tip's move) cut
 // the tiles a query dispatches, and change no answer, bit for bit: random tips one at a time
 // (some beyond the range or the grid), a tracked approach (where the answer before sets the

@@ -387,7 +387,7 @@ void VulkanContext::CreateCommandObjects(const VkQueueFamilyProperties& family)
     VkQueryPoolCreateInfo stampInfo{};
     stampInfo.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO;
     stampInfo.queryType = VK_QUERY_TYPE_TIMESTAMP;
-    stampInfo.queryCount = 2 * Slots;
+    stampInfo.queryCount = StampsPerSlot * Slots;
     Check(vkCreateQueryPool(this->LogicalDevice, &stampInfo, nullptr, &this->Stamps), "vkCreateQueryPool");
     const std::uint32_t valid = family.timestampValidBits;
     this->StampMask = valid >= 64 ? ~0ull : (1ull << valid) - 1ull;
@@ -553,7 +553,7 @@ void VulkanContext::ResetStamps(VkCommandBuffer cmd, std::uint32_t slot) const
 {
   if (this->Stamps)
   {
-    vkCmdResetQueryPool(cmd, this->Stamps, 2 * slot, 2);
+    vkCmdResetQueryPool(cmd, this->Stamps, StampsPerSlot * slot, StampsPerSlot);
   }
 }
 
@@ -562,7 +562,7 @@ void VulkanContext::Stamp(VkCommandBuffer cmd, std::uint32_t which, std::uint32_
   if (this->Stamps)
   {
     // At the bottom of the pipe: after every earlier command, a queued submission's before it.
-    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, this->Stamps, 2 * slot + which);
+    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, this->Stamps, StampsPerSlot * slot + which);
   }
 }
 
@@ -570,17 +570,17 @@ void VulkanContext::CopyStamps(VkCommandBuffer cmd, std::uint32_t slot, VkBuffer
 {
   if (this->Stamps)
   {
-    vkCmdCopyQueryPoolResults(cmd, this->Stamps, 2 * slot, 2, buffer, offset, sizeof(std::uint64_t),
+    vkCmdCopyQueryPoolResults(cmd, this->Stamps, StampsPerSlot * slot, StampsPerSlot, buffer, offset, sizeof(std::uint64_t),
       VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT);
   }
 }
 
-double VulkanContext::StampsMs(const std::uint64_t ticks[2]) const
+double VulkanContext::StampsMs(const std::uint64_t* ticks, std::uint32_t from, std::uint32_t to) const
 {
   if (!this->Stamps)
   {
     return -1.0;
   }
-  return static_cast<double>((ticks[1] - ticks[0]) & this->StampMask) * this->Properties.limits.timestampPeriod * 1e-6;
+  return static_cast<double>((ticks[to] - ticks[from]) & this->StampMask) * this->Properties.limits.timestampPeriod * 1e-6;
 }
 } // namespace vp

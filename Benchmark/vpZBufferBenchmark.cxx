@@ -256,31 +256,42 @@ Json SingleTipTimes(vtkZBufferVesselDistance* zbuffer, const BenchPoints& tips)
   return parts.Json();
 }
 
-/// A batch through each query pass with its tiles listed, taking turns on the same engine (five
-/// rounds): per tile and per pixel; tips per second on the host's clock and on the device's, and
-/// the answers that differ from the per-tile pass (none may).
+/// A batch through each query pass and each listing pass (its tiles listed), taking turns on the
+/// same engine (five rounds): visited per tile and per pixel, listed by a workgroup or by an
+/// invocation per answer; tips per second on the host's clock and on the device's, the device's
+/// listing and visiting, and the answers that differ from the first pass's (none may).
 Json BatchPasses(vtkZBufferVesselDistance* zbuffer, const BenchPoints& tips)
 {
   struct Pass
   {
     const char* Name;
     int QueryPass;
+    int ListingPass;
   };
-  constexpr Pass Passes[] = { { "per_tile_listed", vtkZBufferVesselDistance::QueryPassPerTile },
-    { "per_pixel_listed", vtkZBufferVesselDistance::QueryPassPerPixel } };
+  using Z = vtkZBufferVesselDistance;
+  constexpr Pass Passes[] = { { "per_tile_listed", Z::QueryPassPerTile, Z::ListingPassPerWorkgroup },
+    { "per_pixel_listed", Z::QueryPassPerPixel, Z::ListingPassPerWorkgroup },
+    { "per_tile_listed_per_invocation", Z::QueryPassPerTile, Z::ListingPassPerInvocation },
+    { "per_pixel_listed_per_invocation", Z::QueryPassPerPixel, Z::ListingPassPerInvocation } };
   constexpr int Count = static_cast<int>(sizeof Passes / sizeof Passes[0]);
-  zbuffer->SetTileListing(vtkZBufferVesselDistance::TileListingOn);
-  const std::vector<BatchSide> sides =
-    BatchesInTurn(zbuffer, tips, Count, [&](int p) { zbuffer->SetQueryPass(Passes[p].QueryPass); });
-  zbuffer->SetTileListing(vtkZBufferVesselDistance::TileListingByDevice);
-  zbuffer->SetQueryPass(vtkZBufferVesselDistance::QueryPassByDevice);
+  zbuffer->SetTileListing(Z::TileListingOn);
+  const std::vector<BatchSide> sides = BatchesInTurn(zbuffer, tips, Count, [&](int p) {
+    zbuffer->SetQueryPass(Passes[p].QueryPass);
+    zbuffer->SetListingPass(Passes[p].ListingPass);
+  });
+  zbuffer->SetTileListing(Z::TileListingByDevice);
+  zbuffer->SetQueryPass(Z::QueryPassByDevice);
+  zbuffer->SetListingPass(Z::ListingPassByDevice);
   Json out;
   for (int p = 0; p < Count; ++p)
   {
     const BatchSide& b = sides[static_cast<std::size_t>(p)];
+    const Json parts = b.Parts.Json();
     Json side;
     side["batched"] = Timing(b.Ms);
-    side["device"] = b.Parts.Json()["device"];
+    side["device"] = parts["device"];
+    side["device_listing"] = parts["device_listing"];
+    side["device_visiting"] = parts["device_visiting"];
     side["tips_per_second"] = 1000.0 * static_cast<double>(tips.size()) / std::max(1e-9, Quantile(b.Ms, 0.5));
     side["device_tips_per_second"] = 1000.0 * static_cast<double>(tips.size()) / std::max(1e-9, b.Parts.DeviceMedianMs());
     side["answers_differing_from_per_tile"] = CountDifferingAnswers(b.Answers, sides[0].Answers);

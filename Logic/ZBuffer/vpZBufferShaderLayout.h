@@ -26,7 +26,7 @@ constexpr int CoarseTiles = 4;
 /// A tile's edge in pixels (SummarizeTiles.comp's TilePx for the fine tiles; the grid's own).
 constexpr int TilePx = DepthLayerGrid::TilePx;
 /// The query's stages (QueryProximityCommon.glsl).
-constexpr std::int32_t VisitOrderedTiles = 0, SelectTiles = 1, VisitListedTiles = 2;
+constexpr std::int32_t VisitOrderedTiles = 0, SelectTiles = 1, VisitListedTiles = 2, SelectTilesPerAnswer = 3;
 
 /// RasterizeLayers.comp's Parameters.
 struct RasterParameters
@@ -70,6 +70,7 @@ struct QueryParameters
   std::int32_t Stage, TilesPerGroup;
   std::int32_t OrderReach, CoarseCount;
   std::int32_t FirstPoint;
+  std::int32_t AnswerCount;
 };
 
 /// ReduceProximity.comp's Parameters.
@@ -176,6 +177,7 @@ inline std::vector<ShaderField> ShaderLayoutFields()
     VP_SHADER_FIELD(QueryParameters, OrderReach),
     VP_SHADER_FIELD(QueryParameters, CoarseCount),
     VP_SHADER_FIELD(QueryParameters, FirstPoint),
+    VP_SHADER_FIELD(QueryParameters, AnswerCount),
     VP_SHADER_FIELD(ReduceParameters, Step),
     VP_SHADER_FIELD(ReduceParameters, Answers),
     VP_SHADER_FIELD(ReduceParameters, OrderCount),

@@ -152,6 +152,15 @@ void vtkZBufferVesselDistance::SetTileListing(int listing)
   this->TileListing = listing; // no Modified(): the answers are the same
 }
 
+void vtkZBufferVesselDistance::SetListingPass(int pass)
+{
+  if (pass != ListingPassByDevice && pass != ListingPassPerWorkgroup && pass != ListingPassPerInvocation)
+  {
+    throw vp::InputError("listing pass", "must be by device, per workgroup or per invocation");
+  }
+  this->ListingPass = pass; // no Modified(): the answers are the same
+}
+
 std::size_t vtkZBufferVesselDistance::GetLastQueryTilesListed() const
 {
   std::lock_guard<std::mutex> lock(this->Impl->Lock);
@@ -376,25 +385,14 @@ void vtkZBufferVesselDistance::ComputeProximityBatchWithin(
 
 namespace
 {
-/// The largest of fn(begin, end) over [0, count), split as ForEachAnswer splits it (a thread's
-/// share made only for a batch: it costs a single tip microseconds).
+/// The largest of fn(begin, end) over [0, count), split as ForEachAnswer splits it.
 template <typename Fn>
 double MaxOverAnswers(std::size_t count, const Fn& fn)
 {
-  if (count < 64)
-  {
-    return fn(0, count);
-  }
-  vtkSMPThreadLocal<double> largest(-std::numeric_limits<double>::infinity());
-  ForEachAnswer(count, [&](std::size_t begin, std::size_t end) {
-    double& mine = largest.Local();
-    mine = std::max(mine, fn(begin, end));
-  });
   double all = -std::numeric_limits<double>::infinity();
-  for (double x : largest)
-  {
-    all = std::max(all, x);
-  }
+  ForEachAnswerGathered(
+    count, all, [&](std::size_t begin, std::size_t end, double& mine) { mine = std::max(mine, fn(begin, end)); },
+    [&](double mine) { all = std::max(all, mine); });
   return all;
 }
 } // namespace
@@ -423,6 +421,7 @@ void vtkZBufferVesselDistance::AnswerAll(
     ~Total() { this->Times.TotalMs = vp::NowMs() - this->StartMs; }
   } total{ s.LastCall, startMs };
   s.TipQuery = bins;
+  s.StampStages = Internals::StampsStages(count);
   const double binWidth = bins ? this->BinWidthMm() : 0.0;
   for (vp::ProximityResult& r : results)
   {
@@ -580,6 +579,7 @@ vtkZBufferVesselDistance::Submission vtkZBufferVesselDistance::StartBatch(const 
   q.OrderReach = s.FineTable.Reach;
   q.CoarseCount = static_cast<std::int32_t>(s.CoarseTable.Within(searchMm));
   q.FirstPoint = static_cast<std::int32_t>(s.FirstPointOf(slot));
+  q.AnswerCount = static_cast<std::int32_t>(count * classes);
 
   // A workgroup per tile: the per-pixel pass needs the device to take that many in one dispatch.
   const std::uint32_t lanes = static_cast<std::uint32_t>(q.DirectionalLanes);
@@ -602,6 +602,11 @@ vtkZBufferVesselDistance::Submission vtkZBufferVesselDistance::StartBatch(const 
   const bool list = this->TileListing == TileListingOn ||
     (this->TileListing == TileListingByDevice && (n > PerPixelMaxTips || s.Context->IsCpuDevice()));
   const int listing = list ? (listPerPixel ? 2 : 1) : 0;
+  // A few tips list per workgroup, where the answers' invocations would leave most of a CPU
+  // device's threads idle (a single tip on lavapipe: 0.43 ms against 0.31).
+  const bool listPerInvocation = list &&
+    (this->ListingPass == ListingPassPerInvocation ||
+      (this->ListingPass == ListingPassByDevice && s.Context->IsCpuDevice() && n > PerPixelMaxTips));
   // Without a list, a batch first visits its near tiles, so that the best falls before the rest
   // start. A list needs no such pass: the ceilings alone leave a few tiles per tip to list
   // (IRCADb patient 1, 0.4 mm cells: 24 of 2,691 per tip, 20 after a near pass of 2 tiles,
@@ -619,7 +624,8 @@ vtkZBufferVesselDistance::Submission vtkZBufferVesselDistance::StartBatch(const 
     // that no invocation loops over more than 4 coarse tiles.
     const bool one = n > PerPixelMaxTips || s.Context->IsCpuDevice();
     const std::uint32_t coarse = reachMm < 0.0 ? 0 : s.CoarseTable.Within(reachMm);
-    sizes[1] = { one ? 1u : std::max(1u, (coarse + 255) / 256), classes, n };
+    sizes[1] = listPerInvocation ? VkDispatchIndirectCommand{ (n * classes + 63) / 64, 1, 1 }
+                                 : VkDispatchIndirectCommand{ one ? 1u : std::max(1u, (coarse + 255) / 256), classes, n };
   }
   else
   {
@@ -631,7 +637,8 @@ vtkZBufferVesselDistance::Submission vtkZBufferVesselDistance::StartBatch(const 
   s.LastTiles = tiles * classes;
   s.LastTilesInRange = orderCount * classes;
   const double submitMs = vp::NowMs();
-  s.PreparedQueryFor(q, n, slot, perPixel, listing, nearEntries, laneSlots).Start(slot);
+  s.PreparedQueryFor(q, n, slot, perPixel, listing, listPerInvocation, s.StampStages, nearEntries, laneSlots).Start(slot);
+  s.StagesStamped[slot] = s.StampStages;
   s.LastCall.SubmitWaitMs += vp::NowMs() - submitMs;
   ++s.LastCall.Submissions;
   return Submission{ tips, count, axes != nullptr, searchMm, q.Bins, binWidth, results, slot };
@@ -673,9 +680,10 @@ void vtkZBufferVesselDistance::ReadAnswers(const Submission& batch) const
     std::vector<std::pair<std::size_t, std::uint32_t>> Beyond; // (tip, class)
     bool Deep = false; // whether one of them needs the exact engine of every class
   };
-  vtkSMPThreadLocal<Remaining> remaining;
-  ForEachAnswer(count, [&](std::size_t begin, std::size_t end) {
-    Remaining& mine = remaining.Local();
+  std::vector<InsideVote> votes;
+  std::vector<std::pair<std::size_t, std::uint32_t>> beyond;
+  bool deep = false;
+  auto read = [&](std::size_t begin, std::size_t end, Remaining& mine) {
     for (std::size_t i = begin; i < end; ++i)
     {
       const double* tip = tips[i].data();
@@ -712,6 +720,11 @@ void vtkZBufferVesselDistance::ReadAnswers(const Submission& batch) const
         out.TriangleId = -1;
       }
     }
+  };
+  ForEachAnswerGathered(count, Remaining{}, read, [&](const Remaining& part) {
+    votes.insert(votes.end(), part.Votes.begin(), part.Votes.end());
+    beyond.insert(beyond.end(), part.Beyond.begin(), part.Beyond.end());
+    deep = deep || part.Deep;
   });
   // Each class's last answer with a cell: that cell stays marked until the next rendering, so no
   // later answer is farther than it (the next ceilings).
@@ -729,15 +742,6 @@ void vtkZBufferVesselDistance::ReadAnswers(const Submission& batch) const
         break;
       }
     }
-  }
-  std::vector<InsideVote> votes;
-  std::vector<std::pair<std::size_t, std::uint32_t>> beyond;
-  bool deep = false;
-  for (Remaining& part : remaining)
-  {
-    votes.insert(votes.end(), part.Votes.begin(), part.Votes.end());
-    beyond.insert(beyond.end(), part.Beyond.begin(), part.Beyond.end());
-    deep = deep || part.Deep;
   }
   if (deep)
   {
@@ -809,6 +813,10 @@ void vtkZBufferVesselDistance::PrintSelf(ostream& os, vtkIndent indent)
      << "\n";
   os << indent << "TileListing: "
      << (this->TileListing == TileListingOff ? "Off" : this->TileListing == TileListingOn ? "On" : "(by device)") << "\n";
+  os << indent << "ListingPass: "
+     << (this->ListingPass == ListingPassPerWorkgroup ? "PerWorkgroup"
+           : this->ListingPass == ListingPassPerInvocation ? "PerInvocation" : "(by device)")
+     << "\n";
   os << indent << "DirectionalLanes: " << this->DirectionalLanes << (this->DirectionalLanes ? "" : " (by device)") << "\n";
   os << indent << "SubmissionsInFlight: " << this->SubmissionsInFlight << "\n";
   os << indent << "VoteFieldCellMm: " << this->VoteFieldCellMm << (this->VoteFieldCellMm > 0.0 ? "" : " (none)") << "\n";

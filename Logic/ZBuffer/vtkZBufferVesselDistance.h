@@ -115,6 +115,24 @@ public:
   /// is a dispatch more: to be measured there).
   void SetTileListing(int listing);
   int GetTileListing() const { return this->TileListing; }
+  enum ListingPasses
+  {
+    ListingPassByDevice = 0,
+    ListingPassPerWorkgroup = 1,
+    ListingPassPerInvocation = 2
+  };
+  /// How a list is made (SetTileListing): PerWorkgroup, a workgroup per answer whose invocations
+  /// test its coarse tiles side by side, each against the ceiling the answer started from; or
+  /// PerInvocation, an invocation per answer walking its coarse tiles nearest first, each tile it
+  /// may visit lowering the best before the next is tested, so that it stops sooner. The answers
+  /// are the same, bit for bit. Default ListingPassByDevice: PerInvocation for submissions of more
+  /// than 8 tips on a CPU device (a 20,000-tip batch on IRCADb patient 1 here: its listing 184 ms
+  /// of device time against 354, the batch 424 ms against 570), PerWorkgroup for fewer (a single
+  /// tip's three answers would leave the device's other threads idle: 0.43 ms against 0.31) and on
+  /// a GPU (where one thread's walk is a chain of dependent reads: to be measured there, bench's
+  /// batch passes).
+  void SetListingPass(int pass);
+  int GetListingPass() const { return this->ListingPass; }
   /// Invocations that share the directional walk along the axis, each walking its share of the
   /// range (same answers for any number: every crossing is computed from its cell). Default 0:
   /// 64 on a GPU, where one walk of hundreds of cells in one thread was most of a tracked query's
@@ -219,7 +237,9 @@ public:
   /// range, votes and all, count as read), the ceilings, the answers read, and the whole call
   /// (from the engine's lock; the results' set-up before it is the caller's).
   /// The device's time by stage, summed likewise: listing the tiles to visit (0 without a list),
-  /// visiting them (the pixels' distances), and handing the answers to the host (the reduction).
+  /// visiting them (the pixels' distances), and handing the answers to the host (the reduction);
+  /// negative for a call of 8 points or fewer, which stamps no stages (a stamp between stages
+  /// would cost a single tip a third of its time on lavapipe).
   struct CallTimes
   {
     double DeviceMs = 0.0;
@@ -310,6 +330,7 @@ private:
   int SubmissionsInFlight = 2;
   int QueryPass = QueryPassByDevice;
   int TileListing = TileListingByDevice;
+  int ListingPass = ListingPassByDevice;
   bool QueryCeilings = true;
   std::string DeviceSelector;
 

@@ -18,6 +18,7 @@
 #include "vpZBufferShaderLayout.h"
 #include "vtkExactVesselDistance.h"
 
+#include <vtkSMPThreadLocal.h>
 #include <vtkSMPTools.h>
 
 #include <array>
@@ -58,14 +59,17 @@ constexpr VkDeviceSize RecordBudgetBytes = 256ull << 20;
 // random places in some 10 MB of blocks each miss the cache).
 constexpr std::size_t CeilingPrefetchTips = 8;
 
-/// fn(begin, end) over [0, count): on every core for a batch (from 64 answers), on this thread
-/// for a few (a task costs more than a few answers). A batch's host work per tip (its results,
-/// ceilings, answers read and votes) was most of its time on a GPU: 20,000 tips at 1.5M
-/// triangles per class on an H100 took 82 ms, 3.5 of them on the device.
+/// Answers from which a call's host work runs on every core: a task costs more than a few.
+constexpr std::size_t ParallelAnswers = 64;
+
+/// fn(begin, end) over [0, count): on every core for a batch (from ParallelAnswers), on this
+/// thread for a few. A batch's host work per tip (its results, ceilings, answers read and votes)
+/// was most of its time on a GPU: 20,000 tips at 1.5M triangles per class on an H100 took 82 ms,
+/// 3.5 of them on the device.
 template <typename Fn>
 void ForEachAnswer(std::size_t count, const Fn& fn)
 {
-  if (count >= 64)
+  if (count >= ParallelAnswers)
   {
     vtkSMPTools::For(0, static_cast<vtkIdType>(count), [&](vtkIdType begin, vtkIdType end) {
       fn(static_cast<std::size_t>(begin), static_cast<std::size_t>(end));
@@ -74,6 +78,27 @@ void ForEachAnswer(std::size_t count, const Fn& fn)
   else
   {
     fn(0, count);
+  }
+}
+
+/// As ForEachAnswer, fn(begin, end, local) with a Local of the thread's own (made from init),
+/// then gather(local) on this thread for each thread's. For a few answers one Local on this
+/// thread: a store per thread costs a single tip microseconds (5 of a lavapipe tip's 300).
+template <typename Local, typename Fn, typename Gather>
+void ForEachAnswerGathered(std::size_t count, const Local& init, const Fn& fn, const Gather& gather)
+{
+  if (count < ParallelAnswers)
+  {
+    Local one = init;
+    fn(std::size_t{ 0 }, count, one);
+    gather(one);
+    return;
+  }
+  vtkSMPThreadLocal<Local> locals(init);
+  ForEachAnswer(count, [&](std::size_t begin, std::size_t end) { fn(begin, end, locals.Local()); });
+  for (Local& local : locals)
+  {
+    gather(local);
   }
 }
 
@@ -152,17 +177,24 @@ struct vtkZBufferVesselDistance::Internals
   std::vector<LastAnswer> Last;
   int LastRender = -1;
   // The slot of the latest submission read (GetLastQueryDeviceMs), and each slot's timestamps as
-  // its submission copies them (StampsPerSlot 64-bit ticks a slot: its start, its tiles listed,
-  // visited, and its end).
+  // its submission copies them (StampsPerSlot 64-bit ticks a slot: its start and end, then, for a
+  // batch's submission, when its tiles were listed and visited).
   std::uint32_t LastSlot = 0;
   std::unique_ptr<vp::GpuBuffer> StampCopies;
   enum StampOf : std::uint32_t
   {
     SubmissionStart,
+    SubmissionEnd,
     TilesListed,
-    TilesVisited,
-    SubmissionEnd
+    TilesVisited
   };
+  // Whether the current call's submissions stamp their stages (a call of more than
+  // PerPixelMaxTips points: every submission of a batch, its last and smallest too), and whether
+  // each slot's latest did. A few tips' call does not: on lavapipe the two stamps between its
+  // dispatches cost a single tip 0.1 of its 0.3 ms.
+  bool StampStages = false;
+  bool StagesStamped[vp::VulkanContext::Slots] = {};
+  static bool StampsStages(std::size_t points) { return points > vp::zbuffer::PerPixelMaxTips; }
   // The device's time for slot `slot`'s latest submission between two of its stamps (negative
   // without timestamps).
   double DeviceMsOf(std::uint32_t slot, std::uint32_t from = SubmissionStart, std::uint32_t to = SubmissionEnd) const
@@ -186,14 +218,15 @@ struct vtkZBufferVesselDistance::Internals
   std::uint32_t LastTiles = 0, LastTilesInRange = 0, LastTilesListed = 0;
   vtkZBufferVesselDistance::CallTimes LastCall;
   /// One submission's device times (whole and by stage) added to a call's (which stay negative
-  /// once one is unknown).
+  /// once one is unknown: the stages of a few tips' submission are).
   void AddDeviceMs(vtkZBufferVesselDistance::CallTimes& call, std::uint32_t slot) const
   {
     auto add = [](double& sum, double ms) { sum = sum < 0.0 || ms < 0.0 ? -1.0 : sum + ms; };
+    const bool stages = this->StagesStamped[slot];
     add(call.DeviceMs, this->DeviceMsOf(slot));
-    add(call.DeviceListingMs, this->DeviceMsOf(slot, SubmissionStart, TilesListed));
-    add(call.DeviceVisitingMs, this->DeviceMsOf(slot, TilesListed, TilesVisited));
-    add(call.DeviceReducingMs, this->DeviceMsOf(slot, TilesVisited, SubmissionEnd));
+    add(call.DeviceListingMs, stages ? this->DeviceMsOf(slot, SubmissionStart, TilesListed) : -1.0);
+    add(call.DeviceVisitingMs, stages ? this->DeviceMsOf(slot, TilesListed, TilesVisited) : -1.0);
+    add(call.DeviceReducingMs, stages ? this->DeviceMsOf(slot, TilesVisited, SubmissionEnd) : -1.0);
   }
   // Tips per submission for the current order table (PrepareOrder).
   std::uint32_t Capacity = 0;
@@ -207,6 +240,8 @@ struct vtkZBufferVesselDistance::Internals
     std::uint32_t Slot = 0;
     bool PerPixel = false;
     int Listing = 0; // 0: no list; 1: listed tiles visited per tile; 2: per pixel
+    bool ListPerInvocation = false; // listed by an invocation per answer (else a workgroup)
+    bool Stages = false;            // stamps between its stages
     QueryParameters Parameters{};
     std::unique_ptr<vp::PreparedCommands> Commands;
   };
@@ -251,10 +286,11 @@ struct vtkZBufferVesselDistance::Internals
   // The query's submission for these parameters, batch size and passes, recorded once: the two
   // dispatches over the order table (their sizes read from DispatchSizes when it runs), then the
   // answers. With a list (listing 1: visited per tile, 2: per pixel), the second dispatch lists
-  // the tiles it would have visited and a third, sized by the device, visits them.
+  // the tiles it would have visited (a workgroup, or with listPerInvocation an invocation, per
+  // answer) and a third, sized by the device, visits them.
   // In slot `slot`: its points, ceilings, dispatch sizes, answers and timestamps.
   vp::PreparedCommands& PreparedQueryFor(const QueryParameters& q, std::uint32_t n, std::uint32_t slot, bool perPixel,
-    int listing, std::uint32_t nearEntries, std::uint32_t laneSlots);
+    int listing, bool listPerInvocation, bool stages, std::uint32_t nearEntries, std::uint32_t laneSlots);
 
   // The vessels' triangles as the rasteriser reads them: long edges split so that one invocation
   // never walks many pixels; float positions relative to the anchor, so that rounding stays far

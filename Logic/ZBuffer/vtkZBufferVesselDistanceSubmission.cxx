@@ -109,11 +109,13 @@ void vtkZBufferVesselDistance::Internals::WritePoints(
 }
 
 vp::PreparedCommands& vtkZBufferVesselDistance::Internals::PreparedQueryFor(const QueryParameters& q, std::uint32_t n,
-  std::uint32_t slot, bool perPixel, int listing, std::uint32_t nearEntries, std::uint32_t laneSlots)
+  std::uint32_t slot, bool perPixel, int listing, bool listPerInvocation, bool stages, std::uint32_t nearEntries,
+  std::uint32_t laneSlots)
 {
   const std::uint32_t orderCount = static_cast<std::uint32_t>(q.OrderCount);
   auto prepared = std::find_if(this->Prepared.begin(), this->Prepared.end(), [&](const PreparedQuery& p) {
     return p.Points == n && p.Slot == slot && p.PerPixel == perPixel && p.Listing == listing &&
+      p.ListPerInvocation == listPerInvocation && p.Stages == stages &&
       std::memcmp(&p.Parameters, &q, sizeof q) == 0;
   });
   if (prepared == this->Prepared.end())
@@ -132,13 +134,21 @@ vp::PreparedCommands& vtkZBufferVesselDistance::Internals::PreparedQueryFor(cons
     entry.Slot = slot;
     entry.PerPixel = perPixel;
     entry.Listing = listing;
+    entry.ListPerInvocation = listPerInvocation;
+    entry.Stages = stages;
     entry.Parameters = q;
     entry.Commands = std::make_unique<vp::PreparedCommands>(*this->Context, [&](VkCommandBuffer cmd) {
+      auto stamp = [&](StampOf which) {
+        if (stages || which == SubmissionStart || which == SubmissionEnd)
+        {
+          this->Context->Stamp(cmd, which, slot);
+        }
+      };
       this->Context->ResetStamps(cmd, slot);
-      this->Context->Stamp(cmd, SubmissionStart, slot);
+      stamp(SubmissionStart);
       if (listing == 0)
       {
-        this->Context->Stamp(cmd, TilesListed, slot); // none listed: every stamp is written, or its copy would wait
+        stamp(TilesListed); // none listed: every stamp copied is written, or its copy would wait
       }
       // Entries: a workgroup per tile (per pixel) or an invocation per tile (per tile); the
       // lanes come first in the last dispatch, whose size after them follows the ceilings.
@@ -166,17 +176,18 @@ vp::PreparedCommands& vtkZBufferVesselDistance::Internals::PreparedQueryFor(cons
       {
         // The listing: workgroups per answer (DispatchSizes' second), each looping over its
         // share of the answer's lanes and entries.
-        visit(SelectTiles, false, nearEntries, orderCount, 0, *this->DispatchSizes, sizesAt + second);
-        this->Context->Stamp(cmd, TilesListed, slot);
+        visit(listPerInvocation ? SelectTilesPerAnswer : SelectTiles, false, nearEntries, orderCount, 0, *this->DispatchSizes,
+          sizesAt + second);
+        stamp(TilesListed);
         visit(VisitListedTiles, listing == 2, 0, 0, 0, *this->TileListSize, 4);
       }
-      this->Context->Stamp(cmd, TilesVisited, slot);
+      stamp(TilesVisited);
       this->Reduce->Record(cmd, &copy, (answers + 63) / 64); // into the host-visible answers, and resets
       // The stamp waits for the answers (bottom of the pipe); one barrier then makes the answers
       // and the stamps' copy visible to the host, and orders the next submission after this one.
-      this->Context->Stamp(cmd, SubmissionEnd, slot);
-      this->Context->CopyStamps(
-        cmd, slot, this->StampCopies->Handle(), vp::VulkanContext::StampsPerSlot * sizeof(std::uint64_t) * slot);
+      stamp(SubmissionEnd);
+      this->Context->CopyStamps(cmd, slot, stages ? vp::VulkanContext::StampsPerSlot : 2, this->StampCopies->Handle(),
+        vp::VulkanContext::StampsPerSlot * sizeof(std::uint64_t) * slot);
       vp::ComputeKernel::Barrier(cmd);
     });
     this->Prepared.push_back(std::move(entry));

@@ -302,17 +302,20 @@ void PrintZBufferQueries(const Json& z)
     }
     std::printf("\n");
   }
-  std::printf("%10s | %-16s %14s %14s %16s %18s %10s\n", "tris/class", "batch pass", "med ms", "p95 ms", "tips/s",
-    "device tips/s", "differing");
+  std::printf("%10s | %-31s %10s %10s %10s %14s %12s %12s %10s\n", "tris/class", "batch pass", "med ms", "p95 ms",
+    "tips/s", "device tips/s", "listing ms", "visiting ms", "differing");
   for (const Json& s : z["sizes"])
   {
     const Json& b = s["batch_passes"];
-    for (const char* pass : { "per_tile_listed", "per_pixel_listed" })
+    for (const char* pass :
+      { "per_tile_listed", "per_pixel_listed", "per_tile_listed_per_invocation", "per_pixel_listed_per_invocation" })
     {
       const Json& w = b[pass];
-      std::printf("%10zu | %-16s %14.2f %14.2f %16.0f %18.0f %10d\n", s["triangles_per_class"].get<std::size_t>(), pass,
-        w["batched"]["median_ms"].get<double>(), w["batched"]["p95_ms"].get<double>(), w["tips_per_second"].get<double>(),
-        w["device_tips_per_second"].get<double>(), w["answers_differing_from_per_tile"].get<int>());
+      std::printf("%10zu | %-31s %10.2f %10.2f %10.0f %14.0f %12.2f %12.2f %10d\n",
+        s["triangles_per_class"].get<std::size_t>(), pass, w["batched"]["median_ms"].get<double>(),
+        w["batched"]["p95_ms"].get<double>(), w["tips_per_second"].get<double>(), w["device_tips_per_second"].get<double>(),
+        w["device_listing"]["median_ms"].get<double>(), w["device_visiting"]["median_ms"].get<double>(),
+        w["answers_differing_from_per_tile"].get<int>());
     }
   }
   std::printf("%10s | %-18s %14s %14s %12s %12s %12s %12s\n", "tris/class", "in flight", "batch med ms", "batch p95 ms",

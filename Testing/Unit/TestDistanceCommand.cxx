@@ -176,9 +176,11 @@ TEST_F(DistanceCommand, BenchSplitsAZBufferCallIntoItsParts)
   }
   EXPECT_GT(parts["device_visiting"]["median_ms"].get<double>(), 0.0);
   EXPECT_GT(batch["device_tips_per_second"].get<double>(), batch["tips_per_second"].get<double>() * 0.99);
-  for (const char* pass : { "per_tile_listed", "per_pixel_listed" })
+  for (const char* pass :
+    { "per_tile_listed", "per_pixel_listed", "per_tile_listed_per_invocation", "per_pixel_listed_per_invocation" })
   {
     EXPECT_EQ(size["batch_passes"][pass]["answers_differing_from_per_tile"].get<int>(), 0) << pass;
+    EXPECT_GT(size["batch_passes"][pass]["device_listing"]["median_ms"].get<double>(), 0.0) << pass;
   }
   EXPECT_EQ(size["single_tip_times"]["total"]["queries"].get<std::size_t>(), 100u);
   EXPECT_EQ(size["single_tip_times"]["submissions_in_last_call"].get<std::size_t>(), 1u);

@@ -20,8 +20,41 @@
 
 layout(local_size_x = 64) in;
 
+// Stage SelectTilesPerAnswer: one invocation lists one answer's tiles, its lanes first, then its
+// coarse tiles nearest first until they lie beyond the best: each tile it may visit lowers the
+// best before the next is tested, where SelectTiles' 64 invocations an answer test theirs at
+// once against the ceiling the answer started from.
+void SelectAnswerTiles(uint answer)
+{
+  uint point = answer / uint(P.Classes);
+  uint cls = answer % uint(P.Classes);
+  BeginPoint(point);
+  BeginAnswer(answer);
+  uint stateBase = answer * StateStride;
+  for (int lane = 0; lane < P.DirectionalLanes; ++lane)
+  {
+    AnswerLane(cls, stateBase, lane);
+  }
+  uint end = min(uint(P.EndEntry), EntryEnd);
+  for (uint c = 0u; c < uint(P.CoarseCount); ++c)
+  {
+    if (!SelectCoarseTile(cls, answer, stateBase, c, uint(P.FirstEntry), end))
+    {
+      break;
+    }
+  }
+}
+
 void main()
 {
+  if (P.Stage == SelectTilesPerAnswer)
+  {
+    if (gl_GlobalInvocationID.x < uint(P.AnswerCount))
+    {
+      SelectAnswerTiles(gl_GlobalInvocationID.x);
+    }
+    return;
+  }
   uint slot = gl_GlobalInvocationID.x;
   uint cls = gl_WorkGroupID.y;
   uint point = gl_WorkGroupID.z;

@@ -95,11 +95,14 @@ layout(push_constant) uniform Parameters
   // Where this submission's points and ceilings start in theirs (a point's place in its slot:
   // the host writes the next submission's while the device reads this one's).
   int FirstPoint;
+  // The submission's answers (points x classes): stage SelectTilesPerAnswer's invocations.
+  int AnswerCount;
 } P;
 
-const int VisitOrderedTiles = 0; // the order table's entries FirstEntry..EndEntry, after the lanes
-const int SelectTiles = 1;       // the same entries, listed when they have to be visited
-const int VisitListedTiles = 2;  // the tiles listed
+const int VisitOrderedTiles = 0;    // the order table's entries FirstEntry..EndEntry, after the lanes
+const int SelectTiles = 1;          // the same entries, listed when they have to be visited
+const int VisitListedTiles = 2;     // the tiles listed
+const int SelectTilesPerAnswer = 3; // as SelectTiles, an invocation walking each answer's entries
 
 // This invocation's point (set first thing in main), the least of the range and its answer's
 // ceiling, and the end of its entries (BeginAnswer).

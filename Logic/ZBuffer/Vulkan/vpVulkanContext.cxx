@@ -566,11 +566,12 @@ void VulkanContext::Stamp(VkCommandBuffer cmd, std::uint32_t which, std::uint32_
   }
 }
 
-void VulkanContext::CopyStamps(VkCommandBuffer cmd, std::uint32_t slot, VkBuffer buffer, VkDeviceSize offset) const
+void VulkanContext::CopyStamps(
+  VkCommandBuffer cmd, std::uint32_t slot, std::uint32_t count, VkBuffer buffer, VkDeviceSize offset) const
 {
   if (this->Stamps)
   {
-    vkCmdCopyQueryPoolResults(cmd, this->Stamps, StampsPerSlot * slot, StampsPerSlot, buffer, offset, sizeof(std::uint64_t),
+    vkCmdCopyQueryPoolResults(cmd, this->Stamps, StampsPerSlot * slot, count, buffer, offset, sizeof(std::uint64_t),
       VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT);
   }
 }

@@ -91,19 +91,20 @@ public:
   /// Whether the device is a CPU (lavapipe): its work runs on the host's own cores.
   bool IsCpuDevice() const { return this->Info.Type == "cpu"; }
 
-  /// Timestamps on the device, StampsPerSlot a slot: Stamp(cmd, k, slot) recorded between the
-  /// stages of a submission (after ResetStamps(cmd, slot), outside any render pass), then
-  /// CopyStamps(cmd, slot, buffer, offset) writes them all (64-bit ticks) where the host reads
-  /// them once the submission is done, and StampsMs(ticks, from, to) is the device's time between
-  /// stamps from and to, in ms; a negative value when the device has no compute timestamps. The
-  /// copy, not vkGetQueryPoolResults: lavapipe's waits for the queue to empty, so reading one
-  /// submission's stamps waited for the next one in flight as well. Each stamp waits for the
-  /// commands before it, the previous submission's included: a submission queued behind another
-  /// is timed from the other's end, not from its own arrival.
+  /// Timestamps on the device, up to StampsPerSlot a slot: Stamp(cmd, k, slot) recorded between
+  /// the stages of a submission (after ResetStamps(cmd, slot), outside any render pass), then
+  /// CopyStamps(cmd, slot, count, buffer, offset) writes the slot's first count (64-bit ticks,
+  /// each of them stamped) where the host reads them once the submission is done, and
+  /// StampsMs(ticks, from, to) is the device's time between stamps from and to, in ms; a negative
+  /// value when the device has no compute timestamps. The copy, not vkGetQueryPoolResults:
+  /// lavapipe's waits for the queue to empty, so reading one submission's stamps waited for the
+  /// next one in flight as well. Each stamp waits for the commands before it, the previous
+  /// submission's included: a submission queued behind another is timed from the other's end,
+  /// not from its own arrival. On lavapipe a stamp between two dispatches costs some 50 µs.
   static constexpr std::uint32_t StampsPerSlot = 4;
   void ResetStamps(VkCommandBuffer cmd, std::uint32_t slot = 0) const;
   void Stamp(VkCommandBuffer cmd, std::uint32_t which, std::uint32_t slot = 0) const;
-  void CopyStamps(VkCommandBuffer cmd, std::uint32_t slot, VkBuffer buffer, VkDeviceSize offset) const;
+  void CopyStamps(VkCommandBuffer cmd, std::uint32_t slot, std::uint32_t count, VkBuffer buffer, VkDeviceSize offset) const;
   double StampsMs(const std::uint64_t* ticks, std::uint32_t from, std::uint32_t to) const;
   /// The pool prepared command buffers come from.
   VkCommandPool Pool() const { return this->CommandPool; }

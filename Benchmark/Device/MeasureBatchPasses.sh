@@ -3,9 +3,11 @@
 # Benchmark/Device/MeasureBatchPasses.sh (../shared/gpu/README.md). $OUT gets the JSON report, its
 # table and nvidia-smi's clock samples.
 # Issue 35's batch rate: 20,000 tips at 1.5M triangles per class (IRCADb patient 1's vessels,
-# refined), the batch through each query pass side by side, where its time goes (device, host
-# wait, inside votes), with one submission in flight and with two (batch_in_flight: the host's
-# work beside the device's), beside the single tip and the exact engine on the host's cores.
+# refined), the batch through each query pass and each listing pass side by side (batch_passes:
+# a workgroup or an invocation listing each answer's tiles), where its time goes (the device's by
+# stage: listing, visiting, reducing; host wait, inside votes, ceilings, answers read), with one
+# submission in flight and with two (batch_in_flight: the host's work beside the device's),
+# beside the single tip and the exact engine on the host's cores.
 set -u
 source Benchmark/Device/RecordMachine.sh
 v=portal_vein=.gpu/ircadb/portalvein.vtk,hepatic_artery=.gpu/ircadb/artery.vtk,hepatic_vein=.gpu/ircadb/venoussystem.vtk

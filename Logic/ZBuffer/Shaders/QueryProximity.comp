@@ -22,8 +22,8 @@ layout(local_size_x = 64) in;
 
 // Stage SelectTilesPerAnswer: one invocation lists one answer's tiles, its lanes first, then its
 // coarse tiles nearest first until they lie beyond the best: each tile it may visit lowers the
-// best before the next is tested, where SelectTiles' 64 invocations an answer test theirs at
-// once against the ceiling the answer started from.
+// best (in a register) before the next is tested, where SelectTiles' 64 invocations an answer
+// test theirs at once against the ceiling the answer started from.
 void SelectAnswerTiles(uint answer)
 {
   uint point = answer / uint(P.Classes);
@@ -42,6 +42,10 @@ void SelectAnswerTiles(uint answer)
     {
       break;
     }
+  }
+  if (OwnBest < Inf)
+  {
+    atomicMin(State[stateBase], floatBitsToUint(OwnBest));
   }
 }
 

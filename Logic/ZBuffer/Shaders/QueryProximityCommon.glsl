@@ -110,6 +110,9 @@ vec3 Tip;
 vec3 AxisMm;
 float Ceiling;
 uint EntryEnd;
+// Stage SelectTilesPerAnswer's best so far: its invocation alone lists its answer, so the best
+// stays in a register, not in an atomic on the state (SelectAnswerTiles stores it at the end).
+float OwnBest = uintBitsToFloat(0x7F800000u);
 
 // glslang 12 rejects a global const initialised from uintBitsToFloat.
 #define Inf uintBitsToFloat(0x7F800000u)
@@ -324,7 +327,7 @@ void BeginAnswer(uint answer)
 // below the answer: no pixel that gives the answer is ever cut off.
 float BestSoFar(uint stateBase)
 {
-  return min(uintBitsToFloat(State[stateBase]), Ceiling);
+  return min(P.Stage == SelectTilesPerAnswer ? OwnBest : uintBitsToFloat(State[stateBase]), Ceiling);
 }
 
 // The order table's offsets start at the grid's tile nearest the tip: a tip beyond the grid (or
@@ -404,7 +407,14 @@ ivec2 TileToVisit(uint cls, uint stateBase, uint entry, bool lower)
     float ceiling = TileCeilingMm(tile, floor(tileLo), floor(tileHi));
     if (ceiling < best)
     {
-      atomicMin(State[stateBase], floatBitsToUint(ceiling));
+      if (P.Stage == SelectTilesPerAnswer)
+      {
+        OwnBest = ceiling;
+      }
+      else
+      {
+        atomicMin(State[stateBase], floatBitsToUint(ceiling));
+      }
     }
   }
   return tile;

@@ -126,8 +126,8 @@ public:
   /// PerInvocation, an invocation per answer walking its coarse tiles nearest first, each tile it
   /// may visit lowering the best before the next is tested, so that it stops sooner. The answers
   /// are the same, bit for bit. Default ListingPassByDevice: PerInvocation for submissions of more
-  /// than 8 tips on a CPU device (a 20,000-tip batch on IRCADb patient 1 here: its listing 184 ms
-  /// of device time against 354, the batch 424 ms against 570), PerWorkgroup for fewer (a single
+  /// than 8 tips on a CPU device (a 20,000-tip batch on IRCADb patient 1 here: its listing 185 ms
+  /// of device time against 373, the batch 453 ms against 635), PerWorkgroup for fewer (a single
   /// tip's three answers would leave the device's other threads idle: 0.43 ms against 0.31) and on
   /// a GPU (where one thread's walk is a chain of dependent reads: to be measured there, bench's
   /// batch passes).

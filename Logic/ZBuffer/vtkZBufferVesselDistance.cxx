@@ -638,7 +638,6 @@ vtkZBufferVesselDistance::Submission vtkZBufferVesselDistance::StartBatch(const 
   s.LastTilesInRange = orderCount * classes;
   const double submitMs = vp::NowMs();
   s.PreparedQueryFor(q, n, slot, perPixel, listing, listPerInvocation, s.StampStages, nearEntries, laneSlots).Start(slot);
-  s.StagesStamped[slot] = s.StampStages;
   s.LastCall.SubmitWaitMs += vp::NowMs() - submitMs;
   ++s.LastCall.Submissions;
   return Submission{ tips, count, axes != nullptr, searchMm, q.Bins, binWidth, results, slot };

@@ -189,11 +189,10 @@ struct vtkZBufferVesselDistance::Internals
     TilesVisited
   };
   // Whether the current call's submissions stamp their stages (a call of more than
-  // PerPixelMaxTips points: every submission of a batch, its last and smallest too), and whether
-  // each slot's latest did. A few tips' call does not: on lavapipe the two stamps between its
-  // dispatches cost a single tip 0.1 of its 0.3 ms.
+  // PerPixelMaxTips points: every submission of a batch, its last and smallest too; a call reads
+  // every submission it starts). A few tips' call does not: on lavapipe the two stamps between
+  // its dispatches cost a single tip 0.1 of its 0.3 ms.
   bool StampStages = false;
-  bool StagesStamped[vp::VulkanContext::Slots] = {};
   static bool StampsStages(std::size_t points) { return points > vp::zbuffer::PerPixelMaxTips; }
   // The device's time for slot `slot`'s latest submission between two of its stamps (negative
   // without timestamps).
@@ -222,7 +221,7 @@ struct vtkZBufferVesselDistance::Internals
   void AddDeviceMs(vtkZBufferVesselDistance::CallTimes& call, std::uint32_t slot) const
   {
     auto add = [](double& sum, double ms) { sum = sum < 0.0 || ms < 0.0 ? -1.0 : sum + ms; };
-    const bool stages = this->StagesStamped[slot];
+    const bool stages = this->StampStages;
     add(call.DeviceMs, this->DeviceMsOf(slot));
     add(call.DeviceListingMs, stages ? this->DeviceMsOf(slot, SubmissionStart, TilesListed) : -1.0);
     add(call.DeviceVisitingMs, stages ? this->DeviceMsOf(slot, TilesListed, TilesVisited) : -1.0);

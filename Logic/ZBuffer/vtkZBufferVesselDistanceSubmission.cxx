@@ -186,7 +186,7 @@ vp::PreparedCommands& vtkZBufferVesselDistance::Internals::PreparedQueryFor(cons
       // The stamp waits for the answers (bottom of the pipe); one barrier then makes the answers
       // and the stamps' copy visible to the host, and orders the next submission after this one.
       stamp(SubmissionEnd);
-      this->Context->CopyStamps(cmd, slot, stages ? vp::VulkanContext::StampsPerSlot : 2, this->StampCopies->Handle(),
+      this->Context->CopyStamps(cmd, slot, stages ? vp::VulkanContext::StampsPerSlot : SubmissionEnd + 1, this->StampCopies->Handle(),
         vp::VulkanContext::StampsPerSlot * sizeof(std::uint64_t) * slot);
       vp::ComputeKernel::Barrier(cmd);
     });

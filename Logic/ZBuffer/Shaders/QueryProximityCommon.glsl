@@ -10,7 +10,12 @@
 layout(std430, binding = 0) readonly buffer Occupancy { uint Occupied[]; };
 layout(std430, binding = 1) readonly buffer Crossings { uint Crossing[]; };
 layout(std430, binding = 2) readonly buffer DepthRanges { uint DepthRange[]; };
+// Per class and tile (8 x 8 pixels), then per class and coarse tile (32 x 32): its lowest and
+// highest occupied slice, each shifted above the bits that name a pixel of the tile whose column
+// has it (SummarizeTiles.comp); lowest > highest when the tile is empty.
 layout(std430, binding = 3) readonly buffer TileRanges { uint TileRange[]; };
+const uint TilePixelBits = 6u;
+const uint CoarsePixelBits = 10u;
 layout(std430, binding = 4) readonly buffer TileOrder { ivec2 Order[]; };
 // Per point and class, 32 words: [0] best distance (float bits, starts at the range), [1] inside,
 // [2] directional distance (float bits), [3..6] the chosen record (ReduceProximity.comp),
@@ -359,18 +364,23 @@ float BoxGapMm(ivec2 firstPixel, int edgePx, float lo, float hi)
 }
 
 // At least the distance from the tip to one of the tile's occupied cells, as PixelDistance
-// measures it: the tile's lowest occupied slice (and its highest) is occupied in one of its
-// pixels, which is no farther along x and y than the tile's farthest pixel column. Computed as
-// PixelDistance computes a distance, and raised above the rounding of either.
-float TileCeilingMm(ivec2 tile, float tileLo, float tileHi)
+// measures it: the nearer of the cells its tile range names (the lowest occupied slice, in the
+// column that has it, and the highest), each occupied in a column PixelDistance reads, so no less
+// than that column's distance. Raised above the rounding of either.
+float TileCeilingMm(ivec2 tile, uint codeLo, uint codeHi)
 {
-  ivec2 lo = tile * 8;
-  ivec2 hi = min(lo + 8, ivec2(P.Nx, P.Ny)); // the tile's last pixel + 1
-  float dx = max(AxisGap(Tip.x, float(lo.x), float(lo.x + 1)), AxisGap(Tip.x, float(hi.x - 1), float(hi.x))) * P.PixelMm;
-  float dy = max(AxisGap(Tip.y, float(lo.y), float(lo.y + 1)), AxisGap(Tip.y, float(hi.y - 1), float(hi.y))) * P.PixelMm;
-  float dz = min(AxisGap(Tip.z, tileLo, tileLo + 1.0), AxisGap(Tip.z, tileHi, tileHi + 1.0)) * P.SliceMm;
-  float mm = sqrt(dx * dx + dy * dy + dz * dz);
-  return mm + mm * 1e-5 + 1e-4;
+  float best = Inf;
+  for (int k = 0; k < 2; ++k)
+  {
+    uint code = k == 0 ? codeLo : codeHi;
+    ivec2 pix = tile * 8 + ivec2(code & 7u, (code >> 3) & 7u);
+    float slice = float(code >> TilePixelBits);
+    float dx = AxisGap(Tip.x, float(pix.x), float(pix.x + 1)) * P.PixelMm;
+    float dy = AxisGap(Tip.y, float(pix.y), float(pix.y + 1)) * P.PixelMm;
+    float dz = AxisGap(Tip.z, slice, slice + 1.0) * P.SliceMm;
+    best = min(best, sqrt(dx * dx + dy * dy + dz * dz));
+  }
+  return best + best * 1e-5 + 1e-4;
 }
 
 // The tile of the order table's entry, or ivec2(-1) when no pixel of it can be nearer than the
@@ -391,20 +401,20 @@ ivec2 TileToVisit(uint cls, uint stateBase, uint entry, bool lower)
     return ivec2(-1);
   }
   uint t = 2u * (cls * uint(P.TilesX * P.TilesY) + uint(tile.y * P.TilesX + tile.x));
-  float tileLo = uintBitsToFloat(TileRange[t]);
-  float tileHi = uintBitsToFloat(TileRange[t + 1u]);
-  if (tileLo > tileHi)
+  uint codeLo = TileRange[t];
+  uint codeHi = TileRange[t + 1u];
+  if (codeLo > codeHi)
   {
     return ivec2(-1); // empty tile
   }
   float best = BestSoFar(stateBase);
-  if (BoxGapMm(tile * 8, 8, tileLo, tileHi) > best)
+  if (BoxGapMm(tile * 8, 8, float(codeLo >> TilePixelBits), float(codeHi >> TilePixelBits)) > best)
   {
     return ivec2(-1);
   }
   if (lower)
   {
-    float ceiling = TileCeilingMm(tile, floor(tileLo), floor(tileHi));
+    float ceiling = TileCeilingMm(tile, codeLo, codeHi);
     if (ceiling < best)
     {
       if (P.Stage == SelectTilesPerAnswer)
@@ -504,12 +514,14 @@ bool SelectCoarseTile(uint cls, uint answer, uint stateBase, uint c, uint first,
   }
   uint fineWords = 2u * uint(P.Classes * P.TilesX * P.TilesY);
   uint t = fineWords + 2u * (cls * uint(across.x * across.y) + uint(coarse.y * across.x + coarse.x));
-  float lo = uintBitsToFloat(TileRange[t]);
-  float hi = uintBitsToFloat(TileRange[t + 1u]);
-  if (lo > hi)
+  uint codeLo = TileRange[t];
+  uint codeHi = TileRange[t + 1u];
+  if (codeLo > codeHi)
   {
     return true; // empty
   }
+  float lo = float(codeLo >> CoarsePixelBits);
+  float hi = float(codeHi >> CoarsePixelBits);
   // Its box holds every box of its tiles: no tile of it is nearer than the box.
   if (BoxGapMm(coarse * (8 * CoarseTiles), 8 * CoarseTiles, lo, hi) > BestSoFar(stateBase))
   {

@@ -62,6 +62,7 @@ void CallTimeSeries::Add(const vtkZBufferVesselDistance::CallTimes& t)
   this->Votes.push_back(t.VotesMs);
   this->Ceilings.push_back(t.CeilingsMs);
   this->Read.push_back(t.ReadMs);
+  this->Order.push_back(t.OrderMs);
   this->LastVotes = t.Votes;
   this->LastSubmissions = t.Submissions;
 }
@@ -72,6 +73,7 @@ BenchJson CallTimeSeries::Json() const
     { "device_listing", Timing(this->Listing) }, { "device_visiting", Timing(this->Visiting) },
     { "device_reducing", Timing(this->Reducing) }, { "submit_wait", Timing(this->Wait) },
     { "votes", Timing(this->Votes) }, { "ceilings", Timing(this->Ceilings) }, { "read", Timing(this->Read) },
+    { "order", Timing(this->Order) },
     { "votes_in_last_call", this->LastVotes }, { "submissions_in_last_call", this->LastSubmissions } };
 }
 

@@ -28,8 +28,8 @@ BenchJson Timing(const std::vector<double>& ms);
 BenchJson BenchBatch(vtkVesselDistanceEngine* engine, const BenchPoints& tips, const std::vector<ProximityResult>* singles);
 
 /// A z-buffer's calls by part (vtkZBufferVesselDistance::GetLastCallTimes), one call after
-/// another: Json() gives each part's median and p95 (total, device, submit_wait, votes, ceilings,
-/// read, in ms) and the last call's votes and submissions.
+/// another: Json() gives each part's median and p95 (total, device, device_listing,
+/// device_visiting, device_reducing, submit_wait, votes, ceilings, read, order, in ms) and the last call's votes and submissions.
 class CallTimeSeries
 {
 public:
@@ -38,7 +38,7 @@ public:
   double DeviceMedianMs() const;
 
 private:
-  std::vector<double> Total, Device, Listing, Visiting, Reducing, Wait, Votes, Ceilings, Read;
+  std::vector<double> Total, Device, Listing, Visiting, Reducing, Wait, Votes, Ceilings, Read, Order;
   std::size_t LastVotes = 0, LastSubmissions = 0;
 };
 

@@ -324,6 +324,29 @@ Json SubmissionsInFlight(vtkZBufferVesselDistance* zbuffer, const BenchPoints& t
   return out;
 }
 
+/// The batch's tips submitted in space order and as given (SetBatchOrder), run after run in
+/// turn, with their parts and the answers that differ (none may). The engine is left at its
+/// default (space order).
+Json BatchOrders(vtkZBufferVesselDistance* zbuffer, const BenchPoints& tips)
+{
+  constexpr int Orders[2] = { vtkZBufferVesselDistance::BatchOrderAsGiven, vtkZBufferVesselDistance::BatchOrderSpatial };
+  const std::vector<BatchSide> sides = BatchesInTurn(zbuffer, tips, 2, [&](int k) { zbuffer->SetBatchOrder(Orders[k]); });
+  zbuffer->SetBatchOrder(vtkZBufferVesselDistance::BatchOrderSpatial);
+  Json out;
+  for (int k = 0; k < 2; ++k)
+  {
+    const BatchSide& b = sides[static_cast<std::size_t>(k)];
+    Json side = Timing(b.Ms);
+    side["tips_per_second"] = 1000.0 * static_cast<double>(tips.size()) / std::max(1e-9, Quantile(b.Ms, 0.5));
+    side["device_tips_per_second"] = 1000.0 * static_cast<double>(tips.size()) / std::max(1e-9, b.Parts.DeviceMedianMs());
+    side["parts"] = b.Parts.Json();
+    out[k == 0 ? "as_given" : "spatial"] = side;
+  }
+  out["tips"] = tips.size();
+  out["answers_differing"] = CountDifferingAnswers(sides[1].Answers, sides[0].Answers);
+  return out;
+}
+
 /// The paper's layers (nearest and farthest depth only) on the same tips.
 Json PaperMode(vtkZBufferVesselDistance* zbuffer, const BenchPoints& tips)
 {
@@ -478,6 +501,8 @@ BenchJson BenchZBuffer(vtkZBufferVesselDistance* zbuffer, const std::vector<Name
   entry["single_tip_times"] = SingleTipTimes(zbuffer, tips);
   std::fprintf(stderr, ", submissions in flight");
   entry["batch_in_flight"] = SubmissionsInFlight(zbuffer, tips);
+  std::fprintf(stderr, ", batch order");
+  entry["batch_order"] = BatchOrders(zbuffer, tips);
   std::fprintf(stderr, ", votes");
   const Json votes = VotesFromFieldAndRays(zbuffer, refined, tips);
   if (!votes.empty())

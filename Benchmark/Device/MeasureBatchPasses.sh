@@ -6,7 +6,8 @@
 # refined), the batch through each query pass and each listing pass side by side (batch_passes:
 # a workgroup or an invocation listing each answer's tiles), where its time goes (the device's by
 # stage: listing, visiting, reducing; host wait, inside votes, ceilings, answers read), with one
-# submission in flight and with two (batch_in_flight: the host's work beside the device's),
+# submission in flight and with two (batch_in_flight: the host's work beside the device's), its
+# tips as given and in space order (batch_order: neighbouring invocations on neighbouring tiles),
 # beside the single tip and the exact engine on the host's cores.
 set -u
 source Benchmark/Device/RecordMachine.sh

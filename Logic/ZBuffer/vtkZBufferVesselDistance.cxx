@@ -4,6 +4,7 @@
 #include "vpInputError.h"
 #include "vpPhysicalLimits.h"
 #include "vpQueryState.h"
+#include "vpSpatialOrder.h"
 #include "vpTriangleGeometry.h"
 
 
@@ -447,6 +448,39 @@ void vtkZBufferVesselDistance::AnswerAll(
     return;
   }
   s.PrepareOrder(this->RangeMm);
+  if (this->BatchOrder == BatchOrderAsGiven || count <= PerPixelMaxTips)
+  {
+    this->SubmitAll(tips.data(), count, axis, searchMm, binWidth, results.data());
+    return;
+  }
+  // The tips in space order, their results moved along and back (each holds a vector).
+  const double orderMs = vp::NowMs();
+  const std::vector<std::uint32_t> order = vp::SpatialOrder(tips.data(), count, s.Grid.OriginMm, TilePx * s.Grid.PixelMm);
+  Points ordered(count), orderedAxes(axis ? count : 0);
+  std::vector<vp::ProximityResult> answers(count);
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    ordered[i] = tips[order[i]];
+    if (axis)
+    {
+      orderedAxes[i] = axis[order[i]];
+    }
+    answers[i] = std::move(results[order[i]]);
+  }
+  s.LastCall.OrderMs += vp::NowMs() - orderMs;
+  this->SubmitAll(ordered.data(), count, axis ? orderedAxes.data() : nullptr, searchMm, binWidth, answers.data());
+  const double backMs = vp::NowMs();
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    results[order[i]] = std::move(answers[i]);
+  }
+  s.LastCall.OrderMs += vp::NowMs() - backMs;
+}
+
+void vtkZBufferVesselDistance::SubmitAll(const std::array<double, 3>* tips, std::size_t count,
+  const std::array<double, 3>* axes, double searchMm, double binWidth, vp::ProximityResult* results) const
+{
+  Internals& s = *this->Impl;
   const std::size_t capacity = s.Capacity;
   const auto inFlight = static_cast<std::uint32_t>(this->SubmissionsInFlight);
   // With two in flight, each submission is started before the previous one is read: the device
@@ -457,7 +491,7 @@ void vtkZBufferVesselDistance::AnswerAll(
   {
     const std::size_t n = std::min(capacity, count - first);
     const Submission next = this->StartBatch(
-      &tips[first], n, axis ? axis + first : nullptr, searchMm, binWidth, &results[first], started++ % inFlight);
+      tips + first, n, axes ? axes + first : nullptr, searchMm, binWidth, results + first, started++ % inFlight);
     if (running)
     {
       this->FinishBatch(*running);
@@ -473,6 +507,15 @@ void vtkZBufferVesselDistance::AnswerAll(
   {
     this->FinishBatch(*running);
   }
+}
+
+void vtkZBufferVesselDistance::SetBatchOrder(int order)
+{
+  if (order != BatchOrderSpatial && order != BatchOrderAsGiven)
+  {
+    throw vp::InputError("batch order", "must be BatchOrderSpatial or BatchOrderAsGiven");
+  }
+  this->BatchOrder = order; // no Modified(): the answers are the same
 }
 
 void vtkZBufferVesselDistance::SetSubmissionsInFlight(int submissions)
@@ -818,6 +861,7 @@ void vtkZBufferVesselDistance::PrintSelf(ostream& os, vtkIndent indent)
      << "\n";
   os << indent << "DirectionalLanes: " << this->DirectionalLanes << (this->DirectionalLanes ? "" : " (by device)") << "\n";
   os << indent << "SubmissionsInFlight: " << this->SubmissionsInFlight << "\n";
+  os << indent << "BatchOrder: " << (this->BatchOrder == BatchOrderAsGiven ? "AsGiven" : "Spatial") << "\n";
   os << indent << "VoteFieldCellMm: " << this->VoteFieldCellMm << (this->VoteFieldCellMm > 0.0 ? "" : " (none)") << "\n";
   os << indent << "DeviceSelector: " << (this->DeviceSelector.empty() ? "(best)" : this->DeviceSelector) << "\n";
   const vp::DepthLayerGrid& g = this->Impl->Grid;

@@ -175,6 +175,20 @@ public:
   /// and tests.
   void SetSubmissionsInFlight(int submissions);
   int GetSubmissionsInFlight() const { return this->SubmissionsInFlight; }
+  enum BatchOrders
+  {
+    BatchOrderSpatial = 0,
+    BatchOrderAsGiven = 1
+  };
+  /// The order in which a batch's tips go to the device. BatchOrderSpatial (default): along a
+  /// Z-order curve through cubes a tile wide (vp::SpatialOrder), for batches of more than 8 tips,
+  /// so that one submission's tips, and the device's neighbouring invocations, share the tiles
+  /// they read; the results come back in the order given. BatchOrderAsGiven: as given. The
+  /// answers are the same, bit for bit; what differs is the device's time (random tips, IRCADb
+  /// patient 1, lavapipe: see bench's batch_order) and the host's sort (CallTimes::OrderMs). The
+  /// answer a batch leaves for the next call's ceilings is the last one submitted.
+  void SetBatchOrder(int order);
+  int GetBatchOrder() const { return this->BatchOrder; }
   /// Which Vulkan device (see vp::VulkanContext): empty (default) for the best one, an index, or
   /// part of a name.
   void SetDeviceSelector(const std::string& selector);
@@ -250,6 +264,7 @@ public:
     double VotesMs = 0.0;
     double CeilingsMs = 0.0; // the host's bounds per tip and class (SetQueryCeilings)
     double ReadMs = 0.0;     // the answers read into the results, votes excluded
+    double OrderMs = 0.0;    // the tips put in space order and their results back (SetBatchOrder)
     double TotalMs = 0.0;
     std::size_t Submissions = 0;
     std::size_t Votes = 0;
@@ -314,6 +329,9 @@ private:
   void FinishBatch(const Submission& batch) const;
   /// A finished submission's answers into its results (lock held).
   void ReadAnswers(const Submission& batch) const;
+  /// The tips in submissions of up to the batch capacity, up to SubmissionsInFlight at once.
+  void SubmitAll(const std::array<double, 3>* tips, std::size_t count, const std::array<double, 3>* axes,
+    double searchMm, double binWidth, vp::ProximityResult* results) const;
 
   /// The layers' grid around the vessels (fixed), or centred on their box until the first tip
   /// (moving); anchorMm: the centre of the vessels' box; cellMm: the cell edge chosen.
@@ -328,6 +346,7 @@ private:
   int DirectionalLanes = 0;
   double VoteFieldCellMm = 1.0;
   int SubmissionsInFlight = 2;
+  int BatchOrder = BatchOrderSpatial;
   int QueryPass = QueryPassByDevice;
   int TileListing = TileListingByDevice;
   int ListingPass = ListingPassByDevice;

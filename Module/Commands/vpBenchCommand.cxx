@@ -247,13 +247,14 @@ void PrintZBufferQueries(const Json& z)
     const Json& b = s["batched"];
     const Json& p = b["parts"];
     std::printf("%10s | of which: device %.2f ms (%.0f tips/s on the device; listing %.2f, visiting %.2f, reducing %.2f), "
-                "host wait %.2f ms, %zu inside votes %.2f ms, ceilings %.2f ms, answers read %.2f ms, %zu submissions\n",
+                "host wait %.2f ms, %zu inside votes %.2f ms, ceilings %.2f ms, answers read %.2f ms, tips ordered %.2f ms, "
+                "%zu submissions\n",
       "", p["device"]["median_ms"].get<double>(), b["device_tips_per_second"].get<double>(),
       p["device_listing"]["median_ms"].get<double>(), p["device_visiting"]["median_ms"].get<double>(),
       p["device_reducing"]["median_ms"].get<double>(),
       p["submit_wait"]["median_ms"].get<double>(), p["votes_in_last_call"].get<std::size_t>(),
       p["votes"]["median_ms"].get<double>(), p["ceilings"]["median_ms"].get<double>(), p["read"]["median_ms"].get<double>(),
-      p["submissions_in_last_call"].get<std::size_t>());
+      p["order"]["median_ms"].get<double>(), p["submissions_in_last_call"].get<std::size_t>());
   }
   std::printf("%10s | %-8s %22s %22s %22s %12s\n", "tris/class", "ceilings", "off med / p95 ms", "on med / p95 ms",
     "device off / on med", "tiles (med)");
@@ -331,6 +332,21 @@ void PrintZBufferQueries(const Json& z)
         side, w["median_ms"].get<double>(), w["p95_ms"].get<double>(), w["tips_per_second"].get<double>(),
         w["parts"]["device"]["median_ms"].get<double>(), w["parts"]["submit_wait"]["median_ms"].get<double>(),
         f["answers_differing"].get<int>());
+    }
+  }
+  std::printf("%10s | %-18s %14s %14s %12s %12s %14s %12s\n", "tris/class", "batch order", "batch med ms", "batch p95 ms",
+    "tips/s", "device ms", "ordering ms", "differing");
+  for (const Json& s : z["sizes"])
+  {
+    // The batch's tips submitted as given and in space order (neighbours side by side).
+    const Json& o = s["batch_order"];
+    for (const char* side : { "as_given", "spatial" })
+    {
+      const Json& w = o[side];
+      std::printf("%10zu | %-18s %14.2f %14.2f %12.0f %12.2f %14.2f %12d\n", s["triangles_per_class"].get<std::size_t>(),
+        side, w["median_ms"].get<double>(), w["p95_ms"].get<double>(), w["tips_per_second"].get<double>(),
+        w["parts"]["device"]["median_ms"].get<double>(), w["parts"]["order"]["median_ms"].get<double>(),
+        o["answers_differing"].get<int>());
     }
   }
   for (const Json& s : z["sizes"])

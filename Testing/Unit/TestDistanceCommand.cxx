@@ -187,7 +187,8 @@ TEST_F(DistanceCommand, BenchSplitsAZBufferCallIntoItsParts)
 }
 
 // bench runs a batch of several submissions with one in flight and with two, side by side: the
-// same answers, the same submissions, each side's parts, and a line in the table.
+// same answers, the same submissions, each side's parts, and a line in the table; and the batch
+// with its tips in space order and as given, likewise (only the ordered side spends time on it).
 TEST_F(DistanceCommand, BenchRunsABatchWithOneAndTwoSubmissionsInFlight)
 {
   VP_REQUIRE_VULKAN();
@@ -205,6 +206,17 @@ TEST_F(DistanceCommand, BenchRunsABatchWithOneAndTwoSubmissionsInFlight)
     EXPECT_EQ(parts["total"]["queries"].get<std::size_t>(), 5u) << side;
     EXPECT_GT(parts["device"]["median_ms"].get<double>(), 0.0) << side;
     EXPECT_GT(f[side]["tips_per_second"].get<double>(), 0.0) << side;
+  }
+  EXPECT_NE(r.Out.find("batch order"), std::string::npos) << r.Out;
+  const auto o = nlohmann::json::parse(vp::test::Slurp(out))["zbuffer"]["sizes"][0]["batch_order"];
+  EXPECT_EQ(o["tips"].get<std::size_t>(), 600u);
+  EXPECT_EQ(o["answers_differing"].get<int>(), 0);
+  EXPECT_EQ(o["as_given"]["parts"]["order"]["p95_ms"].get<double>(), 0.0);
+  EXPECT_GT(o["spatial"]["parts"]["order"]["median_ms"].get<double>(), 0.0);
+  for (const char* side : { "as_given", "spatial" })
+  {
+    EXPECT_EQ(o[side]["parts"]["submissions_in_last_call"].get<std::size_t>(), (600u + 255u) / 256u) << side;
+    EXPECT_GT(o[side]["device_tips_per_second"].get<double>(), 0.0) << side;
   }
 }
 

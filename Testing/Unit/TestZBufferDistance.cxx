@@ -184,6 +184,40 @@ int ExpectSameBatches(vtkZBufferVesselDistance* a, vtkZBufferVesselDistance* b,
   return inRange;
 }
 
+// The whole instrument's search (shorter than the range, no bins) of every tip through both
+// engines, in exact intervals: every answer the same, in the order given. Returns how many class
+// answers were in range.
+int ExpectSameSearchesWithin(vtkZBufferVesselDistance* a, vtkZBufferVesselDistance* b,
+  const std::vector<std::array<double, 3>>& tips, double searchMm)
+{
+  for (vtkZBufferVesselDistance* e : { a, b })
+  {
+    e->SetLayerMode(vtkZBufferVesselDistance::ExactIntervals);
+    e->SetDistanceBins(0);
+  }
+  std::vector<vp::ProximityResult> x, y;
+  a->ComputeProximityBatchWithin(tips, searchMm, x);
+  b->ComputeProximityBatchWithin(tips, searchMm, y);
+  EXPECT_EQ(x.size(), tips.size());
+  EXPECT_EQ(y.size(), tips.size());
+  int within = 0;
+  for (std::size_t i = 0; i < x.size() && i < y.size() && i < tips.size(); ++i)
+  {
+    EXPECT_EQ(x[i].Tip[0], tips[i][0]) << "tip " << i;
+    within += vp::test::ExpectSameAnswer(x[i], y[i], "within " + std::to_string(searchMm) + " mm, tip " + std::to_string(i));
+  }
+  return within;
+}
+
+// The built-in vessels with the first one holed: its inside is voted on by the host.
+Vessels BuiltInWithAHoledVessel()
+{
+  Vessels vessels = vp::MakeBuiltInVessels();
+  const vp::VesselSurface closed(vessels[0].first, vessels[0].second);
+  vessels[0].second = vp::test::DefectiveCopies(closed.PointArray(), closed.TriangleArray())[0].Mesh;
+  return vessels;
+}
+
 Vessels StackedTubes()
 {
   const double axis[3] = { 1, 0, 0 };
@@ -300,9 +334,7 @@ TEST(SpatialOrder, FollowsTheZOrderCurve)
 TEST(ZBufferDistance, BatchInSpaceOrderGivesTheAnswersAsGiven)
 {
   VP_REQUIRE_VULKAN();
-  Vessels vessels = vp::MakeBuiltInVessels();
-  const vp::VesselSurface closed(vessels[0].first, vessels[0].second);
-  vessels[0].second = vp::test::DefectiveCopies(closed.PointArray(), closed.TriangleArray())[0].Mesh;
+  const Vessels vessels = BuiltInWithAHoledVessel();
   double b[6];
   VesselBounds(vessels, b);
   auto spatial = Make<vtkZBufferVesselDistance>(vessels, 50.0);
@@ -326,22 +358,7 @@ TEST(ZBufferDistance, BatchInSpaceOrderGivesTheAnswersAsGiven)
     EXPECT_GT(spatial->GetLastCallTimes().Votes, 0u) << what << ": the holed vessel's inside is voted on";
   });
   EXPECT_GT(inRange, 3000);
-  for (vtkZBufferVesselDistance* e : { spatial.GetPointer(), given.GetPointer() })
-  {
-    e->SetLayerMode(vtkZBufferVesselDistance::ExactIntervals);
-    e->SetDistanceBins(0);
-  }
-  std::vector<vp::ProximityResult> x, y;
-  spatial->ComputeProximityBatchWithin(tips, 12.0, x);
-  given->ComputeProximityBatchWithin(tips, 12.0, y);
-  ASSERT_EQ(x.size(), y.size());
-  int within = 0;
-  for (std::size_t i = 0; i < x.size(); ++i)
-  {
-    EXPECT_EQ(x[i].Tip[0], tips[i][0]) << "tip " << i;
-    within += vp::test::ExpectSameAnswer(x[i], y[i], "within 12 mm, tip " + std::to_string(i));
-  }
-  EXPECT_GT(within, 100);
+  EXPECT_GT(ExpectSameSearchesWithin(spatial, given, tips, 12.0), 100);
 }
 
 TEST(ZBufferDistance, ReportsItsDevice)
@@ -405,9 +422,7 @@ TEST(ZBufferDistance, BatchEqualsSingleQueriesBitForBit)
 TEST(ZBufferDistance, TwoSubmissionsInFlightGiveTheAnswersOfOne)
 {
   VP_REQUIRE_VULKAN();
-  Vessels vessels = vp::MakeBuiltInVessels();
-  const vp::VesselSurface closed(vessels[0].first, vessels[0].second);
-  vessels[0].second = vp::test::DefectiveCopies(closed.PointArray(), closed.TriangleArray())[0].Mesh;
+  const Vessels vessels = BuiltInWithAHoledVessel();
   double b[6];
   VesselBounds(vessels, b);
   auto two = Make<vtkZBufferVesselDistance>(vessels, 50.0);
@@ -435,22 +450,7 @@ TEST(ZBufferDistance, TwoSubmissionsInFlightGiveTheAnswersOfOne)
     EXPECT_GT(times.Votes, 0u) << what << ": the holed vessel's inside is voted on";
   });
   EXPECT_GT(inRange, 3000);
-  // The whole instrument's search: a shorter search, no bins.
-  for (vtkZBufferVesselDistance* e : { two.GetPointer(), one.GetPointer() })
-  {
-    e->SetLayerMode(vtkZBufferVesselDistance::ExactIntervals);
-    e->SetDistanceBins(0);
-  }
-  std::vector<vp::ProximityResult> x, y;
-  two->ComputeProximityBatchWithin(tips, 12.0, x);
-  one->ComputeProximityBatchWithin(tips, 12.0, y);
-  ASSERT_EQ(x.size(), y.size());
-  int within = 0;
-  for (std::size_t i = 0; i < x.size(); ++i)
-  {
-    within += vp::test::ExpectSameAnswer(x[i], y[i], "within 12 mm, tip " + std::to_string(i));
-  }
-  EXPECT_GT(within, 100);
+  EXPECT_GT(ExpectSameSearchesWithin(two, one, tips, 12.0), 100);
 }
 
 // A call's device time by stage (GetLastCallTimes): listing, visiting and reducing together are

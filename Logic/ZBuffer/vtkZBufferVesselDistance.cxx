@@ -371,7 +371,7 @@ void vtkZBufferVesselDistance::ComputeProximity(
 void vtkZBufferVesselDistance::ComputeProximityBatch(
   const Points& tips, const Points* axes, std::vector<vp::ProximityResult>& results) const
 {
-  this->AnswerAll(tips, axes, this->RangeMm, true, results);
+  this->AnswerAll(tips, axes, this->RangeMm, true, true, results);
 }
 
 void vtkZBufferVesselDistance::ComputeProximityBatchWithin(
@@ -381,7 +381,7 @@ void vtkZBufferVesselDistance::ComputeProximityBatchWithin(
   {
     throw vp::InputError("box mode", "a search of many points needs the box fixed around the vessels (each point would move the box)");
   }
-  this->AnswerAll(points, nullptr, std::min(searchMm, this->RangeMm), false, results);
+  this->AnswerAll(points, nullptr, std::min(searchMm, this->RangeMm), false, false, results);
 }
 
 namespace
@@ -398,8 +398,8 @@ double MaxOverAnswers(std::size_t count, const Fn& fn)
 }
 } // namespace
 
-void vtkZBufferVesselDistance::AnswerAll(
-  const Points& tips, const Points* axes, double searchMm, bool bins, std::vector<vp::ProximityResult>& results) const
+void vtkZBufferVesselDistance::AnswerAll(const Points& tips, const Points* axes, double searchMm, bool bins,
+  bool spaceOrder, std::vector<vp::ProximityResult>& results) const
 {
   const std::size_t count = tips.size();
   results.resize(count);
@@ -448,7 +448,7 @@ void vtkZBufferVesselDistance::AnswerAll(
     return;
   }
   s.PrepareOrder(this->RangeMm);
-  if (this->BatchOrder == BatchOrderAsGiven || count <= PerPixelMaxTips)
+  if (!spaceOrder || this->BatchOrder == BatchOrderAsGiven || count <= PerPixelMaxTips)
   {
     this->SubmitAll(tips.data(), count, axis, searchMm, binWidth, results.data());
     return;

@@ -329,8 +329,9 @@ TEST(SpatialOrder, FollowsTheZOrderCurve)
 }
 
 // A batch in space order gives the answers of the same batch as given, bit for bit and in the
-// order given: several submissions (with axes, under every query setting), the whole
-// instrument's search, a holed vessel's votes; a result put back in the wrong place would fail.
+// order given: several submissions (with axes, under every query setting), a holed vessel's
+// votes; a result put back in the wrong place would fail. The whole instrument's search keeps
+// the order of its points (an octree's, already in space order).
 TEST(ZBufferDistance, BatchInSpaceOrderGivesTheAnswersAsGiven)
 {
   VP_REQUIRE_VULKAN();
@@ -359,6 +360,7 @@ TEST(ZBufferDistance, BatchInSpaceOrderGivesTheAnswersAsGiven)
   });
   EXPECT_GT(inRange, 3000);
   EXPECT_GT(ExpectSameSearchesWithin(spatial, given, tips, 12.0), 100);
+  EXPECT_EQ(spatial->GetLastCallTimes().OrderMs, 0.0) << "the whole instrument's search keeps its octree's order";
 }
 
 TEST(ZBufferDistance, ReportsItsDevice)

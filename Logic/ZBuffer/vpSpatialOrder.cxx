@@ -36,7 +36,8 @@ std::vector<std::uint32_t> SpatialOrder(
       std::uint64_t curve = 0;
       for (int k = 0; k < 3; ++k)
       {
-        // NaN (a point the engine reports as such) lands in the first cube.
+        // NaN lands in the first cube: the front ends refuse such points, and the order need
+        // only stay a permutation.
         const double cube = std::floor((points[i][static_cast<std::size_t>(k)] - originMm[k]) / edgeMm);
         curve |= Spread(static_cast<std::uint64_t>(cube > 0.0 ? std::min(cube, Last) : 0.0)) << k;
       }

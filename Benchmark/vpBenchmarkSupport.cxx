@@ -18,6 +18,11 @@ Json Timing(const std::vector<double>& ms)
   return { { "median_ms", Quantile(ms, 0.5) }, { "p95_ms", Quantile(ms, 0.95) }, { "queries", ms.size() } };
 }
 
+double TipsPerSecond(std::size_t tips, double ms)
+{
+  return 1000.0 * static_cast<double>(tips) / std::max(1e-9, ms);
+}
+
 Json BenchBatch(vtkVesselDistanceEngine* engine, const BenchPoints& tips, const std::vector<ProximityResult>* singles)
 {
   std::vector<double> ms;
@@ -36,13 +41,13 @@ Json BenchBatch(vtkVesselDistanceEngine* engine, const BenchPoints& tips, const 
   }
   Json out = Timing(ms);
   out["tips"] = tips.size();
-  out["tips_per_second"] = 1000.0 * static_cast<double>(tips.size()) / std::max(1e-9, Quantile(ms, 0.5));
+  out["tips_per_second"] = TipsPerSecond(tips.size(), Quantile(ms, 0.5));
   if (zbuffer)
   {
     // Where a batch's time goes: the device's own work, the host's wait for it, and the host's
     // parts; the device's rate is what the kernel alone would give.
     out["parts"] = parts.Json();
-    out["device_tips_per_second"] = 1000.0 * static_cast<double>(tips.size()) / std::max(1e-9, parts.DeviceMedianMs());
+    out["device_tips_per_second"] = TipsPerSecond(tips.size(), parts.DeviceMedianMs());
   }
   if (singles)
   {

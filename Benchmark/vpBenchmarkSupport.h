@@ -21,6 +21,8 @@ using BenchPoints = std::vector<std::array<double, 3>>;
 
 /// Median and p95 of the times, in ms, and how many there are.
 BenchJson Timing(const std::vector<double>& ms);
+/// Tips answered per second by calls of ms milliseconds each (the median call's).
+double TipsPerSecond(std::size_t tips, double ms);
 
 /// All tips as one batch (ComputeProximityBatch), five times: time per batch and tips per second
 /// (from the median batch). With singles, also how many answers differ from them in any way
@@ -29,7 +31,8 @@ BenchJson BenchBatch(vtkVesselDistanceEngine* engine, const BenchPoints& tips, c
 
 /// A z-buffer's calls by part (vtkZBufferVesselDistance::GetLastCallTimes), one call after
 /// another: Json() gives each part's median and p95 (total, device, device_listing,
-/// device_visiting, device_reducing, submit_wait, votes, ceilings, read, order, in ms) and the last call's votes and submissions.
+/// device_visiting, device_reducing, submit_wait, votes, ceilings, read, order, in ms) and the
+/// last call's votes and submissions.
 class CallTimeSeries
 {
 public:

@@ -226,8 +226,7 @@ Json TileListing(vtkZBufferVesselDistance* zbuffer, const BenchPoints& tips)
   {
     Json side;
     side["batched"] = Timing(batch[on].Ms);
-    side["batched_tips_per_second"] =
-      1000.0 * static_cast<double>(tips.size()) / std::max(1e-9, Quantile(batch[on].Ms, 0.5));
+    side["batched_tips_per_second"] = TipsPerSecond(tips.size(), Quantile(batch[on].Ms, 0.5));
     side["single"] = Timing(ms[on]);
     side["single_device"] = Timing(deviceMs[on]);
     out[on == 1 ? "on" : "off"] = side;
@@ -292,12 +291,32 @@ Json BatchPasses(vtkZBufferVesselDistance* zbuffer, const BenchPoints& tips)
     side["device"] = parts["device"];
     side["device_listing"] = parts["device_listing"];
     side["device_visiting"] = parts["device_visiting"];
-    side["tips_per_second"] = 1000.0 * static_cast<double>(tips.size()) / std::max(1e-9, Quantile(b.Ms, 0.5));
-    side["device_tips_per_second"] = 1000.0 * static_cast<double>(tips.size()) / std::max(1e-9, b.Parts.DeviceMedianMs());
+    side["tips_per_second"] = TipsPerSecond(tips.size(), Quantile(b.Ms, 0.5));
+    side["device_tips_per_second"] = TipsPerSecond(tips.size(), b.Parts.DeviceMedianMs());
     side["answers_differing_from_per_tile"] = CountDifferingAnswers(b.Answers, sides[0].Answers);
     out[Passes[p].Name] = side;
   }
   out["tips"] = tips.size();
+  return out;
+}
+
+/// Two settings' batches taken in turn (BatchesInTurn) as JSON: each side under its name, with
+/// its times, tips per second on the host's clock and on the device's, and its parts; the tips,
+/// and the answers that differ between the sides (none may).
+Json TwoSides(const std::vector<BatchSide>& sides, const char* first, const char* second, std::size_t tips)
+{
+  Json out;
+  for (int k = 0; k < 2; ++k)
+  {
+    const BatchSide& b = sides[static_cast<std::size_t>(k)];
+    Json side = Timing(b.Ms);
+    side["tips_per_second"] = TipsPerSecond(tips, Quantile(b.Ms, 0.5));
+    side["device_tips_per_second"] = TipsPerSecond(tips, b.Parts.DeviceMedianMs());
+    side["parts"] = b.Parts.Json();
+    out[k == 0 ? first : second] = side;
+  }
+  out["tips"] = tips;
+  out["answers_differing"] = CountDifferingAnswers(sides[1].Answers, sides[0].Answers);
   return out;
 }
 
@@ -310,18 +329,7 @@ Json SubmissionsInFlight(vtkZBufferVesselDistance* zbuffer, const BenchPoints& t
   const std::vector<BatchSide> sides =
     BatchesInTurn(zbuffer, tips, 2, [&](int k) { zbuffer->SetSubmissionsInFlight(k + 1); });
   zbuffer->SetSubmissionsInFlight(2);
-  Json out;
-  for (int k = 0; k < 2; ++k)
-  {
-    const BatchSide& b = sides[static_cast<std::size_t>(k)];
-    Json side = Timing(b.Ms);
-    side["tips_per_second"] = 1000.0 * static_cast<double>(tips.size()) / std::max(1e-9, Quantile(b.Ms, 0.5));
-    side["parts"] = b.Parts.Json();
-    out[k == 0 ? "one" : "two"] = side;
-  }
-  out["tips"] = tips.size();
-  out["answers_differing"] = CountDifferingAnswers(sides[1].Answers, sides[0].Answers);
-  return out;
+  return TwoSides(sides, "one", "two", tips.size());
 }
 
 /// The batch's tips submitted in space order and as given (SetBatchOrder), run after run in
@@ -332,19 +340,7 @@ Json BatchOrders(vtkZBufferVesselDistance* zbuffer, const BenchPoints& tips)
   constexpr int Orders[2] = { vtkZBufferVesselDistance::BatchOrderAsGiven, vtkZBufferVesselDistance::BatchOrderSpatial };
   const std::vector<BatchSide> sides = BatchesInTurn(zbuffer, tips, 2, [&](int k) { zbuffer->SetBatchOrder(Orders[k]); });
   zbuffer->SetBatchOrder(vtkZBufferVesselDistance::BatchOrderSpatial);
-  Json out;
-  for (int k = 0; k < 2; ++k)
-  {
-    const BatchSide& b = sides[static_cast<std::size_t>(k)];
-    Json side = Timing(b.Ms);
-    side["tips_per_second"] = 1000.0 * static_cast<double>(tips.size()) / std::max(1e-9, Quantile(b.Ms, 0.5));
-    side["device_tips_per_second"] = 1000.0 * static_cast<double>(tips.size()) / std::max(1e-9, b.Parts.DeviceMedianMs());
-    side["parts"] = b.Parts.Json();
-    out[k == 0 ? "as_given" : "spatial"] = side;
-  }
-  out["tips"] = tips.size();
-  out["answers_differing"] = CountDifferingAnswers(sides[1].Answers, sides[0].Answers);
-  return out;
+  return TwoSides(sides, "as_given", "spatial", tips.size());
 }
 
 /// The paper's layers (nearest and farthest depth only) on the same tips.

@@ -20,6 +20,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -224,6 +225,27 @@ void PrintZBufferTimes(const Json& z)
   }
 }
 
+/// A batch under two settings taken in turn (bench's TwoSides), a row per size and side: the
+/// batch's median and p95, tips per second, the device's time and one part of the call's.
+void PrintTwoSides(const Json& z, const char* key, const char* title, const std::array<const char*, 2>& sides,
+  const char* part, const char* partTitle)
+{
+  std::printf("%10s | %-18s %14s %14s %12s %12s %14s %12s\n", "tris/class", title, "batch med ms", "batch p95 ms",
+    "tips/s", "device ms", partTitle, "differing");
+  for (const Json& s : z["sizes"])
+  {
+    const Json& two = s[key];
+    for (const char* side : sides)
+    {
+      const Json& w = two[side];
+      std::printf("%10zu | %-18s %14.2f %14.2f %12.0f %12.2f %14.2f %12d\n", s["triangles_per_class"].get<std::size_t>(),
+        side, w["median_ms"].get<double>(), w["p95_ms"].get<double>(), w["tips_per_second"].get<double>(),
+        w["parts"]["device"]["median_ms"].get<double>(), w["parts"][part]["median_ms"].get<double>(),
+        two["answers_differing"].get<int>());
+    }
+  }
+}
+
 void PrintZBufferQueries(const Json& z)
 {
   std::printf("%10s | %14s %14s | %14s %14s %14s %14s\n", "tris/class", "query med ms", "on device med",
@@ -319,36 +341,10 @@ void PrintZBufferQueries(const Json& z)
         w["answers_differing_from_per_tile"].get<int>());
     }
   }
-  std::printf("%10s | %-18s %14s %14s %12s %12s %12s %12s\n", "tris/class", "in flight", "batch med ms", "batch p95 ms",
-    "tips/s", "device ms", "host wait ms", "differing");
-  for (const Json& s : z["sizes"])
-  {
-    // The batch with one submission in flight and with two (the host's work beside the device's).
-    const Json& f = s["batch_in_flight"];
-    for (const char* side : { "one", "two" })
-    {
-      const Json& w = f[side];
-      std::printf("%10zu | %-18s %14.2f %14.2f %12.0f %12.2f %12.2f %12d\n", s["triangles_per_class"].get<std::size_t>(),
-        side, w["median_ms"].get<double>(), w["p95_ms"].get<double>(), w["tips_per_second"].get<double>(),
-        w["parts"]["device"]["median_ms"].get<double>(), w["parts"]["submit_wait"]["median_ms"].get<double>(),
-        f["answers_differing"].get<int>());
-    }
-  }
-  std::printf("%10s | %-18s %14s %14s %12s %12s %14s %12s\n", "tris/class", "batch order", "batch med ms", "batch p95 ms",
-    "tips/s", "device ms", "ordering ms", "differing");
-  for (const Json& s : z["sizes"])
-  {
-    // The batch's tips submitted as given and in space order (neighbours side by side).
-    const Json& o = s["batch_order"];
-    for (const char* side : { "as_given", "spatial" })
-    {
-      const Json& w = o[side];
-      std::printf("%10zu | %-18s %14.2f %14.2f %12.0f %12.2f %14.2f %12d\n", s["triangles_per_class"].get<std::size_t>(),
-        side, w["median_ms"].get<double>(), w["p95_ms"].get<double>(), w["tips_per_second"].get<double>(),
-        w["parts"]["device"]["median_ms"].get<double>(), w["parts"]["order"]["median_ms"].get<double>(),
-        o["answers_differing"].get<int>());
-    }
-  }
+  // The batch with one submission in flight and with two (the host's work beside the device's),
+  // and with its tips as given and in space order (neighbours side by side).
+  PrintTwoSides(z, "batch_in_flight", "in flight", { "one", "two" }, "submit_wait", "host wait ms");
+  PrintTwoSides(z, "batch_order", "batch order", { "as_given", "spatial" }, "order", "ordering ms");
   for (const Json& s : z["sizes"])
   {
     if (s.contains("batch_votes"))

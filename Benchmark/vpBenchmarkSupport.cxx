@@ -68,6 +68,8 @@ void CallTimeSeries::Add(const vtkZBufferVesselDistance::CallTimes& t)
   this->Ceilings.push_back(t.CeilingsMs);
   this->Read.push_back(t.ReadMs);
   this->Order.push_back(t.OrderMs);
+  this->HostListing.push_back(t.ListingMs);
+  this->LastTilesListed = t.TilesListed;
   this->LastVotes = t.Votes;
   this->LastSubmissions = t.Submissions;
 }
@@ -78,7 +80,8 @@ BenchJson CallTimeSeries::Json() const
     { "device_listing", Timing(this->Listing) }, { "device_visiting", Timing(this->Visiting) },
     { "device_reducing", Timing(this->Reducing) }, { "submit_wait", Timing(this->Wait) },
     { "votes", Timing(this->Votes) }, { "ceilings", Timing(this->Ceilings) }, { "read", Timing(this->Read) },
-    { "order", Timing(this->Order) },
+    { "order", Timing(this->Order) }, { "host_listing", Timing(this->HostListing) },
+    { "tiles_listed_in_last_call", this->LastTilesListed },
     { "votes_in_last_call", this->LastVotes }, { "submissions_in_last_call", this->LastSubmissions } };
 }
 

@@ -41,8 +41,8 @@ public:
   double DeviceMedianMs() const;
 
 private:
-  std::vector<double> Total, Device, Listing, Visiting, Reducing, Wait, Votes, Ceilings, Read, Order;
-  std::size_t LastVotes = 0, LastSubmissions = 0;
+  std::vector<double> Total, Device, Listing, Visiting, Reducing, Wait, Votes, Ceilings, Read, Order, HostListing;
+  std::size_t LastVotes = 0, LastSubmissions = 0, LastTilesListed = 0;
 };
 
 /// Class answers of two runs over the same tips that differ in range, distance or inside.

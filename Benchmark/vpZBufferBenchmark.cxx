@@ -193,29 +193,35 @@ std::vector<BatchSide> BatchesInTurn(
 
 /// The batch's tiles listed before they are visited, or visited straight from the order table
 /// (SetTileListing), taking turns on the same engine: the batch of all tips five times each way,
-/// single tips in turns of 20, the tiles one submission lists and dispatches per tip, and the
-/// answers that differ (none may).
+/// single tips in turns of 20 (listed by the host, the default, and by the device's workgroups),
+/// the tiles one submission lists and dispatches per tip, and the answers that differ (none may).
 Json TileListing(vtkZBufferVesselDistance* zbuffer, const BenchPoints& tips)
 {
+  using Z = vtkZBufferVesselDistance;
   constexpr std::size_t Turn = 20;
-  constexpr int Listings[2] = { vtkZBufferVesselDistance::TileListingOff, vtkZBufferVesselDistance::TileListingOn };
-  std::vector<double> ms[2], deviceMs[2];
-  std::vector<ProximityResult> single[2];
-  const std::vector<BatchSide> batch =
-    BatchesInTurn(zbuffer, tips, 2, [&](int on) { zbuffer->SetTileListing(Listings[on]); });
+  constexpr int Listings[3] = { Z::TileListingOff, Z::TileListingOn, Z::TileListingOn };
+  constexpr int Passes[3] = { Z::ListingPassByDevice, Z::ListingPassByDevice, Z::ListingPassPerWorkgroup };
+  auto set = [&](int k) {
+    zbuffer->SetTileListing(Listings[k]);
+    zbuffer->SetListingPass(Passes[k]);
+  };
+  std::vector<double> ms[3], deviceMs[3];
+  std::vector<ProximityResult> single[3];
+  const std::vector<BatchSide> batch = BatchesInTurn(zbuffer, tips, 2, set);
   for (std::size_t first = 0; first < tips.size(); first += Turn)
   {
-    for (int on = 0; on < 2; ++on)
+    for (int k = 0; k < 3; ++k)
     {
-      zbuffer->SetTileListing(Listings[on]);
+      set(k);
       for (std::size_t i = first; i < std::min(tips.size(), first + Turn); ++i)
       {
         ProximityResult r;
-        TimedQuery(zbuffer, tips[i].data(), nullptr, r, ms[on], deviceMs[on]);
-        single[on].push_back(r);
+        TimedQuery(zbuffer, tips[i].data(), nullptr, r, ms[k], deviceMs[k]);
+        single[k].push_back(r);
       }
     }
   }
+  zbuffer->SetListingPass(Z::ListingPassByDevice);
   // One full submission, for what it dispatches and lists per tip.
   const std::size_t n = std::min(tips.size(), zbuffer->GetBatchCapacity());
   std::vector<ProximityResult> one;
@@ -231,10 +237,13 @@ Json TileListing(vtkZBufferVesselDistance* zbuffer, const BenchPoints& tips)
     side["single_device"] = Timing(deviceMs[on]);
     out[on == 1 ? "on" : "off"] = side;
   }
+  out["on"]["single_device_listed"] = Timing(ms[2]);
+  out["on"]["single_device_listed_device"] = Timing(deviceMs[2]);
   out["tiles_dispatched_per_tip"] = zbuffer->GetLastQueryTiles();
   out["tiles_listed_per_tip"] = static_cast<double>(zbuffer->GetLastQueryTilesListed()) / static_cast<double>(std::max<std::size_t>(1, n));
   out["answers_differing"] = CountDifferingAnswers(batch[0].Answers, batch[1].Answers) +
-    CountDifferingAnswers(single[0], single[1]) + CountDifferingAnswers(batch[1].Answers, single[1]);
+    CountDifferingAnswers(single[0], single[1]) + CountDifferingAnswers(batch[1].Answers, single[1]) +
+    CountDifferingAnswers(single[2], single[1]);
   zbuffer->SetTileListing(vtkZBufferVesselDistance::TileListingByDevice);
   return out;
 }
@@ -293,6 +302,8 @@ Json BatchPasses(vtkZBufferVesselDistance* zbuffer, const BenchPoints& tips)
     side["device_visiting"] = parts["device_visiting"];
     side["tips_per_second"] = TipsPerSecond(tips.size(), Quantile(b.Ms, 0.5));
     side["device_tips_per_second"] = TipsPerSecond(tips.size(), b.Parts.DeviceMedianMs());
+    side["tiles_listed_per_tip"] =
+      parts["tiles_listed_in_last_call"].get<double>() / static_cast<double>(std::max<std::size_t>(1, tips.size()));
     side["answers_differing_from_per_tile"] = CountDifferingAnswers(b.Answers, sides[0].Answers);
     out[Passes[p].Name] = side;
   }

@@ -26,7 +26,15 @@ constexpr int CoarseTiles = 4;
 /// A tile's edge in pixels (SummarizeTiles.comp's TilePx for the fine tiles; the grid's own).
 constexpr int TilePx = DepthLayerGrid::TilePx;
 /// The query's stages (QueryProximityCommon.glsl).
-constexpr std::int32_t VisitOrderedTiles = 0, SelectTiles = 1, VisitListedTiles = 2, SelectTilesPerAnswer = 3;
+constexpr std::int32_t VisitOrderedTiles = 0, SelectTiles = 1, VisitListedTiles = 2, SelectTilesPerAnswer = 3,
+                       VisitHostListedTiles = 4;
+/// Bits of a tile range's code that name the pixel of a tile, and of a coarse tile, whose column
+/// has the slice above them (TilePixelBits, CoarsePixelBits in QueryProximityCommon.glsl).
+constexpr unsigned TilePixelBits = 6, CoarsePixelBits = 10;
+/// A slot's items in the host's list per point of the slot, and the mark of an item that is a
+/// lane (HostListItemsPerPoint, LaneItem in QueryProximityCommon.glsl).
+constexpr std::uint32_t HostListItemsPerPoint = 8;
+constexpr std::uint32_t LaneItem = 0x80000000u;
 
 /// RasterizeLayers.comp's Parameters.
 struct RasterParameters
@@ -95,6 +103,15 @@ struct AnswerCeiling
   std::uint32_t Entries;
 };
 
+/// One item of the host's list of a few tips' tiles (HostTileList in QueryProximityCommon.glsl, a
+/// uvec2 each): its answer (point x classes + class), and its entry in the order table or
+/// LaneItem plus a lane. A slot's first item holds the number of items after it.
+struct HostListItem
+{
+  std::uint32_t Answer;
+  std::uint32_t Entry;
+};
+
 /// One field of a block as the shaders see it: "Parameters.Nx" at offset 20 in RasterParameters,
 /// or an element of a storage buffer's array ("Point", stride 16).
 struct ShaderField
@@ -123,6 +140,7 @@ inline std::vector<ShaderBlock> ShaderBlocks()
     { "ReduceParameters", sizeof(ReduceParameters), { "ReduceProximity.comp" } },
     { "PointRecord", sizeof(PointRecord), { "QueryProximity.comp", "QueryProximityPerPixel.comp" } },
     { "AnswerCeiling", sizeof(AnswerCeiling), { "QueryProximity.comp", "QueryProximityPerPixel.comp" } },
+    { "HostListItem", sizeof(HostListItem), { "QueryProximity.comp", "QueryProximityPerPixel.comp" } },
   };
 }
 
@@ -185,6 +203,7 @@ inline std::vector<ShaderField> ShaderLayoutFields()
     // Storage buffer records are arrays of vectors in the shaders: their strides.
     ShaderField{ "PointRecord", "Point", sizeof(PointRecord) / 2, true },
     ShaderField{ "AnswerCeiling", "AnswerCeiling", sizeof(AnswerCeiling), true },
+    ShaderField{ "HostListItem", "HostItem", sizeof(HostListItem), true },
   };
 }
 #undef VP_SHADER_FIELD

@@ -155,9 +155,10 @@ void vtkZBufferVesselDistance::SetTileListing(int listing)
 
 void vtkZBufferVesselDistance::SetListingPass(int pass)
 {
-  if (pass != ListingPassByDevice && pass != ListingPassPerWorkgroup && pass != ListingPassPerInvocation)
+  if (pass != ListingPassByDevice && pass != ListingPassPerWorkgroup && pass != ListingPassPerInvocation &&
+    pass != ListingPassOnHost)
   {
-    throw vp::InputError("listing pass", "must be by device, per workgroup or per invocation");
+    throw vp::InputError("listing pass", "must be by device, per workgroup, per invocation or on the host");
   }
   this->ListingPass = pass; // no Modified(): the answers are the same
 }
@@ -556,12 +557,11 @@ void vtkZBufferVesselDistance::CopyLayer(LayerPlane plane, std::vector<std::uint
 }
 
 double vtkZBufferVesselDistance::WriteCeilings(
-  const std::array<double, 3>* tips, std::size_t count, double searchMm, std::uint32_t slot) const
+  const std::array<double, 3>* tips, std::size_t count, double searchMm, AnswerCeiling* ceiling) const
 {
   Internals& s = *this->Impl;
   const std::uint32_t classes = s.Classes();
   const std::uint32_t orderCount = s.FineTable.Within(searchMm);
-  auto* ceiling = static_cast<AnswerCeiling*>(s.Ceilings->Mapped()) + s.FirstPointOf(slot) * classes;
   constexpr float None = std::numeric_limits<float>::infinity();
   if (!this->QueryCeilings || this->BoxMode != FixedAroundVessels)
   {
@@ -638,8 +638,19 @@ vtkZBufferVesselDistance::Submission vtkZBufferVesselDistance::StartBatch(const 
       (this->QueryPass == QueryPassByDevice && !s.Context->IsCpuDevice() && count <= PerPixelMaxTips)) &&
     orderCount + laneGroups <= s.Context->Limits().maxComputeWorkGroupCount[0];
   const std::uint32_t n = static_cast<std::uint32_t>(count);
+  const bool list = this->TileListing != TileListingOff;
+  // A few tips are listed on the host: one dispatch then visits their tiles. Listed on the
+  // device per workgroup (a few tips' answers on the device's invocations would leave most of a
+  // CPU device's threads idle: a single tip on lavapipe 0.43 ms against 0.31) or per invocation.
+  bool hostList = list &&
+    (this->ListingPass == ListingPassOnHost || (this->ListingPass == ListingPassByDevice && n <= PerPixelMaxTips));
   const double ceilingsMs = vp::NowMs();
-  const double reachMm = this->WriteCeilings(tips, count, searchMm, slot);
+  // The host's listing reads the ceilings as written here: memory the device reads may be slow
+  // for the host to read back (write-combined on a GPU).
+  auto* mapped = static_cast<AnswerCeiling*>(s.Ceilings->Mapped()) + s.FirstPointOf(slot) * classes;
+  s.HostCeilings.resize(hostList ? count * classes : 0);
+  const double reachMm = this->WriteCeilings(tips, count, searchMm, hostList ? s.HostCeilings.data() : mapped);
+  std::copy(s.HostCeilings.begin(), s.HostCeilings.end(), mapped);
   s.LastCall.CeilingsMs += vp::NowMs() - ceilingsMs;
   const std::uint32_t tiles = reachMm < 0.0 ? 0 : std::min(orderCount, s.FineTable.Within(reachMm));
   // The listed tiles are visited per pixel where the order table would be: for a few tips on a
@@ -648,12 +659,16 @@ vtkZBufferVesselDistance::Submission vtkZBufferVesselDistance::StartBatch(const 
   // H100: 3.5 ms per tile, 4.4 ms per pixel; bench's batch passes).
   const bool listPerPixel = this->QueryPass == QueryPassPerPixel ||
     (this->QueryPass == QueryPassByDevice && !s.Context->IsCpuDevice() && n <= PerPixelMaxTips);
-  const bool list = this->TileListing == TileListingOn ||
-    (this->TileListing == TileListingByDevice && (n > PerPixelMaxTips || s.Context->IsCpuDevice()));
   const int listing = list ? (listPerPixel ? 2 : 1) : 0;
-  // A few tips list per workgroup, where the answers' invocations would leave most of a CPU
-  // device's threads idle (a single tip on lavapipe: 0.43 ms against 0.31).
-  const bool listPerInvocation = list &&
+  long long hostListed = -1;
+  if (hostList)
+  {
+    const double listingMs = vp::NowMs();
+    hostListed = s.ListOnHost(q, tips, count, listPerPixel, slot);
+    hostList = hostListed >= 0;
+    s.LastCall.ListingMs += vp::NowMs() - listingMs;
+  }
+  const bool listPerInvocation = list && !hostList &&
     (this->ListingPass == ListingPassPerInvocation ||
       (this->ListingPass == ListingPassByDevice && s.Context->IsCpuDevice() && n > PerPixelMaxTips));
   // Without a list, a batch first visits its near tiles, so that the best falls before the rest
@@ -666,7 +681,11 @@ vtkZBufferVesselDistance::Submission vtkZBufferVesselDistance::StartBatch(const 
   auto* sizes = static_cast<VkDispatchIndirectCommand*>(s.DispatchSizes->Mapped()) + 2 * slot;
   sizes[0] = { groups(perPixel, std::min(nearEntries, tiles)), classes, n };
   std::uint32_t laneSlots = 0;
-  if (list)
+  if (hostList)
+  {
+    // ListOnHost sized the visit.
+  }
+  else if (list)
   {
     // The listing's workgroups per answer: one for a batch (its answers fill the device) and on
     // a CPU device (which runs them one after another anyway); for a few tips on a GPU enough
@@ -686,10 +705,11 @@ vtkZBufferVesselDistance::Submission vtkZBufferVesselDistance::StartBatch(const 
   s.LastTiles = tiles * classes;
   s.LastTilesInRange = orderCount * classes;
   const double submitMs = vp::NowMs();
-  s.PreparedQueryFor(q, n, slot, perPixel, listing, listPerInvocation, s.StampStages, nearEntries, laneSlots).Start(slot);
+  s.PreparedQueryFor(q, n, slot, perPixel, listing, listPerInvocation, hostList, s.StampStages, nearEntries, laneSlots)
+    .Start(slot);
   s.LastCall.SubmitWaitMs += vp::NowMs() - submitMs;
   ++s.LastCall.Submissions;
-  return Submission{ tips, count, axes != nullptr, searchMm, q.Bins, binWidth, results, slot };
+  return Submission{ tips, count, axes != nullptr, searchMm, q.Bins, binWidth, results, slot, hostListed };
 }
 
 void vtkZBufferVesselDistance::FinishBatch(const Submission& batch) const
@@ -700,7 +720,9 @@ void vtkZBufferVesselDistance::FinishBatch(const Submission& batch) const
   s.LastCall.SubmitWaitMs += vp::NowMs() - waitMs;
   s.LastSlot = batch.Slot;
   s.AddDeviceMs(s.LastCall, batch.Slot); // the stamps it copied
-  s.LastTilesListed = s.AnswersOf(batch.Slot)[7]; // the first answer's word 7 (ReduceProximity.comp)
+  // The device's count: the first answer's word 7 (ReduceProximity.comp).
+  s.LastTilesListed = batch.HostListed >= 0 ? static_cast<std::uint32_t>(batch.HostListed) : s.AnswersOf(batch.Slot)[7];
+  s.LastCall.TilesListed += s.LastTilesListed;
   const double readMs = vp::NowMs(), votesBeforeMs = s.LastCall.VotesMs;
   this->ReadAnswers(batch);
   s.LastCall.ReadMs += vp::NowMs() - readMs - (s.LastCall.VotesMs - votesBeforeMs);

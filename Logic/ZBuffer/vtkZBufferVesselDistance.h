@@ -8,6 +8,14 @@
 #include <memory>
 #include <string>
 
+namespace vp
+{
+namespace zbuffer
+{
+struct AnswerCeiling;
+}
+}
+
 /// The paper's GPU method on Vulkan (headless, any device; Mesa's lavapipe on a machine without a
 /// GPU), made exact up to a stated bound.
 ///
@@ -110,27 +118,33 @@ public:
   /// own ceiling and lists the tiles that have to be visited; a dispatch sized by the device
   /// then visits those alone, per pixel where the query pass would be. A batch's near tiles
   /// are visited first only without a list. The answers are the same, bit for bit. Default
-  /// TileListingByDevice: on for submissions of more than 8 tips, and for every submission on a
-  /// CPU device (where it made a single tip faster too); off for a few tips on a GPU (the list
-  /// is a dispatch more: to be measured there).
+  /// TileListingByDevice: on. A few tips' list is the host's (SetListingPass), which leaves them
+  /// one dispatch of a few dozen workgroups where the order table started thousands; before it, a
+  /// GPU listed no few tips' tiles (the device's listing was a dispatch more: 0.059 ms against
+  /// 0.041 for a single tip on an H100).
   void SetTileListing(int listing);
   int GetTileListing() const { return this->TileListing; }
   enum ListingPasses
   {
     ListingPassByDevice = 0,
     ListingPassPerWorkgroup = 1,
-    ListingPassPerInvocation = 2
+    ListingPassPerInvocation = 2,
+    ListingPassOnHost = 3
   };
   /// How a list is made (SetTileListing): PerWorkgroup, a workgroup per answer whose invocations
   /// test its coarse tiles side by side, each against the ceiling the answer started from; or
   /// PerInvocation, an invocation per answer walking its coarse tiles nearest first, each tile it
   /// may visit lowering the best before the next is tested, so that it stops sooner. The answers
-  /// are the same, bit for bit. Default ListingPassByDevice: PerInvocation for submissions of more
-  /// than 8 tips on a CPU device (a 20,000-tip batch on IRCADb patient 1 here: its listing 185 ms
-  /// of device time against 373, the batch 453 ms against 635), PerWorkgroup for fewer (a single
-  /// tip's three answers would leave the device's other threads idle: 0.43 ms against 0.31) and on
-  /// a GPU (where one thread's walk is a chain of dependent reads: to be measured there, bench's
-  /// batch passes).
+  /// are the same, bit for bit. Or OnHost: the host walks each answer's coarse tiles as
+  /// PerInvocation does (vp::HostTileListing, on the tile ranges copied once per rendering) and
+  /// writes the list, lanes and all, so that one dispatch visits it: no listing dispatch, and
+  /// no workgroup per tile of the order table; a submission whose list would not fit its slot
+  /// (HostListItemsPerPoint items a point) is listed PerWorkgroup. Default ListingPassByDevice:
+  /// OnHost for submissions of up to 8 tips (a single tip on lavapipe: see the bench's tile
+  /// listing rows), PerInvocation for larger ones on a CPU device (a 20,000-tip batch on IRCADb
+  /// patient 1 here: its listing 185 ms of device time against 373, the batch 453 ms against
+  /// 635) and PerWorkgroup for larger ones on a GPU (where one thread's walk is a chain of
+  /// dependent reads: to be measured there, bench's batch passes).
   void SetListingPass(int pass);
   int GetListingPass() const { return this->ListingPass; }
   /// Invocations that share the directional walk along the axis, each walking its share of the
@@ -268,9 +282,11 @@ public:
     double CeilingsMs = 0.0; // the host's bounds per tip and class (SetQueryCeilings)
     double ReadMs = 0.0;     // the answers read into the results, votes excluded
     double OrderMs = 0.0;    // the tips put in space order and their results back (SetBatchOrder)
+    double ListingMs = 0.0;  // the host's listing (ListingPassOnHost)
     double TotalMs = 0.0;
     std::size_t Submissions = 0;
     std::size_t Votes = 0;
+    std::size_t TilesListed = 0; // by the device or the host, all submissions' tips and classes
   };
   CallTimes GetLastCallTimes() const;
   /// Tiles per tip within the latest submission's highest ceiling (summed over the classes: what
@@ -314,10 +330,11 @@ private:
   /// batch may go in space order (SetBatchOrder).
   void AnswerAll(const Points& tips, const Points* axes, double searchMm, bool bins, bool spaceOrder,
     std::vector<vp::ProximityResult>& results) const;
-  /// Writes each tip's ceilings for the next submission, in its slot (lock held); returns how far
-  /// from its tile the submission has to look, mm (the highest ceiling of a class not wholly
-  /// beyond the search; below 0: nowhere).
-  double WriteCeilings(const std::array<double, 3>* tips, std::size_t count, double searchMm, std::uint32_t slot) const;
+  /// Writes each tip's ceilings for the next submission to ceilings (count x classes; lock held);
+  /// returns how far from its tile the submission has to look, mm (the highest ceiling of a class
+  /// not wholly beyond the search; below 0: nowhere).
+  double WriteCeilings(const std::array<double, 3>* tips, std::size_t count, double searchMm,
+    vp::zbuffer::AnswerCeiling* ceilings) const;
   /// Class c of a tip with no wall within the search: out of range, or inside however deep.
   void AnswerBeyondRange(std::uint32_t c, const double tip[3], bool centreRayInside, vp::ClassProximity& out) const;
   /// The exact engine of every class, made the first time a tip on a closed surface is deeper

@@ -12,6 +12,7 @@
 #include "vpBlockDistanceField.h"
 #include "vpComputeKernel.h"
 #include "vpGpuBuffer.h"
+#include "vpHostTileListing.h"
 #include "vpPreparedCommands.h"
 #include "vpTileOrder.h"
 #include "vpVulkanContext.h"
@@ -122,6 +123,7 @@ struct vtkZBufferVesselDistance::Submission
   double BinWidthMm = 0.0;
   vp::ProximityResult* Results = nullptr;
   std::uint32_t Slot = 0;
+  long long HostListed = -1; // the tiles the host listed; -1: none (the device listed, or no list)
 };
 
 struct vtkZBufferVesselDistance::Internals
@@ -163,6 +165,13 @@ struct vtkZBufferVesselDistance::Internals
   // The tiles a submission lists, and the list's size with the workgroup counts of the
   // dispatch that visits them (written by the device; see TileList in the shaders).
   std::unique_ptr<vp::GpuBuffer> TileList, TileListSize;
+  // A few tips' list made on the host (HostTileList in the shaders: HostListItemsPerPoint items
+  // per point of a slot, written by the host), and the tile ranges it reads, copied from the
+  // device once per rendering.
+  std::unique_ptr<vp::GpuBuffer> HostTileList;
+  std::vector<vp::zbuffer::AnswerCeiling> HostCeilings; // the ceilings as written, when the host lists
+  vp::HostTileListing HostListing;
+  int HostListingRender = -1;
   // The ceilings' sources: the coarse blocks of the current rendering, and per class the latest
   // answer (tip, and the distance to its nearest marked cell) on the rendering it was made on.
   std::unique_ptr<vp::BlockDistanceField> CeilingBlocks;
@@ -239,6 +248,7 @@ struct vtkZBufferVesselDistance::Internals
     std::uint32_t Slot = 0;
     bool PerPixel = false;
     int Listing = 0; // 0: no list; 1: listed tiles visited per tile; 2: per pixel
+    bool HostList = false;          // listed by the host (else by the device)
     bool ListPerInvocation = false; // listed by an invocation per answer (else a workgroup)
     bool Stages = false;            // stamps between its stages
     QueryParameters Parameters{};
@@ -273,12 +283,22 @@ struct vtkZBufferVesselDistance::Internals
 
   // One of the layers' bit planes, copied to the host (lock held).
   void CopyLayer(LayerPlane plane, std::vector<std::uint32_t>& words);
+  // A device buffer's words, copied to the host.
+  void CopyBuffer(const vp::GpuBuffer& buffer, std::vector<std::uint32_t>& words);
 
   // The ceilings' blocks for the current rendering, and no answer remembered from an older one.
   // None for a rendering's first submission: a one-shot query (`distance --tip`) does not wait
   // the tenths of a second they take on large layers.
   const vp::BlockDistanceField* PrepareCeilings(bool now = false);
 
+  // A tip in grid units (pixels, pixels, slices) as the query reads it.
+  void GridTip(const double tipMm[3], float grid[3]) const
+  {
+    const vp::DepthLayerGrid& g = this->Grid;
+    grid[0] = static_cast<float>((tipMm[0] - g.OriginMm[0]) / g.PixelMm);
+    grid[1] = static_cast<float>((tipMm[1] - g.OriginMm[1]) / g.PixelMm);
+    grid[2] = static_cast<float>((tipMm[2] - g.OriginMm[2]) / g.SliceMm);
+  }
   // Each tip in grid units and its unit axis (or zero), where the query in slot `slot` reads them.
   void WritePoints(const std::array<double, 3>* tips, std::size_t count, const std::array<double, 3>* axes, std::uint32_t slot);
 
@@ -288,8 +308,18 @@ struct vtkZBufferVesselDistance::Internals
   // the tiles it would have visited (a workgroup, or with listPerInvocation an invocation, per
   // answer) and a third, sized by the device, visits them.
   // In slot `slot`: its points, ceilings, dispatch sizes, answers and timestamps.
+  // With hostList the host has listed the tiles and lanes (HostTileList): one dispatch, sized
+  // by the host, visits them.
   vp::PreparedCommands& PreparedQueryFor(const QueryParameters& q, std::uint32_t n, std::uint32_t slot, bool perPixel,
-    int listing, bool listPerInvocation, bool stages, std::uint32_t nearEntries, std::uint32_t laneSlots);
+    int listing, bool listPerInvocation, bool hostList, bool stages, std::uint32_t nearEntries, std::uint32_t laneSlots);
+
+  // The host's listing on the current rendering's tile ranges (copied once per rendering).
+  const vp::HostTileListing& PrepareHostListing();
+  // Lists the answers' tiles and lanes of `count` tips for slot `slot`, their ceilings in
+  // HostCeilings: their items in HostTileList and the visiting dispatch's size in DispatchSizes'
+  // second. The tiles listed, or -1 when they do not fit (the device lists them then).
+  long long ListOnHost(
+    const QueryParameters& q, const std::array<double, 3>* tips, std::size_t count, bool perPixel, std::uint32_t slot);
 
   // The vessels' triangles as the rasteriser reads them: long edges split so that one invocation
   // never walks many pixels; float positions relative to the anchor, so that rounding stays far

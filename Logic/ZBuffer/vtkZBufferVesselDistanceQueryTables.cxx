@@ -29,6 +29,7 @@ void vtkZBufferVesselDistance::Internals::PrepareOrder(double rangeMm)
   {
     entryOf[static_cast<std::size_t>((order[e][1] + reach) * width + order[e][0] + reach)] = static_cast<std::uint32_t>(e);
   }
+  this->HostListing.SetTables(this->FineTable, this->CoarseTable, entryOf);
   this->Context->WaitAll();
   this->Prepared.clear(); // it names the buffers replaced here
   this->OrderCount = static_cast<std::uint32_t>(order.size());
@@ -71,12 +72,15 @@ void vtkZBufferVesselDistance::Internals::PrepareOrder(double rangeMm)
   // At most one listed tile per answer and entry: half the records' bytes.
   this->TileList = std::make_unique<vp::GpuBuffer>(*this->Context, recordBytesPerTip * this->Capacity / 2, Placement::Device);
   this->TileListSize = std::make_unique<vp::GpuBuffer>(*this->Context, 16, Placement::Device);
+  this->HostTileList = std::make_unique<vp::GpuBuffer>(
+    *this->Context, sizeof(HostListItem) * HostListItemsPerPoint * this->Capacity * slots, Placement::HostToDevice);
   for (vp::ComputeKernel* query : { this->Query.get(), this->QueryPerPixel.get() })
   {
     query->BindBuffers({ this->Occupancy->Handle(), this->Crossings->Handle(), this->DepthRanges->Handle(),
       this->TileRanges->Handle(), this->Order->Handle(), this->State->Handle(), this->Records->Handle(),
       this->Points->Handle(), this->Choices->Handle(), this->Ceilings->Handle(), this->TileList->Handle(),
-      this->TileListSize->Handle(), this->CoarseOrder->Handle(), this->EntryIndex->Handle() });
+      this->TileListSize->Handle(), this->CoarseOrder->Handle(), this->EntryIndex->Handle(),
+      this->HostTileList->Handle() });
   }
   this->Reduce->BindBuffers({ this->State->Handle(), this->Records->Handle(), this->HostState->Handle(),
     this->Choices->Handle(), this->TileListSize->Handle() });
@@ -117,4 +121,65 @@ const vp::BlockDistanceField* vtkZBufferVesselDistance::Internals::PrepareCeilin
   this->CeilingBlocksRender = this->Renders;
   this->CeilingBuildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return this->CeilingBlocks.get();
+}
+
+const vp::HostTileListing& vtkZBufferVesselDistance::Internals::PrepareHostListing()
+{
+  if (this->HostListingRender != this->Renders)
+  {
+    std::vector<std::uint32_t> ranges;
+    this->CopyBuffer(*this->TileRanges, ranges);
+    this->HostListing.SetRanges(std::move(ranges), this->Grid.TilesX(), this->Grid.TilesY(),
+      static_cast<int>(this->Classes()), this->Grid.PixelMm, this->Grid.SliceMm);
+    this->HostListingRender = this->Renders;
+  }
+  return this->HostListing;
+}
+
+long long vtkZBufferVesselDistance::Internals::ListOnHost(
+  const QueryParameters& q, const std::array<double, 3>* tips, std::size_t count, bool perPixel, std::uint32_t slot)
+{
+  const vp::HostTileListing& listing = this->PrepareHostListing();
+  const std::uint32_t classes = this->Classes();
+  const std::size_t first = this->FirstPointOf(slot);
+  const AnswerCeiling* ceilings = this->HostCeilings.data();
+  // Item 0 holds the count; the rest of the slot's items, the list (lanes first per answer).
+  auto* items = static_cast<HostListItem*>(this->HostTileList->Mapped()) + first * HostListItemsPerPoint;
+  const std::size_t room = HostListItemsPerPoint * this->Capacity - 1;
+  const std::uint32_t laneItems =
+    perPixel ? (static_cast<std::uint32_t>(q.DirectionalLanes) + 63) / 64 : static_cast<std::uint32_t>(q.DirectionalLanes);
+  std::vector<std::uint32_t> entries;
+  std::size_t used = 0;
+  long long tiles = 0;
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    float tip[3];
+    this->GridTip(tips[i].data(), tip);
+    for (std::uint32_t c = 0; c < classes; ++c)
+    {
+      const std::uint32_t answer = static_cast<std::uint32_t>(i * classes + c);
+      entries.clear();
+      const AnswerCeiling& ceiling = ceilings[answer];
+      listing.List(tip, static_cast<int>(c), ceiling.Mm, ceiling.Entries,
+        static_cast<std::uint32_t>(q.CoarseCount), q.RangeMm, entries);
+      if (used + laneItems + entries.size() > room)
+      {
+        return -1;
+      }
+      for (std::uint32_t lane = 0; lane < laneItems; ++lane)
+      {
+        items[1 + used++] = { answer, LaneItem + lane };
+      }
+      for (const std::uint32_t entry : entries)
+      {
+        items[1 + used++] = { answer, entry };
+      }
+      tiles += static_cast<long long>(entries.size());
+    }
+  }
+  items[0] = { static_cast<std::uint32_t>(used), 0u };
+  const std::uint32_t n = static_cast<std::uint32_t>(used);
+  static_cast<VkDispatchIndirectCommand*>(this->DispatchSizes->Mapped())[2 * slot + 1] =
+    VkDispatchIndirectCommand{ perPixel ? n : (n + 63) / 64, 1, 1 };
+  return tiles;
 }

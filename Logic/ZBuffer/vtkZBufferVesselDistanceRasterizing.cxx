@@ -91,9 +91,9 @@ void vtkZBufferVesselDistance::Internals::CreateLayers(VkDeviceSize layerBytes)
     context, SummarizeTiles_comp, SummarizeTiles_comp_size, 2, static_cast<std::uint32_t>(sizeof(TileParameters)));
   this->Tiles->BindBuffers({ this->DepthRanges->Handle(), this->TileRanges->Handle() });
   this->Query = std::make_unique<vp::ComputeKernel>(
-    context, QueryProximity_comp, QueryProximity_comp_size, 14, static_cast<std::uint32_t>(sizeof(QueryParameters)));
+    context, QueryProximity_comp, QueryProximity_comp_size, 15, static_cast<std::uint32_t>(sizeof(QueryParameters)));
   this->QueryPerPixel = std::make_unique<vp::ComputeKernel>(context, QueryProximityPerPixel_comp,
-    QueryProximityPerPixel_comp_size, 14, static_cast<std::uint32_t>(sizeof(QueryParameters)));
+    QueryProximityPerPixel_comp_size, 15, static_cast<std::uint32_t>(sizeof(QueryParameters)));
   this->Reduce = std::make_unique<vp::ComputeKernel>(
     context, ReduceProximity_comp, ReduceProximity_comp_size, 5, static_cast<std::uint32_t>(sizeof(ReduceParameters)));
 }
@@ -154,15 +154,19 @@ void vtkZBufferVesselDistance::Internals::CopyLayer(LayerPlane plane, std::vecto
   const vp::GpuBuffer* planes[] = { this->Occupancy.get(), this->Crossings.get(), this->CrossingHalves.get(),
     this->CrossingQuarters.get() };
   const vp::GpuBuffer* layer = planes[static_cast<int>(plane)];
-  if (!this->Rendered || !layer)
+  if (this->Rendered && layer)
   {
-    return;
+    this->CopyBuffer(*layer, words);
   }
-  const VkDeviceSize bytes = layer->Size();
+}
+
+void vtkZBufferVesselDistance::Internals::CopyBuffer(const vp::GpuBuffer& buffer, std::vector<std::uint32_t>& words)
+{
+  const VkDeviceSize bytes = buffer.Size();
   vp::GpuBuffer host(*this->Context, bytes, vp::GpuBuffer::Placement::Host);
   this->Context->Submit([&](VkCommandBuffer cmd) {
     VkBufferCopy region{ 0, 0, bytes };
-    vkCmdCopyBuffer(cmd, layer->Handle(), host.Handle(), 1, &region);
+    vkCmdCopyBuffer(cmd, buffer.Handle(), host.Handle(), 1, &region);
     vp::ComputeKernel::Barrier(cmd);
   });
   words.resize(static_cast<std::size_t>(bytes / 4));

@@ -86,16 +86,12 @@ void vtkZBufferVesselDistance::Internals::VoteInside(const std::vector<InsideVot
 void vtkZBufferVesselDistance::Internals::WritePoints(
   const std::array<double, 3>* tips, std::size_t count, const std::array<double, 3>* axes, std::uint32_t slot)
 {
-  const vp::DepthLayerGrid& g = this->Grid;
   auto* points = static_cast<PointRecord*>(this->Points->Mapped()) + this->FirstPointOf(slot);
   for (std::size_t i = 0; i < count; ++i)
   {
-    const double* tip = tips[i].data();
     PointRecord& p = points[i];
     p = PointRecord{};
-    p.Tip[0] = static_cast<float>((tip[0] - g.OriginMm[0]) / g.PixelMm);
-    p.Tip[1] = static_cast<float>((tip[1] - g.OriginMm[1]) / g.PixelMm);
-    p.Tip[2] = static_cast<float>((tip[2] - g.OriginMm[2]) / g.SliceMm);
+    this->GridTip(tips[i].data(), p.Tip);
     if (axes)
     {
       const double* axis = axes[i].data();
@@ -109,13 +105,13 @@ void vtkZBufferVesselDistance::Internals::WritePoints(
 }
 
 vp::PreparedCommands& vtkZBufferVesselDistance::Internals::PreparedQueryFor(const QueryParameters& q, std::uint32_t n,
-  std::uint32_t slot, bool perPixel, int listing, bool listPerInvocation, bool stages, std::uint32_t nearEntries,
-  std::uint32_t laneSlots)
+  std::uint32_t slot, bool perPixel, int listing, bool listPerInvocation, bool hostList, bool stages,
+  std::uint32_t nearEntries, std::uint32_t laneSlots)
 {
   const std::uint32_t orderCount = static_cast<std::uint32_t>(q.OrderCount);
   auto prepared = std::find_if(this->Prepared.begin(), this->Prepared.end(), [&](const PreparedQuery& p) {
     return p.Points == n && p.Slot == slot && p.PerPixel == perPixel && p.Listing == listing &&
-      p.ListPerInvocation == listPerInvocation && p.Stages == stages &&
+      p.ListPerInvocation == listPerInvocation && p.HostList == hostList && p.Stages == stages &&
       std::memcmp(&p.Parameters, &q, sizeof q) == 0;
   });
   if (prepared == this->Prepared.end())
@@ -135,6 +131,7 @@ vp::PreparedCommands& vtkZBufferVesselDistance::Internals::PreparedQueryFor(cons
     entry.PerPixel = perPixel;
     entry.Listing = listing;
     entry.ListPerInvocation = listPerInvocation;
+    entry.HostList = hostList;
     entry.Stages = stages;
     entry.Parameters = q;
     entry.Commands = std::make_unique<vp::PreparedCommands>(*this->Context, [&](VkCommandBuffer cmd) {
@@ -146,9 +143,9 @@ vp::PreparedCommands& vtkZBufferVesselDistance::Internals::PreparedQueryFor(cons
       };
       this->Context->ResetStamps(cmd, slot);
       stamp(SubmissionStart);
-      if (listing == 0)
+      if (listing == 0 || hostList)
       {
-        stamp(TilesListed); // none listed: every stamp copied is written, or its copy would wait
+        stamp(TilesListed); // none listed here: every stamp copied is written, or its copy would wait
       }
       // Entries: a workgroup per tile (per pixel) or an invocation per tile (per tile); the
       // lanes come first in the last dispatch, whose size after them follows the ceilings.
@@ -171,6 +168,11 @@ vp::PreparedCommands& vtkZBufferVesselDistance::Internals::PreparedQueryFor(cons
       if (listing == 0)
       {
         visit(VisitOrderedTiles, perPixel, nearEntries, orderCount, laneSlots, *this->DispatchSizes, sizesAt + second);
+      }
+      else if (hostList)
+      {
+        // The host's list, lanes and tiles, in one dispatch it sized (ListOnHost).
+        visit(VisitHostListedTiles, listing == 2, 0, 0, 0, *this->DispatchSizes, sizesAt + second);
       }
       else
       {

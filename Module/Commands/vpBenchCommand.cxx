@@ -311,22 +311,29 @@ void PrintZBufferQueries(const Json& z)
         w["single_device"]["median_ms"].get<double>(), w["single_device"]["p95_ms"].get<double>(),
         t["answers_differing"].get<int>());
     }
+    // A few tips are listed by the host; the device's own listing of a single tip beside it.
+    const Json& on = t["on"];
+    std::printf("%10s | %-12s %16s %16s %10.4f / %9.4f %10.4f / %9.4f   (single tips listed by the device)\n", "",
+      "on, device", "", "", on["single_device_listed"]["median_ms"].get<double>(),
+      on["single_device_listed"]["p95_ms"].get<double>(), on["single_device_listed_device"]["median_ms"].get<double>(),
+      on["single_device_listed_device"]["p95_ms"].get<double>());
   }
-  std::printf("%10s | single tip, median / p95 ms: %-s\n", "tris/class", "call, device, host wait, votes, ceilings, answers read");
+  std::printf("%10s | single tip, median / p95 ms: %-s\n", "tris/class",
+    "call, device, host wait, votes, ceilings, host listing, answers read");
   for (const Json& s : z["sizes"])
   {
     const Json& t = s["single_tip_times"];
     std::printf("%10zu |", s["triangles_per_class"].get<std::size_t>());
     const char* separator = "";
-    for (const char* part : { "total", "device", "submit_wait", "votes", "ceilings", "read" })
+    for (const char* part : { "total", "device", "submit_wait", "votes", "ceilings", "host_listing", "read" })
     {
       std::printf("%s %.4f / %.4f", separator, t[part]["median_ms"].get<double>(), t[part]["p95_ms"].get<double>());
       separator = ",";
     }
     std::printf("\n");
   }
-  std::printf("%10s | %-31s %10s %10s %10s %14s %12s %12s %10s\n", "tris/class", "batch pass", "med ms", "p95 ms",
-    "tips/s", "device tips/s", "listing ms", "visiting ms", "differing");
+  std::printf("%10s | %-31s %10s %10s %10s %14s %12s %12s %10s %10s\n", "tris/class", "batch pass", "med ms", "p95 ms",
+    "tips/s", "device tips/s", "listing ms", "visiting ms", "tiles/tip", "differing");
   for (const Json& s : z["sizes"])
   {
     const Json& b = s["batch_passes"];
@@ -334,11 +341,11 @@ void PrintZBufferQueries(const Json& z)
       { "per_tile_listed", "per_pixel_listed", "per_tile_listed_per_invocation", "per_pixel_listed_per_invocation" })
     {
       const Json& w = b[pass];
-      std::printf("%10zu | %-31s %10.2f %10.2f %10.0f %14.0f %12.2f %12.2f %10d\n",
+      std::printf("%10zu | %-31s %10.2f %10.2f %10.0f %14.0f %12.2f %12.2f %10.1f %10d\n",
         s["triangles_per_class"].get<std::size_t>(), pass, w["batched"]["median_ms"].get<double>(),
         w["batched"]["p95_ms"].get<double>(), w["tips_per_second"].get<double>(), w["device_tips_per_second"].get<double>(),
         w["device_listing"]["median_ms"].get<double>(), w["device_visiting"]["median_ms"].get<double>(),
-        w["answers_differing_from_per_tile"].get<int>());
+        w["tiles_listed_per_tip"].get<double>(), w["answers_differing_from_per_tile"].get<int>());
     }
   }
   // The batch with one submission in flight and with two (the host's work beside the device's),

@@ -12,7 +12,8 @@
 // picks each answer's record as the tiles offer theirs, and ReduceProximity.comp hands it to the
 // host.
 // Stage SelectTiles lists the tiles that have to be visited (and runs the lanes), and stage
-// VisitListedTiles visits those (see TileList in QueryProximityCommon.glsl).
+// VisitListedTiles visits those (see TileList in QueryProximityCommon.glsl); stage
+// VisitHostListedTiles visits the tiles and runs the lanes the host listed (HostTileList).
 // No shared memory and no barriers: lavapipe runs a workgroup with a barrier as coroutines, which
 // cost more than the whole query.
 #extension GL_GOOGLE_include_directive : require
@@ -72,6 +73,13 @@ void main()
     }
     index = ReadListedTile(slot, point, cls);
   }
+  else if (P.Stage == VisitHostListedTiles)
+  {
+    if (!ReadHostListedItem(slot, index, point, cls))
+    {
+      return;
+    }
+  }
   else if (P.Stage == VisitOrderedTiles)
   {
     // The dispatch's first LaneSlots invocations are the lanes, the rest its tiles.
@@ -109,6 +117,11 @@ void main()
   if (P.Stage == VisitOrderedTiles && slot < uint(P.LaneSlots))
   {
     AnswerLane(cls, stateBase, int(slot));
+    return;
+  }
+  if (P.Stage == VisitHostListedTiles && index >= LaneItem)
+  {
+    AnswerLane(cls, stateBase, int(index - LaneItem));
     return;
   }
   ivec2 tile = TileToVisit(cls, stateBase, index, true);

@@ -62,6 +62,14 @@ const uint ListRowGroups = 1024u;
 layout(std430, binding = 12) readonly buffer CoarseOrder { ivec2 CoarseOffset[]; };
 layout(std430, binding = 13) readonly buffer EntryIndex { uint EntryOf[]; };
 const int CoarseTiles = 4;
+// A few tips' tiles listed by the host (stage VisitHostListedTiles; vp::HostTileListing), in
+// memory the host writes: HostListItemsPerPoint items per point of the slot, from the slot's
+// first point on; the first item holds the count, then per item its answer and its entry, or
+// LaneItem plus a lane (a workgroup of 64 lanes per pixel) of the answer's "inside" and
+// directional walk. The device's own listing is a dispatch more, which a single tip pays in full.
+layout(std430, binding = 14) readonly buffer HostTileList { uvec2 HostItem[]; };
+const uint HostListItemsPerPoint = 8u;
+const uint LaneItem = 0x80000000u;
 
 layout(push_constant) uniform Parameters
 {
@@ -108,6 +116,7 @@ const int VisitOrderedTiles = 0;    // the order table's entries FirstEntry..End
 const int SelectTiles = 1;          // the same entries, listed when they have to be visited
 const int VisitListedTiles = 2;     // the tiles listed
 const int SelectTilesPerAnswer = 3; // as SelectTiles, an invocation walking each answer's entries
+const int VisitHostListedTiles = 4; // the tiles (and lanes) the host listed
 
 // This invocation's point (set first thing in main), the least of the range and its answer's
 // ceiling, and the end of its entries (BeginAnswer).
@@ -556,6 +565,25 @@ uint ReadListedTile(uint item, out uint point, out uint cls)
   point = listed.x / uint(P.Classes);
   cls = listed.x % uint(P.Classes);
   return listed.y;
+}
+
+// The host's listed item (stage VisitHostListedTiles): its point and class, and its entry in the
+// order table or LaneItem plus a lane; false past the host's count.
+bool ReadHostListedItem(uint item, out uint entry, out uint point, out uint cls)
+{
+  uint base = uint(P.FirstPoint) * HostListItemsPerPoint;
+  entry = 0u;
+  point = 0u;
+  cls = 0u;
+  if (item >= HostItem[base].x)
+  {
+    return false;
+  }
+  uvec2 listed = HostItem[base + 1u + item];
+  point = listed.x / uint(P.Classes);
+  cls = listed.x % uint(P.Classes);
+  entry = listed.y;
+  return true;
 }
 
 // A tile's record with a distance: written, and offered to its answer's choice. A record

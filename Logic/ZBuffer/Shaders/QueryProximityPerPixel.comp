@@ -12,8 +12,8 @@
 // below it) and its distance does not depend on how far the search looked; every pixel of the
 // tile with that distance is offered, and the last wins. The distance bits are the same too: the
 // best distance's bit is raised in both, and the host reads only the first raised bit.
-// It visits the order table's tiles (stage VisitOrderedTiles) or the tiles a batch listed
-// (VisitListedTiles; the per-tile pass lists them).
+// It visits the order table's tiles (stage VisitOrderedTiles), the tiles a batch listed
+// (VisitListedTiles; the per-tile pass lists them) or those the host listed (VisitHostListedTiles).
 // Shared memory and barriers: fine on a GPU; lavapipe uses the per-tile pass.
 #extension GL_GOOGLE_include_directive : require
 #include "QueryProximityCommon.glsl"
@@ -41,6 +41,14 @@ void main()
     }
     entry = ReadListedTile(group, point, cls);
   }
+  else if (P.Stage == VisitHostListedTiles)
+  {
+    // One workgroup per item the host listed, the dispatch as long as its count.
+    if (!ReadHostListedItem(group, entry, point, cls))
+    {
+      return;
+    }
+  }
   else
   {
     entry = group - uint(P.LaneSlots) + uint(P.FirstEntry); // this dispatch's workgroups end it
@@ -48,10 +56,15 @@ void main()
   BeginPoint(point);
   uint answer = point * uint(P.Classes) + cls;
   uint stateBase = answer * StateStride;
-  if (P.Stage != VisitListedTiles && group < uint(P.LaneSlots))
+  if (P.Stage == VisitOrderedTiles && group < uint(P.LaneSlots))
   {
     // The dispatch's first workgroups: the lanes of "inside" and the directional walk.
     AnswerLane(cls, stateBase, int(group * 64u + k));
+    return;
+  }
+  if (P.Stage == VisitHostListedTiles && entry >= LaneItem)
+  {
+    AnswerLane(cls, stateBase, int((entry - LaneItem) * 64u + k));
     return;
   }
   BeginAnswer(answer);

@@ -1,0 +1,145 @@
+#include "vpHostTileListing.h"
+
+#include "vpZBufferShaderLayout.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+
+namespace vp
+{
+namespace
+{
+using zbuffer::CoarsePixelBits;
+using zbuffer::CoarseTiles;
+using zbuffer::TilePixelBits;
+using zbuffer::TilePx;
+
+// The device rounds to floats and moves its gaps down and its ceilings up by 1e-5 of themselves
+// (and 1e-4 mm): the host moves them twice as far, so that it never leaves off a tile the device
+// would list.
+double Lowered(double mm)
+{
+  return mm - mm * 2e-5 - 2e-4;
+}
+double Raised(double mm)
+{
+  return mm + mm * 2e-5 + 2e-4;
+}
+
+double AxisGap(double x, double lo, double hi)
+{
+  return std::max(0.0, std::max(lo - x, x - hi));
+}
+} // namespace
+
+void HostTileListing::SetTables(const TileOrder& fine, const TileOrder& coarse, const std::vector<std::uint32_t>& entryOf)
+{
+  this->Fine = fine.Offsets;
+  this->Coarse = coarse.Offsets;
+  this->Reach = fine.Reach;
+  this->EntryOf = entryOf;
+}
+
+void HostTileListing::SetRanges(
+  std::vector<std::uint32_t> words, int tilesX, int tilesY, int classes, double pixelMm, double sliceMm)
+{
+  this->Ranges = std::move(words);
+  this->TilesX = tilesX;
+  this->TilesY = tilesY;
+  this->Classes = classes;
+  this->PixelMm = pixelMm;
+  this->SliceMm = sliceMm;
+}
+
+double HostTileListing::BoxGapMm(const float tipGrid[3], int firstPixelX, int firstPixelY, int edgePx, double lo, double hi) const
+{
+  const double dx = AxisGap(tipGrid[0], firstPixelX, firstPixelX + edgePx) * this->PixelMm;
+  const double dy = AxisGap(tipGrid[1], firstPixelY, firstPixelY + edgePx) * this->PixelMm;
+  const double dz = AxisGap(tipGrid[2], std::floor(lo), std::floor(hi) + 1.0) * this->SliceMm;
+  return std::sqrt(dx * dx + dy * dy + dz * dz);
+}
+
+double HostTileListing::TileCeilingMm(
+  const float tipGrid[3], int tileX, int tileY, std::uint32_t codeLo, std::uint32_t codeHi) const
+{
+  double best = std::numeric_limits<double>::infinity();
+  for (const std::uint32_t code : { codeLo, codeHi })
+  {
+    const int px = tileX * TilePx + static_cast<int>(code & 7u);
+    const int py = tileY * TilePx + static_cast<int>((code >> 3) & 7u);
+    const double slice = static_cast<double>(code >> TilePixelBits);
+    const double dx = AxisGap(tipGrid[0], px, px + 1) * this->PixelMm;
+    const double dy = AxisGap(tipGrid[1], py, py + 1) * this->PixelMm;
+    const double dz = AxisGap(tipGrid[2], slice, slice + 1.0) * this->SliceMm;
+    best = std::min(best, std::sqrt(dx * dx + dy * dy + dz * dz));
+  }
+  return best;
+}
+
+void HostTileListing::List(const float tipGrid[3], int cls, double ceilingMm, std::uint32_t entryEnd,
+  std::uint32_t coarseCount, double searchMm, std::vector<std::uint32_t>& entries) const
+{
+  double best = Raised(std::min(searchMm, ceilingMm));
+  const int centreX = std::clamp(static_cast<int>(std::floor(tipGrid[0] / TilePx)), 0, this->TilesX - 1);
+  const int centreY = std::clamp(static_cast<int>(std::floor(tipGrid[1] / TilePx)), 0, this->TilesY - 1);
+  const int acrossX = (this->TilesX + CoarseTiles - 1) / CoarseTiles;
+  const int acrossY = (this->TilesY + CoarseTiles - 1) / CoarseTiles;
+  const std::size_t tiles = static_cast<std::size_t>(this->TilesX) * static_cast<std::size_t>(this->TilesY);
+  const std::size_t fineWords = 2 * static_cast<std::size_t>(this->Classes) * tiles;
+  const std::size_t coarseTiles = static_cast<std::size_t>(acrossX) * static_cast<std::size_t>(acrossY);
+  const std::uint32_t end = std::min(entryEnd, static_cast<std::uint32_t>(this->Fine.size()));
+  const int width = 2 * this->Reach + 1;
+  auto gapMm = [&](const std::array<std::int32_t, 2>& offset, int edgePx) {
+    const double gx = std::max(std::abs(offset[0]) - 1, 0), gy = std::max(std::abs(offset[1]) - 1, 0);
+    return Lowered(std::sqrt(gx * gx + gy * gy) * edgePx * this->PixelMm);
+  };
+  const std::size_t count = std::min<std::size_t>(coarseCount, this->Coarse.size());
+  for (std::size_t c = 0; c < count; ++c)
+  {
+    if (gapMm(this->Coarse[c], TilePx * CoarseTiles) > best)
+    {
+      break; // and every coarse tile after it
+    }
+    const int coarseX = centreX / CoarseTiles + this->Coarse[c][0];
+    const int coarseY = centreY / CoarseTiles + this->Coarse[c][1];
+    if (coarseX < 0 || coarseY < 0 || coarseX >= acrossX || coarseY >= acrossY)
+    {
+      continue;
+    }
+    const std::size_t t = fineWords +
+      2 * (static_cast<std::size_t>(cls) * coarseTiles + static_cast<std::size_t>(coarseY) * acrossX + coarseX);
+    const std::uint32_t coarseLo = this->Ranges[t], coarseHi = this->Ranges[t + 1];
+    if (coarseLo > coarseHi ||
+      Lowered(BoxGapMm(tipGrid, coarseX * TilePx * CoarseTiles, coarseY * TilePx * CoarseTiles, TilePx * CoarseTiles,
+        coarseLo >> CoarsePixelBits, coarseHi >> CoarsePixelBits)) > best)
+    {
+      continue; // empty, or no tile of it nearer than the best
+    }
+    for (int k = 0; k < CoarseTiles * CoarseTiles; ++k)
+    {
+      const int tileX = coarseX * CoarseTiles + k % CoarseTiles, tileY = coarseY * CoarseTiles + k / CoarseTiles;
+      const int ox = tileX - centreX, oy = tileY - centreY;
+      if (std::abs(ox) > this->Reach || std::abs(oy) > this->Reach || tileX >= this->TilesX || tileY >= this->TilesY)
+      {
+        continue; // beyond the range, or the grid
+      }
+      const std::uint32_t entry = this->EntryOf[static_cast<std::size_t>((oy + this->Reach) * width + ox + this->Reach)];
+      if (entry >= end)
+      {
+        continue;
+      }
+      const std::size_t f = 2 * (static_cast<std::size_t>(cls) * tiles + static_cast<std::size_t>(tileY) * this->TilesX + tileX);
+      const std::uint32_t codeLo = this->Ranges[f], codeHi = this->Ranges[f + 1];
+      if (codeLo > codeHi ||
+        Lowered(BoxGapMm(tipGrid, tileX * TilePx, tileY * TilePx, TilePx, codeLo >> TilePixelBits, codeHi >> TilePixelBits)) > best)
+      {
+        continue;
+      }
+      best = std::min(best, Raised(this->TileCeilingMm(tipGrid, tileX, tileY, codeLo, codeHi)));
+      entries.push_back(entry);
+    }
+  }
+}
+} // namespace vp

@@ -27,6 +27,12 @@ double Raised(double mm)
 {
   return mm + mm * 2e-5 + 2e-4;
 }
+// The square that a squared gap must pass for the gap, lowered, to pass best (no root per test).
+double Beyond2(double best)
+{
+  const double mm = (best + 2e-4) / (1.0 - 2e-5);
+  return mm * mm;
+}
 
 double AxisGap(double x, double lo, double hi)
 {
@@ -38,6 +44,11 @@ void HostTileListing::SetTables(const TileOrder& fine, const TileOrder& coarse, 
 {
   this->Fine = fine.Offsets;
   this->Coarse = coarse.Offsets;
+  this->CoarseGapMm.clear();
+  for (const double gap : coarse.GapMm)
+  {
+    this->CoarseGapMm.push_back(Lowered(gap));
+  }
   this->Reach = fine.Reach;
   this->EntryOf = entryOf;
 }
@@ -53,12 +64,12 @@ void HostTileListing::SetRanges(
   this->SliceMm = sliceMm;
 }
 
-double HostTileListing::BoxGapMm(const float tipGrid[3], int firstPixelX, int firstPixelY, int edgePx, double lo, double hi) const
+double HostTileListing::BoxGap2(const float tipGrid[3], int firstPixelX, int firstPixelY, int edgePx, double lo, double hi) const
 {
   const double dx = AxisGap(tipGrid[0], firstPixelX, firstPixelX + edgePx) * this->PixelMm;
   const double dy = AxisGap(tipGrid[1], firstPixelY, firstPixelY + edgePx) * this->PixelMm;
   const double dz = AxisGap(tipGrid[2], std::floor(lo), std::floor(hi) + 1.0) * this->SliceMm;
-  return std::sqrt(dx * dx + dy * dy + dz * dz);
+  return dx * dx + dy * dy + dz * dz;
 }
 
 double HostTileListing::TileCeilingMm(
@@ -82,6 +93,7 @@ void HostTileListing::List(const float tipGrid[3], int cls, double ceilingMm, st
   std::uint32_t coarseCount, double searchMm, std::vector<std::uint32_t>& entries) const
 {
   double best = Raised(std::min(searchMm, ceilingMm));
+  double beyond2 = Beyond2(best);
   const int centreX = std::clamp(static_cast<int>(std::floor(tipGrid[0] / TilePx)), 0, this->TilesX - 1);
   const int centreY = std::clamp(static_cast<int>(std::floor(tipGrid[1] / TilePx)), 0, this->TilesY - 1);
   const int acrossX = (this->TilesX + CoarseTiles - 1) / CoarseTiles;
@@ -91,14 +103,10 @@ void HostTileListing::List(const float tipGrid[3], int cls, double ceilingMm, st
   const std::size_t coarseTiles = static_cast<std::size_t>(acrossX) * static_cast<std::size_t>(acrossY);
   const std::uint32_t end = std::min(entryEnd, static_cast<std::uint32_t>(this->Fine.size()));
   const int width = 2 * this->Reach + 1;
-  auto gapMm = [&](const std::array<std::int32_t, 2>& offset, int edgePx) {
-    const double gx = std::max(std::abs(offset[0]) - 1, 0), gy = std::max(std::abs(offset[1]) - 1, 0);
-    return Lowered(std::sqrt(gx * gx + gy * gy) * edgePx * this->PixelMm);
-  };
   const std::size_t count = std::min<std::size_t>(coarseCount, this->Coarse.size());
   for (std::size_t c = 0; c < count; ++c)
   {
-    if (gapMm(this->Coarse[c], TilePx * CoarseTiles) > best)
+    if (this->CoarseGapMm[c] > best)
     {
       break; // and every coarse tile after it
     }
@@ -112,8 +120,8 @@ void HostTileListing::List(const float tipGrid[3], int cls, double ceilingMm, st
       2 * (static_cast<std::size_t>(cls) * coarseTiles + static_cast<std::size_t>(coarseY) * acrossX + coarseX);
     const std::uint32_t coarseLo = this->Ranges[t], coarseHi = this->Ranges[t + 1];
     if (coarseLo > coarseHi ||
-      Lowered(BoxGapMm(tipGrid, coarseX * TilePx * CoarseTiles, coarseY * TilePx * CoarseTiles, TilePx * CoarseTiles,
-        coarseLo >> CoarsePixelBits, coarseHi >> CoarsePixelBits)) > best)
+      BoxGap2(tipGrid, coarseX * TilePx * CoarseTiles, coarseY * TilePx * CoarseTiles, TilePx * CoarseTiles,
+        coarseLo >> CoarsePixelBits, coarseHi >> CoarsePixelBits) > beyond2)
     {
       continue; // empty, or no tile of it nearer than the best
     }
@@ -133,11 +141,16 @@ void HostTileListing::List(const float tipGrid[3], int cls, double ceilingMm, st
       const std::size_t f = 2 * (static_cast<std::size_t>(cls) * tiles + static_cast<std::size_t>(tileY) * this->TilesX + tileX);
       const std::uint32_t codeLo = this->Ranges[f], codeHi = this->Ranges[f + 1];
       if (codeLo > codeHi ||
-        Lowered(BoxGapMm(tipGrid, tileX * TilePx, tileY * TilePx, TilePx, codeLo >> TilePixelBits, codeHi >> TilePixelBits)) > best)
+        BoxGap2(tipGrid, tileX * TilePx, tileY * TilePx, TilePx, codeLo >> TilePixelBits, codeHi >> TilePixelBits) > beyond2)
       {
         continue;
       }
-      best = std::min(best, Raised(this->TileCeilingMm(tipGrid, tileX, tileY, codeLo, codeHi)));
+      const double ceiling = Raised(this->TileCeilingMm(tipGrid, tileX, tileY, codeLo, codeHi));
+      if (ceiling < best)
+      {
+        best = ceiling;
+        beyond2 = Beyond2(best);
+      }
       entries.push_back(entry);
     }
   }

@@ -37,10 +37,13 @@ public:
     double searchMm, std::vector<std::uint32_t>& entries) const;
 
 private:
-  double BoxGapMm(const float tipGrid[3], int firstPixelX, int firstPixelY, int edgePx, double lo, double hi) const;
+  /// The squared gap from the tip to a box of edgePx x edgePx pixels from firstPixel between
+  /// slices lo and hi (the shader's BoxGapMm, squared).
+  double BoxGap2(const float tipGrid[3], int firstPixelX, int firstPixelY, int edgePx, double lo, double hi) const;
   double TileCeilingMm(const float tipGrid[3], int tileX, int tileY, std::uint32_t codeLo, std::uint32_t codeHi) const;
 
   std::vector<std::array<std::int32_t, 2>> Fine, Coarse;
+  std::vector<double> CoarseGapMm; // each coarse entry's gap, lowered as the tests below lower theirs
   std::vector<std::uint32_t> EntryOf;
   int Reach = 0;
   std::vector<std::uint32_t> Ranges;

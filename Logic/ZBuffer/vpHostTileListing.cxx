@@ -34,6 +34,14 @@ double Beyond2(double best)
   return mm * mm;
 }
 
+// The tile holding grid coordinate x, clamped to the grid as the shader's CentreTile clamps it,
+// in double before the cast (a tip a kilometre away, or NaN, would overflow an int).
+int ClampedTile(double x, int tiles)
+{
+  const double t = std::floor(x / TilePx);
+  return t >= 0.0 ? static_cast<int>(std::min(t, static_cast<double>(tiles - 1))) : 0;
+}
+
 double AxisGap(double x, double lo, double hi)
 {
   return std::max(0.0, std::max(lo - x, x - hi));
@@ -94,8 +102,8 @@ void HostTileListing::List(const float tipGrid[3], int cls, double ceilingMm, st
 {
   double best = Raised(std::min(searchMm, ceilingMm));
   double beyond2 = Beyond2(best);
-  const int centreX = std::clamp(static_cast<int>(std::floor(tipGrid[0] / TilePx)), 0, this->TilesX - 1);
-  const int centreY = std::clamp(static_cast<int>(std::floor(tipGrid[1] / TilePx)), 0, this->TilesY - 1);
+  const int centreX = ClampedTile(tipGrid[0], this->TilesX);
+  const int centreY = ClampedTile(tipGrid[1], this->TilesY);
   const int acrossX = (this->TilesX + CoarseTiles - 1) / CoarseTiles;
   const int acrossY = (this->TilesY + CoarseTiles - 1) / CoarseTiles;
   const std::size_t tiles = static_cast<std::size_t>(this->TilesX) * static_cast<std::size_t>(this->TilesY);

@@ -682,6 +682,42 @@ TEST(ZBufferDistance, ListedTilesAreFewAndChangeNoAnswer)
   EXPECT_LE(listedPerTip[1], listedPerTip[0] * 1.02) << "an answer's invocation lowers its best tile by tile";
 }
 
+// A few tips far beyond the grid (and some just past its faces) are listed on the host from the
+// grid's edge tile, as the shader clamps its centre tile: out of range where the range ends
+// before the vessels, the answers of the order table where it does not.
+TEST(ZBufferDistance, HostListingTakesTipsFarBeyondTheGrid)
+{
+  VP_REQUIRE_VULKAN();
+  const ListedAndOrdered engines = MakeListedAndOrdered(50.0, 0.0);
+  vtkZBufferVesselDistance* listed = engines.Listed;
+  vtkZBufferVesselDistance* ordered = engines.Ordered;
+  listed->SetListingPass(vtkZBufferVesselDistance::ListingPassOnHost);
+  const double* b = engines.Bounds;
+  const double mid[3] = { (b[0] + b[1]) / 2, (b[2] + b[3]) / 2, (b[4] + b[5]) / 2 };
+  std::vector<std::array<double, 3>> tips = { { 1e9, 0.0, 0.0 }, { -1e12, 1e12, -1e9 } };
+  for (double out : { 5.0, 15.0, 25.0 })
+  {
+    tips.push_back({ b[0] - out, mid[1], mid[2] });
+    tips.push_back({ mid[0], b[3] + out, mid[2] });
+    tips.push_back({ mid[0], mid[1], b[5] + out });
+  }
+  int inRange = 0;
+  for (const auto& tip : tips)
+  {
+    vp::ProximityResult one, other;
+    listed->ComputeProximity(tip.data(), nullptr, one);
+    ordered->ComputeProximity(tip.data(), nullptr, other);
+    inRange += vp::test::ExpectSameAnswer(one, other, "tip " + std::to_string(tip[0]));
+  }
+  EXPECT_GT(inRange, 3) << "tips just past the faces are in range of some class";
+  vp::ProximityResult far;
+  listed->ComputeProximity(tips[0].data(), nullptr, far);
+  for (const vp::ClassProximity& c : far.Classes)
+  {
+    EXPECT_FALSE(c.InRange) << c.ClassName;
+  }
+}
+
 TEST(ZBufferDistance, ListedTilesAtFineCellsChangeNoAnswer)
 {
   // The listing finds its tiles through coarse tiles of 4 x 4: at 0.15 mm cells these are 4.8 mm

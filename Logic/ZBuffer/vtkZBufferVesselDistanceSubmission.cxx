@@ -57,6 +57,8 @@ void vtkZBufferVesselDistance::Internals::Release()
   this->DispatchSizes.reset();
   this->TileList.reset();
   this->TileListSize.reset();
+  this->HostTileList.reset();
+  this->HostListingRender = -1;
   this->CeilingBlocks.reset();
   this->CeilingBlocksRender = -1;
   this->CeilingBuildMs = 0.0;

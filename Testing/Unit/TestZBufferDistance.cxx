@@ -718,6 +718,34 @@ TEST(ZBufferDistance, HostListingTakesTipsFarBeyondTheGrid)
   }
 }
 
+// The host lists from the tile ranges of the rendering it copied them from: an engine given other
+// vessels and built again (its renderings counted from the start again) copies the new ones, and
+// answers as a new engine does.
+TEST(ZBufferDistance, HostListingFollowsTheVesselsAfterABuildAgain)
+{
+  VP_REQUIRE_VULKAN();
+  const double centre[3] = { 5, -3, 2 };
+  const Vessels sphere = { { "hepatic_vein", vp::MakeSphere(centre, 10.0, 48, 96) } };
+  auto reused = Make<vtkZBufferVesselDistance>(vp::MakeBuiltInVessels(), 50.0);
+  vp::ProximityResult before;
+  reused->ComputeProximity(centre, nullptr, before); // lists on the host from the phantom's ranges
+  reused->RemoveAllVessels();
+  reused->AddVessel(sphere[0].first, sphere[0].second);
+  auto fresh = Make<vtkZBufferVesselDistance>(sphere, 50.0);
+  int inRange = 0;
+  for (double gap : { 0.5, 3.0, 12.0 })
+  {
+    const double tip[3] = { centre[0] - 10.0 - gap, centre[1] + 0.2, centre[2] - 0.3 };
+    vp::ProximityResult one, other;
+    reused->ComputeProximity(tip, nullptr, one);
+    fresh->ComputeProximity(tip, nullptr, other);
+    inRange += vp::test::ExpectSameAnswer(one, other, "gap " + std::to_string(gap));
+    ASSERT_TRUE(one.Classes[0].InRange);
+    EXPECT_NEAR(one.Classes[0].DistanceMm, gap, one.ErrorBoundMm + 0.05);
+  }
+  EXPECT_EQ(inRange, 3);
+}
+
 TEST(ZBufferDistance, ListedTilesAtFineCellsChangeNoAnswer)
 {
   // The listing finds its tiles through coarse tiles of 4 x 4: at 0.15 mm cells these are 4.8 mm

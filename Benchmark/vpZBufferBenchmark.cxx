@@ -506,6 +506,7 @@ BenchJson BenchZBuffer(vtkZBufferVesselDistance* zbuffer, const std::vector<Name
   std::fprintf(stderr, ", batch passes");
   entry["batch_passes"] = BatchPasses(zbuffer, tips);
   entry["single_tip_times"] = SingleTipTimes(zbuffer, tips);
+  entry["single_tip_times_tracked"] = SingleTipTimes(zbuffer, track); // the answer before bounds each
   std::fprintf(stderr, ", submissions in flight");
   entry["batch_in_flight"] = SubmissionsInFlight(zbuffer, tips);
   std::fprintf(stderr, ", batch order");

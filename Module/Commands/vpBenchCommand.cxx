@@ -322,15 +322,18 @@ void PrintZBufferQueries(const Json& z)
     "call, device, host wait, votes, ceilings, host listing, answers read");
   for (const Json& s : z["sizes"])
   {
-    const Json& t = s["single_tip_times"];
-    std::printf("%10zu |", s["triangles_per_class"].get<std::size_t>());
-    const char* separator = "";
-    for (const char* part : { "total", "device", "submit_wait", "votes", "ceilings", "host_listing", "read" })
+    for (const char* walk : { "random", "tracked" })
     {
-      std::printf("%s %.4f / %.4f", separator, t[part]["median_ms"].get<double>(), t[part]["p95_ms"].get<double>());
-      separator = ",";
+      const Json& t = s[walk[0] == 'r' ? "single_tip_times" : "single_tip_times_tracked"];
+      std::printf("%10zu | %-7s", s["triangles_per_class"].get<std::size_t>(), walk);
+      const char* separator = "";
+      for (const char* part : { "total", "device", "submit_wait", "votes", "ceilings", "host_listing", "read" })
+      {
+        std::printf("%s %.4f / %.4f", separator, t[part]["median_ms"].get<double>(), t[part]["p95_ms"].get<double>());
+        separator = ",";
+      }
+      std::printf("\n");
     }
-    std::printf("\n");
   }
   std::printf("%10s | %-31s %10s %10s %10s %14s %12s %12s %10s %10s\n", "tris/class", "batch pass", "med ms", "p95 ms",
     "tips/s", "device tips/s", "listing ms", "visiting ms", "tiles/tip", "differing");

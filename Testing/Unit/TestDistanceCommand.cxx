@@ -181,9 +181,18 @@ TEST_F(DistanceCommand, BenchSplitsAZBufferCallIntoItsParts)
   {
     EXPECT_EQ(size["batch_passes"][pass]["answers_differing_from_per_tile"].get<int>(), 0) << pass;
     EXPECT_GT(size["batch_passes"][pass]["device_listing"]["median_ms"].get<double>(), 0.0) << pass;
+    EXPECT_GT(size["batch_passes"][pass]["tiles_listed_per_tip"].get<double>(), 1.0) << pass;
   }
-  EXPECT_EQ(size["single_tip_times"]["total"]["queries"].get<std::size_t>(), 100u);
-  EXPECT_EQ(size["single_tip_times"]["submissions_in_last_call"].get<std::size_t>(), 1u);
+  // A single tip's tiles are listed on the host, random or tracked; the device's listing of the
+  // same tips beside them gives the same answers.
+  for (const char* walk : { "single_tip_times", "single_tip_times_tracked" })
+  {
+    EXPECT_EQ(size[walk]["total"]["queries"].get<std::size_t>(), 100u) << walk;
+    EXPECT_EQ(size[walk]["submissions_in_last_call"].get<std::size_t>(), 1u) << walk;
+    EXPECT_GT(size[walk]["host_listing"]["median_ms"].get<double>(), 0.0) << walk;
+  }
+  EXPECT_EQ(size["tile_listing"]["answers_differing"].get<int>(), 0);
+  EXPECT_GT(size["tile_listing"]["on"]["single_device_listed"]["median_ms"].get<double>(), 0.0);
 }
 
 // bench runs a batch of several submissions with one in flight and with two, side by side: the

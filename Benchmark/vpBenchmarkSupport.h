@@ -31,8 +31,8 @@ BenchJson BenchBatch(vtkVesselDistanceEngine* engine, const BenchPoints& tips, c
 
 /// A z-buffer's calls by part (vtkZBufferVesselDistance::GetLastCallTimes), one call after
 /// another: Json() gives each part's median and p95 (total, device, device_listing,
-/// device_visiting, device_reducing, submit_wait, votes, ceilings, read, order, in ms) and the
-/// last call's votes and submissions.
+/// device_visiting, device_reducing, submit_wait, votes, ceilings, read, order, host_listing, in
+/// ms) and the last call's votes, submissions and tiles listed.
 class CallTimeSeries
 {
 public:

@@ -50,7 +50,7 @@ double AxisGap(double x, double lo, double hi)
 
 void HostTileListing::SetTables(const TileOrder& fine, const TileOrder& coarse, const std::vector<std::uint32_t>& entryOf)
 {
-  this->Fine = fine.Offsets;
+  this->FineEntries = static_cast<std::uint32_t>(fine.Offsets.size());
   this->Coarse = coarse.Offsets;
   this->CoarseGapMm.clear();
   for (const double gap : coarse.GapMm)
@@ -109,7 +109,7 @@ void HostTileListing::List(const float tipGrid[3], int cls, double ceilingMm, st
   const std::size_t tiles = static_cast<std::size_t>(this->TilesX) * static_cast<std::size_t>(this->TilesY);
   const std::size_t fineWords = 2 * static_cast<std::size_t>(this->Classes) * tiles;
   const std::size_t coarseTiles = static_cast<std::size_t>(acrossX) * static_cast<std::size_t>(acrossY);
-  const std::uint32_t end = std::min(entryEnd, static_cast<std::uint32_t>(this->Fine.size()));
+  const std::uint32_t end = std::min(entryEnd, this->FineEntries);
   const int width = 2 * this->Reach + 1;
   const std::size_t count = std::min<std::size_t>(coarseCount, this->Coarse.size());
   for (std::size_t c = 0; c < count; ++c)

@@ -42,7 +42,8 @@ private:
   double BoxGap2(const float tipGrid[3], int firstPixelX, int firstPixelY, int edgePx, double lo, double hi) const;
   double TileCeilingMm(const float tipGrid[3], int tileX, int tileY, std::uint32_t codeLo, std::uint32_t codeHi) const;
 
-  std::vector<std::array<std::int32_t, 2>> Fine, Coarse;
+  std::uint32_t FineEntries = 0; // the order table's length
+  std::vector<std::array<std::int32_t, 2>> Coarse;
   std::vector<double> CoarseGapMm; // each coarse entry's gap, lowered as the tests below lower theirs
   std::vector<std::uint32_t> EntryOf;
   int Reach = 0;

@@ -681,11 +681,8 @@ vtkZBufferVesselDistance::Submission vtkZBufferVesselDistance::StartBatch(const 
   auto* sizes = static_cast<VkDispatchIndirectCommand*>(s.DispatchSizes->Mapped()) + 2 * slot;
   sizes[0] = { groups(perPixel, std::min(nearEntries, tiles)), classes, n };
   std::uint32_t laneSlots = 0;
-  if (hostList)
-  {
-    // ListOnHost sized the visit.
-  }
-  else if (list)
+  // A host's list: ListOnHost sized the visit.
+  if (list && !hostList)
   {
     // The listing's workgroups per answer: one for a batch (its answers fill the device) and on
     // a CPU device (which runs them one after another anyway); for a few tips on a GPU enough
@@ -695,7 +692,7 @@ vtkZBufferVesselDistance::Submission vtkZBufferVesselDistance::StartBatch(const 
     sizes[1] = listPerInvocation ? VkDispatchIndirectCommand{ (n * classes + 63) / 64, 1, 1 }
                                  : VkDispatchIndirectCommand{ one ? 1u : std::max(1u, (coarse + 255) / 256), classes, n };
   }
-  else
+  else if (!list)
   {
     // Lanes first in the last dispatch over the order table: invocations per tile, workgroups
     // per pixel.

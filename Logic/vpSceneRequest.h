@@ -34,6 +34,10 @@ struct SceneRequest
   /// Each vessel surface repaired (vtkVesselSurfaceRepair) before it is used; the report of each
   /// repair is in OpenedScene::Vessels.
   bool RepairVessels = false;
+  /// The tumours to be resected, each under its id (NamedMesh::ClassName) with its surface (LPS
+  /// mm, closed for inside/outside): Mesh, else read from FileName. The tip's resection margin
+  /// (Tracking.Margin) is measured against each, exactly. Empty: none.
+  std::vector<NamedMesh> Tumours;
   /// A liver surface to show beside the vessels (read; never measured). Empty: none.
   std::string LiverFile;
   /// The scalpel: a model already made, else its model file (STL, VTK, VTP, PLY, OBJ), else (both
@@ -71,6 +75,8 @@ struct OpenedScene
   /// The vessels as read (and repaired), with their files: for the surface sections of reports
   /// and DescribeSurfaceDefects.
   std::vector<NamedMesh> Vessels;
+  /// The tumours as read, with their files.
+  std::vector<NamedMesh> Tumours;
   /// The liver surface, when one was asked for.
   vtkSmartPointer<vtkPolyData> Liver;
   /// Why method auto answers with the exact engine (no Vulkan device); empty otherwise.

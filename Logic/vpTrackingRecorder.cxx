@@ -11,6 +11,7 @@
 #include "vtkScalpelTrackingLogic.h"
 #include "vtkVesselDistanceEngine.h"
 #include "vtkVesselProximityLogic.h"
+#include "vtkVesselProximityParameters.h"
 
 #include <vtkCallbackCommand.h>
 #include <vtkNew.h>
@@ -49,13 +50,21 @@ bool TrackingRecorder::Run(PoseSource& poses, RunFolder& run)
     static_cast<TrackingSummary*>(client)->AddChange(*static_cast<DangerLevelChange*>(call));
   });
   vtkScalpelTrackingLogic* tracking = proximity->GetTrackingLogic();
-  const unsigned long observer = tracking->AddObserver(vtkScalpelTrackingLogic::DangerLevelChangedEvent, onChange);
+  vtkNew<vtkCallbackCommand> onMarginChange;
+  onMarginChange->SetClientData(&this->Summary);
+  onMarginChange->SetCallback([](vtkObject*, unsigned long, void* client, void* call) {
+    static_cast<TrackingSummary*>(client)->AddMarginChange(*static_cast<MarginLevelChange*>(call));
+  });
   struct RemoveObserver
   {
     vtkScalpelTrackingLogic* Tracking;
     unsigned long Tag;
     ~RemoveObserver() { this->Tracking->RemoveObserver(this->Tag); }
-  } removeObserver{ tracking, observer };
+  };
+  const RemoveObserver removeObserver{ tracking,
+    tracking->AddObserver(vtkScalpelTrackingLogic::DangerLevelChangedEvent, onChange) };
+  const RemoveObserver removeMarginObserver{ tracking,
+    tracking->AddObserver(vtkScalpelTrackingLogic::MarginLevelChangedEvent, onMarginChange) };
 
   // The frames stream into frames.csv in the run's staging folder as they are computed, and the
   // summary and the plot keep what they need in memory that does not grow with the run.
@@ -64,7 +73,7 @@ bool TrackingRecorder::Run(PoseSource& poses, RunFolder& run)
   {
     classes.push_back(engine->GetVesselName(c));
   }
-  CheckFramesCsvColumns(classes); // before anything is written
+  CheckFramesCsvColumns(classes, proximity->GetParameters()->GetNumberOfTumours() > 0); // before anything is written
   run.Begin();
   std::ofstream framesCsv(run.File("frames.csv"), std::ios::binary | std::ios::trunc);
   const auto writeFailed = [&]() {
@@ -87,7 +96,7 @@ bool TrackingRecorder::Run(PoseSource& poses, RunFolder& run)
     if (!plot)
     {
       plot = std::make_unique<DistancePlotRecorder>(this->Summary.GetClassNames(), surface);
-      framesCsv << FramesCsvHeader(this->Summary.GetClassNames(), surface, frame.Haptic.has_value());
+      framesCsv << FramesCsvHeader(this->Summary.GetClassNames(), surface, frame.Haptic.has_value(), frame.Tumour.has_value());
     }
     plot->Add(frame);
     framesCsv << FramesCsvRow(frame, surface);

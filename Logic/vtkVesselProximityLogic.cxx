@@ -9,6 +9,7 @@
 #include "vtkZBufferSurfaceDistance.h"
 #include "vtkZBufferVesselDistance.h"
 #include "vtkScalpelPenetration.h"
+#include "vtkTumourMarginDistance.h"
 #include "vtkVesselDistanceEngine.h"
 #include "vtkVesselProximityParameters.h"
 
@@ -45,6 +46,11 @@ vp::OpenedScene vtkVesselProximityLogic::OpenScene(const vp::SceneRequest& reque
     this->StartStage("repairing the vessels");
     vp::RepairVesselMeshes(scene.Vessels);
   }
+  if (!request.Tumours.empty())
+  {
+    this->StartStage("reading the tumours");
+    scene.Tumours = vp::LoadTumourMeshes(request.Tumours);
+  }
   this->StartStage("reading the scalpel");
   if (!request.LiverFile.empty())
   {
@@ -63,6 +69,11 @@ vp::OpenedScene vtkVesselProximityLogic::OpenScene(const vp::SceneRequest& reque
   {
     p->SetVessel(vessel.ClassName, vessel.Mesh);
   }
+  p->RemoveAllTumours();
+  for (const vp::NamedMesh& tumour : scene.Tumours)
+  {
+    p->SetTumour(tumour.ClassName, tumour.Mesh);
+  }
   p->SetScalpel(scalpel);
   p->SetDistanceEngine(engine);
   p->SetCompareWithExact(request.CompareWithExact && !vtkExactVesselDistance::SafeDownCast(engine));
@@ -74,6 +85,7 @@ vp::OpenedScene vtkVesselProximityLogic::OpenScene(const vp::SceneRequest& reque
   p->SetHysteresisMm(request.Tracking.HysteresisMm);
   p->SetFrameBudgetMs(request.Tracking.FrameBudgetMs);
   p->SetHapticSettings(request.Tracking.Haptic);
+  p->SetMarginSettings(request.Tracking.Margin);
   this->Build();
   this->Tracking->ValidateSettings();
   this->ResetTracking();
@@ -124,6 +136,7 @@ void vtkVesselProximityLogic::ApplyParameters()
     this->Tracking->SetHysteresisMm(p->GetHysteresisMm());
     this->Tracking->SetFrameBudgetMs(p->GetFrameBudgetMs());
     this->Tracking->SetHapticSettings(p->GetHapticSettings());
+    this->Tracking->SetMarginSettings(p->GetMarginSettings());
   }
   this->Modified();
 }
@@ -256,6 +269,7 @@ void vtkVesselProximityLogic::Build()
   }
   this->Tracking->SetSurfaceDistance(this->Surface);
   this->Tracking->SetPenetration(this->Penetration);
+  this->BuildTumourMargin(surface);
   this->SceneChanged = false;
   ++this->NumberOfBuilds;
 }
@@ -302,6 +316,25 @@ void vtkVesselProximityLogic::BuildInstrument(vtkVesselDistanceEngine* engine)
     this->Penetration->SetToolSurface(tool);
     this->Penetration->Build();
   }
+}
+
+void vtkVesselProximityLogic::BuildTumourMargin(bool surface)
+{
+  vtkVesselProximityParameters* p = this->Parameters;
+  this->TumourMargin = nullptr;
+  if (p->GetNumberOfTumours() > 0)
+  {
+    this->StartStage("building the tumours' trees");
+    this->TumourMargin = vtkSmartPointer<vtkTumourMarginDistance>::New();
+    for (int t = 0; t < p->GetNumberOfTumours(); ++t)
+    {
+      this->TumourMargin->AddTumour(p->GetTumourId(t), p->GetTumourSurface(t));
+    }
+    // The whole instrument against the tumours when it is measured against the vessels.
+    this->TumourMargin->SetToolSurface(surface ? this->GetScalpel()->GetModel() : nullptr);
+    this->TumourMargin->Build(); // once: not in the first frame's time
+  }
+  this->Tracking->SetTumourMargin(this->TumourMargin);
 }
 
 const vp::TrackedFrame& vtkVesselProximityLogic::ProcessPose(const vp::TrackedPose& pose)

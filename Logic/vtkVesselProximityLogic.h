@@ -19,6 +19,7 @@ class vtkPolyData;
 class vtkScalpelModel;
 class vtkScalpelSurfaceDistance;
 class vtkScalpelPenetration;
+class vtkTumourMarginDistance;
 class vtkVesselDistanceEngine;
 
 /// The module's logic: the scene (vessel surfaces per class, the scalpel) and everything computed
@@ -125,6 +126,7 @@ protected:
   vtkSmartPointer<vtkExactVesselDistance> Exact;
   vtkSmartPointer<vtkScalpelSurfaceDistance> Surface;
   vtkSmartPointer<vtkScalpelPenetration> Penetration;
+  vtkSmartPointer<vtkTumourMarginDistance> TumourMargin;
   vtkSmartPointer<vtkScalpelTrackingLogic> Tracking;
   bool SceneChanged = true;
   int NumberOfBuilds = 0;
@@ -135,6 +137,8 @@ private:
   bool WantsSurfaceDistance() const;
   /// The whole instrument's calculator and its penetration, as the parameter set asks.
   void BuildInstrument(vtkVesselDistanceEngine* engine);
+  /// The tumours' trees (with the instrument's surface when it is measured), or none.
+  void BuildTumourMargin(bool surface);
   /// What a change of the parameter set invalidates: the built engines (scene), or only the
   /// tracking logic's per-frame settings.
   void ApplyParameters();

@@ -85,6 +85,43 @@ void vtkVesselProximityParameters::RemoveAllVessels()
   }
 }
 
+void vtkVesselProximityParameters::SetTumour(const std::string& id, vtkPolyData* surface)
+{
+  for (auto& tumour : this->Tumours)
+  {
+    if (tumour.first == id)
+    {
+      if (tumour.second != surface)
+      {
+        tumour.second = surface;
+        this->SceneModified();
+      }
+      return;
+    }
+  }
+  this->Tumours.emplace_back(id, surface);
+  this->SceneModified();
+}
+
+void vtkVesselProximityParameters::RemoveAllTumours()
+{
+  if (!this->Tumours.empty())
+  {
+    this->Tumours.clear();
+    this->SceneModified();
+  }
+}
+
+void vtkVesselProximityParameters::SetMarginSettings(const vp::MarginSettings& margin)
+{
+  margin.Validate("MarginMm");
+  if (this->Tracking.Margin.MarginMm != margin.MarginMm || this->Tracking.Margin.NearBandMm != margin.NearBandMm)
+  {
+    this->Tracking.Margin = margin;
+    this->SettingsModified();
+  }
+}
+
 void vtkVesselProximityParameters::SetScalpel(vtkScalpelModel* scalpel)
 {
   if (Assign(this->Scalpel, vtkSmartPointer<vtkScalpelModel>(scalpel)))
@@ -191,6 +228,11 @@ void vtkVesselProximityParameters::PrintSelf(ostream& os, vtkIndent indent)
   {
     os << " " << vessel.first;
   }
+  os << "\n" << indent << "Tumours:";
+  for (const auto& tumour : this->Tumours)
+  {
+    os << " " << tumour.first;
+  }
   os << "\n" << indent << "Scalpel: " << (this->Scalpel ? "set" : "(none)") << "\n";
   os << indent << "DistanceEngine: " << this->DistanceEngine->GetMethodName() << "\n";
   os << indent << "ComputeSurfaceDistance: " << this->ComputeSurfaceDistance << "\n";
@@ -204,4 +246,5 @@ void vtkVesselProximityParameters::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "HapticStiffnessNPerMm: " << this->Tracking.Haptic.StiffnessNPerMm << "\n";
   os << indent << "HapticDampingNsPerMm: " << this->Tracking.Haptic.DampingNsPerMm << "\n";
   os << indent << "FrameBudgetMs: " << this->Tracking.FrameBudgetMs << "\n";
+  os << indent << "MarginMm: " << this->Tracking.Margin.MarginMm << " (near band " << this->Tracking.Margin.NearBandMm << ")\n";
 }

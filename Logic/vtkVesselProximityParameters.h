@@ -41,6 +41,14 @@ public:
   const std::string& GetVesselClassName(int i) const { return this->Vessels[i].first; }
   vtkPolyData* GetVesselSurface(int i) const { return this->Vessels[i].second; }
 
+  /// Adds or replaces a tumour to be resected (LPS mm, closed for inside/outside), under its id:
+  /// the tip's resection margin is measured against every tumour (vtkTumourMarginDistance).
+  void SetTumour(const std::string& id, vtkPolyData* surface);
+  void RemoveAllTumours();
+  int GetNumberOfTumours() const { return static_cast<int>(this->Tumours.size()); }
+  const std::string& GetTumourId(int i) const { return this->Tumours[i].first; }
+  vtkPolyData* GetTumourSurface(int i) const { return this->Tumours[i].second; }
+
   void SetScalpel(vtkScalpelModel* scalpel);
   vtkScalpelModel* GetScalpel() const { return this->Scalpel; }
 
@@ -80,7 +88,11 @@ public:
   /// The haptic contact force (vp::HapticSettings, off by default). Throws as HapticSettings::Validate.
   void SetHapticSettings(const vp::HapticSettings& haptic);
   const vp::HapticSettings& GetHapticSettings() const { return this->Tracking.Haptic; }
-  /// The thresholds, the hysteresis, the frame budget and the haptic force together.
+  /// The resection margin and its near band (vp::MarginSettings, 5 and 5 mm). Throws
+  /// ParameterError("MarginMm") as MarginSettings::Validate.
+  void SetMarginSettings(const vp::MarginSettings& margin);
+  const vp::MarginSettings& GetMarginSettings() const { return this->Tracking.Margin; }
+  /// The thresholds, the hysteresis, the frame budget, the haptic force and the margin together.
   const vp::TrackingSettings& GetTrackingSettings() const { return this->Tracking; }
 
   vtkMTimeType GetSceneMTime() const { return this->SceneTime.GetMTime(); }
@@ -97,6 +109,7 @@ private:
   void SettingsModified();
 
   std::vector<std::pair<std::string, vtkSmartPointer<vtkPolyData>>> Vessels;
+  std::vector<std::pair<std::string, vtkSmartPointer<vtkPolyData>>> Tumours;
   vtkSmartPointer<vtkScalpelModel> Scalpel;
   vtkSmartPointer<vtkVesselDistanceEngine> DistanceEngine;
   bool ComputeSurfaceDistance = true;

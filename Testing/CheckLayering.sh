@@ -32,6 +32,7 @@ layers=(
   "ExactEngine"
   "ZBuffer"
   "Instrument"
+  "Tumour"
   "Tracking"
   "Reports"
   "Live"

@@ -26,6 +26,20 @@ Json HapticJson(const HapticSample& h)
   return { { "force_n", h.ForceN }, { "direction", RasJson(h.Direction) }, { "depth_mm", h.DepthMm }, { "rate_mm_s", h.RateMmPerS } };
 }
 
+/// The margin's level, the tumour that sets it, and every tumour's signed distance and level.
+Json TumourJson(const TumourMargin& margin)
+{
+  const TumourProximity& worst = margin.Tumours[static_cast<std::size_t>(margin.Worst)];
+  Json tumours = Json::object();
+  for (const TumourProximity& t : margin.Tumours)
+  {
+    tumours[t.Id] = { { "tumour_mm", t.SignedMm }, { "level", MarginLevelName(t.Level) }, { "point", RasJson(t.ClosestPoint) },
+      { "surface_mm", t.SurfaceKnown ? Json(t.SurfaceMm) : Json(nullptr) } };
+  }
+  return { { "level", MarginLevelName(margin.Level) }, { "id", worst.Id }, { "tumour_mm", worst.SignedMm },
+    { "tumours", tumours } };
+}
+
 std::array<unsigned char, 4> Rgba(DangerLevel level)
 {
   const auto c = DangerLevelColour(level);
@@ -69,6 +83,10 @@ std::string LiveFrameJson(const TrackedFrame& frame)
   {
     out["haptic"] = HapticJson(*frame.Haptic);
   }
+  if (frame.Tumour && frame.Tumour->Worst >= 0)
+  {
+    out["tumour"] = TumourJson(*frame.Tumour);
+  }
   return out.dump();
 }
 
@@ -84,6 +102,15 @@ std::string PackLiveFrame(const TrackedFrame& frame)
       points.push_back({ p.ClassName, "closest", Rgba(c < frame.ClassLevels.size() ? frame.ClassLevels[c] : DangerLevel::Safe),
         Ras(p.ClosestPoint) });
     }
+  }
+  if (frame.Tumour && frame.Tumour->Worst >= 0)
+  {
+    // The nearest tumour point, coloured as the danger level it would be for a vessel at that distance.
+    const TumourProximity& t = frame.Tumour->Tumours[static_cast<std::size_t>(frame.Tumour->Worst)];
+    points.push_back({ t.Id, "tumour", Rgba(frame.Tumour->Level >= MarginLevel::Violated ? DangerLevel::Danger
+                                              : frame.Tumour->Level == MarginLevel::Near ? DangerLevel::Caution
+                                                                                          : DangerLevel::Safe),
+      Ras(t.ClosestPoint) });
   }
   std::string packed = PackIgtlString(live::FrameDevice, LiveFrameJson(frame)) + PackIgtlPoints(live::PointsDevice, points);
   if (frame.Haptic)

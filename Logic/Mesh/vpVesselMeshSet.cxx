@@ -46,6 +46,32 @@ std::vector<NamedMesh> LoadVesselMeshes(const std::vector<std::pair<std::string,
   return LoadVesselMeshes(std::move(vessels));
 }
 
+std::vector<NamedMesh> LoadTumourMeshes(std::vector<NamedMesh> tumours)
+{
+  std::set<std::string> seen;
+  for (NamedMesh& tumour : tumours)
+  {
+    const std::string problem = ClassNameProblem(tumour.ClassName); // it is a column's value and a JSON key
+    if (!problem.empty())
+    {
+      throw ParameterError("Tumours", "tumour id '" + Printable(tumour.ClassName) + "' (" + Printable(tumour.FileName) +
+          "): " + problem);
+    }
+    if (!seen.insert(tumour.ClassName).second)
+    {
+      throw ParameterError("Tumours", "tumour '" + Printable(tumour.ClassName) + "' is given twice");
+    }
+    if (!tumour.Mesh)
+    {
+      vtkNew<vtkVesselMeshReader> reader;
+      reader->SetFileName(tumour.FileName);
+      reader->Read();
+      tumour.Mesh = reader->GetOutput();
+    }
+  }
+  return tumours;
+}
+
 void RepairVesselMeshes(std::vector<NamedMesh>& meshes)
 {
   for (NamedMesh& m : meshes)

@@ -31,6 +31,11 @@ std::vector<NamedMesh> LoadVesselMeshes(std::vector<NamedMesh> vessels);
 /// The same for (class, file) pairs, every surface read.
 std::vector<NamedMesh> LoadVesselMeshes(const std::vector<std::pair<std::string, std::string>>& pairs);
 
+/// The tumours' surfaces, each under its id (NamedMesh::ClassName): the one given, else read from
+/// its FileName. Throws InputError naming the file on any problem, and ParameterError("Tumours")
+/// for an id that could not be a class's name (vp::ClassNameProblem) or one given twice.
+std::vector<NamedMesh> LoadTumourMeshes(std::vector<NamedMesh> tumours);
+
 /// Each mesh replaced by what vtkVesselSurfaceRepair makes of it, its report kept.
 void RepairVesselMeshes(std::vector<NamedMesh>& meshes);
 

@@ -29,6 +29,11 @@ std::array<double, 3> ToFraction(const Rgb& colour);
 /// palette colour by its index. The plot rims each line in black or white against its band.
 Rgb ClassDisplayColour(const std::string& className, int classIndex);
 
+/// The display colour of a tumour in the scene and the readout: a sap green, far (40 CIELAB units
+/// or more) from every danger level's colour and every class of the default label table, so that
+/// the tumour is never read as a vessel nor as a warning.
+const Rgb TumourDisplayColour = { 96, 168, 64 };
+
 /// The viewer's background behind the readout (the top of its gradient) and the colour a class's
 /// readout line is written in there: its display colour lifted towards white until its WCAG
 /// contrast against that background is at least 4.5 (the dark-blue hepatic veins' own colour is

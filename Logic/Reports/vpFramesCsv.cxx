@@ -17,12 +17,12 @@ std::string Number(double value, const char* format = "%.4f")
 
 namespace
 {
-std::string Header(const std::vector<std::string>& classes, bool surface, bool haptic = true);
+std::string Header(const std::vector<std::string>& classes, bool surface, bool haptic, bool tumour);
 } // namespace
 
-void CheckFramesCsvColumns(const std::vector<std::string>& classes)
+void CheckFramesCsvColumns(const std::vector<std::string>& classes, bool tumour)
 {
-  const std::string header = Header(classes, true);
+  const std::string header = Header(classes, true, true, tumour);
   std::set<std::string> seen;
   std::size_t begin = 0;
   while (begin < header.size())
@@ -38,15 +38,15 @@ void CheckFramesCsvColumns(const std::vector<std::string>& classes)
   }
 }
 
-std::string FramesCsvHeader(const std::vector<std::string>& classes, bool surface, bool haptic)
+std::string FramesCsvHeader(const std::vector<std::string>& classes, bool surface, bool haptic, bool tumour)
 {
-  CheckFramesCsvColumns(classes);
-  return Header(classes, surface, haptic);
+  CheckFramesCsvColumns(classes, tumour);
+  return Header(classes, surface, haptic, tumour);
 }
 
 namespace
 {
-std::string Header(const std::vector<std::string>& classes, bool surface, bool haptic)
+std::string Header(const std::vector<std::string>& classes, bool surface, bool haptic, bool tumour)
 {
   std::string csv = "frame,time,tip_x,tip_y,tip_z,nearest_class,nearest_mm";
   for (const auto& c : classes)
@@ -67,6 +67,10 @@ std::string Header(const std::vector<std::string>& classes, bool surface, bool h
   if (haptic)
   {
     csv += ",haptic_force_n,haptic_x,haptic_y,haptic_z";
+  }
+  if (tumour)
+  {
+    csv += ",tumour_mm,tumour_id,tumour_point_x,tumour_point_y,tumour_point_z,margin_level,tumour_surface_mm";
   }
   csv += "\n";
   return csv;
@@ -116,6 +120,12 @@ std::string FramesCsvRow(const TrackedFrame& f, bool surface)
   {
     csv += "," + Number(f.Haptic->ForceN) + "," + Number(f.Haptic->Direction[0], "%.6f") + "," +
       Number(f.Haptic->Direction[1], "%.6f") + "," + Number(f.Haptic->Direction[2], "%.6f");
+  }
+  if (f.Tumour && f.Tumour->Worst >= 0)
+  {
+    const TumourProximity& t = f.Tumour->Tumours[f.Tumour->Worst];
+    csv += "," + Number(t.SignedMm) + "," + t.Id + "," + Number(t.ClosestPoint[0]) + "," + Number(t.ClosestPoint[1]) + "," +
+      Number(t.ClosestPoint[2]) + "," + MarginLevelName(f.Tumour->Level) + "," + (t.SurfaceKnown ? Number(t.SurfaceMm) : "");
   }
   csv += "\n";
   return csv;

@@ -22,6 +22,29 @@ Json MinimumJson(const ClassMinimum& m)
     { "time", m.TimeS }, { "point", { m.PointMm[0], m.PointMm[1], m.PointMm[2] } } };
 }
 
+Json TumourJson(const TrackingSummary& s, const MarginSettings& settings)
+{
+  Json tumours = Json::array();
+  for (const TumourMarginSummary& t : s.GetTumours())
+  {
+    Json levels = Json::object();
+    for (int l = 0; l < NumberOfMarginLevels; ++l)
+    {
+      levels[MarginLevelName(static_cast<MarginLevel>(l))] = { { "time_s", t.TimeInLevelS[l] }, { "frames", t.FramesInLevel[l] } };
+    }
+    tumours.push_back({ { "id", t.Id }, { "margin_min_mm", t.MarginMinMm }, { "frame", t.Frame }, { "time", t.TimeS },
+      { "point", { t.PointMm[0], t.PointMm[1], t.PointMm[2] } },
+      { "surface_min_mm", t.SurfaceSeen ? Json(t.SurfaceMinMm) : Json(nullptr) }, { "time_in_level", levels } });
+  }
+  Json changes = Json::array();
+  for (const MarginLevelChange& c : s.GetMarginChanges())
+  {
+    changes.push_back({ { "frame", c.Frame }, { "time", c.TimeS }, { "from", MarginLevelName(c.From) },
+      { "to", MarginLevelName(c.To) }, { "tumour", c.TumourId }, { "tumour_mm", c.SignedMm } });
+  }
+  return { { "margin_mm", settings.MarginMm }, { "near_band_mm", settings.NearBandMm },
+    { "worst_level", MarginLevelName(s.GetWorstMarginLevel()) }, { "tumours", tumours }, { "level_changes", changes } };
+}
 } // namespace
 
 Json TrackingSummaryJson(const TrackingSummary& s, vtkScalpelTrackingLogic* logic, bool surface, const std::vector<NamedMesh>& meshes,
@@ -79,6 +102,10 @@ Json TrackingSummaryJson(const TrackingSummary& s, vtkScalpelTrackingLogic* logi
     const HapticSettings& h = logic->GetHapticSettings();
     out["haptic"] = { { "stiffness_n_per_mm", h.StiffnessNPerMm }, { "damping_ns_per_mm", h.DampingNsPerMm },
       { "max_force_n", s.GetMaxHapticForceN() }, { "frames_with_force", s.GetFramesWithHapticForce() } };
+  }
+  if (!s.GetTumours().empty())
+  {
+    out["tumour"] = TumourJson(s, logic->GetMarginSettings());
   }
   Json events = Json::array();
   for (const DangerLevelChange& e : s.GetChanges())

@@ -4,6 +4,7 @@
 #include "vpDangerLevels.h"
 #include "vpHapticForce.h"
 #include "vpProximityResult.h"
+#include "vpTumourProximity.h"
 
 #include <optional>
 #include <string>
@@ -27,6 +28,8 @@ struct TrackedFrame
   double FrameMs = 0.0;            ///< wall time of the distance queries of this frame
   bool OverBudget = false;         ///< FrameMs exceeded the tracking logic's frame budget
   std::optional<HapticSample> Haptic; ///< with haptics on (TrackingSettings::Haptic)
+  /// The tip and the whole instrument against each tumour, with the margin levels; with tumours.
+  std::optional<TumourMargin> Tumour;
 };
 
 /// A change of the overall danger level between two frames.
@@ -38,6 +41,17 @@ struct DangerLevelChange
   DangerLevel To = DangerLevel::Safe;
   std::string ClassName; ///< the class that sets the new level (empty when it is safe)
   double DistanceMm = 0.0; ///< that class's distance, 0 when none
+};
+
+/// A change of the resection margin's level (the worst over the tumours) between two frames.
+struct MarginLevelChange
+{
+  int Frame = 0;
+  double TimeS = 0.0;
+  MarginLevel From = MarginLevel::Clear;
+  MarginLevel To = MarginLevel::Clear;
+  std::string TumourId;  ///< the tumour that sets the new level
+  double SignedMm = 0.0; ///< the tip's signed distance to it (negative inside)
 };
 } // namespace vp
 

@@ -3,6 +3,7 @@
 
 #include "vpDangerLevels.h"
 #include "vpHapticForce.h"
+#include "vpMarginLevels.h"
 
 namespace vp
 {
@@ -20,6 +21,8 @@ struct TrackingSettings
   double FrameBudgetMs = 16.7;
   /// The contact force sent to a haptic device (off by default).
   HapticSettings Haptic;
+  /// The resection margin around the tumours and its near band (5 mm each); used with tumours.
+  MarginSettings Margin;
 };
 } // namespace vp
 

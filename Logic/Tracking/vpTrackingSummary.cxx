@@ -85,10 +85,52 @@ void TrackingSummary::Add(const TrackedFrame& frame)
       most.FramesInside += p.Known && p.VolumeMm3 > 0.0 ? 1 : 0;
     }
   }
+  if (frame.Tumour)
+  {
+    this->AddTumours(*frame.Tumour, frame);
+  }
   ++this->FramesInLevel[static_cast<int>(frame.Level)];
   this->Worst = std::max(this->Worst, frame.Level);
   this->LastLevel = frame.Level;
   this->LastTimeS = frame.TimeS;
   ++this->Frames;
+}
+
+void TrackingSummary::AddTumours(const TumourMargin& margin, const TrackedFrame& frame)
+{
+  const bool first = this->Tumours.empty();
+  if (first)
+  {
+    this->Tumours.resize(margin.Tumours.size());
+    this->LastMarginLevels.assign(margin.Tumours.size(), MarginLevel::Clear);
+  }
+  for (std::size_t t = 0; t < margin.Tumours.size() && t < this->Tumours.size(); ++t)
+  {
+    const TumourProximity& p = margin.Tumours[t];
+    TumourMarginSummary& s = this->Tumours[t];
+    if (first)
+    {
+      s.Id = p.Id;
+    }
+    else
+    {
+      s.TimeInLevelS[static_cast<int>(this->LastMarginLevels[t])] += frame.TimeS - this->LastTimeS;
+    }
+    if (first || p.SignedMm < s.MarginMinMm)
+    {
+      s.MarginMinMm = p.SignedMm;
+      s.Frame = frame.Frame;
+      s.TimeS = frame.TimeS;
+      std::copy(p.ClosestPoint, p.ClosestPoint + 3, s.PointMm);
+    }
+    if (p.SurfaceKnown && (!s.SurfaceSeen || p.SurfaceMm < s.SurfaceMinMm))
+    {
+      s.SurfaceSeen = true;
+      s.SurfaceMinMm = p.SurfaceMm;
+    }
+    ++s.FramesInLevel[static_cast<int>(p.Level)];
+    this->LastMarginLevels[t] = p.Level;
+  }
+  this->WorstMargin = std::max(this->WorstMargin, margin.Level);
 }
 } // namespace vp

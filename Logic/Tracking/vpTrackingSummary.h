@@ -36,6 +36,23 @@ struct ClassPenetration
   int FramesInside = 0;       ///< frames with any volume inside
 };
 
+/// One tumour over a run: the smallest margin the tip kept (its signed distance, negative inside)
+/// and the time at each margin level.
+struct TumourMarginSummary
+{
+  std::string Id;
+  double MarginMinMm = 0.0;
+  int Frame = 0;
+  double TimeS = 0.0;
+  double PointMm[3] = { 0, 0, 0 }; ///< closest tumour point at that frame
+  /// The instrument's closest approach over the run (0: it touched or crossed the tumour);
+  /// false when the instrument was not measured.
+  bool SurfaceSeen = false;
+  double SurfaceMinMm = 0.0;
+  std::array<double, NumberOfMarginLevels> TimeInLevelS{};
+  std::array<int, NumberOfMarginLevels> FramesInLevel{};
+};
+
 /// What a surgeon or researcher reads after a run: per class the closest approach of the tip
 /// (and of the whole surface when computed), the time spent at each danger level, and the
 /// level changes. Frames are added in order; nothing grows with their number but the level
@@ -45,6 +62,7 @@ class TrackingSummary
 public:
   void Add(const TrackedFrame& frame);
   void AddChange(const DangerLevelChange& change) { this->Changes.push_back(change); }
+  void AddMarginChange(const MarginLevelChange& change) { this->MarginChanges.push_back(change); }
 
   int GetNumberOfFrames() const { return this->Frames; }
   double GetDurationS() const { return this->Frames > 0 ? this->LastTimeS - this->FirstTimeS : 0.0; }
@@ -62,6 +80,10 @@ public:
   /// Frames at each level.
   const std::array<int, NumberOfDangerLevels>& GetFramesInLevel() const { return this->FramesInLevel; }
   const std::vector<DangerLevelChange>& GetChanges() const { return this->Changes; }
+  /// Per tumour, in the scene's order; empty without tumours. Times as GetTimeInLevelS().
+  const std::vector<TumourMarginSummary>& GetTumours() const { return this->Tumours; }
+  const std::vector<MarginLevelChange>& GetMarginChanges() const { return this->MarginChanges; }
+  MarginLevel GetWorstMarginLevel() const { return this->WorstMargin; }
   DangerLevel GetWorstLevel() const { return this->Worst; }
   /// The q-quantile of the frames' computing times (ms; nearest rank, vp::RunningQuantiles: at
   /// most 0.1% above the exact one, the maximum exact), in memory that does not grow with the run.
@@ -74,6 +96,7 @@ public:
   int GetFramesWithHapticForce() const { return this->FramesWithHapticForce; }
 
 private:
+  void AddTumours(const TumourMargin& margin, const TrackedFrame& frame);
   int Frames = 0;
   double FirstTimeS = 0.0;
   double LastTimeS = 0.0;
@@ -87,6 +110,10 @@ private:
   std::array<double, NumberOfDangerLevels> TimeInLevelS{};
   std::array<int, NumberOfDangerLevels> FramesInLevel{};
   std::vector<DangerLevelChange> Changes;
+  std::vector<TumourMarginSummary> Tumours;
+  std::vector<MarginLevel> LastMarginLevels;
+  std::vector<MarginLevelChange> MarginChanges;
+  MarginLevel WorstMargin = MarginLevel::Clear;
   RunningQuantiles FrameMs;
   int FramesOverBudget = 0;
   bool Haptic = false;

@@ -7,6 +7,7 @@
 
 #include <vtkObjectFactory.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -97,6 +98,46 @@ void vtkScalpelTrackingLogic::Reset()
   this->Haptic.Reset();
 }
 
+namespace
+{
+/// The whole instrument's search about the tumours with a margin and band of 0: a touch.
+constexpr double MinimumInstrumentRangeMm = 1.0;
+} // namespace
+
+void vtkScalpelTrackingLogic::SetTumourMargin(vtkTumourMarginDistance* margin)
+{
+  if (this->TumourMargin != margin)
+  {
+    this->TumourMargin = margin;
+    this->Modified();
+  }
+}
+
+void vtkScalpelTrackingLogic::SetMarginSettings(const vp::MarginSettings& margin)
+{
+  margin.Validate("MarginMm");
+  this->Settings.Margin = margin;
+}
+
+void vtkScalpelTrackingLogic::ClassifyMargins(vp::TumourMargin& margin, bool hasPrevious) const
+{
+  const vp::TumourMargin* before = hasPrevious && this->Last.Tumour ? &*this->Last.Tumour : nullptr;
+  for (std::size_t t = 0; t < margin.Tumours.size(); ++t)
+  {
+    vp::TumourProximity& p = margin.Tumours[t];
+    const vp::MarginLevel previous =
+      before && t < before->Tumours.size() ? before->Tumours[t].Level : vp::MarginLevel::Clear;
+    p.Level = vp::ClassifyMargin(p.SignedMm, p.InsideUncertain, this->Settings.Margin, previous, this->Settings.HysteresisMm);
+    const bool worse = margin.Worst < 0 || p.Level > margin.Level ||
+      (p.Level == margin.Level && p.SignedMm < margin.Tumours[margin.Worst].SignedMm);
+    if (worse)
+    {
+      margin.Level = p.Level;
+      margin.Worst = static_cast<int>(t);
+    }
+  }
+}
+
 void vtkScalpelTrackingLogic::SetHapticSettings(const vp::HapticSettings& haptic)
 {
   haptic.Validate();
@@ -116,6 +157,7 @@ const vp::TrackedFrame& vtkScalpelTrackingLogic::ProcessPose(const vp::TrackedPo
   }
   const bool hasPrevious = this->FramesProcessed > 0;
   const vp::DangerLevel previousLevel = this->Last.Level;
+  const vp::MarginLevel previousMargin = this->Last.Tumour ? this->Last.Tumour->Level : vp::MarginLevel::Clear;
   // The previous answer narrows the engine's search; keep it while the new one is computed.
   vp::TrackedFrame frame;
   frame.Frame = this->FramesProcessed;
@@ -134,6 +176,15 @@ const vp::TrackedFrame& vtkScalpelTrackingLogic::ProcessPose(const vp::TrackedPo
     {
       this->Penetration->ComputePenetration(pose.ModelToWorld, frame.Surface, frame.Penetrations);
     }
+  }
+  if (this->TumourMargin && this->TumourMargin->GetNumberOfTumours() > 0)
+  {
+    frame.Tumour.emplace();
+    // The instrument is measured where a tumour is more than clear: within the margin and its band.
+    const vp::MarginSettings& m = this->Settings.Margin;
+    this->TumourMargin->SetInstrumentRangeMm(std::max(m.MarginMm + m.NearBandMm, MinimumInstrumentRangeMm));
+    this->TumourMargin->ComputeMargin(
+      frame.TipMm, pose.ModelToWorld, *frame.Tumour, hasPrevious && this->Last.Tumour ? &*this->Last.Tumour : nullptr);
   }
   frame.FrameMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   frame.OverBudget = this->Settings.FrameBudgetMs > 0.0 && frame.FrameMs > this->Settings.FrameBudgetMs;
@@ -154,6 +205,10 @@ const vp::TrackedFrame& vtkScalpelTrackingLogic::ProcessPose(const vp::TrackedPo
       frame.Level = frame.ClassLevels[c];
       frame.LevelClass = static_cast<int>(c);
     }
+  }
+  if (frame.Tumour)
+  {
+    this->ClassifyMargins(*frame.Tumour, hasPrevious);
   }
   if (this->Settings.Haptic.Enabled())
   {
@@ -178,6 +233,18 @@ const vp::TrackedFrame& vtkScalpelTrackingLogic::ProcessPose(const vp::TrackedPo
     }
     this->InvokeEvent(DangerLevelChangedEvent, &change);
   }
+  if (this->Last.Tumour && this->Last.Tumour->Level != previousMargin)
+  {
+    const vp::TumourMargin& m = *this->Last.Tumour;
+    vp::MarginLevelChange change;
+    change.Frame = this->Last.Frame;
+    change.TimeS = this->Last.TimeS;
+    change.From = previousMargin;
+    change.To = m.Level;
+    change.TumourId = m.Tumours[m.Worst].Id;
+    change.SignedMm = m.Tumours[m.Worst].SignedMm;
+    this->InvokeEvent(MarginLevelChangedEvent, &change);
+  }
   this->InvokeEvent(FrameProcessedEvent, &this->Last);
   return this->Last;
 }
@@ -189,6 +256,9 @@ void vtkScalpelTrackingLogic::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Scalpel: " << (this->Scalpel ? "set" : "(none)") << "\n";
   os << indent << "SurfaceDistance: " << (this->SurfaceDistance ? this->SurfaceDistance->GetMethodName() : "off") << "\n";
   os << indent << "Penetration: " << (this->Penetration ? "on" : "off") << "\n";
+  os << indent << "Tumours: " << (this->TumourMargin ? this->TumourMargin->GetNumberOfTumours() : 0) << "\n";
+  os << indent << "MarginMm: " << this->Settings.Margin.MarginMm << " (near band " << this->Settings.Margin.NearBandMm
+     << ")\n";
   os << indent << "DangerThresholds (caution, warning, danger): " << this->Settings.Thresholds.CautionMm << ", "
      << this->Settings.Thresholds.WarningMm << ", " << this->Settings.Thresholds.DangerMm << " mm\n";
   os << indent << "HysteresisMm: " << this->Settings.HysteresisMm << "\n";

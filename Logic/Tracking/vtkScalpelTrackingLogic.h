@@ -9,6 +9,7 @@
 #include "vtkScalpelModel.h"
 #include "vtkScalpelPenetration.h"
 #include "vtkScalpelSurfaceDistance.h"
+#include "vtkTumourMarginDistance.h"
 #include "vtkVesselDistanceEngine.h"
 
 #include <vtkCommand.h>
@@ -41,7 +42,10 @@ public:
     DangerLevelChangedEvent = vtkCommand::UserEvent + 1201,
     /// Invoked after every processed pose with the vp::TrackedFrame as call data: overlays move
     /// on it, and recolour only on DangerLevelChangedEvent.
-    FrameProcessedEvent = vtkCommand::UserEvent + 1202
+    FrameProcessedEvent = vtkCommand::UserEvent + 1202,
+    /// Invoked with a vp::MarginLevelChange as call data when the resection margin's level (the
+    /// worst over the tumours) differs from the previous frame's; never on every frame.
+    MarginLevelChangedEvent = vtkCommand::UserEvent + 1203
   };
 
   void SetDistanceEngine(vtkVesselDistanceEngine* engine);
@@ -55,6 +59,15 @@ public:
   /// (null switches it off, the default).
   void SetPenetration(vtkScalpelPenetration* penetration);
   vtkScalpelPenetration* GetPenetration() const { return this->Penetration; }
+
+  /// Optional: the tip and the whole instrument against the tumours to be resected, each frame's
+  /// TrackedFrame::Tumour (null, the default: no tumour). Its time counts in the frame's.
+  void SetTumourMargin(vtkTumourMarginDistance* margin);
+  vtkTumourMarginDistance* GetTumourMargin() const { return this->TumourMargin; }
+  /// The resection margin and its near band (vp::MarginSettings: 5 and 5 mm); the levels take the
+  /// hysteresis of the danger levels. Throws as MarginSettings::Validate.
+  void SetMarginSettings(const vp::MarginSettings& margin);
+  const vp::MarginSettings& GetMarginSettings() const { return this->Settings.Margin; }
 
   /// The time a frame may take, in ms (default vp::TrackingSettings: 16.7, one refresh at 60 Hz; the paper's 40 ms is
   /// where a navigator's animation freezes). A frame that takes longer is marked OverBudget; 0
@@ -99,12 +112,15 @@ protected:
   vtkSmartPointer<vtkScalpelModel> Scalpel;
   vtkSmartPointer<vtkScalpelSurfaceDistance> SurfaceDistance;
   vtkSmartPointer<vtkScalpelPenetration> Penetration;
+  vtkSmartPointer<vtkTumourMarginDistance> TumourMargin;
   vp::TrackingSettings Settings;
   vp::TrackedFrame Last;
   int FramesProcessed = 0;
   vp::HapticForce Haptic;
 
 private:
+  /// Each tumour's level from the frame's distances and the previous frame's levels, the worst.
+  void ClassifyMargins(vp::TumourMargin& margin, bool hasPrevious) const;
   vtkScalpelTrackingLogic(const vtkScalpelTrackingLogic&) = delete;
   void operator=(const vtkScalpelTrackingLogic&) = delete;
 };

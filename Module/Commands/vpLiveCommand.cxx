@@ -93,7 +93,7 @@ int RunLiveCommand(const cli::ParsedArguments& args, const ModuleServices& modul
   {
     classes.push_back(vessel.ClassName);
   }
-  CheckFramesCsvColumns(classes);
+  CheckFramesCsvColumns(classes, !request.Tumours.empty());
   std::unique_ptr<RunFolder> run;
   const std::string outDir = args.GetString("output");
   if (!outDir.empty())

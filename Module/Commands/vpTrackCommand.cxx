@@ -93,6 +93,15 @@ void PrintSummary(const TrackingRecorder& session, vtkVesselProximityLogic* prox
     std::printf(" %s %.2f s", DangerLevelName(static_cast<DangerLevel>(l)), summary.GetTimeInLevelS()[l]);
   }
   std::printf("\n  %zu level change(s), worst level %s\n", summary.GetChanges().size(), DangerLevelName(summary.GetWorstLevel()));
+  for (const TumourMarginSummary& t : summary.GetTumours())
+  {
+    std::printf("  tumour %s: smallest margin %.3f mm%s; time", t.Id.c_str(), t.MarginMinMm, t.MarginMinMm < 0.0 ? " (inside)" : "");
+    for (int l = 0; l < NumberOfMarginLevels; ++l)
+    {
+      std::printf(" %s %.2f s", MarginLevelName(static_cast<MarginLevel>(l)), t.TimeInLevelS[l]);
+    }
+    std::printf("\n");
+  }
   const auto lost = session.GetReport().value("poses_lost", 0);
   if (lost > 0)
   {
@@ -159,7 +168,7 @@ int RunTrackCommand(const cli::ParsedArguments& args, const ModuleServices& modu
   {
     classes.push_back(vessel.ClassName);
   }
-  CheckFramesCsvColumns(classes); // before anything is read or said
+  CheckFramesCsvColumns(classes, !request.Tumours.empty()); // before anything is read or said
   // Pictures need a display: one that cannot be had refuses the run before it computes anything.
   const bool screenshots = args.GetBoolean("screenshots");
   VirtualDisplay display;

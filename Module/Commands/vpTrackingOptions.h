@@ -19,7 +19,7 @@ std::vector<cli::Parameter> ScalpelOptions();
 /// --frame-budget-ms MS, default the parameter set's (16.7, one refresh at 60 Hz; 0: no budget).
 cli::Parameter FrameBudgetOption();
 /// What tracking shares (track, live, view): --danger-mm, --hysteresis-mm, --frame-budget-ms,
-/// --haptic-k, --haptic-c and --no-surface, with the parameter set's defaults.
+/// --haptic-k, --haptic-c, --tumour, --margin-mm and --no-surface, with the parameter set's defaults.
 cli::ParameterGroup TrackingOptions();
 
 /// --pose-space LPS|RAS, --pose-units mm|m and --time-units s|ms: how a pose file's numbers are
@@ -46,8 +46,8 @@ std::string FrameTimesText(const TrackingSummary& summary, double budgetMs);
 
 /// The scene the shared options ask for (track, view): --vessels, --scalpel (none: the built-in
 /// handpiece) with --tip and --axis, the engine of --method with its settings (for "both", the
-/// comparison with the exact engine), --danger-mm, --frame-budget-ms, --hysteresis-mm and
-/// --no-surface. Nothing is read or opened here: vtkVesselProximityLogic::OpenScene does it.
+/// comparison with the exact engine), --danger-mm, --frame-budget-ms, --hysteresis-mm, the
+/// tumours and their margin (--tumour, --margin-mm) and --no-surface. Nothing is read or opened here: vtkVesselProximityLogic::OpenScene does it.
 /// Throws InputError naming the option.
 SceneRequest ParseSceneRequest(const cli::ParsedArguments& args);
 } // namespace vp

@@ -18,6 +18,8 @@
 #include "vtkVesselModelsRepresentation.h"
 #include "vtkVesselProximityLogic.h"
 #include "vtkVesselProximityOverlays.h"
+#include "vtkVesselProximityParameters.h"
+#include "vpAnalyticShapes.h"
 #include "vtkVesselProximityView.h"
 #include "vtkZBufferVesselDistance.h"
 #include "vpVulkanContext.h"
@@ -290,6 +292,40 @@ vtkSmartPointer<vtkProximityReadoutRepresentation> PortalAndHepaticVeinReadout()
   return readout;
 }
 } // namespace
+
+TEST(Overlays, ATumourIsShownInItsColourAndItsMarginRead)
+{
+  const std::string tmp = vp::test::MakeTempDir("overlays_tumour");
+  auto logic = MakePhantomLogic(tmp);
+  // A sphere of radius 5 mm centred 40 mm above the torus tube's top: the tip at (0, -30, z) is
+  // 35 - z from it (the facets within 0.06 mm).
+  const double centre[3] = { 0, -30, 40 };
+  logic->GetParameters()->SetTumour("lesion", vp::MakeSphere(centre, 5.0, 24, 48));
+  vtkNew<vtkRenderer> renderer;
+  vtkNew<vtkVesselProximityOverlays> overlays;
+  overlays->SetRenderer(renderer);
+  overlays->SetLogic(logic);
+  vtkActor* tumour = overlays->GetVessels()->GetTumourActor("lesion");
+  ASSERT_NE(tumour, nullptr);
+  EXPECT_TRUE(renderer->GetActors()->IsItemPresent(tumour));
+  for (int k = 0; k < 3; ++k)
+  {
+    EXPECT_NEAR(tumour->GetProperty()->GetColor()[k], vp::TumourDisplayColour[k] / 255.0, 1e-12);
+  }
+  EXPECT_EQ(tumour->GetProperty()->GetOpacity(), 0.5);
+  vtkProximityReadoutRepresentation* readout = overlays->GetReadout();
+  const int margin = readout->GetNumberOfLines() - 2;
+  EXPECT_EQ(readout->GetLineText(margin), "") << "no pose yet";
+  logic->ProcessPose(Pose(0.0, TipDownAt(21.0)));
+  EXPECT_NE(readout->GetLineText(margin).find("tumour lesion"), std::string::npos) << readout->GetLineText(margin);
+  EXPECT_NE(readout->GetLineText(margin).find("14.0 mm  CLEAR  (margin 5 mm)"), std::string::npos) << readout->GetLineText(margin);
+  logic->ProcessPose(Pose(0.1, TipDownAt(32.0)));
+  EXPECT_NE(readout->GetLineText(margin).find("3.0 mm  VIOLATED"), std::string::npos) << readout->GetLineText(margin);
+  logic->ProcessPose(Pose(0.2, TipDownAt(37.0)));
+  EXPECT_NE(readout->GetLineText(margin).find("2.0 mm inside  INSIDE"), std::string::npos) << readout->GetLineText(margin);
+  overlays->ShowTrackingLost(250.0);
+  EXPECT_EQ(readout->GetLineText(margin), "tumour                -") << "no distance read as current";
+}
 
 TEST(Overlays, ReadoutShowsTheInstrumentBesideTheTip)
 {

@@ -73,6 +73,20 @@ TEST(DisplayColours, NoDangerLevelLooksLikeAVesselClass)
   }
 }
 
+TEST(DisplayColours, ATumourLooksLikeNoVesselAndNoLevel)
+{
+  for (int level = 0; level < vp::NumberOfDangerLevels; ++level)
+  {
+    EXPECT_GE(vp::CieLabDistance(LevelColour(level), vp::TumourDisplayColour), 40.0)
+      << vp::DangerLevelName(static_cast<vp::DangerLevel>(level));
+  }
+  const vp::VesselLabelTable table = vp::VesselLabelTable::Default();
+  for (const std::string& name : table.Classes())
+  {
+    EXPECT_GE(vp::CieLabDistance(vp::ClassDisplayColour(name, 0), vp::TumourDisplayColour), 40.0) << name;
+  }
+}
+
 // One colour per class: the label table's, as the scene's models take it (the plot and the
 // readout take ClassDisplayColour too: before, the hepatic vein was violet in the plot).
 TEST(DisplayColours, AClassHasTheLabelTablesColour)

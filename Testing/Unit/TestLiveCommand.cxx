@@ -97,6 +97,10 @@ std::vector<std::vector<std::string>> Rows(const std::string& csv)
     {
       cells.push_back(cell);
     }
+    if (!line.empty() && line.back() == ',')
+    {
+      cells.emplace_back(); // an empty last column (a tumour beyond the instrument's range)
+    }
     rows.push_back(cells);
   }
   return rows;
@@ -220,10 +224,12 @@ protected:
 } // namespace
 
 // A tracker streaming at 50 Hz for 10 s: every pose computed, each frame track's; with the haptic
-// force on, its direction too, and its force in the record.
+// force on, its direction too, and its force in the record; with a tumour, its margin's columns.
 TEST_F(LiveCommand, At50HzEveryFrameEqualsTrackOnTheSamePoses)
 {
-  this->Extra = { "--haptic-k", "0.5", "--haptic-c", "0.01" };
+  const double tumourCentre[3] = { 25, 12, 0 };
+  this->Extra = { "--haptic-k", "0.5", "--haptic-c", "0.01", "--tumour",
+    vp::test::WriteMeshFile(this->Dir, "tumour.stl", vp::MakeSphere(tumourCentre, 5.0, 24, 48)) };
   const nlohmann::json summary = this->StreamThroughLive(this->SweepPoses(500), 50.0, this->Dir + "/out50");
   const std::size_t frames = this->ExpectFramesEqualTrack(this->Dir + "/out50");
   const auto& link = summary.at("link");
@@ -237,6 +243,10 @@ TEST_F(LiveCommand, At50HzEveryFrameEqualsTrackOnTheSamePoses)
   EXPECT_EQ(summary.at("latency_ms").at("frames").get<std::size_t>(), frames);
   EXPECT_NE(Slurp(this->Dir + "/live.out").find("latency pose in -> results out: median"), std::string::npos);
   EXPECT_GT(summary.at("haptic").at("max_force_n").get<double>(), 1.0) << "the tip ends 5 mm inside";
+  // The tip passes 11.5 mm from the tumour's centre (y 0.5 against 12): 6.5 mm from its surface,
+  // near its 5 mm margin.
+  EXPECT_NEAR(summary.at("tumour").at("tumours").at(0).at("margin_min_mm").get<double>(), 6.5, 0.05);
+  EXPECT_EQ(summary.at("tumour").at("worst_level"), "near");
 }
 
 // At 1 kHz for 10 s the frames cannot keep up on two cores with the whole instrument: the newest

@@ -2,6 +2,7 @@
 // one-line error with nothing written for every bad pose file.
 #include "vpAnalyticShapes.h"
 #include "vpItkTransformFile.h"
+#include "vpMarginLevels.h"
 #include "vpModelTestSupport.h"
 #include "vpTestSupport.h"
 
@@ -291,6 +292,89 @@ TEST_F(TrackCommand, AHapticForcePushesTheInstrumentOutOfTheVessel)
       this->Dir + "/haptic.csv --haptic-k -1 -o " + this->Dir + "/negative");
   EXPECT_EQ(negative.ExitCode, 1);
   EXPECT_NE(negative.Err.find("--haptic-k: must be a stiffness in N/mm, 0 or more"), std::string::npos) << negative.Err;
+}
+
+TEST_F(TrackCommand, MeasuresTheResectionMarginOfEachTumour)
+{
+  // A sphere tumour (radius 8) centred 40.2 mm down -x from the tip's line: the tip's margin is
+  // |x + 40.2| - 8, its facets within 0.03 mm of the sphere; no tip lies that close to an edge.
+  const double centre[3] = { -40.2, 0.3, 0.2 }, beside[3] = { -40.2, 40.3, 0.2 };
+  const std::string tumour = this->Write("tumour_a.stl", vp::MakeSphere(centre, 8.0, 48, 96));
+  const std::string other = this->Write("other.stl", vp::MakeSphere(beside, 4.0, 24, 48));
+  std::vector<double> xs;
+  const std::string poses = this->TipAlongX("margin.csv", -20.0, -45.0, xs);
+  const std::string out = this->Dir + "/margin";
+  const ToolRun r = RunTool(this->Dir, "track --vessels " + this->Vessels + " --scalpel " + this->Tool + " --poses " + poses +
+      " --tumour " + tumour + ",b=" + other + " -o " + out);
+  ASSERT_EQ(r.ExitCode, 0) << r.Err;
+  EXPECT_NE(r.Out.find("tumour tumour_a: smallest margin -7.7"), std::string::npos) << r.Out;
+  const auto rows = ReadCsvCells(out + "/frames.csv");
+  ASSERT_EQ(rows.size(), xs.size() + 1);
+  auto column = [&](const std::string& name) {
+    const auto it = std::find(rows[0].begin(), rows[0].end(), name);
+    EXPECT_NE(it, rows[0].end()) << name;
+    return static_cast<std::size_t>(it - rows[0].begin());
+  };
+  const std::size_t mm = column("tumour_mm"), id = column("tumour_id"), level = column("margin_level"),
+                    surface = column("tumour_surface_mm"), px = column("tumour_point_x");
+  vp::MarginLevel previous = vp::MarginLevel::Clear;
+  double smallest = 1e300;
+  for (std::size_t i = 0; i < xs.size(); ++i)
+  {
+    const auto& row = rows[i + 1];
+    const double truth = std::abs(xs[i] + 40.2) - 8.0;
+    smallest = std::min(smallest, truth);
+    EXPECT_NEAR(std::stod(row[mm]), truth, 0.03) << "x " << xs[i];
+    EXPECT_EQ(row[id], "tumour_a") << "the other tumour is 40 mm away";
+    // The default margin (5 mm), its near band (5 mm) and the tracking hysteresis (0.3 mm).
+    previous = vp::ClassifyMargin(truth, false, vp::MarginSettings(), previous, 0.3);
+    EXPECT_EQ(row[level], vp::MarginLevelName(previous)) << "x " << xs[i];
+    // The instrument is searched within the margin and its band (10 mm): beyond, no distance.
+    EXPECT_EQ(row[surface].empty(), truth > 10.0 + 0.03) << "x " << xs[i];
+    if (!row[surface].empty())
+    {
+      EXPECT_LE(std::stod(row[surface]), std::max(0.0, std::stod(row[mm])) + 1e-4) << "the instrument stands on its tip";
+    }
+    EXPECT_GE(std::stod(row[px]), -48.3);
+  }
+  const nlohmann::json s = nlohmann::json::parse(Slurp(out + "/summary.json"));
+  const nlohmann::json& t = s["tumour"];
+  EXPECT_EQ(t["margin_mm"].get<double>(), 5.0);
+  EXPECT_EQ(t["worst_level"], "inside");
+  ASSERT_EQ(t["tumours"].size(), 2u);
+  EXPECT_EQ(t["tumours"][0]["id"], "tumour_a");
+  EXPECT_EQ(t["tumours"][1]["id"], "b");
+  EXPECT_NEAR(t["tumours"][0]["margin_min_mm"].get<double>(), smallest, 0.03);
+  EXPECT_NEAR(t["tumours"][1]["margin_min_mm"].get<double>(), 40.0 - 4.0, 0.01); // straight beside it at x = -40.2
+  double total = 0.0;
+  for (const char* l : { "clear", "near", "violated", "inside" })
+  {
+    total += t["tumours"][0]["time_in_level"][l]["time_s"].get<double>();
+  }
+  EXPECT_NEAR(total, s["duration_s"].get<double>(), 1e-9);
+  EXPECT_EQ(t["tumours"][1]["time_in_level"]["clear"]["frames"].get<int>(), static_cast<int>(xs.size()));
+  ASSERT_EQ(t["level_changes"].size(), 3u) << "clear -> near -> violated -> inside";
+  EXPECT_EQ(t["level_changes"][2]["to"], "inside");
+
+  // Without tumours: no columns, no section. Bad margins and missing files: one line, nothing written.
+  const ToolRun plain = RunTool(this->Dir, "track --vessels " + this->Vessels + " --scalpel " + this->Tool + " --poses " +
+      poses + " -o " + this->Dir + "/plain");
+  ASSERT_EQ(plain.ExitCode, 0) << plain.Err;
+  EXPECT_EQ(Slurp(this->Dir + "/plain/frames.csv").find("tumour"), std::string::npos);
+  EXPECT_EQ(Slurp(this->Dir + "/plain/summary.json").find("\"tumour\""), std::string::npos);
+  for (const auto& [options, message] : std::vector<std::pair<std::string, std::string>>{
+         { " --tumour " + tumour + " --margin-mm -1", "--margin-mm: expected a distance in mm, 0 or more, got '-1'" },
+         { " --tumour " + this->Dir + "/none.stl", this->Dir + "/none.stl: " },
+         { " --tumour 2nd=" + tumour, "--tumour: tumour id '2nd'" },
+         { " --tumour a=" + tumour + ",a=" + other, "--tumour: tumour 'a' is given twice" } })
+  {
+    const ToolRun bad = RunTool(this->Dir, "track --vessels " + this->Vessels + " --scalpel " + this->Tool + " --poses " +
+        poses + options + " -o " + this->Dir + "/bad");
+    EXPECT_EQ(bad.ExitCode, 1) << options;
+    EXPECT_NE(bad.Err.find(message), std::string::npos) << bad.Err;
+    EXPECT_EQ(std::count(bad.Err.begin(), bad.Err.end(), '\n'), 1) << bad.Err;
+    EXPECT_FALSE(std::filesystem::exists(this->Dir + "/bad")) << options;
+  }
 }
 
 TEST_F(TrackCommand, CountsTheFramesOverTheBudget)

@@ -4,6 +4,7 @@
 #include "vpPlotValues.h"
 
 #include <vtkCoordinate.h>
+#include <cmath>
 #include <vtkNew.h>
 #include <vtkObjectFactory.h>
 #include <vtkRenderer.h>
@@ -55,9 +56,10 @@ void vtkProximityReadoutRepresentation::SetClasses(
   }
   this->ClassNames = names;
   this->Lines.clear();
-  for (std::size_t i = 0; i <= names.size() + 1; ++i)
+  for (std::size_t i = 0; i <= names.size() + 2; ++i)
   {
-    const bool frameTimeLine = i == names.size() + 1;
+    const bool marginLine = i == names.size() + 1;
+    const bool frameTimeLine = i == names.size() + 2;
     auto line = vtkSmartPointer<vtkTextActor>::New();
     vtkTextProperty* text = line->GetTextProperty();
     text->SetFontFamilyToCourier(); // columns line up
@@ -71,7 +73,11 @@ void vtkProximityReadoutRepresentation::SetClasses(
     {
       text->SetColor(1.0, 0.65, 0.2); // amber: a late answer, not a vessel
     }
-    line->SetInput(i == 0 ? "no pose yet" : frameTimeLine ? "" : (Readable(names[i - 1]) + ": -").c_str());
+    if (marginLine)
+    {
+      text->SetColor(vp::ToFraction(vp::ReadoutTextColour(vp::TumourDisplayColour)).data());
+    }
+    line->SetInput(i == 0 ? "no pose yet" : frameTimeLine || marginLine ? "" : (Readable(names[i - 1]) + ": -").c_str());
     this->Lines.push_back(line);
     for (vtkRenderer* r : this->Renderers)
     {
@@ -174,6 +180,22 @@ void vtkProximityReadoutRepresentation::ShowFrame(const vp::ProximityResult& pro
   }
 }
 
+void vtkProximityReadoutRepresentation::ShowMargin(const vp::TumourMargin* margin, double marginMm)
+{
+  const int line = static_cast<int>(this->Lines.size()) - 2;
+  this->MarginShown = margin && margin->Worst >= 0;
+  if (!this->MarginShown)
+  {
+    this->SetLine(line, "");
+    return;
+  }
+  const vp::TumourProximity& t = margin->Tumours[static_cast<std::size_t>(margin->Worst)];
+  char text[160];
+  std::snprintf(text, sizeof(text), "tumour %-8s %6.1f mm%s  %s  (margin %g mm)", t.Id.c_str(), std::abs(t.SignedMm),
+    t.SignedMm < 0.0 ? " inside" : "", Upper(vp::MarginLevelName(margin->Level)).c_str(), marginMm);
+  this->SetLine(line, text);
+}
+
 void vtkProximityReadoutRepresentation::ShowTrackingLost(double sinceMs)
 {
   char text[96];
@@ -183,6 +205,10 @@ void vtkProximityReadoutRepresentation::ShowTrackingLost(double sinceMs)
   {
     std::snprintf(text, sizeof(text), "%-15s      -", Readable(this->ClassNames[c]).c_str());
     this->SetLine(static_cast<int>(c) + 1, text);
+  }
+  if (this->MarginShown)
+  {
+    this->SetLine(static_cast<int>(this->Lines.size()) - 2, "tumour                -");
   }
 }
 

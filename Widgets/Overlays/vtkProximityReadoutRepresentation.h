@@ -3,6 +3,7 @@
 
 #include "vpDangerLevels.h"
 #include "vpProximityResult.h"
+#include "vpTumourProximity.h"
 
 #include <vtkObject.h>
 #include <vtkSmartPointer.h>
@@ -16,7 +17,8 @@ class vtkTextActor;
 
 /// The numbers a surgeon reads: one line per vessel class in the upper left corner ("portal vein
 /// 4.2 mm  warning"), in the class's colour, under a headline with the overall level, and below
-/// them, only while it is so, a line saying the frame took longer than its budget. A line is
+/// them, with tumours, the resection margin's line, and, only while it is so, a line saying the
+/// frame took longer than its budget. A line is
 /// re-typeset only when its text changes (GetNumberOfTextUpdates() counts), so a tool resting
 /// still costs nothing.
 class vtkProximityReadoutRepresentation : public vtkObject
@@ -45,10 +47,15 @@ public:
   /// loses its distance ("portal vein      -"), so that the last distance is never read as current.
   /// The next ShowFrame gives them back.
   void ShowTrackingLost(double sinceMs);
+  /// The resection margin's line, in the tumours' colour: the tumour that sets the margin's level,
+  /// the tip's distance to it and the level ("tumour livertumor01  3.2 mm  VIOLATED  (margin 5
+  /// mm)"; inside: "2.1 mm inside  INSIDE"). Null (no tumour): the line is empty.
+  void ShowMargin(const vp::TumourMargin* margin, double marginMm);
   /// Shows the last line only for a frame over its budget ("frame 23.4 ms, over the 16.7 ms
   /// budget"); empty otherwise, so a frame in time costs no text update.
   void ShowFrameTime(double frameMs, bool overBudget, double budgetMs);
-  /// The text of line i (0: the headline, then one per class, then the frame-time line).
+  /// The text of line i (0: the headline, then one per class, then the margin's, then the
+  /// frame-time line).
   std::string GetLineText(int i) const;
   int GetNumberOfLines() const { return static_cast<int>(this->Lines.size()); }
   int GetNumberOfTextUpdates() const { return this->TextUpdates; }
@@ -68,6 +75,7 @@ protected:
   int FontSize = 18;
   int TextUpdates = 0;
   std::string EngineName;
+  bool MarginShown = false;
 
 private:
   vtkProximityReadoutRepresentation(const vtkProximityReadoutRepresentation&) = delete;

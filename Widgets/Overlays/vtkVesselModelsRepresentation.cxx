@@ -51,6 +51,42 @@ void vtkVesselModelsRepresentation::SetVessel(const std::string& className, vtkP
   this->Modified();
 }
 
+void vtkVesselModelsRepresentation::SetTumour(const std::string& id, vtkPolyData* surface)
+{
+  auto it = std::find_if(this->Tumours.begin(), this->Tumours.end(), [&](const Entry& e) { return e.ClassName == id; });
+  if (it == this->Tumours.end())
+  {
+    Entry entry{ id, vtkSmartPointer<vtkActor>::New() };
+    vtkNew<vtkPolyDataMapper> mapper;
+    entry.Actor->SetMapper(mapper);
+    const std::array<double, 3> c = vp::ToFraction(vp::TumourDisplayColour);
+    entry.Actor->GetProperty()->SetColor(c[0], c[1], c[2]);
+    entry.Actor->GetProperty()->SetSpecular(0.3);
+    entry.Actor->GetProperty()->SetSpecularPower(20);
+    entry.Actor->GetProperty()->SetOpacity(this->TumourOpacity);
+    for (vtkRenderer* renderer : this->Renderers)
+    {
+      renderer->AddActor(entry.Actor);
+    }
+    this->Tumours.push_back(entry);
+    it = this->Tumours.end() - 1;
+  }
+  vtkPolyDataMapper::SafeDownCast(it->Actor->GetMapper())->SetInputData(surface);
+  this->Modified();
+}
+
+vtkActor* vtkVesselModelsRepresentation::GetTumourActor(const std::string& id) const
+{
+  for (const Entry& e : this->Tumours)
+  {
+    if (e.ClassName == id)
+    {
+      return e.Actor;
+    }
+  }
+  return nullptr;
+}
+
 void vtkVesselModelsRepresentation::SetClassColour(const std::string& className, const std::array<double, 3>& rgb)
 {
   for (Entry& e : this->Entries)
@@ -80,17 +116,23 @@ std::array<double, 3> vtkVesselModelsRepresentation::GetClassColour(const std::s
 void vtkVesselModelsRepresentation::AddToRenderer(vtkRenderer* renderer)
 {
   this->Renderers.push_back(renderer);
-  for (const Entry& e : this->Entries)
+  for (const std::vector<Entry>* entries : { &this->Entries, &this->Tumours })
   {
-    renderer->AddActor(e.Actor);
+    for (const Entry& e : *entries)
+    {
+      renderer->AddActor(e.Actor);
+    }
   }
 }
 
 void vtkVesselModelsRepresentation::RemoveFromRenderer(vtkRenderer* renderer)
 {
-  for (const Entry& e : this->Entries)
+  for (const std::vector<Entry>* entries : { &this->Entries, &this->Tumours })
   {
-    renderer->RemoveActor(e.Actor);
+    for (const Entry& e : *entries)
+    {
+      renderer->RemoveActor(e.Actor);
+    }
   }
   this->Renderers.erase(std::remove(this->Renderers.begin(), this->Renderers.end(), renderer), this->Renderers.end());
 }
@@ -115,5 +157,11 @@ void vtkVesselModelsRepresentation::PrintSelf(ostream& os, vtkIndent indent)
   {
     os << " " << e.ClassName;
   }
+  os << "\n" << indent << "Tumours:";
+  for (const Entry& e : this->Tumours)
+  {
+    os << " " << e.ClassName;
+  }
   os << "\n" << indent << "LiverOpacity: " << this->LiverOpacity << "\n";
+  os << indent << "TumourOpacity: " << this->TumourOpacity << "\n";
 }

@@ -14,7 +14,8 @@ class vtkRenderer;
 
 /// One actor per vessel class, coloured by the label table (Resources/VesselLabels.json unless
 /// SetClassColour() says otherwise). The surfaces are shown as given; nothing here changes when
-/// the scalpel moves. The liver, when added, is drawn translucent so the vessels inside show.
+/// the scalpel moves. The liver, when added, is drawn translucent so the vessels inside show; the
+/// tumours (SetTumour) in vp::TumourDisplayColour, half translucent so that a tip inside one shows.
 class vtkVesselModelsRepresentation : public vtkObject
 {
 public:
@@ -24,6 +25,13 @@ public:
 
   /// Adds (or replaces) the surface of a class; its colour comes from the label table.
   void SetVessel(const std::string& className, vtkPolyData* surface);
+  /// Adds (or replaces) a tumour's surface, under its id.
+  void SetTumour(const std::string& id, vtkPolyData* surface);
+  vtkActor* GetTumourActor(const std::string& id) const;
+  int GetNumberOfTumours() const { return static_cast<int>(this->Tumours.size()); }
+  /// Opacity of the tumours (default 0.5).
+  vtkSetClampMacro(TumourOpacity, double, 0.0, 1.0);
+  vtkGetMacro(TumourOpacity, double);
   /// RGB 0..1; overrides the label table for this class.
   void SetClassColour(const std::string& className, const std::array<double, 3>& rgb);
   std::array<double, 3> GetClassColour(const std::string& className) const;
@@ -46,6 +54,8 @@ protected:
     vtkSmartPointer<vtkActor> Actor;
   };
   std::vector<Entry> Entries;
+  std::vector<Entry> Tumours;
+  double TumourOpacity = 0.5;
   std::vector<vtkRenderer*> Renderers; // not owned: the renderers own us in spirit
   double LiverOpacity = 0.15;
 

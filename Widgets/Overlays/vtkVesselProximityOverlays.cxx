@@ -9,6 +9,7 @@
 #include "vtkVesselModelsRepresentation.h"
 #include "vtkVesselDistanceEngine.h"
 #include "vtkVesselProximityLogic.h"
+#include "vtkVesselProximityParameters.h"
 
 #include <vtkCallbackCommand.h>
 #include <vtkObjectFactory.h>
@@ -82,6 +83,11 @@ void vtkVesselProximityOverlays::UpdateFromScene()
     colours.push_back(this->Vessels->GetClassColour(names.back()));
   }
   this->Readout->SetClasses(names, colours);
+  vtkVesselProximityParameters* parameters = this->Logic->GetParameters();
+  for (int t = 0; t < parameters->GetNumberOfTumours(); ++t)
+  {
+    this->Vessels->SetTumour(parameters->GetTumourId(t), parameters->GetTumourSurface(t));
+  }
   this->Readout->SetEngine(this->Logic->GetDistanceEngine() ? this->Logic->GetDistanceEngine()->GetMethodName() : "");
   this->Plot->SetClasses(names);
   this->Plot->SetDangerThresholds(this->Logic->GetDangerThresholds());
@@ -155,6 +161,8 @@ void vtkVesselProximityOverlays::ShowFrame(const vp::TrackedFrame& frame)
   const bool both = this->Logic && this->Logic->GetCompareWithExact() && frame.Proximity.ErrorBoundMm > 0;
   this->Readout->ShowFrame(frame.Proximity, frame.ClassLevels, frame.Level, frame.Surface, frame.Penetrations,
     both ? &this->Logic->GetLastExactProximity() : nullptr);
+  this->Readout->ShowMargin(frame.Tumour ? &*frame.Tumour : nullptr,
+    this->Logic ? this->Logic->GetTrackingLogic()->GetMarginSettings().MarginMm : vp::MarginSettings().MarginMm);
   this->Readout->ShowFrameTime(frame.FrameMs, frame.OverBudget,
     this->Logic ? this->Logic->GetTrackingLogic()->GetFrameBudgetMs() : 0.0);
   this->Plot->AddFrame(frame);

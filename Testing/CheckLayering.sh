@@ -37,6 +37,7 @@ layers=(
   "Reports"
   "Live"
   "."
+  "Cohort"
 )
 layer_of() {
   local rank=0 line folder

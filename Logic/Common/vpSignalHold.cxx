@@ -1,5 +1,6 @@
 #include "vpSignalHold.h"
 
+#include <atomic>
 #include <csignal>
 
 namespace vp
@@ -10,7 +11,7 @@ const int HeldSignals[] = { SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGUSR1, SIGUSR2, 
 constexpr int HeldCount = static_cast<int>(sizeof(HeldSignals) / sizeof(HeldSignals[0]));
 volatile std::sig_atomic_t PendingSignal = 0;
 struct sigaction PreviousActions[HeldCount];
-int Holders = 0;
+std::atomic<int> Holders{ 0 }; // nested holds of a cohort's worker threads inside its own
 
 extern "C" void RecordSignal(int signal)
 {

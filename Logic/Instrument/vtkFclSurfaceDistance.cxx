@@ -1,5 +1,7 @@
 #include "vtkFclSurfaceDistance.h"
 
+#include "vpLibraryStateLock.h"
+
 #include "vpInputError.h"
 #include "vpMemory.h"
 #include "vpVesselSurface.h"
@@ -13,6 +15,7 @@
 
 #include <cmath>
 #include <iostream>
+#include <mutex>
 #include <sstream>
 #include <limits>
 
@@ -45,6 +48,10 @@ std::shared_ptr<Model> MakeModel(const vp::VesselSurface& surface)
   auto model = std::make_shared<Model>();
   // FCL says a failure on std::cerr and goes on with a broken tree (a 10M-triangle vessel crashed
   // after "BVH Error! Out of memory"): its return codes decide, and its words stay off the terminal.
+  // std::cerr is one for the process: trees built on several threads (a cohort's cases) take
+  // their turns, or one would put back another's buffer, gone by then; ITK, which warns there,
+  // takes the same lock.
+  const std::lock_guard<std::mutex> lock(vp::LibraryStateLock());
   std::ostringstream said;
   std::streambuf* terminal = std::cerr.rdbuf(said.rdbuf());
   int status = model->beginModel(static_cast<int>(triangles.size()), static_cast<int>(points.size()));

@@ -7,6 +7,7 @@
 
 #include <vtkNew.h>
 
+#include <cctype>
 #include <set>
 
 namespace vp
@@ -68,6 +69,54 @@ std::vector<NamedMesh> LoadTumourMeshes(std::vector<NamedMesh> tumours)
       reader->Read();
       tumour.Mesh = reader->GetOutput();
     }
+  }
+  return tumours;
+}
+
+namespace
+{
+std::string TumourIdOfFile(const std::string& file)
+{
+  std::string name = file.substr(file.find_last_of('/') + 1);
+  for (const std::string ext : { ".gz", ".stl", ".vtk", ".vtp", ".ply", ".obj" })
+  {
+    if (name.size() > ext.size() && name.compare(name.size() - ext.size(), ext.size(), ext) == 0)
+    {
+      name.resize(name.size() - ext.size());
+    }
+  }
+  for (char& c : name)
+  {
+    const auto u = static_cast<unsigned char>(c);
+    c = u < 128 && (std::isalnum(u) || c == '_' || c == '-') ? c : '_';
+  }
+  return name.empty() || !std::isalpha(static_cast<unsigned char>(name[0])) ? "tumour_" + name : name.substr(0, 64);
+}
+} // namespace
+
+std::vector<NamedMesh> TumourEntries(const std::vector<std::string>& entries, const std::string& source)
+{
+  std::vector<NamedMesh> tumours;
+  std::set<std::string> ids;
+  for (const std::string& entry : entries)
+  {
+    const std::size_t equals = entry.find('=');
+    std::string id = equals == std::string::npos ? TumourIdOfFile(entry) : entry.substr(0, equals);
+    const std::string file = equals == std::string::npos ? entry : entry.substr(equals + 1);
+    if (file.empty())
+    {
+      throw InputError(source, "expected FILE or ID=FILE for each tumour, got '" + Printable(entry) + "'");
+    }
+    if (equals == std::string::npos)
+    {
+      const std::string stem = id;
+      for (int k = 2; ids.count(id) > 0; ++k)
+      {
+        id = stem + "_" + std::to_string(k);
+      }
+    }
+    ids.insert(id);
+    tumours.push_back({ id, file, nullptr, std::nullopt });
   }
   return tumours;
 }

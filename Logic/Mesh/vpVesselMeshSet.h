@@ -36,6 +36,12 @@ std::vector<NamedMesh> LoadVesselMeshes(const std::vector<std::pair<std::string,
 /// for an id that could not be a class's name (vp::ClassNameProblem) or one given twice.
 std::vector<NamedMesh> LoadTumourMeshes(std::vector<NamedMesh> tumours);
 
+/// The tumours of a list of entries, each FILE (its id: the file's name without its extension,
+/// what a class name may not hold made '_', "tumour_" before one that does not start with a
+/// letter; made unique by "_2", "_3") or ID=FILE (the id as given). Nothing is read. Throws
+/// InputError(source, ...) for an entry without a file.
+std::vector<NamedMesh> TumourEntries(const std::vector<std::string>& entries, const std::string& source);
+
 /// Each mesh replaced by what vtkVesselSurfaceRepair makes of it, its report kept.
 void RepairVesselMeshes(std::vector<NamedMesh>& meshes);
 

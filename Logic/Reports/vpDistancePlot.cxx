@@ -4,6 +4,8 @@
 #include "vpPngFile.h"
 
 #include <vtkFreeTypeTools.h>
+
+#include <mutex>
 #include <vtkNew.h>
 #include <vtkStdString.h>
 #include <vtkTextProperty.h>
@@ -175,6 +177,10 @@ TextImage RenderText(const std::string& text, int sizePx, bool bold = false, boo
   property->SetFontSize(sizePx);
   property->SetBold(bold);
   property->SetOrientation(vertical ? 90 : 0);
+  // VTK's FreeType tools are one instance with one glyph cache: a cohort's cases write their
+  // plots on threads of their own, one string at a time here.
+  static std::mutex freeTypeLock;
+  const std::lock_guard<std::mutex> lock(freeTypeLock);
   vtkFreeTypeTools* freeType = vtkFreeTypeTools::GetInstance();
   auto image = vtkSmartPointer<vtkImageData>::New();
   const int dpi = 72; // font size in points = pixels

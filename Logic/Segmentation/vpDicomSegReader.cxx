@@ -6,6 +6,7 @@
 
 #include <dcmtk/dcmdata/dcdeftag.h>
 #include <dcmtk/dcmdata/dcuid.h>
+#include <dcmtk/dcmfg/fgfact.h>
 #include <dcmtk/dcmfg/fginterface.h>
 #include <dcmtk/dcmfg/fgpixmsr.h>
 #include <dcmtk/dcmfg/fgplanor.h>
@@ -361,6 +362,11 @@ LabelStructures ReadLabelMap(DcmDataset& data, const std::string& path, const St
   return structures;
 }
 } // namespace
+
+void DicomSegReader::PrepareForThreads()
+{
+  FGFactory::instance();
+}
 
 bool DicomSegReader::IsSegmentationClass(const std::string& sopClassUid)
 {

@@ -31,6 +31,8 @@ class DicomSegReader
 public:
   /// True for the SOP class UIDs of the two segmentation classes read here.
   static bool IsSegmentationClass(const std::string& sopClassUid);
+  /// Makes DCMTK's functional-group factory, which it makes lazily without a lock.
+  static void PrepareForThreads();
 
   static LabelStructures Read(const std::string& path, const StructureFilter& wanted,
     std::size_t maximumVoxels = std::size_t(1) << 28);

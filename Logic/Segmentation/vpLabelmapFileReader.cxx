@@ -1,6 +1,8 @@
 // The only translation unit that includes ITK headers: they are heavy to compile.
 #include "vpLabelmapFileReader.h"
 
+#include "vpLibraryStateLock.h"
+
 #include "vpInputError.h"
 #include "vpPhysicalLimits.h"
 
@@ -406,6 +408,10 @@ LabelStructure SegmentStructure(int index, const SegmentKeys& keys, const std::s
 
 LabelStructures LabelmapFileReader::Read(const std::string& fileName, std::size_t maximumVoxels)
 {
+  // ITK's factories and singletons, made on first use, and NrrdIO's error buffers are the
+  // process's: a cohort's cases read their labelmaps one at a time (the lock is released after
+  // ITK's objects are gone).
+  const std::lock_guard<std::mutex> lock(LibraryStateLock());
   itk::ImageIOBase::Pointer io;
   if (IsNifti(fileName))
   {

@@ -10,6 +10,11 @@ namespace fs = std::filesystem;
 
 namespace vp
 {
+void PrepareConcurrentImports()
+{
+  DicomSegReader::PrepareForThreads();
+}
+
 LabelStructures ImportSegmentation(const std::string& input, const StructureFilter& wanted)
 {
   std::error_code ec;

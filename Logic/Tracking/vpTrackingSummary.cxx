@@ -43,6 +43,7 @@ void TrackingSummary::Add(const TrackedFrame& frame)
     this->TipMinimum.resize(classes.size());
     this->SurfaceMinimum.resize(classes.size());
     this->FramesInsideUncertain.resize(classes.size());
+    this->FramesInBreach.resize(classes.size());
   }
   else
   {
@@ -55,6 +56,7 @@ void TrackingSummary::Add(const TrackedFrame& frame)
   for (std::size_t c = 0; c < classes.size() && c < this->TipMinimum.size(); ++c)
   {
     this->FramesInsideUncertain[c] += classes[c].InRange && classes[c].InsideUncertain ? 1 : 0;
+    this->FramesInBreach[c] += c < frame.ClassLevels.size() && frame.ClassLevels[c] == DangerLevel::Breach ? 1 : 0;
     if (classes[c].InRange)
     {
       Lower(this->TipMinimum[c], classes[c].DistanceMm, frame.Proximity.ErrorBoundMm, classes[c].Inside.value_or(false),

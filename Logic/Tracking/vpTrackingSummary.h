@@ -72,6 +72,8 @@ public:
   /// Per class, the frames whose tip's inside was uncertain (the rays' votes on a defective
   /// surface disagreed; those frames' level is a breach).
   const std::vector<int>& GetFramesInsideUncertain() const { return this->FramesInsideUncertain; }
+  /// Per class, the frames at its breach level (the tip inside, or undecidably so).
+  const std::vector<int>& GetFramesInBreach() const { return this->FramesInBreach; }
   /// Per class; empty when no frame carried penetrations.
   const std::vector<ClassPenetration>& GetPenetrationMaximum() const { return this->PenetrationMaximum; }
   /// Seconds at each level (index: DangerLevel). A frame's level holds until the next frame's
@@ -106,6 +108,7 @@ private:
   std::vector<ClassMinimum> TipMinimum;
   std::vector<ClassMinimum> SurfaceMinimum;
   std::vector<int> FramesInsideUncertain;
+  std::vector<int> FramesInBreach;
   std::vector<ClassPenetration> PenetrationMaximum;
   std::array<double, NumberOfDangerLevels> TimeInLevelS{};
   std::array<int, NumberOfDangerLevels> FramesInLevel{};

@@ -18,6 +18,7 @@ const std::vector<CommandEntry>& CommandTable()
     { "models", DescribeModelsCommand, RunModelsCommand },
     { "distance", DescribeDistanceCommand, RunDistanceCommand },
     { "track", DescribeTrackCommand, RunTrackCommand },
+    { "batch", DescribeBatchCommand, RunBatchCommand },
     { "live", DescribeLiveCommand, RunLiveCommand },
     { "serve", DescribeServeCommand, RunServeCommand },
     { "register", DescribeRegisterCommand, RunRegisterCommand },

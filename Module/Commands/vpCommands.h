@@ -16,6 +16,8 @@ cli::ModuleDescription DescribeBenchCommand();
 int RunBenchCommand(const cli::ParsedArguments& args, const ModuleServices& module);
 cli::ModuleDescription DescribePhantomCommand();
 int RunPhantomCommand(const cli::ParsedArguments& args, const ModuleServices& module);
+cli::ModuleDescription DescribeBatchCommand();
+int RunBatchCommand(const cli::ParsedArguments& args, const ModuleServices& module);
 cli::ModuleDescription DescribeModelsCommand();
 int RunModelsCommand(const cli::ParsedArguments& args, const ModuleServices& module);
 cli::ModuleDescription DescribeTrackCommand();

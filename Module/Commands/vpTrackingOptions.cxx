@@ -6,9 +6,7 @@
 #include "vpPointCsv.h"
 #include "vpRegistrationFile.h"
 
-#include <cctype>
 #include <cstdio>
-#include <set>
 
 namespace vp
 {
@@ -222,63 +220,6 @@ std::string FrameTimesText(const TrackingSummary& summary, double budgetMs)
                   : std::string("no frame budget"));
 }
 
-namespace
-{
-/// A tumour's id from its file's name: "livertumor01.vtk" -> "livertumor01"; what a class name
-/// may not hold becomes '_', and a name that does not start with a letter is prefixed.
-std::string TumourIdOfFile(const std::string& file)
-{
-  std::string name = file.substr(file.find_last_of('/') + 1);
-  for (const char* suffix : { ".gz", ".stl", ".vtk", ".vtp", ".ply", ".obj" })
-  {
-    const std::string ext(suffix);
-    if (name.size() > ext.size() && name.compare(name.size() - ext.size(), ext.size(), ext) == 0)
-    {
-      name.resize(name.size() - ext.size());
-    }
-  }
-  for (char& c : name)
-  {
-    const auto u = static_cast<unsigned char>(c);
-    c = u < 128 && (std::isalnum(u) || c == '_' || c == '-') ? c : '_';
-  }
-  return name.empty() || !std::isalpha(static_cast<unsigned char>(name[0])) ? "tumour_" + name : name.substr(0, 64);
-}
-
-/// --tumour FILE|ID=FILE[,...]: ids from the files' names made unique ("_2", "_3"); an id given
-/// is the user's and must be unique (OpenScene refuses it otherwise).
-std::vector<NamedMesh> ParseTumours(const cli::ParsedArguments& args)
-{
-  std::vector<NamedMesh> tumours;
-  if (!args.IsSet("tumour"))
-  {
-    return tumours;
-  }
-  std::set<std::string> ids;
-  for (const std::string& entry : SplitList(args.GetString("tumour"), ','))
-  {
-    const std::size_t equals = entry.find('=');
-    std::string id = equals == std::string::npos ? TumourIdOfFile(entry) : entry.substr(0, equals);
-    const std::string file = equals == std::string::npos ? entry : entry.substr(equals + 1);
-    if (file.empty())
-    {
-      throw InputError("--tumour", "expected FILE or ID=FILE for each tumour, got '" + Printable(entry) + "'");
-    }
-    if (equals == std::string::npos)
-    {
-      const std::string stem = id;
-      for (int k = 2; ids.count(id) > 0; ++k)
-      {
-        id = stem + "_" + std::to_string(k);
-      }
-    }
-    ids.insert(id);
-    tumours.push_back({ id, file, nullptr, std::nullopt });
-  }
-  return tumours;
-}
-} // namespace
-
 SceneRequest ParseSceneRequest(const cli::ParsedArguments& args)
 {
   SceneRequest request;
@@ -297,7 +238,10 @@ SceneRequest ParseSceneRequest(const cli::ParsedArguments& args)
   request.Tracking.HysteresisMm = ParseHysteresisMm(args);
   request.Tracking.Haptic.StiffnessNPerMm = args.GetNumber("hapticK");
   request.Tracking.Haptic.DampingNsPerMm = args.GetNumber("hapticC");
-  request.Tumours = ParseTumours(args);
+  if (args.IsSet("tumour"))
+  {
+    request.Tumours = TumourEntries(SplitList(args.GetString("tumour"), ','), "--tumour");
+  }
   request.Tracking.Margin.MarginMm = args.GetNumber("marginMm");
   if (request.Tracking.Margin.MarginMm < 0.0)
   {

@@ -1,0 +1,275 @@
+#include "vpCohortCase.h"
+
+#include "vpClock.h"
+#include "vpDistanceEngineFactory.h"
+#include "vpInputError.h"
+#include "vpOutputFile.h"
+#include "vpPointCsv.h"
+#include "vpRunFolder.h"
+#include "vpSceneRequest.h"
+#include "vpTipDistanceQuery.h"
+#include "vpTrackingRecorder.h"
+#include "vtkVesselProximityLogic.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+
+namespace vp
+{
+namespace
+{
+using Json = nlohmann::ordered_json;
+
+/// An input's identity for a later run: its path, size and modification time (a folder's own).
+Json InputJson(const std::string& path)
+{
+  std::error_code error;
+  const auto status = std::filesystem::status(path, error);
+  if (error || !std::filesystem::exists(status))
+  {
+    return { { "path", path }, { "bytes", nullptr }, { "modified", nullptr } };
+  }
+  const auto bytes = std::filesystem::is_regular_file(status) ? std::filesystem::file_size(path, error) : 0;
+  const auto modified = std::filesystem::last_write_time(path, error).time_since_epoch().count();
+  return { { "path", path }, { "bytes", bytes }, { "modified", static_cast<long long>(modified) } };
+}
+
+Json OptionalJson(const std::optional<double>& value)
+{
+  return value ? Json(*value) : Json(nullptr);
+}
+
+std::optional<double> OptionalOf(const nlohmann::json& value)
+{
+  return value.is_number() ? std::optional<double>(value.get<double>()) : std::nullopt;
+}
+
+void Lower(std::optional<double>& current, double value)
+{
+  current = current ? std::min(*current, value) : value;
+}
+
+CohortClassRow& RowOf(std::vector<CohortClassRow>& rows, const std::string& className)
+{
+  const auto it = std::find_if(rows.begin(), rows.end(), [&](const CohortClassRow& r) { return r.ClassName == className; });
+  if (it != rows.end())
+  {
+    return *it;
+  }
+  rows.push_back({ className, std::nullopt, std::nullopt, std::nullopt, 0 });
+  return rows.back();
+}
+
+/// Stops the case when a held signal came: the folder is left as it was.
+struct Interrupted
+{
+};
+
+void CheckSignal()
+{
+  if (RunFolder::SignalPending())
+  {
+    throw Interrupted();
+  }
+}
+} // namespace
+
+Json CohortCaseInputsJson(const CohortCase& c)
+{
+  Json plan = Json::array();
+  for (const NamedMesh& tumour : TumourEntries(c.Plan, "plan"))
+  {
+    Json entry = InputJson(tumour.FileName);
+    entry["id"] = tumour.ClassName;
+    plan.push_back(entry);
+  }
+  return { { "segmentation", InputJson(c.Segmentation) }, { "poses", c.Poses.empty() ? Json(nullptr) : InputJson(c.Poses) },
+    { "tips", c.Tips.empty() ? Json(nullptr) : InputJson(c.Tips) }, { "plan", plan },
+    { "scalpel", c.Scalpel.empty() ? Json(nullptr) : InputJson(c.Scalpel) } };
+}
+
+CohortCaseResult RunCohortCase(const CohortCase& c, const std::string& folder, const CohortSettings& settings,
+  const CohortLogicFactory& makeLogic, const CohortStageObserver& observer)
+{
+  CohortCaseResult result;
+  result.Case = c.Name;
+  const double start = NowMs();
+  const auto stage = [&](const char* name) {
+    CheckSignal();
+    if (observer)
+    {
+      observer(c.Name, name);
+    }
+  };
+  try
+  {
+    const std::vector<NamedMesh> tumours = TumourEntries(c.Plan, c.Name + " plan");
+    RunFolder run(folder, "case.json");
+    std::vector<std::string> inputs = { c.Segmentation };
+    for (const std::string& path : { c.Poses, c.Tips, c.Scalpel })
+    {
+      if (!path.empty())
+      {
+        inputs.push_back(path);
+      }
+    }
+    for (const NamedMesh& tumour : tumours)
+    {
+      inputs.push_back(tumour.FileName);
+    }
+    run.SetInputs(inputs);
+    run.Begin();
+    Json timing;
+
+    stage("models");
+    double t0 = NowMs();
+    const VesselModelSet models = BuildVesselModels({ c.Segmentation }, settings.Models, [](const std::string&, double) {});
+    WriteVesselModelFiles(models, run.Folder("models"));
+    std::vector<NamedMesh> vessels;
+    for (const VesselClassModel& m : models.Models)
+    {
+      if (m.ClassName != "liver") // shown beside the vessels, never measured
+      {
+        vessels.push_back({ m.ClassName, c.Segmentation, m.Surface, std::nullopt });
+        RowOf(result.Classes, m.ClassName);
+      }
+    }
+    if (vessels.empty())
+    {
+      throw InputError(c.Segmentation, "no vessel class in it (only the liver)");
+    }
+    timing["models"] = NowMs() - t0;
+
+    if (!c.Poses.empty())
+    {
+      stage("track");
+      t0 = NowMs();
+      SceneRequest request;
+      request.Vessels = vessels;
+      request.Tumours = tumours;
+      request.ScalpelFile = c.Scalpel;
+      vtkSmartPointer<vtkVesselProximityLogic> logic = makeLogic ? makeLogic() : vtkSmartPointer<vtkVesselProximityLogic>::New();
+      const OpenedScene scene = logic->OpenScene(request);
+      TrackingRecorder recorder(logic, scene.Vessels);
+      PoseStream poses(c.Poses, PoseStream::CountPoses(c.Poses, {}), {});
+      if (!recorder.Run(poses, run))
+      {
+        throw Interrupted();
+      }
+      const TrackingSummary& s = recorder.GetSummary();
+      result.Frames = s.GetNumberOfFrames();
+      for (std::size_t k = 0; k < s.GetClassNames().size(); ++k)
+      {
+        CohortClassRow& row = RowOf(result.Classes, s.GetClassNames()[k]);
+        const ClassMinimum& tip = s.GetTipMinimum()[k];
+        if (tip.Seen)
+        {
+          Lower(row.TipMinMm, tip.Inside ? -tip.DistanceMm : tip.DistanceMm);
+        }
+        if (k < s.GetSurfaceMinimum().size() && s.GetSurfaceMinimum()[k].Seen)
+        {
+          Lower(row.SurfaceMinMm, s.GetSurfaceMinimum()[k].DistanceMm);
+        }
+        if (k < s.GetPenetrationMaximum().size() && s.GetPenetrationMaximum()[k].Known)
+        {
+          row.PenetrationMaxMm3 = s.GetPenetrationMaximum()[k].VolumeMm3;
+        }
+        row.BreachFrames = s.GetFramesInBreach()[k];
+      }
+      for (const TumourMarginSummary& t : s.GetTumours())
+      {
+        Lower(result.MarginMinMm, t.MarginMinMm);
+      }
+      timing["track"] = NowMs() - t0;
+    }
+
+    if (!c.Tips.empty())
+    {
+      stage("tips");
+      t0 = NowMs();
+      TipDistanceRequest request;
+      request.Engine = MakeDistanceEngine(DistanceEngineSettings());
+      request.Vessels = vessels;
+      request.TipsMm = ReadPointCsv(c.Tips);
+      const TipDistanceAnswer answer = ComputeTipDistances(request);
+      WriteFileAtomically(run.File("distance.json"), TipDistanceReportJson(request, answer, false, 0.0).dump(2) + "\n");
+      result.Tips = static_cast<int>(request.TipsMm.size());
+      for (const ProximityResult& r : answer.Results)
+      {
+        for (const ClassProximity& p : r.Classes)
+        {
+          if (p.InRange)
+          {
+            Lower(RowOf(result.Classes, p.ClassName).TipMinMm, p.Inside.value_or(false) ? -p.DistanceMm : p.DistanceMm);
+          }
+        }
+      }
+      timing["tips"] = NowMs() - t0;
+    }
+    CheckSignal();
+    result.Ms = NowMs() - start;
+    timing["total"] = result.Ms;
+    Json classes = Json::array();
+    for (const CohortClassRow& row : result.Classes)
+    {
+      classes.push_back({ { "class", row.ClassName }, { "tip_min_mm", OptionalJson(row.TipMinMm) },
+        { "surface_min_mm", OptionalJson(row.SurfaceMinMm) }, { "penetration_max_mm3", OptionalJson(row.PenetrationMaxMm3) },
+        { "breach_frames", row.BreachFrames } });
+    }
+    const Json record = { { "case", c.Name }, { "inputs", CohortCaseInputsJson(c) }, { "classes", classes },
+      { "margin_min_mm", OptionalJson(result.MarginMinMm) }, { "frames", result.Frames }, { "tips", result.Tips },
+      { "files", run.GetEntries() }, { "timing_ms", timing } };
+    WriteFileAtomically(run.File("case.json"), record.dump(2) + "\n");
+    run.Commit();
+  }
+  catch (const Interrupted&)
+  {
+    result.Error = "interrupted";
+  }
+  catch (const std::exception& e)
+  {
+    // One line: what a case's file or setting did wrong, the case's folder left as it was.
+    std::string line = e.what();
+    std::replace(line.begin(), line.end(), '\n', ' ');
+    result.Error = line;
+  }
+  result.Ms = NowMs() - start;
+  return result;
+}
+
+std::optional<CohortCaseResult> CompletedCohortCase(const CohortCase& c, const std::string& folder)
+{
+  const std::string file = folder + "/case.json";
+  std::ifstream in(file, std::ios::binary);
+  if (!in)
+  {
+    return std::nullopt;
+  }
+  try
+  {
+    const nlohmann::json record = nlohmann::json::parse(in);
+    // The same inputs as now: the same paths, sizes and times (compared as JSON text).
+    if (record.at("case") != c.Name || nlohmann::json(CohortCaseInputsJson(c)).dump() != record.at("inputs").dump())
+    {
+      return std::nullopt;
+    }
+    CohortCaseResult result;
+    result.Case = c.Name;
+    result.Resumed = true;
+    for (const auto& row : record.at("classes"))
+    {
+      result.Classes.push_back({ row.at("class").get<std::string>(), OptionalOf(row.at("tip_min_mm")),
+        OptionalOf(row.at("surface_min_mm")), OptionalOf(row.at("penetration_max_mm3")), row.at("breach_frames").get<int>() });
+    }
+    result.MarginMinMm = OptionalOf(record.at("margin_min_mm"));
+    result.Frames = record.at("frames").get<int>();
+    result.Tips = record.at("tips").get<int>();
+    return result;
+  }
+  catch (const std::exception&)
+  {
+    return std::nullopt; // not one of ours, or damaged: the case is run again
+  }
+}
+} // namespace vp

@@ -1,0 +1,245 @@
+#include "vpCohortManifest.h"
+
+#include "vpInputError.h"
+
+#include <algorithm>
+#include <cctype>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+namespace vp
+{
+namespace
+{
+constexpr std::size_t MaxCaseNameLength = 64;
+/// A manifest is a list of paths: a file larger than this is not one.
+constexpr std::streamoff MaxManifestBytes = 64 << 20;
+
+std::string Trim(const std::string& text)
+{
+  const std::size_t begin = text.find_first_not_of(" \t\r");
+  const std::size_t end = text.find_last_not_of(" \t\r");
+  return begin == std::string::npos ? std::string() : text.substr(begin, end - begin + 1);
+}
+
+/// Why name cannot be a case's folder ("" when it can): no path, no hidden file, nothing a shell
+/// or a file system would read otherwise.
+std::string CaseNameProblem(const std::string& name)
+{
+  if (name.size() > MaxCaseNameLength)
+  {
+    return "a case name has at most " + std::to_string(MaxCaseNameLength) + " characters";
+  }
+  if (name == "." || name == ".." || name[0] == '.' || name[0] == '-')
+  {
+    return "a case name cannot start with '.' or '-'";
+  }
+  for (const char c : name)
+  {
+    const auto u = static_cast<unsigned char>(c);
+    if (!(u < 128 && (std::isalnum(u) || c == '_' || c == '-' || c == '.')))
+    {
+      return "a case name holds letters, digits, '.', '_' and '-' only";
+    }
+  }
+  return std::string();
+}
+
+std::string Resolved(const std::string& path, const std::string& folder)
+{
+  return path.empty() || path[0] == '/' || folder.empty() ? path : folder + "/" + path;
+}
+} // namespace
+
+const std::vector<std::string>& CohortManifestColumns()
+{
+  static const std::vector<std::string> columns = { "case", "segmentation", "poses", "tips", "plan", "scalpel" };
+  return columns;
+}
+
+std::vector<std::string> SplitCsvLine(const std::string& line, const std::string& source)
+{
+  std::vector<std::string> cells(1);
+  bool quoted = false, closed = false;
+  for (std::size_t i = 0; i < line.size(); ++i)
+  {
+    const char c = line[i];
+    if (quoted)
+    {
+      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"')
+      {
+        cells.back() += '"';
+        ++i;
+      }
+      else if (c == '"')
+      {
+        quoted = false;
+        closed = true;
+      }
+      else
+      {
+        cells.back() += c;
+      }
+    }
+    else if (c == ',')
+    {
+      cells.emplace_back();
+      closed = false;
+    }
+    else if (c == '"' && Trim(cells.back()).empty() && !closed)
+    {
+      cells.back().clear();
+      quoted = true;
+    }
+    else if (closed && c != ' ' && c != '\t' && c != '\r')
+    {
+      throw InputError(source, "text after a closing quote");
+    }
+    else if (!closed)
+    {
+      cells.back() += c;
+    }
+  }
+  if (quoted)
+  {
+    throw InputError(source, "a quote is not closed");
+  }
+  for (std::string& cell : cells)
+  {
+    cell = Trim(cell);
+  }
+  return cells;
+}
+
+std::vector<CohortCase> ReadCohortManifest(const std::string& file)
+{
+  std::ifstream in(file, std::ios::binary);
+  if (!in)
+  {
+    throw InputError(file, "cannot be read");
+  }
+  in.seekg(0, std::ios::end);
+  if (in.tellg() > MaxManifestBytes)
+  {
+    throw InputError(file, "larger than 64 MiB: not a manifest");
+  }
+  in.seekg(0);
+  const std::size_t slash = file.find_last_of('/');
+  const std::string folder = slash == std::string::npos ? std::string() : file.substr(0, slash);
+  std::vector<int> columnOf; // per cell of a row: its index in CohortManifestColumns()
+  std::vector<CohortCase> cases;
+  std::set<std::string> names;
+  int lineNumber = 0;
+  for (std::string line; std::getline(in, line);)
+  {
+    ++lineNumber;
+    const std::string at = file + ": line " + std::to_string(lineNumber);
+    if (line.find('\0') != std::string::npos)
+    {
+      throw InputError(file, "line " + std::to_string(lineNumber) + ": a NUL byte: not a text manifest");
+    }
+    if (Trim(line).empty() || Trim(line)[0] == '#')
+    {
+      continue;
+    }
+    const std::vector<std::string> cells = SplitCsvLine(line, at);
+    if (columnOf.empty())
+    {
+      const auto& known = CohortManifestColumns();
+      std::set<int> seen;
+      for (const std::string& cell : cells)
+      {
+        std::string name = cell;
+        std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return std::tolower(c); });
+        const auto it = std::find(known.begin(), known.end(), name);
+        if (it == known.end())
+        {
+          throw InputError(at, "unknown column '" + Printable(cell) + "' (the header names case,segmentation[,poses][,tips][,plan][,scalpel])");
+        }
+        const int index = static_cast<int>(it - known.begin());
+        if (!seen.insert(index).second)
+        {
+          throw InputError(at, "column '" + name + "' is named twice");
+        }
+        columnOf.push_back(index);
+      }
+      if (!seen.count(0) || !seen.count(1))
+      {
+        throw InputError(at, "the header must name the columns case and segmentation (a header comes first)");
+      }
+      continue;
+    }
+    if (cells.size() != columnOf.size())
+    {
+      throw InputError(at, std::to_string(cells.size()) + " cells where the header names " + std::to_string(columnOf.size()));
+    }
+    CohortCase c;
+    c.Line = lineNumber;
+    for (std::size_t k = 0; k < cells.size(); ++k)
+    {
+      const std::string& v = cells[k];
+      switch (columnOf[k])
+      {
+        case 0:
+          c.Name = v;
+          break;
+        case 1:
+          c.Segmentation = Resolved(v, folder);
+          break;
+        case 2:
+          c.Poses = Resolved(v, folder);
+          break;
+        case 3:
+          c.Tips = Resolved(v, folder);
+          break;
+        case 4:
+          for (std::size_t begin = 0; begin <= v.size() && !v.empty();)
+          {
+            const std::size_t end = std::min(v.find(';', begin), v.size());
+            const std::string entry = Trim(v.substr(begin, end - begin));
+            if (entry.empty())
+            {
+              throw InputError(at, "an empty entry in the plan ('" + Printable(v) + "')");
+            }
+            // ID=FILE keeps its id; the file is the manifest's.
+            const std::size_t equals = entry.find('=');
+            c.Plan.push_back(equals == std::string::npos
+                ? Resolved(entry, folder)
+                : entry.substr(0, equals + 1) + Resolved(entry.substr(equals + 1), folder));
+            begin = end + 1;
+          }
+          break;
+        default:
+          c.Scalpel = Resolved(v, folder);
+      }
+    }
+    if (c.Name.empty() || c.Segmentation.empty())
+    {
+      throw InputError(at, "a case needs its name and its segmentation");
+    }
+    const std::string problem = CaseNameProblem(c.Name);
+    if (!problem.empty())
+    {
+      throw InputError(at, "case '" + Printable(c.Name) + "': " + problem);
+    }
+    // Folders named alike but for case are one folder on some file systems (macOS, SMB shares).
+    std::string folded = c.Name;
+    std::transform(folded.begin(), folded.end(), folded.begin(), [](unsigned char ch) { return std::tolower(ch); });
+    if (!names.insert(folded).second)
+    {
+      throw InputError(at, "case '" + c.Name + "' is given twice (names that differ only in case are one folder on some disks)");
+    }
+    cases.push_back(std::move(c));
+  }
+  if (in.bad())
+  {
+    throw InputError(file, "read failed");
+  }
+  if (columnOf.empty() || cases.empty())
+  {
+    throw InputError(file, "no case (a header naming case,segmentation[,...], then a case per line)");
+  }
+  return cases;
+}
+} // namespace vp

@@ -1,0 +1,256 @@
+// `vesselproximity batch` end to end: a cohort of cases from a manifest, each whole in its
+// folder, resumed, sharded and merged; each bad manifest refused in one line.
+#include "vpAnalyticShapes.h"
+#include "vpCohortRun.h"
+#include "vpDicomLabelSeriesWriter.h"
+#include "vpInputError.h"
+#include "vpModelTestSupport.h"
+#include "vpTestSupport.h"
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+namespace
+{
+using vp::test::RunTool;
+using vp::test::Slurp;
+using vp::test::ToolRun;
+namespace fs = std::filesystem;
+
+std::vector<std::vector<std::string>> Cells(const std::string& csv)
+{
+  std::vector<std::vector<std::string>> rows;
+  std::istringstream in(csv);
+  for (std::string line; std::getline(in, line);)
+  {
+    rows.push_back(vp::SplitCsvLine(line, "test"));
+  }
+  return rows;
+}
+
+// A patient as IRCADb lays one out: a portal vein along z (radius 5 mm about x = -30, y = 40) and
+// a ball of vena cava; a capped cylinder for a scalpel; a tip driven along x through the vein.
+class BatchCommand : public ::testing::Test
+{
+protected:
+  void SetUp() override
+  {
+    this->Dir = vp::test::MakeTempDir("batch");
+    const std::array<double, 16> geometry = { 0.8, 0, 0, -50, 0, 0.8, 0, 20, 0, 0, 1.25, -100, 0, 0, 0, 1 };
+    const int dims[3] = { 40, 50, 30 };
+    const vp::ImageIdentity patient = vp::DicomLabelSeriesWriter::NewIdentity("");
+    auto write = [&](const std::string& name, const std::function<int(const double p[3])>& label) {
+      vp::LabelGrid grid = vp::test::MakeGrid(dims, geometry, label);
+      grid.Identity = patient;
+      vp::DicomLabelSeriesWriter::Write(grid, this->Dir + "/p1/MASKS_DICOM/" + name, name);
+    };
+    write("portalvein", [](const double p[3]) { return std::hypot(p[0] + 30, p[1] - 40) < 5 ? 255 : 0; });
+    write("venacava", [](const double p[3]) {
+      return std::pow(p[0] + 25, 2) + std::pow(p[1] - 30, 2) + std::pow(p[2] + 85, 2) < 36 ? 1 : 0; });
+    const double z[3] = { 0, 0, 1 }, shaft[3] = { 0, 0, 20 };
+    vp::test::WriteMeshFile(this->Dir, "tool.stl", vp::MakeCappedCylinder(shaft, z, 1.0, 40.0, 16));
+    std::ofstream(this->Dir + "/tool.json") << R"({"tip_mm": [0, 0, 0], "axis": [0, 0, -1]})";
+    const double centre[3] = { -30, 60, -80 };
+    vp::test::WriteMeshFile(this->Dir, "lesion.stl", vp::MakeSphere(centre, 4.0, 24, 48));
+    // Along x at y = 40, z = -80: through the portal vein (x = -48 to -24; its wall at x = -35
+    // and -25), and towards it only (to x = -42).
+    std::ostringstream in, near;
+    in << "time,x,y,z,qw,qx,qy,qz\n";
+    near << "time,x,y,z,qw,qx,qy,qz\n";
+    for (int i = 0; i <= 30; ++i)
+    {
+      in << i * 0.05 << "," << -48 + 0.8 * i << ",40,-80,1,0,0,0\n";
+      near << i * 0.05 << "," << -48 + 0.2 * i << ",40,-80,1,0,0,0\n";
+    }
+    std::ofstream(this->Dir + "/p1/in.csv") << in.str();
+    std::ofstream(this->Dir + "/p1/near.csv") << near.str();
+    std::ofstream(this->Dir + "/p1/tips.csv") << "x,y,z\n-30,52,-80\n-20,40,-60\n";
+    this->Manifest = this->WriteManifest("manifest.csv",
+      "case,segmentation,poses,tips,plan,scalpel\n"
+      "into,p1/MASKS_DICOM,p1/in.csv,p1/tips.csv,lesion.stl,tool.stl\n"
+      "# a comment, then a case that only approaches\n"
+      "near,p1/MASKS_DICOM,p1/near.csv,,,tool.stl\n"
+      "missing,p9/MASKS_DICOM,,,,\n");
+  }
+  std::string WriteManifest(const std::string& name, const std::string& text)
+  {
+    std::ofstream(this->Dir + "/" + name) << text;
+    return this->Dir + "/" + name;
+  }
+  std::string Dir, Manifest;
+};
+} // namespace
+
+TEST_F(BatchCommand, EachCaseIsComputedWholeAndItsRowsAreItsRecords)
+{
+  const std::string out = this->Dir + "/cohort";
+  const ToolRun r = RunTool(this->Dir, "batch " + this->Manifest + " -o " + out + " -j 2");
+  EXPECT_EQ(r.ExitCode, 1) << "one case failed: " << r.Err;
+  EXPECT_NE(r.Out.find("3 case(s): 2 computed, 0 whole already, 1 failed"), std::string::npos) << r.Out;
+  EXPECT_NE(r.Err.find("missing failed: " + this->Dir + "/p9/MASKS_DICOM: "), std::string::npos) << r.Err;
+  const auto rows = Cells(Slurp(out + "/cohort.csv"));
+  ASSERT_EQ(rows.size(), 1u + 2 + 2 + 1) << Slurp(out + "/cohort.csv");
+  EXPECT_EQ(rows[0], std::vector<std::string>({ "case", "class", "tip_min_mm", "surface_min_mm", "penetration_max_mm3",
+                       "breach_frames", "margin_min_mm", "error" }));
+  EXPECT_TRUE(fs::exists(out + "/cohort.png"));
+  EXPECT_FALSE(fs::exists(out + "/missing")) << "a failed case leaves no folder";
+  for (const std::string name : { "into", "near" })
+  {
+    const std::string folder = out + "/" + name;
+    for (const char* file : { "case.json", "frames.csv", "summary.json", "distance.png", "models/portal_vein.stl",
+           "models/hepatic_vein.stl", "models/models.json" })
+    {
+      EXPECT_TRUE(fs::exists(folder + "/" + file)) << folder << "/" << file;
+    }
+    // Each row is the case's own record: its summary's closest approach (signed), the frames
+    // whose class level is a breach, the largest penetration volume.
+    const nlohmann::json summary = nlohmann::json::parse(Slurp(folder + "/summary.json"));
+    const auto frames = Cells(Slurp(folder + "/frames.csv"));
+    for (const auto& row : rows)
+    {
+      if (row[0] != name)
+      {
+        continue;
+      }
+      const std::string& cls = row[1];
+      const auto& tip = summary["classes"][cls]["tip_minimum"];
+      double expected = tip["inside"].get<bool>() ? -tip["distance_mm"].get<double>() : tip["distance_mm"].get<double>();
+      if (name == std::string("into"))
+      {
+        // The tips too: (-30, 52, -80) is 12 mm from the vein's axis, 7 from its wall, farther than the track.
+        const nlohmann::json distance = nlohmann::json::parse(Slurp(folder + "/distance.json"));
+        for (const auto& t : distance["results"])
+        {
+          const auto& c = t["classes"][cls];
+          if (!c["distance_mm"].is_null())
+          {
+            expected = std::min(expected, c["inside"].get<bool>() ? -c["distance_mm"].get<double>() : c["distance_mm"].get<double>());
+          }
+        }
+      }
+      EXPECT_NEAR(std::stod(row[2]), expected, 1e-4) << name << " " << cls;
+      EXPECT_NEAR(std::stod(row[3]), summary["classes"][cls]["surface_minimum"]["distance_mm"].get<double>(), 1e-4);
+      EXPECT_NEAR(std::stod(row[4]), summary["classes"][cls]["penetration_maximum"]["volume_mm3"].get<double>(), 1e-4);
+      std::size_t level = 0;
+      while (frames[0][level] != cls + "_level")
+      {
+        ++level;
+      }
+      int breaches = 0;
+      for (std::size_t f = 1; f < frames.size(); ++f)
+      {
+        breaches += frames[f][level] == "breach" ? 1 : 0;
+      }
+      EXPECT_EQ(std::stoi(row[5]), breaches) << name << " " << cls;
+      if (name == std::string("into") && cls == "portal_vein")
+      {
+        EXPECT_GT(breaches, 5) << "the tip goes through the vein";
+        EXPECT_LT(std::stod(row[2]), -3.5) << "near the axis: 5 mm inside, the model's wall within a voxel";
+        // The plan's tumour: a ball of radius 4 mm at y = 60, 20 mm from the tip's line (passing
+        // x = -30 within 0.4 mm; the ball's facets within 0.04 mm).
+        EXPECT_NEAR(std::stod(row[6]), summary["tumour"]["tumours"][0]["margin_min_mm"].get<double>(), 1e-4);
+        EXPECT_NEAR(std::stod(row[6]), 16.0, 0.06);
+      }
+      EXPECT_EQ(row[7], "");
+      if (name == std::string("near"))
+      {
+        EXPECT_EQ(row[6], "") << "no plan, no margin";
+      }
+    }
+  }
+  EXPECT_EQ(rows.back()[0], "missing");
+  EXPECT_EQ(rows.back()[7].rfind(this->Dir + "/p9/MASKS_DICOM: ", 0), 0u) << rows.back()[7];
+}
+
+TEST_F(BatchCommand, ARunAgainResumesFromTheWholeCasesAndRedoesAChangedOne)
+{
+  const std::string out = this->Dir + "/cohort";
+  ASSERT_EQ(RunTool(this->Dir, "batch " + this->Manifest + " -o " + out).ExitCode, 1);
+  const std::string first = Slurp(out + "/cohort.csv");
+  const auto written = fs::last_write_time(out + "/into/case.json");
+  const ToolRun again = RunTool(this->Dir, "batch " + this->Manifest + " -o " + out);
+  EXPECT_NE(again.Out.find("3 case(s): 0 computed, 2 whole already, 1 failed"), std::string::npos) << again.Out;
+  EXPECT_EQ(Slurp(out + "/cohort.csv"), first);
+  EXPECT_EQ(fs::last_write_time(out + "/into/case.json"), written) << "a whole case is not computed again";
+  // A changed input (a later time) makes its case run again; the other stays.
+  fs::last_write_time(this->Dir + "/p1/near.csv", fs::last_write_time(this->Dir + "/p1/near.csv") + std::chrono::seconds(5));
+  const ToolRun changed = RunTool(this->Dir, "batch " + this->Manifest + " -o " + out);
+  EXPECT_NE(changed.Out.find("3 case(s): 1 computed, 1 whole already, 1 failed"), std::string::npos) << changed.Out;
+  EXPECT_NE(changed.Err.find("near done"), std::string::npos) << changed.Err;
+  EXPECT_EQ(Slurp(out + "/cohort.csv"), first) << "the same inputs' numbers";
+}
+
+TEST_F(BatchCommand, ShardsMergeIntoTheCohortOfOneRun)
+{
+  const std::string whole = this->Dir + "/whole", shards = this->Dir + "/shards";
+  ASSERT_EQ(RunTool(this->Dir, "batch " + this->Manifest + " -o " + whole).ExitCode, 1);
+  for (const char* shard : { "1/2", "2/2" })
+  {
+    const ToolRun r = RunTool(this->Dir, "batch " + this->Manifest + " -o " + shards + " --shard " + shard);
+    EXPECT_NE(r.Out.find("wrote " + shards + "/cohort-" + std::string(1, shard[0]) + "-of-2.csv"), std::string::npos) << r.Out;
+    EXPECT_FALSE(fs::exists(shards + "/cohort.csv")) << "a shard writes its own table only";
+  }
+  EXPECT_EQ(Cells(Slurp(shards + "/cohort-2-of-2.csv")).size(), 3u) << "the case 'near' (second of three), two classes";
+  const ToolRun merged = RunTool(this->Dir, "batch " + this->Manifest + " -o " + this->Dir + "/merged --merge " + shards);
+  EXPECT_EQ(merged.ExitCode, 1) << "the failed case is in no shard: " << merged.Err;
+  const auto a = Cells(Slurp(whole + "/cohort.csv")), b = Cells(Slurp(this->Dir + "/merged/cohort.csv"));
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i + 1 < a.size(); ++i)
+  {
+    EXPECT_EQ(a[i], b[i]) << "row " << i;
+  }
+  EXPECT_EQ(b.back()[7].rfind("not whole in any merged folder", 0), 0u) << b.back()[7];
+  EXPECT_TRUE(fs::exists(this->Dir + "/merged/cohort.png"));
+}
+
+TEST_F(BatchCommand, EachBadManifestOrOptionGetsItsOneLineAndWritesNothing)
+{
+  const std::string out = this->Dir + "/bad";
+  const std::vector<std::pair<std::string, std::string>> manifests = {
+    { "case,segmentation,notes\nx,y,z\n", "line 1: unknown column 'notes'" },
+    { "case,poses\nx,y\n", "line 1: the header must name the columns case and segmentation" },
+    { "case,segmentation\nx,y,z\n", "line 2: 3 cells where the header names 2" },
+    { "case,segmentation\nx,a\nx,b\n", "line 3: case 'x' is given twice" },
+    { "case,segmentation\nup/../x,a\n", "line 2: case 'up/../x': a case name holds letters" },
+    { "case,segmentation\n../up,a\n", "line 2: case '../up': a case name cannot start with '.' or '-'" },
+    { "case,segmentation\n.hidden,a\n", "line 2: case '.hidden': a case name cannot start with '.' or '-'" },
+    { "case,segmentation\nx,\"a,b\n", "line 2: a quote is not closed" },
+    { "case,segmentation\n", "no case" },
+    { "case,segmentation,plan\nx,a,b;;c\n", "line 2: an empty entry in the plan" },
+    { "case,case,segmentation\n", "line 1: column 'case' is named twice" },
+  };
+  for (const auto& [text, problem] : manifests)
+  {
+    const std::string file = this->WriteManifest("bad.csv", text);
+    const ToolRun r = RunTool(this->Dir, "batch " + file + " -o " + out);
+    EXPECT_EQ(r.ExitCode, 1) << text;
+    EXPECT_EQ(r.Err.rfind("vesselproximity: error: " + file + ": ", 0), 0u) << r.Err;
+    EXPECT_NE(r.Err.find(problem), std::string::npos) << r.Err;
+    EXPECT_EQ(std::count(r.Err.begin(), r.Err.end(), '\n'), 1) << r.Err;
+    EXPECT_FALSE(fs::exists(out)) << text;
+  }
+  for (const auto& [options, problem] : std::vector<std::pair<std::string, std::string>>{
+         { "--shard 3/2", "--shard: expected K/N with 1 <= K <= N" },
+         { "--shard 1/x", "--shard: expected K/N" },
+         { "-j 0", "expected 1 to 256 cases at once" },
+         { "--merge a, --shard 1/1", "--merge: an empty folder" },
+         { "--merge a --shard 1/2", "a merge gathers every shard" } })
+  {
+    const ToolRun r = RunTool(this->Dir, "batch " + this->Manifest + " -o " + out + " " + options);
+    EXPECT_EQ(r.ExitCode, 1) << options;
+    EXPECT_NE(r.Err.find(problem), std::string::npos) << r.Err;
+    EXPECT_EQ(std::count(r.Err.begin(), r.Err.end(), '\n'), 1) << r.Err;
+    EXPECT_FALSE(fs::exists(out)) << options;
+  }
+  // Quoted cells hold commas; a quote inside is doubled.
+  const auto cells = vp::SplitCsvLine(R"(a,"b,c","say ""hi""",  d  )", "test");
+  EXPECT_EQ(cells, std::vector<std::string>({ "a", "b,c", "say \"hi\"", "d" }));
+  EXPECT_THROW(vp::SplitCsvLine(R"("a"b)", "test"), vp::InputError);
+}

@@ -26,6 +26,21 @@ bool Assign(T& field, const T& value)
   return true;
 }
 
+/// Adds name's surface, or replaces it in place (the order kept), and says whether it changed.
+bool AssignNamed(std::vector<std::pair<std::string, vtkSmartPointer<vtkPolyData>>>& surfaces, const std::string& name,
+  vtkPolyData* surface)
+{
+  for (auto& named : surfaces)
+  {
+    if (named.first == name)
+    {
+      return Assign(named.second, vtkSmartPointer<vtkPolyData>(surface));
+    }
+  }
+  surfaces.emplace_back(name, surface);
+  return true;
+}
+
 /// A length or a time that may be 0 but not negative (nor NaN, nor infinite).
 double NotNegative(double value, const char* parameter, const char* problem)
 {
@@ -60,20 +75,10 @@ void vtkVesselProximityParameters::SettingsModified()
 
 void vtkVesselProximityParameters::SetVessel(const std::string& className, vtkPolyData* surface)
 {
-  for (auto& vessel : this->Vessels)
+  if (AssignNamed(this->Vessels, className, surface))
   {
-    if (vessel.first == className)
-    {
-      if (vessel.second != surface)
-      {
-        vessel.second = surface;
-        this->SceneModified();
-      }
-      return;
-    }
+    this->SceneModified();
   }
-  this->Vessels.emplace_back(className, surface);
-  this->SceneModified();
 }
 
 void vtkVesselProximityParameters::RemoveAllVessels()
@@ -87,20 +92,10 @@ void vtkVesselProximityParameters::RemoveAllVessels()
 
 void vtkVesselProximityParameters::SetTumour(const std::string& id, vtkPolyData* surface)
 {
-  for (auto& tumour : this->Tumours)
+  if (AssignNamed(this->Tumours, id, surface))
   {
-    if (tumour.first == id)
-    {
-      if (tumour.second != surface)
-      {
-        tumour.second = surface;
-        this->SceneModified();
-      }
-      return;
-    }
+    this->SceneModified();
   }
-  this->Tumours.emplace_back(id, surface);
-  this->SceneModified();
 }
 
 void vtkVesselProximityParameters::RemoveAllTumours()

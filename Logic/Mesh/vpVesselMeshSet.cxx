@@ -12,6 +12,21 @@
 
 namespace vp
 {
+namespace
+{
+/// The surface in memory, else the one its file holds.
+void ReadUnlessGiven(NamedMesh& mesh)
+{
+  if (!mesh.Mesh)
+  {
+    vtkNew<vtkVesselMeshReader> reader;
+    reader->SetFileName(mesh.FileName);
+    reader->Read();
+    mesh.Mesh = reader->GetOutput();
+  }
+}
+} // namespace
+
 std::vector<NamedMesh> LoadVesselMeshes(std::vector<NamedMesh> vessels)
 {
   std::set<std::string> seen;
@@ -26,13 +41,7 @@ std::vector<NamedMesh> LoadVesselMeshes(std::vector<NamedMesh> vessels)
     {
       throw ParameterError("Vessels", "class '" + vessel.ClassName + "' is given twice");
     }
-    if (!vessel.Mesh)
-    {
-      vtkNew<vtkVesselMeshReader> reader;
-      reader->SetFileName(vessel.FileName);
-      reader->Read();
-      vessel.Mesh = reader->GetOutput();
-    }
+    ReadUnlessGiven(vessel);
   }
   return vessels;
 }
@@ -62,13 +71,7 @@ std::vector<NamedMesh> LoadTumourMeshes(std::vector<NamedMesh> tumours)
     {
       throw ParameterError("Tumours", "tumour '" + Printable(tumour.ClassName) + "' is given twice");
     }
-    if (!tumour.Mesh)
-    {
-      vtkNew<vtkVesselMeshReader> reader;
-      reader->SetFileName(tumour.FileName);
-      reader->Read();
-      tumour.Mesh = reader->GetOutput();
-    }
+    ReadUnlessGiven(tumour);
   }
   return tumours;
 }

@@ -17,6 +17,10 @@
 #include <sstream>
 #include <thread>
 
+#include <csignal>
+#include <sys/wait.h>
+#include <unistd.h>
+
 namespace
 {
 using vp::test::RunTool;
@@ -253,4 +257,50 @@ TEST_F(BatchCommand, EachBadManifestOrOptionGetsItsOneLineAndWritesNothing)
   const auto cells = vp::SplitCsvLine(R"(a,"b,c","say ""hi""",  d  )", "test");
   EXPECT_EQ(cells, std::vector<std::string>({ "a", "b,c", "say \"hi\"", "d" }));
   EXPECT_THROW(vp::SplitCsvLine(R"("a"b)", "test"), vp::InputError);
+}
+
+// Ctrl-C at 12 moments of a cohort's run, two cases at a time: each case folder is whole or
+// absent, no staging folder is left, the table is written only by a run that ended by itself,
+// and a run again takes the whole cases as they are.
+TEST_F(BatchCommand, AnInterruptedCohortKeepsItsWholeCasesAndNoPart)
+{
+  int signalled = 0;
+  for (int k = 0; k < 12; ++k)
+  {
+    const std::string out = this->Dir + "/interrupted" + std::to_string(k);
+    const pid_t child = vp::test::StartTool({ "batch", this->Manifest, "-o", out, "-j", "2" });
+    ASSERT_GE(child, 0);
+    usleep(static_cast<useconds_t>(15000 * k));
+    kill(child, SIGINT);
+    int status = 0;
+    waitpid(child, &status, 0);
+    const bool byItself = WIFEXITED(status);
+    signalled += WIFSIGNALED(status) && WTERMSIG(status) == SIGINT ? 1 : 0;
+    EXPECT_TRUE(byItself || (WIFSIGNALED(status) && WTERMSIG(status) == SIGINT)) << "status " << status;
+    EXPECT_EQ(fs::exists(out + "/cohort.csv"), byItself) << "after " << 15 * k << " ms";
+    if (!fs::exists(out))
+    {
+      continue;
+    }
+    for (const auto& entry : fs::directory_iterator(out))
+    {
+      const std::string name = entry.path().filename().string();
+      if (entry.is_directory())
+      {
+        EXPECT_TRUE(fs::exists(entry.path() / "case.json")) << name << " after " << 15 * k << " ms: whole or absent";
+        for (const auto& inner : fs::directory_iterator(entry.path()))
+        {
+          EXPECT_EQ(inner.path().filename().string().rfind(".vesselproximity-partial-", 0), std::string::npos)
+            << inner.path() << " after " << 15 * k << " ms";
+        }
+      }
+    }
+  }
+  EXPECT_GT(signalled, 0) << "some run was stopped by the signal";
+  // The last folder finished by a run again: its whole cases are taken as they are.
+  const std::string out = this->Dir + "/interrupted0";
+  const ToolRun again = RunTool(this->Dir, "batch " + this->Manifest + " -o " + out);
+  EXPECT_EQ(again.ExitCode, 1) << again.Err;
+  EXPECT_TRUE(fs::exists(out + "/cohort.csv"));
+  EXPECT_EQ(Cells(Slurp(out + "/cohort.csv")).size(), 6u);
 }

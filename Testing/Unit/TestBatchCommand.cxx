@@ -304,3 +304,41 @@ TEST_F(BatchCommand, AnInterruptedCohortKeepsItsWholeCasesAndNoPart)
   EXPECT_TRUE(fs::exists(out + "/cohort.csv"));
   EXPECT_EQ(Cells(Slurp(out + "/cohort.csv")).size(), 6u);
 }
+
+// The cohort on a real one-node Slurm cluster (Debian's slurm-wlm, started here in a folder of its
+// own: Testing/Cluster/vpSlurmCluster.sh): an array job of two tasks, one shard each, merged,
+// equals one run on this machine.
+TEST_F(BatchCommand, ASlurmArrayJobMergesToTheCohortOfOneRun)
+{
+  if (std::system("command -v slurmctld >/dev/null 2>&1 && command -v sbatch >/dev/null 2>&1") != 0)
+  {
+    GTEST_SKIP() << "slurm-wlm is not installed (.ci/install-deps installs it): the cohort was not run on a cluster";
+  }
+  const std::string script = std::string(VP_SOURCE_DIR) + "/Testing/Cluster/vpSlurmCluster.sh";
+  const std::string cluster = this->Dir + "/slurm";
+  ASSERT_EQ(std::system(("bash " + script + " start " + cluster + " >" + this->Dir + "/slurm.out 2>&1").c_str()), 0)
+    << Slurp(this->Dir + "/slurm.out") << Slurp(cluster + "/slurmctld.log") << Slurp(cluster + "/slurmd.log");
+  struct Stop
+  {
+    std::string Command;
+    ~Stop() { std::system(this->Command.c_str()); }
+  } stop{ "bash " + script + " stop " + cluster };
+  const std::string manifest = this->WriteManifest("two.csv",
+    "case,segmentation,poses,tips,plan,scalpel\n"
+    "into,p1/MASKS_DICOM,p1/in.csv,p1/tips.csv,lesion.stl,tool.stl\n"
+    "near,p1/MASKS_DICOM,p1/near.csv,,,tool.stl\n");
+  const std::string env = "SLURM_CONF=" + cluster + "/slurm.conf ";
+  const std::string job = env + "timeout 300 sbatch --wait --array=1-2 -o " + cluster + "/task-%a.out --wrap '" +
+    VP_EXECUTABLE + " batch " + manifest + " -o " + this->Dir + "/onslurm --shard $SLURM_ARRAY_TASK_ID/2' >" + this->Dir +
+    "/sbatch.out 2>&1";
+  ASSERT_EQ(std::system(job.c_str()), 0) << Slurp(this->Dir + "/sbatch.out") << Slurp(cluster + "/task-1.out")
+                                         << Slurp(cluster + "/task-2.out");
+  EXPECT_NE(Slurp(cluster + "/task-1.out").find("wrote " + this->Dir + "/onslurm/cohort-1-of-2.csv"), std::string::npos);
+  EXPECT_NE(Slurp(cluster + "/task-2.out").find("wrote " + this->Dir + "/onslurm/cohort-2-of-2.csv"), std::string::npos);
+  const ToolRun merged = RunTool(this->Dir, "batch " + manifest + " -o " + this->Dir + "/onslurm --merge " + this->Dir + "/onslurm");
+  ASSERT_EQ(merged.ExitCode, 0) << merged.Err;
+  const ToolRun here = RunTool(this->Dir, "batch " + manifest + " -o " + this->Dir + "/here");
+  ASSERT_EQ(here.ExitCode, 0) << here.Err;
+  EXPECT_EQ(Slurp(this->Dir + "/onslurm/cohort.csv"), Slurp(this->Dir + "/here/cohort.csv"));
+  EXPECT_EQ(Cells(Slurp(this->Dir + "/here/cohort.csv")).size(), 5u);
+}

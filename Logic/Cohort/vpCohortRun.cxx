@@ -101,6 +101,7 @@ void WriteCohortPlot(const std::vector<CohortCaseResult>& results, const std::st
   options.Title = "closest tip approach per case (" + std::to_string(results.size()) + " cases, cohort.csv order)";
   options.XLabel = "case";
   options.YLabel = "tip minimum (mm)";
+  options.WholeXTicks = true;
   WriteDistancePlotPng(fileName, cases, series, DangerBands(DangerThresholds(), true), options);
 }
 

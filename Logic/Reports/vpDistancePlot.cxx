@@ -464,6 +464,10 @@ Layout LayOut(const std::vector<double>& timesS, const std::vector<PlotSeries>& 
   f.RightPx = std::max(f.LeftPx + 1, widthPx - 1 - GapPx - legendWidth - 2 * GapPx);
   std::tie(f.TimeMinS, f.TimeMaxS) = TimeRange(timesS);
   layout.XStep = NiceTickStep(f.TimeMaxS - f.TimeMinS, std::max(2, (f.RightPx - f.LeftPx) / 80));
+  if (options.WholeXTicks)
+  {
+    layout.XStep = std::max(1.0, layout.XStep); // counts (a cohort's cases) have no halves
+  }
   layout.Plot = { f.LeftPx, f.BottomPx, f.RightPx, f.TopPx };
   return layout;
 }

@@ -59,6 +59,9 @@ struct DistancePlotOptions
   /// legend takes at most 2/5 of the width, its rows hang from the plot area's top): an inset that
   /// must show every entry. Default false: the size is as given, a long legend cut.
   bool GrowToFitLegend = false;
+  /// The x axis counts things (a cohort's cases, 1 to N): its ticks are whole numbers, 1 apart at
+  /// the least. Default false: times, any nice step.
+  bool WholeXTicks = false;
 };
 
 /// Where the data went in the image: the plot area in vtkImageData pixel indices (row 0 at the

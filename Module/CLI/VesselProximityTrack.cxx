@@ -93,6 +93,30 @@ vp::cli::ParameterGroup SettingsGroup()
   return settings;
 }
 
+vp::cli::ParameterGroup ResectionGroup()
+{
+  vp::cli::ParameterGroup resection{ "Resection", "The tumour to be resected and its margin", {} };
+  resection.Parameters.push_back(Parameter(ParameterType::Geometry, "tumour")
+                                   .SetTypeAttribute("model")
+                                   .SetFileExtensions(".stl,.vtk,.vtp,.obj")
+                                   .SetLongFlag("tumour")
+                                   .SetLogicName("Tumours")
+                                   .SetChannel(Channel::Input)
+                                   .SetLabel("Tumour")
+                                   .SetDescription("The tumour's surface model (closed): every frame the tip's signed "
+                                                   "distance to it (negative inside) and the margin's level (clear, near, "
+                                                   "violated, inside) in the frames table. Optional."));
+  resection.Parameters.push_back(Parameter(ParameterType::Float, "marginMm")
+                                   .SetLongFlag("marginMm")
+                                   .SetLogicName("MarginMm")
+                                   .SetLabel("Margin (mm)")
+                                   .SetDescription("The resection margin: closer is violated; up to as much again beyond "
+                                                   "it is near.")
+                                   .SetDefault(vp::cli::FormatNumber(vp::MarginSettings().MarginMm))
+                                   .SetRange(0.0, 50.0, 0.5));
+  return resection;
+}
+
 vp::cli::ParameterGroup OutputsGroup()
 {
   vp::cli::ParameterGroup outputs{ "Outputs", "The review of the recording", {} };
@@ -138,6 +162,17 @@ vp::cli::ParameterGroup ResultsGroup()
                              .SetChannel(Channel::Output)
                              .SetLabel("Worst level")
                              .SetDescription("The worst danger level reached: safe, caution, warning, danger or breach."));
+  out.Parameters.push_back(Parameter(ParameterType::String, "worstMarginLevel")
+                             .SetChannel(Channel::Output)
+                             .SetLabel("Worst margin level")
+                             .SetDescription("With a tumour, the worst margin level reached: clear, near, violated or "
+                                             "inside; empty without one."));
+  out.Parameters.push_back(Parameter(ParameterType::Float, "tumourMinimumMm")
+                             .SetChannel(Channel::Output)
+                             .SetLabel("Tumour closest (mm)")
+                             .SetDescription("With a tumour, the tip's smallest signed distance to it over the run "
+                                             "(negative: inside); 0 without one.")
+                             .SetDefault("0"));
   for (const vp::cli::VesselClassParameter& v : vp::cli::VesselClassParameters())
   {
     out.Parameters.push_back(Parameter(ParameterType::Float, std::string(v.Parameter) + "MinimumMm")
@@ -153,7 +188,7 @@ vp::cli::ParameterGroup ResultsGroup()
 vp::cli::ModuleDescription Describe()
 {
   auto d = vp::cli::ModuleDescription::VesselProximity("VesselProximityTrack", "Vessel Proximity Track", VP_VERSION,
-    { vp::cli::VesselModelsGroup(), RecordingGroup(), SettingsGroup(), OutputsGroup(), ResultsGroup() });
+    { vp::cli::VesselModelsGroup(), RecordingGroup(), SettingsGroup(), ResectionGroup(), OutputsGroup(), ResultsGroup() });
   d.Description =
     "Reviews a recorded tracking session: replays the scalpel's poses against the vessel models and writes, per "
     "frame, the tip's and the whole instrument's distance to each vessel class with its danger level (a table Slicer "
@@ -201,6 +236,12 @@ void Run(const vp::cli::ParsedArguments& args, vp::cli::ReturnValues& results)
   request.CompareWithExact = request.Engine.Method == "both";
   request.Tracking.Thresholds = { args.GetNumber("cautionMm"), args.GetNumber("warningMm"), args.GetNumber("dangerMm") };
   request.Tracking.Thresholds.Validate("--cautionMm/--warningMm/--dangerMm");
+  if (args.IsSet("tumour"))
+  {
+    request.Tumours = vp::TumourEntries({ args.GetString("tumour") }, "--tumour");
+    request.Tumours[0].ClassName = "tumour"; // Slicer's temporary file name says nothing of it
+  }
+  request.Tracking.Margin.MarginMm = args.GetNumber("marginMm");
 
   vp::PoseReading reading;
   reading.ToolName = args.GetString("toolName");
@@ -225,9 +266,12 @@ void Run(const vp::cli::ParsedArguments& args, vp::cli::ReturnValues& results)
   } cleanup{ keep ? std::string() : where };
   vp::RunFolder run(where, "summary.json");
   std::vector<std::string> inputs = { posesFile, request.ScalpelFile };
-  for (const vp::NamedMesh& vessel : request.Vessels)
+  for (const std::vector<vp::NamedMesh>* meshes : { &request.Vessels, &request.Tumours })
   {
-    inputs.push_back(vessel.FileName);
+    for (const vp::NamedMesh& mesh : *meshes)
+    {
+      inputs.push_back(mesh.FileName);
+    }
   }
   run.SetInputs(inputs);
 
@@ -258,6 +302,11 @@ void Run(const vp::cli::ParsedArguments& args, vp::cli::ReturnValues& results)
   const vp::TrackingSummary& summary = session.GetSummary();
   results.Set("frames", summary.GetNumberOfFrames());
   results.Set("worstLevel", std::string(vp::DangerLevelName(summary.GetWorstLevel())));
+  if (!summary.GetTumours().empty())
+  {
+    results.Set("worstMarginLevel", std::string(vp::MarginLevelName(summary.GetWorstMarginLevel())));
+    results.Set("tumourMinimumMm", summary.GetTumours()[0].MarginMinMm);
+  }
   for (const vp::cli::VesselClassParameter& v : vp::cli::VesselClassParameters())
   {
     for (std::size_t c = 0; c < summary.GetClassNames().size(); ++c)

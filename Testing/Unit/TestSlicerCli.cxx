@@ -689,7 +689,7 @@ TEST_F(SlicerCli, AcceptsEveryParameterItDeclares)
     { "poses", VP_SOURCE_DIR "/Testing/Data/approach_poses.csv" }, { "framesTable", this->Dir + "/accept_frames.csv" },
     { "summary", this->Dir + "/accept_summary.json" }, { "plot", this->Dir + "/accept.png" },
     { "outputDirectory", this->Dir + "/accept_track" }, { "scalpel", this->Dir + "/scalpel.stl" },
-    { "registration", this->Dir + "/identity.tfm" } };
+    { "registration", this->Dir + "/identity.tfm" }, { "tumour", this->Phantom("hepatic_vein") } };
   vp::WriteDefaultScalpel(this->Dir);
   fs::rename(this->Dir + "/CusaHandpiece.stl", this->Dir + "/scalpel.stl");
   fs::remove(this->Dir + "/CusaHandpiece.json");
@@ -1116,7 +1116,8 @@ TEST_F(SlicerCli, TrackRunsAsSlicerRunsIt)
   const std::map<std::string, std::string> values = { { "portalVein", this->Phantom("portal_vein") },
     { "hepaticArtery", this->Phantom("hepatic_artery") }, { "hepaticVein", this->Phantom("hepatic_vein") },
     { "poses", poses }, { "framesTable", this->Temporary("vtkMRMLTableNodeC.csv") },
-    { "summary", this->Dir + "/summary.json" }, { "plot", this->Dir + "/distance.png" } };
+    { "summary", this->Dir + "/summary.json" }, { "plot", this->Dir + "/distance.png" },
+    { "tumour", this->Phantom("hepatic_vein") } };
   const ToolRun r = RunCli(this->Dir, TrackProgram, SlicerCommandLine(m, values, params));
   ASSERT_EQ(r.ExitCode, 0) << r.Err;
   EXPECT_EQ(r.Err, "");
@@ -1126,6 +1127,10 @@ TEST_F(SlicerCli, TrackRunsAsSlicerRunsIt)
   EXPECT_NEAR(Number(v, "portalVeinMinimumMm"), 4.0, 1e-6);
   EXPECT_NEAR(Number(v, "hepaticArteryMinimumMm"), 2.5, 0.05);
   EXPECT_NE(v.at("worstLevel"), "safe");
+  // The phantom's hepatic vein as a tumour: a ball of radius 10 at (45, 30, -10), the tip at its
+  // lowest (30, 0, 10) sqrt(15^2 + 30^2 + 20^2) - 10 = 29.05 mm from it.
+  EXPECT_NEAR(Number(v, "tumourMinimumMm"), std::sqrt(15.0 * 15 + 30 * 30 + 20 * 20) - 10.0, 0.05);
+  EXPECT_EQ(v.at("worstMarginLevel"), "clear");
 
   const auto frames = ReadCsvTable(values.at("framesTable"));
   EXPECT_EQ(frames->GetNumberOfRows(), 3);

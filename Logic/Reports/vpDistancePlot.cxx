@@ -4,8 +4,6 @@
 #include "vpPngFile.h"
 
 #include <vtkFreeTypeTools.h>
-
-#include <mutex>
 #include <vtkNew.h>
 #include <vtkStdString.h>
 #include <vtkTextProperty.h>
@@ -13,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <mutex>
 #include <stdexcept>
 #include <tuple>
 

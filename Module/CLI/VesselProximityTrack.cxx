@@ -238,8 +238,8 @@ void Run(const vp::cli::ParsedArguments& args, vp::cli::ReturnValues& results)
   request.Tracking.Thresholds.Validate("--cautionMm/--warningMm/--dangerMm");
   if (args.IsSet("tumour"))
   {
-    request.Tumours = vp::TumourEntries({ args.GetString("tumour") }, "--tumour");
-    request.Tumours[0].ClassName = "tumour"; // Slicer's temporary file name says nothing of it
+    // Slicer's temporary file name says nothing of the tumour (and a path is no ID=FILE entry).
+    request.Tumours = { { "tumour", args.GetString("tumour"), nullptr, std::nullopt } };
   }
   request.Tracking.Margin.MarginMm = args.GetNumber("marginMm");
 

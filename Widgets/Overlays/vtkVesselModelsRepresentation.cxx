@@ -29,23 +29,36 @@ void vtkVesselModelsRepresentation::Style(Entry& entry, const std::array<double,
   entry.Actor->SetPickable(!liver);
 }
 
+vtkActor* vtkVesselModelsRepresentation::FindActor(const std::vector<Entry>& entries, const std::string& name)
+{
+  const auto it = std::find_if(entries.begin(), entries.end(), [&](const Entry& e) { return e.ClassName == name; });
+  return it == entries.end() ? nullptr : it->Actor.Get();
+}
+
+vtkVesselModelsRepresentation::Entry& vtkVesselModelsRepresentation::AddEntry(std::vector<Entry>& entries, const std::string& name)
+{
+  Entry entry{ name, vtkSmartPointer<vtkActor>::New() };
+  vtkNew<vtkPolyDataMapper> mapper;
+  entry.Actor->SetMapper(mapper);
+  for (vtkRenderer* renderer : this->Renderers)
+  {
+    renderer->AddActor(entry.Actor);
+  }
+  entries.push_back(entry);
+  return entries.back();
+}
+
 void vtkVesselModelsRepresentation::SetVessel(const std::string& className, vtkPolyData* surface)
 {
-  auto it = std::find_if(this->Entries.begin(), this->Entries.end(), [&](const Entry& e) { return e.ClassName == className; });
-  if (it == this->Entries.end())
+  vtkActor* actor = FindActor(this->Entries, className);
+  if (!actor)
   {
-    Entry entry{ className, vtkSmartPointer<vtkActor>::New() };
-    vtkNew<vtkPolyDataMapper> mapper;
-    entry.Actor->SetMapper(mapper);
-    this->Style(entry, vp::ToFraction(vp::ClassDisplayColour(className, static_cast<int>(this->Entries.size()))));
-    for (vtkRenderer* renderer : this->Renderers)
-    {
-      renderer->AddActor(entry.Actor);
-    }
-    this->Entries.push_back(entry);
-    it = this->Entries.end() - 1;
+    const int index = static_cast<int>(this->Entries.size());
+    Entry& entry = this->AddEntry(this->Entries, className);
+    this->Style(entry, vp::ToFraction(vp::ClassDisplayColour(className, index)));
+    actor = entry.Actor;
   }
-  vtkPolyDataMapper::SafeDownCast(it->Actor->GetMapper())->SetInputData(surface);
+  vtkPolyDataMapper::SafeDownCast(actor->GetMapper())->SetInputData(surface);
   // Normals come with the surface (the model builder writes consistent outward triangles);
   // without point normals the shading is flat, which reads fine on smoothed vessels.
   this->Modified();
@@ -53,38 +66,23 @@ void vtkVesselModelsRepresentation::SetVessel(const std::string& className, vtkP
 
 void vtkVesselModelsRepresentation::SetTumour(const std::string& id, vtkPolyData* surface)
 {
-  auto it = std::find_if(this->Tumours.begin(), this->Tumours.end(), [&](const Entry& e) { return e.ClassName == id; });
-  if (it == this->Tumours.end())
+  vtkActor* actor = FindActor(this->Tumours, id);
+  if (!actor)
   {
-    Entry entry{ id, vtkSmartPointer<vtkActor>::New() };
-    vtkNew<vtkPolyDataMapper> mapper;
-    entry.Actor->SetMapper(mapper);
+    actor = this->AddEntry(this->Tumours, id).Actor;
     const std::array<double, 3> c = vp::ToFraction(vp::TumourDisplayColour);
-    entry.Actor->GetProperty()->SetColor(c[0], c[1], c[2]);
-    entry.Actor->GetProperty()->SetSpecular(0.3);
-    entry.Actor->GetProperty()->SetSpecularPower(20);
-    entry.Actor->GetProperty()->SetOpacity(this->TumourOpacity);
-    for (vtkRenderer* renderer : this->Renderers)
-    {
-      renderer->AddActor(entry.Actor);
-    }
-    this->Tumours.push_back(entry);
-    it = this->Tumours.end() - 1;
+    actor->GetProperty()->SetColor(c[0], c[1], c[2]);
+    actor->GetProperty()->SetSpecular(0.3);
+    actor->GetProperty()->SetSpecularPower(20);
+    actor->GetProperty()->SetOpacity(this->TumourOpacity);
   }
-  vtkPolyDataMapper::SafeDownCast(it->Actor->GetMapper())->SetInputData(surface);
+  vtkPolyDataMapper::SafeDownCast(actor->GetMapper())->SetInputData(surface);
   this->Modified();
 }
 
 vtkActor* vtkVesselModelsRepresentation::GetTumourActor(const std::string& id) const
 {
-  for (const Entry& e : this->Tumours)
-  {
-    if (e.ClassName == id)
-    {
-      return e.Actor;
-    }
-  }
-  return nullptr;
+  return FindActor(this->Tumours, id);
 }
 
 void vtkVesselModelsRepresentation::SetClassColour(const std::string& className, const std::array<double, 3>& rgb)
@@ -139,14 +137,7 @@ void vtkVesselModelsRepresentation::RemoveFromRenderer(vtkRenderer* renderer)
 
 vtkActor* vtkVesselModelsRepresentation::GetActor(const std::string& className) const
 {
-  for (const Entry& e : this->Entries)
-  {
-    if (e.ClassName == className)
-    {
-      return e.Actor;
-    }
-  }
-  return nullptr;
+  return FindActor(this->Entries, className);
 }
 
 void vtkVesselModelsRepresentation::PrintSelf(ostream& os, vtkIndent indent)

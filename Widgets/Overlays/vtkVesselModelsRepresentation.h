@@ -63,6 +63,10 @@ private:
   vtkVesselModelsRepresentation(const vtkVesselModelsRepresentation&) = delete;
   void operator=(const vtkVesselModelsRepresentation&) = delete;
   void Style(Entry& entry, const std::array<double, 3>& rgb) const;
+  /// The actor of name among entries, or null.
+  static vtkActor* FindActor(const std::vector<Entry>& entries, const std::string& name);
+  /// A new actor (with its mapper, in every renderer) for name, at the end of entries.
+  Entry& AddEntry(std::vector<Entry>& entries, const std::string& name);
 };
 
 #endif

@@ -6,6 +6,7 @@
 #include "vpScalpelLoader.h"
 #include "vpTrackingSettings.h"
 #include "vpVesselMeshSet.h"
+#include "vtkScalpelPenetration.h"
 
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
@@ -59,6 +60,8 @@ struct SceneRequest
   double InstrumentRangeMm = 0.0;
   /// The instrument's penetration depth and volume in each class, with the surface distance.
   bool ComputePenetration = true;
+  /// The penetration walk's most vessel-wall queries per class and frame (0: no limit).
+  long long PenetrationQueryBudget = vtkScalpelPenetration::DefaultQueryBudget;
   /// Thresholds, hysteresis and frame budget.
   TrackingSettings Tracking;
 };

@@ -81,6 +81,7 @@ vp::OpenedScene vtkVesselProximityLogic::OpenScene(const vp::SceneRequest& reque
   p->SetInstrumentMethod(request.Instrument);
   p->SetInstrumentRangeMm(request.InstrumentRangeMm);
   p->SetComputePenetration(request.ComputePenetration);
+  p->SetPenetrationQueryBudget(request.PenetrationQueryBudget);
   p->SetDangerThresholds(request.Tracking.Thresholds);
   p->SetHysteresisMm(request.Tracking.HysteresisMm);
   p->SetFrameBudgetMs(request.Tracking.FrameBudgetMs);
@@ -314,6 +315,7 @@ void vtkVesselProximityLogic::BuildInstrument(vtkVesselDistanceEngine* engine)
     this->Penetration->SetVesselDistance(this->Exact);
     this->Penetration->SetZBufferSurface(vtkZBufferSurfaceDistance::SafeDownCast(this->Surface));
     this->Penetration->SetToolSurface(tool);
+    this->Penetration->SetQueryBudget(p->GetPenetrationQueryBudget());
     this->Penetration->Build();
   }
 }

@@ -169,6 +169,18 @@ void vtkVesselProximityParameters::SetComputePenetration(bool compute)
   }
 }
 
+void vtkVesselProximityParameters::SetPenetrationQueryBudget(long long queries)
+{
+  if (queries < 0)
+  {
+    throw vp::ParameterError("PenetrationQueryBudget", "must be 0 (no limit) or a positive count, got " + std::to_string(queries));
+  }
+  if (Assign(this->PenetrationQueryBudget, queries))
+  {
+    this->SceneModified();
+  }
+}
+
 void vtkVesselProximityParameters::SetCompareWithExact(bool compare)
 {
   if (Assign(this->CompareWithExact, compare))
@@ -234,6 +246,7 @@ void vtkVesselProximityParameters::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "InstrumentMethod: " << vp::InstrumentMethodName(this->Instrument) << "\n";
   os << indent << "InstrumentRangeMm: " << this->InstrumentRangeMm << (this->InstrumentRangeMm > 0 ? "" : " (the engine's)") << "\n";
   os << indent << "ComputePenetration: " << this->ComputePenetration << "\n";
+  os << indent << "PenetrationQueryBudget: " << this->PenetrationQueryBudget << (this->PenetrationQueryBudget > 0 ? "" : " (no limit)") << "\n";
   os << indent << "CompareWithExact: " << this->CompareWithExact << "\n";
   os << indent << "DangerThresholdsMm: " << this->Tracking.Thresholds.CautionMm << " " << this->Tracking.Thresholds.WarningMm << " "
      << this->Tracking.Thresholds.DangerMm << "\n";

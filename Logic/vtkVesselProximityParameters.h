@@ -2,6 +2,7 @@
 #define vtkVesselProximityParameters_h
 
 #include "vpInstrumentMethod.h"
+#include "vtkScalpelPenetration.h"
 #include "vpTrackingSettings.h"
 
 #include <vtkObject.h>
@@ -71,6 +72,11 @@ public:
   /// distance (default true).
   void SetComputePenetration(bool compute);
   bool GetComputePenetration() const { return this->ComputePenetration; }
+  /// The most vessel-wall queries the penetration's walk makes per class and frame (0: no limit;
+  /// default vtkScalpelPenetration's): what bounds a breach's frame. Not negative: throws
+  /// ParameterError("PenetrationQueryBudget").
+  void SetPenetrationQueryBudget(long long queries);
+  long long GetPenetrationQueryBudget() const { return this->PenetrationQueryBudget; }
 
   /// Whether every frame is also answered by the exact engine, for the accuracy check.
   void SetCompareWithExact(bool compare);
@@ -116,6 +122,7 @@ private:
   vp::InstrumentMethod Instrument = vp::InstrumentMethod::Automatic;
   double InstrumentRangeMm = 0.0;
   bool ComputePenetration = true;
+  long long PenetrationQueryBudget = vtkScalpelPenetration::DefaultQueryBudget;
   bool CompareWithExact = false;
   vp::TrackingSettings Tracking;
   vtkTimeStamp SceneTime;

@@ -65,6 +65,10 @@ struct Penetration
   double DepthBoundMm = 0.0;   ///< |DepthMm - exact| is at most this
   double VolumeMm3 = 0.0;      ///< instrument volume inside the class
   double VolumeBoundMm3 = 0.0; ///< |VolumeMm3 - exact| is at most this
+  /// How many vessel-wall queries the answer took, and whether the walk's budget ended it (the
+  /// bounds then carry what was left unsplit; vtkScalpelPenetration::SetQueryBudget).
+  long long WallQueries = 0;
+  bool BudgetReached = false;
 };
 
 /// The closest approach of the whole instrument surface (not only its tip) to one vessel class.

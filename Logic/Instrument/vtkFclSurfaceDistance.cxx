@@ -8,6 +8,7 @@
 
 #include <vtkObjectFactory.h>
 #include <vtkPolyData.h>
+#include <vtkSMPTools.h>
 
 #include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/narrowphase/distance.h>
@@ -138,6 +139,53 @@ void vtkFclSurfaceDistance::Build()
   this->BuildTimeMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
+namespace
+{
+/// One class's closest pair within range, warm-started from the previous pose's pair (before,
+/// may be null): FCL's traversal prunes from the minimum it holds. out is left out of range when
+/// no pair lies within it.
+void SearchClass(const Model* tool, const Model* vessel, const fcl::Transform3d& pose, const fcl::Transform3d& worldToTool,
+  double range, const vp::SurfaceProximity* before, vp::SurfaceProximity& out)
+{
+  fcl::DistanceRequestd request;
+  request.enable_nearest_points = true;
+  // Nothing beyond the range is searched: the traversal prunes from its current minimum.
+  fcl::DistanceResultd result(std::nextafter(range, std::numeric_limits<double>::max()));
+  if (before && before->InRange && before->ToolTriangle >= 0 && before->ToolTriangle < tool->num_tris &&
+    before->VesselTriangle >= 0 && before->VesselTriangle < vessel->num_tris)
+  {
+    // The previous closest pair at this pose, in the tool's frame as FCL's traversal measures.
+    const fcl::Triangle& a = tool->tri_indices[before->ToolTriangle];
+    const fcl::Triangle& b = vessel->tri_indices[before->VesselTriangle];
+    fcl::Vector3d p, q;
+    const double d = fcl::detail::TriangleDistance<double>::triDistance(tool->vertices[a[0]], tool->vertices[a[1]],
+      tool->vertices[a[2]], worldToTool * vessel->vertices[b[0]], worldToTool * vessel->vertices[b[1]],
+      worldToTool * vessel->vertices[b[2]], p, q);
+    result.update(d, tool, vessel, static_cast<int>(before->ToolTriangle), static_cast<int>(before->VesselTriangle), p, q);
+  }
+  // The tool's pose goes in as a transform: the trees are never rebuilt.
+  fcl::distance(tool, pose, vessel, fcl::Transform3d::Identity(), request, result);
+  if (result.o1 != tool || result.o2 != vessel)
+  {
+    return; // no pair within range
+  }
+  // FCL gives an implementation-defined negative value for crossing meshes: touching is 0.
+  const double d = std::max(0.0, result.min_distance);
+  if (d <= range)
+  {
+    out.InRange = true;
+    out.DistanceMm = d;
+    out.ToolTriangle = result.b1;
+    out.VesselTriangle = result.b2;
+    for (int k = 0; k < 3; ++k)
+    {
+      out.PointOnToolMm[k] = result.nearest_points[0][k];
+      out.PointOnVesselMm[k] = result.nearest_points[1][k];
+    }
+  }
+}
+} // namespace
+
 void vtkFclSurfaceDistance::ComputeSurfaceProximity(
   const std::array<double, 16>& m, std::vector<vp::SurfaceProximity>& out, const std::vector<vp::SurfaceProximity>* previous) const
 {
@@ -153,52 +201,18 @@ void vtkFclSurfaceDistance::ComputeSurfaceProximity(
     pose.translation()(r) = m[4 * r + 3];
   }
   const fcl::Transform3d worldToTool = pose.inverse();
-  const Model* tool = s.Tool.get();
   const double range = this->SearchRangeMm();
+  const bool warm = this->WarmStart && previous && previous->size() == s.Vessels.size();
   out.assign(s.Vessels.size(), vp::SurfaceProximity());
-  for (std::size_t c = 0; c < s.Vessels.size(); ++c)
-  {
-    const Model* vessel = s.Vessels[c].get();
-    fcl::DistanceRequestd request;
-    request.enable_nearest_points = true;
-    // Nothing beyond the range is searched: the traversal prunes from its current minimum.
-    fcl::DistanceResultd result(std::nextafter(range, std::numeric_limits<double>::max()));
-    const vp::SurfaceProximity* before =
-      this->WarmStart && previous && previous->size() == s.Vessels.size() ? &(*previous)[c] : nullptr;
-    if (before && before->InRange && before->ToolTriangle >= 0 && before->ToolTriangle < tool->num_tris &&
-      before->VesselTriangle >= 0 && before->VesselTriangle < vessel->num_tris)
+  // The classes are independent searches of shared, read-only trees: one thread each (in a
+  // breach one class's search is long while the others are short).
+  vtkSMPTools::For(0, static_cast<vtkIdType>(s.Vessels.size()), 1, [&](vtkIdType first, vtkIdType last) {
+    for (vtkIdType c = first; c < last; ++c)
     {
-      // The previous closest pair at this pose, in the tool's frame as FCL's traversal measures.
-      const fcl::Triangle& a = tool->tri_indices[before->ToolTriangle];
-      const fcl::Triangle& b = vessel->tri_indices[before->VesselTriangle];
-      fcl::Vector3d p, q;
-      const double d = fcl::detail::TriangleDistance<double>::triDistance(tool->vertices[a[0]], tool->vertices[a[1]],
-        tool->vertices[a[2]], worldToTool * vessel->vertices[b[0]], worldToTool * vessel->vertices[b[1]],
-        worldToTool * vessel->vertices[b[2]], p, q);
-      result.update(d, tool, vessel, static_cast<int>(before->ToolTriangle), static_cast<int>(before->VesselTriangle), p, q);
+      const auto i = static_cast<std::size_t>(c);
+      SearchClass(s.Tool.get(), s.Vessels[i].get(), pose, worldToTool, range, warm ? &(*previous)[i] : nullptr, out[i]);
     }
-    // The tool's pose goes in as a transform: the trees are never rebuilt.
-    fcl::distance(tool, pose, vessel, fcl::Transform3d::Identity(), request, result);
-    if (result.o1 != tool || result.o2 != vessel)
-    {
-      continue; // no pair within range
-    }
-    // FCL gives an implementation-defined negative value for crossing meshes: touching is 0.
-    const double d = std::max(0.0, result.min_distance);
-    if (d <= range)
-    {
-      vp::SurfaceProximity& p = out[c];
-      p.InRange = true;
-      p.DistanceMm = d;
-      p.ToolTriangle = result.b1;
-      p.VesselTriangle = result.b2;
-      for (int k = 0; k < 3; ++k)
-      {
-        p.PointOnToolMm[k] = result.nearest_points[0][k];
-        p.PointOnVesselMm[k] = result.nearest_points[1][k];
-      }
-    }
-  }
+  });
 }
 
 void vtkFclSurfaceDistance::PrintSelf(ostream& os, vtkIndent indent)

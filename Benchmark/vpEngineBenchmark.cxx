@@ -1,7 +1,6 @@
 #include "vpEngineBenchmark.h"
 
-#include "vpPenetrationBenchmark.h"
-
+#include "vpBreachBenchmark.h"
 #include "vpLiveBenchmark.h"
 
 #include "vpDistanceEngineFactory.h"
@@ -85,14 +84,31 @@ BenchJson RunBenchmark(const BenchmarkRequest& request)
   }
   if (request.Parts.count("live"))
   {
-    const std::vector<TrackedPose> poses = request.Poses.empty()
-      ? PosesNearVessels(request.Vessels, static_cast<std::size_t>(request.Queries), request.Seed, request.Scalpel)
-      : request.Poses;
-    report["live"] = BenchLive(request.Vessels, request.Scalpel, poses, request.Live);
+    if (request.Parts.count("breach"))
+    {
+      // At the breach: the breach's poses streamed with its instrument, the tip alone beside.
+      vtkSmartPointer<vtkScalpelModel> tool = request.BreachScalpel ? request.BreachScalpel : BreachHandpiece();
+      LiveBenchSettings live = request.Live;
+      live.TipOnlyBeside = true;
+      report["live"] = BenchLive(request.Vessels, tool, BreachPoses(request.Vessels, tool, request.Breach), live);
+      report["live"]["poses"] = "the breach's";
+    }
+    else
+    {
+      const std::vector<TrackedPose> poses = request.Poses.empty()
+        ? PosesNearVessels(request.Vessels, static_cast<std::size_t>(request.Queries), request.Seed, request.Scalpel)
+        : request.Poses;
+      report["live"] = BenchLive(request.Vessels, request.Scalpel, poses, request.Live);
+    }
   }
   if (request.Parts.count("penetration"))
   {
     report["penetration"] = BenchPenetration(request.PenetrationPoses, &request.ZBufferSettings);
+  }
+  if (request.Parts.count("breach"))
+  {
+    report["breach"] = BenchBreach(request.Vessels, request.BreachScalpel, request.Breach, &request.ZBufferSettings);
+    report["breach"]["scalpel"] = request.BreachScalpel ? request.BreachScalpel->GetTipSource() : "the built-in CUSA handpiece";
   }
   return report;
 }

@@ -2,6 +2,7 @@
 #define vpEngineBenchmark_h
 
 #include "vpBenchmarkSupport.h"
+#include "vpBreachBenchmark.h"
 #include "vpDistanceEngineSettings.h"
 #include "vpLiveBenchmark.h"
 #include "vpPoseFile.h"
@@ -19,7 +20,7 @@ namespace vp
 /// What `vesselproximity bench` measures, typed.
 struct BenchmarkRequest
 {
-  /// exact, zbuffer, replay, live and/or penetration.
+  /// exact, zbuffer, replay, live, penetration and/or breach.
   std::set<std::string> Parts;
   /// Triangles per class each vessel is grown to (longest-edge bisection: same surface).
   std::vector<std::size_t> SizesTriangles;
@@ -40,6 +41,9 @@ struct BenchmarkRequest
   LiveBenchSettings Live;
   /// The penetration sweep's poses (0.2 to 10 mm deep).
   int PenetrationPoses = 100;
+  /// The breach's instrument (null: the built-in CUSA handpiece) and its poses.
+  vtkSmartPointer<vtkScalpelModel> BreachScalpel;
+  BreachBenchSettings Breach;
 };
 
 /// The z-buffer engine the settings describe, its device opened: a missing one fails before any
@@ -47,9 +51,9 @@ struct BenchmarkRequest
 vtkSmartPointer<vtkZBufferVesselDistance> MakeBenchZBuffer(const DistanceEngineSettings& settings);
 
 /// The engines side by side in one run: report["sizes"] (BenchExact per size), report["zbuffer"]
-/// (BenchZBuffer per size and ZBufferReport), report["replay"] (BenchReplay), report["live"] and
-/// report["penetration"] (BenchPenetration, with the z-buffer settings), each when its part is
-/// asked for. Progress on stderr.
+/// (BenchZBuffer per size and ZBufferReport), report["replay"] (BenchReplay), report["live"],
+/// report["penetration"] (BenchPenetration) and report["breach"] (BenchBreach, the vessels as
+/// given), the last two with the z-buffer settings, each when its part is asked for. Progress on stderr.
 BenchJson RunBenchmark(const BenchmarkRequest& request);
 } // namespace vp
 

@@ -133,6 +133,16 @@ BenchJson BenchLive(const std::vector<NamedMesh>& vessels, vtkScalpelModel* scal
   out["engine"] = "exact, tip and whole instrument";
   std::fprintf(stderr, "bench: live at %g Hz for %g s\n", settings.RateHz, settings.Seconds);
   out["latency"] = Phase(logic, poses, settings.RateHz, settings.Seconds);
+  if (settings.TipOnlyBeside)
+  {
+    std::fprintf(stderr, "bench: live, the tip alone, at %g Hz for %g s\n", settings.RateHz, settings.Seconds);
+    request.Scalpel = logic->GetScalpel();
+    request.ComputeSurfaceDistance = false;
+    request.ComputePenetration = false;
+    vtkSmartPointer<vtkVesselProximityLogic> tipOnly = vtkSmartPointer<vtkVesselProximityLogic>::New();
+    tipOnly->OpenScene(request);
+    out["tip_only"] = Phase(tipOnly, poses, settings.RateHz, settings.Seconds);
+  }
   if (settings.SustainedSeconds > 0.0)
   {
     std::fprintf(stderr, "bench: live sustained at %g Hz for %g s\n", settings.SustainedRateHz, settings.SustainedSeconds);

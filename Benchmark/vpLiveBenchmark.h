@@ -19,6 +19,9 @@ struct LiveBenchSettings
   double Seconds = 10.0;
   double SustainedRateHz = 1000.0;
   double SustainedSeconds = 60.0;
+  /// Also the same stream at RateHz with the tip alone (no whole instrument, no penetration):
+  /// what `live --no-surface` computes, the anchor for the breach.
+  bool TipOnlyBeside = false;
 };
 
 /// The live path as a clinician's tracker drives it: the module's logic (exact engine, tip and
@@ -26,7 +29,8 @@ struct LiveBenchSettings
 /// sender thread streaming TRANSFORM poses and reading back the results; per frame the latency
 /// from a pose's arrival to its results being sent, and the frame's own compute time beside it
 /// (the in-process anchor: the same logic without the network). The sustained phase measures the
-/// resident memory after 5 s and at the end. poses are cycled.
+/// resident memory after 5 s and at the end. poses are cycled. scalpel null: the built-in CUSA
+/// handpiece.
 BenchJson BenchLive(const std::vector<NamedMesh>& vessels, vtkScalpelModel* scalpel, const std::vector<TrackedPose>& poses,
   const LiveBenchSettings& settings);
 } // namespace vp

@@ -26,6 +26,15 @@ struct TrackedFrame
   std::vector<SurfaceProximity> Surface; ///< per class; empty when not computed
   std::vector<Penetration> Penetrations; ///< per class: the instrument inside it; empty when not computed
   double FrameMs = 0.0;            ///< wall time of the distance queries of this frame
+  /// Where FrameMs went: the tip's query, the whole instrument's distance, its penetration, the
+  /// tumours' margins (ms; 0 for a part not computed).
+  struct Parts
+  {
+    double TipMs = 0.0;
+    double SurfaceMs = 0.0;
+    double PenetrationMs = 0.0;
+    double MarginMs = 0.0;
+  } PartsMs;
   bool OverBudget = false;         ///< FrameMs exceeded the tracking logic's frame budget
   std::optional<HapticSample> Haptic; ///< with haptics on (TrackingSettings::Haptic)
   /// The tip and the whole instrument against each tumour, with the margin levels; with tumours.

@@ -167,14 +167,23 @@ const vp::TrackedFrame& vtkScalpelTrackingLogic::ProcessPose(const vp::TrackedPo
   this->Scalpel->GetAxisInWorld(frame.AxisWorld);
 
   const auto start = std::chrono::steady_clock::now();
+  auto lap = start;
+  auto timePart = [&lap](double& ms) {
+    const auto now = std::chrono::steady_clock::now();
+    ms = std::chrono::duration<double, std::milli>(now - lap).count();
+    lap = now;
+  };
   this->Engine->ComputeProximity(frame.TipMm, frame.AxisWorld, frame.Proximity, hasPrevious ? &this->Last.Proximity : nullptr);
+  timePart(frame.PartsMs.TipMs);
   if (this->SurfaceDistance)
   {
     this->SurfaceDistance->ComputeSurfaceProximity(
       pose.ModelToWorld, frame.Surface, hasPrevious && !this->Last.Surface.empty() ? &this->Last.Surface : nullptr);
+    timePart(frame.PartsMs.SurfaceMs);
     if (this->Penetration)
     {
       this->Penetration->ComputePenetration(pose.ModelToWorld, frame.Surface, frame.Penetrations);
+      timePart(frame.PartsMs.PenetrationMs);
     }
   }
   if (this->TumourMargin && this->TumourMargin->GetNumberOfTumours() > 0)
@@ -185,6 +194,7 @@ const vp::TrackedFrame& vtkScalpelTrackingLogic::ProcessPose(const vp::TrackedPo
     this->TumourMargin->SetInstrumentRangeMm(std::max(m.MarginMm + m.NearBandMm, MinimumInstrumentRangeMm));
     this->TumourMargin->ComputeMargin(
       frame.TipMm, pose.ModelToWorld, *frame.Tumour, hasPrevious && this->Last.Tumour ? &*this->Last.Tumour : nullptr);
+    timePart(frame.PartsMs.MarginMs);
   }
   frame.FrameMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   frame.OverBudget = this->Settings.FrameBudgetMs > 0.0 && frame.FrameMs > this->Settings.FrameBudgetMs;

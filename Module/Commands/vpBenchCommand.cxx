@@ -56,22 +56,22 @@ std::vector<std::size_t> ParseSizes(const std::string& text)
   return sizes;
 }
 
-/// --engines: a list of exact, zbuffer, replay, live and penetration.
+/// --engines: a list of exact, zbuffer, replay, live, penetration and breach.
 std::set<std::string> ParseBenchEngines(const cli::ParsedArguments& args)
 {
   std::set<std::string> engineNames;
   std::istringstream engineList(args.GetString("engines"));
   for (std::string name; std::getline(engineList, name, ',');)
   {
-    if (name != "exact" && name != "zbuffer" && name != "replay" && name != "live" && name != "penetration")
+    if (name != "exact" && name != "zbuffer" && name != "replay" && name != "live" && name != "penetration" && name != "breach")
     {
-      throw InputError("--engines", "expected a list of exact, zbuffer, replay, live and penetration, got '" + name + "'");
+      throw InputError("--engines", "expected a list of exact, zbuffer, replay, live, penetration and breach, got '" + name + "'");
     }
     engineNames.insert(name);
   }
   if (engineNames.empty())
   {
-    throw InputError("--engines", "expected a list of exact, zbuffer, replay, live and penetration");
+    throw InputError("--engines", "expected a list of exact, zbuffer, replay, live, penetration and breach");
   }
   return engineNames;
 }
@@ -82,7 +82,7 @@ void PrintLiveTable(const Json& live)
   std::printf("\nlive over OpenIGTLink (loopback), %s, %d classes:\n", live["engine"].get<std::string>().c_str(), live["classes"].get<int>());
   std::printf("  %-10s %8s %8s %8s %9s  %-26s %-26s %s\n", "phase", "rate Hz", "frames", "dropped", "rejected",
     "latency ms median/p95/max", "frame ms median/p95/max", "resident MB 5 s -> end");
-  for (const char* phase : { "latency", "sustained" })
+  for (const char* phase : { "latency", "tip_only", "sustained" })
   {
     if (!live.contains(phase))
     {
@@ -420,6 +420,43 @@ void PrintReplayTable(const Json& r)
   }
 }
 
+/// The breach: per engine the frame's median and p95 over the run, its penetrating frames and
+/// each overlap band, the volume and depth against the fine reference, FCL beside.
+void PrintBreachTable(const Json& breach)
+{
+  std::printf("\nbreach (%zu poses, %d penetrating, overlap up to %.0f mm3; %s; %lld queries a class), full frame "
+              "through the logic, median / p95 ms:\n",
+    breach["poses"].get<std::size_t>(), breach["penetrating_poses"].get<int>(), breach["largest_overlap_mm3"].get<double>(),
+    breach["scalpel"].get<std::string>().c_str(), breach["query_budget"].get<long long>());
+  auto cell = [](const Json& t) {
+    char text[48];
+    std::snprintf(text, sizeof text, "%.2f / %.2f", t["median_ms"].get<double>(), t["p95_ms"].get<double>());
+    return std::string(t["queries"].get<std::size_t>() == 0 ? "-" : text);
+  };
+  std::printf("  %-9s %-15s %-15s %-15s %-15s %-15s %s\n", "engine", "run", "penetrating", "< 100 mm3", "100-1000",
+    "> 1000", "volume error / depth error (max)");
+  for (const char* engine : { "exact", "zbuffer", "exact_without_budget" })
+  {
+    if (!breach.contains(engine))
+    {
+      continue;
+    }
+    const Json& e = breach[engine];
+    if (e.contains("unavailable"))
+    {
+      std::printf("  %-9s %s\n", engine, e["unavailable"].get<std::string>().c_str());
+      continue;
+    }
+    std::printf("  %-9s %-15s %-15s %-15s %-15s %-15s %.1f mm3 (%.1f%% from 1 mm) / %.2f mm; %d outside the contract, "
+                "%d below the truth beyond the bounds\n",
+      std::string(engine) == "exact_without_budget" ? "no budget" : engine, cell(e["frame_ms"]).c_str(), cell(e["penetrating_frame_ms"]).c_str(), cell(e["bands"][0]).c_str(),
+      cell(e["bands"][1]).c_str(), cell(e["bands"][2]).c_str(), e["max_volume_error_mm3"].get<double>(),
+      100.0 * e["max_volume_error_relative_from_1mm"].get<double>(), e["max_depth_error_mm"].get<double>(),
+      e["answers_outside_contract"].get<int>(), e["answers_below_truth_beyond_bounds"].get<int>());
+  }
+  std::printf("  %-9s %-15s (the whole instrument's distance only)\n", "FCL", cell(breach["fcl_surface"]).c_str());
+}
+
 void PrintBenchReport(Json& report)
 {
   if (report.contains("sizes"))
@@ -442,6 +479,10 @@ void PrintBenchReport(Json& report)
   if (report.contains("penetration"))
   {
     PrintPenetrationTable(report["penetration"]);
+  }
+  if (report.contains("breach"))
+  {
+    PrintBreachTable(report["breach"]);
   }
 }
 
@@ -491,6 +532,12 @@ cli::ModuleDescription DescribeBenchCommand()
     "of three classes, --penetration-poses steps: the full frame (tip, whole instrument, penetration) through the logic, "
     "exact and (with a Vulkan device) z-buffer, median and p95 per depth band, the penetration depth and volume against "
     "their closed forms and stated bounds, beside FCL's penetration depth of the convex primitives.\n"
+    "breach: the instrument (--scalpel, default the built-in CUSA handpiece) pushed into each class of the vessels "
+    "(--vessels, say a models folder's STLs) along the inward normal at --breach-points surface points per class, "
+    "2 mm outside, up to --breach-push-mm in and withdrawn half way: the full frame through the logic, exact and "
+    "(with a Vulkan device) z-buffer, median and p95 over the run, its penetrating frames and each overlap band "
+    "(< 100, 100-1,000, > 1,000 mm3), volume and depth against a fine reference (the exact walk at 0.2 mm without a "
+    "budget), the exact engine without a budget and FCL's whole-instrument distance on the same poses beside.\n"
     "Progress goes to stderr.",
     {
       { "Workload", "",
@@ -499,8 +546,8 @@ cli::ModuleDescription DescribeBenchCommand()
           count("queries", "2000", "Random tips (and tracked steps, and replayed frames)."),
           count("brute-queries", "30", "Of those, how many the brute-force reference answers."),
           count("seed", "1", "The random seed."),
-          Option(ParameterType::String, "engines", "Which parts to run: a list of exact, zbuffer, replay, live and penetration.")
-            .SetPlaceholder("exact,zbuffer,replay,live,penetration")
+          Option(ParameterType::String, "engines", "Which parts to run: a list of exact, zbuffer, replay, live, penetration and breach.")
+            .SetPlaceholder("exact,zbuffer,replay,live,penetration,breach")
             .SetDefault("exact,zbuffer") } },
       { "Replay", "", replay },
       { "Live", "",
@@ -513,6 +560,17 @@ cli::ModuleDescription DescribeBenchCommand()
             .SetRange(0, 3600, 1) } },
       { "Penetration", "",
         { count("penetration-poses", "100", "Depths of the penetration sweep, 0.2 to 10 mm.") } },
+      { "Breach", "",
+        { count("breach-points", "40", "Surface points per class the instrument is pushed in at (three poses each)."),
+          Option(ParameterType::Double, "breach-push-mm", "The deepest push; the points' pushes rise evenly to it.")
+            .SetPlaceholder("MM")
+            .SetDefault("10")
+            .SetRange(0.1, 100, 1),
+          Option(ParameterType::Integer, "penetration-budget",
+            "The penetration walk's most vessel-wall queries per class and frame (0: no limit).")
+            .SetPlaceholder("N")
+            .SetDefault(std::to_string(vtkScalpelPenetration::DefaultQueryBudget))
+            .SetRange(0, 100000000, 1) } },
       engine,
       { "Output", "",
         { Switch("json", "Print the report as JSON instead of a table."),
@@ -547,6 +605,14 @@ int RunBenchCommand(const cli::ParsedArguments& args, const ModuleServices&)
   }
   request.Queries = args.GetInteger("queries");
   request.PenetrationPoses = args.GetInteger("penetrationPoses");
+  request.Breach.PointsPerClass = args.GetInteger("breachPoints");
+  request.Breach.MaxPushMm = args.GetNumber("breachPushMm");
+  request.Breach.Seed = static_cast<unsigned>(args.GetInteger("seed"));
+  request.Breach.QueryBudget = args.GetInteger("penetrationBudget");
+  if (request.Parts.count("breach") && args.IsSet("scalpel"))
+  {
+    request.BreachScalpel = ReplayScalpel(args);
+  }
   request.BruteQueries = std::min(request.Queries, args.GetInteger("bruteQueries"));
   request.Seed = static_cast<unsigned>(args.GetInteger("seed"));
   request.Vessels = args.IsSet("vessels") ? LoadVesselMeshes(ParsePairs(args.GetString("vessels"), "--vessels")) : BuiltInVessels();

@@ -13,7 +13,7 @@ class vtkVesselProximityLogic;
 
 namespace vp
 {
-struct ModuleServices;
+class ModuleServices;
 
 /// Pictures of a run's key frames (vp::KeyFrameFinder): the poses replayed through an off-screen
 /// view of the logic with the module's overlays, a screenshot at each key frame

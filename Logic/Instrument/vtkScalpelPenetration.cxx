@@ -14,7 +14,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdlib>
 #include <limits>
 #include <optional>
 #include <queue>
@@ -600,7 +599,7 @@ void Estimate(const L& lattice, Walk& walk, const Straddler& s)
 }
 
 /// Queries a level's cubes, on every core when there are many, and adds their outcomes to the
-/// walk in order; returns the cubes the wall may cross.
+/// walk in order; crossed receives the cubes the wall may cross (outcomes: scratch).
 template <typename L>
 void ResolveLevel(const L& lattice, Walk& walk, const std::vector<Probe>& level, PendingQueue& deepest,
   std::vector<Outcome>& outcomes, std::vector<Straddler>& crossed)
@@ -642,9 +641,7 @@ void ResolveLevel(const L& lattice, Walk& walk, const std::vector<Probe>& level,
 /// Of the crossed cubes, which to split when not all fit the budget: those the instrument's wall
 /// also crosses first (a plane's share times the instrument's is wrong where both walls meet),
 /// then those whose centre lies nearest the vessel wall (the plane halves them: the most to get
-/// wrong). Stable, so that the same pose splits the same cubes. Tried and not kept: the wall's
-/// bend between a cube's plane and its parent's first (thin vessels first): on IRCADb patient 1
-/// at a budget of 1,000, 39 answers outside the volume contract against 25.
+/// wrong). Stable, so that the same pose splits the same cubes.
 inline std::vector<std::size_t> SplitOrder(const std::vector<Straddler>& crossed)
 {
   std::vector<std::size_t> order(crossed.size());

@@ -424,10 +424,12 @@ void PrintReplayTable(const Json& r)
 /// each overlap band, the volume and depth against the fine reference, FCL beside.
 void PrintBreachTable(const Json& breach)
 {
-  std::printf("\nbreach (%zu poses, %d penetrating, overlap up to %.0f mm3; %s; %lld queries a class), full frame "
-              "through the logic, median / p95 ms:\n",
+  const long long budget = breach["query_budget"].get<long long>();
+  const std::string budgetText = budget > 0 ? std::to_string(budget) + " queries a class" : "no query budget";
+  std::printf("\nbreach (%zu poses, %d penetrating, overlap up to %.0f mm3; %s; %s), full frame through the logic, "
+              "median / p95 ms:\n",
     breach["poses"].get<std::size_t>(), breach["penetrating_poses"].get<int>(), breach["largest_overlap_mm3"].get<double>(),
-    breach["scalpel"].get<std::string>().c_str(), breach["query_budget"].get<long long>());
+    breach["scalpel"].get<std::string>().c_str(), budgetText.c_str());
   auto cell = [](const Json& t) {
     char text[48];
     std::snprintf(text, sizeof text, "%.2f / %.2f", t["median_ms"].get<double>(), t["p95_ms"].get<double>());

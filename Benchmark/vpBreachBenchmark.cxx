@@ -1,6 +1,7 @@
 #include "vpBreachBenchmark.h"
 
 #include "vpClock.h"
+#include "vpDefaultScalpel.h"
 #include "vpInputError.h"
 #include "vpQuantile.h"
 #include "vpSceneRequest.h"
@@ -9,6 +10,7 @@
 #include "vtkFclSurfaceDistance.h"
 #include "vtkScalpelPenetration.h"
 #include "vtkVesselProximityLogic.h"
+#include "vpVec3.h"
 
 #include <vtkCellArray.h>
 #include <vtkNew.h>
@@ -24,20 +26,11 @@ namespace vp
 namespace
 {
 using Json = BenchJson;
-using Vec = std::array<double, 3>;
+using namespace vec3;
+using Vec = Vec3;
 
 /// The overlap bands of the report (mm³ of instrument inside the vessels, all classes): [low, high).
 const std::array<std::array<double, 2>, 3> Bands = { { { 0.0, 100.0 }, { 100.0, 1000.0 }, { 1000.0, 1e300 } } };
-
-Vec Cross(const Vec& a, const Vec& b)
-{
-  return { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0] };
-}
-
-double Dot(const Vec& a, const Vec& b)
-{
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
 
 /// A surface point and its outward unit normal.
 struct SurfacePoint
@@ -67,16 +60,14 @@ std::vector<SurfacePoint> PickSurfacePoints(vtkPolyData* mesh, int count, std::m
     {
       mesh->GetPoint(ids[k], p[k].data());
     }
-    const Vec normal = Cross({ p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2] },
-      { p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2] });
-    const double twiceArea = std::sqrt(Dot(normal, normal));
+    const Vec normal = Cross(p[1] - p[0], p[2] - p[0]);
+    const double twiceArea = Norm(normal);
     signedVolume += Dot(p[0], Cross(p[1], p[2])) / 6.0;
     if (twiceArea <= 0.0)
     {
       continue;
     }
-    triangles.push_back({ { (p[0][0] + p[1][0] + p[2][0]) / 3, (p[0][1] + p[1][1] + p[2][1]) / 3, (p[0][2] + p[1][2] + p[2][2]) / 3 },
-      { normal[0] / twiceArea, normal[1] / twiceArea, normal[2] / twiceArea } });
+    triangles.push_back({ (1.0 / 3.0) * (p[0] + p[1] + p[2]), (1.0 / twiceArea) * normal });
     areas.push_back(twiceArea);
   }
   std::vector<SurfacePoint> picked;
@@ -88,62 +79,33 @@ std::vector<SurfacePoint> PickSurfacePoints(vtkPolyData* mesh, int count, std::m
   const double side = signedVolume < 0.0 ? -1.0 : 1.0;
   for (int i = 0; i < count; ++i)
   {
-    SurfacePoint s = triangles[byArea(random)];
-    for (double& v : s.Outward)
-    {
-      v *= side;
-    }
-    picked.push_back(s);
+    const SurfacePoint& t = triangles[byArea(random)];
+    picked.push_back({ t.Point, side * t.Outward });
   }
   return picked;
 }
 
 /// The pose that puts the instrument's tip at target with its axis along direction (unit): the
-/// rotation taking the model's axis to it (Rodrigues), then the translation that lands the tip.
+/// least rotation taking the model's axis to it (vec3::Rotate about their common normal), then the
+/// translation that lands the tip.
 std::array<double, 16> PoseAt(const Vec& target, const Vec& direction, const double tip[3], const double axis[3])
 {
-  const Vec a = { axis[0], axis[1], axis[2] };
-  const Vec v = Cross(a, direction);
-  const double c = Dot(a, direction);
-  double r[3][3] = { { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 } };
-  if (c < -1.0 + 1e-12)
-  {
-    // Opposite: a half turn about any axis perpendicular to a.
-    Vec p = std::abs(a[0]) < 0.9 ? Vec{ 1, 0, 0 } : Vec{ 0, 1, 0 };
-    p = Cross(a, p);
-    const double n = std::sqrt(Dot(p, p));
-    for (int i = 0; i < 3; ++i)
-    {
-      for (int j = 0; j < 3; ++j)
-      {
-        r[i][j] = 2.0 * p[i] * p[j] / (n * n) - (i == j ? 1.0 : 0.0);
-      }
-    }
-  }
-  else
-  {
-    const double k = 1.0 / (1.0 + c);
-    const double vx[3][3] = { { 0, -v[2], v[1] }, { v[2], 0, -v[0] }, { -v[1], v[0], 0 } };
-    for (int i = 0; i < 3; ++i)
-    {
-      for (int j = 0; j < 3; ++j)
-      {
-        double vx2 = 0.0;
-        for (int m = 0; m < 3; ++m)
-        {
-          vx2 += vx[i][m] * vx[m][j];
-        }
-        r[i][j] += vx[i][j] + k * vx2;
-      }
-    }
-  }
+  const Vec a = Normalized({ axis[0], axis[1], axis[2] });
+  const Vec normal = Cross(a, direction);
+  const Vec about = Norm(normal) > 1e-12 ? Normalized(normal) : PerpendicularTo(a, { 1, 0, 0 });
+  const double angle = std::atan2(Norm(normal), Dot(a, direction));
   std::array<double, 16> pose{};
+  for (int j = 0; j < 3; ++j)
+  {
+    const Vec column = Rotate({ j == 0 ? 1.0 : 0.0, j == 1 ? 1.0 : 0.0, j == 2 ? 1.0 : 0.0 }, about, angle);
+    for (int i = 0; i < 3; ++i)
+    {
+      pose[4 * i + j] = column[i];
+    }
+  }
   for (int i = 0; i < 3; ++i)
   {
-    pose[4 * i] = r[i][0];
-    pose[4 * i + 1] = r[i][1];
-    pose[4 * i + 2] = r[i][2];
-    pose[4 * i + 3] = target[i] - (r[i][0] * tip[0] + r[i][1] * tip[1] + r[i][2] * tip[2]);
+    pose[4 * i + 3] = target[i] - (pose[4 * i] * tip[0] + pose[4 * i + 1] * tip[1] + pose[4 * i + 2] * tip[2]);
   }
   pose[15] = 1.0;
   return pose;
@@ -161,30 +123,19 @@ std::vector<TrackedPose> BreachPoses(const std::vector<NamedMesh>& vessels, vtkS
     for (std::size_t i = 0; i < points.size(); ++i)
     {
       const SurfacePoint& p = points[i];
-      const Vec inward = { -p.Outward[0], -p.Outward[1], -p.Outward[2] };
+      const Vec inward = -1.0 * p.Outward;
       const double push = s.MaxPushMm * static_cast<double>(i + 1) / static_cast<double>(points.size());
       for (double depth : { -2.0, push, 0.5 * push })
       {
         TrackedPose pose;
         pose.TimeS = 0.05 * static_cast<double>(poses.size());
-        const Vec target = { p.Point[0] + depth * inward[0], p.Point[1] + depth * inward[1], p.Point[2] + depth * inward[2] };
+        const Vec target = p.Point + depth * inward;
         pose.ModelToWorld = PoseAt(target, inward, scalpel->GetTipMm(), scalpel->GetAxis());
         poses.push_back(pose);
       }
     }
   }
   return poses;
-}
-
-vtkSmartPointer<vtkScalpelModel> BreachHandpiece()
-{
-  // The scene's own default, so that its tip and axis are the ones every command uses.
-  SceneRequest request;
-  request.Vessels = BuiltInVessels();
-  request.ComputeSurfaceDistance = false;
-  auto logic = vtkSmartPointer<vtkVesselProximityLogic>::New();
-  logic->OpenScene(request);
-  return logic->GetScalpel();
 }
 
 namespace
@@ -394,8 +345,8 @@ BenchJson BenchBreach(const std::vector<NamedMesh>& vessels, vtkScalpelModel* sc
   DistanceEngineSettings exactSettings;
   exactSettings.Method = "exact";
   std::fprintf(stderr, "bench: breach, opening the scene");
-  vtkSmartPointer<vtkVesselProximityLogic> exact = OpenBreachScene(vessels, scalpel, exactSettings, settings.QueryBudget);
-  vtkScalpelModel* tool = exact->GetScalpel();
+  vtkSmartPointer<vtkScalpelModel> tool = scalpel ? vtkSmartPointer<vtkScalpelModel>(scalpel) : MakeDefaultScalpel();
+  vtkSmartPointer<vtkVesselProximityLogic> exact = OpenBreachScene(vessels, tool, exactSettings, settings.QueryBudget);
   const std::vector<TrackedPose> poses = BreachPoses(vessels, tool, settings);
   Json out;
   out["scene"] = "the instrument pushed along the inward normal at surface points of each class (picked by area): "

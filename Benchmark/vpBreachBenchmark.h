@@ -33,10 +33,6 @@ struct BreachBenchSettings
 /// tip 2 mm outside, pushed in along the inward normal, and withdrawn half way.
 std::vector<TrackedPose> BreachPoses(const std::vector<NamedMesh>& vessels, vtkScalpelModel* scalpel, const BreachBenchSettings& settings);
 
-/// The built-in CUSA handpiece as a scene opens it (its model, tip and axis), for a bench that
-/// streams the breach's poses elsewhere.
-vtkSmartPointer<vtkScalpelModel> BreachHandpiece();
-
 /// The handpiece (scalpel: null for the built-in CUSA handpiece, else its model, tip and axis)
 /// pushed into each class of the vessels: every frame through the logic (tip, whole instrument,
 /// penetration), exact and (zbuffer not null) z-buffer, median and p95 over the run, over its

@@ -1,6 +1,7 @@
 #include "vpEngineBenchmark.h"
 
 #include "vpBreachBenchmark.h"
+#include "vpDefaultScalpel.h"
 #include "vpLiveBenchmark.h"
 
 #include "vpDistanceEngineFactory.h"
@@ -87,7 +88,7 @@ BenchJson RunBenchmark(const BenchmarkRequest& request)
     if (request.Parts.count("breach"))
     {
       // At the breach: the breach's poses streamed with its instrument, the tip alone beside.
-      vtkSmartPointer<vtkScalpelModel> tool = request.BreachScalpel ? request.BreachScalpel : BreachHandpiece();
+      vtkSmartPointer<vtkScalpelModel> tool = request.BreachScalpel ? request.BreachScalpel : MakeDefaultScalpel();
       LiveBenchSettings live = request.Live;
       live.TipOnlyBeside = true;
       report["live"] = BenchLive(request.Vessels, tool, BreachPoses(request.Vessels, tool, request.Breach), live);

@@ -823,7 +823,7 @@ vp::Penetration vtkScalpelPenetration::ComputeClass(int c, const std::array<doub
                          std::numeric_limits<double>::infinity(), std::nullopt, {} },
     this->QueryBudget * (field ? FieldQueriesPerQuery : 1), deepest);
   // A deep query reads the many nearly equidistant triangles around a point deep inside (about
-  // ten times a cell's near query here): the search gets a thirty-second of the budget.
+  // ten times a cell's near query here): the search gets an eighth of the budget (DeepShare).
   const long long deepBudget = this->QueryBudget > 0 ? std::max<long long>(16, this->QueryBudget / DeepShare) : 0;
   FindDeepest(lattice, walk, deepest, deepBudget);
   const double cell3 = std::pow(lattice.CellMm, 3);

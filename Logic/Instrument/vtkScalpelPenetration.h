@@ -36,10 +36,13 @@ class CellDistanceField;
 /// while its bound (a wall point's distance, or its centre's distance plus its half diagonal)
 /// can beat the deepest found. With r the half diagonal of a cell:
 /// - VolumeMm3 = cell volume x the cells' shares inside both; VolumeBoundMm3 = cell volume x
-///   cells within r of either wall that may meet both solids (only those can be counted wrongly);
+///   cells within r of either wall that may meet both solids (only those can be counted wrongly),
+///   and every cell of the cubes a budget left unsplit (SetQueryBudget);
 /// - DepthMm = the largest distance to the vessel wall of a cell centre inside the vessel and
-///   inside (or within r of) the instrument, up to DeepSearchToleranceMm above it;
-///   DepthBoundMm = r + that tolerance (distance is 1-Lipschitz; never below the truth by more).
+///   inside (or within r of) the instrument, up to DeepSearchToleranceMm above it, or the largest
+///   still possible where the search stopped short (DepthSlackMm, the budget);
+///   DepthBoundMm = r + that tolerance + how far DepthMm lies above the deepest cell found
+///   (distance is 1-Lipschitz; never below the truth by more).
 /// Nothing is computed where the surfaces neither touch nor nest: a class whose whole-instrument
 /// distance is above 0 is tested at one instrument point only (is the instrument entirely inside?).
 ///
@@ -83,7 +86,7 @@ public:
   static constexpr double DepthSlackMm = 0.1;
 
   /// The most vessel-wall queries one class's volume walk makes per frame (0: no limit); the
-  /// deepest cell's search makes at most a thirty-second as many (at least 16), each costing some
+  /// deepest cell's search makes at most QueryBudget / DeepShare (at least 16), each costing some
   /// ten of the walk's. The walk's cost grows with the area of vessel wall inside the instrument,
   /// which a breach makes unbounded; within the budget the cubes the wall crosses are split level
   /// by level, coarse first, on every core, and when the next level would pass it those that fit
@@ -94,15 +97,15 @@ public:
   /// same answer on every machine. The parts left to the plane are corrected for the wall's bend
   /// measured between a cube's plane and its parent's (see the .cxx's Estimate). Default
   /// DefaultQueryBudget, 1200: the CUSA handpiece in IRCADb patients 1 and 4 in under 5 ms at the
-  /// 95th percentile on 2 cores, volumes within 10 % of the fine reference (bench --engines
-  /// breach, Documentation/Benchmarks.md).
+  /// 95th percentile on 2 cores, all but one of 2,160 class volumes within 10 % of the fine
+  /// reference (bench --engines breach, Documentation/Benchmarks.md).
   void SetQueryBudget(long long queries);
-  /// A query of the z-buffer's distance field costs about half the exact engine's: with
-  /// the field, the walk may make this many times the budget.
+  long long GetQueryBudget() const { return this->QueryBudget; }
+  /// A query of the z-buffer's distance field costs about half the exact engine's: with the
+  /// field, the walk may make this many times the budget.
   static constexpr long long FieldQueriesPerQuery = 2;
   /// The deepest cell's search makes at most QueryBudget / DeepShare deep queries (at least 16).
   static constexpr long long DeepShare = 8;
-  long long GetQueryBudget() const { return this->QueryBudget; }
 
   /// Samples the instrument now (the first query does otherwise); GetBuildTimeMs() says how long.
   void Build();

@@ -145,27 +145,8 @@ void vtkScalpelTrackingLogic::SetHapticSettings(const vp::HapticSettings& haptic
   this->Haptic = vp::HapticForce(haptic);
 }
 
-const vp::TrackedFrame& vtkScalpelTrackingLogic::ProcessPose(const vp::TrackedPose& pose)
+void vtkScalpelTrackingLogic::Measure(const vp::TrackedPose& pose, bool hasPrevious, vp::TrackedFrame& frame)
 {
-  if (!this->Engine || !this->Scalpel)
-  {
-    throw std::logic_error("vtkScalpelTrackingLogic: set the distance engine and the scalpel first");
-  }
-  if (this->FramesProcessed == 0)
-  {
-    this->ValidateSettings();
-  }
-  const bool hasPrevious = this->FramesProcessed > 0;
-  const vp::DangerLevel previousLevel = this->Last.Level;
-  const vp::MarginLevel previousMargin = this->Last.Tumour ? this->Last.Tumour->Level : vp::MarginLevel::Clear;
-  // The previous answer narrows the engine's search; keep it while the new one is computed.
-  vp::TrackedFrame frame;
-  frame.Frame = this->FramesProcessed;
-  frame.TimeS = pose.TimeS;
-  this->Scalpel->SetModelToWorld(pose.ModelToWorld);
-  this->Scalpel->GetTipInWorld(frame.TipMm);
-  this->Scalpel->GetAxisInWorld(frame.AxisWorld);
-
   const auto start = std::chrono::steady_clock::now();
   auto lap = start;
   auto timePart = [&lap](double& ms) {
@@ -197,6 +178,30 @@ const vp::TrackedFrame& vtkScalpelTrackingLogic::ProcessPose(const vp::TrackedPo
     timePart(frame.PartsMs.MarginMs);
   }
   frame.FrameMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+const vp::TrackedFrame& vtkScalpelTrackingLogic::ProcessPose(const vp::TrackedPose& pose)
+{
+  if (!this->Engine || !this->Scalpel)
+  {
+    throw std::logic_error("vtkScalpelTrackingLogic: set the distance engine and the scalpel first");
+  }
+  if (this->FramesProcessed == 0)
+  {
+    this->ValidateSettings();
+  }
+  const bool hasPrevious = this->FramesProcessed > 0;
+  const vp::DangerLevel previousLevel = this->Last.Level;
+  const vp::MarginLevel previousMargin = this->Last.Tumour ? this->Last.Tumour->Level : vp::MarginLevel::Clear;
+  // The previous answer narrows the engine's search; keep it while the new one is computed.
+  vp::TrackedFrame frame;
+  frame.Frame = this->FramesProcessed;
+  frame.TimeS = pose.TimeS;
+  this->Scalpel->SetModelToWorld(pose.ModelToWorld);
+  this->Scalpel->GetTipInWorld(frame.TipMm);
+  this->Scalpel->GetAxisInWorld(frame.AxisWorld);
+
+  this->Measure(pose, hasPrevious, frame);
   frame.OverBudget = this->Settings.FrameBudgetMs > 0.0 && frame.FrameMs > this->Settings.FrameBudgetMs;
 
   const auto& classes = frame.Proximity.Classes;

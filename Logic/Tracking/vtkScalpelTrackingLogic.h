@@ -121,6 +121,9 @@ protected:
 private:
   /// Each tumour's level from the frame's distances and the previous frame's levels, the worst.
   void ClassifyMargins(vp::TumourMargin& margin, bool hasPrevious) const;
+  /// The frame's measurements at the pose (the tip, the whole instrument and its penetration, the
+  /// tumours' margins), each part timed, and FrameMs; the previous frame narrows the searches.
+  void Measure(const vp::TrackedPose& pose, bool hasPrevious, vp::TrackedFrame& frame);
   vtkScalpelTrackingLogic(const vtkScalpelTrackingLogic&) = delete;
   void operator=(const vtkScalpelTrackingLogic&) = delete;
 };

@@ -11,7 +11,10 @@
 #include "vpReplayBenchmark.h"
 #include "vpZBufferBenchmark.h"
 
+#include <unistd.h>
+
 #include <cstdio>
+#include <filesystem>
 #include <thread>
 
 namespace vp
@@ -110,6 +113,14 @@ BenchJson RunBenchmark(const BenchmarkRequest& request)
   {
     report["breach"] = BenchBreach(request.Vessels, request.BreachScalpel, request.Breach, &request.ZBufferSettings);
     report["breach"]["scalpel"] = request.BreachScalpel ? request.BreachScalpel->GetTipSource() : "the built-in CUSA handpiece";
+  }
+  if (request.Parts.count("models"))
+  {
+    ModelsBenchSettings models = request.Models;
+    models.WorkFolder = models.WorkFolder.empty()
+      ? (std::filesystem::temp_directory_path() / ("vp-models-bench-" + std::to_string(::getpid()))).string()
+      : models.WorkFolder;
+    report["models"] = BenchModels(models);
   }
   return report;
 }

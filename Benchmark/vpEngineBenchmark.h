@@ -5,6 +5,7 @@
 #include "vpBreachBenchmark.h"
 #include "vpDistanceEngineSettings.h"
 #include "vpLiveBenchmark.h"
+#include "vpModelsBenchmark.h"
 #include "vpPoseFile.h"
 #include "vtkScalpelModel.h"
 #include "vtkZBufferVesselDistance.h"
@@ -20,7 +21,7 @@ namespace vp
 /// What `vesselproximity bench` measures, typed.
 struct BenchmarkRequest
 {
-  /// exact, zbuffer, replay, live, penetration and/or breach.
+  /// exact, zbuffer, replay, live, penetration, breach and/or models.
   std::set<std::string> Parts;
   /// Triangles per class each vessel is grown to (longest-edge bisection: same surface).
   std::vector<std::size_t> SizesTriangles;
@@ -44,6 +45,8 @@ struct BenchmarkRequest
   /// The breach's instrument (null: the built-in CUSA handpiece) and its poses.
   vtkSmartPointer<vtkScalpelModel> BreachScalpel;
   BreachBenchSettings Breach;
+  /// The models part's label series (its WorkFolder: the system's temporary folder when empty).
+  ModelsBenchSettings Models;
 };
 
 /// The z-buffer engine the settings describe, its device opened: a missing one fails before any
@@ -53,7 +56,7 @@ vtkSmartPointer<vtkZBufferVesselDistance> MakeBenchZBuffer(const DistanceEngineS
 /// The engines side by side in one run: report["sizes"] (BenchExact per size), report["zbuffer"]
 /// (BenchZBuffer per size and ZBufferReport), report["replay"] (BenchReplay), report["live"],
 /// report["penetration"] (BenchPenetration) and report["breach"] (BenchBreach, the vessels as
-/// given), the last two with the z-buffer settings, each when its part is asked for. Progress on stderr.
+/// given), report["models"] (BenchModels), the last two with the z-buffer settings, each when its part is asked for. Progress on stderr.
 BenchJson RunBenchmark(const BenchmarkRequest& request);
 } // namespace vp
 

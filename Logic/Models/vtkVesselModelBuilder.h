@@ -14,7 +14,9 @@
 /// structures' voxels, cropped to their extent and padded by one empty voxel so the surface
 /// closes at the volume's edge, discrete flying edges, optional decimation (vtkDecimatePro,
 /// topology kept), windowed-sinc smoothing on the voxel grid, then the index-to-LPS transform and
-/// consistent outward normals. The output is triangles in LPS millimetres (the DICOM frame).
+/// outward normals: flying edges winds every triangle alike, so the surface is turned as a whole
+/// where the transform reflects (a cavity's wall faces into the cavity). The output is triangles
+/// in LPS millimetres (the DICOM frame).
 ///
 /// Smoothing follows Slicer: factor f gives a pass band of 10^(-4 f) over SmoothingIterations
 /// iterations, with boundary and feature-edge smoothing off and non-manifold smoothing on. More

@@ -89,6 +89,34 @@ using StructureFilter = std::function<bool(const std::string& name)>;
 /// any voxel is allocated (PixelSpacing 1e-300 gave a model of no volume).
 void CheckVoxelGeometry(const std::array<double, 16>& ijkToLps, const std::string& source);
 
+/// Which values a labelmap's voxels hold, gathered in parts (a slice each, on separate threads)
+/// and merged: the lowest and highest, and which of 0 to 65535 occur.
+class LabelCensus
+{
+public:
+  LabelCensus();
+  void Add(const std::int32_t* values, std::size_t count);
+  void Add(const std::uint16_t* values, std::size_t count);
+  void Add(const std::int16_t* values, std::size_t count);
+  void Add(const std::uint8_t* values, std::size_t count);
+  void Add(const std::int8_t* values, std::size_t count);
+  void Merge(const LabelCensus& other);
+  /// Throws vp::InputError naming source unless the values are labels: none negative, none above
+  /// 65535 and at most 256 distinct ("an image, not a labelmap").
+  void CheckLabels(const std::string& source) const;
+  std::int32_t Highest() const { return this->Hi; }
+
+private:
+  template <typename T>
+  void AddValues(const T* values, std::size_t count);
+  std::int32_t Lo = 0, Hi = 0;
+  std::vector<std::uint64_t> Present; ///< a bit per value 0 to 65535
+};
+
+/// A grid of dimensions for labels up to highestValue, in the narrowest unsigned type that holds
+/// them (8 or 16 bits), its voxels not set.
+LabelGrid NewLabelGrid(const int dimensions[3], const std::array<double, 16>& ijkToLps, std::int32_t highestValue);
+
 /// Stores voxel values (x fastest, then y, then z) as a LabelGrid in the narrowest unsigned type
 /// that holds them, after checking that they are labels: no negative value and at most 256
 /// distinct ones; otherwise throws vp::InputError naming source ("an image, not a labelmap").

@@ -56,22 +56,24 @@ std::vector<std::size_t> ParseSizes(const std::string& text)
   return sizes;
 }
 
-/// --engines: a list of exact, zbuffer, replay, live, penetration and breach.
+/// --engines: a list of exact, zbuffer, replay, live, penetration, breach and models.
 std::set<std::string> ParseBenchEngines(const cli::ParsedArguments& args)
 {
+  static const std::set<std::string> known = { "exact", "zbuffer", "replay", "live", "penetration", "breach", "models" };
+  const std::string expected = "expected a list of exact, zbuffer, replay, live, penetration, breach and models";
   std::set<std::string> engineNames;
   std::istringstream engineList(args.GetString("engines"));
   for (std::string name; std::getline(engineList, name, ',');)
   {
-    if (name != "exact" && name != "zbuffer" && name != "replay" && name != "live" && name != "penetration" && name != "breach")
+    if (!known.count(name))
     {
-      throw InputError("--engines", "expected a list of exact, zbuffer, replay, live, penetration and breach, got '" + name + "'");
+      throw InputError("--engines", expected + ", got '" + name + "'");
     }
     engineNames.insert(name);
   }
   if (engineNames.empty())
   {
-    throw InputError("--engines", "expected a list of exact, zbuffer, replay, live, penetration and breach");
+    throw InputError("--engines", expected);
   }
   return engineNames;
 }
@@ -459,6 +461,30 @@ void PrintBreachTable(const Json& breach)
   std::printf("  %-9s %-15s (the whole instrument's distance only)\n", "FCL", cell(breach["fcl_surface"]).c_str());
 }
 
+/// The models: read, each class's build and the total, as given and stacked.
+void PrintModelsTable(const Json& models)
+{
+  std::printf("\nmodels (BuildVesselModels, %d runs each; the stacked series %d times as long; voxels %s):\n",
+    models["runs"].get<int>(), models["copies"].get<int>(), models["voxels_match"].get<bool>() ? "match" : "DO NOT MATCH");
+  auto cell = [](const Json& t) {
+    char text[48];
+    std::snprintf(text, sizeof text, "%.0f / %.0f", t["median_ms"].get<double>(), t["p95_ms"].get<double>());
+    return std::string(text);
+  };
+  for (const char* which : { "as_given", "stacked" })
+  {
+    const Json& m = models[which];
+    std::printf("  %-8s %4d slices  read %-11s built %-11s written %-9s built and written %-11s ms (median / p95)\n",
+      which, m["slices"].get<int>(), cell(m["read"]).c_str(), cell(m["total"]).c_str(), cell(m["write"]).c_str(),
+      cell(m["built_and_written"]).c_str());
+    for (const Json& c : m["classes"])
+    {
+      std::printf("    %-16s %10lld voxels %9lld triangles  build %s ms\n", c["class"].get<std::string>().c_str(),
+        c["voxels"].get<long long>(), c["triangles"].get<long long>(), cell(c["build"]).c_str());
+    }
+  }
+}
+
 void PrintBenchReport(Json& report)
 {
   if (report.contains("sizes"))
@@ -485,6 +511,10 @@ void PrintBenchReport(Json& report)
   if (report.contains("breach"))
   {
     PrintBreachTable(report["breach"]);
+  }
+  if (report.contains("models"))
+  {
+    PrintModelsTable(report["models"]);
   }
 }
 
@@ -540,6 +570,9 @@ cli::ModuleDescription DescribeBenchCommand()
     "(with a Vulkan device) z-buffer, median and p95 over the run, its penetrating frames and each overlap band "
     "(< 100, 100-1,000, > 1,000 mm3), volume and depth against a fine reference (the exact walk at 0.2 mm without a "
     "budget), the exact engine without a budget and FCL's whole-instrument distance on the same poses beside.\n"
+    "models: BuildVesselModels (read, each class's surface) on --models-input (a folder of DICOM label series, "
+    "IRCADb's MASKS_DICOM) as given and with each series laid end to end --models-copies times (a longer scan of "
+    "the same patient), --models-runs each; the stacked classes must hold the copies' voxels.\n"
     "Progress goes to stderr.",
     {
       { "Workload", "",
@@ -548,8 +581,8 @@ cli::ModuleDescription DescribeBenchCommand()
           count("queries", "2000", "Random tips (and tracked steps, and replayed frames)."),
           count("brute-queries", "30", "Of those, how many the brute-force reference answers."),
           count("seed", "1", "The random seed."),
-          Option(ParameterType::String, "engines", "Which parts to run: a list of exact, zbuffer, replay, live, penetration and breach.")
-            .SetPlaceholder("exact,zbuffer,replay,live,penetration,breach")
+          Option(ParameterType::String, "engines", "Which parts to run: a list of exact, zbuffer, replay, live, penetration, breach and models.")
+            .SetPlaceholder("exact,zbuffer,replay,live,penetration,breach,models")
             .SetDefault("exact,zbuffer") } },
       { "Replay", "", replay },
       { "Live", "",
@@ -573,6 +606,11 @@ cli::ModuleDescription DescribeBenchCommand()
             .SetPlaceholder("N")
             .SetDefault(std::to_string(vtkScalpelPenetration::DefaultQueryBudget))
             .SetRange(0, 100000000, 1) } },
+      { "Models", "",
+        { Option(ParameterType::Directory, "models-input", "The label series the models part builds from (IRCADb's MASKS_DICOM).")
+            .SetChannel(cli::Channel::Input),
+          count("models-copies", "2", "How many times each series is laid end to end for the longer scan."),
+          count("models-runs", "5", "Builds of each, for the median and p95.") } },
       engine,
       { "Output", "",
         { Switch("json", "Print the report as JSON instead of a table."),
@@ -614,6 +652,16 @@ int RunBenchCommand(const cli::ParsedArguments& args, const ModuleServices&)
   if (request.Parts.count("breach") && args.IsSet("scalpel"))
   {
     request.BreachScalpel = ReplayScalpel(args);
+  }
+  if (request.Parts.count("models"))
+  {
+    if (!args.IsSet("modelsInput"))
+    {
+      throw InputError("--models-input", "the models part needs a folder of DICOM label series");
+    }
+    request.Models.Input = args.GetString("modelsInput");
+    request.Models.Copies = args.GetInteger("modelsCopies");
+    request.Models.Runs = args.GetInteger("modelsRuns");
   }
   request.BruteQueries = std::min(request.Queries, args.GetInteger("bruteQueries"));
   request.Seed = static_cast<unsigned>(args.GetInteger("seed"));

@@ -123,6 +123,32 @@ TEST_F(ModelsCommand, WritesOneClosedStlPerClassAndListsTheRest)
 // A labelmap of one value under a name nobody chose (Slicer hands a CLI its volume as a
 // temporary file): a table that names the value makes it that structure (issue 33, item 3); a
 // mask of another value stays unmapped, listed.
+TEST_F(ModelsCommand, TheModelsBenchLaysEachSeriesEndToEndAndTimesBoth)
+{
+  const std::string report = this->Dir + "/models_bench.json";
+  const ToolRun r =
+    RunTool(this->Dir, "bench --engines models --models-input " + this->Masks + " --models-copies 3 --models-runs 1 -o " + report);
+  ASSERT_EQ(r.ExitCode, 0) << r.Err;
+  const auto doc = nlohmann::json::parse(vp::test::Slurp(report))["models"];
+  EXPECT_EQ(doc["as_given"]["slices"], this->Dims[2]);
+  EXPECT_EQ(doc["stacked"]["slices"], 3 * this->Dims[2]) << "three copies, one after another along the normal";
+  EXPECT_TRUE(doc["voxels_match"].get<bool>());
+  const auto& given = doc["as_given"]["classes"];
+  const auto& stacked = doc["stacked"]["classes"];
+  ASSERT_EQ(given.size(), 2u);
+  ASSERT_EQ(stacked.size(), 2u);
+  // The ball comes three times, whole; the tube runs through every slice, so it is three times as
+  // long under the same two caps.
+  EXPECT_EQ(stacked[1]["class"], "hepatic_vein");
+  EXPECT_NEAR(stacked[1]["volume_mm3"].get<double>(), 3.0 * given[1]["volume_mm3"].get<double>(), 1e-6 * given[1]["volume_mm3"].get<double>());
+  EXPECT_EQ(stacked[1]["triangles"], 3 * given[1]["triangles"].get<int>());
+  EXPECT_NEAR(stacked[0]["volume_mm3"].get<double>(), 3.0 * given[0]["volume_mm3"].get<double>(), 0.05 * given[0]["volume_mm3"].get<double>());
+  for (const char* part : { "read", "total", "write", "built_and_written" })
+  {
+    EXPECT_GT(doc["stacked"][part]["median_ms"].get<double>(), 0.0) << part;
+  }
+}
+
 TEST_F(ModelsCommand, AOneValueLabelmapIsTheStructureItsValueNames)
 {
   const std::string folder = this->Dir + "/single";

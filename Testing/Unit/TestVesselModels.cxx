@@ -138,6 +138,31 @@ TEST(VesselModels, ReflectedGridStillGivesOutwardNormals)
   EXPECT_GT(vp::test::SignedVolume(surface), 0.9 * 4.0 / 3.0 * Pi * 512);
 }
 
+TEST(VesselModels, ACavitysWallFacesIntoTheCavity)
+{
+  // A hollow ball (radii 9 and 5 voxels): the solid's surface is two closed pieces, and the inner
+  // one must face into the hole, or the enclosed volume reads outer + inner instead of the shell.
+  // An orientation per piece from its own leftmost point (vtkPolyDataNormals' auto-orientation,
+  // used before) turns both outward: 3,634 mm³ here instead of 2,550 (analytic 2,530).
+  std::array<double, 16> m{ 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, -1, 0, 0, 0, 0, 1 }; // reflecting, too
+  const int dims[3] = { 26, 26, 26 };
+  const vp::LabelGrid grid = MakeGrid(dims, m, [](const double p[3]) {
+    const double r2 = std::pow(p[0] - 12.5, 2) + std::pow(p[1] - 12.5, 2) + std::pow(p[2] + 12.5, 2);
+    return r2 < 81.0 && r2 > 25.0 ? 1 : 0;
+  });
+  vp::LabelStructure s;
+  s.Name = "shell";
+  s.Source = "synthetic";
+  s.Grid = grid;
+  vtkNew<vtkVesselModelBuilder> builder;
+  builder->SetSmoothingFactor(0.0);
+  auto surface = builder->Build({ &s });
+  const double shell = 4.0 / 3.0 * Pi * (729.0 - 125.0);
+  std::cout << "shell: enclosed " << vp::test::SignedVolume(surface) << " mm3 (analytic " << shell << ")\n";
+  EXPECT_NEAR(vp::test::SignedVolume(surface), shell, 0.06 * shell);
+  EXPECT_EQ(vp::test::OpenEdges(surface), 0);
+}
+
 TEST(VesselModels, LabelTableKnowsOurDataAndListsTheRest)
 {
   const auto table = vp::VesselLabelTable::Default();

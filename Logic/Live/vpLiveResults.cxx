@@ -58,6 +58,9 @@ std::string LiveFrameJson(const TrackedFrame& frame)
   out["tip"] = RasJson(frame.TipMm);
   out["level"] = DangerLevelName(frame.Level);
   out["level_class"] = frame.LevelClass >= 0 ? Json(r.Classes[static_cast<std::size_t>(frame.LevelClass)].ClassName) : Json(nullptr);
+  out["level_cause"] = frame.LevelClass >= 0 ? Json(DangerCauseName(frame.LevelCause)) : Json(nullptr);
+  out["tip_level"] = DangerLevelName(frame.TipLevel);
+  out["instrument_level"] = frame.InstrumentClassLevels.empty() ? Json(nullptr) : Json(DangerLevelName(frame.InstrumentLevel));
   out["error_bound_mm"] = r.ErrorBoundMm;
   const int nearest = r.NearestIndex();
   out["nearest"] = nearest >= 0 ? Json{ { "class", r.Classes[static_cast<std::size_t>(nearest)].ClassName },
@@ -70,7 +73,10 @@ std::string LiveFrameJson(const TrackedFrame& frame)
     Json entry;
     entry["distance_mm"] = p.InRange ? Json(p.DistanceMm) : Json(nullptr);
     entry["inside"] = p.Inside ? Json(*p.Inside) : Json(nullptr);
-    entry["level"] = c < frame.ClassLevels.size() ? DangerLevelName(frame.ClassLevels[c]) : "safe";
+    entry["level"] = DangerLevelName(frame.ClassLevel(c));
+    entry["tip_level"] = c < frame.ClassLevels.size() ? DangerLevelName(frame.ClassLevels[c]) : "safe";
+    entry["instrument_level"] =
+      c < frame.InstrumentClassLevels.size() ? Json(DangerLevelName(frame.InstrumentClassLevels[c])) : Json(nullptr);
     entry["point"] = p.InRange ? RasJson(p.ClosestPoint) : Json(nullptr);
     entry["surface_mm"] = c < frame.Surface.size() && frame.Surface[c].InRange ? Json(frame.Surface[c].DistanceMm) : Json(nullptr);
     const bool known = c < frame.Penetrations.size() && frame.Penetrations[c].Known;

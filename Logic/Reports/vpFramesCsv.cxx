@@ -53,14 +53,14 @@ std::string Header(const std::vector<std::string>& classes, bool surface, bool h
   {
     csv += "," + c + "_mm";
   }
-  csv += ",danger_level,error_bound_mm,frame_ms,axis_x,axis_y,axis_z";
+  csv += ",danger_level,error_bound_mm,frame_ms,axis_x,axis_y,axis_z,tip_level,instrument_level,level_class,level_cause";
   for (const auto& c : classes)
   {
     csv += "," + c + "_point_x," + c + "_point_y," + c + "_point_z," + c + "_directional_mm," + c + "_inside," + c +
       "_inside_uncertain," + c + "_level";
     if (surface)
     {
-      csv += "," + c + "_surface_mm," + c + "_penetration_depth_mm," + c + "_penetration_volume_mm3," + c +
+      csv += "," + c + "_instrument_level," + c + "_surface_mm," + c + "_penetration_depth_mm," + c + "_penetration_volume_mm3," + c +
         "_penetration_depth_bound_mm," + c + "_penetration_volume_bound_mm3," + c + "_surface_bound_mm";
     }
   }
@@ -90,7 +90,9 @@ std::string FramesCsvRow(const TrackedFrame& f, bool surface)
     csv += "," + (c.InRange ? Number(c.DistanceMm) : "");
   }
   csv += std::string(",") + DangerLevelName(f.Level) + "," + Number(r.ErrorBoundMm) + "," + Number(f.FrameMs, "%.5f") +
-    "," + Number(f.AxisWorld[0], "%.6f") + "," + Number(f.AxisWorld[1], "%.6f") + "," + Number(f.AxisWorld[2], "%.6f");
+    "," + Number(f.AxisWorld[0], "%.6f") + "," + Number(f.AxisWorld[1], "%.6f") + "," + Number(f.AxisWorld[2], "%.6f") +
+    "," + DangerLevelName(f.TipLevel) + "," + (surface ? DangerLevelName(f.InstrumentLevel) : "") + "," +
+    (f.LevelClass >= 0 ? r.Classes[static_cast<std::size_t>(f.LevelClass)].ClassName : "") + "," + DangerCauseName(f.LevelCause);
   for (std::size_t k = 0; k < r.Classes.size(); ++k)
   {
     const ClassProximity& c = r.Classes[k];
@@ -104,6 +106,7 @@ std::string FramesCsvRow(const TrackedFrame& f, bool surface)
     csv += std::string(",") + DangerLevelName(f.ClassLevels[k]);
     if (surface)
     {
+      csv += std::string(",") + (k < f.InstrumentClassLevels.size() ? DangerLevelName(f.InstrumentClassLevels[k]) : "");
       csv += "," + (f.Surface[k].InRange ? Number(f.Surface[k].DistanceMm) : "");
       // Empty where it cannot be known (an open surface has no inside), never a silent 0.
       const bool known = k < f.Penetrations.size() && f.Penetrations[k].Known;

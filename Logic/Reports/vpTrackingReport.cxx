@@ -73,6 +73,7 @@ Json TrackingSummaryJson(const TrackingSummary& s, vtkScalpelTrackingLogic* logi
     Json entry;
     entry["tip_minimum"] = MinimumJson(s.GetTipMinimum()[c]);
     entry["frames_inside_uncertain"] = s.GetFramesInsideUncertain()[c];
+    entry["frames_in_breach"] = s.GetFramesInBreach()[c];
     if (surface)
     {
       entry["surface_minimum"] = MinimumJson(s.GetSurfaceMinimum()[c]);
@@ -97,6 +98,8 @@ Json TrackingSummaryJson(const TrackingSummary& s, vtkScalpelTrackingLogic* logi
   }
   out["time_in_level"] = levels;
   out["worst_level"] = DangerLevelName(s.GetWorstLevel());
+  out["worst_tip_level"] = DangerLevelName(s.GetWorstTipLevel());
+  out["worst_instrument_level"] = s.GetInstrumentMeasured() ? Json(DangerLevelName(s.GetWorstInstrumentLevel())) : Json(nullptr);
   if (s.HasHaptic())
   {
     const HapticSettings& h = logic->GetHapticSettings();
@@ -112,6 +115,7 @@ Json TrackingSummaryJson(const TrackingSummary& s, vtkScalpelTrackingLogic* logi
   {
     events.push_back({ { "frame", e.Frame }, { "time", e.TimeS }, { "from", DangerLevelName(e.From) },
       { "to", DangerLevelName(e.To) }, { "class", e.ClassName.empty() ? Json(nullptr) : Json(e.ClassName) },
+      { "cause", e.ClassName.empty() ? Json(nullptr) : Json(DangerCauseName(e.Cause)) },
       { "distance_mm", e.ClassName.empty() ? Json(nullptr) : Json(e.DistanceMm) } });
   }
   out["level_changes"] = events;

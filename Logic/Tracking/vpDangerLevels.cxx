@@ -112,4 +112,33 @@ DangerLevel ClassifyDangerWithHysteresis(const ClassProximity& proximity, double
   }
   return std::max(now, std::min(previous, held));
 }
+
+DangerLevel ClassifyInstrumentWithHysteresis(const SurfaceProximity& surface, const Penetration* penetration,
+  const DangerThresholds& thresholds, DangerLevel previous, double hysteresisMm)
+{
+  // The instrument as a tip would be: inside when any of it is, its distance the surfaces'.
+  ClassProximity asTip;
+  asTip.InRange = surface.InRange;
+  asTip.DistanceMm = surface.DistanceMm;
+  if (penetration)
+  {
+    asTip.Inside = penetration->Known && (penetration->VolumeMm3 > 0.0 || penetration->DepthMm > 0.0);
+    asTip.InsideUncertain = !penetration->Known && surface.InRange && surface.DistanceMm <= surface.ErrorBoundMm;
+  }
+  return ClassifyDangerWithHysteresis(asTip, surface.ErrorBoundMm, thresholds, previous, hysteresisMm);
+}
+
+const char* DangerCauseName(DangerCause cause)
+{
+  switch (cause)
+  {
+    case DangerCause::None:
+      return "";
+    case DangerCause::Tip:
+      return "tip";
+    case DangerCause::Instrument:
+      return "instrument";
+  }
+  return "";
+}
 } // namespace vp

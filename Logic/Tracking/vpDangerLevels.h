@@ -53,6 +53,22 @@ DangerLevel ClassifyDanger(const ClassProximity& proximity, double errorBoundMm,
 /// in and once out instead of at every frame. hysteresisMm 0 is ClassifyDanger.
 DangerLevel ClassifyDangerWithHysteresis(const ClassProximity& proximity, double errorBoundMm,
   const DangerThresholds& thresholds, DangerLevel previous, double hysteresisMm);
+/// The level of the whole instrument against one class, graded by the same thresholds as the tip:
+/// its surface distance less that answer's bound, any penetration a breach (and one that could
+/// not be decided, an open surface, a breach when the surfaces touch or cross), with
+/// ClassifyDangerWithHysteresis's rules for an approximate answer near the wall and on the way
+/// out. penetration: null when it was not computed.
+DangerLevel ClassifyInstrumentWithHysteresis(const SurfaceProximity& surface, const Penetration* penetration,
+  const DangerThresholds& thresholds, DangerLevel previous, double hysteresisMm);
+/// What set a frame's level: the tip, or the whole instrument where it is worse than the tip.
+enum class DangerCause
+{
+  None = 0, ///< safe
+  Tip,
+  Instrument
+};
+/// "", "tip", "instrument".
+const char* DangerCauseName(DangerCause cause);
 /// The level of a distance alone (no inside/outside knowledge): Breach is never returned.
 DangerLevel ClassifyDistance(double distanceMm, const DangerThresholds& thresholds);
 } // namespace vp

@@ -6,6 +6,7 @@
 #include "vpProximityResult.h"
 #include "vpTumourProximity.h"
 
+#include <algorithm>
 #include <optional>
 #include <string>
 #include <vector>
@@ -20,9 +21,25 @@ struct TrackedFrame
   double TipMm[3] = { 0, 0, 0 };   ///< world
   double AxisWorld[3] = { 0, 0, 1 };
   ProximityResult Proximity;       ///< per class: distance, closest point, inside, directional
-  std::vector<DangerLevel> ClassLevels;
-  DangerLevel Level = DangerLevel::Safe; ///< the worst over the classes
-  int LevelClass = -1;             ///< the class that set Level, -1 when all are safe
+  std::vector<DangerLevel> ClassLevels; ///< per class, the tip's level
+  /// Per class, the whole instrument's level (vp::ClassifyInstrumentWithHysteresis); empty when
+  /// the instrument is not measured.
+  std::vector<DangerLevel> InstrumentClassLevels;
+  DangerLevel TipLevel = DangerLevel::Safe; ///< the worst of ClassLevels
+  int TipLevelClass = -1;                  ///< the class that set it, -1 when all are safe
+  DangerLevel InstrumentLevel = DangerLevel::Safe; ///< the worst of InstrumentClassLevels
+  int InstrumentLevelClass = -1;
+  /// The frame's level: the worse of the tip's and the instrument's (the tip's when they are
+  /// equal), the class that set it (-1 when safe) and which of the two did.
+  DangerLevel Level = DangerLevel::Safe;
+  int LevelClass = -1;
+  DangerCause LevelCause = DangerCause::None;
+  /// A class's level in this frame: the worse of the tip's and the instrument's.
+  DangerLevel ClassLevel(std::size_t c) const
+  {
+    const DangerLevel tip = c < this->ClassLevels.size() ? this->ClassLevels[c] : DangerLevel::Safe;
+    return c < this->InstrumentClassLevels.size() ? std::max(tip, this->InstrumentClassLevels[c]) : tip;
+  }
   std::vector<SurfaceProximity> Surface; ///< per class; empty when not computed
   std::vector<Penetration> Penetrations; ///< per class: the instrument inside it; empty when not computed
   double FrameMs = 0.0;            ///< wall time of the distance queries of this frame
@@ -49,7 +66,10 @@ struct DangerLevelChange
   DangerLevel From = DangerLevel::Safe;
   DangerLevel To = DangerLevel::Safe;
   std::string ClassName; ///< the class that sets the new level (empty when it is safe)
-  double DistanceMm = 0.0; ///< that class's distance, 0 when none
+  /// Whether the tip or the whole instrument sets it, and that one's distance to the class (0
+  /// when none; for an instrument inside the class, 0).
+  DangerCause Cause = DangerCause::None;
+  double DistanceMm = 0.0;
 };
 
 /// A change of the resection margin's level (the worst over the tumours) between two frames.

@@ -56,7 +56,7 @@ void TrackingSummary::Add(const TrackedFrame& frame)
   for (std::size_t c = 0; c < classes.size() && c < this->TipMinimum.size(); ++c)
   {
     this->FramesInsideUncertain[c] += classes[c].InRange && classes[c].InsideUncertain ? 1 : 0;
-    this->FramesInBreach[c] += c < frame.ClassLevels.size() && frame.ClassLevels[c] == DangerLevel::Breach ? 1 : 0;
+    this->FramesInBreach[c] += frame.ClassLevel(c) == DangerLevel::Breach ? 1 : 0;
     if (classes[c].InRange)
     {
       Lower(this->TipMinimum[c], classes[c].DistanceMm, frame.Proximity.ErrorBoundMm, classes[c].Inside.value_or(false),
@@ -93,6 +93,9 @@ void TrackingSummary::Add(const TrackedFrame& frame)
   }
   ++this->FramesInLevel[static_cast<int>(frame.Level)];
   this->Worst = std::max(this->Worst, frame.Level);
+  this->WorstTip = std::max(this->WorstTip, frame.TipLevel);
+  this->WorstInstrument = std::max(this->WorstInstrument, frame.InstrumentLevel);
+  this->InstrumentMeasured = this->InstrumentMeasured || !frame.InstrumentClassLevels.empty();
   this->LastLevel = frame.Level;
   this->LastTimeS = frame.TimeS;
   ++this->Frames;

@@ -72,7 +72,8 @@ public:
   /// Per class, the frames whose tip's inside was uncertain (the rays' votes on a defective
   /// surface disagreed; those frames' level is a breach).
   const std::vector<int>& GetFramesInsideUncertain() const { return this->FramesInsideUncertain; }
-  /// Per class, the frames at its breach level (the tip inside, or undecidably so).
+  /// Per class, the frames at its breach level: the tip or the whole instrument inside it (or
+  /// undecidably so).
   const std::vector<int>& GetFramesInBreach() const { return this->FramesInBreach; }
   /// Per class; empty when no frame carried penetrations.
   const std::vector<ClassPenetration>& GetPenetrationMaximum() const { return this->PenetrationMaximum; }
@@ -87,6 +88,11 @@ public:
   const std::vector<MarginLevelChange>& GetMarginChanges() const { return this->MarginChanges; }
   MarginLevel GetWorstMarginLevel() const { return this->WorstMargin; }
   DangerLevel GetWorstLevel() const { return this->Worst; }
+  /// The worst level of the tip alone, and of the whole instrument alone (Safe when it was never
+  /// measured: GetInstrumentMeasured()).
+  DangerLevel GetWorstTipLevel() const { return this->WorstTip; }
+  DangerLevel GetWorstInstrumentLevel() const { return this->WorstInstrument; }
+  bool GetInstrumentMeasured() const { return this->InstrumentMeasured; }
   /// The q-quantile of the frames' computing times (ms; nearest rank, vp::RunningQuantiles: at
   /// most 0.1% above the exact one, the maximum exact), in memory that does not grow with the run.
   double GetFrameMsQuantile(double q) const { return this->FrameMs.Quantile(q); }
@@ -104,6 +110,9 @@ private:
   double LastTimeS = 0.0;
   DangerLevel LastLevel = DangerLevel::Safe;
   DangerLevel Worst = DangerLevel::Safe;
+  DangerLevel WorstTip = DangerLevel::Safe;
+  DangerLevel WorstInstrument = DangerLevel::Safe;
+  bool InstrumentMeasured = false;
   std::vector<std::string> ClassNames;
   std::vector<ClassMinimum> TipMinimum;
   std::vector<ClassMinimum> SurfaceMinimum;

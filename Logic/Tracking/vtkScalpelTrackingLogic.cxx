@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <tuple>
 
 vtkStandardNewMacro(vtkScalpelTrackingLogic);
 
@@ -180,6 +181,63 @@ void vtkScalpelTrackingLogic::Measure(const vp::TrackedPose& pose, bool hasPrevi
   frame.FrameMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
+namespace
+{
+/// The worst of levels (the nearer class among equals, by distance): its level and class.
+template <typename DistanceOf>
+std::pair<vp::DangerLevel, int> WorstOf(const std::vector<vp::DangerLevel>& levels, DistanceOf distanceOf)
+{
+  std::pair<vp::DangerLevel, int> worst{ vp::DangerLevel::Safe, -1 };
+  for (std::size_t c = 0; c < levels.size(); ++c)
+  {
+    const bool worse = worst.second < 0 || levels[c] > worst.first ||
+      (levels[c] == worst.first && distanceOf(c) < distanceOf(static_cast<std::size_t>(worst.second)));
+    if (levels[c] != vp::DangerLevel::Safe && worse)
+    {
+      worst = { levels[c], static_cast<int>(c) };
+    }
+  }
+  return worst;
+}
+} // namespace
+
+void vtkScalpelTrackingLogic::ClassifyDanger(vp::TrackedFrame& frame, bool hasPrevious) const
+{
+  const auto& classes = frame.Proximity.Classes;
+  const vp::TrackedFrame& last = this->Last;
+  frame.ClassLevels.resize(classes.size());
+  for (std::size_t c = 0; c < classes.size(); ++c)
+  {
+    const vp::DangerLevel before = hasPrevious && c < last.ClassLevels.size() ? last.ClassLevels[c] : vp::DangerLevel::Safe;
+    frame.ClassLevels[c] = vp::ClassifyDangerWithHysteresis(
+      classes[c], frame.Proximity.ErrorBoundMm, this->Settings.Thresholds, before, this->Settings.HysteresisMm);
+  }
+  std::tie(frame.TipLevel, frame.TipLevelClass) = WorstOf(frame.ClassLevels, [&](std::size_t c) { return classes[c].DistanceMm; });
+  frame.InstrumentClassLevels.resize(frame.Surface.size());
+  for (std::size_t c = 0; c < frame.Surface.size(); ++c)
+  {
+    const vp::DangerLevel before =
+      hasPrevious && c < last.InstrumentClassLevels.size() ? last.InstrumentClassLevels[c] : vp::DangerLevel::Safe;
+    frame.InstrumentClassLevels[c] = vp::ClassifyInstrumentWithHysteresis(frame.Surface[c],
+      c < frame.Penetrations.size() ? &frame.Penetrations[c] : nullptr, this->Settings.Thresholds, before,
+      this->Settings.HysteresisMm);
+    // The tip is the instrument's: a tip inside is an instrument inside, even one whose walls are
+    // all beyond the range (where its surface distance and penetration are not searched).
+    if (c < frame.ClassLevels.size() && frame.ClassLevels[c] == vp::DangerLevel::Breach)
+    {
+      frame.InstrumentClassLevels[c] = vp::DangerLevel::Breach;
+    }
+  }
+  std::tie(frame.InstrumentLevel, frame.InstrumentLevelClass) =
+    WorstOf(frame.InstrumentClassLevels, [&](std::size_t c) { return frame.Surface[c].DistanceMm; });
+  // The instrument sets the frame's level only where it is worse than the tip: the tip is what the
+  // surgeon steers by, and its distance the one a level usually names.
+  const bool instrument = frame.InstrumentLevel > frame.TipLevel;
+  frame.Level = instrument ? frame.InstrumentLevel : frame.TipLevel;
+  frame.LevelClass = instrument ? frame.InstrumentLevelClass : frame.TipLevelClass;
+  frame.LevelCause = frame.LevelClass < 0 ? vp::DangerCause::None : instrument ? vp::DangerCause::Instrument : vp::DangerCause::Tip;
+}
+
 const vp::TrackedFrame& vtkScalpelTrackingLogic::ProcessPose(const vp::TrackedPose& pose)
 {
   if (!this->Engine || !this->Scalpel)
@@ -204,23 +262,7 @@ const vp::TrackedFrame& vtkScalpelTrackingLogic::ProcessPose(const vp::TrackedPo
   this->Measure(pose, hasPrevious, frame);
   frame.OverBudget = this->Settings.FrameBudgetMs > 0.0 && frame.FrameMs > this->Settings.FrameBudgetMs;
 
-  const auto& classes = frame.Proximity.Classes;
-  frame.ClassLevels.resize(classes.size());
-  for (std::size_t c = 0; c < classes.size(); ++c)
-  {
-    const vp::DangerLevel before =
-      hasPrevious && c < this->Last.ClassLevels.size() ? this->Last.ClassLevels[c] : vp::DangerLevel::Safe;
-    frame.ClassLevels[c] = vp::ClassifyDangerWithHysteresis(
-      classes[c], frame.Proximity.ErrorBoundMm, this->Settings.Thresholds, before, this->Settings.HysteresisMm);
-    // The worst level wins; among equals, the nearer class names it.
-    const bool worse = frame.LevelClass < 0 || frame.ClassLevels[c] > frame.Level ||
-      (frame.ClassLevels[c] == frame.Level && classes[c].DistanceMm < classes[frame.LevelClass].DistanceMm);
-    if (frame.ClassLevels[c] != vp::DangerLevel::Safe && worse)
-    {
-      frame.Level = frame.ClassLevels[c];
-      frame.LevelClass = static_cast<int>(c);
-    }
-  }
+  this->ClassifyDanger(frame, hasPrevious);
   if (frame.Tumour)
   {
     this->ClassifyMargins(*frame.Tumour, hasPrevious);
@@ -240,11 +282,13 @@ const vp::TrackedFrame& vtkScalpelTrackingLogic::ProcessPose(const vp::TrackedPo
     change.TimeS = this->Last.TimeS;
     change.From = previousLevel;
     change.To = this->Last.Level;
+    change.Cause = this->Last.LevelCause;
     if (this->Last.LevelClass >= 0)
     {
-      const vp::ClassProximity& cause = this->Last.Proximity.Classes[this->Last.LevelClass];
-      change.ClassName = cause.ClassName;
-      change.DistanceMm = cause.DistanceMm;
+      const auto c = static_cast<std::size_t>(this->Last.LevelClass);
+      change.ClassName = this->Last.Proximity.Classes[c].ClassName;
+      change.DistanceMm = change.Cause == vp::DangerCause::Instrument ? this->Last.Surface[c].DistanceMm
+                                                                       : this->Last.Proximity.Classes[c].DistanceMm;
     }
     this->InvokeEvent(DangerLevelChangedEvent, &change);
   }

@@ -24,10 +24,13 @@
 ///
 /// For each pose: the scalpel's tip and axis go to world coordinates, the distance engine answers
 /// for every vessel class (passing the previous frame's answer, so a moving tip costs little),
-/// each class gets a danger level and the frame the worst of them. DangerLevelChangedEvent is
-/// invoked with a vp::DangerLevelChange as call data only when the overall level differs from
-/// the previous frame's, never on every frame. With a surface-distance calculator set, the
-/// closest approach of the whole instrument surface is computed as well.
+/// each class gets a danger level and the frame the worst of them. With a surface-distance
+/// calculator set, the closest approach of the whole instrument surface (and with a penetration
+/// calculator, how far it is inside) is computed as well and graded by the same thresholds, so
+/// the frame's level is the worse of the tip's and the instrument's: a shaft inside a vessel is a
+/// breach whatever the tip's distance. DangerLevelChangedEvent is invoked with a
+/// vp::DangerLevelChange as call data only when that level differs from the previous frame's,
+/// never on every frame.
 ///
 /// The logic owns no UI: a widget observes the event and reads GetLastFrame().
 class vtkScalpelTrackingLogic : public vtkObject
@@ -120,6 +123,8 @@ protected:
 
 private:
   /// Each tumour's level from the frame's distances and the previous frame's levels, the worst.
+  /// The tip's level per class, the whole instrument's, and the frame's: the worse of the two.
+  void ClassifyDanger(vp::TrackedFrame& frame, bool hasPrevious) const;
   void ClassifyMargins(vp::TumourMargin& margin, bool hasPrevious) const;
   /// The frame's measurements at the pose (the tip, the whole instrument and its penetration, the
   /// tumours' margins), each part timed, and FrameMs; the previous frame narrows the searches.

@@ -44,9 +44,15 @@ std::string DistanceResult(const vp::cli::VesselClassParameter& v)
   return std::string(v.Parameter) + "DistanceMm";
 }
 
-/// -1 marks "no answer" in the distance results: distances are never negative, and Slicer's
-/// number fields show -1 where NaN would show as garbage or be clamped.
-const char* NoDistance = "-1";
+/// No answer (a model not given, beyond the range, no axis) is no value: the distances are signed
+/// (negative inside), so no number can mean "none", and 0 or -1 read as touching or inside.
+const char* NoDistance = "";
+
+/// Negative inside: the depth, as the track program's minima.
+double SignedDistance(const vp::ClassProximity& c)
+{
+  return c.Inside.value_or(false) ? -c.DistanceMm : c.DistanceMm;
+}
 
 vp::cli::ParameterGroup ScalpelGroup()
 {
@@ -134,7 +140,8 @@ vp::cli::ParameterGroup EngineGroup()
 
 vp::cli::ParameterGroup ResultsGroup()
 {
-  vp::cli::ParameterGroup out{ "Results", "Distances from the tip (-1: model not given, or beyond the range)", {} };
+  vp::cli::ParameterGroup out{ "Results",
+    "Signed distances from the tip, negative inside (no value: model not given, or beyond the range)", {} };
   auto result = [&](ParameterType type, const char* name, const char* label, const std::string& text,
                   const char* value) {
     out.Parameters.push_back(
@@ -142,8 +149,10 @@ vp::cli::ParameterGroup ResultsGroup()
   };
   result(ParameterType::String, "nearestClass", "Nearest class",
     "The vessel class nearest to the tip: portal_vein, hepatic_artery, hepatic_vein, or none within range.", "none");
-  result(ParameterType::Float, "nearestDistanceMm", "Nearest distance (mm)",
-    "Distance to the nearest class (penetration depth when the tip is inside it); -1 when none is within range.",
+  // Distances as text: a Slicer number field always holds a number, and no number means "none".
+  result(ParameterType::String, "nearestDistanceMm", "Nearest distance (mm)",
+    "Signed distance to the nearest class: negative inside it (minus the penetration depth); no value when none is "
+    "within range.",
     NoDistance);
   result(ParameterType::Boolean, "nearestInside", "Tip inside",
     "True when the tip is inside the nearest vessel (closed models only).", "false");
@@ -151,11 +160,12 @@ vp::cli::ParameterGroup ResultsGroup()
     "Closest point on the nearest class, x,y,z in LPS; empty when none is within range.", "");
   for (const vp::cli::VesselClassParameter& v : vp::cli::VesselClassParameters())
   {
-    result(ParameterType::Float, DistanceResult(v).c_str(), (std::string(v.Label) + " distance (mm)").c_str(),
-      std::string("Distance to the ") + v.ClassName + " model; -1 when not given or beyond the range.", NoDistance);
+    result(ParameterType::String, DistanceResult(v).c_str(), (std::string(v.Label) + " distance (mm)").c_str(),
+      std::string("Signed distance to the ") + v.ClassName + " model, negative inside; no value when not given or beyond "
+      "the range.", NoDistance);
   }
-  result(ParameterType::Float, "directionalDistanceMm", "Directional distance (mm)",
-    "Distance along the axis to the first vessel surface; -1 without an axis or when none is hit within range.",
+  result(ParameterType::String, "directionalDistanceMm", "Directional distance (mm)",
+    "Distance along the axis to the first vessel surface; no value without an axis or when none is hit within range.",
     NoDistance);
   result(ParameterType::Float, "errorBoundMm", "Error bound (mm)",
     "Bound on |reported - exact| (0 for the exact engine); a z-buffer answer may overstate danger by this much, "
@@ -244,7 +254,7 @@ void SetResults(const vp::ProximityResult& r, double rangeMm, vp::cli::ReturnVal
   {
     const vp::ClassProximity& n = r.Classes[nearest];
     results.Set("nearestClass", n.ClassName);
-    results.Set("nearestDistanceMm", n.DistanceMm);
+    results.Set("nearestDistanceMm", SignedDistance(n));
     results.Set("nearestPoint", std::vector<double>(n.ClosestPoint, n.ClosestPoint + 3));
     results.Set("nearestInside", n.Inside && *n.Inside);
   }
@@ -255,7 +265,7 @@ void SetResults(const vp::ProximityResult& r, double rangeMm, vp::cli::ReturnVal
     {
       if (c.ClassName == v.ClassName && c.InRange)
       {
-        results.Set(DistanceResult(v), c.DistanceMm);
+        results.Set(DistanceResult(v), SignedDistance(c));
       }
       directional = c.ClassName == v.ClassName && c.DirectionalMm ? std::min(directional, *c.DirectionalMm) : directional;
     }

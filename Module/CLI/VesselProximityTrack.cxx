@@ -161,26 +161,29 @@ vp::cli::ParameterGroup ResultsGroup()
   out.Parameters.push_back(Parameter(ParameterType::String, "worstLevel")
                              .SetChannel(Channel::Output)
                              .SetLabel("Worst level")
-                             .SetDescription("The worst danger level reached: safe, caution, warning, danger or breach."));
+                             .SetDescription("The worst danger level reached, of the tip or the whole instrument: safe, "
+                                             "caution, warning, danger or breach."));
   out.Parameters.push_back(Parameter(ParameterType::String, "worstMarginLevel")
                              .SetChannel(Channel::Output)
                              .SetLabel("Worst margin level")
                              .SetDescription("With a tumour, the worst margin level reached: clear, near, violated or "
                                              "inside; empty without one."));
-  out.Parameters.push_back(Parameter(ParameterType::Float, "tumourMinimumMm")
+  // Distances as text: a Slicer number field always holds a number, and no number means "none".
+  out.Parameters.push_back(Parameter(ParameterType::String, "tumourMinimumMm")
                              .SetChannel(Channel::Output)
                              .SetLabel("Tumour closest (mm)")
                              .SetDescription("With a tumour, the tip's smallest signed distance to it over the run "
-                                             "(negative: inside); 0 without one.")
-                             .SetDefault("0"));
+                                             "(negative: inside); no value without one.")
+                             .SetDefault(""));
   for (const vp::cli::VesselClassParameter& v : vp::cli::VesselClassParameters())
   {
-    out.Parameters.push_back(Parameter(ParameterType::Float, std::string(v.Parameter) + "MinimumMm")
+    out.Parameters.push_back(Parameter(ParameterType::String, std::string(v.Parameter) + "MinimumMm")
                                .SetChannel(Channel::Output)
                                .SetLabel(std::string(v.Label) + " closest (mm)")
-                               .SetDescription(std::string("The tip's smallest distance to the ") + v.ClassName +
-                                 " over the run (penetration depth when inside); -1 when never within range.")
-                               .SetDefault("-1"));
+                               .SetDescription(std::string("The tip's smallest signed distance to the ") + v.ClassName +
+                                 " over the run, negative inside (minus the penetration depth); no value when never "
+                                 "within range.")
+                               .SetDefault(""));
   }
   return out;
 }
@@ -314,7 +317,7 @@ void Run(const vp::cli::ParsedArguments& args, vp::cli::ReturnValues& results)
       const vp::ClassMinimum& m = summary.GetTipMinimum()[c];
       if (summary.GetClassNames()[c] == v.ClassName && m.Seen)
       {
-        results.Set(std::string(v.Parameter) + "MinimumMm", m.DistanceMm);
+        results.Set(std::string(v.Parameter) + "MinimumMm", m.Inside ? -m.DistanceMm : m.DistanceMm);
       }
     }
   }

@@ -43,8 +43,10 @@ void PrintDemoTable(const DemoReport& report)
                     : (FixedText(tip.at("distance_mm").get<double>(), "%.2f") + (tip.at("inside").get<bool>() ? " inside" : "")).c_str(),
       surface.is_null() ? "-" : FixedText(surface.at("distance_mm").get<double>(), "%.2f").c_str());
   }
-  std::printf("  worst level %s; %zu level changes:", summary.at("worst_level").get<std::string>().c_str(),
-    summary.at("level_changes").size());
+  const auto& instrument = summary.at("worst_instrument_level");
+  std::printf("  worst level %s (tip %s, instrument %s); %zu level changes:", summary.at("worst_level").get<std::string>().c_str(),
+    summary.at("worst_tip_level").get<std::string>().c_str(),
+    instrument.is_null() ? "not measured" : instrument.get<std::string>().c_str(), summary.at("level_changes").size());
   for (const auto& change : summary.at("level_changes"))
   {
     std::printf(" %s", change.at("to").get<std::string>().c_str());

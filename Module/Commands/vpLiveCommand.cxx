@@ -4,6 +4,7 @@
 #include "vpCommandSupport.h"
 #include "vpCommands.h"
 #include "vpEngineOptions.h"
+#include "vpFrameHeadline.h"
 #include "vpFramesCsv.h"
 #include "vpIgtlLink.h"
 #include "vpInputError.h"
@@ -158,7 +159,7 @@ int RunLiveCommand(const cli::ParsedArguments& args, const ModuleServices& modul
     if (NowMs() - lastStatusMs > 1000.0)
     {
       lastStatusMs = NowMs();
-      std::fprintf(stderr, "live: frame %d, %s, latency p95 %.3f ms, %zu peer(s)\n", frame.Frame, DangerLevelName(frame.Level),
+      std::fprintf(stderr, "live: frame %d, %s, latency p95 %.3f ms, %zu peer(s)\n", frame.Frame, FrameHeadline(frame).c_str(),
         latency.Quantile(0.95), stream.GetNumberOfPeers());
     }
   };

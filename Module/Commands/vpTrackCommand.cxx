@@ -92,7 +92,9 @@ void PrintSummary(const TrackingRecorder& session, vtkVesselProximityLogic* prox
   {
     std::printf(" %s %.2f s", DangerLevelName(static_cast<DangerLevel>(l)), summary.GetTimeInLevelS()[l]);
   }
-  std::printf("\n  %zu level change(s), worst level %s\n", summary.GetChanges().size(), DangerLevelName(summary.GetWorstLevel()));
+  std::printf("\n  %zu level change(s), worst level %s (tip %s, instrument %s)\n", summary.GetChanges().size(),
+    DangerLevelName(summary.GetWorstLevel()), DangerLevelName(summary.GetWorstTipLevel()),
+    summary.GetInstrumentMeasured() ? DangerLevelName(summary.GetWorstInstrumentLevel()) : "not measured");
   for (const TumourMarginSummary& t : summary.GetTumours())
   {
     std::printf("  tumour %s: smallest margin %.3f mm%s; time", t.Id.c_str(), t.MarginMinMm, t.MarginMinMm < 0.0 ? " (inside)" : "");

@@ -5,6 +5,7 @@
 #include "vpCommands.h"
 #include "vpDangerLevels.h"
 #include "vpEngineOptions.h"
+#include "vpFrameHeadline.h"
 #include "vpIgtlLink.h"
 #include "vpInputError.h"
 #include "vpLiveOptions.h"
@@ -93,14 +94,9 @@ void RequireDisplay(const std::string& screenshot, VirtualDisplay& display)
 void PrintScreenshotLine(const std::string& screenshot, vtkVesselProximityLogic* logic)
 {
   const vp::TrackedFrame& f = logic->GetLastFrame();
-  const int nearest = f.Proximity.NearestIndex();
-  std::cout << "wrote " << screenshot << ": tip " << f.TipMm[0] << ", " << f.TipMm[1] << ", " << f.TipMm[2] << " mm, level "
-            << DangerLevelName(f.Level);
-  if (nearest >= 0)
-  {
-    std::cout << ", nearest " << f.Proximity.Classes[nearest].ClassName << " " << f.Proximity.Classes[nearest].DistanceMm << " mm";
-  }
-  std::cout << "\n";
+  std::cout << "wrote " << screenshot << ": tip " << f.TipMm[0] << ", " << f.TipMm[1] << ", " << f.TipMm[2] << " mm; "
+            << FrameHeadline(f) << " (" << logic->GetTrackingLogic()->GetDistanceEngine()->GetMethodName() << " engine"
+            << (f.Proximity.ErrorBoundMm > 0.0 ? ", within " + FixedText(f.Proximity.ErrorBoundMm, "%.2f") + " mm" : "") << ")\n";
 }
 } // namespace
 

@@ -150,7 +150,7 @@ TEST(Overlays, FollowTheLogicAndRecolourOnlyOnLevelChanges)
   EXPECT_EQ(changes, 4);
   EXPECT_EQ(previous, vp::DangerLevel::Breach);
   EXPECT_EQ(overlays->GetScalpel()->GetNumberOfColourChanges() - colourChangesBefore, 4);
-  EXPECT_EQ(overlays->GetReadout()->GetLineText(0), "BREACH   exact engine") << "the engine that answered is named";
+  EXPECT_EQ(overlays->GetReadout()->GetLineText(0), "BREACH: tip 5.0 mm inside the portal vein | exact engine") << "the level, its cause and the engine";
   EXPECT_EQ(overlays->GetPlot()->GetNumberOfSamples(), 41);
   // 41 poses, one build: nothing is rebuilt because the scalpel moved.
   EXPECT_EQ(logic->GetNumberOfBuilds(), 1);
@@ -327,6 +327,20 @@ TEST(Overlays, ATumourIsShownInItsColourAndItsMarginRead)
   EXPECT_EQ(readout->GetLineText(margin), "tumour                -") << "no distance read as current";
 }
 
+/// A frame of these answers and tip levels (and the instrument's, when measured).
+vp::TrackedFrame FrameOf(const vp::ProximityResult& proximity, const std::vector<vp::DangerLevel>& tipLevels,
+  const std::vector<vp::SurfaceProximity>& surface = {}, const std::vector<vp::Penetration>& penetrations = {},
+  const std::vector<vp::DangerLevel>& instrumentLevels = {})
+{
+  vp::TrackedFrame frame;
+  frame.Proximity = proximity;
+  frame.ClassLevels = tipLevels;
+  frame.Surface = surface;
+  frame.Penetrations = penetrations;
+  frame.InstrumentClassLevels = instrumentLevels;
+  return frame;
+}
+
 TEST(Overlays, ReadoutShowsTheInstrumentBesideTheTip)
 {
   const auto readout = PortalAndHepaticVeinReadout();
@@ -339,11 +353,13 @@ TEST(Overlays, ReadoutShowsTheInstrumentBesideTheTip)
   std::vector<vp::Penetration> penetrations(2);
   penetrations[0].DepthMm = 1.02;
   penetrations[0].VolumeMm3 = 3.71;
-  readout->ShowFrame(proximity, { vp::DangerLevel::Breach, vp::DangerLevel::Warning }, vp::DangerLevel::Breach, surface, penetrations);
-  EXPECT_NE(readout->GetLineText(1).find("tool 1.0 mm in, 3.7 mm^3"), std::string::npos) << readout->GetLineText(1);
-  EXPECT_NE(readout->GetLineText(2).find("tool 2.6 mm"), std::string::npos) << readout->GetLineText(2);
+  readout->ShowFrame(FrameOf(proximity, { vp::DangerLevel::Breach, vp::DangerLevel::Warning }, surface, penetrations,
+                       { vp::DangerLevel::Breach, vp::DangerLevel::Warning }),
+    "BREACH");
+  EXPECT_NE(readout->GetLineText(1).find("tool 1.0 mm in, 3.7 mm^3  breach"), std::string::npos) << readout->GetLineText(1);
+  EXPECT_NE(readout->GetLineText(2).find("tool 2.6 mm  warning"), std::string::npos) << readout->GetLineText(2);
   // Without the whole instrument: the tip alone, as before.
-  readout->ShowFrame(proximity, { vp::DangerLevel::Breach, vp::DangerLevel::Warning }, vp::DangerLevel::Breach);
+  readout->ShowFrame(FrameOf(proximity, { vp::DangerLevel::Breach, vp::DangerLevel::Warning }), "BREACH");
   EXPECT_EQ(readout->GetLineText(1).find("tool"), std::string::npos) << readout->GetLineText(1);
 }
 
@@ -355,21 +371,22 @@ TEST(Overlays, TheReadoutNamesItsEngineAndShowsABoundAsAnInterval)
   vp::ProximityResult proximity = PortalAndHepaticVein(0.2, 3.3);
   proximity.ErrorBoundMm = 0.347;
   readout->SetEngine("zbuffer");
-  readout->ShowFrame(proximity, { vp::DangerLevel::Danger, vp::DangerLevel::Warning }, vp::DangerLevel::Danger);
-  EXPECT_EQ(readout->GetLineText(0), "DANGER   z-buffer engine, within 0.35 mm");
+  readout->ShowFrame(FrameOf(proximity, { vp::DangerLevel::Danger, vp::DangerLevel::Warning }), "DANGER");
+  EXPECT_EQ(readout->GetLineText(0), "DANGER   | z-buffer engine, within 0.35 mm");
   EXPECT_NE(readout->GetLineText(1).find("0.0-0.5 mm"), std::string::npos) << readout->GetLineText(1);
   EXPECT_NE(readout->GetLineText(2).find("3.0-3.6 mm"), std::string::npos) << readout->GetLineText(2);
   // With the exact engine's answer computed beside it (--method both), that too.
   vp::ProximityResult exact = proximity;
   exact.ErrorBoundMm = 0.0;
   exact.Classes[0].DistanceMm = 0.032;
-  readout->ShowFrame(proximity, { vp::DangerLevel::Danger, vp::DangerLevel::Warning }, vp::DangerLevel::Danger, {}, {}, &exact);
+  readout->ShowFrame(FrameOf(proximity, { vp::DangerLevel::Danger, vp::DangerLevel::Warning }), "DANGER", &exact);
+  EXPECT_EQ(readout->GetLineText(0), "DANGER   | z-buffer engine sets the level, within 0.35 mm");
   EXPECT_NE(readout->GetLineText(1).find("0.0-0.5 mm  danger  (exact 0.0)"), std::string::npos) << readout->GetLineText(1);
   EXPECT_NE(readout->GetLineText(2).find("(exact 3.3)"), std::string::npos) << readout->GetLineText(2);
   proximity.ErrorBoundMm = 0.0;
   readout->SetEngine("exact");
-  readout->ShowFrame(proximity, { vp::DangerLevel::Danger, vp::DangerLevel::Warning }, vp::DangerLevel::Danger);
-  EXPECT_EQ(readout->GetLineText(0), "DANGER   exact engine");
+  readout->ShowFrame(FrameOf(proximity, { vp::DangerLevel::Danger, vp::DangerLevel::Warning }), "DANGER");
+  EXPECT_EQ(readout->GetLineText(0), "DANGER   | exact engine");
   EXPECT_NE(readout->GetLineText(1).find(" 0.2 mm"), std::string::npos) << readout->GetLineText(1);
 }
 
@@ -379,7 +396,7 @@ TEST(Overlays, TrackingLostShowsNoDistanceAsCurrent)
 {
   const auto readout = PortalAndHepaticVeinReadout();
   const vp::ProximityResult proximity = PortalAndHepaticVein(4.2, NAN);
-  readout->ShowFrame(proximity, { vp::DangerLevel::Warning, vp::DangerLevel::Safe }, vp::DangerLevel::Warning);
+  readout->ShowFrame(FrameOf(proximity, { vp::DangerLevel::Warning, vp::DangerLevel::Safe }), "WARNING");
   EXPECT_NE(readout->GetLineText(1).find("4.2 mm"), std::string::npos);
   readout->ShowTrackingLost(250.0);
   EXPECT_EQ(readout->GetLineText(0), "TRACKING LOST (no pose for 250 ms)");
@@ -388,7 +405,7 @@ TEST(Overlays, TrackingLostShowsNoDistanceAsCurrent)
     EXPECT_EQ(readout->GetLineText(line).find("mm"), std::string::npos) << readout->GetLineText(line);
     EXPECT_EQ(readout->GetLineText(line).back(), '-') << readout->GetLineText(line);
   }
-  readout->ShowFrame(proximity, { vp::DangerLevel::Warning, vp::DangerLevel::Safe }, vp::DangerLevel::Warning);
+  readout->ShowFrame(FrameOf(proximity, { vp::DangerLevel::Warning, vp::DangerLevel::Safe }), "WARNING");
   EXPECT_EQ(readout->GetLineText(0), "WARNING");
   EXPECT_NE(readout->GetLineText(1).find("4.2 mm"), std::string::npos);
 }

@@ -941,9 +941,19 @@ TEST_F(SlicerCli, DistanceMarksMissingAndOutOfRangeClassesWithMinusOne)
   ASSERT_EQ(r.ExitCode, 0) << r.Err;
   auto v = ReadReturnFile(params);
   EXPECT_NEAR(Number(v, "portalVeinDistanceMm"), 4.0, 1e-6);
-  EXPECT_EQ(v.at("hepaticArteryDistanceMm"), "-1");
-  EXPECT_EQ(v.at("hepaticVeinDistanceMm"), "-1");
-  EXPECT_EQ(v.at("directionalDistanceMm"), "-1") << "no axis given";
+  EXPECT_EQ(v.at("hepaticArteryDistanceMm"), "") << "no value for a model not given, not 0 or -1";
+  EXPECT_EQ(v.at("hepaticVeinDistanceMm"), "");
+  EXPECT_EQ(v.at("directionalDistanceMm"), "") << "no axis given";
+
+  // A tip inside: the distance is signed, minus its depth. The phantom's hepatic vein is a ball
+  // of radius 10 at (45, 30, -10); 4 mm above its centre the tip is 6 mm deep.
+  r = RunCli(this->Dir, DistanceProgram,
+    { "--returnparameterfile", params, "--hepaticVein", this->Phantom("hepatic_vein"), "--tip", "45,30,-6" });
+  ASSERT_EQ(r.ExitCode, 0) << r.Err;
+  v = ReadReturnFile(params);
+  EXPECT_NEAR(Number(v, "hepaticVeinDistanceMm"), -6.0, 0.1);
+  EXPECT_NEAR(Number(v, "nearestDistanceMm"), -6.0, 0.1);
+  EXPECT_EQ(v.at("nearestInside"), "true");
 
   // Everything beyond a 10 mm range.
   r = RunCli(this->Dir, DistanceProgram,
@@ -952,11 +962,11 @@ TEST_F(SlicerCli, DistanceMarksMissingAndOutOfRangeClassesWithMinusOne)
   ASSERT_EQ(r.ExitCode, 0) << r.Err;
   v = ReadReturnFile(params);
   EXPECT_EQ(v.at("nearestClass"), "none");
-  EXPECT_EQ(v.at("nearestDistanceMm"), "-1");
+  EXPECT_EQ(v.at("nearestDistanceMm"), "");
   EXPECT_EQ(v.at("nearestPoint"), "");
-  EXPECT_EQ(v.at("portalVeinDistanceMm"), "-1");
-  EXPECT_EQ(v.at("hepaticVeinDistanceMm"), "-1");
-  EXPECT_EQ(v.at("directionalDistanceMm"), "-1");
+  EXPECT_EQ(v.at("portalVeinDistanceMm"), "");
+  EXPECT_EQ(v.at("hepaticVeinDistanceMm"), "");
+  EXPECT_EQ(v.at("directionalDistanceMm"), "");
   const SemModule m = this->Xml(DistanceProgram);
   EXPECT_EQ(v.size(), static_cast<std::size_t>(std::count_if(m.Parameters.begin(), m.Parameters.end(),
                         [](const SemParameter& p) { return p.IsReturn(); })))

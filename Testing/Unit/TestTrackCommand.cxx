@@ -148,8 +148,22 @@ TEST_F(TrackCommand, WritesTheDocumentedRecord)
     EXPECT_EQ(rows[i][column("nearest_class")], "portal_vein");
     // The shaft trails behind the tip: the whole surface is no nearer than the tip here.
     EXPECT_NEAR(std::stod(rows[i][column("portal_vein_surface_mm")]), d, 1e-3);
-    const std::string level = rows[i][column("danger_level")];
-    EXPECT_EQ(level, d <= 2 ? "danger" : d <= 5 ? "warning" : d <= 10 ? "caution" : "safe") << "row " << i;
+    EXPECT_EQ(rows[i][column("tip_level")], d <= 2 ? "danger" : d <= 5 ? "warning" : d <= 10 ? "caution" : "safe") << "row " << i;
+    // The 80 mm shaft trailing behind the tip runs through the far sphere (radius 5 at x = 100)
+    // while the tip is from 15 to 30 mm out: the instrument's breach is the frame's level there.
+    const bool through = std::stod(rows[i][column("hepatic_vein_penetration_volume_mm3")]) > 0.0 ||
+      std::stod(rows[i][column("hepatic_vein_penetration_depth_mm")]) > 0.0;
+    if (std::abs(x - 15.0) > 1e-6) // at 15 the shaft's end touches the sphere
+    {
+      EXPECT_EQ(through, x > 15.0) << "row " << i;
+    }
+    EXPECT_EQ(rows[i][column("instrument_level")] == "breach", through) << "row " << i;
+    const std::vector<std::string> order = { "safe", "caution", "warning", "danger", "breach" };
+    auto rank = [&](const std::string& level) { return std::find(order.begin(), order.end(), level) - order.begin(); };
+    EXPECT_EQ(rank(rows[i][column("danger_level")]),
+      std::max(rank(rows[i][column("tip_level")]), rank(rows[i][column("instrument_level")]))) << "row " << i;
+    const auto tip = rank(rows[i][column("tip_level")]), instrument = rank(rows[i][column("instrument_level")]);
+    EXPECT_EQ(rows[i][column("level_cause")], instrument > tip ? "instrument" : tip > 0 ? "tip" : "") << "row " << i;
     minimum = std::min(minimum, d);
   }
 
@@ -166,11 +180,20 @@ TEST_F(TrackCommand, WritesTheDocumentedRecord)
     total += level["time_s"].get<double>();
   }
   EXPECT_NEAR(total, s["duration_s"].get<double>(), 1e-9);
-  ASSERT_EQ(s["level_changes"].size(), 6u); // in through caution, warning, danger; out again
-  EXPECT_EQ(s["level_changes"][0]["to"], "caution");
-  EXPECT_EQ(s["level_changes"][2]["to"], "danger");
-  EXPECT_EQ(s["level_changes"][5]["to"], "safe");
-  EXPECT_EQ(s["worst_level"], "danger");
+  // From the breach the far vein's shaft starts in: danger as the shaft leaves it, warning, danger
+  // by the tip, and the same back; each change names its cause (the tip where both are at one level).
+  ASSERT_EQ(s["level_changes"].size(), 7u);
+  const std::vector<std::pair<std::string, std::string>> changes = { { "breach", "instrument" }, { "danger", "instrument" },
+    { "warning", "tip" }, { "danger", "tip" }, { "warning", "tip" }, { "danger", "instrument" },
+    { "breach", "instrument" } };
+  for (std::size_t k = 0; k < changes.size(); ++k)
+  {
+    EXPECT_EQ(s["level_changes"][k]["to"], changes[k].first) << k;
+    EXPECT_EQ(s["level_changes"][k]["cause"], changes[k].second) << k;
+  }
+  EXPECT_EQ(s["worst_level"], "breach");
+  EXPECT_EQ(s["worst_tip_level"], "danger");
+  EXPECT_EQ(s["worst_instrument_level"], "breach");
   EXPECT_EQ(Slurp(out + "/distance.png").substr(0, 4), "\x89PNG");
 
   // The frame budget: the summary's frame times are the quantiles of the frame_ms column (within
@@ -244,6 +267,60 @@ TEST_F(TrackCommand, ReportsThePenetrationOfTheWholeInstrument)
   EXPECT_EQ(most["volume_frame"].get<int>(), 5);
   EXPECT_EQ(most["frames_inside"].get<int>(), 4); // 9.5, 8, 7, 8
   EXPECT_EQ(s["classes"]["hepatic_vein"]["penetration_maximum"]["frames_inside"].get<int>(), 0);
+}
+
+// The shaft crosses the vessel while the tip stays 15 mm away from it: the tip alone reads safe,
+// and every output says breach, naming the instrument as its cause.
+TEST_F(TrackCommand, AShaftThroughAVesselIsABreachWhereverTheTip)
+{
+  // The tool along +z, its tip at (0, y, 25): its shaft (radius 1.5) passes y mm from the centre
+  // of the sphere (radius 10), through it from y = 5; the tip is sqrt(y^2 + 625) - 10 >= 15 mm off.
+  std::ostringstream poses;
+  poses << "time,x,y,z,qw,qx,qy,qz\n";
+  const double ys[] = { 30, 20, 12, 5, 5, 20, 30 };
+  for (int i = 0; i < 7; ++i)
+  {
+    poses << i * 0.05 << ",0," << ys[i] << ",25,1,0,0,0\n";
+  }
+  const std::string out = this->Dir + "/shaft";
+  const ToolRun r =
+    RunTool(this->Dir, "track --vessels " + this->Vessels + " --scalpel " + this->Tool + " --poses " + this->WriteText("shaft.csv", poses.str()) + " -o " + out);
+  ASSERT_EQ(r.ExitCode, 0) << r.Err;
+  const auto rows = ReadCsvCells(out + "/frames.csv");
+  ASSERT_EQ(rows.size(), 8u);
+  auto cell = [&](int frame, const std::string& name) {
+    const auto it = std::find(rows[0].begin(), rows[0].end(), name);
+    EXPECT_NE(it, rows[0].end()) << name;
+    return it == rows[0].end() ? std::string() : rows[static_cast<std::size_t>(frame + 1)][static_cast<std::size_t>(it - rows[0].begin())];
+  };
+  for (int f : { 3, 4 })
+  {
+    EXPECT_EQ(cell(f, "danger_level"), "breach") << f;
+    EXPECT_EQ(cell(f, "tip_level"), "safe") << f;
+    EXPECT_EQ(cell(f, "instrument_level"), "breach") << f;
+    EXPECT_EQ(cell(f, "level_class"), "portal_vein") << f;
+    EXPECT_EQ(cell(f, "level_cause"), "instrument") << f;
+    EXPECT_EQ(cell(f, "portal_vein_level"), "safe") << f;
+    EXPECT_EQ(cell(f, "portal_vein_instrument_level"), "breach") << f;
+    EXPECT_GT(std::stod(cell(f, "portal_vein_penetration_volume_mm3")), 100.0) << f;
+  }
+  // 20 mm off the centre the shaft is 20 - 10 - 1.5 = 8.5 mm from the wall: caution, by the
+  // instrument; 12 mm off, 0.5 mm: danger.
+  EXPECT_NEAR(std::stod(cell(1, "portal_vein_surface_mm")), 8.5, 0.1);
+  EXPECT_EQ(cell(1, "danger_level"), "caution");
+  EXPECT_EQ(cell(1, "level_cause"), "instrument");
+  EXPECT_EQ(cell(2, "danger_level"), "danger");
+  EXPECT_EQ(cell(0, "danger_level"), "safe");
+  EXPECT_EQ(cell(0, "level_cause"), "");
+  const nlohmann::json s = nlohmann::json::parse(Slurp(out + "/summary.json"));
+  EXPECT_EQ(s["worst_level"], "breach");
+  EXPECT_EQ(s["worst_tip_level"], "safe");
+  EXPECT_EQ(s["worst_instrument_level"], "breach");
+  EXPECT_EQ(s["classes"]["portal_vein"]["frames_in_breach"].get<int>(), 2);
+  EXPECT_EQ(s["time_in_level"]["breach"]["frames"].get<int>(), 2);
+  ASSERT_FALSE(s["level_changes"].empty());
+  EXPECT_EQ(s["level_changes"][0]["cause"], "instrument");
+  EXPECT_NE(r.Out.find("worst level breach (tip safe, instrument breach)"), std::string::npos) << r.Out;
 }
 
 // The haptic force on the same approach: zero while the instrument is outside, k * depth + c * rate
@@ -1385,8 +1462,11 @@ TEST_F(TrackCommand, ScreenshotsShowTheKeyFramesAndAContactSheet)
     EXPECT_EQ(name.substr(name.size() - 4), ".png") << name;
     reasons.push_back(name.substr(10, name.size() - 14)); // frameNNNN_<reason>.png
   }
-  EXPECT_EQ(reasons, (std::vector<std::string>{ "start", "deepest_hepatic_vein", "caution", "warning", "danger",
-                       "closest_portal_vein", "warning", "caution", "safe", "end" }));
+  // The levels are the instrument's where it is worse than the tip's: a breach from the start (the
+  // shaft in the far vein), danger as its end leaves that vein at x = 15, warning as it draws away,
+  // danger again as the tip nears the portal vein; and the same back out into the breach.
+  EXPECT_EQ(reasons, (std::vector<std::string>{ "start", "deepest_hepatic_vein", "danger", "warning", "danger",
+                       "closest_portal_vein", "warning", "danger", "breach", "end" }));
   // The contact sheet: ten thumbnails of 420 x 262 (the 1280 x 800 screenshots), three to a row,
   // each with a 26-pixel caption, 12 pixels apart: 1308 x 1212.
   const std::string sheet = vp::test::Slurp(out + "/keyframes.png");

@@ -3,6 +3,7 @@
 // and the summary adds up. Synthetic poses with known answers, as SlicerIGT's pivot test does.
 #include "vpAnalyticShapes.h"
 #include "vpDangerLevels.h"
+#include "vpFrameHeadline.h"
 #include "vpHapticForce.h"
 #include "vpInputError.h"
 #include "vpRigidTransform.h"
@@ -368,6 +369,45 @@ vp::TrackedFrame FrameInside(double t, double depthMm)
 // Kelvin-Voigt against its formula: on a steady push the force is k * depth + c * rate, out of the
 // vessel; outside there is none whatever the rate; a depth that jumps gives no spike beyond the
 // rate's bound.
+// The headline names the most severe of the vessels' level and the margin's, with its cause, in
+// words: a violated margin beside a safe tip is what the screen says first.
+TEST(FrameHeadline, TheMostSevereOfVesselAndMarginWithItsCause)
+{
+  vp::TrackedFrame frame;
+  frame.Proximity.Classes.resize(2);
+  frame.Proximity.Classes[0].ClassName = "portal_vein";
+  frame.Proximity.Classes[0].InRange = true;
+  frame.Proximity.Classes[0].DistanceMm = 15.5;
+  frame.Proximity.Classes[1].ClassName = "hepatic_vein";
+  EXPECT_EQ(vp::FrameHeadline(frame), "SAFE");
+  frame.Surface.resize(2);
+  frame.Penetrations.resize(2);
+  frame.Surface[0].InRange = true;
+  frame.Penetrations[0].DepthMm = 1.04;
+  frame.Penetrations[0].VolumeMm3 = 3.7;
+  frame.Level = vp::DangerLevel::Breach;
+  frame.LevelClass = 0;
+  frame.LevelCause = vp::DangerCause::Instrument;
+  EXPECT_EQ(vp::FrameHeadline(frame), "BREACH: instrument 1.0 mm into the portal vein");
+  frame.Level = vp::DangerLevel::Caution;
+  frame.LevelCause = vp::DangerCause::Tip;
+  frame.Proximity.Classes[0].DistanceMm = 8.04;
+  EXPECT_EQ(vp::FrameHeadline(frame), "CAUTION: tip 8.0 mm from the portal vein");
+  frame.Tumour.emplace();
+  frame.Tumour->Tumours.resize(1);
+  frame.Tumour->Tumours[0].Id = "03";
+  frame.Tumour->Tumours[0].SignedMm = 1.72;
+  frame.Tumour->Worst = 0;
+  frame.Tumour->Level = vp::MarginLevel::Violated;
+  EXPECT_EQ(vp::FrameHeadline(frame), "MARGIN VIOLATED: tumour 03, 1.7 mm") << "violated outranks caution";
+  frame.Level = vp::DangerLevel::Danger;
+  EXPECT_EQ(vp::FrameHeadline(frame), "DANGER: tip 8.0 mm from the portal vein") << "a tie goes to the vessels";
+  frame.Tumour->Tumours[0].SignedMm = -2.1;
+  frame.Tumour->Level = vp::MarginLevel::Inside;
+  EXPECT_EQ(vp::FrameHeadline(frame), "INSIDE TUMOUR: tumour 03, 2.1 mm in");
+  EXPECT_EQ(vp::DescribeDanger(frame), "DANGER: tip 8.0 mm from the portal vein");
+}
+
 TEST(HapticForce, KelvinVoigtOnASteadyPushNoneOutsideAndNoSpike)
 {
   vp::HapticSettings settings;

@@ -132,52 +132,61 @@ void vtkProximityReadoutRepresentation::SetEngine(const std::string& methodName)
   this->Modified();
 }
 
-void vtkProximityReadoutRepresentation::ShowFrame(const vp::ProximityResult& proximity,
-  const std::vector<vp::DangerLevel>& classLevels, vp::DangerLevel overall, const std::vector<vp::SurfaceProximity>& surface,
-  const std::vector<vp::Penetration>& penetrations, const vp::ProximityResult* exact)
+void vtkProximityReadoutRepresentation::ShowFrame(
+  const vp::TrackedFrame& frame, const std::string& headline, const vp::ProximityResult* exact)
 {
   // Three engines' numbers read alike unless the screen says whose they are and how sure.
+  const vp::ProximityResult& proximity = frame.Proximity;
   const double bound = proximity.ErrorBoundMm;
-  char headline[128];
-  std::snprintf(headline, sizeof(headline), bound > 0 ? "%-8s %s engine, within %.2f mm" : "%-8s %s engine",
-    Upper(vp::DangerLevelName(overall)).c_str(), this->EngineName == "zbuffer" ? "z-buffer" : this->EngineName.c_str(), bound);
-  this->SetLine(0, this->EngineName.empty() ? Upper(vp::DangerLevelName(overall)) : std::string(headline));
+  const std::string engine = this->EngineName == "zbuffer" ? "z-buffer" : this->EngineName;
+  char headlineText[192];
+  std::snprintf(headlineText, sizeof(headlineText), bound > 0 ? "%-8s | %s engine%s, within %.2f mm" : "%-8s | %s engine%s",
+    headline.c_str(), engine.c_str(), exact ? " sets the level" : "", bound);
+  this->SetLine(0, this->EngineName.empty() ? headline : std::string(headlineText));
   for (std::size_t c = 0; c < this->ClassNames.size() && c < proximity.Classes.size(); ++c)
   {
-    const vp::ClassProximity& p = proximity.Classes[c];
-    char text[160];
-    const std::string name = Readable(this->ClassNames[c]);
-    if (!p.InRange)
-    {
-      std::snprintf(text, sizeof(text), "%-15s    out of range", name.c_str());
-    }
-    else
-    {
-      const bool inside = p.Inside && *p.Inside;
-      std::snprintf(text, sizeof(text), "%-15s %9s mm%s  %s", name.c_str(), vp::DistanceText(p.DistanceMm, bound).c_str(),
-        inside ? " inside" : "",
-        c < classLevels.size() ? vp::DangerLevelName(classLevels[c]) : "");
-      if (exact && c < exact->Classes.size() && exact->Classes[c].InRange)
-      {
-        const vp::ClassProximity& e = exact->Classes[c];
-        char exactText[64];
-        std::snprintf(exactText, sizeof(exactText), "  (exact %.1f%s)", e.DistanceMm, e.Inside && *e.Inside ? " inside" : "");
-        std::strncat(text, exactText, sizeof(text) - std::strlen(text) - 1);
-      }
-    }
-    std::string line = text;
-    if (c < penetrations.size() && penetrations[c].Known && penetrations[c].VolumeMm3 > 0.0)
-    {
-      std::snprintf(text, sizeof(text), "  | tool %.1f mm in, %.1f mm^3", penetrations[c].DepthMm, penetrations[c].VolumeMm3);
-      line += text;
-    }
-    else if (c < surface.size() && surface[c].InRange)
-    {
-      std::snprintf(text, sizeof(text), "  | tool %.1f mm", surface[c].DistanceMm);
-      line += text;
-    }
-    this->SetLine(static_cast<int>(c) + 1, line);
+    this->SetLine(static_cast<int>(c) + 1, this->ClassLine(frame, c, exact));
   }
+}
+
+std::string vtkProximityReadoutRepresentation::ClassLine(
+  const vp::TrackedFrame& frame, std::size_t c, const vp::ProximityResult* exact) const
+{
+  const vp::ClassProximity& p = frame.Proximity.Classes[c];
+  const double bound = frame.Proximity.ErrorBoundMm;
+  char text[160];
+  const std::string name = Readable(this->ClassNames[c]);
+  if (!p.InRange)
+  {
+    std::snprintf(text, sizeof(text), "%-15s    out of range", name.c_str());
+  }
+  else
+  {
+    const bool inside = p.Inside && *p.Inside;
+    std::snprintf(text, sizeof(text), "%-15s %9s mm%s  %s", name.c_str(), vp::DistanceText(p.DistanceMm, bound).c_str(),
+      inside ? " inside" : "", c < frame.ClassLevels.size() ? vp::DangerLevelName(frame.ClassLevels[c]) : "");
+    if (exact && c < exact->Classes.size() && exact->Classes[c].InRange)
+    {
+      const vp::ClassProximity& e = exact->Classes[c];
+      char exactText[64];
+      std::snprintf(exactText, sizeof(exactText), "  (exact %.1f%s)", e.DistanceMm, e.Inside && *e.Inside ? " inside" : "");
+      std::strncat(text, exactText, sizeof(text) - std::strlen(text) - 1);
+    }
+  }
+  std::string line = text;
+  const char* level = c < frame.InstrumentClassLevels.size() ? vp::DangerLevelName(frame.InstrumentClassLevels[c]) : "";
+  const auto& penetrations = frame.Penetrations;
+  if (c < penetrations.size() && penetrations[c].Known && penetrations[c].VolumeMm3 > 0.0)
+  {
+    std::snprintf(text, sizeof(text), "  | tool %.1f mm in, %.1f mm^3  %s", penetrations[c].DepthMm, penetrations[c].VolumeMm3, level);
+    line += text;
+  }
+  else if (c < frame.Surface.size() && frame.Surface[c].InRange)
+  {
+    std::snprintf(text, sizeof(text), "  | tool %.1f mm  %s", frame.Surface[c].DistanceMm, level);
+    line += text;
+  }
+  return line;
 }
 
 void vtkProximityReadoutRepresentation::ShowMargin(const vp::TumourMargin* margin, double marginMm)

@@ -3,6 +3,7 @@
 
 #include "vpDangerLevels.h"
 #include "vpProximityResult.h"
+#include "vpTrackedFrame.h"
 #include "vpTumourProximity.h"
 
 #include <vtkObject.h>
@@ -34,15 +35,15 @@ public:
   /// beside the overall level with what its numbers are: exact, or within the frame's error
   /// bound, each class's distance then shown as the interval the truth lies in ("1.1-1.9 mm").
   void SetEngine(const std::string& methodName);
-  /// Shows a frame's answers: per class distance, inside and level; the overall level heads it.
-  /// With the whole instrument measured (surface and penetrations not empty), each class line also
-  /// gives the instrument's distance ("tool 2.6 mm") or, inside, its depth and volume ("tool 1.0 mm
-  /// in, 3.7 mm3").
+  /// Shows a frame's answers under headline (vp::FrameHeadline: the most severe of the vessels'
+  /// level and the margin's, with its cause): per class the tip's distance, inside and level and,
+  /// with the whole instrument measured, the instrument's distance ("tool 2.6 mm") or, inside, its
+  /// depth and volume ("tool 1.0 mm in, 3.7 mm3") with its own level, so that no level stands
+  /// beside a number it does not follow from.
   /// With exact (the exact engine's answer for the same pose, when it was computed beside an
-  /// approximate one), each class line gives the exact distance too ("exact 0.2").
-  void ShowFrame(const vp::ProximityResult& proximity, const std::vector<vp::DangerLevel>& classLevels,
-    vp::DangerLevel overall, const std::vector<vp::SurfaceProximity>& surface = {},
-    const std::vector<vp::Penetration>& penetrations = {}, const vp::ProximityResult* exact = nullptr);
+  /// approximate one), each class line gives the exact distance too ("exact 0.2"), and the
+  /// headline says that the approximate engine set the level.
+  void ShowFrame(const vp::TrackedFrame& frame, const std::string& headline, const vp::ProximityResult* exact = nullptr);
   /// A live stream gave no pose for sinceMs: the headline says TRACKING LOST and each class line
   /// loses its distance ("portal vein      -"), so that the last distance is never read as current.
   /// The next ShowFrame gives them back.
@@ -82,6 +83,8 @@ private:
   void operator=(const vtkProximityReadoutRepresentation&) = delete;
   void SetLine(int i, const std::string& text);
   void Place();
+  /// Class c's line: the tip's distance and level, and the instrument's with its own.
+  std::string ClassLine(const vp::TrackedFrame& frame, std::size_t c, const vp::ProximityResult* exact) const;
 };
 
 #endif

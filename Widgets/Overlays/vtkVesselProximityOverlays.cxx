@@ -1,5 +1,7 @@
 #include "vtkVesselProximityOverlays.h"
 
+#include "vpFrameHeadline.h"
+
 #include "vpDangerBands.h"
 #include "vtkClosestPointLineRepresentation.h"
 #include "vtkDistancePlotRepresentation.h"
@@ -159,8 +161,7 @@ void vtkVesselProximityOverlays::ShowFrame(const vp::TrackedFrame& frame)
   }
   // The exact answer beside an approximate one when the logic computed both for this pose.
   const bool both = this->Logic && this->Logic->GetCompareWithExact() && frame.Proximity.ErrorBoundMm > 0;
-  this->Readout->ShowFrame(frame.Proximity, frame.ClassLevels, frame.Level, frame.Surface, frame.Penetrations,
-    both ? &this->Logic->GetLastExactProximity() : nullptr);
+  this->Readout->ShowFrame(frame, vp::FrameHeadline(frame), both ? &this->Logic->GetLastExactProximity() : nullptr);
   this->Readout->ShowMargin(frame.Tumour ? &*frame.Tumour : nullptr,
     this->Logic ? this->Logic->GetTrackingLogic()->GetMarginSettings().MarginMm : vp::MarginSettings().MarginMm);
   this->Readout->ShowFrameTime(frame.FrameMs, frame.OverBudget,

@@ -51,8 +51,8 @@ std::vector<std::string> RenderKeyFrameShots(const ModuleServices& module, const
     char name[160];
     std::snprintf(name, sizeof(name), "/frame%04zu_%s.png", i, request.Keys[next].Name.c_str());
     files.push_back(view->SaveScreenshot(request.Folder + name));
-    char caption[200];
-    std::snprintf(caption, sizeof(caption), "frame %zu, %.2f s: %s", i, request.Poses[i].TimeS, request.Keys[next].Name.c_str());
+    char caption[400];
+    std::snprintf(caption, sizeof(caption), "%.2f s: %s", request.Poses[i].TimeS, request.Keys[next].Caption.c_str());
     sheet.push_back({ view->GetLastScreenshot(), caption });
     ++next;
   }

@@ -4,6 +4,7 @@
 #include "vpAnalyticShapes.h"
 #include "vpDangerLevels.h"
 #include "vpFrameHeadline.h"
+#include "vpKeyFrames.h"
 #include "vpHapticForce.h"
 #include "vpInputError.h"
 #include "vpRigidTransform.h"
@@ -406,6 +407,56 @@ TEST(FrameHeadline, TheMostSevereOfVesselAndMarginWithItsCause)
   frame.Tumour->Level = vp::MarginLevel::Inside;
   EXPECT_EQ(vp::FrameHeadline(frame), "INSIDE TUMOUR: tumour 03, 2.1 mm in");
   EXPECT_EQ(vp::DescribeDanger(frame), "DANGER: tip 8.0 mm from the portal vein");
+}
+
+// Key frames: captions in words; near frames at the same levels are one picture (at the closest
+// approach), a level change is never merged into another level's picture; a tumour's closest
+// approach, a margin change and the instrument's first contact each get theirs.
+TEST(KeyFrames, NearFramesAtOneLevelAreOnePictureCaptionedInWords)
+{
+  vp::KeyFrameFinder finder;
+  auto frame = [](double t, double tipMm, vp::DangerLevel level, double tumourMm, vp::MarginLevel margin, double surfaceMm) {
+    vp::TrackedFrame f;
+    f.TimeS = t;
+    f.Proximity.Classes.resize(1);
+    f.Proximity.Classes[0].ClassName = "portal_vein";
+    f.Proximity.Classes[0].InRange = true;
+    f.Proximity.Classes[0].DistanceMm = tipMm;
+    f.Surface.resize(1);
+    f.Surface[0].InRange = true;
+    f.Surface[0].DistanceMm = surfaceMm;
+    f.Level = level;
+    f.LevelClass = level == vp::DangerLevel::Safe ? -1 : 0;
+    f.LevelCause = level == vp::DangerLevel::Safe ? vp::DangerCause::None : vp::DangerCause::Tip;
+    f.Tumour.emplace();
+    f.Tumour->Tumours.resize(1);
+    f.Tumour->Tumours[0].Id = "03";
+    f.Tumour->Tumours[0].SignedMm = tumourMm;
+    f.Tumour->Worst = 0;
+    f.Tumour->Level = margin;
+    return f;
+  };
+  using D = vp::DangerLevel;
+  using M = vp::MarginLevel;
+  finder.AddFrame(frame(0.0, 12.0, D::Safe, 20.0, M::Clear, 11.0));
+  finder.AddFrame(frame(1.0, 4.0, D::Warning, 9.0, M::Near, 3.0));  // both levels change: two reasons, one pose
+  finder.AddFrame(frame(1.2, 1.5, D::Danger, 4.0, M::Violated, 0.5)); // both change again
+  finder.AddFrame(frame(1.3, 1.2, D::Danger, 3.0, M::Violated, 0.0)); // the closest of both, the first contact
+  finder.AddFrame(frame(3.0, 8.0, D::Caution, 12.0, M::Near, 6.0));
+  const std::vector<vp::KeyFrame> keys = finder.GetKeyFrames();
+  std::vector<std::string> names;
+  for (const vp::KeyFrame& k : keys)
+  {
+    names.push_back(k.Name);
+  }
+  EXPECT_EQ(names, (std::vector<std::string>{ "start", "warning_margin_near", "danger_margin_violated_contact_portal_vein_closest_portal_vein_closest_tumour_03",
+                     "caution_margin_near_end" }));
+  ASSERT_EQ(keys.size(), 4u);
+  EXPECT_EQ(keys[2].PoseIndex, 3u) << "0.1 s after the change, at the same levels: one picture, at the closest approach";
+  EXPECT_EQ(keys[2].Caption, "DANGER: tip 1.5 mm from the portal vein; MARGIN VIOLATED: tumour 03, 4.0 mm; the instrument's first "
+                             "contact with the portal vein; tip closest to the portal vein, 1.2 mm; tip closest to tumour 03, 3.0 mm");
+  EXPECT_EQ(keys[1].PoseIndex, 1u) << "a different level 0.2 s later is a picture of its own";
+  EXPECT_EQ(keys[0].Caption, "start, SAFE");
 }
 
 TEST(HapticForce, KelvinVoigtOnASteadyPushNoneOutsideAndNoSpike)

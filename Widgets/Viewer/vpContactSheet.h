@@ -18,7 +18,8 @@ struct ContactSheetEntry
 };
 
 /// A run's key frames on one page: each picture scaled to thumbWidthPx (aspect kept), in rows of
-/// columns, each captioned underneath, on a dark background. Returns the sheet (RGB).
+/// columns, each captioned underneath in up to three lines (wrapped at the thumbnail's width), on a
+/// dark background. Returns the sheet (RGB).
 vtkSmartPointer<vtkImageData> MakeContactSheet(
   const std::vector<ContactSheetEntry>& entries, int columns = 3, int thumbWidthPx = 420);
 } // namespace vp

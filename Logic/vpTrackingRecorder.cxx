@@ -95,7 +95,13 @@ bool TrackingRecorder::Run(PoseSource& poses, RunFolder& run)
     check.Add(frame);
     if (!plot)
     {
-      plot = std::make_unique<DistancePlotRecorder>(this->Summary.GetClassNames(), surface);
+      std::vector<std::string> tumours;
+      for (std::size_t t = 0; frame.Tumour && t < frame.Tumour->Tumours.size(); ++t)
+      {
+        tumours.push_back(frame.Tumour->Tumours[t].Id);
+      }
+      plot = std::make_unique<DistancePlotRecorder>(
+        this->Summary.GetClassNames(), surface, tumours, tracking->GetMarginSettings().MarginMm);
       framesCsv << FramesCsvHeader(this->Summary.GetClassNames(), surface, frame.Haptic.has_value(), frame.Tumour.has_value());
     }
     plot->Add(frame);

@@ -147,12 +147,6 @@ void DrawSegment(Canvas& canvas, double ax, double ay, double bx, double by, dou
   }
 }
 
-void DrawSegment(Canvas& canvas, double ax, double ay, double bx, double by, double halfWidth,
-  const Rgb& colour, const Rect& clip)
-{
-  DrawSegment(canvas, ax, ay, bx, by, halfWidth, [&](int, int) { return colour; }, clip);
-}
-
 /// A string rendered by FreeType (no render window needed), with its ink box in the image's
 /// own coordinates so it can be placed by any corner or centre.
 struct TextImage
@@ -299,7 +293,39 @@ struct LegendEntry
   TextImage Text;
   Rgb Colour;
   bool IsBand;
+  LineStyle Style = LineStyle::Solid;
 };
+
+/// Draws a polyline's segment from (ax, ay) to (bx, by) in its style: whole when solid, else
+/// only its pattern's "on" stretches; phase: how far along the pattern the segment starts (px),
+/// carried from one segment to the next so that the pattern runs on along the line.
+template <typename ColourAt>
+void DrawStyledSegment(Canvas& canvas, double ax, double ay, double bx, double by, double halfWidth, const ColourAt& colour,
+  const Rect& clip, LineStyle style, double& phase)
+{
+  if (style == LineStyle::Solid)
+  {
+    DrawSegment(canvas, ax, ay, bx, by, halfWidth, colour, clip);
+    return;
+  }
+  // The pattern along the axis; the round ends add a line width to each "on" stretch.
+  const double on = style == LineStyle::Dashed ? 10.0 : 1.0, off = style == LineStyle::Dashed ? 8.0 : 6.0;
+  const double length = std::hypot(bx - ax, by - ay);
+  double at = 0.0;
+  while (at < length)
+  {
+    const double inPattern = std::fmod(phase + at, on + off);
+    const double stretch = inPattern < on ? on - inPattern : on + off - inPattern;
+    const double end = std::min(length, at + stretch);
+    if (inPattern < on && length > 0.0)
+    {
+      const double t0 = at / length, t1 = end / length;
+      DrawSegment(canvas, ax + t0 * (bx - ax), ay + t0 * (by - ay), ax + t1 * (bx - ax), ay + t1 * (by - ay), halfWidth, colour, clip);
+    }
+    at = end;
+  }
+  phase += length;
+}
 
 void DrawLegend(Canvas& canvas, const std::vector<LegendEntry>& entries, int left, int top)
 {
@@ -316,7 +342,9 @@ void DrawLegend(Canvas& canvas, const std::vector<LegendEntry>& entries, int lef
     }
     else
     {
-      DrawSegment(canvas, left, middle, left + LegendSwatchPx - 1, middle, LineHalfWidthPx, entry.Colour, canvas.Whole());
+      double phase = 0.0;
+      DrawStyledSegment(canvas, left, middle, left + LegendSwatchPx - 1, middle, LineHalfWidthPx,
+        [&](int, int) { return entry.Colour; }, canvas.Whole(), entry.Style, phase);
     }
     DrawText(canvas, entry.Text, left + LegendSwatchPx + GapPx, middle, 0, 0.5);
     y -= rowHeight;
@@ -333,6 +361,7 @@ void DrawSeries(Canvas& canvas, const Canvas& bands, const std::vector<double>& 
   const auto line = [&](int, int) { return s.Colour; };
   for (const bool outline : { true, false })
   {
+    double phase = 0.0;
     for (std::size_t i = 0; i < timesS.size(); ++i)
     {
       if (!valid(i))
@@ -343,8 +372,8 @@ void DrawSeries(Canvas& canvas, const Canvas& bands, const std::vector<double>& 
       if (valid(i + 1))
       {
         const double bx = frame.XOf(timesS[i + 1]), by = frame.YOf(s.ValuesMm[i + 1]);
-        outline ? DrawSegment(canvas, x, y, bx, by, LineHalfWidthPx + RimPx, rim, clip)
-                : DrawSegment(canvas, x, y, bx, by, LineHalfWidthPx, line, clip);
+        outline ? DrawStyledSegment(canvas, x, y, bx, by, LineHalfWidthPx + RimPx, rim, clip, s.Style, phase)
+                : DrawStyledSegment(canvas, x, y, bx, by, LineHalfWidthPx, line, clip, s.Style, phase);
       }
       else if (i == 0 || !valid(i - 1))
       {
@@ -403,7 +432,7 @@ std::vector<LegendEntry> LegendEntries(const std::vector<PlotSeries>& series, co
   std::vector<LegendEntry> legend;
   for (const PlotSeries& s : series)
   {
-    legend.push_back({ RenderText(s.Name, 13), s.Colour, false });
+    legend.push_back({ RenderText(s.Name, 13), s.Colour, false, s.Style });
   }
   for (const PlotBand& b : bands)
   {

@@ -15,6 +15,15 @@ namespace vp
 {
 using Rgb = std::array<unsigned char, 3>;
 
+/// How a line is drawn: solid (the tip), dashed (the whole instrument), dotted (a reference
+/// level such as the resection margin), so that lines differ by more than their shade.
+enum class LineStyle
+{
+  Solid,
+  Dashed,
+  Dotted
+};
+
 struct PlotSeries
 {
   std::string Name;
@@ -25,6 +34,7 @@ struct PlotSeries
   /// Written beside the line's lowest value when that is below zero (the instrument's largest
   /// penetration volume); empty: nothing.
   std::string DeepestNote = {};
+  LineStyle Style = LineStyle::Solid;
 };
 
 /// A horizontal background band (a danger level), drawn under the lines. ToMm may be +infinity

@@ -3,6 +3,7 @@
 #include "vpDangerBands.h"
 #include "vpDistancePlot.h"
 #include "vpPlotValues.h"
+#include "vpInputError.h"
 
 #include <algorithm>
 #include <limits>
@@ -32,9 +33,12 @@ void DistancePlotRecorder::Append(Bucket& into, const Bucket& later)
   }
 }
 
-DistancePlotRecorder::DistancePlotRecorder(const std::vector<std::string>& classes, bool surface)
+DistancePlotRecorder::DistancePlotRecorder(
+  const std::vector<std::string>& classes, bool surface, const std::vector<std::string>& tumours, double marginMm)
   : Classes(classes)
   , Surface(surface)
+  , Tumours(tumours)
+  , MarginMm(marginMm)
   , LargestVolumeMm3(classes.size(), 0.0)
 {
 }
@@ -43,7 +47,7 @@ void DistancePlotRecorder::AddLost(double timeS)
 {
   const double none = std::numeric_limits<double>::quiet_NaN();
   Bucket one{ timeS, timeS, 1, {} };
-  one.Lines.assign(this->Classes.size() * (this->Surface ? 2 : 1), Extreme{ none, none, timeS, timeS });
+  one.Lines.assign(this->Classes.size() * (this->Surface ? 2 : 1) + this->Tumours.size(), Extreme{ none, none, timeS, timeS });
   this->AddBucket(std::move(one));
 }
 
@@ -62,6 +66,12 @@ void DistancePlotRecorder::Add(const TrackedFrame& frame)
       one.Lines.push_back({ instrument, instrument, t, t });
       this->LargestVolumeMm3[c] = std::max(this->LargestVolumeMm3[c], InstrumentVolumeMm3(frame, c));
     }
+  }
+  for (std::size_t k = 0; k < this->Tumours.size(); ++k)
+  {
+    const bool known = frame.Tumour && k < frame.Tumour->Tumours.size();
+    const double signedMm = known ? frame.Tumour->Tumours[k].SignedMm : std::numeric_limits<double>::quiet_NaN();
+    one.Lines.push_back({ signedMm, signedMm, t, t });
   }
   this->AddBucket(std::move(one));
 }
@@ -102,9 +112,13 @@ void DistancePlotRecorder::Samples(std::vector<double>& times, std::vector<PlotS
     series.push_back({ this->Classes[c] + " (tip)", colour, {} });
     if (this->Surface)
     {
-      series.push_back(
-        { this->Classes[c] + " (instrument)", InstrumentColour(colour), {}, InstrumentVolumeNote(this->LargestVolumeMm3[c]) });
+      series.push_back({ this->Classes[c] + " (instrument)", InstrumentColour(colour), {},
+        InstrumentVolumeNote(this->LargestVolumeMm3[c]), LineStyle::Dashed });
     }
+  }
+  for (const std::string& id : this->Tumours)
+  {
+    series.push_back({ "tumour " + id + " (tip)", TumourDisplayColour, {} });
   }
   for (const Bucket& b : this->Buckets)
   {
@@ -126,6 +140,11 @@ void DistancePlotRecorder::Samples(std::vector<double>& times, std::vector<PlotS
       series[k].ValuesMm.push_back(lowFirst ? e.HighMm : e.LowMm);
     }
   }
+  if (!this->Tumours.empty())
+  {
+    series.push_back({ "margin (" + FixedText(this->MarginMm, "%g") + " mm)", TumourDisplayColour,
+      std::vector<double>(times.size(), this->MarginMm), {}, LineStyle::Dotted });
+  }
 }
 
 void DistancePlotRecorder::Write(const std::string& fileName, const DangerThresholds& thresholds) const
@@ -135,8 +154,9 @@ void DistancePlotRecorder::Write(const std::string& fileName, const DangerThresh
   this->Samples(times, series);
   const std::vector<PlotBand> bands = DangerBands(thresholds, LowestValueMm(series) < 0);
   DistancePlotOptions options;
-  options.Title = this->Surface ? "Tip and instrument distance to each vessel class over time (inside: below 0)"
-                                : "Tip distance to each vessel class over time (inside: below 0)";
+  options.Title = std::string(this->Surface ? "Tip (solid) and instrument (dashed) distance to each vessel class"
+                                             : "Tip distance to each vessel class") +
+    (this->Tumours.empty() ? "" : " and tumour") + " over time (inside: below 0)";
   WriteDistancePlotPng(fileName, times, series, bands, options);
 }
 } // namespace vp

@@ -14,7 +14,8 @@ namespace vp
 /// distance.png of a tracking run, recorded frame by frame in memory that does not grow with
 /// the run: per class the tip's plot value and, with the whole surface, the instrument's
 /// (vp::TipPlotValueMm, InstrumentPlotValueMm), the instrument's largest penetration volume
-/// written at its deepest point (vp::InstrumentVolumeNote).
+/// written at its deepest point (vp::InstrumentVolumeNote), and with tumours the tip's signed
+/// distance to each beside the resection margin.
 ///
 /// Up to MaximumBuckets frames each frame is kept, and the plot is the frames' own. Past that,
 /// neighbouring buckets of frames merge in pairs (a bucket then spans 2, 4, ... frames), and each
@@ -27,12 +28,16 @@ class DistancePlotRecorder
 public:
   static constexpr std::size_t MaximumBuckets = 4096;
 
-  DistancePlotRecorder(const std::vector<std::string>& classes, bool surface);
+  /// tumours: the ids of the tumours whose margin is kept (each gets the tip's signed distance to
+  /// it as a line, and the margin, marginMm, a dotted line of its own); empty: none.
+  DistancePlotRecorder(const std::vector<std::string>& classes, bool surface, const std::vector<std::string>& tumours = {},
+    double marginMm = 0.0);
   void Add(const TrackedFrame& frame);
   /// A time the tracker lost the tool: no value on any line, so the plot shows a gap there.
   void AddLost(double timeS);
-  /// What the plot draws: the times and, per line (per class the tip's, then with the surface
-  /// the instrument's), a value at each.
+  /// What the plot draws: the times and, per line (per class the tip's, solid, then with the
+  /// surface the instrument's, dashed; per tumour the tip's signed distance, then the margin,
+  /// dotted), a value at each.
   void Samples(std::vector<double>& timesS, std::vector<PlotSeries>& series) const;
   /// Writes the PNG: the recorded lines over the danger bands of thresholds, the axis up to the
   /// data's largest value (never below the caution threshold).
@@ -58,6 +63,8 @@ private:
   static void Append(Bucket& into, const Bucket& later);
   std::vector<std::string> Classes;
   bool Surface;
+  std::vector<std::string> Tumours;
+  double MarginMm;
   std::size_t Width = 1;
   std::vector<Bucket> Buckets;
   std::vector<double> LargestVolumeMm3; ///< per class, over the run (the instrument line's note)

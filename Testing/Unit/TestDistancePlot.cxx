@@ -20,6 +20,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <functional>
+#include <tuple>
 
 namespace
 {
@@ -492,6 +493,64 @@ TEST(DistancePlotRecorder, ALostPoseIsAGapOnEveryLine)
   EXPECT_TRUE(std::isnan(series[0].ValuesMm[1])) << "a gap, not a value carried over";
   EXPECT_FALSE(std::isnan(series[0].ValuesMm[0]));
   EXPECT_FALSE(std::isnan(series[0].ValuesMm[2]));
+}
+
+// distance.png tells the instrument from the tip by its dashes, and with tumours carries the tip's
+// signed distance to each and the margin, dotted.
+TEST(DistancePlotRecorder, TheInstrumentIsDashedAndATumourHasItsLineAndItsMargin)
+{
+  vp::DistancePlotRecorder recorder({ "portal_vein" }, true, { "03" }, 5.0);
+  for (int k = 0; k < 3; ++k)
+  {
+    vp::TrackedFrame f;
+    f.TimeS = 0.1 * k;
+    vp::ClassProximity c;
+    c.ClassName = "portal_vein";
+    c.InRange = true;
+    c.DistanceMm = 12.0 - k;
+    f.Proximity.Classes.push_back(c);
+    f.Surface.resize(1);
+    f.Surface[0].InRange = true;
+    f.Surface[0].DistanceMm = 9.0 - k;
+    f.Tumour.emplace();
+    f.Tumour->Tumours.resize(1);
+    f.Tumour->Tumours[0].Id = "03";
+    f.Tumour->Tumours[0].SignedMm = 2.0 - 2.0 * k; // into the tumour by the last frame
+    recorder.Add(f);
+  }
+  std::vector<double> times;
+  std::vector<vp::PlotSeries> series;
+  recorder.Samples(times, series);
+  ASSERT_EQ(series.size(), 4u);
+  EXPECT_EQ(series[0].Name, "portal_vein (tip)");
+  EXPECT_EQ(series[0].Style, vp::LineStyle::Solid);
+  EXPECT_EQ(series[1].Name, "portal_vein (instrument)");
+  EXPECT_EQ(series[1].Style, vp::LineStyle::Dashed);
+  EXPECT_EQ(series[2].Name, "tumour 03 (tip)");
+  EXPECT_EQ(series[2].ValuesMm, (std::vector<double>{ 2.0, 0.0, -2.0 }));
+  EXPECT_EQ(series[3].Name, "margin (5 mm)");
+  EXPECT_EQ(series[3].Style, vp::LineStyle::Dotted);
+  EXPECT_EQ(series[3].ValuesMm, (std::vector<double>{ 5.0, 5.0, 5.0 }));
+}
+
+// A dashed line is drawn on about 70 % of its length (10 px on, 8 off, each dash's round ends a
+// line's width more), a dotted one on about half (dots of 4 px, 3 apart), a solid one all along.
+TEST(DistancePlot, DashedAndDottedLinesLeaveGaps)
+{
+  const std::vector<double> times = { 0.0, 10.0 };
+  for (const auto& [style, low, high] : { std::tuple<vp::LineStyle, double, double>{ vp::LineStyle::Solid, 0.98, 1.0 },
+         { vp::LineStyle::Dashed, 0.6, 0.8 }, { vp::LineStyle::Dotted, 0.4, 0.65 } })
+  {
+    vp::PlotSeries s{ "level", Red, { 4.0, 4.0 } };
+    s.Style = style;
+    vp::DistancePlotFrame frame;
+    const auto image = vp::RenderDistancePlot(times, { s }, DangerBands(), Options(), &frame);
+    const int y = Round(frame.YOf(4.0));
+    const int x0 = frame.LeftPx + 4, x1 = frame.RightPx - 4;
+    const double share = Count(image, x0, y, x1, y, IsReddish) / static_cast<double>(x1 - x0 + 1);
+    EXPECT_GE(share, low) << static_cast<int>(style);
+    EXPECT_LE(share, high) << static_cast<int>(style);
+  }
 }
 
 // An inset that must show its whole legend grows as far as the legend needs; without the option

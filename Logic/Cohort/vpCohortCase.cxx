@@ -174,6 +174,10 @@ CohortCaseResult RunCohortCase(const CohortCase& c, const std::string& folder, c
         if (k < s.GetPenetrationMaximum().size() && s.GetPenetrationMaximum()[k].Known)
         {
           row.PenetrationMaxMm3 = s.GetPenetrationMaximum()[k].VolumeMm3;
+          if (s.GetPenetrationMaximum()[k].DepthFrame >= 0)
+          {
+            row.PenetrationDepthMaxMm = s.GetPenetrationMaximum()[k].DepthMm;
+          }
         }
         row.BreachFrames = s.GetFramesInBreach()[k];
       }
@@ -215,7 +219,7 @@ CohortCaseResult RunCohortCase(const CohortCase& c, const std::string& folder, c
     {
       classes.push_back({ { "class", row.ClassName }, { "tip_min_mm", OptionalJson(row.TipMinMm) },
         { "surface_min_mm", OptionalJson(row.SurfaceMinMm) }, { "penetration_max_mm3", OptionalJson(row.PenetrationMaxMm3) },
-        { "breach_frames", row.BreachFrames } });
+        { "breach_frames", row.BreachFrames }, { "penetration_depth_max_mm", OptionalJson(row.PenetrationDepthMaxMm) } });
     }
     const Json record = { { "case", c.Name }, { "inputs", CohortCaseInputsJson(c) }, { "classes", classes },
       { "margin_min_mm", OptionalJson(result.MarginMinMm) }, { "frames", result.Frames }, { "tips", result.Tips },
@@ -260,7 +264,8 @@ std::optional<CohortCaseResult> CompletedCohortCase(const CohortCase& c, const s
     for (const auto& row : record.at("classes"))
     {
       result.Classes.push_back({ row.at("class").get<std::string>(), OptionalOf(row.at("tip_min_mm")),
-        OptionalOf(row.at("surface_min_mm")), OptionalOf(row.at("penetration_max_mm3")), row.at("breach_frames").get<int>() });
+        OptionalOf(row.at("surface_min_mm")), OptionalOf(row.at("penetration_max_mm3")), row.at("breach_frames").get<int>(),
+        OptionalOf(row.at("penetration_depth_max_mm")) });
     }
     result.MarginMinMm = OptionalOf(record.at("margin_min_mm"));
     result.Frames = record.at("frames").get<int>();

@@ -19,8 +19,9 @@ namespace vp
 {
 /// What a cohort keeps of one vessel class of one case (cohort.csv's columns): the tip's closest
 /// approach over the tracked frames and the tips (signed: negative inside), the whole
-/// instrument's, its largest penetration volume, and the frames at the breach level. Empty where
-/// nothing measured it (no poses, no tips, no instrument).
+/// instrument's, its largest penetration volume and depth, and the frames at the breach level (the
+/// tip's or the whole instrument's). Empty where nothing measured it (no poses, no tips, no
+/// instrument).
 struct CohortClassRow
 {
   std::string ClassName;
@@ -28,6 +29,8 @@ struct CohortClassRow
   std::optional<double> SurfaceMinMm;
   std::optional<double> PenetrationMaxMm3;
   int BreachFrames = 0;
+  /// The instrument's deepest penetration (mm; empty when it never went in or was not measured).
+  std::optional<double> PenetrationDepthMaxMm = {};
 };
 
 /// One case's outcome: its rows, or the one-line error that stopped it.

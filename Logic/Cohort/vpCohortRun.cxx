@@ -4,6 +4,8 @@
 #include "vpDangerBands.h"
 #include "vpDecimal.h"
 #include "vpDistancePlot.h"
+#include "vpPlotValues.h"
+#include "vpVesselLabelTable.h"
 #include "vpInputError.h"
 #include "vpOutputFile.h"
 #include "vpRunFolder.h"
@@ -59,9 +61,45 @@ void CohortRequest::Validate() const
   }
 }
 
+namespace
+{
+/// The vessel classes a cohort reports on: the label table's (but the liver, which no tip is
+/// measured against), then any other class a case had, in the order met.
+std::vector<std::string> CohortClasses(const std::vector<CohortCaseResult>& results)
+{
+  std::vector<std::string> classes;
+  const VesselLabelTable table = VesselLabelTable::Default();
+  for (const std::string& c : table.Classes())
+  {
+    if (c != "liver")
+    {
+      classes.push_back(c);
+    }
+  }
+  for (const CohortCaseResult& r : results)
+  {
+    for (const CohortClassRow& row : r.Classes)
+    {
+      if (std::find(classes.begin(), classes.end(), row.ClassName) == classes.end())
+      {
+        classes.push_back(row.ClassName);
+      }
+    }
+  }
+  return classes;
+}
+
+const CohortClassRow* RowOf(const CohortCaseResult& r, const std::string& className)
+{
+  const auto it = std::find_if(r.Classes.begin(), r.Classes.end(), [&](const CohortClassRow& row) { return row.ClassName == className; });
+  return it == r.Classes.end() ? nullptr : &*it;
+}
+} // namespace
+
 std::string CohortCsv(const std::vector<CohortCaseResult>& results)
 {
   std::string csv = "case,class,tip_min_mm,surface_min_mm,penetration_max_mm3,breach_frames,margin_min_mm,error\n";
+  const std::vector<std::string> classes = CohortClasses(results);
   for (const CohortCaseResult& r : results)
   {
     if (!r.Error.empty() || r.Classes.empty())
@@ -69,39 +107,86 @@ std::string CohortCsv(const std::vector<CohortCaseResult>& results)
       csv += r.Case + ",,,,,,," + CsvCell(r.Error.empty() ? std::string("no vessel class") : r.Error) + "\n";
       continue;
     }
-    for (const CohortClassRow& row : r.Classes)
+    for (const std::string& name : classes)
     {
-      csv += r.Case + "," + row.ClassName + "," + Number(row.TipMinMm) + "," + Number(row.SurfaceMinMm) + "," +
-        Number(row.PenetrationMaxMm3) + "," + std::to_string(row.BreachFrames) + "," + Number(r.MarginMinMm) + ",\n";
+      const CohortClassRow* row = RowOf(r, name);
+      if (!row)
+      {
+        // A row all the same, so that a patient without an artery reads as one, not as a gap.
+        csv += r.Case + "," + name + ",,,,,," + CsvCell("no " + name + " in this case's segmentation") + "\n";
+        continue;
+      }
+      csv += r.Case + "," + row->ClassName + "," + Number(row->TipMinMm) + "," + Number(row->SurfaceMinMm) + "," +
+        Number(row->PenetrationMaxMm3) + "," + std::to_string(row->BreachFrames) + "," + Number(r.MarginMinMm) + ",\n";
     }
   }
   return csv;
 }
 
+namespace
+{
+/// A series over the cases, NaN (no point) where a case has no value.
+PlotSeries CaseSeries(const std::string& name, const Rgb& colour, std::size_t cases, LineStyle style)
+{
+  PlotSeries s{ name, colour, std::vector<double>(cases, std::numeric_limits<double>::quiet_NaN()) };
+  s.Style = style;
+  return s;
+}
+} // namespace
+
 void WriteCohortPlot(const std::vector<CohortCaseResult>& results, const std::string& fileName)
 {
+  const double none = std::numeric_limits<double>::quiet_NaN();
   std::vector<double> cases;
   std::vector<PlotSeries> series;
+  DistancePlotOptions options;
+  const std::vector<std::string> classes = CohortClasses(results);
+  double largestVolumeMm3 = 0.0;
+  for (std::size_t c = 0; c < classes.size(); ++c)
+  {
+    const Rgb colour = ClassDisplayColour(classes[c], static_cast<int>(c));
+    PlotSeries tip = CaseSeries(classes[c] + " (tip)", colour, results.size(), LineStyle::Solid);
+    PlotSeries instrument = CaseSeries(classes[c] + " (instrument)", InstrumentColour(colour), results.size(), LineStyle::Dashed);
+    bool any = false;
+    for (std::size_t i = 0; i < results.size(); ++i)
+    {
+      const CohortClassRow* row = RowOf(results[i], classes[c]);
+      tip.ValuesMm[i] = row ? row->TipMinMm.value_or(none) : none;
+      // As in distance.png: below zero, the instrument's depth inside.
+      instrument.ValuesMm[i] = !row ? none : row->PenetrationDepthMaxMm ? -*row->PenetrationDepthMaxMm : row->SurfaceMinMm.value_or(none);
+      largestVolumeMm3 = std::max(largestVolumeMm3, row ? row->PenetrationMaxMm3.value_or(0.0) : 0.0);
+      any = any || std::isfinite(tip.ValuesMm[i]) || std::isfinite(instrument.ValuesMm[i]);
+    }
+    if (!any)
+    {
+      tip.Name = classes[c] + ": in no case";
+    }
+    instrument.DeepestNote = InstrumentVolumeNote(largestVolumeMm3);
+    largestVolumeMm3 = 0.0;
+    series.push_back(std::move(tip));
+    if (any)
+    {
+      series.push_back(std::move(instrument));
+    }
+  }
+  PlotSeries margin = CaseSeries("tumour margin kept (tip)", TumourDisplayColour, results.size(), LineStyle::Dotted);
+  bool anyMargin = false;
   for (std::size_t i = 0; i < results.size(); ++i)
   {
     cases.push_back(static_cast<double>(i + 1));
-    for (const CohortClassRow& row : results[i].Classes)
-    {
-      auto it = std::find_if(series.begin(), series.end(), [&](const PlotSeries& s) { return s.Name == row.ClassName; });
-      if (it == series.end())
-      {
-        series.push_back({ row.ClassName, ClassDisplayColour(row.ClassName, static_cast<int>(series.size())),
-          std::vector<double>(results.size(), std::numeric_limits<double>::quiet_NaN()) });
-        it = series.end() - 1;
-      }
-      it->ValuesMm[i] = row.TipMinMm.value_or(std::numeric_limits<double>::quiet_NaN());
-    }
+    options.XTickLabels.push_back(results[i].Case + (results[i].Error.empty() ? "" : " (failed)"));
+    margin.ValuesMm[i] = results[i].MarginMinMm.value_or(none);
+    anyMargin = anyMargin || results[i].MarginMinMm.has_value();
   }
-  DistancePlotOptions options;
-  options.Title = "closest tip approach per case (" + std::to_string(results.size()) + " cases, cohort.csv order)";
-  options.XLabel = "case";
-  options.YLabel = "tip minimum (mm)";
-  options.WholeXTicks = true;
+  if (anyMargin)
+  {
+    series.push_back(std::move(margin));
+  }
+  options.Title = "closest approach per case: tip (solid), instrument (dashed, below 0: inside)" +
+    std::string(anyMargin ? ", tumour margin (dotted)" : "");
+  options.XLabel = "case (" + std::to_string(results.size()) + ", cohort.csv order)";
+  options.YLabel = "closest approach (mm)";
+  options.GrowToFitLegend = true;
   WriteDistancePlotPng(fileName, cases, series, DangerBands(DangerThresholds(), true), options);
 }
 

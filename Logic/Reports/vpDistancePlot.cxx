@@ -425,7 +425,26 @@ struct Layout
   TextImage Title, XLabel, YLabel;
   std::vector<TextImage> YTickTexts;
   std::vector<LegendEntry> Legend;
+  std::vector<std::string> XTickLabels;
 };
+
+/// Tick t's label: its number, or on a category axis its name shortened to maxWidthPx.
+TextImage XTickText(const Layout& layout, double t, double maxWidthPx)
+{
+  const auto k = static_cast<long>(std::lround(t)) - 1;
+  if (layout.XTickLabels.empty() || k < 0 || k >= static_cast<long>(layout.XTickLabels.size()))
+  {
+    return RenderText(TickLabel(t, layout.XStep), 12);
+  }
+  std::string label = layout.XTickLabels[static_cast<std::size_t>(k)];
+  TextImage text = RenderText(label, 12);
+  while (text.Width() > maxWidthPx && label.size() > 4)
+  {
+    label = label.substr(0, label.size() - (label.size() > 4 && label.compare(label.size() - 3, 3, "...") == 0 ? 4 : 1)) + "...";
+    text = RenderText(label, 12);
+  }
+  return text;
+}
 
 std::vector<LegendEntry> LegendEntries(const std::vector<PlotSeries>& series, const std::vector<PlotBand>& bands)
 {
@@ -491,11 +510,17 @@ Layout LayOut(const std::vector<double>& timesS, const std::vector<PlotSeries>& 
   f.LeftPx = GapPx + (layout.YLabel.Image ? layout.YLabel.Width() + GapPx : 0) + yTickWidth + GapPx + TickLengthPx;
   f.RightPx = std::max(f.LeftPx + 1, widthPx - 1 - GapPx - legendWidth - 2 * GapPx);
   std::tie(f.TimeMinS, f.TimeMaxS) = TimeRange(timesS);
+  if (!options.XTickLabels.empty())
+  {
+    f.TimeMinS = 0.5;
+    f.TimeMaxS = static_cast<double>(options.XTickLabels.size()) + 0.5;
+  }
   layout.XStep = NiceTickStep(f.TimeMaxS - f.TimeMinS, std::max(2, (f.RightPx - f.LeftPx) / 80));
-  if (options.WholeXTicks)
+  if (options.WholeXTicks || !options.XTickLabels.empty())
   {
     layout.XStep = std::max(1.0, layout.XStep); // counts (a cohort's cases) have no halves
   }
+  layout.XTickLabels = options.XTickLabels;
   layout.Plot = { f.LeftPx, f.BottomPx, f.RightPx, f.TopPx };
   return layout;
 }
@@ -529,11 +554,13 @@ void DrawAxes(Canvas& canvas, const Layout& layout)
     FillRect(canvas, { p.X0 - 1 - TickLengthPx, y, p.X0 - 2, y }, Frame);
     DrawText(canvas, layout.YTickTexts[i], p.X0 - 1 - TickLengthPx - GapPx / 2, y, 1, 0.5);
   }
-  for (double t : TickValues(layout.Frame.TimeMinS, layout.Frame.TimeMaxS, layout.XStep))
+  const double first = layout.XTickLabels.empty() ? layout.Frame.TimeMinS : 1.0;
+  const double room = layout.Frame.XOf(first + layout.XStep) - layout.Frame.XOf(first) - GapPx;
+  for (double t : TickValues(first, layout.Frame.TimeMaxS, layout.XStep))
   {
     const int x = static_cast<int>(std::lround(layout.Frame.XOf(t)));
     FillRect(canvas, { x, p.Y0 - 1 - TickLengthPx, x, p.Y0 - 2 }, Frame);
-    DrawText(canvas, RenderText(TickLabel(t, layout.XStep), 12), x, p.Y0 - 1 - TickLengthPx - GapPx / 2, 0.5, 1);
+    DrawText(canvas, XTickText(layout, t, room), x, p.Y0 - 1 - TickLengthPx - GapPx / 2, 0.5, 1);
   }
 }
 

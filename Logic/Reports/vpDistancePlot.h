@@ -72,6 +72,10 @@ struct DistancePlotOptions
   /// The x axis counts things (a cohort's cases, 1 to N): its ticks are whole numbers, 1 apart at
   /// the least. Default false: times, any nice step.
   bool WholeXTicks = false;
+  /// A category axis (a cohort's cases by name): label k sits at x = k + 1, the axis runs from 0.5
+  /// to N + 0.5 so that no point at either end is cut, and a label is shortened ("...") to the
+  /// room its tick has. Empty (default): numbers.
+  std::vector<std::string> XTickLabels;
 };
 
 /// Where the data went in the image: the plot area in vtkImageData pixel indices (row 0 at the

@@ -82,7 +82,7 @@ void KeyFrameFinder::AddExtremes(const TrackedFrame& frame, std::size_t pose)
     const auto it = this->Extremes.find(name);
     if (it == this->Extremes.end() || value < it->second.first)
     {
-      this->Extremes[name] = { value, this->At(frame, pose, name, caption, 2) };
+      this->Extremes[name] = { value, this->At(frame, pose, name, caption, 3) };
     }
   };
   for (std::size_t c = 0; c < frame.Proximity.Classes.size(); ++c)
@@ -149,7 +149,9 @@ std::vector<KeyFrame> KeyFrameFinder::GetKeyFrames() const
   {
     Key* previous = kept.empty() ? nullptr : &kept.back();
     const bool same = previous && !k.Lost && !previous->Lost && k.Level == previous->Level && k.Margin == previous->Margin;
-    if (previous && (previous->Pose == k.Pose || (same && k.TimeS - previous->TimeS < MinimumSpacingS)))
+    // Two extremes at different poses keep a picture each: each caption's number is its pose's.
+    const bool twoExtremes = previous && k.Rank == 3 && previous->Rank == 3;
+    if (previous && (previous->Pose == k.Pose || (same && !twoExtremes && k.TimeS - previous->TimeS < MinimumSpacingS)))
     {
       previous->Name += "_" + k.Name;
       previous->Caption += "; " + k.Caption;

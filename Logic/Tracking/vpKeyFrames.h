@@ -27,8 +27,9 @@ struct KeyFrame
 /// each tumour (inside counts as closer than any outside), the instrument's first contact with
 /// each class and its deepest penetration into it, and the first pose the tracker lost. Poses are
 /// counted in the order given, frames and lost poses together. Two key frames less than
-/// MinimumSpacingS apart at the same levels are one picture: at the closest, deepest or contact
-/// frame where one of them is such, else at the earlier, its reasons joined.
+/// MinimumSpacingS apart at the same levels are one picture, its reasons joined: at the closest or
+/// deepest frame where one of them is such (two such at different poses stay two pictures, each
+/// caption's number its own frame's), else at the contact, else at the earlier.
 class KeyFrameFinder
 {
 public:
@@ -51,7 +52,9 @@ public:
     DangerLevel Level = DangerLevel::Safe;
     int Margin = -1; ///< MarginLevel, -1 without tumours
     bool Lost = false;
-    int Rank = 0; ///< 2: a measurement's extreme (closest, deepest, contact), 1: a level change, 0: start, end
+    /// Where a merged picture is taken: 3 a measurement's extreme (closest, deepest: its caption
+    /// has its pose's number), 2 the instrument's first contact, 1 a level change, 0 start, end.
+    int Rank = 0;
   };
 
 private:

@@ -28,6 +28,8 @@
 #include <vtkActor.h>
 #include <vtkCamera.h>
 #include <vtkLineSource.h>
+#include <vtkActor2D.h>
+#include <vtkCoordinate.h>
 #include <vtkNew.h>
 #include <vtkPolyData.h>
 #include <vtkPropCollection.h>
@@ -653,6 +655,10 @@ TEST(Overlays, TheInsetPlotsLegendIsWholeAtAnyWindowSize)
     int dims[3];
     plot->GetImage()->GetDimensions(dims);
     EXPECT_LE(dims[0], size[0] * 13 / 20) << "the inset leaves the scene most of the window";
+    view->Render();
+    const int* corner = plot->GetActor()->GetPositionCoordinate()->GetComputedDisplayValue(view->GetRenderer());
+    EXPECT_GE(corner[0], 0) << size[0] << " x " << size[1];
+    EXPECT_LE(corner[0] + dims[0], size[0]) << "the inset's right edge within the window at " << size[0] << " x " << size[1];
   }
   std::filesystem::remove_all(tmp);
 }

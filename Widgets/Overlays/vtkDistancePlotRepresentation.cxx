@@ -124,7 +124,8 @@ void vtkDistancePlotRepresentation::Redraw()
       const auto& volumes = this->VolumesMm3[c];
       const double largest = volumes.empty() ? 0.0 : *std::max_element(volumes.begin(), volumes.end());
       series.push_back({ this->ClassNames[c] + " (instrument)", vp::InstrumentColour(colour),
-        { this->InstrumentValuesMm[c].begin(), this->InstrumentValuesMm[c].end() }, vp::InstrumentVolumeNote(largest) });
+        { this->InstrumentValuesMm[c].begin(), this->InstrumentValuesMm[c].end() }, vp::InstrumentVolumeNote(largest),
+        vp::LineStyle::Dashed });
     }
   }
   const std::vector<vp::PlotBand> bands = vp::DangerBands(this->Thresholds, vp::LowestValueMm(series) < 0);
@@ -140,7 +141,11 @@ void vtkDistancePlotRepresentation::Redraw()
   const std::vector<double> times(this->Times.begin(), this->Times.end());
   // Fixed below zero too: 5 mm under the wall, deeper in 5 mm steps only when something goes deeper.
   options.YMinStepMm = 5.0;
-  this->Mapper->SetInputData(vp::RenderDistancePlot(times, series, bands, options, &this->Frame));
+  vtkSmartPointer<vtkImageData> image = vp::RenderDistancePlot(times, series, bands, options, &this->Frame);
+  // Placed by the width it has: grown to its legend, it would otherwise run off the window's edge
+  // ("portal_vein (instrume" in every 1280 x 800 screenshot).
+  this->Actor->GetPositionCoordinate()->SetValue(-image->GetDimensions()[0] - 10, 10);
+  this->Mapper->SetInputData(image);
   ++this->Redraws;
   this->Stale = false;
 }
@@ -155,6 +160,11 @@ vtkImageData* vtkDistancePlotRepresentation::GetImage()
 {
   this->RedrawIfStale();
   return vtkImageData::SafeDownCast(this->Mapper->GetInput());
+}
+
+vtkActor2D* vtkDistancePlotRepresentation::GetActor() const
+{
+  return this->Actor;
 }
 
 void vtkDistancePlotRepresentation::AddToRenderer(vtkRenderer* renderer)

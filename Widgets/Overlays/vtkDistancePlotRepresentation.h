@@ -57,6 +57,8 @@ public:
 
   void AddToRenderer(vtkRenderer* renderer);
   void RemoveFromRenderer(vtkRenderer* renderer);
+  /// The image's actor, placed by its lower right corner 10 pixels in from the viewport's.
+  vtkActor2D* GetActor() const;
 
 protected:
   vtkDistancePlotRepresentation();

@@ -78,7 +78,8 @@ struct SurfaceProximity
   double DistanceMm = 0.0; ///< 0 when the surfaces touch or cross
   double PointOnToolMm[3] = { 0, 0, 0 };
   double PointOnVesselMm[3] = { 0, 0, 0 };
-  /// |DistanceMm - exact| is at most this; 0 for the exact calculators.
+  /// The truth lies between DistanceMm and DistanceMm plus this (an approximate answer is the low
+  /// end: it may overstate proximity, never understate it); 0 for the exact calculators.
   double ErrorBoundMm = 0.0;
   /// The closest pair's triangles (the calculator's own numbering; -1 when unknown): the next
   /// pose's search starts from them.

@@ -54,10 +54,10 @@ DangerLevel ClassifyDanger(const ClassProximity& proximity, double errorBoundMm,
 DangerLevel ClassifyDangerWithHysteresis(const ClassProximity& proximity, double errorBoundMm,
   const DangerThresholds& thresholds, DangerLevel previous, double hysteresisMm);
 /// The level of the whole instrument against one class, graded by the same thresholds as the tip:
-/// its surface distance less that answer's bound, any penetration a breach (and one that could
-/// not be decided, an open surface, a breach when the surfaces touch or cross), with
-/// ClassifyDangerWithHysteresis's rules for an approximate answer near the wall and on the way
-/// out. penetration: null when it was not computed.
+/// its surface distance as reported (an approximate one is already the low end of its interval:
+/// vp::SurfaceProximity::ErrorBoundMm), any penetration a breach (and one that could not be
+/// decided, an open surface, a breach when the surfaces touch or cross), with the hysteresis of
+/// ClassifyDangerWithHysteresis on the way out. penetration: null when it was not computed.
 DangerLevel ClassifyInstrumentWithHysteresis(const SurfaceProximity& surface, const Penetration* penetration,
   const DangerThresholds& thresholds, DangerLevel previous, double hysteresisMm);
 /// What set a frame's level: the tip, or the whole instrument where it is worse than the tip.

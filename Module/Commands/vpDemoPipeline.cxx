@@ -6,6 +6,7 @@
 #include "vpDefaultScalpel.h"
 #include "vpDemoTrajectory.h"
 #include "vpInputError.h"
+#include "vpKeyFrames.h"
 #include "vpLiverPhantom.h"
 #include "vpPoseFile.h"
 #include "vpIgtlLink.h"
@@ -62,36 +63,16 @@ private:
   double StartMs;
 };
 
-/// The frames worth a picture, as the exact engine sees them: the first, the first at each
-/// level on the way in, the closest approach to each vessel class, and the last.
-std::vector<std::pair<int, std::string>> KeyFrames(vtkVesselProximityLogic* logic, const std::vector<TrackedPose>& poses)
+SceneRequest DemoSceneRequest(const DemoReport& report, double frameBudgetMs);
+
+/// The frames worth a picture (vp::KeyFrameFinder), as the demo's tracking logic sees them.
+std::vector<KeyFrame> DemoKeyFrames(vtkVesselProximityLogic* logic, const std::vector<TrackedPose>& poses)
 {
-  std::map<int, std::string> keys{ { 0, "start" }, { static_cast<int>(poses.size()) - 1, "end" } };
-  std::set<DangerLevel> seen{ DangerLevel::Safe };
-  std::map<std::string, std::pair<double, int>> closest; // signed: inside is negative
+  KeyFrameFinder finder;
   TrackingSession session(logic);
   PoseListSource source(poses, "the demo trajectory");
-  session.Run(source, [&](const TrackedFrame& f) {
-    const std::size_t i = static_cast<std::size_t>(f.Frame);
-    if (seen.insert(f.Level).second)
-    {
-      keys.emplace(static_cast<int>(i), DangerLevelName(f.Level));
-    }
-    for (const ClassProximity& c : f.Proximity.Classes)
-    {
-      const double signedMm = c.Inside && *c.Inside ? -c.DistanceMm : c.DistanceMm;
-      auto it = closest.find(c.ClassName);
-      if (c.InRange && (it == closest.end() || signedMm < it->second.first))
-      {
-        closest[c.ClassName] = { signedMm, static_cast<int>(i) };
-      }
-    }
-  });
-  for (const auto& [name, entry] : closest)
-  {
-    keys.emplace(entry.second, "closest_" + name);
-  }
-  return { keys.begin(), keys.end() };
+  session.Run(source, [&](const TrackedFrame& f) { finder.AddFrame(f); });
+  return finder.GetKeyFrames();
 }
 
 void RenderKeyFrames(const ModuleServices& module, DemoReport& report, const std::vector<TrackedPose>& poses, const std::string& folder)
@@ -103,7 +84,10 @@ void RenderKeyFrames(const ModuleServices& module, DemoReport& report, const std
     std::cerr << "demo: no screenshots: " << report.ScreenshotProblem << "\n";
     return;
   }
-  vtkSmartPointer<vtkVesselProximityLogic> logic = MakeDemoTipLogic(module, report);
+  // The logic the track stage ran (the z-buffer checked by the exact engine, the whole
+  // instrument): the pictures say what the run found, and which engine set each level.
+  vtkSmartPointer<vtkVesselProximityLogic> logic = module.CreateLogic();
+  logic->OpenScene(DemoSceneRequest(report, 0.0));
   vtkNew<vtkVesselProximityView> view;
   view->SetOverlays(module.CreateWidgetRepresentation());
   view->SetOffScreen(true);
@@ -123,7 +107,7 @@ void RenderKeyFrames(const ModuleServices& module, DemoReport& report, const std
   view->SetPoses(poses);
 
   std::size_t next = 0;
-  const auto keys = KeyFrames(logic, poses);
+  const std::vector<KeyFrame> keys = DemoKeyFrames(logic, poses);
   view->ShowPose(0); // back to the start: a new session, the plot cleared
   for (int i = 0; i < static_cast<int>(poses.size()) && next < keys.size(); ++i)
   {
@@ -131,10 +115,10 @@ void RenderKeyFrames(const ModuleServices& module, DemoReport& report, const std
     {
       view->ShowPose(i);
     }
-    if (i == keys[next].first)
+    if (static_cast<std::size_t>(i) == keys[next].PoseIndex)
     {
-      char name[96];
-      std::snprintf(name, sizeof(name), "/frame%04d_%s.png", i, keys[next].second.c_str());
+      char name[200];
+      std::snprintf(name, sizeof(name), "/frame%04d_%s.png", i, keys[next].Name.c_str());
       view->SaveScreenshot(folder + name);
       double range[2];
       view->GetLastScreenshot()->GetScalarRange(range);
@@ -156,17 +140,24 @@ std::vector<NamedMesh> DemoVessels(const DemoReport& report)
   return vessels;
 }
 
-/// Both engines on every frame: the z-buffer engine answers, the exact engine checks; the exact
-/// engine alone without a Vulkan device.
-void TrackDemo(const ModuleServices& module, DemoReport& report, double frameBudgetMs, bool live, RunFolder& run)
+/// The demo's scene: the z-buffer engine answers, the exact engine checks every frame (the exact
+/// engine alone without a Vulkan device), the whole instrument measured.
+SceneRequest DemoSceneRequest(const DemoReport& report, double frameBudgetMs)
 {
   SceneRequest request;
   request.Vessels = DemoVessels(report);
   request.Engine.Method = "auto";
   request.CompareWithExact = true; // when the z-buffer answers
   request.Tracking.FrameBudgetMs = frameBudgetMs;
+  return request;
+}
+
+/// Both engines on every frame: the z-buffer engine answers, the exact engine checks; the exact
+/// engine alone without a Vulkan device.
+void TrackDemo(const ModuleServices& module, DemoReport& report, double frameBudgetMs, bool live, RunFolder& run)
+{
   vtkSmartPointer<vtkVesselProximityLogic> logic = module.CreateLogic();
-  const OpenedScene scene = logic->OpenScene(request);
+  const OpenedScene scene = logic->OpenScene(DemoSceneRequest(report, frameBudgetMs));
   report.Method = logic->GetCompareWithExact() ? "both" : "exact";
   if (!scene.EngineNote.empty())
   {

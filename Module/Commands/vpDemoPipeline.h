@@ -55,7 +55,7 @@ DemoReport RunDemoPipeline(const ModuleServices& module, const std::string& outD
   double frameBudgetMs = TrackingSettings().FrameBudgetMs, bool live = false);
 
 /// The module's logic over the demo's built vessel models and scalpel, with the exact engine and
-/// the tip only (the whole surface off): what the screenshots show and the self-test checks.
+/// the tip only (the whole surface off): the levels the self-test checks against the design's.
 vtkSmartPointer<vtkVesselProximityLogic> MakeDemoTipLogic(const ModuleServices& module, const DemoReport& report);
 
 /// The demo's terminal table: stage times, each class's closest approach, the level changes,

@@ -370,6 +370,37 @@ vp::TrackedFrame FrameInside(double t, double depthMm)
 // Kelvin-Voigt against its formula: on a steady push the force is k * depth + c * rate, out of the
 // vessel; outside there is none whatever the rate; a depth that jumps gives no spike beyond the
 // rate's bound.
+// The whole instrument is graded by the tip's thresholds: its distance as reported (an approximate
+// one is already the low end of its interval, so its bound is not taken off again), any
+// penetration a breach, an undecidable one a breach where the surfaces touch.
+TEST(DangerLevels, TheInstrumentIsGradedByItsDistanceAndAnyPenetration)
+{
+  const vp::DangerThresholds t;
+  vp::SurfaceProximity s;
+  s.InRange = true;
+  s.DistanceMm = 2.9;
+  s.ErrorBoundMm = 1.5; // the truth is 2.9 to 4.4 mm: a warning, not a breach
+  vp::Penetration none;
+  EXPECT_EQ(vp::ClassifyInstrumentWithHysteresis(s, &none, t, vp::DangerLevel::Safe, 0.0), vp::DangerLevel::Warning);
+  s.DistanceMm = 1.0;
+  EXPECT_EQ(vp::ClassifyInstrumentWithHysteresis(s, &none, t, vp::DangerLevel::Safe, 0.0), vp::DangerLevel::Danger);
+  s.DistanceMm = 0.0;
+  EXPECT_EQ(vp::ClassifyInstrumentWithHysteresis(s, &none, t, vp::DangerLevel::Safe, 0.0), vp::DangerLevel::Danger) << "touching";
+  vp::Penetration in;
+  in.DepthMm = 0.3;
+  EXPECT_EQ(vp::ClassifyInstrumentWithHysteresis(s, &in, t, vp::DangerLevel::Safe, 0.0), vp::DangerLevel::Breach);
+  vp::Penetration unknown;
+  unknown.Known = false;
+  EXPECT_EQ(vp::ClassifyInstrumentWithHysteresis(s, &unknown, t, vp::DangerLevel::Safe, 0.0), vp::DangerLevel::Breach)
+    << "touching an open surface: inside cannot be ruled out";
+  s.DistanceMm = 12.0;
+  EXPECT_EQ(vp::ClassifyInstrumentWithHysteresis(s, &unknown, t, vp::DangerLevel::Safe, 0.0), vp::DangerLevel::Safe);
+  EXPECT_EQ(vp::ClassifyInstrumentWithHysteresis(s, nullptr, t, vp::DangerLevel::Safe, 0.0), vp::DangerLevel::Safe);
+  // Hysteresis on the way out, as for the tip: 10.2 mm after a caution stays a caution.
+  s.DistanceMm = 10.2;
+  EXPECT_EQ(vp::ClassifyInstrumentWithHysteresis(s, &none, t, vp::DangerLevel::Caution, 0.3), vp::DangerLevel::Caution);
+}
+
 // The headline names the most severe of the vessels' level and the margin's, with its cause, in
 // words: a violated margin beside a safe tip is what the screen says first.
 TEST(FrameHeadline, TheMostSevereOfVesselAndMarginWithItsCause)

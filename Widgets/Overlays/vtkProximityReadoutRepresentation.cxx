@@ -176,9 +176,18 @@ std::string vtkProximityReadoutRepresentation::ClassLine(
   std::string line = text;
   const char* level = c < frame.InstrumentClassLevels.size() ? vp::DangerLevelName(frame.InstrumentClassLevels[c]) : "";
   const auto& penetrations = frame.Penetrations;
-  if (c < penetrations.size() && penetrations[c].Known && penetrations[c].VolumeMm3 > 0.0)
+  // Inside as the level takes it (any depth or volume); a volume that rounds to nothing is not
+  // printed beside a depth ("1.3 mm in, 0.0 mm^3" read as a contradiction).
+  if (c < penetrations.size() && penetrations[c].Known && (penetrations[c].VolumeMm3 > 0.0 || penetrations[c].DepthMm > 0.0))
   {
-    std::snprintf(text, sizeof(text), "  | tool %.1f mm in, %.1f mm^3  %s", penetrations[c].DepthMm, penetrations[c].VolumeMm3, level);
+    if (penetrations[c].VolumeMm3 >= 0.05)
+    {
+      std::snprintf(text, sizeof(text), "  | tool %.1f mm in, %.1f mm^3  %s", penetrations[c].DepthMm, penetrations[c].VolumeMm3, level);
+    }
+    else
+    {
+      std::snprintf(text, sizeof(text), "  | tool %.1f mm in  %s", penetrations[c].DepthMm, level);
+    }
     line += text;
   }
   else if (c < frame.Surface.size() && frame.Surface[c].InRange)

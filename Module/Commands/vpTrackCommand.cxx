@@ -142,12 +142,16 @@ cli::ModuleDescription DescribeTrackCommand()
       TrackingOptions(),
       { "Pictures", "",
         { Switch("screenshots",
-            "Also OUTDIR/screenshots/ of the key frames (the first and last, each level change, the closest approach to "
-            "each class, the instrument's deepest penetration into each, the first pose the tracker lost) and "
-            "OUTDIR/keyframes.png, a contact sheet of them (rendered off-screen; Xvfb is started when there is no display)."),
+            "Also OUTDIR/screenshots/ of the key frames (the first and last, each change of the danger level and of the "
+            "margin's, the closest approach to each class and tumour, the instrument's first contact with each class and "
+            "its deepest penetration, the first pose the tracker lost; frames under 0.5 s apart at the same levels are one "
+            "picture) and OUTDIR/keyframes.png, a contact sheet of them captioned in words (rendered off-screen; Xvfb is "
+            "started when there is no display)."),
           Option(ParameterType::StringEnumeration, "view", "The screenshots' camera, as view --view takes it.")
             .SetDefault("anterior")
-            .SetElements({ "anterior", "lateral", "superior", "tool", "follow" }) } },
+            .SetElements({ "anterior", "lateral", "superior", "tool", "follow" }),
+          Option(ParameterType::File, "liver", "A liver surface, shown translucent in the screenshots.")
+            .SetChannel(cli::Channel::Input) } },
     });
 }
 
@@ -165,6 +169,7 @@ int RunTrackCommand(const cli::ParsedArguments& args, const ModuleServices& modu
   const std::size_t poseCount = PoseStream::CountPoses(posesFile, reading);
   SceneRequest request = ParseSceneRequest(args);
   request.RepairVessels = args.GetBoolean("repair");
+  request.LiverFile = args.GetString("liver");
   std::vector<std::string> classes;
   for (const NamedMesh& vessel : request.Vessels)
   {
@@ -179,7 +184,7 @@ int RunTrackCommand(const cli::ParsedArguments& args, const ModuleServices& modu
     throw InputError("--screenshots", display.GetProblem());
   }
   // What the run reads is never removed or written over, even in its own output folder.
-  std::vector<std::string> inputs = { posesFile, request.ScalpelFile, ScalpelDefinitionFileFor(request.ScalpelFile) };
+  std::vector<std::string> inputs = { posesFile, request.ScalpelFile, ScalpelDefinitionFileFor(request.ScalpelFile), request.LiverFile };
   for (const NamedMesh& vessel : request.Vessels)
   {
     inputs.push_back(vessel.FileName);
@@ -218,6 +223,7 @@ int RunTrackCommand(const cli::ParsedArguments& args, const ModuleServices& modu
     pictures.Logic = proximity;
     pictures.Poses = ReadPoseFile(posesFile, reading);
     pictures.Keys = keys.GetKeyFrames();
+    pictures.Liver = scene.Liver;
     vtkVesselProximityView::ParseCameraPreset(args.GetString("view"), pictures.Camera); // an enumeration: checked
     pictures.Folder = run.Folder("screenshots");
     pictures.ContactSheetFile = run.File("keyframes.png");

@@ -1481,6 +1481,20 @@ TEST_F(TrackCommand, ScreenshotsShowTheKeyFramesAndAContactSheet)
   EXPECT_EQ(bigEndian(16), 1308);
   EXPECT_EQ(bigEndian(20), 1029);
   EXPECT_NE(r.Out.find("wrote 9 key frame(s)"), std::string::npos) << r.Out;
+
+  // --liver: the same pictures with the liver in them; a liver that is no mesh is refused.
+  const double centre[3] = { 20, 0, 0 };
+  const std::string liver = this->Write("liver.stl", vp::MakeSphere(centre, 30.0, 24, 48));
+  const ToolRun withLiver = RunTool(this->Dir, "track --vessels " + this->Vessels + " --scalpel " + this->Tool + " --poses " +
+      this->ApproachPoses() + " -o " + out + "_liver --screenshots --liver " + liver);
+  ASSERT_EQ(withLiver.ExitCode, 0) << withLiver.Err;
+  EXPECT_NE(vp::test::Slurp(out + "/screenshots/" + names.front()), vp::test::Slurp(out + "_liver/screenshots/" + names.front()))
+    << "the liver is drawn";
+  const ToolRun bad = RunTool(this->Dir, "track --vessels " + this->Vessels + " --scalpel " + this->Tool + " --poses " +
+      this->ApproachPoses() + " -o " + out + "_bad --screenshots --liver " + this->WriteText("liver.txt", "not a mesh"));
+  EXPECT_EQ(bad.ExitCode, 1);
+  EXPECT_NE(bad.Err.find("liver.txt"), std::string::npos) << bad.Err;
+  EXPECT_FALSE(vp::test::FileExists(out + "_bad"));
 }
 
 // Progress (issue 34): on a terminal each stage of opening the scene is shown in one line

@@ -29,6 +29,7 @@
 #include <vtkCamera.h>
 #include <vtkLineSource.h>
 #include <vtkActor2D.h>
+#include <vtkTextActor.h>
 #include <vtkCoordinate.h>
 #include <vtkNew.h>
 #include <vtkPolyData.h>
@@ -659,6 +660,39 @@ TEST(Overlays, TheInsetPlotsLegendIsWholeAtAnyWindowSize)
     const int* corner = plot->GetActor()->GetPositionCoordinate()->GetComputedDisplayValue(view->GetRenderer());
     EXPECT_GE(corner[0], 0) << size[0] << " x " << size[1];
     EXPECT_LE(corner[0] + dims[0], size[0]) << "the inset's right edge within the window at " << size[0] << " x " << size[1];
+  }
+  std::filesystem::remove_all(tmp);
+}
+
+// The readout's lines fit the window: at 640 x 480 the breach's headline (56 characters) would run
+// 100 pixels past the edge at 22 points, so the lines are drawn smaller; at 1920 x 1080 as set.
+TEST(Overlays, TheReadoutFitsTheWindowAtAnySize)
+{
+  vp::VirtualDisplay display;
+  if (!display.Ensure())
+  {
+    GTEST_SKIP() << "no display for rendering: " << display.GetProblem();
+  }
+  const std::string tmp = vp::test::MakeTempDir("readout_fit");
+  auto logic = MakePhantomLogic(tmp);
+  for (const auto& size : { std::array<int, 2>{ 640, 480 }, std::array<int, 2>{ 1920, 1080 } })
+  {
+    vtkNew<vtkVesselProximityView> view;
+    view->SetOffScreen(true);
+    view->SetSizePx(size[0], size[1]);
+    view->SetLogic(logic);
+    view->SetScalpelPose(TipDownAt(5.0)); // inside the tube: the long headline
+    view->Render();
+    vtkProximityReadoutRepresentation* readout = view->GetOverlays()->GetReadout();
+    EXPECT_NE(readout->GetLineText(0).find("BREACH: tip"), std::string::npos) << readout->GetLineText(0);
+    for (int i = 0; i < readout->GetNumberOfLines(); ++i)
+    {
+      double box[4];
+      readout->GetLineActor(i)->GetBoundingBox(view->GetRenderer(), box);
+      EXPECT_LE(box[1], size[0]) << "line " << i << " at " << size[0] << " x " << size[1] << ": " << readout->GetLineText(i);
+      EXPECT_GE(box[2], 0) << "line " << i << " below the window";
+    }
+    EXPECT_EQ(readout->GetFittedFontSize() < 18, size[0] == 640) << size[0];
   }
   std::filesystem::remove_all(tmp);
 }

@@ -3,7 +3,10 @@
 #include "vpDangerBands.h"
 #include "vpPlotValues.h"
 
+#include <vtkCallbackCommand.h>
 #include <vtkCoordinate.h>
+#include <vtkTextRenderer.h>
+#include <vtkWindow.h>
 #include <cmath>
 #include <vtkNew.h>
 #include <vtkObjectFactory.h>
@@ -42,7 +45,16 @@ vtkProximityReadoutRepresentation::vtkProximityReadoutRepresentation()
   this->SetClasses({}, {});
 }
 
-vtkProximityReadoutRepresentation::~vtkProximityReadoutRepresentation() = default;
+vtkProximityReadoutRepresentation::~vtkProximityReadoutRepresentation()
+{
+  for (const auto& [renderer, tag] : this->StartTags)
+  {
+    if (renderer) // null once the renderer is gone
+    {
+      renderer->RemoveObserver(tag);
+    }
+  }
+}
 
 void vtkProximityReadoutRepresentation::SetClasses(
   const std::vector<std::string>& names, const std::vector<std::array<double, 3>>& colours)
@@ -91,19 +103,69 @@ void vtkProximityReadoutRepresentation::SetClasses(
 void vtkProximityReadoutRepresentation::SetFontSize(int points)
 {
   this->FontSize = points;
+  this->FittedFontSize = points;
+  this->FittedFor.clear();
   this->Place();
   this->Modified();
+}
+
+int vtkProximityReadoutRepresentation::WidestLinePx(int dpi) const
+{
+  vtkTextRenderer* text = vtkTextRenderer::GetInstance();
+  int widest = 0;
+  for (const auto& line : this->Lines)
+  {
+    int box[4] = { 0, 0, 0, 0 };
+    const char* input = line->GetInput();
+    if (text && input && *input && text->GetBoundingBox(line->GetTextProperty(), std::string(input), box, dpi))
+    {
+      widest = std::max(widest, box[1] - box[0] + 1);
+    }
+  }
+  return widest;
+}
+
+void vtkProximityReadoutRepresentation::FitToViewport(vtkRenderer* renderer)
+{
+  const int width = renderer->GetSize()[0];
+  std::string key = std::to_string(width);
+  for (const auto& line : this->Lines)
+  {
+    key += '\n' + std::string(line->GetInput() ? line->GetInput() : "");
+  }
+  if (width <= 0 || key == this->FittedFor)
+  {
+    return;
+  }
+  this->FittedFor = key;
+  const int dpi = renderer->GetVTKWindow() ? renderer->GetVTKWindow()->GetDPI() : 72;
+  const int available = width - 12 - 8; // the lines start 12 pixels in
+  // The font is monospaced: the width scales with the size, so one guess and a check or two.
+  this->FittedFontSize = this->FontSize;
+  this->Place();
+  const int widest = this->WidestLinePx(dpi);
+  if (widest > available)
+  {
+    this->FittedFontSize = std::max(8, this->FontSize * available / std::max(1, widest));
+    this->Place();
+    while (this->FittedFontSize > 8 && this->WidestLinePx(dpi) > available)
+    {
+      --this->FittedFontSize;
+      this->Place();
+    }
+  }
 }
 
 void vtkProximityReadoutRepresentation::Place()
 {
   // Each line sits a fixed number of pixels below the viewport's top left corner, whatever the
   // window size: a display-pixel offset from a normalised-viewport reference point.
-  int downPx = 10 + this->FontSize + 4;
+  const int size = this->FittedFontSize;
+  int downPx = 10 + size + 4;
   for (std::size_t i = 0; i < this->Lines.size(); ++i)
   {
     vtkTextActor* line = this->Lines[i];
-    line->GetTextProperty()->SetFontSize(i == 0 ? this->FontSize + 4 : this->FontSize);
+    line->GetTextProperty()->SetFontSize(i == 0 ? size + 4 : size);
     line->GetTextProperty()->SetJustificationToLeft();
     line->GetTextProperty()->SetVerticalJustificationToBottom();
     vtkNew<vtkCoordinate> corner;
@@ -112,7 +174,7 @@ void vtkProximityReadoutRepresentation::Place()
     line->GetPositionCoordinate()->SetReferenceCoordinate(corner);
     line->GetPositionCoordinate()->SetCoordinateSystemToDisplay();
     line->GetPositionCoordinate()->SetValue(12, -downPx);
-    downPx += (i == 0 ? 12 : 6) + this->FontSize;
+    downPx += (i == 0 ? 12 : 6) + size;
   }
 }
 
@@ -240,6 +302,11 @@ void vtkProximityReadoutRepresentation::ShowFrameTime(double frameMs, bool overB
   this->SetLine(static_cast<int>(this->Lines.size()) - 1, text);
 }
 
+vtkTextActor* vtkProximityReadoutRepresentation::GetLineActor(int i) const
+{
+  return this->Lines[static_cast<std::size_t>(i)];
+}
+
 std::string vtkProximityReadoutRepresentation::GetLineText(int i) const
 {
   const char* text = this->Lines[i]->GetInput();
@@ -253,6 +320,12 @@ void vtkProximityReadoutRepresentation::AddToRenderer(vtkRenderer* renderer)
   {
     renderer->AddActor2D(line);
   }
+  vtkNew<vtkCallbackCommand> fit;
+  fit->SetClientData(this);
+  fit->SetCallback([](vtkObject* caller, unsigned long, void* self, void*) {
+    static_cast<vtkProximityReadoutRepresentation*>(self)->FitToViewport(static_cast<vtkRenderer*>(caller));
+  });
+  this->StartTags.emplace_back(renderer, renderer->AddObserver(vtkCommand::StartEvent, fit));
 }
 
 void vtkProximityReadoutRepresentation::RemoveFromRenderer(vtkRenderer* renderer)
@@ -260,6 +333,18 @@ void vtkProximityReadoutRepresentation::RemoveFromRenderer(vtkRenderer* renderer
   for (auto& line : this->Lines)
   {
     renderer->RemoveActor2D(line);
+  }
+  for (auto it = this->StartTags.begin(); it != this->StartTags.end();)
+  {
+    if (it->first == renderer)
+    {
+      renderer->RemoveObserver(it->second);
+      it = this->StartTags.erase(it);
+    }
+    else
+    {
+      ++it;
+    }
   }
   this->Renderers.erase(std::remove(this->Renderers.begin(), this->Renderers.end(), renderer), this->Renderers.end());
 }

@@ -8,9 +8,11 @@
 
 #include <vtkObject.h>
 #include <vtkSmartPointer.h>
+#include <vtkWeakPointer.h>
 
 #include <array>
 #include <string>
+#include <utility>
 #include <vector>
 
 class vtkRenderer;
@@ -59,9 +61,14 @@ public:
   /// frame-time line).
   std::string GetLineText(int i) const;
   int GetNumberOfLines() const { return static_cast<int>(this->Lines.size()); }
+  /// Line i's text actor (where it is drawn, how large).
+  vtkTextActor* GetLineActor(int i) const;
   int GetNumberOfTextUpdates() const { return this->TextUpdates; }
   /// Font size in points (default 18).
   void SetFontSize(int points);
+  /// The size the lines are drawn at: FontSize, or smaller (down to 8) where the widest line
+  /// would not fit the viewport's width at it (a 640 x 480 window; set before each render).
+  int GetFittedFontSize() const { return this->FittedFontSize; }
 
   void AddToRenderer(vtkRenderer* renderer);
   void RemoveFromRenderer(vtkRenderer* renderer);
@@ -74,6 +81,9 @@ protected:
   std::vector<std::string> ClassNames;
   std::vector<vtkRenderer*> Renderers;
   int FontSize = 18;
+  int FittedFontSize = 18;
+  std::string FittedFor; ///< the texts and width the fitted size was found for
+  std::vector<std::pair<vtkWeakPointer<vtkRenderer>, unsigned long>> StartTags; ///< the fitting's observers
   int TextUpdates = 0;
   std::string EngineName;
   bool MarginShown = false;
@@ -83,6 +93,11 @@ private:
   void operator=(const vtkProximityReadoutRepresentation&) = delete;
   void SetLine(int i, const std::string& text);
   void Place();
+  /// Shrinks the lines until the widest fits the renderer's width (FittedFontSize), when the
+  /// texts or the width changed since the last time.
+  void FitToViewport(vtkRenderer* renderer);
+  /// The widest line's width in pixels at the fitted size.
+  int WidestLinePx(int dpi) const;
   /// Class c's line: the tip's distance and level, and the instrument's with its own.
   std::string ClassLine(const vp::TrackedFrame& frame, std::size_t c, const vp::ProximityResult* exact) const;
 };

@@ -2,7 +2,7 @@
 # Runs every code block the documentation marks runnable (a line "<!-- runnable -->", or
 # "<!-- runnable: needs PATH -->", right before a ```sh block) in README.md and
 # Documentation/UserGuide.md, as a reader would from the checkout's root: build/ and Resources/
-# there, ../shared/data beside it. A block fails the test on any failing command (bash -e); one
+# there, ../shared/data beside it, IRCADB set to its IRCADb folder as the tutorial asks. A block fails the test on any failing command (bash -e); one
 # whose PATH is missing is skipped and said. Every link to a file must be to one in the repository.
 #   RunDocBlocks.sh SOURCE_DIR BUILD_DIR DATA_DIR WORK_DIR
 set -uo pipefail
@@ -14,6 +14,8 @@ ln -s "$source/Resources" "$work/repo/Resources"
 if [ -n "$data" ] && [ -d "$data" ]; then
   mkdir -p "$work/shared"
   ln -s "$(cd "$data" && pwd)" "$work/shared/data"
+  # What the tutorial asks its reader to set: where 3D-IRCADb-01 was unzipped.
+  export IRCADB="$work/shared/data/ircadb"
 fi
 # Every link the documentation makes to a file is to one in the repository, and it is there.
 for doc in "$source"/README.md "$source"/Documentation/*.md; do

@@ -147,9 +147,11 @@ cli::ModuleDescription DescribeTrackCommand()
             "its deepest penetration, the first pose the tracker lost; frames under 0.5 s apart at the same levels are one "
             "picture) and OUTDIR/keyframes.png, a contact sheet of them captioned in words (rendered off-screen; Xvfb is "
             "started when there is no display)."),
-          Option(ParameterType::StringEnumeration, "view", "The screenshots' camera, as view --view takes it.")
-            .SetDefault("anterior")
-            .SetElements({ "anterior", "lateral", "superior", "tool", "follow" }),
+          Option(ParameterType::StringEnumeration, "view",
+            "The screenshots' camera, as view --view takes it; clear (the default) turns until the tip and its closest "
+            "vessel point are in plain sight.")
+            .SetDefault("clear")
+            .SetElements({ "anterior", "lateral", "superior", "tool", "follow", "clear" }),
           Option(ParameterType::File, "liver", "A liver surface, shown translucent in the screenshots.")
             .SetChannel(cli::Channel::Input) } },
     });

@@ -134,10 +134,12 @@ cli::ModuleDescription DescribeViewCommand()
           Option(ParameterType::String, "size", "The window's size in pixels (64..8192 each).").SetPlaceholder("WxH").SetDefault("1280x800"),
           Option(ParameterType::StringEnumeration, "view",
             "Where the camera looks from (the world is LPS): anterior (superior up, as Slicer's 3D view), lateral (from the "
-            "patient's right), superior (from above, anterior up), tool (beside the scalpel, the tip in the middle, every frame) or "
-            "follow (the camera moves with the tip). A cube in the lower left corner names the patient's directions.")
+            "patient's right), superior (from above, anterior up), tool (beside the scalpel, the tip in the middle, every frame), "
+            "follow (the camera moves with the tip) or clear (beside the tool, turned until the tip and the nearest vessel's "
+            "closest point are both in plain sight, checked on the rendered depth, every frame). A cube in the lower left "
+            "corner names the patient's directions.")
             .SetDefault("anterior")
-            .SetElements({ "anterior", "lateral", "superior", "tool", "follow" }),
+            .SetElements({ "anterior", "lateral", "superior", "tool", "follow", "clear" }),
           Option(ParameterType::String, "keys", "Keys pressed before the window opens (VTK key names: Left, Up, Prior, i, n, ...).")
             .SetPlaceholder("K,K,..."),
           Option(ParameterType::File, "screenshot",

@@ -21,6 +21,7 @@
 #include "vtkVesselProximityParameters.h"
 #include "vpAnalyticShapes.h"
 #include "vtkVesselProximityView.h"
+#include "vpClearViewCamera.h"
 #include "vtkZBufferVesselDistance.h"
 #include "vpVulkanContext.h"
 #include "vpVesselLabelTable.h"
@@ -727,6 +728,11 @@ std::string RenderPreset(
   view->GetRenderer()->GetActiveCamera()->GetDirectionOfProjection(direction);
   view->GetRenderer()->GetActiveCamera()->GetFocalPoint(focal);
   std::copy(logic->GetLastFrame().TipMm, logic->GetLastFrame().TipMm + 3, tip);
+  // The presets that move with the tool keep its tip in sight; the fixed ones look from where they
+  // say (superior looks down this scalpel's shaft).
+  const bool moving = preset == vtkVesselProximityView::CameraPreset::Tool || preset == vtkVesselProximityView::CameraPreset::Follow ||
+    preset == vtkVesselProximityView::CameraPreset::Clear;
+  EXPECT_TRUE(!moving || vp::PointInPlainSight(view->GetRenderer(), tip)) << vtkVesselProximityView::CameraPresetName(preset);
   return file;
 }
 } // namespace
@@ -755,7 +761,7 @@ TEST_P(CameraPresetImages, LookFromWhereTheySayAndMatchTheBaseline)
   const std::string actual = RenderPreset(tmp, preset, direction, focal, tip);
   const std::map<Preset, std::array<double, 3>> looking = { { Preset::Anterior, { 0, 1, 0 } }, { Preset::Lateral, { 1, 0, 0 } },
     { Preset::Superior, { 0, 0, -1 } }, { Preset::Tool, { 0, 1, 0 } }, { Preset::Follow, { 0, 1, 0 } } };
-  for (int k = 0; k < 3; ++k)
+  for (int k = 0; k < 3 && looking.count(preset); ++k) // clear: wherever the tip is in plain sight
   {
     EXPECT_NEAR(direction[k], looking.at(preset)[k], 1e-9) << name << " axis " << k;
   }
@@ -769,10 +775,51 @@ TEST_P(CameraPresetImages, LookFromWhereTheySayAndMatchTheBaseline)
   this->ExpectBaseline(actual, "view_" + name + ".png", tmp);
 }
 
+// The tip behind the hepatic vein as seen from the front: the anterior preset hides it (the depth
+// read back in front of it), the clear preset turns until the tip and its closest vessel point are
+// both in plain sight, and keeps the shaft up the screen.
+TEST(CameraPresets, TheClearViewShowsATipThatAVesselHides)
+{
+  vp::VirtualDisplay display;
+  if (!display.Ensure())
+  {
+    GTEST_SKIP() << "no display for rendering: " << display.GetProblem();
+  }
+  const std::string tmp = vp::test::MakeTempDir("camera_clear");
+  auto logic = MakePhantomLogic(tmp);
+  // Pointing down, its tip at (45, 45, -10): 15 mm behind the centre of the ball (radius 10 at
+  // 45, 30, -10), 5 mm from its wall.
+  const std::array<double, 16> behind = { 1, 0, 0, 45, 0, -1, 0, 45, 0, 0, -1, -10, 0, 0, 0, 1 };
+  for (const auto preset : { vtkVesselProximityView::CameraPreset::Anterior, vtkVesselProximityView::CameraPreset::Clear })
+  {
+    vtkNew<vtkVesselProximityView> view;
+    view->SetOffScreen(true);
+    view->SetSizePx(960, 600);
+    view->SetLogic(logic);
+    view->SetCameraPreset(preset);
+    view->SetScalpelPose(behind);
+    view->Render();
+    const vp::TrackedFrame& frame = logic->GetLastFrame();
+    const int nearest = frame.Proximity.NearestIndex();
+    ASSERT_GE(nearest, 0);
+    EXPECT_EQ(frame.Proximity.Classes[static_cast<std::size_t>(nearest)].ClassName, "hepatic_vein");
+    const bool clear = preset == vtkVesselProximityView::CameraPreset::Clear;
+    EXPECT_EQ(vp::PointInPlainSight(view->GetRenderer(), frame.TipMm), clear) << vtkVesselProximityView::CameraPresetName(preset);
+    if (clear)
+    {
+      EXPECT_TRUE(vp::PointInPlainSight(view->GetRenderer(), frame.Proximity.Classes[static_cast<std::size_t>(nearest)].ClosestPoint));
+      double up[3];
+      view->GetRenderer()->GetActiveCamera()->GetViewUp(up);
+      EXPECT_GT(up[2], 0.5) << "the shaft (pointing down) up the screen";
+    }
+  }
+  std::filesystem::remove_all(tmp);
+}
+
 INSTANTIATE_TEST_SUITE_P(Presets, CameraPresetImages,
   ::testing::Values(vtkVesselProximityView::CameraPreset::Anterior, vtkVesselProximityView::CameraPreset::Lateral,
     vtkVesselProximityView::CameraPreset::Superior, vtkVesselProximityView::CameraPreset::Tool,
-    vtkVesselProximityView::CameraPreset::Follow),
+    vtkVesselProximityView::CameraPreset::Follow, vtkVesselProximityView::CameraPreset::Clear),
   [](const ::testing::TestParamInfo<vtkVesselProximityView::CameraPreset>& info) {
     return std::string(vtkVesselProximityView::CameraPresetName(info.param));
   });

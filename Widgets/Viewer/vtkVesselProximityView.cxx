@@ -1,5 +1,7 @@
 #include "vtkVesselProximityView.h"
 
+#include "vpClearViewCamera.h"
+
 #include "vpClock.h"
 #include "vpDangerBands.h"
 #include "vpInputError.h"
@@ -164,6 +166,7 @@ void vtkVesselProximityView::Process(const std::array<double, 16>& modelToWorld,
   pose.TimeS = timeS;
   pose.ModelToWorld = modelToWorld;
   this->Session->Process(pose);
+  ++this->FramesShown;
   this->FollowScalpel();
 }
 
@@ -334,6 +337,8 @@ const char* vtkVesselProximityView::CameraPresetName(CameraPreset preset)
       return "tool";
     case CameraPreset::Follow:
       return "follow";
+    case CameraPreset::Clear:
+      return "clear";
   }
   return "anterior";
 }
@@ -341,7 +346,7 @@ const char* vtkVesselProximityView::CameraPresetName(CameraPreset preset)
 bool vtkVesselProximityView::ParseCameraPreset(const std::string& name, CameraPreset& preset)
 {
   for (CameraPreset p : { CameraPreset::Anterior, CameraPreset::Lateral, CameraPreset::Superior, CameraPreset::Tool,
-         CameraPreset::Follow })
+         CameraPreset::Follow, CameraPreset::Clear })
   {
     if (name == CameraPresetName(p))
     {
@@ -355,6 +360,7 @@ bool vtkVesselProximityView::ParseCameraPreset(const std::string& name, CameraPr
 void vtkVesselProximityView::SetCameraPreset(CameraPreset preset)
 {
   this->Preset = preset;
+  this->ClearCameraFrame = -1;
   this->ResetCamera();
   this->Modified();
 }
@@ -439,8 +445,31 @@ void vtkVesselProximityView::FollowScalpel()
   this->Renderer->ResetCameraClippingRange();
 }
 
+void vtkVesselProximityView::PlaceClearCamera()
+{
+  vtkVesselProximityLogic* logic = this->GetLogic();
+  if (!logic || !logic->GetScalpel() || logic->GetTrackingLogic()->GetNumberOfFrames() == 0)
+  {
+    return;
+  }
+  const vp::TrackedFrame& frame = logic->GetLastFrame();
+  if (this->FramesShown == this->ClearCameraFrame)
+  {
+    return;
+  }
+  this->ClearCameraFrame = this->FramesShown;
+  const int nearest = frame.Proximity.NearestIndex();
+  const vp::ClassProximity* near = nearest >= 0 ? &frame.Proximity.Classes[static_cast<std::size_t>(nearest)] : nullptr;
+  vp::PlaceClearViewCamera(this->Renderer, frame.TipMm, frame.AxisWorld, near ? near->ClosestPoint : nullptr,
+    near && near->Inside.value_or(false) ? near->DistanceMm : 0.0);
+}
+
 void vtkVesselProximityView::Render()
 {
+  if (this->Preset == CameraPreset::Clear)
+  {
+    this->PlaceClearCamera();
+  }
   // The marker turns with the main camera: same direction and up, at a fixed distance.
   vtkCamera* main = this->Renderer->GetActiveCamera();
   vtkCamera* marker = this->MarkerRenderer->GetActiveCamera();

@@ -85,15 +85,19 @@ public:
   /// Where the camera looks from (patient directions, the world being LPS): anterior (the default,
   /// superior up, as Slicer's 3D view), lateral (from the patient's right, superior up), superior
   /// (from above, anterior up), tool (beside the scalpel on its anterior side, the tip in the
-  /// middle and the shaft pointing up the screen, each frame) or follow (the camera keeps its direction and distance and moves with the tip, each
-  /// frame). The first three frame the vessels once.
+  /// middle and the shaft pointing up the screen, each frame), follow (the camera keeps its
+  /// direction and distance and moves with the tip, each frame) or clear (beside the tool across
+  /// the line from the tip to the nearest vessel's closest point, turned until a rendered picture
+  /// shows both in plain sight: vp::PlaceClearViewCamera, before each render of a new frame). The
+  /// first three frame the vessels once.
   enum class CameraPreset
   {
     Anterior,
     Lateral,
     Superior,
     Tool,
-    Follow
+    Follow,
+    Clear
   };
   /// The preset's name as --view takes it ("anterior"), and back (false for an unknown one).
   static const char* CameraPresetName(CameraPreset preset);
@@ -142,6 +146,12 @@ protected:
   vtkSmartPointer<vtkImageData> LastScreenshot;
   std::string ScreenshotPrefix = "vesselproximity-screenshot-";
   CameraPreset Preset = CameraPreset::Anterior;
+  /// Frames shown so far, and the one the clear camera was last placed for (-1: none since the
+  /// preset was set).
+  long long FramesShown = 0;
+  long long ClearCameraFrame = -1;
+  /// The clear preset's camera for the logic's last frame, when not placed for it yet.
+  void PlaceClearCamera();
   /// The orientation marker: a cube labelled with the patient's directions (L/R, A/P, S/I) in the
   /// lower left corner, its own renderer turned with the main camera before each render.
   vtkSmartPointer<vtkRenderer> MarkerRenderer;

@@ -1,6 +1,7 @@
 #include "vtkProximityReadoutRepresentation.h"
 
 #include "vpDangerBands.h"
+#include "vpFrameHeadline.h"
 #include "vpPlotValues.h"
 
 #include <vtkCallbackCommand.h>
@@ -23,13 +24,6 @@ vtkStandardNewMacro(vtkProximityReadoutRepresentation);
 
 namespace
 {
-/// "portal_vein" -> "portal vein": the class names are identifiers, the readout is for people.
-std::string Readable(std::string name)
-{
-  std::replace(name.begin(), name.end(), '_', ' ');
-  return name;
-}
-
 std::string Upper(std::string text)
 {
   for (char& c : text)
@@ -89,7 +83,7 @@ void vtkProximityReadoutRepresentation::SetClasses(
     {
       text->SetColor(vp::ToFraction(vp::ReadoutTextColour(vp::TumourDisplayColour)).data());
     }
-    line->SetInput(i == 0 ? "no pose yet" : frameTimeLine || marginLine ? "" : (Readable(names[i - 1]) + ": -").c_str());
+    line->SetInput(i == 0 ? "no pose yet" : frameTimeLine || marginLine ? "" : (vp::ReadableClassName(names[i - 1]) + ": -").c_str());
     this->Lines.push_back(line);
     for (vtkRenderer* r : this->Renderers)
     {
@@ -217,7 +211,7 @@ std::string vtkProximityReadoutRepresentation::ClassLine(
   const vp::ClassProximity& p = frame.Proximity.Classes[c];
   const double bound = frame.Proximity.ErrorBoundMm;
   char text[160];
-  const std::string name = Readable(this->ClassNames[c]);
+  const std::string name = vp::ReadableClassName(this->ClassNames[c]);
   if (!p.InRange)
   {
     std::snprintf(text, sizeof(text), "%-15s    out of range", name.c_str());
@@ -283,7 +277,7 @@ void vtkProximityReadoutRepresentation::ShowTrackingLost(double sinceMs)
   this->SetLine(0, text);
   for (std::size_t c = 0; c < this->ClassNames.size(); ++c)
   {
-    std::snprintf(text, sizeof(text), "%-15s      -", Readable(this->ClassNames[c]).c_str());
+    std::snprintf(text, sizeof(text), "%-15s      -", vp::ReadableClassName(this->ClassNames[c]).c_str());
     this->SetLine(static_cast<int>(c) + 1, text);
   }
   if (this->MarginShown)

@@ -9,6 +9,7 @@
 #include "vtkExactVesselDistance.h"
 #include "vtkFclSurfaceDistance.h"
 #include "vtkScalpelPenetration.h"
+#include "vtkVesselDistanceEngine.h"
 #include "vtkVesselProximityLogic.h"
 #include "vpVec3.h"
 
@@ -366,12 +367,15 @@ BenchJson BenchBreach(const std::vector<NamedMesh>& vessels, vtkScalpelModel* sc
   const Run exactRun = RunFrames(exact, poses);
   Run zbufferRun;
   std::string zbufferUnavailable;
+  std::string zbufferDevice;
   if (zbuffer)
   {
     std::fprintf(stderr, ", z-buffer");
     try
     {
-      zbufferRun = RunFrames(OpenBreachScene(vessels, tool, *zbuffer, settings.QueryBudget), poses);
+      vtkSmartPointer<vtkVesselProximityLogic> logic = OpenBreachScene(vessels, tool, *zbuffer, settings.QueryBudget);
+      zbufferDevice = logic->GetDistanceEngine()->GetDeviceDescription();
+      zbufferRun = RunFrames(logic, poses);
     }
     catch (const DeviceError& e)
     {
@@ -389,6 +393,7 @@ BenchJson BenchBreach(const std::vector<NamedMesh>& vessels, vtkScalpelModel* sc
   if (zbuffer)
   {
     out["zbuffer"] = zbufferUnavailable.empty() ? Compare(zbufferRun, ref) : Json{ { "unavailable", zbufferUnavailable } };
+    out["zbuffer"]["device"] = zbufferDevice;
   }
   Json fcl = Timing(ref.FclMs);
   fcl["what"] = "vtkFclSurfaceDistance (FCL, warm-started): the whole instrument's distance only, no penetration";

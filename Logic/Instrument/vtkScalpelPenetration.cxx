@@ -821,7 +821,7 @@ vp::Penetration vtkScalpelPenetration::ComputeClass(int c, const std::array<doub
   PendingQueue deepest;
   Visit(lattice, walk, Probe{ Cube{ { root.Centre[0], root.Centre[1], root.Centre[2] }, root.Level, &root }, rootInside,
                          std::numeric_limits<double>::infinity(), std::nullopt, {} },
-    this->QueryBudget * (field ? FieldQueriesPerQuery : 1), deepest);
+    field ? static_cast<long long>(FieldBudgetFactor * static_cast<double>(this->QueryBudget)) : this->QueryBudget, deepest);
   // A deep query reads the many nearly equidistant triangles around a point deep inside (about
   // ten times a cell's near query here): the search gets an eighth of the budget (DeepShare).
   const long long deepBudget = this->QueryBudget > 0 ? std::max<long long>(16, this->QueryBudget / DeepShare) : 0;

@@ -459,6 +459,10 @@ void PrintBreachTable(const Json& breach)
       e["answers_outside_contract"].get<int>(), e["answers_below_truth_beyond_bounds"].get<int>());
   }
   std::printf("  %-9s %-15s (the whole instrument's distance only)\n", "FCL", cell(breach["fcl_surface"]).c_str());
+  if (breach.contains("zbuffer") && breach["zbuffer"].contains("device"))
+  {
+    std::printf("  z-buffer on %s\n", breach["zbuffer"]["device"].get<std::string>().c_str());
+  }
 }
 
 /// The models: read, each class's build and the total, as given and stacked.

@@ -351,6 +351,34 @@ void DrawLegend(Canvas& canvas, const std::vector<LegendEntry>& entries, int lef
   }
 }
 
+/// On a category axis (cases, not times) each value is its own mark, never joined to the next
+/// case's: a dot with a bar across its slot in the series' style, so that a tip (solid), an
+/// instrument (dashed) and a margin (dotted) differ there as their lines do elsewhere.
+void DrawCategoryMarks(Canvas& canvas, const Canvas& bands, const std::vector<double>& timesS, const PlotSeries& s,
+  const DistancePlotFrame& frame, const Rect& clip)
+{
+  const double slotPx = timesS.size() > 1 ? std::abs(frame.XOf(timesS[1]) - frame.XOf(timesS[0])) : 80.0;
+  const double halfBarPx = std::clamp(0.35 * slotPx, PointHalfWidthPx + 2.0, 40.0);
+  const auto rim = [&](int x, int y) { return RimColour(bands.At(x, y)); };
+  const auto mark = [&](int, int) { return s.Colour; };
+  for (const bool outline : { true, false })
+  {
+    for (std::size_t i = 0; i < timesS.size(); ++i)
+    {
+      if (!std::isfinite(timesS[i]) || !std::isfinite(s.ValuesMm[i]))
+      {
+        continue;
+      }
+      const double x = frame.XOf(timesS[i]), y = frame.YOf(s.ValuesMm[i]);
+      double phase = 0.0;
+      outline ? DrawStyledSegment(canvas, x - halfBarPx, y, x + halfBarPx, y, LineHalfWidthPx + RimPx, rim, clip, s.Style, phase)
+              : DrawStyledSegment(canvas, x - halfBarPx, y, x + halfBarPx, y, LineHalfWidthPx, mark, clip, s.Style, phase);
+      outline ? DrawSegment(canvas, x, y, x, y, PointHalfWidthPx + RimPx, rim, clip)
+              : DrawSegment(canvas, x, y, x, y, PointHalfWidthPx, mark, clip);
+    }
+  }
+}
+
 /// The series' line, over a rim RimPx wide each side in black or white as the band under it
 /// (bands, the picture before any line) asks: readable on every band, and where lines cross.
 void DrawSeries(Canvas& canvas, const Canvas& bands, const std::vector<double>& timesS, const PlotSeries& s,
@@ -678,7 +706,8 @@ vtkSmartPointer<vtkImageData> RenderDistancePlot(const std::vector<double>& time
   const Canvas bandsOnly(under.data(), widthPx, heightPx);
   for (const PlotSeries& s : series)
   {
-    DrawSeries(canvas, bandsOnly, timesS, s, layout.Frame, layout.Plot);
+    layout.XTickLabels.empty() ? DrawSeries(canvas, bandsOnly, timesS, s, layout.Frame, layout.Plot)
+                               : DrawCategoryMarks(canvas, bandsOnly, timesS, s, layout.Frame, layout.Plot);
   }
   for (const PlotSeries& s : series)
   {

@@ -74,7 +74,8 @@ struct DistancePlotOptions
   bool WholeXTicks = false;
   /// A category axis (a cohort's cases by name): label k sits at x = k + 1, the axis runs from 0.5
   /// to N + 0.5 so that no point at either end is cut, and a label is shortened ("...") to the
-  /// room its tick has. Empty (default): numbers.
+  /// room its tick has. Each value is then a mark of its own (a dot with a bar across its slot in
+  /// the series' style), not joined to the next category's. Empty (default): numbers.
   std::vector<std::string> XTickLabels;
 };
 

@@ -553,6 +553,33 @@ TEST(DistancePlot, DashedAndDottedLinesLeaveGaps)
   }
 }
 
+// Cases are not a continuum: on a category axis each case's value is its own mark, and nothing
+// of the series lies between two cases (a line from 2 mm to 12 mm would cross the gap's middle).
+TEST(DistancePlot, ACategoryAxisMarksEachCaseAndJoinsNone)
+{
+  auto options = Options();
+  options.XTickLabels = { "case-a", "case-b", "case-c" };
+  for (const vp::LineStyle style : { vp::LineStyle::Solid, vp::LineStyle::Dashed, vp::LineStyle::Dotted })
+  {
+    vp::PlotSeries s{ "portal_vein", Red, { 2.0, 12.0, 4.0 } };
+    s.Style = style;
+    vp::DistancePlotFrame frame;
+    const auto image = vp::RenderDistancePlot({ 1, 2, 3 }, { s }, DangerBands(), options, &frame);
+    for (int k = 1; k <= 3; ++k)
+    {
+      const int x = Round(frame.XOf(k)), y = Round(frame.YOf(s.ValuesMm[static_cast<std::size_t>(k - 1)]));
+      EXPECT_GT(Count(image, x - 1, y - 1, x + 1, y + 1, IsRed), 0) << "case " << k << ", style " << static_cast<int>(style);
+    }
+    // The middle of each gap between two cases' slots, over the whole height: no series there.
+    for (const double middle : { 1.5, 2.5 })
+    {
+      const int x = Round(frame.XOf(middle));
+      EXPECT_EQ(Count(image, x - 2, frame.BottomPx, x + 2, frame.TopPx, IsReddish), 0)
+        << "between cases at " << middle << ", style " << static_cast<int>(style);
+    }
+  }
+}
+
 // An inset that must show its whole legend grows as far as the legend needs; without the option
 // the size is as given and a long legend is cut.
 TEST(DistancePlot, AnImageGrowsToFitItsLegendWhenAsked)

@@ -775,9 +775,9 @@ TEST_P(CameraPresetImages, LookFromWhereTheySayAndMatchTheBaseline)
   this->ExpectBaseline(actual, "view_" + name + ".png", tmp);
 }
 
-// The tip behind the hepatic vein as seen from the front: the anterior preset hides it (the depth
-// read back in front of it), the clear preset turns until the tip and its closest vessel point are
-// both in plain sight, and keeps the shaft up the screen.
+// The tip behind the hepatic vein as seen from the front: the anterior preset keeps its direction
+// and shows the vessels see-through while one hides the tip, the clear preset turns until the tip
+// and its closest vessel point are both in plain sight, and keeps the shaft up the screen.
 TEST(CameraPresets, TheClearViewShowsATipThatAVesselHides)
 {
   vp::VirtualDisplay display;
@@ -804,7 +804,24 @@ TEST(CameraPresets, TheClearViewShowsATipThatAVesselHides)
     ASSERT_GE(nearest, 0);
     EXPECT_EQ(frame.Proximity.Classes[static_cast<std::size_t>(nearest)].ClassName, "hepatic_vein");
     const bool clear = preset == vtkVesselProximityView::CameraPreset::Clear;
+    // The anterior view keeps its direction and sees the vessels through (translucent surfaces
+    // still fill the depth buffer, so the picture's depth says hidden); the clear one turns.
+    EXPECT_EQ(view->GetOverlays()->GetVessels()->GetSeeThrough(), !clear);
     EXPECT_EQ(vp::PointInPlainSight(view->GetRenderer(), frame.TipMm), clear) << vtkVesselProximityView::CameraPresetName(preset);
+    if (!clear)
+    {
+      for (vtkActor* vessel : view->GetOverlays()->GetVessels()->GetVesselActors())
+      {
+        EXPECT_LT(vessel->GetProperty()->GetOpacity(), 0.5);
+      }
+      // Moved out in front of the ball (tip at y = 10, the ball from y = 20): opaque again.
+      std::array<double, 16> inFront = behind;
+      inFront[7] = 10.0;
+      view->SetScalpelPose(inFront);
+      view->Render();
+      EXPECT_FALSE(view->GetOverlays()->GetVessels()->GetSeeThrough());
+      EXPECT_TRUE(vp::PointInPlainSight(view->GetRenderer(), logic->GetLastFrame().TipMm));
+    }
     if (clear)
     {
       EXPECT_TRUE(vp::PointInPlainSight(view->GetRenderer(), frame.Proximity.Classes[static_cast<std::size_t>(nearest)].ClosestPoint));

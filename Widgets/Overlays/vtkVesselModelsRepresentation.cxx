@@ -24,9 +24,39 @@ void vtkVesselModelsRepresentation::Style(Entry& entry, const std::array<double,
   property->SetSpecular(0.3);
   property->SetSpecularPower(20);
   const bool liver = entry.ClassName == "liver";
-  property->SetOpacity(liver ? this->LiverOpacity : 1.0);
+  property->SetOpacity(liver ? this->LiverOpacity : this->SeeThrough ? this->SeeThroughOpacity : 1.0);
   // A translucent liver must not hide what is behind it in the depth buffer either.
   entry.Actor->SetPickable(!liver);
+}
+
+std::vector<vtkActor*> vtkVesselModelsRepresentation::GetVesselActors() const
+{
+  std::vector<vtkActor*> actors;
+  for (const Entry& entry : this->Entries)
+  {
+    if (entry.ClassName != "liver")
+    {
+      actors.push_back(entry.Actor);
+    }
+  }
+  return actors;
+}
+
+void vtkVesselModelsRepresentation::SetSeeThrough(bool seeThrough)
+{
+  if (seeThrough == this->SeeThrough)
+  {
+    return;
+  }
+  this->SeeThrough = seeThrough;
+  for (const Entry& entry : this->Entries)
+  {
+    if (entry.ClassName != "liver")
+    {
+      entry.Actor->GetProperty()->SetOpacity(seeThrough ? this->SeeThroughOpacity : 1.0);
+    }
+  }
+  this->Modified();
 }
 
 vtkActor* vtkVesselModelsRepresentation::FindActor(const std::vector<Entry>& entries, const std::string& name)
@@ -155,4 +185,5 @@ void vtkVesselModelsRepresentation::PrintSelf(ostream& os, vtkIndent indent)
   }
   os << "\n" << indent << "LiverOpacity: " << this->LiverOpacity << "\n";
   os << indent << "TumourOpacity: " << this->TumourOpacity << "\n";
+  os << indent << "SeeThrough: " << this->SeeThrough << " (opacity " << this->SeeThroughOpacity << ")\n";
 }

@@ -39,9 +39,19 @@ public:
   vtkSetClampMacro(LiverOpacity, double, 0.0, 1.0);
   vtkGetMacro(LiverOpacity, double);
 
+  /// Vessels seen through: every vessel class drawn at SeeThroughOpacity (default 0.3) instead of
+  /// opaque, so that a tip behind them shows. A view from a fixed direction turns it on for a
+  /// frame whose tip a vessel hides (vtkVesselProximityView). Default off.
+  void SetSeeThrough(bool seeThrough);
+  bool GetSeeThrough() const { return this->SeeThrough; }
+  vtkSetClampMacro(SeeThroughOpacity, double, 0.0, 1.0);
+  vtkGetMacro(SeeThroughOpacity, double);
+
   void AddToRenderer(vtkRenderer* renderer);
   void RemoveFromRenderer(vtkRenderer* renderer);
   vtkActor* GetActor(const std::string& className) const;
+  /// The vessel classes' actors, not the liver's nor the tumours'.
+  std::vector<vtkActor*> GetVesselActors() const;
   int GetNumberOfClasses() const { return static_cast<int>(this->Entries.size()); }
 
 protected:
@@ -58,6 +68,8 @@ protected:
   double TumourOpacity = 0.5;
   std::vector<vtkRenderer*> Renderers; // not owned: the renderers own us in spirit
   double LiverOpacity = 0.15;
+  bool SeeThrough = false;
+  double SeeThroughOpacity = 0.3;
 
 private:
   vtkVesselModelsRepresentation(const vtkVesselModelsRepresentation&) = delete;

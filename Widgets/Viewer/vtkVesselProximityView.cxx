@@ -13,6 +13,7 @@
 #include "vtkVesselProximityLogic.h"
 #include "vtkDistancePlotRepresentation.h"
 #include "vtkScalpelDangerRepresentation.h"
+#include "vtkVesselModelsRepresentation.h"
 #include "vtkVesselProximityOverlays.h"
 
 #include <vtkAnnotatedCubeActor.h>
@@ -464,12 +465,25 @@ void vtkVesselProximityView::PlaceClearCamera()
     near && near->Inside.value_or(false) ? near->DistanceMm : 0.0);
 }
 
+void vtkVesselProximityView::SeeThroughVesselsHidingTheTip()
+{
+  vtkVesselProximityLogic* logic = this->GetLogic();
+  vtkVesselModelsRepresentation* vessels = this->Overlays->GetVessels();
+  const bool fixed = this->Preset == CameraPreset::Anterior || this->Preset == CameraPreset::Lateral ||
+    this->Preset == CameraPreset::Superior;
+  const bool tipShown = fixed && logic && logic->GetScalpel() && logic->GetTrackingLogic()->GetNumberOfFrames() > 0 &&
+    !this->TrackingLost;
+  vessels->SetSeeThrough(
+    tipShown && this->Occlusion.Hides(this->Renderer, vessels->GetVesselActors(), logic->GetLastFrame().TipMm));
+}
+
 void vtkVesselProximityView::Render()
 {
   if (this->Preset == CameraPreset::Clear)
   {
     this->PlaceClearCamera();
   }
+  this->SeeThroughVesselsHidingTheTip();
   // The marker turns with the main camera: same direction and up, at a fixed distance.
   vtkCamera* main = this->Renderer->GetActiveCamera();
   vtkCamera* marker = this->MarkerRenderer->GetActiveCamera();

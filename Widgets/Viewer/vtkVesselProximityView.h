@@ -2,6 +2,7 @@
 #define vtkVesselProximityView_h
 
 #include "vpPoseFile.h"
+#include "vpTipOcclusion.h"
 
 #include <vtkImageData.h>
 #include <vtkObject.h>
@@ -152,6 +153,10 @@ protected:
   long long ClearCameraFrame = -1;
   /// The clear preset's camera for the logic's last frame, when not placed for it yet.
   void PlaceClearCamera();
+  /// The fixed presets keep their direction: where a vessel hides the tip from it, the vessels are
+  /// seen through (vtkVesselModelsRepresentation::SetSeeThrough) until none does.
+  void SeeThroughVesselsHidingTheTip();
+  vp::TipOcclusion Occlusion;
   /// The orientation marker: a cube labelled with the patient's directions (L/R, A/P, S/I) in the
   /// lower left corner, its own renderer turned with the main camera before each render.
   vtkSmartPointer<vtkRenderer> MarkerRenderer;

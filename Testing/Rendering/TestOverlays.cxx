@@ -6,6 +6,7 @@
 #include "vpDangerLevels.h"
 #include "vpDefaultScalpel.h"
 #include "vpImageComparison.h"
+#include "vpKeyFrames.h"
 #include "vpPlotValues.h"
 #include "vpScalpelLoader.h"
 #include "vpTestSupport.h"
@@ -600,6 +601,52 @@ INSTANTIATE_TEST_SUITE_P(Poses, OverlayImages,
   ::testing::Values(Shot{ "safe", 17.0 }, Shot{ "warning", 10.0 }, Shot{ "danger", 7.5 }, Shot{ "breach", 5.0 }),
   [](const ::testing::TestParamInfo<Shot>& info) { return std::string(info.param.Name); });
 
+class KeyFrameImages : public ImageTest<const char*>
+{
+};
+
+// The tip rising towards a tumour 40 mm above the torus (radius 5, margin 5 mm): the key frame at
+// the margin's change to violated is found in the run, captioned in words, and its picture (the
+// headline naming the margin, the tumour in its colour) matches its baseline.
+TEST_P(KeyFrameImages, TheMarginsChangeIsAKeyFrameAndMatchesTheBaseline)
+{
+  const std::string name = GetParam();
+  const std::string tmp = vp::test::MakeTempDir("keyframe_" + name);
+  auto logic = MakePhantomLogic(tmp);
+  const double centre[3] = { 0, -30, 40 };
+  logic->GetParameters()->SetTumour("lesion", vp::MakeSphere(centre, 5.0, 24, 48));
+  vtkNew<vtkVesselProximityView> view;
+  view->SetOffScreen(true);
+  view->SetSizePx(960, 600);
+  view->SetLogic(logic);
+  view->SetCameraPreset(vtkVesselProximityView::CameraPreset::Lateral);
+  std::vector<vp::TrackedPose> poses;
+  for (int i = 0; 21.0 + 0.5 * i <= 33.0 + 1e-9; ++i)
+  {
+    poses.push_back(Pose(0.2 * i, TipDownAt(21.0 + 0.5 * i)));
+  }
+  view->SetPoses(poses);
+  vp::KeyFrameFinder finder;
+  for (int i = 0; i < view->GetNumberOfPoses(); ++i)
+  {
+    view->ShowPose(i);
+    finder.AddFrame(logic->GetLastFrame());
+  }
+  const std::vector<vp::KeyFrame> keys = finder.GetKeyFrames();
+  const auto key = std::find_if(keys.begin(), keys.end(), [&](const vp::KeyFrame& k) { return k.Name.find(name) != std::string::npos; });
+  ASSERT_NE(key, keys.end()) << "no key frame named " << name;
+  // The margin (5 mm) is crossed between tip heights 29.5 (5.5 mm) and 30.5 (4.5 mm).
+  EXPECT_EQ(key->PoseIndex, 19u) << key->Caption;
+  EXPECT_NE(key->Caption.find("tumour lesion"), std::string::npos) << key->Caption;
+  view->ShowPose(static_cast<int>(key->PoseIndex));
+  const std::string file = tmp + "/keyframe_" + name + ".png";
+  view->SaveScreenshot(file);
+  this->ExpectBaseline(file, "keyframe_" + name + ".png", tmp);
+}
+
+INSTANTIATE_TEST_SUITE_P(Margin, KeyFrameImages, ::testing::Values("margin_violated"),
+  [](const ::testing::TestParamInfo<const char*>&) { return std::string("margin_violated"); });
+
 TEST(OverlayImagesComparison, TellsDifferentLevelsApart)
 {
   vp::VirtualDisplay display;
@@ -688,10 +735,14 @@ TEST(Overlays, TheReadoutFitsTheWindowAtAnySize)
     EXPECT_NE(readout->GetLineText(0).find("BREACH: tip"), std::string::npos) << readout->GetLineText(0);
     for (int i = 0; i < readout->GetNumberOfLines(); ++i)
     {
+      // The box is the text's own (its backing's padding included), placed at the line's position.
       double box[4];
       readout->GetLineActor(i)->GetBoundingBox(view->GetRenderer(), box);
-      EXPECT_LE(box[1], size[0]) << "line " << i << " at " << size[0] << " x " << size[1] << ": " << readout->GetLineText(i);
-      EXPECT_GE(box[2], 0) << "line " << i << " below the window";
+      const int* at = readout->GetLineActor(i)->GetPositionCoordinate()->GetComputedDisplayValue(view->GetRenderer());
+      EXPECT_GE(at[0] + box[0], 0) << "line " << i << " left of the window";
+      EXPECT_LE(at[0] + box[1], size[0]) << "line " << i << " at " << size[0] << " x " << size[1] << ": " << readout->GetLineText(i);
+      EXPECT_GE(at[1] + box[2], 0) << "line " << i << " below the window";
+      EXPECT_LE(at[1] + box[3], size[1]) << "line " << i << " above the window";
     }
     EXPECT_EQ(readout->GetFittedFontSize() < 18, size[0] == 640) << size[0];
   }

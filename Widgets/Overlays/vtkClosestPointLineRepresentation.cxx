@@ -40,7 +40,9 @@ vtkClosestPointLineRepresentation::vtkClosestPointLineRepresentation()
   text->SetFontSize(18);
   text->SetBold(true);
   text->SetShadow(true);
-  text->SetColor(1.0, 1.0, 1.0); // white with its shadow: readable over any vessel's colour
+  text->SetColor(1.0, 1.0, 1.0); // white on a dark backing: readable over any vessel's colour
+  text->SetBackgroundColor(0.08, 0.09, 0.12);
+  text->SetBackgroundOpacity(0.7);
   text->SetJustificationToLeft();
   text->SetVerticalJustificationToCentered();
   // A few pixels to the right of the line's middle, wherever that is on the screen.

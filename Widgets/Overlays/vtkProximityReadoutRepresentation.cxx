@@ -71,6 +71,10 @@ void vtkProximityReadoutRepresentation::SetClasses(
     text->SetFontFamilyToCourier(); // columns line up
     text->SetBold(i == 0);
     text->SetShadow(true);
+    // A dark backing like the view's background: the colours below keep their contrast where the
+    // text passes over a white shaft or a bright vessel.
+    text->SetBackgroundColor(0.08, 0.09, 0.12);
+    text->SetBackgroundOpacity(0.7);
     // Class colours are for surfaces; lifted towards white until they read on the view's background
     // (WCAG contrast 4.5), the same hue as the class's model and plot line.
     const std::array<double, 3> c = i == 0 || i - 1 >= colours.size() ? std::array<double, 3>{ 1, 1, 1 } : colours[i - 1];

@@ -807,6 +807,58 @@ TEST_F(TrackCommand, ZBufferLevelsNeverUnderstateTheExactOnes)
   EXPECT_GT(stricter, 0) << "the bound should make some frames near a threshold one level stricter";
 }
 
+// One pose, one answer: `view --pose N` (the tip and the whole instrument, exact) headlines the
+// level, the vessel and, where the tip set it, the distance that `track` wrote for that frame, at
+// frames on the way to the artery, at its wall and inside it.
+TEST_F(TrackCommand, ViewAndTrackGiveAPoseTheSameAnswer)
+{
+  const ToolRun phantom = RunTool(this->Dir, "phantom -o " + this->Dir + "/phantom");
+  ASSERT_EQ(phantom.ExitCode, 0) << phantom.Err;
+  const std::string p = this->Dir + "/phantom/";
+  const std::string scene = "--vessels portal_vein=" + p + "portal_vein.stl,hepatic_artery=" + p +
+    "hepatic_artery.stl,hepatic_vein=" + p + "hepatic_vein.stl --scalpel " + this->Tool + " --poses " +
+    std::string(VP_SOURCE_DIR) + "/Testing/Data/approach_poses.csv";
+  const ToolRun t = RunTool(this->Dir, "track " + scene + " -o " + this->Dir + "/track");
+  ASSERT_EQ(t.ExitCode, 0) << t.Err;
+  const auto rows = ReadCsvCells(this->Dir + "/track/frames.csv");
+  const auto column = [&](const std::string& name) {
+    return static_cast<std::size_t>(std::find(rows[0].begin(), rows[0].end(), name) - rows[0].begin());
+  };
+  const std::size_t level = column("danger_level"), cls = column("level_class"), cause = column("level_cause");
+  std::set<std::string> seen;
+  for (const std::size_t frame : { 0u, 120u, 150u, 175u, 200u, 240u })
+  {
+    ASSERT_LT(frame + 1, rows.size());
+    const std::vector<std::string>& row = rows[frame + 1];
+    const ToolRun v = RunTool(this->Dir, "view " + scene + " --pose " + std::to_string(frame) + " --size 320x240 --screenshot " +
+      this->Dir + "/view.png");
+    ASSERT_EQ(v.ExitCode, 0) << v.Err;
+    // "wrote FILE: tip X, Y, Z mm; HEADLINE (exact engine)"
+    const std::size_t from = v.Out.find("; "), to = v.Out.find(" (exact engine)");
+    ASSERT_TRUE(from != std::string::npos && to != std::string::npos && to > from) << v.Out;
+    const std::string headline = v.Out.substr(from + 2, to - from - 2);
+    std::string word = row[level];
+    std::transform(word.begin(), word.end(), word.begin(), [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
+    EXPECT_TRUE(headline == word || headline.rfind(word + ":", 0) == 0)
+      << "frame " << frame << ": track says " << row[level] << ", view " << headline;
+    seen.insert(row[level]);
+    if (row[level] == "safe")
+    {
+      continue;
+    }
+    std::string vessel = row[cls];
+    std::replace(vessel.begin(), vessel.end(), '_', ' ');
+    EXPECT_NE(headline.find(vessel), std::string::npos) << "frame " << frame << ": " << headline;
+    if (row[cause] == "tip")
+    {
+      char distance[32];
+      std::snprintf(distance, sizeof distance, "%.1f mm", std::abs(std::stod(row[column(row[cls] + "_mm")])));
+      EXPECT_NE(headline.find(distance), std::string::npos) << "frame " << frame << ": " << headline << " against " << distance;
+    }
+  }
+  EXPECT_GE(seen.size(), 3u) << "the frames should span several levels";
+}
+
 // The example approach onto the phantom's artery (Testing/Data/approach_poses.csv) enters it by
 // 1.2 mm, and passes within a cell of its wall on the way: frame by frame, at the default cell and
 // at 1 and 2 mm cells, the z-buffer's level is never milder than the exact engine's. Where its

@@ -1144,6 +1144,32 @@ TEST_F(SlicerCli, TrackRunsAsSlicerRunsIt)
 
   const auto frames = ReadCsvTable(values.at("framesTable"));
   EXPECT_EQ(frames->GetNumberOfRows(), 3);
+  // The same poses through `vesselproximity track` (the same built-in handpiece and meshes, copied
+  // to a folder whose name --vessels' list can hold): the same levels and distances, frame by frame.
+  const std::string plain = vp::test::MakeTempDir("cli_track");
+  for (const char* cls : { "portal_vein", "hepatic_artery", "hepatic_vein" })
+  {
+    fs::copy_file(this->Phantom(cls), plain + "/" + cls + ".stl");
+  }
+  fs::copy_file(poses, plain + "/poses.csv");
+  const std::string handpiece = vp::WriteDefaultScalpel(plain + "/scalpel");
+  const ToolRun track = vp::test::RunTool(plain, "track --vessels portal_vein=" + plain + "/portal_vein.stl,hepatic_artery=" +
+    plain + "/hepatic_artery.stl,hepatic_vein=" + plain + "/hepatic_vein.stl --scalpel " + handpiece + " --poses " + plain +
+    "/poses.csv -o " + plain + "/track");
+  ASSERT_EQ(track.ExitCode, 0) << track.Err;
+  const auto tracked = ReadCsvTable(plain + "/track/frames.csv");
+  fs::remove_all(plain);
+  ASSERT_EQ(tracked->GetNumberOfRows(), frames->GetNumberOfRows());
+  for (vtkIdType row = 0; row < frames->GetNumberOfRows(); ++row)
+  {
+    for (const char* column : { "danger_level", "tip_level", "instrument_level", "level_class", "portal_vein_mm",
+           "hepatic_artery_mm", "portal_vein_surface_mm", "hepatic_artery_penetration_volume_mm3" })
+    {
+      ASSERT_TRUE(frames->GetColumnByName(column) && tracked->GetColumnByName(column)) << column;
+      EXPECT_EQ(frames->GetValueByName(row, column).ToString(), tracked->GetValueByName(row, column).ToString())
+        << column << " of frame " << row;
+    }
+  }
   const auto summary = nlohmann::json::parse(Slurp(values.at("summary")));
   EXPECT_EQ(summary["frames"], 3);
   EXPECT_EQ(Slurp(values.at("plot")).substr(1, 3), "PNG");

@@ -23,12 +23,14 @@
 #include "vpAnalyticShapes.h"
 #include "vtkVesselProximityView.h"
 #include "vpClearViewCamera.h"
+#include "vpTipOcclusion.h"
 #include "vtkZBufferVesselDistance.h"
 #include "vpVulkanContext.h"
 #include "vpVesselLabelTable.h"
 
 #include <vtkActor.h>
 #include <vtkCamera.h>
+#include <vtkPolyDataMapper.h>
 #include <vtkLineSource.h>
 #include <vtkActor2D.h>
 #include <vtkTextActor.h>
@@ -784,6 +786,11 @@ std::string RenderPreset(
   const bool moving = preset == vtkVesselProximityView::CameraPreset::Tool || preset == vtkVesselProximityView::CameraPreset::Follow ||
     preset == vtkVesselProximityView::CameraPreset::Clear;
   EXPECT_TRUE(!moving || vp::PointInPlainSight(view->GetRenderer(), tip)) << vtkVesselProximityView::CameraPresetName(preset);
+  // A fixed one never leaves a vessel hiding the tip: it shows the vessels see-through then.
+  vp::TipOcclusion occlusion;
+  const bool vesselHides = occlusion.Hides(view->GetRenderer(), view->GetOverlays()->GetVessels()->GetVesselActors(), tip);
+  EXPECT_EQ(view->GetOverlays()->GetVessels()->GetSeeThrough(), !moving && vesselHides)
+    << vtkVesselProximityView::CameraPresetName(preset);
   return file;
 }
 } // namespace
@@ -882,6 +889,35 @@ TEST(CameraPresets, TheClearViewShowsATipThatAVesselHides)
     }
   }
   std::filesystem::remove_all(tmp);
+}
+
+// The line of sight against an analytic ball (radius 10 at the origin), the camera 100 mm in front
+// of it on -y: a point behind the ball is hidden, one in front or beside it is not, one just inside
+// its near wall (within the tolerance) is not; the ball's locator is built once for all of them.
+TEST(TipOcclusion, ABallHidesWhatIsBehindItAndItsLocatorIsBuiltOnce)
+{
+  const double centre[3] = { 0, 0, 0 };
+  vtkNew<vtkActor> ball;
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputData(vp::MakeSphere(centre, 10.0, 48, 96));
+  ball->SetMapper(mapper);
+  vtkNew<vtkRenderer> renderer;
+  renderer->GetActiveCamera()->SetPosition(0, -100, 0);
+  renderer->GetActiveCamera()->SetFocalPoint(0, 0, 0);
+  vp::TipOcclusion occlusion;
+  const std::vector<vtkActor*> actors = { ball };
+  const double behind[3] = { 0, 20, 0 }, inFront[3] = { 0, -20, 0 }, beside[3] = { 15, 20, 0 }, justInside[3] = { 0, -8, 0 },
+               deepInside[3] = { 0, 0, 0 };
+  EXPECT_TRUE(occlusion.Hides(renderer, actors, behind));
+  EXPECT_FALSE(occlusion.Hides(renderer, actors, inFront));
+  EXPECT_FALSE(occlusion.Hides(renderer, actors, beside));
+  EXPECT_FALSE(occlusion.Hides(renderer, actors, justInside)) << "2 mm inside the wall, within 3 mm";
+  EXPECT_TRUE(occlusion.Hides(renderer, actors, deepInside)) << "10 mm behind the wall";
+  EXPECT_EQ(occlusion.GetNumberOfLocators(), 1u);
+  // Moved by its actor's matrix: the ball now at x = 50, the point behind the origin in plain sight.
+  ball->SetPosition(50, 0, 0);
+  EXPECT_FALSE(occlusion.Hides(renderer, actors, behind));
+  EXPECT_EQ(occlusion.GetNumberOfLocators(), 1u);
 }
 
 INSTANTIATE_TEST_SUITE_P(Presets, CameraPresetImages,

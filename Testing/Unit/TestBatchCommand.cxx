@@ -2,12 +2,17 @@
 // folder, resumed, sharded and merged; each bad manifest refused in one line.
 #include "vpAnalyticShapes.h"
 #include "vpCohortRun.h"
+#include "vpDangerBands.h"
 #include "vpDicomLabelSeriesWriter.h"
 #include "vpInputError.h"
 #include "vpModelTestSupport.h"
 #include "vpTestSupport.h"
 
 #include <gtest/gtest.h>
+
+#include <vtkImageData.h>
+#include <vtkNew.h>
+#include <vtkPNGReader.h>
 
 #include <algorithm>
 
@@ -107,7 +112,24 @@ TEST_F(BatchCommand, EachCaseIsComputedWholeAndItsRowsAreItsRecords)
   EXPECT_EQ(rows[3], std::vector<std::string>({ "into", "hepatic_artery", "", "", "", "", "", "no hepatic_artery in this case's segmentation" }));
   EXPECT_EQ(rows[0], std::vector<std::string>({ "case", "class", "tip_min_mm", "surface_min_mm", "penetration_max_mm3",
                        "breach_frames", "margin_min_mm", "error" }));
-  EXPECT_TRUE(fs::exists(out + "/cohort.png"));
+  // The picture shows the margin kept around the "into" case's lesion, in the tumour's colour.
+  vtkNew<vtkPNGReader> png;
+  png->SetFileName((out + "/cohort.png").c_str());
+  png->Update();
+  vtkImageData* picture = png->GetOutput();
+  int dims[3];
+  picture->GetDimensions(dims);
+  ASSERT_GT(dims[0], 0) << "cohort.png is a PNG";
+  int tumourPixels = 0;
+  for (int y = 0; y < dims[1]; ++y)
+  {
+    for (int x = 0; x < dims[0] * 3 / 4; ++x) // the plot, not the legend at the right
+    {
+      const auto* p = static_cast<const unsigned char*>(picture->GetScalarPointer(x, y, 0));
+      tumourPixels += p[0] == vp::TumourDisplayColour[0] && p[1] == vp::TumourDisplayColour[1] && p[2] == vp::TumourDisplayColour[2];
+    }
+  }
+  EXPECT_GT(tumourPixels, 20) << "the margin's mark";
   EXPECT_FALSE(fs::exists(out + "/missing")) << "a failed case leaves no folder";
   for (const std::string name : { "into", "near" })
   {

@@ -13,6 +13,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <stdexcept>
 
 namespace vp
 {
@@ -205,8 +206,21 @@ IgtlPoseMessage DecodeIgtlPose(const unsigned char* header, const std::vector<un
   return Ignored("no element " + toolName);
 }
 
+namespace
+{
+void CheckDeviceName(const std::string& device)
+{
+  if (device.size() > IgtlDeviceNameBytes)
+  {
+    throw std::invalid_argument("OpenIGTLink device name '" + device + "' is " + std::to_string(device.size()) +
+      " bytes; the wire holds " + std::to_string(IgtlDeviceNameBytes));
+  }
+}
+} // namespace
+
 std::string PackIgtlString(const std::string& device, const std::string& text)
 {
+  CheckDeviceName(device);
   auto message = igtl::StringMessage::New();
   message->SetDeviceName(device.c_str());
   message->SetEncoding(3); // US-ASCII (IANA MIBenum): the JSON is written in ASCII
@@ -216,6 +230,7 @@ std::string PackIgtlString(const std::string& device, const std::string& text)
 
 std::string PackIgtlPoints(const std::string& device, const std::vector<IgtlPoint>& points)
 {
+  CheckDeviceName(device);
   auto message = igtl::PointMessage::New();
   message->SetDeviceName(device.c_str());
   for (const IgtlPoint& p : points)
@@ -235,6 +250,7 @@ std::string PackIgtlPoints(const std::string& device, const std::vector<IgtlPoin
 
 std::string PackIgtlTransform(const std::string& device, const std::array<double, 16>& matrix)
 {
+  CheckDeviceName(device);
   auto message = igtl::TransformMessage::New();
   message->SetDeviceName(device.c_str());
   igtl::Matrix4x4 m;

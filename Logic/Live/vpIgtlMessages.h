@@ -1,6 +1,7 @@
 #ifndef vpIgtlMessages_h
 #define vpIgtlMessages_h
 
+#include "vpIgtlLink.h"
 #include "vpPoseFile.h"
 #include "vpTrackedFrame.h"
 
@@ -59,7 +60,8 @@ struct IgtlPoint
 };
 
 /// Messages packed as OpenIGTLink sends them (header and body, CRC set), ready to be written to
-/// a socket one after another.
+/// a socket one after another. A device name over IgtlDeviceNameBytes is refused
+/// (std::invalid_argument): the wire would carry it cut.
 std::string PackIgtlString(const std::string& device, const std::string& text);
 std::string PackIgtlPoints(const std::string& device, const std::vector<IgtlPoint>& points);
 std::string PackIgtlTransform(const std::string& device, const std::array<double, 16>& matrix);

@@ -22,19 +22,24 @@ constexpr const char* FrameDevice = "VesselProximity";
 constexpr const char* LevelDevice = "VesselProximityLevel";
 /// STRING: with haptics on, each frame's force for a haptic device's bridge: {"force_n",
 /// "direction" (unit, RAS), "depth_mm", "rate_mm_s"}.
-constexpr const char* HapticDevice = "VesselProximityHaptic";
+constexpr const char* HapticDevice = "VesselProximityForce";
 /// POINT: "tip", then per class in range its closest point (named for the class), RAS, mm,
 /// coloured by the class's level; with tumours, last, the closest point of the tumour that sets
 /// the margin's level (named for the tumour, group "tumour"), coloured as the danger level of a
 /// vessel that near: danger when the margin is violated or the tip inside, caution when near.
-constexpr const char* PointsDevice = "VesselProximityPoints";
+constexpr const char* PointsDevice = "VesselProximityPoint";
+// OpenIGTLink gives a device name 20 bytes: a longer one reaches the peer cut.
+static_assert(std::char_traits<char>::length(FrameDevice) <= IgtlDeviceNameBytes);
+static_assert(std::char_traits<char>::length(LevelDevice) <= IgtlDeviceNameBytes);
+static_assert(std::char_traits<char>::length(HapticDevice) <= IgtlDeviceNameBytes);
+static_assert(std::char_traits<char>::length(PointsDevice) <= IgtlDeviceNameBytes);
 } // namespace live
 
 /// One frame as the peer reads it: {"state": "tracking", "frame", "time", "space": "RAS", "tip",
 /// "level", "level_class", "error_bound_mm", "nearest": {"class", "distance_mm"} or null,
 /// "classes": {"<class>": {"distance_mm", "inside", "level", "point", "surface_mm",
 /// "penetration_depth_mm", "penetration_volume_mm3"}}, with haptics on "haptic" (as the
-/// VesselProximityHaptic message), and with tumours "tumour": {"level" (the margin's), "id" and
+/// VesselProximityForce message), and with tumours "tumour": {"level" (the margin's), "id" and
 /// "tumour_mm" of the tumour that sets it, "tumours": {"<id>": {"tumour_mm" (negative inside),
 /// "level", "point", "surface_mm"}}}: points in RAS (what Slicer shows), null
 /// where a class is out of range or a quantity was not computed.

@@ -4,6 +4,8 @@
 // in time. Frames are checked against track on the same poses, results as a real client reads
 // them, and each malformed message for being skipped and counted.
 #include "vpAnalyticShapes.h"
+#include "vpIgtlMessages.h"
+#include "vpLiveResults.h"
 #include "vpModelTestSupport.h"
 #include "vpTestSupport.h"
 
@@ -15,6 +17,7 @@
 #include <netinet/in.h>
 #include <sys/socket.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <csignal>
@@ -222,6 +225,38 @@ protected:
   std::vector<std::string> Extra; ///< options both live and track are given
 };
 } // namespace
+
+// Every message a live session sends carries its documented device name whole: the wire holds 20
+// bytes, and a longer name reached Slicer cut ("VesselProximityPoint" for "...Points"). A name
+// that would be cut is refused where it is packed.
+TEST(LiveResults, EachMessageCarriesItsDocumentedDeviceNameWhole)
+{
+  vp::TrackedFrame frame;
+  frame.Haptic.emplace();
+  const std::string packed = vp::PackLiveFrame(frame) + vp::PackLiveLevelChange(vp::DangerLevelChange{});
+  std::vector<std::string> devices;
+  for (std::size_t at = 0; at + vp::IgtlHeaderBytes <= packed.size();)
+  {
+    const vp::IgtlHeader h = vp::ParseIgtlHeader(reinterpret_cast<const unsigned char*>(packed.data() + at));
+    devices.push_back(h.Device);
+    at += vp::IgtlHeaderBytes + h.BodyBytes;
+  }
+  EXPECT_EQ(devices, std::vector<std::string>({ "VesselProximity", "VesselProximityPoint", "VesselProximityForce",
+                       "VesselProximityLevel" }));
+  EXPECT_THROW(vp::PackIgtlString("VesselProximityPoints", "{}"), std::invalid_argument);
+  EXPECT_NO_THROW(vp::PackIgtlString("VesselProximityPoint", "{}"));
+}
+
+// A tool name no message can carry (over 20 bytes) is refused before the session starts.
+TEST_F(LiveCommand, AToolNameTheWireCannotCarryIsRefused)
+{
+  const ToolRun live = vp::test::RunTool(this->Dir, "live --vessels " + this->Vessels + " --scalpel " + this->Scalpel +
+    " --igtl-listen 0 --tool-name ScalpelTipToTrackerRef --duration-s 1 -o " + this->Dir + "/out");
+  EXPECT_EQ(live.ExitCode, 1) << live.Err;
+  EXPECT_EQ(std::count(live.Err.begin(), live.Err.end(), '\n'), 1) << live.Err;
+  EXPECT_NE(live.Err.find("--tool-name: 'ScalpelTipToTrackerRef' is 22 bytes"), std::string::npos) << live.Err;
+  EXPECT_FALSE(std::filesystem::exists(this->Dir + "/out"));
+}
 
 // A tracker streaming at 50 Hz for 10 s: every pose computed, each frame track's; with the haptic
 // force on, its direction too, and its force in the record; with a tumour, its margin's columns.

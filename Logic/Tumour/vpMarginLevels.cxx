@@ -8,13 +8,15 @@ namespace vp
 {
 void MarginSettings::Validate(const std::string& source) const
 {
-  if (!(this->MarginMm >= 0.0) || !std::isfinite(this->MarginMm))
+  if (!(this->MarginMm >= 0.0 && this->MarginMm <= MaximumMm))
   {
-    throw ParameterError(source, "the margin must be a distance in mm, 0 or more, got " + NumberText(this->MarginMm));
+    throw ParameterError(source, "the margin must be a distance from 0 to " + NumberText(MaximumMm) + " mm, got " +
+      NumberText(this->MarginMm));
   }
-  if (!(this->NearBandMm >= 0.0) || !std::isfinite(this->NearBandMm))
+  if (!(this->NearBandMm >= 0.0 && this->NearBandMm <= MaximumMm))
   {
-    throw ParameterError(source, "the near band must be a distance in mm, 0 or more, got " + NumberText(this->NearBandMm));
+    throw ParameterError(source, "the near band must be a distance from 0 to " + NumberText(MaximumMm) + " mm, got " +
+      NumberText(this->NearBandMm));
   }
 }
 

@@ -16,14 +16,18 @@ enum class MarginLevel
 constexpr int NumberOfMarginLevels = 4;
 
 /// The resection margin around every tumour, in mm. Defaults: the 5 mm margin hepatic surgeons
-/// commonly plan for a metastasis, and a near band as wide again, so the display warns 5 mm
-/// before the margin is reached.
+/// commonly plan for a metastasis, and a near band as wide again (the front ends keep the band
+/// equal to the margin unless told otherwise), so the display warns a margin's width before the
+/// margin is reached.
 struct MarginSettings
 {
   double MarginMm = 5.0;
   double NearBandMm = 5.0;
+  /// The widest margin or band taken (mm): a liver resection's margin is 0-20 mm; a number
+  /// beyond this is a unit or a typing error, not a plan.
+  static constexpr double MaximumMm = 50.0;
 
-  /// Throws vp::ParameterError(source, ...) unless both are finite, MarginMm >= 0 and NearBandMm >= 0.
+  /// Throws vp::ParameterError(source, ...) unless both are finite and within 0..MaximumMm.
   void Validate(const std::string& source) const;
 };
 

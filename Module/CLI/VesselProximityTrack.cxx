@@ -245,6 +245,8 @@ void Run(const vp::cli::ParsedArguments& args, vp::cli::ReturnValues& results)
     request.Tumours = { { "tumour", args.GetString("tumour"), nullptr, std::nullopt } };
   }
   request.Tracking.Margin.MarginMm = args.GetNumber("marginMm");
+  request.Tracking.Margin.NearBandMm = request.Tracking.Margin.MarginMm; // "up to as much again beyond it is near"
+  request.Tracking.Margin.Validate("--marginMm");
 
   vp::PoseReading reading;
   reading.ToolName = args.GetString("toolName");

@@ -93,14 +93,43 @@ cli::ParameterGroup TrackingOptions()
         .SetPlaceholder("FILE[,FILE...]")
         .SetLogicName("Tumours"),
       Option(cli::ParameterType::Double, "margin-mm",
-        "The resection margin around every tumour: closer is 'violated'; up to this much again beyond it is 'near'.")
+        "The resection margin around every tumour (with --tumour): closer is 'violated'; up to --near-band-mm beyond it "
+        "is 'near'. From 0 to 50.")
         .SetPlaceholder("MM")
         .SetDefault(FormatNumber(Defaults().Margin.MarginMm))
         .SetLogicName("MarginMm"),
+      Option(cli::ParameterType::Double, "near-band-mm",
+        "How far beyond the margin a tip is 'near' it (with --tumour). From 0 to 50. Default: the margin's own width.")
+        .SetPlaceholder("MM")
+        .SetLogicName("NearBandMm"),
       Switch("no-surface",
         "Skip the whole-instrument distance (the closest approach of any point of the scalpel surface, computed "
         "beside the tip's)."),
     } };
+}
+
+MarginSettings ParseMarginSettings(const cli::ParsedArguments& args, bool tumours)
+{
+  using cli::FormatNumber;
+  for (const char* option : { "marginMm", "nearBandMm" })
+  {
+    if (args.IsSet(option) && !tumours)
+    {
+      throw InputError(std::string("--") + (option == std::string("marginMm") ? "margin-mm" : "near-band-mm"),
+        "given without --tumour: there is no tumour to keep a margin from");
+    }
+  }
+  MarginSettings margin;
+  margin.MarginMm = args.GetNumber("marginMm");
+  margin.NearBandMm = args.IsSet("nearBandMm") ? args.GetNumber("nearBandMm") : margin.MarginMm;
+  for (const auto& [option, value] : { std::pair<const char*, double>{ "--margin-mm", margin.MarginMm }, { "--near-band-mm", margin.NearBandMm } })
+  {
+    if (!(value >= 0.0 && value <= MarginSettings::MaximumMm))
+    {
+      throw InputError(option, "expected a distance from 0 to " + FormatNumber(MarginSettings::MaximumMm) + " mm, got " + FormatNumber(value));
+    }
+  }
+  return margin;
 }
 
 std::vector<cli::Parameter> PoseReadingOptions()
@@ -242,11 +271,7 @@ SceneRequest ParseSceneRequest(const cli::ParsedArguments& args)
   {
     request.Tumours = TumourEntries(SplitList(args.GetString("tumour"), ','), "--tumour");
   }
-  request.Tracking.Margin.MarginMm = args.GetNumber("marginMm");
-  if (request.Tracking.Margin.MarginMm < 0.0)
-  {
-    throw InputError("--margin-mm", "expected a distance in mm, 0 or more, got '" + args.GetString("marginMm") + "'");
-  }
+  request.Tracking.Margin = ParseMarginSettings(args, !request.Tumours.empty());
   return request;
 }
 } // namespace vp

@@ -3,6 +3,7 @@
 
 #include "vpCliDescription.h"
 #include "vpDangerLevels.h"
+#include "vpMarginLevels.h"
 #include "vpPoseFile.h"
 #include "vpScalpelLoader.h"
 #include "vpTrackingSummary.h"
@@ -39,6 +40,9 @@ ScalpelTipDefinition ParseTipDefinition(const cli::ParsedArguments& args);
 double ParseFrameBudgetMs(const cli::ParsedArguments& args);
 /// --hysteresis-mm, not negative (vtkScalpelTrackingLogic::SetHysteresisMm); throws InputError.
 double ParseHysteresisMm(const cli::ParsedArguments& args);
+/// --margin-mm and --near-band-mm (the band, by default, as wide as the margin), each from 0 to
+/// MarginSettings::MaximumMm and only with tumours; throws InputError naming the option.
+MarginSettings ParseMarginSettings(const cli::ParsedArguments& args, bool tumours);
 
 /// "frame median X ms, p95 Y ms, max Z ms; K of N frames over the B ms budget" (or "no frame
 /// budget"): how track and view report the frames' computing times.
@@ -47,7 +51,7 @@ std::string FrameTimesText(const TrackingSummary& summary, double budgetMs);
 /// The scene the shared options ask for (track, view): --vessels, --scalpel (none: the built-in
 /// handpiece) with --tip and --axis, the engine of --method with its settings (for "both", the
 /// comparison with the exact engine), --danger-mm, --frame-budget-ms, --hysteresis-mm, the
-/// tumours and their margin (--tumour, --margin-mm) and --no-surface. Nothing is read or opened here: vtkVesselProximityLogic::OpenScene does it.
+/// tumours and their margin (--tumour, --margin-mm, --near-band-mm) and --no-surface. Nothing is read or opened here: vtkVesselProximityLogic::OpenScene does it.
 /// Throws InputError naming the option.
 SceneRequest ParseSceneRequest(const cli::ParsedArguments& args);
 } // namespace vp

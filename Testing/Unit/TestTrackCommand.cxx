@@ -440,7 +440,11 @@ TEST_F(TrackCommand, MeasuresTheResectionMarginOfEachTumour)
   EXPECT_EQ(Slurp(this->Dir + "/plain/frames.csv").find("tumour"), std::string::npos);
   EXPECT_EQ(Slurp(this->Dir + "/plain/summary.json").find("\"tumour\""), std::string::npos);
   for (const auto& [options, message] : std::vector<std::pair<std::string, std::string>>{
-         { " --tumour " + tumour + " --margin-mm -1", "--margin-mm: expected a distance in mm, 0 or more, got '-1'" },
+         { " --tumour " + tumour + " --margin-mm -1", "--margin-mm: expected a distance from 0 to 50 mm, got -1" },
+         { " --tumour " + tumour + " --margin-mm 1e300", "--margin-mm: expected a distance from 0 to 50 mm, got 1e+300" },
+         { " --tumour " + tumour + " --near-band-mm 51", "--near-band-mm: expected a distance from 0 to 50 mm, got 51" },
+         { " --margin-mm 5", "--margin-mm: given without --tumour" },
+         { " --near-band-mm 5", "--near-band-mm: given without --tumour" },
          { " --tumour " + this->Dir + "/none.stl", this->Dir + "/none.stl: " },
          { " --tumour 2nd=" + tumour, "--tumour: tumour id '2nd'" },
          { " --tumour a=" + tumour + ",a=" + other, "--tumour: tumour 'a' is given twice" } })
@@ -452,6 +456,36 @@ TEST_F(TrackCommand, MeasuresTheResectionMarginOfEachTumour)
     EXPECT_EQ(std::count(bad.Err.begin(), bad.Err.end(), '\n'), 1) << bad.Err;
     EXPECT_FALSE(std::filesystem::exists(this->Dir + "/bad")) << options;
   }
+}
+
+// The near band is the margin's own width unless --near-band-mm says otherwise: with a 10 mm
+// margin a tip 17 mm from the tumour is near it (it read clear with a fixed 5 mm band), with a
+// 1 mm margin a tip 4 mm away is clear (it read near).
+TEST_F(TrackCommand, TheNearBandIsAsWideAsTheMarginUnlessSet)
+{
+  const double centre[3] = { -40.2, 0.3, 0.2 };
+  const std::string tumour = this->Write("tumour_a.stl", vp::MakeSphere(centre, 8.0, 48, 96));
+  // The tip at x = -15.2 and -28.2: 17 and 4 mm from the tumour's surface (x = -32.2).
+  const std::string poses = this->WriteText("two.csv", "time,x,y,z,qw,qx,qy,qz\n0,-15.2,0.3,0.2,0.7071068,0,-0.7071068,0\n"
+                                                       "10,-28.2,0.3,0.2,0.7071068,0,-0.7071068,0\n");
+  const auto levels = [&](const std::string& options) {
+    const std::string out = this->Dir + "/band" + std::to_string(std::hash<std::string>()(options));
+    const ToolRun r = RunTool(this->Dir, "track --vessels " + this->Vessels + " --scalpel " + this->Tool + " --poses " + poses +
+        " --tumour " + tumour + options + " -o " + out);
+    EXPECT_EQ(r.ExitCode, 0) << r.Err;
+    const auto rows = ReadCsvCells(out + "/frames.csv");
+    const std::size_t level = std::find(rows[0].begin(), rows[0].end(), "margin_level") - rows[0].begin();
+    std::vector<std::string> got;
+    for (std::size_t i = 1; i < rows.size(); ++i)
+    {
+      got.push_back(rows[i].at(level));
+    }
+    return got;
+  };
+  EXPECT_EQ(levels(" --margin-mm 10"), std::vector<std::string>({ "near", "violated" }));
+  EXPECT_EQ(levels(" --margin-mm 1"), std::vector<std::string>({ "clear", "clear" }));
+  EXPECT_EQ(levels(" --margin-mm 1 --near-band-mm 3.5"), std::vector<std::string>({ "clear", "near" }));
+  EXPECT_EQ(levels(""), std::vector<std::string>({ "clear", "violated" })) << "5 mm and 5 mm";
 }
 
 TEST_F(TrackCommand, CountsTheFramesOverTheBudget)

@@ -4,8 +4,7 @@
 #include "vpIgtlMessages.h"
 #include "vpInputError.h"
 
-#include <igtlClientSocket.h>
-#include <igtlServerSocket.h>
+#include <igtlSocket.h>
 
 #include <fcntl.h>
 #include <netdb.h>
@@ -16,8 +15,8 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cerrno>
+#include <chrono>
 #include <cstring>
 
 namespace vp
@@ -106,12 +105,139 @@ bool IsTypeName(const std::string& type)
   return !type.empty() &&
     std::all_of(type.begin(), type.end(), [](char c) { return (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_'; });
 }
+
+/// A listening TCP socket on host:port (port 0: any free one): its descriptor, or -1. Our own
+/// rather than the library's ServerSocket, which binds every interface.
+int ListenOn(const std::string& host, int port)
+{
+  addrinfo hints{};
+  hints.ai_family = AF_UNSPEC;
+  hints.ai_socktype = SOCK_STREAM;
+  hints.ai_flags = AI_PASSIVE | AI_NUMERICSERV;
+  addrinfo* found = nullptr;
+  if (port < 0 || port > 65535 || getaddrinfo(host.c_str(), std::to_string(port).c_str(), &hints, &found) != 0)
+  {
+    return -1;
+  }
+  int listening = -1;
+  for (addrinfo* a = found; a && listening < 0; a = a->ai_next)
+  {
+    const int fd = ::socket(a->ai_family, a->ai_socktype | SOCK_CLOEXEC, a->ai_protocol);
+    if (fd < 0)
+    {
+      continue;
+    }
+    const int on = 1;
+    setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &on, sizeof on);
+    if (::bind(fd, a->ai_addr, a->ai_addrlen) == 0 && ::listen(fd, 16) == 0)
+    {
+      listening = fd;
+    }
+    else
+    {
+      ::close(fd);
+    }
+  }
+  freeaddrinfo(found);
+  return listening;
+}
+
+/// The port a listening socket was given.
+int PortOf(int descriptor)
+{
+  sockaddr_storage address{};
+  socklen_t length = sizeof address;
+  if (getsockname(descriptor, reinterpret_cast<sockaddr*>(&address), &length) != 0)
+  {
+    return -1;
+  }
+  return ntohs(address.ss_family == AF_INET6 ? reinterpret_cast<sockaddr_in6*>(&address)->sin6_port
+                                             : reinterpret_cast<sockaddr_in*>(&address)->sin_port);
+}
+
+/// The numeric address of a peer ("127.0.0.1").
+std::string HostOf(const sockaddr_storage& address, socklen_t length)
+{
+  char host[NI_MAXHOST] = "";
+  return getnameinfo(reinterpret_cast<const sockaddr*>(&address), length, host, sizeof host, nullptr, 0, NI_NUMERICHOST) == 0
+    ? std::string(host)
+    : std::string("?");
+}
+
+/// Reads a peer's messages through a buffer of what has arrived (one call takes all that waits: a
+/// sender at 1 kHz is read in a few calls a frame, not two per message). A message's time runs
+/// from its first byte: header and body must both arrive within the timeout however the sender
+/// paces its bytes (a byte every few milliseconds cannot hold the connection), and when it began
+/// is published for the listener choosing whom to close.
+class MessageReader
+{
+public:
+  MessageReader(igtl::Socket* socket, double timeoutMs, const std::atomic<bool>& stop, std::atomic<double>& begunMs)
+    : Socket(socket)
+    , TimeoutMs(timeoutMs)
+    , Stop(stop)
+    , BegunMs(begunMs)
+  {
+  }
+
+  ReadResult Read(unsigned char* into, std::size_t count)
+  {
+    while (this->Arrived.size() - this->Used < count)
+    {
+      if (this->Stop)
+      {
+        return ReadResult::Stopped;
+      }
+      const int r = this->Socket->Receive(this->Chunk.data(), static_cast<int>(this->Chunk.size()), 0);
+      if (r == 0)
+      {
+        return ReadResult::Closed;
+      }
+      if (r > 0)
+      {
+        if (this->BegunMs < 0.0)
+        {
+          this->BegunMs = NowMs();
+        }
+        this->Arrived.erase(this->Arrived.begin(), this->Arrived.begin() + static_cast<std::ptrdiff_t>(this->Used));
+        this->Used = 0;
+        this->Arrived.insert(this->Arrived.end(), this->Chunk.begin(), this->Chunk.begin() + r);
+      }
+      if (this->BegunMs >= 0.0 && NowMs() - this->BegunMs > this->TimeoutMs)
+      {
+        return ReadResult::Stalled;
+      }
+    }
+    std::copy_n(this->Arrived.begin() + static_cast<std::ptrdiff_t>(this->Used), count, into);
+    this->Used += count;
+    return ReadResult::Ok;
+  }
+
+  /// A whole message was read: the next one's time starts with its first byte (now, if some of
+  /// it came with this one's).
+  void MessageDone() { this->BegunMs = this->Arrived.size() > this->Used ? NowMs() : -1.0; }
+
+private:
+  igtl::Socket* Socket;
+  double TimeoutMs;
+  const std::atomic<bool>& Stop;
+  std::atomic<double>& BegunMs;
+  std::vector<unsigned char> Arrived;
+  std::size_t Used = 0;
+  std::vector<unsigned char> Chunk = std::vector<unsigned char>(1u << 16);
+};
 } // namespace
 
 struct IgtlLink::Peer
 {
   igtl::Socket::Pointer Socket;
+  int Descriptor = -1;
   std::string Name; ///< "127.0.0.1:18944" (a server) or "client 2"
+  std::string Host; ///< the client's address ("127.0.0.1"); the server's host name
+  bool IsServer = false; ///< the server connected to (the --igtl tracker), not a client
+  double ConnectedMs = 0.0;
+  std::atomic<double> MessageBegunMs{ -1.0 }; ///< when the message being read began; -1: none
+  std::atomic<bool> Closing{ false };          ///< shut down by the listener to serve another
   std::thread Reader;
   std::atomic<bool> Done{ false };
   /// A send failed (the peer took no more within the timeout, or part of a message went): the
@@ -141,14 +267,13 @@ IgtlLink::IgtlLink(const IgtlLinkSettings& settings)
   }
   if (settings.ListenPort >= 0)
   {
-    auto server = igtl::ServerSocket::New();
-    if (settings.ListenPort > 65535 || server->CreateServer(settings.ListenPort) < 0)
+    this->ListenDescriptor = ListenOn(settings.ListenHost, settings.ListenPort);
+    if (this->ListenDescriptor < 0)
     {
-      throw ParameterError("ListenPort", "cannot serve on port " + std::to_string(settings.ListenPort) + " (in use, or not a port)");
+      throw ParameterError("ListenPort", "cannot serve on " + settings.ListenHost + ":" + std::to_string(settings.ListenPort) +
+        " (in use, not a port, or not an address of this machine)");
     }
-    this->ListenPort = server->GetServerPort();
-    server->Register(); // held by the shared_ptr below, released with it
-    this->Server = std::shared_ptr<void>(server.GetPointer(), [](void* s) { static_cast<igtl::ServerSocket*>(s)->UnRegister(); });
+    this->ListenPort = PortOf(this->ListenDescriptor);
     this->Acceptor = std::thread([this] { this->AcceptLoop(); });
   }
   if (settings.ConnectPort > 0)
@@ -181,9 +306,9 @@ IgtlLink::~IgtlLink()
       peer->Reader.join();
     }
   }
-  if (this->Server)
+  if (this->ListenDescriptor >= 0)
   {
-    static_cast<igtl::ServerSocket*>(this->Server.get())->CloseSocket();
+    ::close(this->ListenDescriptor);
   }
 }
 
@@ -215,27 +340,30 @@ void IgtlLink::Count(std::map<std::string, std::size_t> IgtlLinkCounts::*which, 
 void IgtlLink::ConnectLoop()
 {
   const std::string name = this->Settings.ConnectHost + ":" + std::to_string(this->Settings.ConnectPort);
+  // After any loss or refusal the pause grows from 0.1 s to 2 s; only a connection that held (a
+  // whole message, or a second's life) starts it over. Each state is said once, not each attempt.
   double pauseMs = 100.0;
-  bool said = false;
+  enum class State { Starting, Refused, Flapping, Held } said = State::Starting;
+  const auto pause = [&] {
+    for (const double until = NowMs() + pauseMs; !this->Stop && NowMs() < until;)
+    {
+      std::this_thread::sleep_for(std::chrono::milliseconds(PollMs));
+    }
+    pauseMs = std::min(2000.0, 2.0 * pauseMs);
+  };
   while (!this->Stop)
   {
     const int descriptor = ConnectWithin(this->Settings.ConnectHost, this->Settings.ConnectPort, 1000);
     if (descriptor < 0)
     {
-      if (!said)
+      if (said != State::Refused)
       {
         this->Note("cannot connect to " + name + "; trying again, every 2 s at most");
-        said = true;
+        said = State::Refused;
       }
-      for (const double until = NowMs() + pauseMs; !this->Stop && NowMs() < until;)
-      {
-        std::this_thread::sleep_for(std::chrono::milliseconds(PollMs));
-      }
-      pauseMs = std::min(2000.0, 2.0 * pauseMs);
+      pause();
       continue;
     }
-    said = false;
-    pauseMs = 100.0;
     auto socket = AdoptedSocket::New();
     socket->Adopt(descriptor);
     // A tracking-data server streams once asked (PLUS and the library's examples do so); asked
@@ -244,54 +372,134 @@ void IgtlLink::ConnectLoop()
     socket->Send(start.data(), static_cast<int>(start.size()));
     auto peer = std::make_shared<Peer>();
     peer->Socket = socket.GetPointer();
+    peer->Descriptor = descriptor;
     peer->Name = name;
+    peer->Host = this->Settings.ConnectHost;
+    peer->IsServer = true;
+    peer->ConnectedMs = NowMs();
     {
       std::lock_guard<std::mutex> lock(this->Mutex);
       this->Peers.push_back(peer);
       ++this->Counts.Connections;
     }
-    this->Note("connected to " + name);
+    if (said != State::Flapping)
+    {
+      this->Note("connected to " + name);
+    }
+    const std::size_t messagesBefore = this->GetCounts().Messages;
     this->ServePeer(*peer);
     {
       std::lock_guard<std::mutex> lock(this->Mutex);
       this->Peers.erase(std::remove(this->Peers.begin(), this->Peers.end(), peer), this->Peers.end());
-    }
-    if (!this->Stop)
-    {
+      if (!this->Stop)
       {
-        std::lock_guard<std::mutex> lock(this->Mutex);
         ++this->Counts.ConnectionsLost;
       }
+    }
+    if (this->Stop)
+    {
+      break;
+    }
+    const bool held = this->GetCounts().Messages > messagesBefore || NowMs() - peer->ConnectedMs >= 1000.0;
+    if (held)
+    {
+      pauseMs = 100.0;
       this->Note("connection to " + name + " lost; reconnecting");
+      said = State::Held;
+    }
+    else if (said != State::Flapping)
+    {
+      this->Note(name + " closed the connection at once; trying again with a growing pause, up to 2 s (said again when one holds)");
+      said = State::Flapping;
+    }
+    pause();
+  }
+}
+
+std::shared_ptr<IgtlLink::Peer> IgtlLink::ChooseEvictee(double nowMs) const
+{
+  // First a client that takes no results (Deaf), then the slowest: the one whose message has been
+  // arriving longest (a sender that drips bytes; a well-behaved one is mid-message for
+  // microseconds). Else the newest that has no message begun. Never the tracker nor the peer
+  // whose poses steer the scalpel.
+  std::shared_ptr<Peer> deaf, slowest, newestIdle;
+  for (const auto& p : this->Peers)
+  {
+    if (p->Done || p->Closing || p->IsServer || p->Name == this->PoseSource)
+    {
+      continue;
+    }
+    const double begun = p->MessageBegunMs;
+    if (p->Deaf && !deaf)
+    {
+      deaf = p;
+    }
+    if (begun >= 0.0 && begun < nowMs && (!slowest || begun < slowest->MessageBegunMs))
+    {
+      slowest = p;
+    }
+    if (begun < 0.0 && (!newestIdle || p->ConnectedMs > newestIdle->ConnectedMs))
+    {
+      newestIdle = p;
     }
   }
+  return deaf ? deaf : slowest ? slowest : newestIdle;
 }
 
 void IgtlLink::AcceptLoop()
 {
-  auto* server = static_cast<igtl::ServerSocket*>(this->Server.get());
   int clients = 0;
   while (!this->Stop)
   {
     this->Prune();
-    igtl::ClientSocket::Pointer socket = server->WaitForConnection(100);
-    if (socket.IsNull())
+    pollfd waiting{ this->ListenDescriptor, POLLIN, 0 };
+    if (poll(&waiting, 1, 100) != 1)
     {
       continue;
     }
+    sockaddr_storage address{};
+    socklen_t length = sizeof address;
+    const int descriptor = accept4(this->ListenDescriptor, reinterpret_cast<sockaddr*>(&address), &length, SOCK_CLOEXEC);
+    if (descriptor < 0)
+    {
+      continue;
+    }
+    const int on = 1;
+    setsockopt(descriptor, IPPROTO_TCP, TCP_NODELAY, &on, sizeof on);
     std::lock_guard<std::mutex> lock(this->Mutex);
-    const auto connected = std::count_if(this->Peers.begin(), this->Peers.end(), [](const auto& p) { return !p->Done; });
+    const auto connected = std::count_if(this->Peers.begin(), this->Peers.end(), [](const auto& p) { return !p->Done && !p->Closing; });
     if (connected >= this->Settings.MaxClients)
     {
-      socket->CloseSocket();
-      this->Events.push_back("turned a client away: " + std::to_string(this->Settings.MaxClients) + " are served already");
-      continue;
+      const std::shared_ptr<Peer> evicted = this->ChooseEvictee(NowMs());
+      if (!evicted)
+      {
+        ::close(descriptor);
+        this->Events.push_back("turned a client away: " + std::to_string(this->Settings.MaxClients) + " are served already");
+        continue;
+      }
+      {
+        // Under its socket's lock, not yet closed by its reader: the descriptor is still its own.
+        std::lock_guard<std::mutex> socketLock(evicted->SocketMutex);
+        evicted->Closing = true;
+        if (!evicted->Done)
+        {
+          ::shutdown(evicted->Descriptor, SHUT_RDWR); // its reader sees the end and closes it
+        }
+      }
+      this->Events.push_back("closed " + evicted->Name +
+        (evicted->Deaf ? " (it took no results)" : evicted->MessageBegunMs >= 0.0 ? " (the slowest sender)" : " (the newest idle)") +
+        " to serve a new client: " + std::to_string(this->Settings.MaxClients) + " at most");
     }
+    auto socket = AdoptedSocket::New();
+    socket->Adopt(descriptor);
     auto peer = std::make_shared<Peer>();
     peer->Socket = socket.GetPointer();
+    peer->Descriptor = descriptor;
     peer->Name = "client " + std::to_string(++clients);
+    peer->Host = HostOf(address, length);
+    peer->ConnectedMs = NowMs();
     ++this->Counts.Connections;
-    this->Events.push_back(peer->Name + " connected on port " + std::to_string(this->ListenPort));
+    this->Events.push_back(peer->Name + " connected on port " + std::to_string(this->ListenPort) + " from " + peer->Host);
     this->Peers.push_back(peer);
     peer->Reader = std::thread([this, p = peer.get()] { this->ReadLoop(*p); });
   }
@@ -339,61 +547,12 @@ void IgtlLink::ServePeer(Peer& peer)
   igtl::Socket* socket = peer.Socket;
   socket->SetReceiveTimeout(PollMs);
   socket->SetSendTimeout(SendTimeoutMs);
-  // Reads count bytes through a buffer of what has arrived (one call takes all that waits: a
-  // sender at 1 kHz is read in a few calls a frame, not two per message); a message begun must
-  // end within the timeout.
-  std::vector<unsigned char> arrived;
-  std::size_t used = 0;
-  std::vector<unsigned char> chunk(1u << 16);
-  auto read = [&](unsigned char* into, std::size_t count, bool begun) {
-    double startMs = NowMs();
-    while (arrived.size() - used < count)
-    {
-      if (this->Stop)
-      {
-        return ReadResult::Stopped;
-      }
-      const int r = socket->Receive(chunk.data(), static_cast<int>(chunk.size()), 0);
-      if (r == 0)
-      {
-        return ReadResult::Closed;
-      }
-      if (r < 0)
-      {
-        if ((begun || arrived.size() > used) && NowMs() - startMs > this->Settings.MessageTimeoutMs)
-        {
-          return ReadResult::Stalled;
-        }
-        continue;
-      }
-      if (!begun && arrived.size() == used)
-      {
-        startMs = NowMs(); // the message's time runs from its first byte
-      }
-      if (used > 0)
-      {
-        arrived.erase(arrived.begin(), arrived.begin() + static_cast<std::ptrdiff_t>(used));
-        used = 0;
-      }
-      arrived.insert(arrived.end(), chunk.begin(), chunk.begin() + r);
-    }
-    std::copy_n(arrived.begin() + static_cast<std::ptrdiff_t>(used), count, into);
-    used += count;
-    return ReadResult::Ok;
-  };
+  MessageReader reader(socket, this->Settings.MessageTimeoutMs, this->Stop, peer.MessageBegunMs);
   unsigned char header[IgtlHeaderBytes];
   std::vector<unsigned char> body;
-  while (true)
+  ReadResult r = ReadResult::Ok;
+  while ((r = reader.Read(header, IgtlHeaderBytes)) == ReadResult::Ok)
   {
-    ReadResult r = read(header, IgtlHeaderBytes, false);
-    if (r == ReadResult::Stalled)
-    {
-      this->Count(&IgtlLinkCounts::Rejected, "a message that stopped midway", peer.Name);
-    }
-    if (r != ReadResult::Ok)
-    {
-      break;
-    }
     const IgtlHeader h = ParseIgtlHeader(header);
     if (!IsTypeName(h.Type) || h.Version == 0 || h.Version > 3)
     {
@@ -406,34 +565,48 @@ void IgtlLink::ServePeer(Peer& peer)
       break;
     }
     body.resize(static_cast<std::size_t>(h.BodyBytes));
-    r = body.empty() ? ReadResult::Ok : read(body.data(), body.size(), true);
-    if (r == ReadResult::Stalled)
-    {
-      this->Count(&IgtlLinkCounts::Rejected, "a message that stopped midway", peer.Name);
-    }
+    r = body.empty() ? ReadResult::Ok : reader.Read(body.data(), body.size());
     if (r != ReadResult::Ok)
     {
       break;
     }
-    const double arrivalMs = NowMs();
-    IgtlPoseMessage m = DecodeIgtlPose(header, body, this->Settings.ToolName, this->Settings.Reading);
+    reader.MessageDone();
+    this->Take(peer, header, body);
+  }
+  if (r == ReadResult::Stalled)
+  {
+    this->Count(&IgtlLinkCounts::Rejected, "a message that did not arrive whole within its time", peer.Name);
+  }
+  std::lock_guard<std::mutex> lock(peer.SocketMutex);
+  socket->CloseSocket();
+  peer.Done = true;
+}
+
+void IgtlLink::Take(Peer& peer, const unsigned char* header, const std::vector<unsigned char>& body)
+{
+  const double arrivalMs = NowMs();
+  IgtlPoseMessage m = DecodeIgtlPose(header, body, this->Settings.ToolName, this->Settings.Reading);
+  {
+    std::lock_guard<std::mutex> lock(this->Mutex);
+    ++this->Counts.Messages;
+  }
+  if (m.What == IgtlPoseMessage::Verdict::Rejected)
+  {
+    this->Count(&IgtlLinkCounts::Rejected, m.Reason, peer.Name);
+    return;
+  }
+  if (m.What == IgtlPoseMessage::Verdict::Ignored)
+  {
+    this->Count(&IgtlLinkCounts::Ignored, m.Reason, peer.Name);
+    return;
+  }
+  m.Pose.TimeS = (arrivalMs - this->StartMs) / 1000.0;
+  bool steers = false;
+  {
+    std::lock_guard<std::mutex> lock(this->Mutex);
+    steers = this->MaySteer(peer);
+    if (steers)
     {
-      std::lock_guard<std::mutex> lock(this->Mutex);
-      ++this->Counts.Messages;
-    }
-    if (m.What == IgtlPoseMessage::Verdict::Rejected)
-    {
-      this->Count(&IgtlLinkCounts::Rejected, m.Reason, peer.Name);
-      continue;
-    }
-    if (m.What == IgtlPoseMessage::Verdict::Ignored)
-    {
-      this->Count(&IgtlLinkCounts::Ignored, m.Reason, peer.Name);
-      continue;
-    }
-    m.Pose.TimeS = (arrivalMs - this->StartMs) / 1000.0;
-    {
-      std::lock_guard<std::mutex> lock(this->Mutex);
       ++this->Counts.Poses;
       if (this->Fresh)
       {
@@ -443,11 +616,39 @@ void IgtlLink::ServePeer(Peer& peer)
       this->NewestArrivalMs = arrivalMs;
       this->Fresh = true;
     }
-    this->PoseArrived.notify_one();
   }
-  std::lock_guard<std::mutex> lock(peer.SocketMutex);
-  socket->CloseSocket();
-  peer.Done = true;
+  if (!steers)
+  {
+    this->Count(&IgtlLinkCounts::Rejected, "a pose of " + this->Settings.ToolName + " from a peer that does not steer it", peer.Name);
+    return;
+  }
+  this->PoseArrived.notify_one();
+}
+
+bool IgtlLink::MaySteer(const Peer& peer)
+{
+  // One source steers: the tracker connected to; without one, the peer from the address named
+  // (PoseFromHost), else the first client that sends the tool's pose, until it goes.
+  if (this->Settings.ConnectPort > 0)
+  {
+    return peer.IsServer;
+  }
+  if (!this->Settings.PoseFromHost.empty() && peer.Host != this->Settings.PoseFromHost)
+  {
+    return false;
+  }
+  const bool sourceGone = std::none_of(this->Peers.begin(), this->Peers.end(),
+    [&](const auto& p) { return p->Name == this->PoseSource && !p->Done; });
+  if (this->PoseSource.empty() || sourceGone)
+  {
+    if (this->PoseSource != peer.Name)
+    {
+      this->Events.push_back(peer.Name + " (" + peer.Host + ") steers the scalpel: its poses of " + this->Settings.ToolName +
+        " are taken, any other peer's refused");
+    }
+    this->PoseSource = peer.Name;
+  }
+  return this->PoseSource == peer.Name;
 }
 
 bool IgtlLink::WaitForPose(double timeoutMs, TrackedPose& pose, double& arrivalMs)

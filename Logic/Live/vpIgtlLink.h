@@ -17,6 +17,9 @@
 
 namespace vp
 {
+/// The most bytes of a device name (and of a TDATA, QTDATA or POINT element's name) on the wire.
+constexpr std::size_t IgtlDeviceNameBytes = 20;
+
 /// Where the link meets its peers and what it takes from them.
 struct IgtlLinkSettings
 {
@@ -27,8 +30,15 @@ struct IgtlLinkSettings
   std::string ConnectHost = "127.0.0.1";
   int ConnectPort = 0;
   /// ListenPort: a port to serve on, for clients (Slicer, a tracker client) to connect to;
-  /// -1: none; 0: any free port (GetListenPort()).
+  /// -1: none; 0: any free port (GetListenPort()). ListenHost: the address served on, this
+  /// machine's loopback by default (only its own programs reach it); the operating room's network
+  /// address, or 0.0.0.0 for every interface, when Slicer runs on another machine.
   int ListenPort = -1;
+  std::string ListenHost = "127.0.0.1";
+  /// One source steers the scalpel: the server connected to (ConnectPort) when there is one;
+  /// else the first client from PoseFromHost (any address when empty) that sends the tool's
+  /// pose, until it disconnects. The tool's poses from any other peer are refused and counted.
+  std::string PoseFromHost;
   /// ToolName: the TRANSFORM device, or the QTDATA/TDATA element, that carries the tool's pose
   /// ("StylusToTracker").
   std::string ToolName;
@@ -38,10 +48,13 @@ struct IgtlLinkSettings
   /// closed (the stream cannot be followed past it). 1 MiB by default (a TDATA of a hundred tools
   /// is 7 kB).
   std::uint64_t MaxBodyBytes = 1u << 20;
-  /// MessageTimeoutMs: a message begun must end within this, or the connection is closed as
-  /// stalled. 1000 by default.
+  /// MessageTimeoutMs: a message must arrive whole within this from its first byte, however its
+  /// sender paces it, or the connection is closed as stalled. 1000 by default.
   double MessageTimeoutMs = 1000.0;
-  /// MaxClients: clients served at once; one more is turned away. 8 by default.
+  /// MaxClients: clients served at once. One more closes a client that takes no results, else the
+  /// slowest sender (a message arriving longest), else the newest client with no message begun;
+  /// never the tracker nor the peer that steers (with none else, the newcomer is turned away).
+  /// 8 by default.
   int MaxClients = 8;
 };
 
@@ -64,8 +77,9 @@ struct IgtlLinkCounts
 /// Each connection is read by a thread of its own; the newest pose waits in a mailbox of one
 /// (WaitForPose), so a sender faster than the frames loses its older poses (counted), never
 /// queues them. A malformed message is skipped and counted; one that cannot be followed (a size
-/// that lies, a stall midway, bytes that are no header) closes its connection, which a server
-/// connected to is reconnected. Nothing here blocks a caller for longer than it asks.
+/// that lies, one not whole within its time, bytes that are no header) closes its connection,
+/// which a server connected to is reconnected, after a pause that grows while connections do not
+/// hold. Nothing here blocks a caller for longer than it asks.
 class IgtlLink
 {
 public:
@@ -101,6 +115,12 @@ private:
   /// Reads the peer's messages until it closes, stalls, sends what cannot be followed or the link
   /// stops.
   void ServePeer(Peer& peer);
+  /// One whole message of the peer: the tool's pose taken when the peer steers, else counted.
+  void Take(Peer& peer, const unsigned char* header, const std::vector<unsigned char>& body);
+  /// Whether the peer's poses steer the scalpel (see IgtlLinkSettings::PoseFromHost); under Mutex.
+  bool MaySteer(const Peer& peer);
+  /// The client to close when one more arrives and all slots are taken, or null; under Mutex.
+  std::shared_ptr<Peer> ChooseEvictee(double nowMs) const;
   /// Joins and forgets the readers of peers that have ended.
   void Prune();
   void Note(const std::string& event);
@@ -118,7 +138,8 @@ private:
   TrackedPose Newest;
   double NewestArrivalMs = 0.0;
   bool Fresh = false;
-  std::shared_ptr<void> Server; // the listening socket (igtl::ServerSocket), kept out of this header
+  int ListenDescriptor = -1;
+  std::string PoseSource; // the peer whose poses steer, once one has
   std::thread Connector, Acceptor;
 };
 } // namespace vp

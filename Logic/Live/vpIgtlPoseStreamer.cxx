@@ -9,18 +9,19 @@
 
 namespace vp
 {
-IgtlLinkSettings IgtlPoseStreamer::Settings(int port, const std::string& deviceName)
+IgtlLinkSettings IgtlPoseStreamer::Settings(int port, const std::string& deviceName, const std::string& host)
 {
   IgtlLinkSettings settings;
   settings.ListenPort = port;
+  settings.ListenHost = host;
   // A client's own poses of this name would be read too: harmless, and never used.
   settings.ToolName = deviceName;
   return settings;
 }
 
-IgtlPoseStreamer::IgtlPoseStreamer(int port, std::string deviceName)
+IgtlPoseStreamer::IgtlPoseStreamer(int port, std::string deviceName, const std::string& host)
   : DeviceName(std::move(deviceName))
-  , Link(Settings(port, this->DeviceName))
+  , Link(Settings(port, this->DeviceName, host))
 {
 }
 

@@ -18,8 +18,9 @@ namespace vp
 class IgtlPoseStreamer
 {
 public:
-  /// Serves on port (0: any free one, GetPort()). Throws as IgtlLink.
-  IgtlPoseStreamer(int port, std::string deviceName);
+  /// Serves on host:port (0: any free one, GetPort()); host, this machine's loopback by default.
+  /// Throws as IgtlLink, and std::invalid_argument for a device name the wire cannot carry.
+  IgtlPoseStreamer(int port, std::string deviceName, const std::string& host = "127.0.0.1");
   int GetPort() const { return this->Link.GetListenPort(); }
   IgtlLink& GetLink() { return this->Link; }
 
@@ -30,7 +31,7 @@ public:
     const std::function<void(std::size_t sent, std::size_t expected)>& progress = {});
 
 private:
-  static IgtlLinkSettings Settings(int port, const std::string& deviceName);
+  static IgtlLinkSettings Settings(int port, const std::string& deviceName, const std::string& host);
   std::string DeviceName;
   IgtlLink Link;
 };

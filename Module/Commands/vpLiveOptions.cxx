@@ -41,9 +41,17 @@ std::vector<cli::Parameter> LiveStreamOptions(bool toolRequired, bool withReadin
   std::vector<cli::Parameter> options = {
     Option(ParameterType::String, "igtl", "Connect to a tracker's OpenIGTLink server (PlusServer), reconnecting when it is lost.")
       .SetPlaceholder("HOST:PORT"),
-    Option(ParameterType::Integer, "igtl-listen", "Serve on this port for clients (3D Slicer, a tracker client); 0: any free port.")
-      .SetPlaceholder("PORT")
+    Option(ParameterType::String, "igtl-listen",
+      "Serve on this port for clients (3D Slicer, a tracker client); 0: any free port. PORT alone serves this machine's "
+      "own programs (loopback); HOST:PORT serves on that address, e.g. the operating room network's 192.168.1.20:18944 "
+      "for a Slicer on another machine (0.0.0.0: every interface).")
+      .SetPlaceholder("[HOST:]PORT")
       .SetLogicName("ListenPort"),
+    Option(ParameterType::String, "pose-from",
+      "With --igtl-listen and no --igtl: only a client from this address may steer the scalpel (default: the first "
+      "client that sends the tool's pose). The tool's poses from any other peer are refused and counted.")
+      .SetPlaceholder("HOST")
+      .SetLogicName("PoseFromHost"),
     tool,
     Option(ParameterType::Double, "stale-ms", "No pose for this long is tracking lost: said, sent to the peers and recorded.")
       .SetPlaceholder("MS")
@@ -76,26 +84,44 @@ IgtlLinkSettings ParseLiveStream(const cli::ParsedArguments& args)
   }
   if (args.IsSet("igtlListen"))
   {
-    link.ListenPort = ParseListenPort(args);
+    std::tie(link.ListenHost, link.ListenPort) = ParseListenAddress(args);
+  }
+  if (args.IsSet("poseFrom"))
+  {
+    if (!args.IsSet("igtlListen") || args.IsSet("igtl"))
+    {
+      throw InputError("--pose-from", "names the client that steers among those --igtl-listen serves; with --igtl the tracker steers");
+    }
+    link.PoseFromHost = args.GetString("poseFrom");
   }
   if (!args.IsSet("toolName"))
   {
     throw InputError("--tool-name", "name the tool whose pose the stream carries (a TRANSFORM device or a tracking element)");
   }
   link.ToolName = args.GetString("toolName");
+  if (link.ToolName.size() > IgtlDeviceNameBytes)
+  {
+    throw InputError("--tool-name", "'" + link.ToolName + "' is " + std::to_string(link.ToolName.size()) +
+      " bytes; an OpenIGTLink device or element name holds " + std::to_string(IgtlDeviceNameBytes) + ", so no message could carry it");
+  }
   const PoseReading reading = ParsePoseFrame(args);
   link.Reading = SettlePoseReading(reading);
   return link;
 }
 
-int ParseListenPort(const cli::ParsedArguments& args)
+std::pair<std::string, int> ParseListenAddress(const cli::ParsedArguments& args)
 {
-  const int port = args.GetInteger("igtlListen");
-  if (port < 0 || port > 65535)
+  const std::string text = args.GetString("igtlListen");
+  const auto colon = text.rfind(':');
+  const std::string host = colon == std::string::npos ? "127.0.0.1" : text.substr(0, colon);
+  const std::string number = colon == std::string::npos ? text : text.substr(colon + 1);
+  char* end = nullptr;
+  const long port = std::strtol(number.c_str(), &end, 10);
+  if (number.empty() || *end != '\0' || port < 0 || port > 65535 || host.empty())
   {
-    throw InputError("--igtl-listen", "expected a port 0 to 65535, got " + std::to_string(port));
+    throw InputError("--igtl-listen", "expected PORT or HOST:PORT (a port 0 to 65535), got '" + text + "'");
   }
-  return port;
+  return { host, static_cast<int>(port) };
 }
 
 void PrintLinkEvents(const std::string& command, IgtlLink& link)

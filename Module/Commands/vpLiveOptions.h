@@ -7,11 +7,12 @@
 #include "vpIgtlLink.h"
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace vp
 {
-/// --igtl HOST:PORT, --igtl-listen PORT, --tool-name NAME, --pose-space, --pose-units,
+/// --igtl HOST:PORT, --igtl-listen [HOST:]PORT, --pose-from HOST, --tool-name NAME, --pose-space, --pose-units,
 /// --registration, --stale-ms MS, --duration-s S. toolRequired: whether --tool-name must be given
 /// (view takes a stream only when one of --igtl and --igtl-listen is); withReading: whether the
 /// reading options come too (view declares them already, for its recorded poses).
@@ -20,8 +21,9 @@ std::vector<cli::Parameter> LiveStreamOptions(bool toolRequired, bool withReadin
 bool WantsLiveStream(const cli::ParsedArguments& args);
 /// The link those options describe; throws InputError naming the option.
 IgtlLinkSettings ParseLiveStream(const cli::ParsedArguments& args);
-/// --igtl-listen PORT, 0 to 65535; throws InputError naming the option.
-int ParseListenPort(const cli::ParsedArguments& args);
+/// --igtl-listen PORT (served on loopback) or HOST:PORT, a port 0 to 65535; throws InputError
+/// naming the option.
+std::pair<std::string, int> ParseListenAddress(const cli::ParsedArguments& args);
 /// The link's events since the last call, a line each on stderr after "command: ".
 void PrintLinkEvents(const std::string& command, IgtlLink& link);
 /// --stale-ms (above 0) and --duration-s (0 or more); throw InputError naming the option.

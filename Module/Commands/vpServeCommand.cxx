@@ -22,10 +22,11 @@ cli::ModuleDescription DescribeServeCommand()
     Option(ParameterType::File, "poses", "The recording: a PLUS sequence (.igs.mha, .igs.nrrd), a pose CSV or JSON.")
       .SetChannel(cli::Channel::Input)
       .SetRequired(),
-    Option(ParameterType::Integer, "igtl-listen", "The port to serve on (0: any free port, printed).")
-      .SetPlaceholder("PORT")
+    Option(ParameterType::String, "igtl-listen",
+      "The port to serve on (0: any free port, printed); PORT alone serves this machine (loopback), HOST:PORT that address.")
+      .SetPlaceholder("[HOST:]PORT")
       .SetRequired(),
-    Option(ParameterType::String, "device", "The TRANSFORM's device name the poses are sent as, e.g. StylusToReference.")
+    Option(ParameterType::String, "device", "The TRANSFORM's device name the poses are sent as, e.g. StylusToReference (20 bytes at most).")
       .SetPlaceholder("NAME")
       .SetRequired(),
     Option(ParameterType::Double, "speed", "Faster (or slower) than recorded: 2 sends the poses at twice their rate.")
@@ -48,7 +49,7 @@ cli::ModuleDescription DescribeServeCommand()
 int RunServeCommand(const cli::ParsedArguments& args, const ModuleServices&)
 {
   SignalHold hold; // Ctrl-C ends the stream, answered below
-  const int port = ParseListenPort(args);
+  const auto [host, port] = ParseListenAddress(args);
   const double speed = args.GetNumber("speed");
   if (!(speed > 0.0))
   {
@@ -62,7 +63,7 @@ int RunServeCommand(const cli::ParsedArguments& args, const ModuleServices&)
   const std::string file = args.GetString("poses");
   const PoseReading reading = ParsePoseReading(args);
   const std::size_t count = PoseStream::CountPoses(file, reading); // a bad recording is refused before serving
-  IgtlPoseStreamer streamer(port, args.GetString("device"));
+  IgtlPoseStreamer streamer(port, args.GetString("device"), host);
   std::cerr << "serve: " << count << " poses of " << file << " as " << args.GetString("device") << " on port " << streamer.GetPort()
             << "; waiting for a client\n";
   PoseStream poses(file, count, reading);

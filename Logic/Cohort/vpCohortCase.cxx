@@ -242,9 +242,21 @@ CohortCaseResult RunCohortCase(const CohortCase& c, const std::string& folder, c
   return result;
 }
 
+namespace
+{
+constexpr std::uintmax_t MaxCaseRecordBytes = 1u << 20;
+} // namespace
+
 std::optional<CohortCaseResult> CompletedCohortCase(const CohortCase& c, const std::string& folder)
 {
   const std::string file = folder + "/case.json";
+  // Ours are a few kB: anything else (a planted 1 GB file, a FIFO) is not read, and the case is
+  // computed again.
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(file, error) || std::filesystem::file_size(file, error) > MaxCaseRecordBytes || error)
+  {
+    return std::nullopt;
+  }
   std::ifstream in(file, std::ios::binary);
   if (!in)
   {

@@ -8,13 +8,15 @@
 #include <set>
 #include <sstream>
 
+#include <sys/stat.h>
+
 namespace vp
 {
 namespace
 {
 constexpr std::size_t MaxCaseNameLength = 64;
-/// A manifest is a list of paths: a file larger than this is not one.
-constexpr std::streamoff MaxManifestBytes = 64 << 20;
+/// A manifest is a list of paths: a file larger than this (some 20,000 cases) is not one.
+constexpr std::streamoff MaxManifestBytes = 4 << 20;
 
 std::string Trim(const std::string& text)
 {
@@ -42,6 +44,14 @@ std::string CaseNameProblem(const std::string& name)
     {
       return "a case name holds letters, digits, '.', '_' and '-' only";
     }
+  }
+  // The run's own files beside the case folders: a case so named would be written over them.
+  std::string lower = name;
+  std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (lower == "cohort.csv" || lower == "cohort.png" || (lower.rfind("cohort-", 0) == 0 && lower.size() > 4 &&
+                                                          lower.compare(lower.size() - 4, 4, ".csv") == 0))
+  {
+    return "the name of one of the cohort's own files (cohort.csv, cohort.png, cohort-K-of-N.csv)";
   }
   return std::string();
 }
@@ -114,17 +124,26 @@ std::vector<std::string> SplitCsvLine(const std::string& line, const std::string
 
 std::vector<CohortCase> ReadCohortManifest(const std::string& file)
 {
+  // A FIFO would hang the run and a device never end: only a regular file, looked at before it
+  // is opened.
+  struct stat info{};
+  if (::stat(file.c_str(), &info) != 0)
+  {
+    throw InputError(file, "cannot be read");
+  }
+  if (!S_ISREG(info.st_mode))
+  {
+    throw InputError(file, "not a regular file: a manifest is a CSV file");
+  }
+  if (info.st_size > MaxManifestBytes)
+  {
+    throw InputError(file, "larger than 4 MiB: not a manifest");
+  }
   std::ifstream in(file, std::ios::binary);
   if (!in)
   {
     throw InputError(file, "cannot be read");
   }
-  in.seekg(0, std::ios::end);
-  if (in.tellg() > MaxManifestBytes)
-  {
-    throw InputError(file, "larger than 64 MiB: not a manifest");
-  }
-  in.seekg(0);
   const std::size_t slash = file.find_last_of('/');
   const std::string folder = slash == std::string::npos ? std::string() : file.substr(0, slash);
   std::vector<int> columnOf; // per cell of a row: its index in CohortManifestColumns()
@@ -134,6 +153,10 @@ std::vector<CohortCase> ReadCohortManifest(const std::string& file)
   for (std::string line; std::getline(in, line);)
   {
     ++lineNumber;
+    if (lineNumber == 1 && line.compare(0, 3, "\xEF\xBB\xBF") == 0)
+    {
+      line.erase(0, 3); // Excel's "CSV UTF-8" starts with a byte order mark
+    }
     const std::string at = file + ": line " + std::to_string(lineNumber);
     if (line.find('\0') != std::string::npos)
     {

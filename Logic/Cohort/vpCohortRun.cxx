@@ -16,9 +16,15 @@
 #include <atomic>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <limits>
 #include <mutex>
 #include <thread>
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 namespace vp
 {
@@ -43,6 +49,110 @@ std::string CsvCell(const std::string& text)
   return quoted + "\"";
 }
 } // namespace
+
+namespace
+{
+/// One batch at a time writes a cohort folder: an exclusive lock on OUT/.vesselproximity-batch.lock
+/// (a shard's own, .vesselproximity-batch-K-of-N.lock: the shards of an array job write their
+/// disjoint cases side by side), held for the run, the holder's process id in it for the one
+/// turned away.
+class CohortFolderLock
+{
+public:
+  CohortFolderLock(const std::string& folder, int shard, int shards)
+  {
+    const std::string file = folder + "/.vesselproximity-batch" +
+      (shards > 1 ? "-" + std::to_string(shard) + "-of-" + std::to_string(shards) : std::string()) + ".lock";
+    this->Descriptor = ::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
+    if (this->Descriptor < 0)
+    {
+      throw InputError(folder, "cannot take its batch lock (" + file + ")");
+    }
+    if (::flock(this->Descriptor, LOCK_EX | LOCK_NB) != 0)
+    {
+      char holder[32] = "";
+      const ssize_t n = ::pread(this->Descriptor, holder, sizeof holder - 1, 0);
+      holder[n > 0 ? n : 0] = '\0';
+      ::close(this->Descriptor);
+      throw InputError(folder, std::string("another batch (process ") + (n > 0 ? holder : "?") +
+        ") is writing this cohort folder; one at a time");
+    }
+    const std::string pid = std::to_string(::getpid());
+    if (::ftruncate(this->Descriptor, 0) != 0 || ::pwrite(this->Descriptor, pid.data(), pid.size(), 0) < 0)
+    {
+      // The lock holds without the number: the one turned away is told "process ?".
+    }
+  }
+  ~CohortFolderLock() { ::close(this->Descriptor); }
+  CohortFolderLock(const CohortFolderLock&) = delete;
+  CohortFolderLock& operator=(const CohortFolderLock&) = delete;
+
+private:
+  int Descriptor = -1;
+};
+
+/// Makes the cohort's folder; refuses one that holds the manifest (the run's tables would sit
+/// beside, or over, its input) and merge folders that are not folders.
+void PrepareCohortFolder(const CohortRequest& request)
+{
+  struct stat out{}, beside{};
+  const std::filesystem::path manifest(request.Manifest);
+  const std::string parent = manifest.has_parent_path() ? manifest.parent_path().string() : std::string(".");
+  if (::stat(request.OutputFolder.c_str(), &out) == 0 && ::stat(parent.c_str(), &beside) == 0 && out.st_dev == beside.st_dev &&
+    out.st_ino == beside.st_ino)
+  {
+    throw InputError(request.OutputFolder, "holds the manifest " + request.Manifest +
+      ": the cohort's folder takes its cases and tables only (give another -o)");
+  }
+  for (const std::string& folder : request.MergeFolders)
+  {
+    if (!std::filesystem::is_directory(folder))
+    {
+      throw InputError(folder, "is no folder to merge from");
+    }
+  }
+  std::error_code made;
+  std::filesystem::create_directories(request.OutputFolder, made);
+  if (made || !std::filesystem::is_directory(request.OutputFolder))
+  {
+    throw InputError(request.OutputFolder, "cannot be made a folder" + (made ? ": " + made.message() : std::string()));
+  }
+}
+
+/// MemAvailable from /proc/meminfo, bytes; 0 when it cannot be read.
+double AvailableMemoryBytes()
+{
+  std::ifstream in("/proc/meminfo");
+  for (std::string key; in >> key;)
+  {
+    double kb = 0.0;
+    std::string unit;
+    in >> kb >> unit;
+    if (key == "MemAvailable:")
+    {
+      return kb * 1024.0;
+    }
+  }
+  return 0.0;
+}
+} // namespace
+
+int CohortJobsFor(int requested, std::size_t cases, std::string& capped)
+{
+  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const double memory = AvailableMemoryBytes();
+  const int byMemory = memory > 0.0 ? std::max(1, static_cast<int>(memory / CohortCaseMemoryBytes)) : requested;
+  const int jobs = std::max(1, std::min({ requested, cores, byMemory, static_cast<int>(std::max<std::size_t>(1, cases)) }));
+  capped.clear();
+  if (jobs < requested && jobs < static_cast<int>(cases))
+  {
+    char text[160];
+    std::snprintf(text, sizeof text, "-j %d capped at %d: %d cores, %.1f GiB of memory available at about %.0f GiB a case",
+      requested, jobs, cores, memory / (1 << 30), CohortCaseMemoryBytes / (1 << 30));
+    capped = text;
+  }
+  return jobs;
+}
 
 void CohortRequest::Validate() const
 {
@@ -204,15 +314,16 @@ CohortReport RunCohort(const CohortRequest& request, const CohortLogicFactory& m
       cases.push_back(manifest[i]);
     }
   }
-  std::error_code made;
-  std::filesystem::create_directories(request.OutputFolder, made);
-  if (made || !std::filesystem::is_directory(request.OutputFolder))
-  {
-    throw InputError(request.OutputFolder, "cannot be made a folder" + (made ? ": " + made.message() : std::string()));
-  }
+  PrepareCohortFolder(request);
+  const CohortFolderLock lock(request.OutputFolder, request.ShardIndex, request.ShardCount);
   const SignalHold hold; // the workers' case folders nest their holds in this one
   PrepareConcurrentImports();
   CohortReport report;
+  report.Jobs = CohortJobsFor(request.Jobs, cases.size(), report.JobsCapped);
+  if (!report.JobsCapped.empty() && stages)
+  {
+    stages("cohort", report.JobsCapped); // said before any case starts
+  }
   report.Results.resize(cases.size());
   std::mutex told;
   int done = 0;
@@ -263,7 +374,7 @@ CohortReport RunCohort(const CohortRequest& request, const CohortLogicFactory& m
       }
     };
     std::vector<std::thread> workers;
-    for (int j = 1; j < std::min<int>(request.Jobs, static_cast<int>(cases.size())); ++j)
+    for (int j = 1; j < report.Jobs; ++j)
     {
       workers.emplace_back(work);
     }

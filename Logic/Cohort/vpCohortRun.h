@@ -43,7 +43,15 @@ struct CohortReport
   /// cohort-K-of-N.csv alone).
   std::vector<std::string> Files;
   double Ms = 0.0;
+  /// Cases run at once, and why fewer than asked when they were (empty otherwise).
+  int Jobs = 1;
+  std::string JobsCapped;
 };
+
+/// How many cases may run at once: the request's, at most this machine's cores and what its
+/// available memory holds at about CohortCaseMemoryBytes a case; capped says why when fewer.
+constexpr double CohortCaseMemoryBytes = 1.0 * (1 << 30);
+int CohortJobsFor(int requested, std::size_t cases, std::string& capped);
 
 /// Told of each case as it ends, in the order they end: its result, the cases done and the total.
 using CohortCaseObserver = std::function<void(const CohortCaseResult& result, int done, int total)>;

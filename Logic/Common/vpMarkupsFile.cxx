@@ -139,13 +139,17 @@ std::vector<std::string> CsvFields(const std::string& line)
 std::vector<MarkupsPoint> ParseFcsv(const std::string& text, const std::string& source)
 {
   std::istringstream lines(text);
-  bool versioned = false, ras = false;
+  bool versioned = false, ras = false, systemStated = false;
   std::vector<MarkupsPoint> points;
   int number = 0;
   for (std::string line; std::getline(lines, line);)
   {
     ++number;
     const std::string where = "line " + std::to_string(number) + ": ";
+    if (number == 1 && line.compare(0, 3, "\xEF\xBB\xBF") == 0)
+    {
+      line.erase(0, 3); // a byte order mark, as editors on Windows write
+    }
     if (!line.empty() && line.back() == '\r')
     {
       line.pop_back();
@@ -173,7 +177,14 @@ std::vector<MarkupsPoint> ParseFcsv(const std::string& text, const std::string& 
       }
       else if (key == "CoordinateSystem")
       {
-        ras = IsRas(value, source, where);
+        const bool stated = IsRas(value, source, where);
+        if (systemStated && stated != ras)
+        {
+          // Which one the points follow cannot be told: taking either could mirror the tip.
+          throw InputError(source, where + "a second CoordinateSystem (" + value + ") that contradicts the first");
+        }
+        ras = stated;
+        systemStated = true;
       }
       continue;
     }

@@ -21,6 +21,10 @@ std::map<int, std::string> ParseColorTableNames(const std::string& text, const s
   {
     ++number;
     const std::string where = "line " + std::to_string(number) + ": ";
+    if (number == 1 && line.compare(0, 3, "\xEF\xBB\xBF") == 0)
+    {
+      line.erase(0, 3); // a byte order mark
+    }
     if (!line.empty() && line.back() == '\r')
     {
       line.pop_back();

@@ -25,6 +25,8 @@
 #include <thread>
 
 #include <csignal>
+#include <fcntl.h>
+#include <sys/file.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -272,7 +274,8 @@ TEST_F(BatchCommand, EachBadManifestOrOptionGetsItsOneLineAndWritesNothing)
          { "--shard 1/x", "--shard: expected K/N" },
          { "-j 0", "expected 1 to 256 cases at once" },
          { "--merge a, --shard 1/1", "--merge: an empty folder" },
-         { "--merge a --shard 1/2", "a merge gathers every shard" } })
+         { "--merge a --shard 1/2", "a merge gathers every shard" },
+         { "--merge " + this->Dir + "/nonexistent", this->Dir + "/nonexistent: is no folder to merge from" } })
   {
     const ToolRun r = RunTool(this->Dir, "batch " + this->Manifest + " -o " + out + " " + options);
     EXPECT_EQ(r.ExitCode, 1) << options;
@@ -284,6 +287,31 @@ TEST_F(BatchCommand, EachBadManifestOrOptionGetsItsOneLineAndWritesNothing)
   const auto cells = vp::SplitCsvLine(R"(a,"b,c","say ""hi""",  d  )", "test");
   EXPECT_EQ(cells, std::vector<std::string>({ "a", "b,c", "say \"hi\"", "d" }));
   EXPECT_THROW(vp::SplitCsvLine(R"("a"b)", "test"), vp::InputError);
+}
+
+// One batch at a time writes a cohort folder: with its lock held (here by the test, as a running
+// batch holds it) a second is refused at once, naming the holder; a folder that holds the manifest
+// is refused, whatever its name; neither writes a thing.
+TEST_F(BatchCommand, ASecondBatchIntoTheSameFolderAndAFolderHoldingItsManifestAreRefused)
+{
+  const std::string out = this->Dir + "/locked";
+  fs::create_directories(out);
+  const int held = ::open((out + "/.vesselproximity-batch.lock").c_str(), O_RDWR | O_CREAT, 0644);
+  ASSERT_GE(held, 0);
+  ASSERT_EQ(::flock(held, LOCK_EX | LOCK_NB), 0);
+  ASSERT_EQ(::pwrite(held, "4242", 4, 0), 4);
+  const ToolRun second = RunTool(this->Dir, "batch " + this->Manifest + " -o " + out);
+  ::close(held);
+  EXPECT_EQ(second.ExitCode, 1);
+  EXPECT_NE(second.Err.find(out + ": another batch (process 4242) is writing this cohort folder"), std::string::npos) << second.Err;
+  EXPECT_EQ(std::count(second.Err.begin(), second.Err.end(), '\n'), 1) << second.Err;
+  EXPECT_FALSE(fs::exists(out + "/cohort.csv"));
+  EXPECT_FALSE(fs::exists(out + "/into"));
+
+  const ToolRun inside = RunTool(this->Dir, "batch " + this->Manifest + " -o " + this->Dir);
+  EXPECT_EQ(inside.ExitCode, 1);
+  EXPECT_NE(inside.Err.find(this->Dir + ": holds the manifest"), std::string::npos) << inside.Err;
+  EXPECT_FALSE(fs::exists(this->Dir + "/cohort.csv"));
 }
 
 // Ctrl-C at 12 moments of a cohort's run, two cases at a time: each case folder is whole or

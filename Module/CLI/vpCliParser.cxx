@@ -1,6 +1,7 @@
 // A command line read against its description.
 #include "vpCliDescription.h"
 #include "vpCliValues.h"
+#include "vpOutputGuard.h"
 
 #include "vpInputError.h"
 
@@ -264,6 +265,7 @@ ParsedArguments ParseArguments(const ModuleDescription& description, const std::
   parsed.Values = std::move(reader.Values);
   parsed.Multiple = std::move(reader.Multiple);
   parsed.ReturnParameterFile = std::move(reader.ReturnParameterFile);
+  RefuseOutputsOverInputs(description, parsed.Values, parsed.Multiple, parsed.ReturnParameterFile);
   return parsed;
 }
 } // namespace cli

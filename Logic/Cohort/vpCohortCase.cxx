@@ -21,18 +21,123 @@ namespace
 {
 using Json = nlohmann::ordered_json;
 
-/// An input's identity for a later run: its path, size and modification time (a folder's own).
+/// FNV-1a, 64 bits, over a file's bytes: a change to what a file holds, not only to its size or
+/// time, is seen (masks replaced in place with the same names and sizes); "" when unreadable.
+std::string ContentHash(const std::filesystem::path& file)
+{
+  std::ifstream in(file, std::ios::binary);
+  if (!in)
+  {
+    return std::string();
+  }
+  std::uint64_t h = 14695981039346656037ull;
+  std::vector<char> chunk(1 << 16);
+  while (in.read(chunk.data(), static_cast<std::streamsize>(chunk.size())) || in.gcount() > 0)
+  {
+    for (std::streamsize i = 0; i < in.gcount(); ++i)
+    {
+      h = (h ^ static_cast<unsigned char>(chunk[static_cast<std::size_t>(i)])) * 1099511628211ull;
+    }
+  }
+  char text[17];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(h));
+  return text;
+}
+
+/// A regular file's identity: its size, time and content hash.
+Json FileJson(const std::filesystem::path& file)
+{
+  std::error_code error;
+  const auto bytes = std::filesystem::file_size(file, error);
+  const auto modified = std::filesystem::last_write_time(file, error).time_since_epoch().count();
+  return { { "bytes", error ? Json(nullptr) : Json(bytes) }, { "modified", static_cast<long long>(modified) },
+    { "hash", ContentHash(file) } };
+}
+
+/// Every regular file under a folder, by its path from there, sorted.
+std::vector<std::string> FilesUnder(const std::filesystem::path& folder)
+{
+  std::vector<std::string> names;
+  std::error_code error;
+  for (auto it = std::filesystem::recursive_directory_iterator(folder, error); !error && it != std::filesystem::recursive_directory_iterator();
+       it.increment(error))
+  {
+    if (it->is_regular_file(error))
+    {
+      names.push_back(std::filesystem::relative(it->path(), folder, error).string());
+    }
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+/// An input's identity for a later run: its path and, for a file, its size, time and content
+/// hash; for a folder (a DICOM series), each file inside it so.
 Json InputJson(const std::string& path)
 {
   std::error_code error;
   const auto status = std::filesystem::status(path, error);
   if (error || !std::filesystem::exists(status))
   {
-    return { { "path", path }, { "bytes", nullptr }, { "modified", nullptr } };
+    return { { "path", path }, { "missing", true } };
   }
-  const auto bytes = std::filesystem::is_regular_file(status) ? std::filesystem::file_size(path, error) : 0;
-  const auto modified = std::filesystem::last_write_time(path, error).time_since_epoch().count();
-  return { { "path", path }, { "bytes", bytes }, { "modified", static_cast<long long>(modified) } };
+  if (!std::filesystem::is_directory(status))
+  {
+    Json entry = FileJson(path);
+    entry["path"] = path;
+    return entry;
+  }
+  Json files = Json::object();
+  for (const std::string& name : FilesUnder(path))
+  {
+    files[name] = FileJson(std::filesystem::path(path) / name);
+  }
+  return { { "path", path }, { "files", files } };
+}
+
+/// What a case's run wrote, each file by its path in the case's folder (case.json aside): size
+/// and content hash, so that a resume takes a case only while its files are as written.
+Json OutputsJson(RunFolder& run)
+{
+  Json outputs = Json::object();
+  const std::vector<std::string> entries = run.GetEntries(); // a copy: File() and Folder() add to it
+  for (const std::string& entry : entries)
+  {
+    const bool folder = !entry.empty() && entry.back() == '/';
+    const std::string name = folder ? entry.substr(0, entry.size() - 1) : entry;
+    if (name == "case.json")
+    {
+      continue;
+    }
+    const std::filesystem::path staged = folder ? run.Folder(name) : run.File(name);
+    for (const std::string& inside : folder ? FilesUnder(staged) : std::vector<std::string>{ "" })
+    {
+      const std::filesystem::path file = inside.empty() ? staged : staged / inside;
+      const Json id = FileJson(file);
+      outputs[inside.empty() ? name : name + "/" + inside] = { { "bytes", id["bytes"] }, { "hash", id["hash"] } };
+    }
+  }
+  return outputs;
+}
+
+/// Why a case's folder no longer holds what its run wrote ("" when it does).
+std::string OutputsChanged(const nlohmann::json& recorded, const std::string& folder)
+{
+  for (const auto& [name, id] : recorded.items())
+  {
+    const std::filesystem::path file = std::filesystem::path(folder) / name;
+    std::error_code error;
+    if (!std::filesystem::is_regular_file(file, error))
+    {
+      return name + " is gone";
+    }
+    const Json now = FileJson(file);
+    if (now["bytes"].dump() != id.at("bytes").dump() || now["hash"].dump() != id.at("hash").dump())
+    {
+      return name + " changed since it was written";
+    }
+  }
+  return std::string();
 }
 
 Json OptionalJson(const std::optional<double>& value)
@@ -223,7 +328,7 @@ CohortCaseResult RunCohortCase(const CohortCase& c, const std::string& folder, c
     }
     const Json record = { { "case", c.Name }, { "inputs", CohortCaseInputsJson(c) }, { "classes", classes },
       { "margin_min_mm", OptionalJson(result.MarginMinMm) }, { "frames", result.Frames }, { "tips", result.Tips },
-      { "files", run.GetEntries() }, { "timing_ms", timing } };
+      { "files", run.GetEntries() }, { "outputs", OutputsJson(run) }, { "timing_ms", timing } };
     WriteFileAtomically(run.File("case.json"), record.dump(2) + "\n");
     run.Commit();
   }
@@ -247,28 +352,45 @@ namespace
 constexpr std::uintmax_t MaxCaseRecordBytes = 1u << 20;
 } // namespace
 
-std::optional<CohortCaseResult> CompletedCohortCase(const CohortCase& c, const std::string& folder)
+std::optional<CohortCaseResult> CompletedCohortCase(const CohortCase& c, const std::string& folder, std::string* whyNot)
 {
+  const auto skip = [&](const std::string& why) -> std::optional<CohortCaseResult> {
+    if (whyNot)
+    {
+      *whyNot = why;
+    }
+    return std::nullopt;
+  };
   const std::string file = folder + "/case.json";
   // Ours are a few kB: anything else (a planted 1 GB file, a FIFO) is not read, and the case is
   // computed again.
   std::error_code error;
+  if (!std::filesystem::exists(file, error))
+  {
+    return skip(std::string()); // never run: nothing to say
+  }
   if (!std::filesystem::is_regular_file(file, error) || std::filesystem::file_size(file, error) > MaxCaseRecordBytes || error)
   {
-    return std::nullopt;
+    return skip("its case.json is not one a run wrote");
   }
   std::ifstream in(file, std::ios::binary);
   if (!in)
   {
-    return std::nullopt;
+    return skip("its case.json cannot be read");
   }
   try
   {
     const nlohmann::json record = nlohmann::json::parse(in);
-    // The same inputs as now: the same paths, sizes and times (compared as JSON text).
+    // The same inputs as now (paths, sizes, times and contents, compared as JSON text), and every
+    // file the run wrote as it wrote it.
     if (record.at("case") != c.Name || nlohmann::json(CohortCaseInputsJson(c)).dump() != record.at("inputs").dump())
     {
-      return std::nullopt;
+      return skip("an input changed since its run (a file's size, time or content, or a file added or gone)");
+    }
+    const std::string changed = record.contains("outputs") ? OutputsChanged(record.at("outputs"), folder) : "case.json lists no outputs";
+    if (!changed.empty())
+    {
+      return skip(changed);
     }
     CohortCaseResult result;
     result.Case = c.Name;
@@ -286,7 +408,7 @@ std::optional<CohortCaseResult> CompletedCohortCase(const CohortCase& c, const s
   }
   catch (const std::exception&)
   {
-    return std::nullopt; // not one of ours, or damaged: the case is run again
+    return skip("its case.json is damaged"); // not one of ours: the case is run again
   }
 }
 } // namespace vp

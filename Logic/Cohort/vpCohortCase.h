@@ -63,7 +63,8 @@ using CohortStageObserver = std::function<void(const std::string& caseName, cons
 /// case.json) or, when it fails, as it was: models/ (<class>.stl per class, models.json), with
 /// poses frames.csv, summary.json and distance.png as `track` writes them (the plan's tumours
 /// measured), with tips distance.json as `distance --json` writes it (exact engine), and
-/// case.json: the inputs (each path with its size and time), the rows, the times. Vessel classes
+/// case.json: the inputs (each path with its size, time and content hash), the rows, every file
+/// written (size and hash), the times. Vessel classes
 /// are the models' classes but the liver. Never throws for the case's own problems: they are the
 /// result's Error, one line naming the file. Returns with Error "interrupted" when a held signal
 /// came (RunFolder::SignalPending).
@@ -71,10 +72,13 @@ CohortCaseResult RunCohortCase(const CohortCase& c, const std::string& folder, c
   const CohortLogicFactory& makeLogic, const CohortStageObserver& observer = {});
 
 /// The result of a case an earlier run left whole in folder (its case.json), when its inputs are
-/// still the same paths of the same sizes and times; empty otherwise (the case is to be run).
-std::optional<CohortCaseResult> CompletedCohortCase(const CohortCase& c, const std::string& folder);
+/// the same paths of the same sizes, times and contents (each file in a folder input so) and every
+/// file the run wrote (case.json's "outputs") is still as written; empty otherwise (the case is to
+/// be run), with why in whyNot (empty when the folder holds no run).
+std::optional<CohortCaseResult> CompletedCohortCase(const CohortCase& c, const std::string& folder, std::string* whyNot = nullptr);
 
-/// case.json's "inputs": each input of the case with its size and modification time.
+/// case.json's "inputs": each input of the case with its size, modification time and content hash
+/// (a folder's files each).
 nlohmann::ordered_json CohortCaseInputsJson(const CohortCase& c);
 } // namespace vp
 

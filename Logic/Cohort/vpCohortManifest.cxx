@@ -241,6 +241,11 @@ std::vector<CohortCase> ReadCohortManifest(const std::string& file)
     {
       throw InputError(at, "a case needs its name and its segmentation");
     }
+    if (!c.Plan.empty() && c.Poses.empty())
+    {
+      throw InputError(at, "case '" + Printable(c.Name) + "' has a plan but no poses: the margin is measured along a tracked "
+        "session (give its poses, or leave the plan out)");
+    }
     const std::string problem = CaseNameProblem(c.Name);
     if (!problem.empty())
     {

@@ -91,6 +91,34 @@ private:
   int Descriptor = -1;
 };
 
+/// Refuses a case whose input is one of the files the cohort writes beside its cases (a poses
+/// file named cohort.png in OUTDIR), before anything is computed.
+void RefuseInputsOverCohortFiles(const std::vector<CohortCase>& cases, const CohortRequest& request)
+{
+  namespace fs = std::filesystem;
+  std::error_code e;
+  const fs::path out = fs::weakly_canonical(request.OutputFolder, e);
+  for (const CohortCase& c : cases)
+  {
+    std::vector<std::string> inputs = { c.Segmentation, c.Poses, c.Tips, c.Scalpel };
+    for (const std::string& entry : c.Plan)
+    {
+      inputs.push_back(entry.substr(entry.find('=') == std::string::npos ? 0 : entry.find('=') + 1));
+    }
+    for (const std::string& input : inputs)
+    {
+      const fs::path path = input.empty() ? fs::path() : fs::weakly_canonical(input, e);
+      const std::string name = path.filename().string();
+      if (!input.empty() && path.parent_path() == out &&
+        (name == "cohort.csv" || name == "cohort.png" || (name.rfind("cohort-", 0) == 0 && path.extension() == ".csv")))
+      {
+        throw InputError(request.Manifest, "line " + std::to_string(c.Line) + ": case '" + c.Name + "' reads " + input +
+          ", a file the cohort writes in " + request.OutputFolder + ": an output never replaces an input");
+      }
+    }
+  }
+}
+
 /// Makes the cohort's folder; refuses one that holds the manifest (the run's tables would sit
 /// beside, or over, its input) and merge folders that are not folders.
 void PrepareCohortFolder(const CohortRequest& request)
@@ -314,6 +342,7 @@ CohortReport RunCohort(const CohortRequest& request, const CohortLogicFactory& m
       cases.push_back(manifest[i]);
     }
   }
+  RefuseInputsOverCohortFiles(cases, request);
   PrepareCohortFolder(request);
   const CohortFolderLock lock(request.OutputFolder, request.ShardIndex, request.ShardCount);
   const SignalHold hold; // the workers' case folders nest their holds in this one
@@ -369,7 +398,12 @@ CohortReport RunCohort(const CohortRequest& request, const CohortLogicFactory& m
           continue;
         }
         const std::string folder = request.OutputFolder + "/" + cases[i].Name;
-        std::optional<CohortCaseResult> earlier = CompletedCohortCase(cases[i], folder);
+        std::string whyNot;
+        std::optional<CohortCaseResult> earlier = CompletedCohortCase(cases[i], folder, &whyNot);
+        if (!earlier && !whyNot.empty() && stages)
+        {
+          stages(cases[i].Name, "computed again: " + whyNot);
+        }
         finish(i, earlier ? std::move(*earlier) : RunCohortCase(cases[i], folder, request.Settings, makeLogic, stages));
       }
     };

@@ -56,4 +56,20 @@ std::vector<std::string> DescribeSurfaceDefects(
   }
   return lines;
 }
+
+std::vector<std::string> DescribeTumourDefects(const std::vector<NamedMesh>& tumours)
+{
+  std::vector<std::string> lines;
+  for (const NamedMesh& t : tumours)
+  {
+    const VesselSurface surface(t.ClassName, t.Mesh);
+    if (!surface.IsClosed())
+    {
+      lines.push_back("tumour " + t.ClassName + " (" + t.FileName + "): the surface is not closed (" +
+        surface.Defects().Describe() + "): inside is the majority of five rays' crossing parities, and a tip where they " +
+        "disagree is inside");
+    }
+  }
+  return lines;
+}
 } // namespace vp

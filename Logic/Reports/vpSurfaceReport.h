@@ -23,6 +23,9 @@ nlohmann::ordered_json SurfacesJson(vtkVesselDistanceEngine* engine, const std::
 /// the front end names the repair (a command says its flag). Each line starts with the class name.
 std::vector<std::string> DescribeSurfaceDefects(
   vtkVesselDistanceEngine* engine, const std::vector<NamedMesh>& meshes, const std::string& repairName);
+/// One line per tumour whose surface is not closed: its id, file, defects, and how its inside is
+/// decided (a vote of rays; an undecided one counts as inside, so the margin reads violated).
+std::vector<std::string> DescribeTumourDefects(const std::vector<NamedMesh>& tumours);
 } // namespace vp
 
 #endif

@@ -28,6 +28,10 @@ void ReportOpenedScene(
   ReportEngineNote(scene.EngineNote);
   std::cerr << command << ": " << proximity->GetScalpel()->GetTipSource() << "\n";
   ReportSurfaceDefects(command, proximity->GetDistanceEngine(), scene.Vessels);
+  for (const std::string& line : DescribeTumourDefects(scene.Tumours))
+  {
+    std::cerr << command << ": " << line << "\n";
+  }
   if (scene.PenetrationUnknown)
   {
     std::cerr << command << ": " << scalpelFile

@@ -43,6 +43,12 @@ void ThrowWhenNoPoseCame(IgtlLink& link)
   {
     return;
   }
+  if (SignalHold::Pending())
+  {
+    // The held signal ends the process as it unwinds, before any error line: said here.
+    std::fprintf(stderr, "live: ended by a signal before any pose of %s came (%zu message(s), %zu connection(s)); nothing written\n",
+      link.GetSettings().ToolName.c_str(), counts.Messages, counts.Connections);
+  }
   std::size_t ignored = 0;
   for (const auto& [which, count] : counts.Ignored)
   {

@@ -15,12 +15,14 @@
 #include <vtkPNGReader.h>
 
 #include <algorithm>
+#include <array>
 
 #include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <thread>
 
@@ -59,6 +61,7 @@ protected:
     const std::array<double, 16> geometry = { 0.8, 0, 0, -50, 0, 0.8, 0, 20, 0, 0, 1.25, -100, 0, 0, 0, 1 };
     const int dims[3] = { 40, 50, 30 };
     const vp::ImageIdentity patient = vp::DicomLabelSeriesWriter::NewIdentity("");
+    this->Patient = patient;
     auto write = [&](const std::string& name, const std::function<int(const double p[3])>& label) {
       vp::LabelGrid grid = vp::test::MakeGrid(dims, geometry, label);
       grid.Identity = patient;
@@ -98,6 +101,7 @@ protected:
     return this->Dir + "/" + name;
   }
   std::string Dir, Manifest;
+  vp::ImageIdentity Patient;
 };
 } // namespace
 
@@ -220,6 +224,66 @@ TEST_F(BatchCommand, ARunAgainResumesFromTheWholeCasesAndRedoesAChangedOne)
   EXPECT_EQ(Slurp(out + "/cohort.csv"), first) << "the same inputs' numbers";
 }
 
+// A case is whole only while everything it read and wrote is as it was: a mask replaced inside
+// the segmentation folder (same name, same size, its time put back) changes the numbers and is
+// computed again; a deleted frames.csv likewise; an overwritten distance.json makes its case not
+// whole, and is the user's (not written over); each is said.
+TEST_F(BatchCommand, ACaseWhoseInputsOrOutputsChangedIsComputedAgainAndSaysWhy)
+{
+  const std::string out = this->Dir + "/cohort";
+  ASSERT_EQ(RunTool(this->Dir, "batch " + this->Manifest + " -o " + out).ExitCode, 1);
+  const auto rowOf = [&](const std::string& csv, const std::string& prefix) {
+    std::istringstream lines(csv);
+    for (std::string line; std::getline(lines, line);)
+    {
+      if (line.rfind(prefix, 0) == 0)
+      {
+        return line;
+      }
+    }
+    return std::string();
+  };
+  const std::string before = rowOf(Slurp(out + "/cohort.csv"), "near,portal_vein,");
+  // The portal vein moved 6 mm along x, written over the same files (same sizes), times put back.
+  const std::string vein = this->Dir + "/p1/MASKS_DICOM/portalvein";
+  std::map<std::string, fs::file_time_type> times;
+  for (const auto& f : fs::directory_iterator(vein))
+  {
+    times[f.path().string()] = fs::last_write_time(f.path());
+  }
+  const std::array<double, 16> geometry = { 0.8, 0, 0, -50, 0, 0.8, 0, 20, 0, 0, 1.25, -100, 0, 0, 0, 1 };
+  const int dims[3] = { 40, 50, 30 };
+  vp::LabelGrid grid = vp::test::MakeGrid(dims, geometry, [](const double p[3]) { return std::hypot(p[0] + 24, p[1] - 40) < 5 ? 255 : 0; });
+  grid.Identity = this->Patient;
+  fs::remove_all(this->Dir + "/moved");
+  vp::DicomLabelSeriesWriter::Write(grid, this->Dir + "/moved", "portalvein");
+  for (const auto& [file, time] : times)
+  {
+    const std::string moved = this->Dir + "/moved/" + fs::path(file).filename().string();
+    ASSERT_TRUE(fs::exists(moved)) << moved;
+    ASSERT_EQ(fs::file_size(moved), fs::file_size(file)) << "the same size, so that only the content tells";
+    fs::copy_file(moved, file, fs::copy_options::overwrite_existing);
+    fs::last_write_time(file, time);
+  }
+  const ToolRun masks = RunTool(this->Dir, "batch " + this->Manifest + " -o " + out);
+  EXPECT_NE(masks.Out.find("3 case(s): 2 computed, 0 whole already, 1 failed"), std::string::npos) << masks.Out;
+  EXPECT_NE(masks.Err.find("near: computed again: an input changed since its run"), std::string::npos) << masks.Err;
+  EXPECT_NE(rowOf(Slurp(out + "/cohort.csv"), "near,portal_vein,"), before) << "the new vein's numbers";
+
+  fs::remove(out + "/near/frames.csv");
+  std::ofstream(out + "/into/distance.json") << "{}";
+  const ToolRun outputs = RunTool(this->Dir, "batch " + this->Manifest + " -o " + out);
+  EXPECT_NE(outputs.Out.find("3 case(s): 1 computed, 0 whole already, 2 failed"), std::string::npos) << outputs.Out;
+  EXPECT_NE(outputs.Err.find("near: computed again: frames.csv is gone"), std::string::npos) << outputs.Err;
+  EXPECT_TRUE(fs::exists(out + "/near/frames.csv"));
+  // The edited distance.json is the user's now: the case is not whole, and its run will not
+  // write over the file (RunFolder), which it says.
+  EXPECT_NE(outputs.Err.find("into: computed again: distance.json changed since it was written"), std::string::npos) << outputs.Err;
+  EXPECT_NE(outputs.Err.find("into failed: " + out + "/into/distance.json: was not written by a run here"), std::string::npos)
+    << outputs.Err;
+  EXPECT_EQ(Slurp(out + "/into/distance.json"), "{}");
+}
+
 TEST_F(BatchCommand, ShardsMergeIntoTheCohortOfOneRun)
 {
   const std::string whole = this->Dir + "/whole", shards = this->Dir + "/shards";
@@ -258,6 +322,7 @@ TEST_F(BatchCommand, EachBadManifestOrOptionGetsItsOneLineAndWritesNothing)
     { "case,segmentation\n", "no case" },
     { "case,segmentation,plan\nx,a,b;;c\n", "line 2: an empty entry in the plan" },
     { "case,case,segmentation\n", "line 1: column 'case' is named twice" },
+    { "case,segmentation,plan\nx,a,t.stl\n", "line 2: case 'x' has a plan but no poses" },
   };
   for (const auto& [text, problem] : manifests)
   {

@@ -258,6 +258,20 @@ TEST_F(LiveCommand, AToolNameTheWireCannotCarryIsRefused)
   EXPECT_FALSE(std::filesystem::exists(this->Dir + "/out"));
 }
 
+// Ctrl-C before any pose came: the session ends as a signal ends it (130), but says why first,
+// and writes nothing.
+TEST_F(LiveCommand, CtrlCBeforeAnyPoseIsSaid)
+{
+  const pid_t live = this->StartLive({ "--igtl-listen", "0" }, this->Dir + "/never");
+  ASSERT_TRUE(WaitForText(this->Dir + "/live.err", "listening on port")) << Slurp(this->Dir + "/live.err");
+  kill(live, SIGINT);
+  const int status = WaitFor(live, 30.0);
+  EXPECT_TRUE(status == 128 + SIGINT || status == -SIGINT) << status << ": " << Slurp(this->Dir + "/live.err");
+  EXPECT_NE(Slurp(this->Dir + "/live.err").find("live: ended by a signal before any pose of"), std::string::npos)
+    << Slurp(this->Dir + "/live.err");
+  EXPECT_FALSE(std::filesystem::exists(this->Dir + "/never/frames.csv"));
+}
+
 // A tracker streaming at 50 Hz for 10 s: every pose computed, each frame track's; with the haptic
 // force on, its direction too, and its force in the record; with a tumour, its margin's columns.
 TEST_F(LiveCommand, At50HzEveryFrameEqualsTrackOnTheSamePoses)

@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include <vtkCell.h>
+#include <vtkCellArray.h>
 #include <vtkNew.h>
 #include <vtkPolyData.h>
 
@@ -486,6 +488,28 @@ TEST_F(TrackCommand, TheNearBandIsAsWideAsTheMarginUnlessSet)
   EXPECT_EQ(levels(" --margin-mm 1"), std::vector<std::string>({ "clear", "clear" }));
   EXPECT_EQ(levels(" --margin-mm 1 --near-band-mm 3.5"), std::vector<std::string>({ "clear", "near" }));
   EXPECT_EQ(levels(""), std::vector<std::string>({ "clear", "violated" })) << "5 mm and 5 mm";
+}
+
+// A tumour whose surface has a hole is measured (its inside by the rays' vote) and said so: the
+// margin of an open surface is no exact answer.
+TEST_F(TrackCommand, AnOpenTumourSurfaceIsSaid)
+{
+  const double centre[3] = { -40.2, 0.3, 0.2 };
+  const vtkSmartPointer<vtkPolyData> sphere = vp::MakeSphere(centre, 8.0, 24, 48);
+  vtkNew<vtkPolyData> open;
+  open->SetPoints(sphere->GetPoints());
+  vtkNew<vtkCellArray> polys;
+  for (vtkIdType c = 1; c < sphere->GetNumberOfCells(); ++c) // the first triangle left out: a hole
+  {
+    polys->InsertNextCell(sphere->GetCell(c)->GetPointIds());
+  }
+  open->SetPolys(polys);
+  const std::string tumour = this->Write("holed.stl", open);
+  std::vector<double> xs;
+  const ToolRun r = RunTool(this->Dir, "track --vessels " + this->Vessels + " --scalpel " + this->Tool + " --poses " +
+      this->TipAlongX("holed.csv", -20.0, -30.0, xs) + " --tumour " + tumour + " -o " + this->Dir + "/holed");
+  ASSERT_EQ(r.ExitCode, 0) << r.Err;
+  EXPECT_NE(r.Err.find("track: tumour holed (" + tumour + "): the surface is not closed"), std::string::npos) << r.Err;
 }
 
 TEST_F(TrackCommand, CountsTheFramesOverTheBudget)

@@ -3,6 +3,7 @@
 #include "vpInputError.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace vp
 {
@@ -12,14 +13,15 @@ TrajectoryCheck::TrajectoryCheck(const double vesselBounds[6], double rangeMm)
   for (int k = 0; k < 6; ++k)
   {
     this->Box[k] = vesselBounds[k] + (k % 2 == 0 ? -rangeMm : rangeMm);
+    this->Vessels[k] = vesselBounds[k];
   }
 }
 
-bool TrajectoryCheck::NearVessels(const double tip[3]) const
+bool TrajectoryCheck::InBox(const double box[6], const double tip[3])
 {
   for (int a = 0; a < 3; ++a)
   {
-    if (!(tip[a] >= this->Box[2 * a] && tip[a] <= this->Box[2 * a + 1]))
+    if (!(tip[a] >= box[2 * a] && tip[a] <= box[2 * a + 1]))
     {
       return false;
     }
@@ -40,7 +42,13 @@ void TrajectoryCheck::Add(const TrackedFrame& frame)
   const double* tips[4] = { read, metres, micrometres, mirrored };
   for (std::size_t k = 0; k < 4; ++k)
   {
-    this->Near[k] += this->NearVessels(tips[k]) ? 1 : 0;
+    this->Near[k] += InBox(this->Box, tips[k]) ? 1 : 0;
+    this->Inside[k] += InBox(this->Vessels, tips[k]) ? 1 : 0;
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    this->Extent[2 * a] = std::min(this->Extent[2 * a], t[a]);
+    this->Extent[2 * a + 1] = std::max(this->Extent[2 * a + 1], t[a]);
   }
   if (this->Frames > 0 && frame.TimeS - this->PreviousTimeS > 2.0)
   {
@@ -63,20 +71,30 @@ std::vector<TrajectoryWarning> TrajectoryCheck::Warnings() const
     warnings.push_back({ "no_pose_near_vessels", "none of the " + frames + " came within the " + NumberText(this->RangeMm) +
         " mm range of any vessel: are the poses in the vessels' frame and units?" });
   }
-  // A reading is suspected only when the poses as read are nowhere near and most would be.
-  const bool farAsRead = this->Near[0] == 0;
+  // A reading is suspected only when the poses as read are nowhere near and most would be: near
+  // the vessels' grown box, or, where that holds the origin, inside their own box.
   const auto most = [&](std::size_t n) { return 2 * n > this->Frames; };
-  if (farAsRead && most(this->Near[1]))
+  const auto suspect = [&](std::size_t k) {
+    return (this->Near[0] == 0 && most(this->Near[k])) || (this->Inside[0] == 0 && most(this->Inside[k]));
+  };
+  const auto diagonal = [](const double b[6]) {
+    return std::sqrt((b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) + (b[5] - b[4]) * (b[5] - b[4]));
+  };
+  // Metres read as mm where the vessels surround the origin: a trajectory a thousandth of the
+  // vessels' size, which times 1000 lies among them.
+  const bool tinyInside = this->Frames >= 10 && diagonal(this->Extent) < 1e-3 * diagonal(this->Vessels) &&
+    most(this->Inside[1]);
+  if (suspect(1) || tinyInside)
   {
     warnings.push_back({ "metres", "the poses lie 1000 times too close to the origin for the vessels; times 1000 they pass " +
         std::string("by them: are they in metres?") });
   }
-  if (farAsRead && most(this->Near[2]))
+  if (suspect(2))
   {
     warnings.push_back({ "micrometres", "the poses lie 1000 times too far from the origin for the vessels; divided by 1000 " +
         std::string("they pass by them: are they in micrometres, or the vessels in metres?") });
   }
-  if (farAsRead && most(this->Near[3]))
+  if (suspect(3))
   {
     warnings.push_back({ "mirrored", "the poses lie in the mirror image of the vessels (x and y negated): are they in RAS, " +
         std::string("as 3D Slicer writes them?") });

@@ -27,6 +27,7 @@
 #include <random>
 #include <set>
 #include <sstream>
+#include <tuple>
 
 #include <fcntl.h>
 #include <sys/wait.h>
@@ -1367,6 +1368,36 @@ TEST_F(PoseForms, MisreadPosesAreSaidAndStrictRefusesThem)
   }
   const ToolRun hint = this->Track(this->Poses("m.csv", header, at(0.001, 1.0, 1.0)), this->Dir + "/m2");
   EXPECT_NE(hint.Err.find("are they in metres? (--pose-units m)"), std::string::npos) << hint.Err;
+}
+
+// Vessels around the origin (the demo phantom's are): poses in metres fall at the origin, inside
+// the vessels' box, yet the trajectory is a thousandth of their size and times 1000 lies among
+// them, which is said; the same poses in mm are not.
+TEST_F(PoseForms, PosesInMetresAreSaidWhereTheVesselsSurroundTheOrigin)
+{
+  const double a[3] = { -60, -40, -30 }, b[3] = { 60, 40, 30 };
+  this->Vessels = "portal_vein=" + this->Write("around_a.stl", vp::MakeSphere(a, 10.0, 24, 48)) +
+    ",hepatic_vein=" + this->Write("around_b.stl", vp::MakeSphere(b, 10.0, 24, 48));
+  const auto along = [](double scale) {
+    return [=](double t, double x) {
+      return Number(t) + "," + Number((-50.0 + 2.0 * x) * scale) + "," + Number(-35.0 * scale) + "," + Number(-30.0 * scale) +
+        "," + Number(H) + ",0," + Number(-H) + ",0\n";
+    };
+  };
+  const std::string header = "time,x,y,z,qw,qx,qy,qz\n";
+  for (const auto& [name, scale, kinds] : { std::tuple<std::string, double, std::vector<std::string>>{ "mm", 1.0, {} },
+         { "m", 0.001, { "no_pose_near_vessels", "metres" } } })
+  {
+    const ToolRun r = this->Track(this->Poses("around_" + name + ".csv", header, along(scale)), this->Dir + "/around_" + name);
+    ASSERT_EQ(r.ExitCode, 0) << r.Err;
+    std::vector<std::string> got;
+    const nlohmann::json summary = nlohmann::json::parse(Slurp(this->Dir + "/around_" + name + "/summary.json"));
+    for (const auto& w : summary["warnings"])
+    {
+      got.push_back(w["kind"].get<std::string>());
+    }
+    EXPECT_EQ(got, kinds) << name << ": " << r.Err;
+  }
 }
 
 TEST_F(PoseForms, AMisspeltClassIsRefusedAndBlanksAroundNamesAreNoPartOfThem)

@@ -474,18 +474,35 @@ void RunFolder::Commit()
       remove.push_back(EntryJson(e));
     }
   }
-  WriteFileAtomically(this->StagingPath + "/" + PlanName,
-    Json{ { "report", this->ReportName }, { "entries", entries }, { "remove", remove } }.dump(2) + "\n");
+  try
+  {
+    WriteFileAtomically(this->StagingPath + "/" + PlanName,
+      Json{ { "report", this->ReportName }, { "entries", entries }, { "remove", remove } }.dump(2) + "\n");
+  }
+  catch (const std::exception& e)
+  {
+    throw InputError(this->TargetPath, std::string("cannot put the run in place (") + e.what() +
+        "): the folder holds the previous run as it was");
+  }
   // The commit: one rename. From here the run is in place, or in the plan the next run completes.
   const std::string commit = this->TargetPath + "/" + CommitName();
   if (std::rename(this->StagingPath.c_str(), commit.c_str()) != 0)
   {
     const bool busy = errno == EEXIST || errno == ENOTEMPTY;
     throw InputError(this->TargetPath, std::string("cannot put the run in place: ") +
-        (busy ? "another run is putting its files in place here" : std::strerror(errno)));
+        (busy ? "another run is putting its files in place here" : std::strerror(errno)) +
+        "; the folder holds the previous run as it was");
   }
   this->StagingPath.clear(); // the plan is no longer this run's to remove
-  RollForward(this->TargetPath, commit);
+  try
+  {
+    RollForward(this->TargetPath, commit);
+  }
+  catch (const std::exception& e)
+  {
+    throw InputError(this->TargetPath, std::string("the new run is committed but not wholly in place (") + e.what() +
+        "): its plan is kept in " + CommitName() + ", and the next run here completes it before its own");
+  }
   this->CreatedTarget = false; // it holds the run now
   this->Release();
 }

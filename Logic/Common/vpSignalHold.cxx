@@ -15,6 +15,12 @@ std::atomic<int> Holders{ 0 }; // nested holds of a cohort's worker threads insi
 
 extern "C" void RecordSignal(int signal)
 {
+  // A file past the size limit (SIGXFSZ) or a reader gone (SIGPIPE) is the write's own failure,
+  // which its EFBIG or EPIPE reports in a line: no reason to end the process afterwards.
+  if (signal == SIGXFSZ || signal == SIGPIPE)
+  {
+    return;
+  }
   if (PendingSignal == 0)
   {
     PendingSignal = signal;

@@ -24,6 +24,7 @@
 #include <fstream>
 #include <functional>
 #include <iterator>
+#include <map>
 #include <random>
 #include <set>
 #include <sstream>
@@ -511,6 +512,32 @@ TEST_F(TrackCommand, AnOpenTumourSurfaceIsSaid)
       this->TipAlongX("holed.csv", -20.0, -30.0, xs) + " --tumour " + tumour + " -o " + this->Dir + "/holed");
   ASSERT_EQ(r.ExitCode, 0) << r.Err;
   EXPECT_NE(r.Err.find("track: tumour holed (" + tumour + "): the surface is not closed"), std::string::npos) << r.Err;
+}
+
+// A disk that takes no more (here the file-size limit, as `ulimit -f` sets it: the writes fail as
+// on a full disk, with SIGXFSZ): one line naming the file, exit 1, and the folder holds the
+// previous run exactly as it was, nothing of the new one beside it.
+TEST_F(TrackCommand, AWriteThatFailsLeavesThePreviousRunAndSaysSo)
+{
+  const std::string out = this->Dir + "/full";
+  const std::string command = "track --vessels " + this->Vessels + " --scalpel " + this->Tool + " --poses " + this->ApproachPoses() +
+    " -o " + out;
+  ASSERT_EQ(RunTool(this->Dir, command).ExitCode, 0);
+  std::map<std::string, std::string> before;
+  for (const auto& entry : std::filesystem::directory_iterator(out))
+  {
+    before[entry.path().filename().string()] = Slurp(entry.path().string());
+  }
+  const ToolRun full = RunTool(this->Dir, command, "ulimit -f 4;");
+  EXPECT_EQ(full.ExitCode, 1) << full.Err;
+  EXPECT_NE(full.Err.find("write failed: File too large"), std::string::npos) << full.Err;
+  EXPECT_EQ(std::count(full.Err.begin(), full.Err.end(), '\n'), 2) << "the tip's line and the error: " << full.Err;
+  std::map<std::string, std::string> after;
+  for (const auto& entry : std::filesystem::directory_iterator(out))
+  {
+    after[entry.path().filename().string()] = Slurp(entry.path().string());
+  }
+  EXPECT_EQ(after, before);
 }
 
 TEST_F(TrackCommand, CountsTheFramesOverTheBudget)

@@ -18,6 +18,7 @@
 #include <cerrno>
 #include <chrono>
 #include <cstring>
+#include <functional>
 
 namespace vp
 {
@@ -54,28 +55,43 @@ protected:
   ~AdoptedSocket() override = default;
 };
 
-/// A TCP connection to host:port within timeoutMs: its descriptor, or -1.
-int ConnectWithin(const std::string& host, int port, int timeoutMs)
+/// The first TCP socket for host:port (getaddrinfo's order) that ready accepts (and keeps open):
+/// its descriptor, or -1. flags: getaddrinfo's hints (AI_PASSIVE for a listener).
+int FirstSocket(const std::string& host, int port, int flags, const std::function<bool(int, const addrinfo&)>& ready)
 {
   addrinfo hints{};
   hints.ai_family = AF_UNSPEC;
   hints.ai_socktype = SOCK_STREAM;
+  hints.ai_flags = flags;
   addrinfo* found = nullptr;
-  if (getaddrinfo(host.c_str(), std::to_string(port).c_str(), &hints, &found) != 0)
+  if (port < 0 || port > 65535 || getaddrinfo(host.c_str(), std::to_string(port).c_str(), &hints, &found) != 0)
   {
     return -1;
   }
-  int connected = -1;
-  for (addrinfo* a = found; a && connected < 0; a = a->ai_next)
+  int chosen = -1;
+  for (addrinfo* a = found; a && chosen < 0; a = a->ai_next)
   {
     const int fd = ::socket(a->ai_family, a->ai_socktype | SOCK_CLOEXEC, a->ai_protocol);
-    if (fd < 0)
+    if (fd >= 0 && ready(fd, *a))
     {
-      continue;
+      chosen = fd;
     }
+    else if (fd >= 0)
+    {
+      ::close(fd);
+    }
+  }
+  freeaddrinfo(found);
+  return chosen;
+}
+
+/// A TCP connection to host:port within timeoutMs: its descriptor, or -1.
+int ConnectWithin(const std::string& host, int port, int timeoutMs)
+{
+  return FirstSocket(host, port, 0, [timeoutMs](int fd, const addrinfo& a) {
     const int flags = fcntl(fd, F_GETFL, 0);
     fcntl(fd, F_SETFL, flags | O_NONBLOCK);
-    int result = ::connect(fd, a->ai_addr, a->ai_addrlen);
+    int result = ::connect(fd, a.ai_addr, a.ai_addrlen);
     if (result < 0 && errno == EINPROGRESS)
     {
       pollfd p{ fd, POLLOUT, 0 };
@@ -83,20 +99,15 @@ int ConnectWithin(const std::string& host, int port, int timeoutMs)
       socklen_t length = sizeof error;
       result = poll(&p, 1, timeoutMs) == 1 && getsockopt(fd, SOL_SOCKET, SO_ERROR, &error, &length) == 0 && error == 0 ? 0 : -1;
     }
-    if (result == 0)
+    if (result != 0)
     {
-      fcntl(fd, F_SETFL, flags);
-      const int on = 1;
-      setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &on, sizeof on); // a pose is small and late is useless
-      connected = fd;
+      return false;
     }
-    else
-    {
-      ::close(fd);
-    }
-  }
-  freeaddrinfo(found);
-  return connected;
+    fcntl(fd, F_SETFL, flags);
+    const int on = 1;
+    setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &on, sizeof on); // a pose is small and late is useless
+    return true;
+  });
 }
 
 /// The characters an OpenIGTLink type name is made of; anything else is a stream out of step.
@@ -110,36 +121,11 @@ bool IsTypeName(const std::string& type)
 /// rather than the library's ServerSocket, which binds every interface.
 int ListenOn(const std::string& host, int port)
 {
-  addrinfo hints{};
-  hints.ai_family = AF_UNSPEC;
-  hints.ai_socktype = SOCK_STREAM;
-  hints.ai_flags = AI_PASSIVE | AI_NUMERICSERV;
-  addrinfo* found = nullptr;
-  if (port < 0 || port > 65535 || getaddrinfo(host.c_str(), std::to_string(port).c_str(), &hints, &found) != 0)
-  {
-    return -1;
-  }
-  int listening = -1;
-  for (addrinfo* a = found; a && listening < 0; a = a->ai_next)
-  {
-    const int fd = ::socket(a->ai_family, a->ai_socktype | SOCK_CLOEXEC, a->ai_protocol);
-    if (fd < 0)
-    {
-      continue;
-    }
+  return FirstSocket(host, port, AI_PASSIVE | AI_NUMERICSERV, [](int fd, const addrinfo& a) {
     const int on = 1;
     setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &on, sizeof on);
-    if (::bind(fd, a->ai_addr, a->ai_addrlen) == 0 && ::listen(fd, 16) == 0)
-    {
-      listening = fd;
-    }
-    else
-    {
-      ::close(fd);
-    }
-  }
-  freeaddrinfo(found);
-  return listening;
+    return ::bind(fd, a.ai_addr, a.ai_addrlen) == 0 && ::listen(fd, 16) == 0;
+  });
 }
 
 /// The port a listening socket was given.

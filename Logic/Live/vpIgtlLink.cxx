@@ -11,6 +11,7 @@
 #include <netinet/in.h>
 #include <netinet/tcp.h>
 #include <poll.h>
+#include <sys/ioctl.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
@@ -406,8 +407,8 @@ std::shared_ptr<IgtlLink::Peer> IgtlLink::ChooseEvictee(double nowMs) const
 {
   // First a client that takes no results (Deaf), then the slowest: the one whose message has been
   // arriving longest (a sender that drips bytes; a well-behaved one is mid-message for
-  // microseconds). Else the newest that has no message begun. Never the tracker nor the peer
-  // whose poses steer the scalpel.
+  // microseconds). Else, of those with no message begun, the one that reads least, then the
+  // newest. Never the tracker nor the peer whose poses steer the scalpel.
   std::shared_ptr<Peer> deaf, slowest, newestIdle;
   for (const auto& p : this->Peers)
   {
@@ -424,7 +425,15 @@ std::shared_ptr<IgtlLink::Peer> IgtlLink::ChooseEvictee(double nowMs) const
     {
       slowest = p;
     }
-    if (begun < 0.0 && (!newestIdle || p->ConnectedMs > newestIdle->ConnectedMs))
+    // Among idle ones, the one that reads least of what is sent (the most bytes waiting in its
+    // socket: a peer that holds a slot without reading), then the newest.
+    const auto unread = [](const Peer& peer) {
+      int queued = 0;
+      return ::ioctl(peer.Descriptor, TIOCOUTQ, &queued) == 0 ? queued : 0;
+    };
+    if (begun < 0.0 &&
+      (!newestIdle || unread(*p) > unread(*newestIdle) ||
+        (unread(*p) == unread(*newestIdle) && p->ConnectedMs > newestIdle->ConnectedMs)))
     {
       newestIdle = p;
     }

@@ -52,8 +52,9 @@ struct IgtlLinkSettings
   /// sender paces it, or the connection is closed as stalled. 1000 by default.
   double MessageTimeoutMs = 1000.0;
   /// MaxClients: clients served at once. One more closes a client that takes no results, else the
-  /// slowest sender (a message arriving longest), else the newest client with no message begun;
-  /// never the tracker nor the peer that steers (with none else, the newcomer is turned away).
+  /// slowest sender (a message arriving longest), else of those with no message begun the one
+  /// that reads least (most bytes queued for it), then the newest; never the tracker nor the peer
+  /// that steers (with none else, the newcomer is turned away).
   /// 8 by default.
   int MaxClients = 8;
 };

@@ -191,6 +191,57 @@ TEST(IgtlLink, EightJammersCannotKeepAWellBehavedClientOut)
   EXPECT_LT(answeredAfterMs, 2000.0);
 }
 
+// Idle peers that connect and never read hold slots too: once results flow, a newcomer closes the
+// one that reads least (the most bytes waiting for it), never the client that reads them, which
+// keeps receiving while eight more idle peers arrive.
+TEST(IgtlLink, IdlePeersThatReadNothingGiveWayBeforeAClientThatReads)
+{
+  vp::IgtlLink link(Listening());
+  const int port = link.GetListenPort();
+  std::vector<int> idle;
+  for (int i = 0; i < 7; ++i)
+  {
+    idle.push_back(ConnectTo("127.0.0.1", port));
+  }
+  const int reader = ConnectTo("127.0.0.1", port);
+  ASSERT_GE(reader, 0);
+  const std::string results = vp::PackIgtlString("VesselProximity", std::string(2000, 'x'));
+  char buffer[1 << 16];
+  const auto readFor = [&](double ms) {
+    std::size_t got = 0;
+    for (const double until = vp::NowMs() + ms; vp::NowMs() < until;)
+    {
+      link.Send(results);
+      pollfd p{ reader, POLLIN, 0 };
+      while (poll(&p, 1, 5) == 1)
+      {
+        const ssize_t n = ::recv(reader, buffer, sizeof buffer, MSG_DONTWAIT);
+        if (n <= 0)
+        {
+          return got;
+        }
+        got += static_cast<std::size_t>(n);
+      }
+    }
+    return got;
+  };
+  ASSERT_GT(readFor(300.0), 0u);
+  for (int i = 0; i < 8; ++i)
+  {
+    idle.push_back(ConnectTo("127.0.0.1", port));
+    EXPECT_GT(readFor(150.0), 0u) << "the reading client lost its place to idle peer " << i;
+  }
+  for (const std::string& e : link.TakeEvents())
+  {
+    EXPECT_EQ(e.find("closed client 8 "), std::string::npos) << e;
+  }
+  for (int fd : idle)
+  {
+    ::close(fd);
+  }
+  ::close(reader);
+}
+
 // A server that accepts and closes every connection at once: the link backs off (0.1 s doubling to
 // 2 s), a handful of connections in 3 s rather than thousands, and says so once.
 TEST(IgtlLink, ReconnectsBackOffFromAServerThatClosesAtOnce)

@@ -144,6 +144,43 @@ TEST(RunFolder, AFailedRunLeavesThePreviousOneExactlyAsItWas)
 }
 
 // Issue 29: track with its inputs inside a previous run's folder and -o that folder deleted them.
+// A commit that fails after its rename (here the run's record cannot take its place) says the new
+// run is committed but not wholly in place, keeps its plan, and the next run completes it before
+// its own once the obstacle is gone.
+TEST(RunFolder, ACommitThatFailsMidwaySaysSoAndTheNextRunCompletesIt)
+{
+  const std::string dir = vp::test::MakeTempDir("runfolder_midway");
+  const std::string out = dir + "/out";
+  CommitRun(out, { { "a.stl", "a1" }, { "report.json", "r1" } });
+  std::string message;
+  {
+    vp::RunFolder run(out, "report.json");
+    run.Begin();
+    WriteText(run.File("b.stl"), "b2");
+    WriteText(run.File("report.json"), "r2");
+    fs::remove(out + "/" + Marker);
+    fs::create_directories(out + "/" + Marker + "/blocking"); // a non-empty folder where the record goes
+    try
+    {
+      run.Commit();
+    }
+    catch (const vp::InputError& e)
+    {
+      message = e.what();
+    }
+  }
+  EXPECT_NE(message.find("the new run is committed but not wholly in place"), std::string::npos) << message;
+  EXPECT_NE(message.find("the next run here completes it"), std::string::npos) << message;
+  EXPECT_TRUE(fs::exists(out + "/.vesselproximity-commit")) << "the plan is kept";
+  EXPECT_EQ(vp::test::Slurp(out + "/b.stl"), "b2") << "the new files are in place";
+  fs::remove_all(out + "/" + Marker);
+  CommitRun(out, { { "c.stl", "c3" }, { "report.json", "r3" } });
+  EXPECT_FALSE(fs::exists(out + "/.vesselproximity-commit"));
+  EXPECT_EQ(vp::test::Slurp(out + "/report.json"), "r3");
+  EXPECT_FALSE(fs::exists(out + "/b.stl")) << "the completed run's file, replaced by the next run's";
+  fs::remove_all(dir);
+}
+
 TEST(RunFolder, TheRunsInputsAreNeverRemovedNorWrittenOver)
 {
   const std::string dir = vp::test::MakeTempDir("runfolder_inputs");

@@ -19,6 +19,8 @@
 #include <thread>
 
 #include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 namespace
 {
@@ -148,6 +150,26 @@ TEST(HostileFiles, CommandsRefuseAnOutputOverAnInput)
     EXPECT_NE(r.Err.find("'" + vein + "' is also an input (--vessels"), std::string::npos) << r.Err;
     EXPECT_EQ(std::count(r.Err.begin(), r.Err.end(), '\n'), 1) << r.Err;
     EXPECT_EQ(std::filesystem::file_size(vein), size);
+  }
+  // A Slicer CLI as Slicer would never call it, but a script might: its frames table over its poses.
+  const std::string poses = dir + "/p.csv";
+  std::ofstream(poses) << "time,x,y,z,qw,qx,qy,qz\n0,0,0,40,1,0,0,0\n";
+  const std::string cli = std::string(VP_CLI_TRACK) + " --portalVein " + vein + " --poses " + poses + " --framesTable " + poses +
+    " >" + dir + "/cli.out 2>" + dir + "/cli.err";
+  EXPECT_EQ(WEXITSTATUS(std::system(cli.c_str())), 1);
+  EXPECT_NE(vp::test::Slurp(dir + "/cli.err").find("--framesTable: '" + poses + "' is also an input (--poses"), std::string::npos)
+    << vp::test::Slurp(dir + "/cli.err");
+  EXPECT_EQ(vp::test::Slurp(poses).substr(0, 4), "time");
+  // As root too, a link another user made at a file that is not theirs is not written through.
+  if (::geteuid() == 0)
+  {
+    std::ofstream(dir + "/roots.txt") << "root's";
+    std::filesystem::create_symlink(dir + "/roots.txt", dir + "/planted.json");
+    ASSERT_EQ(::lchown((dir + "/planted.json").c_str(), 65534, 65534), 0);
+    const vp::test::ToolRun planted = vp::test::RunTool(dir, "bench --engines exact" + vessels + " -o " + dir + "/planted.json");
+    EXPECT_EQ(planted.ExitCode, 1);
+    EXPECT_NE(planted.Err.find("a symbolic link made by another user"), std::string::npos) << planted.Err;
+    EXPECT_EQ(vp::test::Slurp(dir + "/roots.txt"), "root's");
   }
   std::filesystem::create_directories(dir + "/out");
   std::ofstream(dir + "/out/cohort.png") << "time,x,y,z,qw,qx,qy,qz\n0,0,0,0,1,0,0,0\n";

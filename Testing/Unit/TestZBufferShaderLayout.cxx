@@ -28,7 +28,7 @@ struct Reflection
 Reflection Reflect(const std::string& shader)
 {
   const std::string command = std::string(VP_GLSLANG_VALIDATOR) + " -V -q --target-env vulkan1.1 -o /dev/null " +
-    VP_SOURCE_DIR + "/Logic/ZBuffer/Shaders/" + shader + " 2>&1";
+    VP_SOURCE_DIR + "/Shaders/" + shader + " 2>&1";
   std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(command.c_str(), "r"), pclose);
   EXPECT_TRUE(pipe) << command;
   Reflection r;

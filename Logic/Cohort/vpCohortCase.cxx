@@ -194,6 +194,93 @@ Json CohortCaseInputsJson(const CohortCase& c)
     { "scalpel", c.Scalpel.empty() ? Json(nullptr) : InputJson(c.Scalpel) } };
 }
 
+namespace
+{
+/// The track stage: the case's poses through the module's logic into the run folder, its rows'
+/// closest approaches, penetrations, breaches and the smallest margin taken from the summary.
+void TrackCohortCase(const CohortCase& c, const std::vector<NamedMesh>& vessels, const std::vector<NamedMesh>& tumours,
+  const CohortLogicFactory& makeLogic, RunFolder& run, CohortCaseResult& result)
+{
+  SceneRequest request;
+  request.Vessels = vessels;
+  request.Tumours = tumours;
+  request.ScalpelFile = c.Scalpel;
+  vtkSmartPointer<vtkVesselProximityLogic> logic = makeLogic ? makeLogic() : vtkSmartPointer<vtkVesselProximityLogic>::New();
+  const OpenedScene scene = logic->OpenScene(request);
+  TrackingRecorder recorder(logic, scene.Vessels);
+  PoseStream poses(c.Poses, PoseStream::CountPoses(c.Poses, {}), {});
+  if (!recorder.Run(poses, run))
+  {
+    throw Interrupted();
+  }
+  const TrackingSummary& s = recorder.GetSummary();
+  result.Frames = s.GetNumberOfFrames();
+  for (std::size_t k = 0; k < s.GetClassNames().size(); ++k)
+  {
+    CohortClassRow& row = RowOf(result.Classes, s.GetClassNames()[k]);
+    const ClassMinimum& tip = s.GetTipMinimum()[k];
+    if (tip.Seen)
+    {
+      Lower(row.TipMinMm, tip.Inside ? -tip.DistanceMm : tip.DistanceMm);
+    }
+    if (k < s.GetSurfaceMinimum().size() && s.GetSurfaceMinimum()[k].Seen)
+    {
+      Lower(row.SurfaceMinMm, s.GetSurfaceMinimum()[k].DistanceMm);
+    }
+    if (k < s.GetPenetrationMaximum().size() && s.GetPenetrationMaximum()[k].Known)
+    {
+      row.PenetrationMaxMm3 = s.GetPenetrationMaximum()[k].VolumeMm3;
+      if (s.GetPenetrationMaximum()[k].DepthFrame >= 0)
+      {
+        row.PenetrationDepthMaxMm = s.GetPenetrationMaximum()[k].DepthMm;
+      }
+    }
+    row.BreachFrames = s.GetFramesInBreach()[k];
+  }
+  for (const TumourMarginSummary& t : s.GetTumours())
+  {
+    Lower(result.MarginMinMm, t.MarginMinMm);
+  }
+}
+
+/// The tips stage: distance.json as `distance --json` writes it, and the rows' closest tips.
+void TipsOfCohortCase(const CohortCase& c, const std::vector<NamedMesh>& vessels, RunFolder& run, CohortCaseResult& result)
+{
+  TipDistanceRequest request;
+  request.Engine = MakeDistanceEngine(DistanceEngineSettings());
+  request.Vessels = vessels;
+  request.TipsMm = ReadPointCsv(c.Tips);
+  const TipDistanceAnswer answer = ComputeTipDistances(request);
+  WriteFileAtomically(run.File("distance.json"), TipDistanceReportJson(request, answer, false, 0.0).dump(2) + "\n");
+  result.Tips = static_cast<int>(request.TipsMm.size());
+  for (const ProximityResult& r : answer.Results)
+  {
+    for (const ClassProximity& p : r.Classes)
+    {
+      if (p.InRange)
+      {
+        Lower(RowOf(result.Classes, p.ClassName).TipMinMm, p.Inside.value_or(false) ? -p.DistanceMm : p.DistanceMm);
+      }
+    }
+  }
+}
+
+/// case.json: the inputs, the rows, the files written with their hashes, the stage times.
+Json CaseRecord(const CohortCase& c, const CohortCaseResult& result, RunFolder& run, const Json& timing)
+{
+  Json classes = Json::array();
+  for (const CohortClassRow& row : result.Classes)
+  {
+    classes.push_back({ { "class", row.ClassName }, { "tip_min_mm", OptionalJson(row.TipMinMm) },
+      { "surface_min_mm", OptionalJson(row.SurfaceMinMm) }, { "penetration_max_mm3", OptionalJson(row.PenetrationMaxMm3) },
+      { "breach_frames", row.BreachFrames }, { "penetration_depth_max_mm", OptionalJson(row.PenetrationDepthMaxMm) } });
+  }
+  return { { "case", c.Name }, { "inputs", CohortCaseInputsJson(c) }, { "classes", classes },
+    { "margin_min_mm", OptionalJson(result.MarginMinMm) }, { "frames", result.Frames }, { "tips", result.Tips },
+    { "files", run.GetEntries() }, { "outputs", OutputsJson(run) }, { "timing_ms", timing } };
+}
+} // namespace
+
 CohortCaseResult RunCohortCase(const CohortCase& c, const std::string& folder, const CohortSettings& settings,
   const CohortLogicFactory& makeLogic, const CohortStageObserver& observer)
 {
@@ -245,91 +332,24 @@ CohortCaseResult RunCohortCase(const CohortCase& c, const std::string& folder, c
       throw InputError(c.Segmentation, "no vessel class in it (only the liver)");
     }
     timing["models"] = NowMs() - t0;
-
     if (!c.Poses.empty())
     {
       stage("track");
       t0 = NowMs();
-      SceneRequest request;
-      request.Vessels = vessels;
-      request.Tumours = tumours;
-      request.ScalpelFile = c.Scalpel;
-      vtkSmartPointer<vtkVesselProximityLogic> logic = makeLogic ? makeLogic() : vtkSmartPointer<vtkVesselProximityLogic>::New();
-      const OpenedScene scene = logic->OpenScene(request);
-      TrackingRecorder recorder(logic, scene.Vessels);
-      PoseStream poses(c.Poses, PoseStream::CountPoses(c.Poses, {}), {});
-      if (!recorder.Run(poses, run))
-      {
-        throw Interrupted();
-      }
-      const TrackingSummary& s = recorder.GetSummary();
-      result.Frames = s.GetNumberOfFrames();
-      for (std::size_t k = 0; k < s.GetClassNames().size(); ++k)
-      {
-        CohortClassRow& row = RowOf(result.Classes, s.GetClassNames()[k]);
-        const ClassMinimum& tip = s.GetTipMinimum()[k];
-        if (tip.Seen)
-        {
-          Lower(row.TipMinMm, tip.Inside ? -tip.DistanceMm : tip.DistanceMm);
-        }
-        if (k < s.GetSurfaceMinimum().size() && s.GetSurfaceMinimum()[k].Seen)
-        {
-          Lower(row.SurfaceMinMm, s.GetSurfaceMinimum()[k].DistanceMm);
-        }
-        if (k < s.GetPenetrationMaximum().size() && s.GetPenetrationMaximum()[k].Known)
-        {
-          row.PenetrationMaxMm3 = s.GetPenetrationMaximum()[k].VolumeMm3;
-          if (s.GetPenetrationMaximum()[k].DepthFrame >= 0)
-          {
-            row.PenetrationDepthMaxMm = s.GetPenetrationMaximum()[k].DepthMm;
-          }
-        }
-        row.BreachFrames = s.GetFramesInBreach()[k];
-      }
-      for (const TumourMarginSummary& t : s.GetTumours())
-      {
-        Lower(result.MarginMinMm, t.MarginMinMm);
-      }
+      TrackCohortCase(c, vessels, tumours, makeLogic, run, result);
       timing["track"] = NowMs() - t0;
     }
-
     if (!c.Tips.empty())
     {
       stage("tips");
       t0 = NowMs();
-      TipDistanceRequest request;
-      request.Engine = MakeDistanceEngine(DistanceEngineSettings());
-      request.Vessels = vessels;
-      request.TipsMm = ReadPointCsv(c.Tips);
-      const TipDistanceAnswer answer = ComputeTipDistances(request);
-      WriteFileAtomically(run.File("distance.json"), TipDistanceReportJson(request, answer, false, 0.0).dump(2) + "\n");
-      result.Tips = static_cast<int>(request.TipsMm.size());
-      for (const ProximityResult& r : answer.Results)
-      {
-        for (const ClassProximity& p : r.Classes)
-        {
-          if (p.InRange)
-          {
-            Lower(RowOf(result.Classes, p.ClassName).TipMinMm, p.Inside.value_or(false) ? -p.DistanceMm : p.DistanceMm);
-          }
-        }
-      }
+      TipsOfCohortCase(c, vessels, run, result);
       timing["tips"] = NowMs() - t0;
     }
     CheckSignal();
     result.Ms = NowMs() - start;
     timing["total"] = result.Ms;
-    Json classes = Json::array();
-    for (const CohortClassRow& row : result.Classes)
-    {
-      classes.push_back({ { "class", row.ClassName }, { "tip_min_mm", OptionalJson(row.TipMinMm) },
-        { "surface_min_mm", OptionalJson(row.SurfaceMinMm) }, { "penetration_max_mm3", OptionalJson(row.PenetrationMaxMm3) },
-        { "breach_frames", row.BreachFrames }, { "penetration_depth_max_mm", OptionalJson(row.PenetrationDepthMaxMm) } });
-    }
-    const Json record = { { "case", c.Name }, { "inputs", CohortCaseInputsJson(c) }, { "classes", classes },
-      { "margin_min_mm", OptionalJson(result.MarginMinMm) }, { "frames", result.Frames }, { "tips", result.Tips },
-      { "files", run.GetEntries() }, { "outputs", OutputsJson(run) }, { "timing_ms", timing } };
-    WriteFileAtomically(run.File("case.json"), record.dump(2) + "\n");
+    WriteFileAtomically(run.File("case.json"), CaseRecord(c, result, run, timing).dump(2) + "\n");
     run.Commit();
   }
   catch (const Interrupted&)

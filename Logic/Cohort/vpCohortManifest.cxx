@@ -122,10 +122,112 @@ std::vector<std::string> SplitCsvLine(const std::string& line, const std::string
   return cells;
 }
 
-std::vector<CohortCase> ReadCohortManifest(const std::string& file)
+namespace
 {
-  // A FIFO would hang the run and a device never end: only a regular file, looked at before it
-  // is opened.
+/// The header's columns: per cell, its index in CohortManifestColumns(); case and segmentation
+/// required, none twice.
+std::vector<int> HeaderColumns(const std::vector<std::string>& cells, const std::string& at)
+{
+  const auto& known = CohortManifestColumns();
+  std::vector<int> columnOf;
+  std::set<int> seen;
+  for (const std::string& cell : cells)
+  {
+    std::string name = cell;
+    std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return std::tolower(c); });
+    const auto it = std::find(known.begin(), known.end(), name);
+    if (it == known.end())
+    {
+      throw InputError(at, "unknown column '" + Printable(cell) + "' (the header names case,segmentation[,poses][,tips][,plan][,scalpel])");
+    }
+    const int index = static_cast<int>(it - known.begin());
+    if (!seen.insert(index).second)
+    {
+      throw InputError(at, "column '" + name + "' is named twice");
+    }
+    columnOf.push_back(index);
+  }
+  if (!seen.count(0) || !seen.count(1))
+  {
+    throw InputError(at, "the header must name the columns case and segmentation (a header comes first)");
+  }
+  return columnOf;
+}
+
+/// The plan's cell: tumours separated by ';', each FILE or ID=FILE, the files the manifest's.
+std::vector<std::string> PlanEntries(const std::string& cell, const std::string& folder, const std::string& at)
+{
+  std::vector<std::string> plan;
+  for (std::size_t begin = 0; begin <= cell.size() && !cell.empty();)
+  {
+    const std::size_t end = std::min(cell.find(';', begin), cell.size());
+    const std::string entry = Trim(cell.substr(begin, end - begin));
+    if (entry.empty())
+    {
+      throw InputError(at, "an empty entry in the plan ('" + Printable(cell) + "')");
+    }
+    const std::size_t equals = entry.find('=');
+    plan.push_back(equals == std::string::npos ? Resolved(entry, folder)
+                                               : entry.substr(0, equals + 1) + Resolved(entry.substr(equals + 1), folder));
+    begin = end + 1;
+  }
+  return plan;
+}
+
+/// One case's row, checked: its name a folder's, its segmentation given, a plan only with poses.
+CohortCase CaseOf(const std::vector<std::string>& cells, const std::vector<int>& columnOf, const std::string& folder,
+  const std::string& at)
+{
+  if (cells.size() != columnOf.size())
+  {
+    throw InputError(at, std::to_string(cells.size()) + " cells where the header names " + std::to_string(columnOf.size()));
+  }
+  CohortCase c;
+  for (std::size_t k = 0; k < cells.size(); ++k)
+  {
+    const std::string& v = cells[k];
+    switch (columnOf[k])
+    {
+      case 0:
+        c.Name = v;
+        break;
+      case 1:
+        c.Segmentation = Resolved(v, folder);
+        break;
+      case 2:
+        c.Poses = Resolved(v, folder);
+        break;
+      case 3:
+        c.Tips = Resolved(v, folder);
+        break;
+      case 4:
+        c.Plan = PlanEntries(v, folder, at);
+        break;
+      default:
+        c.Scalpel = Resolved(v, folder);
+    }
+  }
+  if (c.Name.empty() || c.Segmentation.empty())
+  {
+    throw InputError(at, "a case needs its name and its segmentation");
+  }
+  if (!c.Plan.empty() && c.Poses.empty())
+  {
+    throw InputError(at, "case '" + Printable(c.Name) + "' has a plan but no poses: the margin is measured along a tracked "
+      "session (give its poses, or leave the plan out)");
+  }
+  const std::string problem = CaseNameProblem(c.Name);
+  if (!problem.empty())
+  {
+    throw InputError(at, "case '" + Printable(c.Name) + "': " + problem);
+  }
+  return c;
+}
+
+/// The manifest opened for reading: a regular file (a FIFO would hang the run and a device never
+/// end, so it is looked at before it is opened) of at most MaxManifestBytes.
+std::ifstream OpenManifest(const std::string& file)
+{
   struct stat info{};
   if (::stat(file.c_str(), &info) != 0)
   {
@@ -144,9 +246,16 @@ std::vector<CohortCase> ReadCohortManifest(const std::string& file)
   {
     throw InputError(file, "cannot be read");
   }
+  return in;
+}
+} // namespace
+
+std::vector<CohortCase> ReadCohortManifest(const std::string& file)
+{
+  std::ifstream in = OpenManifest(file);
   const std::size_t slash = file.find_last_of('/');
   const std::string folder = slash == std::string::npos ? std::string() : file.substr(0, slash);
-  std::vector<int> columnOf; // per cell of a row: its index in CohortManifestColumns()
+  std::vector<int> columnOf;
   std::vector<CohortCase> cases;
   std::set<std::string> names;
   int lineNumber = 0;
@@ -169,88 +278,11 @@ std::vector<CohortCase> ReadCohortManifest(const std::string& file)
     const std::vector<std::string> cells = SplitCsvLine(line, at);
     if (columnOf.empty())
     {
-      const auto& known = CohortManifestColumns();
-      std::set<int> seen;
-      for (const std::string& cell : cells)
-      {
-        std::string name = cell;
-        std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return std::tolower(c); });
-        const auto it = std::find(known.begin(), known.end(), name);
-        if (it == known.end())
-        {
-          throw InputError(at, "unknown column '" + Printable(cell) + "' (the header names case,segmentation[,poses][,tips][,plan][,scalpel])");
-        }
-        const int index = static_cast<int>(it - known.begin());
-        if (!seen.insert(index).second)
-        {
-          throw InputError(at, "column '" + name + "' is named twice");
-        }
-        columnOf.push_back(index);
-      }
-      if (!seen.count(0) || !seen.count(1))
-      {
-        throw InputError(at, "the header must name the columns case and segmentation (a header comes first)");
-      }
+      columnOf = HeaderColumns(cells, at);
       continue;
     }
-    if (cells.size() != columnOf.size())
-    {
-      throw InputError(at, std::to_string(cells.size()) + " cells where the header names " + std::to_string(columnOf.size()));
-    }
-    CohortCase c;
+    CohortCase c = CaseOf(cells, columnOf, folder, at);
     c.Line = lineNumber;
-    for (std::size_t k = 0; k < cells.size(); ++k)
-    {
-      const std::string& v = cells[k];
-      switch (columnOf[k])
-      {
-        case 0:
-          c.Name = v;
-          break;
-        case 1:
-          c.Segmentation = Resolved(v, folder);
-          break;
-        case 2:
-          c.Poses = Resolved(v, folder);
-          break;
-        case 3:
-          c.Tips = Resolved(v, folder);
-          break;
-        case 4:
-          for (std::size_t begin = 0; begin <= v.size() && !v.empty();)
-          {
-            const std::size_t end = std::min(v.find(';', begin), v.size());
-            const std::string entry = Trim(v.substr(begin, end - begin));
-            if (entry.empty())
-            {
-              throw InputError(at, "an empty entry in the plan ('" + Printable(v) + "')");
-            }
-            // ID=FILE keeps its id; the file is the manifest's.
-            const std::size_t equals = entry.find('=');
-            c.Plan.push_back(equals == std::string::npos
-                ? Resolved(entry, folder)
-                : entry.substr(0, equals + 1) + Resolved(entry.substr(equals + 1), folder));
-            begin = end + 1;
-          }
-          break;
-        default:
-          c.Scalpel = Resolved(v, folder);
-      }
-    }
-    if (c.Name.empty() || c.Segmentation.empty())
-    {
-      throw InputError(at, "a case needs its name and its segmentation");
-    }
-    if (!c.Plan.empty() && c.Poses.empty())
-    {
-      throw InputError(at, "case '" + Printable(c.Name) + "' has a plan but no poses: the margin is measured along a tracked "
-        "session (give its poses, or leave the plan out)");
-    }
-    const std::string problem = CaseNameProblem(c.Name);
-    if (!problem.empty())
-    {
-      throw InputError(at, "case '" + Printable(c.Name) + "': " + problem);
-    }
     // Folders named alike but for case are one folder on some file systems (macOS, SMB shares).
     std::string folded = c.Name;
     std::transform(folded.begin(), folded.end(), folded.begin(), [](unsigned char ch) { return std::tolower(ch); });

@@ -17,6 +17,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <limits>
 #include <mutex>
 #include <thread>
@@ -328,6 +329,96 @@ void WriteCohortPlot(const std::vector<CohortCaseResult>& results, const std::st
   WriteDistancePlotPng(fileName, cases, series, DangerBands(DangerThresholds(), true), options);
 }
 
+namespace
+{
+using CaseFinished = std::function<void(std::size_t, CohortCaseResult)>;
+
+/// A merge: each case from the first merged folder that holds it whole, else a row saying so.
+void MergeCohortCases(const std::vector<CohortCase>& cases, const CohortRequest& request, const CaseFinished& finish)
+{
+  for (std::size_t i = 0; i < cases.size(); ++i)
+  {
+    std::optional<CohortCaseResult> found;
+    for (const std::string& folder : request.MergeFolders)
+    {
+      if ((found = CompletedCohortCase(cases[i], folder + "/" + cases[i].Name)))
+      {
+        break;
+      }
+    }
+    CohortCaseResult missing;
+    missing.Case = cases[i].Name;
+    missing.Error = "not whole in any merged folder (not run, failed, or its inputs changed since)";
+    finish(i, found ? std::move(*found) : missing);
+  }
+}
+
+/// The cases jobs at a time, each resumed when whole (else computed, saying why), each ended at
+/// once as "interrupted" once a held signal came.
+void ComputeCohortCases(const std::vector<CohortCase>& cases, const CohortRequest& request, int jobs,
+  const CohortLogicFactory& makeLogic, const CohortStageObserver& stages, const CaseFinished& finish)
+{
+  std::atomic<std::size_t> next{ 0 };
+  const auto work = [&]() {
+    for (std::size_t i = next++; i < cases.size(); i = next++)
+    {
+      if (RunFolder::SignalPending())
+      {
+        CohortCaseResult stopped;
+        stopped.Case = cases[i].Name;
+        stopped.Error = "interrupted";
+        finish(i, stopped);
+        continue;
+      }
+      const std::string folder = request.OutputFolder + "/" + cases[i].Name;
+      std::string whyNot;
+      std::optional<CohortCaseResult> earlier = CompletedCohortCase(cases[i], folder, &whyNot);
+      if (!earlier && !whyNot.empty() && stages)
+      {
+        stages(cases[i].Name, "computed again: " + whyNot);
+      }
+      finish(i, earlier ? std::move(*earlier) : RunCohortCase(cases[i], folder, request.Settings, makeLogic, stages));
+    }
+  };
+  std::vector<std::thread> workers;
+  for (int j = 1; j < jobs; ++j)
+  {
+    workers.emplace_back(work);
+  }
+  work();
+  for (std::thread& t : workers)
+  {
+    t.join();
+  }
+}
+
+/// The counts, and unless interrupted the table and the picture (a shard's table alone).
+void FinishCohortReport(const CohortRequest& request, CohortReport& report)
+{
+  for (const CohortCaseResult& r : report.Results)
+  {
+    report.Interrupted = report.Interrupted || r.Error == "interrupted";
+    report.Resumed += r.Resumed ? 1 : 0;
+    report.Computed += !r.Resumed && r.Error.empty() ? 1 : 0;
+    report.Failed += r.Error.empty() ? 0 : 1;
+  }
+  if (report.Interrupted)
+  {
+    return;
+  }
+  if (request.ShardCount > 1)
+  {
+    const std::string name = "cohort-" + std::to_string(request.ShardIndex) + "-of-" + std::to_string(request.ShardCount) + ".csv";
+    WriteFileAtomically(request.OutputFolder + "/" + name, CohortCsv(report.Results));
+    report.Files = { name };
+    return;
+  }
+  WriteFileAtomically(request.OutputFolder + "/cohort.csv", CohortCsv(report.Results));
+  WriteCohortPlot(report.Results, request.OutputFolder + "/cohort.png");
+  report.Files = { "cohort.csv", "cohort.png" };
+}
+} // namespace
+
 CohortReport RunCohort(const CohortRequest& request, const CohortLogicFactory& makeLogic, const CohortStageObserver& stages,
   const CohortCaseObserver& observer)
 {
@@ -356,7 +447,7 @@ CohortReport RunCohort(const CohortRequest& request, const CohortLogicFactory& m
   report.Results.resize(cases.size());
   std::mutex told;
   int done = 0;
-  const auto finish = [&](std::size_t i, CohortCaseResult result) {
+  const CaseFinished finish = [&](std::size_t i, CohortCaseResult result) {
     std::lock_guard<std::mutex> lock(told);
     report.Results[i] = std::move(result);
     ++done;
@@ -367,80 +458,13 @@ CohortReport RunCohort(const CohortRequest& request, const CohortLogicFactory& m
   };
   if (!request.MergeFolders.empty())
   {
-    for (std::size_t i = 0; i < cases.size(); ++i)
-    {
-      std::optional<CohortCaseResult> found;
-      for (const std::string& folder : request.MergeFolders)
-      {
-        if ((found = CompletedCohortCase(cases[i], folder + "/" + cases[i].Name)))
-        {
-          break;
-        }
-      }
-      CohortCaseResult missing;
-      missing.Case = cases[i].Name;
-      missing.Error = "not whole in any merged folder (not run, failed, or its inputs changed since)";
-      finish(i, found ? std::move(*found) : missing);
-    }
+    MergeCohortCases(cases, request, finish);
   }
   else
   {
-    std::atomic<std::size_t> next{ 0 };
-    const auto work = [&]() {
-      for (std::size_t i = next++; i < cases.size(); i = next++)
-      {
-        if (RunFolder::SignalPending())
-        {
-          CohortCaseResult stopped;
-          stopped.Case = cases[i].Name;
-          stopped.Error = "interrupted";
-          finish(i, stopped);
-          continue;
-        }
-        const std::string folder = request.OutputFolder + "/" + cases[i].Name;
-        std::string whyNot;
-        std::optional<CohortCaseResult> earlier = CompletedCohortCase(cases[i], folder, &whyNot);
-        if (!earlier && !whyNot.empty() && stages)
-        {
-          stages(cases[i].Name, "computed again: " + whyNot);
-        }
-        finish(i, earlier ? std::move(*earlier) : RunCohortCase(cases[i], folder, request.Settings, makeLogic, stages));
-      }
-    };
-    std::vector<std::thread> workers;
-    for (int j = 1; j < report.Jobs; ++j)
-    {
-      workers.emplace_back(work);
-    }
-    work();
-    for (std::thread& t : workers)
-    {
-      t.join();
-    }
+    ComputeCohortCases(cases, request, report.Jobs, makeLogic, stages, finish);
   }
-  for (const CohortCaseResult& r : report.Results)
-  {
-    report.Interrupted = report.Interrupted || r.Error == "interrupted";
-    report.Resumed += r.Resumed ? 1 : 0;
-    report.Computed += !r.Resumed && r.Error.empty() ? 1 : 0;
-    report.Failed += r.Error.empty() ? 0 : 1;
-  }
-  if (!report.Interrupted)
-  {
-    if (request.ShardCount > 1)
-    {
-      const std::string name =
-        "cohort-" + std::to_string(request.ShardIndex) + "-of-" + std::to_string(request.ShardCount) + ".csv";
-      WriteFileAtomically(request.OutputFolder + "/" + name, CohortCsv(report.Results));
-      report.Files = { name };
-    }
-    else
-    {
-      WriteFileAtomically(request.OutputFolder + "/cohort.csv", CohortCsv(report.Results));
-      WriteCohortPlot(report.Results, request.OutputFolder + "/cohort.png");
-      report.Files = { "cohort.csv", "cohort.png" };
-    }
-  }
+  FinishCohortReport(request, report);
   report.Ms = NowMs() - start;
   return report;
 }

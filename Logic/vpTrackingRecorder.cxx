@@ -36,6 +36,99 @@ void TrackingRecorder::SetProgress(std::function<void(std::size_t, std::size_t)>
   this->Progress = std::move(progress);
 }
 
+namespace
+{
+/// The tracking logic's level changes (the vessels' and the margin's) into a summary, for as
+/// long as this lives.
+class LevelChangesInto
+{
+public:
+  LevelChangesInto(vtkScalpelTrackingLogic* tracking, TrackingSummary& summary)
+    : Tracking(tracking)
+  {
+    this->OnChange->SetClientData(&summary);
+    this->OnChange->SetCallback([](vtkObject*, unsigned long, void* client, void* call) {
+      static_cast<TrackingSummary*>(client)->AddChange(*static_cast<DangerLevelChange*>(call));
+    });
+    this->OnMarginChange->SetClientData(&summary);
+    this->OnMarginChange->SetCallback([](vtkObject*, unsigned long, void* client, void* call) {
+      static_cast<TrackingSummary*>(client)->AddMarginChange(*static_cast<MarginLevelChange*>(call));
+    });
+    this->Tags[0] = tracking->AddObserver(vtkScalpelTrackingLogic::DangerLevelChangedEvent, this->OnChange);
+    this->Tags[1] = tracking->AddObserver(vtkScalpelTrackingLogic::MarginLevelChangedEvent, this->OnMarginChange);
+  }
+  ~LevelChangesInto()
+  {
+    this->Tracking->RemoveObserver(this->Tags[0]);
+    this->Tracking->RemoveObserver(this->Tags[1]);
+  }
+  LevelChangesInto(const LevelChangesInto&) = delete;
+  LevelChangesInto& operator=(const LevelChangesInto&) = delete;
+
+private:
+  vtkScalpelTrackingLogic* Tracking;
+  vtkNew<vtkCallbackCommand> OnChange, OnMarginChange;
+  unsigned long Tags[2] = { 0, 0 };
+};
+
+/// The plot for a run whose first frame this is (its tumours named there).
+std::unique_ptr<DistancePlotRecorder> PlotFor(
+  const TrackedFrame& frame, const std::vector<std::string>& classes, bool surface, double marginMm)
+{
+  std::vector<std::string> tumours;
+  for (std::size_t t = 0; frame.Tumour && t < frame.Tumour->Tumours.size(); ++t)
+  {
+    tumours.push_back(frame.Tumour->Tumours[t].Id);
+  }
+  return std::make_unique<DistancePlotRecorder>(classes, surface, tumours, marginMm);
+}
+
+/// The trajectory's warnings and the reading's own (a header-less quaternion), into the report
+/// with how the poses were read.
+std::vector<TrajectoryWarning> ReadingWarnings(const TrajectoryCheck& check, const SettledReading* reading, nlohmann::ordered_json& doc)
+{
+  std::vector<TrajectoryWarning> all = check.Warnings();
+  if (reading && reading->QuaternionOrderAssumed)
+  {
+    all.push_back({ "quaternion_order_assumed",
+      "no header: each row was read as time,x,y,z,qw,qx,qy,qz (scalar first); a scalar-last quaternion read so turns "
+      "the instrument" });
+  }
+  nlohmann::ordered_json warnings = nlohmann::ordered_json::array();
+  for (const TrajectoryWarning& w : all)
+  {
+    warnings.push_back({ { "kind", w.Kind }, { "text", w.Text } });
+  }
+  doc["warnings"] = warnings;
+  if (reading)
+  {
+    doc["pose_reading"] = PoseReadingJson(*reading);
+  }
+  return all;
+}
+
+/// The session's own files, then whatever else the run has written beside them (the demo's).
+std::vector<std::string> SessionFiles(const RunFolder& run)
+{
+  std::vector<std::string> files{ "frames.csv", "summary.json", "distance.png" };
+  for (const std::string& entry : run.GetEntries())
+  {
+    if (std::find(files.begin(), files.end(), entry) == files.end())
+    {
+      files.push_back(entry);
+    }
+  }
+  return files;
+}
+
+double PeakResidentMb()
+{
+  struct rusage usage = {};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<double>(usage.ru_maxrss) / 1024.0; // Linux: kB
+}
+} // namespace
+
 bool TrackingRecorder::Run(PoseSource& poses, RunFolder& run)
 {
   vtkVesselProximityLogic* proximity = this->Logic;
@@ -44,27 +137,8 @@ bool TrackingRecorder::Run(PoseSource& poses, RunFolder& run)
   const bool compare = proximity->GetCompareWithExact();
   this->Summary = TrackingSummary();
   this->Comparison = compare ? std::optional<ExactComparison>(ExactComparison()) : std::nullopt;
-  vtkNew<vtkCallbackCommand> onChange;
-  onChange->SetClientData(&this->Summary);
-  onChange->SetCallback([](vtkObject*, unsigned long, void* client, void* call) {
-    static_cast<TrackingSummary*>(client)->AddChange(*static_cast<DangerLevelChange*>(call));
-  });
   vtkScalpelTrackingLogic* tracking = proximity->GetTrackingLogic();
-  vtkNew<vtkCallbackCommand> onMarginChange;
-  onMarginChange->SetClientData(&this->Summary);
-  onMarginChange->SetCallback([](vtkObject*, unsigned long, void* client, void* call) {
-    static_cast<TrackingSummary*>(client)->AddMarginChange(*static_cast<MarginLevelChange*>(call));
-  });
-  struct RemoveObserver
-  {
-    vtkScalpelTrackingLogic* Tracking;
-    unsigned long Tag;
-    ~RemoveObserver() { this->Tracking->RemoveObserver(this->Tag); }
-  };
-  const RemoveObserver removeObserver{ tracking,
-    tracking->AddObserver(vtkScalpelTrackingLogic::DangerLevelChangedEvent, onChange) };
-  const RemoveObserver removeMarginObserver{ tracking,
-    tracking->AddObserver(vtkScalpelTrackingLogic::MarginLevelChangedEvent, onMarginChange) };
+  const LevelChangesInto changes(tracking, this->Summary);
 
   // The frames stream into frames.csv in the run's staging folder as they are computed, and the
   // summary and the plot keep what they need in memory that does not grow with the run.
@@ -95,13 +169,7 @@ bool TrackingRecorder::Run(PoseSource& poses, RunFolder& run)
     check.Add(frame);
     if (!plot)
     {
-      std::vector<std::string> tumours;
-      for (std::size_t t = 0; frame.Tumour && t < frame.Tumour->Tumours.size(); ++t)
-      {
-        tumours.push_back(frame.Tumour->Tumours[t].Id);
-      }
-      plot = std::make_unique<DistancePlotRecorder>(
-        this->Summary.GetClassNames(), surface, tumours, tracking->GetMarginSettings().MarginMm);
+      plot = PlotFor(frame, this->Summary.GetClassNames(), surface, tracking->GetMarginSettings().MarginMm);
       framesCsv << FramesCsvHeader(this->Summary.GetClassNames(), surface, frame.Haptic.has_value(), frame.Tumour.has_value());
     }
     plot->Add(frame);
@@ -152,43 +220,15 @@ bool TrackingRecorder::Run(PoseSource& poses, RunFolder& run)
   nlohmann::ordered_json doc = TrackingSummaryJson(this->Summary, tracking, surface, this->Vessels, poses.GetName(),
     this->Comparison ? &*this->Comparison : nullptr);
   doc["timing_ms"]["load_and_build"] = this->LoadAndBuildMs;
-  this->Warnings = check.Warnings();
-  const SettledReading* reading = poses.GetSettledReading();
-  if (reading && reading->QuaternionOrderAssumed)
-  {
-    this->Warnings.push_back({ "quaternion_order_assumed",
-      "no header: each row was read as time,x,y,z,qw,qx,qy,qz (scalar first); a scalar-last quaternion read so turns "
-      "the instrument" });
-  }
-  nlohmann::ordered_json warnings = nlohmann::ordered_json::array();
-  for (const TrajectoryWarning& w : this->Warnings)
-  {
-    warnings.push_back({ { "kind", w.Kind }, { "text", w.Text } });
-  }
-  doc["warnings"] = warnings;
-  if (reading)
-  {
-    doc["pose_reading"] = PoseReadingJson(*reading);
-  }
+  this->Warnings = ReadingWarnings(check, poses.GetSettledReading(), doc);
   // Times the tracker did not see the tool: no frame, no distance (a gap in the record).
   doc["poses_lost"] = session.GetNumberOfLostPoses();
   if (session.GetNumberOfLostPoses() > 0)
   {
     doc["first_lost_time_s"] = session.GetFirstLostTimeS();
   }
-  // The session's own files, then whatever else the run has written beside them (the demo's).
-  std::vector<std::string> files{ "frames.csv", "summary.json", "distance.png" };
-  for (const std::string& entry : run.GetEntries())
-  {
-    if (std::find(files.begin(), files.end(), entry) == files.end())
-    {
-      files.push_back(entry);
-    }
-  }
-  doc["files"] = files;
-  struct rusage usage = {};
-  getrusage(RUSAGE_SELF, &usage);
-  this->PeakMemoryMb = static_cast<double>(usage.ru_maxrss) / 1024.0; // Linux: kB
+  doc["files"] = SessionFiles(run);
+  this->PeakMemoryMb = PeakResidentMb();
   doc["peak_memory_mb"] = this->PeakMemoryMb;
   if (this->ReportAddition)
   {

@@ -76,7 +76,7 @@ IgtlLinkSettings ParseLiveStream(const cli::ParsedArguments& args)
   IgtlLinkSettings link;
   if (!WantsLiveStream(args))
   {
-    throw InputError("--igtl/--igtl-listen", "give --igtl HOST:PORT (a tracker's server), --igtl-listen PORT, or both");
+    throw InputError("--igtl/--igtl-listen", "give --igtl HOST:PORT (a tracker's server), --igtl-listen [HOST:]PORT, or both");
   }
   if (args.IsSet("igtl"))
   {

@@ -71,6 +71,48 @@ private:
   unsigned long Tags[2] = { 0, 0 };
 };
 
+/// frames.csv as a run streams it into its staging folder: every write checked (one line naming
+/// the file when one fails), flushed at least every second, so that a live run that dies loses
+/// at most its last second of rows.
+class FramesCsvFile
+{
+public:
+  explicit FramesCsvFile(RunFolder& run)
+    : Name(run.Target() + "/frames.csv")
+    , Out(run.File("frames.csv"), std::ios::binary | std::ios::trunc)
+  {
+    this->Check();
+  }
+  void Write(const std::string& text)
+  {
+    this->Out << text;
+    this->Check();
+    if (NowMs() - this->LastFlushMs > 1000.0)
+    {
+      this->Out.flush();
+      this->LastFlushMs = NowMs();
+    }
+  }
+  void Close()
+  {
+    this->Out.flush();
+    this->Check();
+    this->Out.close();
+  }
+
+private:
+  void Check() const
+  {
+    if (!this->Out)
+    {
+      throw InputError(this->Name, std::string("write failed: ") + std::strerror(errno));
+    }
+  }
+  std::string Name;
+  std::ofstream Out;
+  double LastFlushMs = NowMs();
+};
+
 /// The plot for a run whose first frame this is (its tumours named there).
 std::unique_ptr<DistancePlotRecorder> PlotFor(
   const TrackedFrame& frame, const std::vector<std::string>& classes, bool surface, double marginMm)
@@ -149,43 +191,26 @@ bool TrackingRecorder::Run(PoseSource& poses, RunFolder& run)
   }
   CheckFramesCsvColumns(classes, proximity->GetParameters()->GetNumberOfTumours() > 0); // before anything is written
   run.Begin();
-  std::ofstream framesCsv(run.File("frames.csv"), std::ios::binary | std::ios::trunc);
-  const auto writeFailed = [&]() {
-    return InputError(run.Target() + "/frames.csv", std::string("write failed: ") + std::strerror(errno));
-  };
-  if (!framesCsv)
-  {
-    throw writeFailed();
-  }
+  FramesCsvFile framesCsv(run);
   std::unique_ptr<DistancePlotRecorder> plot;
   double bounds[6] = { 0, 0, 0, 0, 0, 0 };
   proximity->GetVesselBounds(bounds);
   TrajectoryCheck check(bounds, engine->GetRangeMm());
   TrackingSession session(proximity);
   session.SetProgress(this->Progress);
-  double lastFlushMs = NowMs();
   const bool ended = session.Run(poses, [&](const TrackedFrame& frame) {
     this->Summary.Add(frame);
     check.Add(frame);
     if (!plot)
     {
       plot = PlotFor(frame, this->Summary.GetClassNames(), surface, tracking->GetMarginSettings().MarginMm);
-      framesCsv << FramesCsvHeader(this->Summary.GetClassNames(), surface, frame.Haptic.has_value(), frame.Tumour.has_value());
+      framesCsv.Write(FramesCsvHeader(this->Summary.GetClassNames(), surface, frame.Haptic.has_value(), frame.Tumour.has_value()));
     }
     plot->Add(frame);
-    framesCsv << FramesCsvRow(frame, surface);
-    if (!framesCsv)
-    {
-      throw writeFailed();
-    }
+    framesCsv.Write(FramesCsvRow(frame, surface));
     if (compare)
     {
       this->Comparison->Add(frame.Proximity, proximity->GetLastExactProximity(), engine->GetRangeMm(), engine->GetErrorBoundMm());
-    }
-    if (NowMs() - lastFlushMs > 1000.0)
-    {
-      framesCsv.flush(); // a live run that dies loses at most its last second of rows
-      lastFlushMs = NowMs();
     }
     if (this->FrameObserver)
     {
@@ -210,12 +235,7 @@ bool TrackingRecorder::Run(PoseSource& poses, RunFolder& run)
   {
     throw InputError(poses.GetName(), "no poses");
   }
-  framesCsv.flush();
-  if (!framesCsv)
-  {
-    throw writeFailed();
-  }
-  framesCsv.close();
+  framesCsv.Close();
 
   nlohmann::ordered_json doc = TrackingSummaryJson(this->Summary, tracking, surface, this->Vessels, poses.GetName(),
     this->Comparison ? &*this->Comparison : nullptr);

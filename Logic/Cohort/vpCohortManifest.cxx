@@ -48,8 +48,7 @@ std::string CaseNameProblem(const std::string& name)
   // The run's own files beside the case folders: a case so named would be written over them.
   std::string lower = name;
   std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
-  if (lower == "cohort.csv" || lower == "cohort.png" || (lower.rfind("cohort-", 0) == 0 && lower.size() > 4 &&
-                                                          lower.compare(lower.size() - 4, 4, ".csv") == 0))
+  if (IsCohortFileName(lower))
   {
     return "the name of one of the cohort's own files (cohort.csv, cohort.png, cohort-K-of-N.csv)";
   }
@@ -61,6 +60,12 @@ std::string Resolved(const std::string& path, const std::string& folder)
   return path.empty() || path[0] == '/' || folder.empty() ? path : folder + "/" + path;
 }
 } // namespace
+
+bool IsCohortFileName(const std::string& name)
+{
+  return name == "cohort.csv" || name == "cohort.png" ||
+    (name.rfind("cohort-", 0) == 0 && name.size() >= 11 && name.compare(name.size() - 4, 4, ".csv") == 0);
+}
 
 const std::vector<std::string>& CohortManifestColumns()
 {

@@ -21,6 +21,10 @@ struct CohortCase
   int Line = 0;        ///< the manifest's line, for messages
 };
 
+/// Whether a file name is one the cohort writes beside its cases: cohort.csv, cohort.png,
+/// cohort-K-of-N.csv (as given: the caller folds case where it must).
+bool IsCohortFileName(const std::string& name);
+
 /// The columns a manifest may have, `case` and `segmentation` required.
 const std::vector<std::string>& CohortManifestColumns();
 

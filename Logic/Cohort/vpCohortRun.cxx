@@ -109,9 +109,7 @@ void RefuseInputsOverCohortFiles(const std::vector<CohortCase>& cases, const Coh
     for (const std::string& input : inputs)
     {
       const fs::path path = input.empty() ? fs::path() : fs::weakly_canonical(input, e);
-      const std::string name = path.filename().string();
-      if (!input.empty() && path.parent_path() == out &&
-        (name == "cohort.csv" || name == "cohort.png" || (name.rfind("cohort-", 0) == 0 && path.extension() == ".csv")))
+      if (!input.empty() && path.parent_path() == out && IsCohortFileName(path.filename().string()))
       {
         throw InputError(request.Manifest, "line " + std::to_string(c.Line) + ": case '" + c.Name + "' reads " + input +
           ", a file the cohort writes in " + request.OutputFolder + ": an output never replaces an input");

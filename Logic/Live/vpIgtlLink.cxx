@@ -410,6 +410,7 @@ std::shared_ptr<IgtlLink::Peer> IgtlLink::ChooseEvictee(double nowMs) const
   // microseconds). Else, of those with no message begun, the one that reads least, then the
   // newest. Never the tracker nor the peer whose poses steer the scalpel.
   std::shared_ptr<Peer> deaf, slowest, newestIdle;
+  int idleUnread = -1; // bytes queued for newestIdle
   for (const auto& p : this->Peers)
   {
     if (p->Done || p->Closing || p->IsServer || p->Name == this->PoseSource)
@@ -425,17 +426,18 @@ std::shared_ptr<IgtlLink::Peer> IgtlLink::ChooseEvictee(double nowMs) const
     {
       slowest = p;
     }
+    if (begun >= 0.0)
+    {
+      continue;
+    }
     // Among idle ones, the one that reads least of what is sent (the most bytes waiting in its
     // socket: a peer that holds a slot without reading), then the newest.
-    const auto unread = [](const Peer& peer) {
-      int queued = 0;
-      return ::ioctl(peer.Descriptor, TIOCOUTQ, &queued) == 0 ? queued : 0;
-    };
-    if (begun < 0.0 &&
-      (!newestIdle || unread(*p) > unread(*newestIdle) ||
-        (unread(*p) == unread(*newestIdle) && p->ConnectedMs > newestIdle->ConnectedMs)))
+    int queued = 0;
+    queued = ::ioctl(p->Descriptor, TIOCOUTQ, &queued) == 0 ? queued : 0;
+    if (!newestIdle || queued > idleUnread || (queued == idleUnread && p->ConnectedMs > newestIdle->ConnectedMs))
     {
       newestIdle = p;
+      idleUnread = queued;
     }
   }
   return deaf ? deaf : slowest ? slowest : newestIdle;

@@ -1,5 +1,6 @@
 #include "vpOutputGuard.h"
 
+#include "vpCliValues.h"
 #include "vpInputError.h"
 
 #include <sys/stat.h>
@@ -16,24 +17,10 @@ namespace
 {
 using Identity = std::pair<dev_t, ino_t>;
 
+/// An output written as one file (a folder output is RunFolder's to guard).
 bool IsOutputFile(const Parameter& p)
 {
-  if (p.GetChannel() != Channel::Output)
-  {
-    return false;
-  }
-  switch (p.GetType())
-  {
-    case ParameterType::File:
-    case ParameterType::Image:
-    case ParameterType::Geometry:
-    case ParameterType::Transform:
-    case ParameterType::Table:
-    case ParameterType::PointFile:
-      return true;
-    default:
-      return false;
-  }
+  return p.GetChannel() == Channel::Output && IsData(p.GetType()) && p.GetType() != ParameterType::Directory;
 }
 
 /// The paths a value may name: itself, and each entry of a list, "NAME=FILE" by its file.
@@ -61,13 +48,13 @@ struct NamedInput
   Identity Id;
   std::string Parameter, Path;
 };
-} // namespace
 
-void RefuseOutputsOverInputs(const ModuleDescription& description, const std::map<std::string, std::string>& values,
-  const std::map<std::string, std::vector<std::string>>& multiple, const std::string& returnParameterFile)
+/// Every existing path the command line's inputs name (any parameter but the file outputs), by
+/// identity; and the file outputs, by parameter.
+void CollectPaths(const ModuleDescription& description, const std::map<std::string, std::string>& values,
+  const std::map<std::string, std::vector<std::string>>& multiple, std::vector<NamedInput>& inputs,
+  std::vector<std::pair<std::string, std::string>>& outputs)
 {
-  std::vector<NamedInput> inputs;
-  std::vector<std::pair<std::string, std::string>> outputs; // parameter, path
   for (const auto& group : description.Groups)
   {
     for (const auto& p : group.Parameters)
@@ -96,6 +83,28 @@ void RefuseOutputsOverInputs(const ModuleDescription& description, const std::ma
       }
     }
   }
+}
+
+/// Refuses a symbolic link as an output unless the user made it or its owner owns its target:
+/// a link another user planted at a system file is not followed, even by root.
+void RefusePlantedLink(const std::string& parameter, const std::string& path, const struct stat& link, const struct stat* target)
+{
+  const bool ours = link.st_uid == ::geteuid();
+  const bool ownersTarget = target && target->st_uid == link.st_uid;
+  if (S_ISLNK(link.st_mode) && !ours && !ownersTarget)
+  {
+    throw InputError(parameter, "'" + path + "' is a symbolic link made by another user to a file that is not theirs: "
+      "not written through");
+  }
+}
+} // namespace
+
+void RefuseOutputsOverInputs(const ModuleDescription& description, const std::map<std::string, std::string>& values,
+  const std::map<std::string, std::vector<std::string>>& multiple, const std::string& returnParameterFile)
+{
+  std::vector<NamedInput> inputs;
+  std::vector<std::pair<std::string, std::string>> outputs; // parameter, path
+  CollectPaths(description, values, multiple, inputs, outputs);
   if (!returnParameterFile.empty())
   {
     outputs.emplace_back("--returnparameterfile", returnParameterFile);
@@ -103,29 +112,16 @@ void RefuseOutputsOverInputs(const ModuleDescription& description, const std::ma
   std::set<Identity> written;
   for (const auto& [parameter, path] : outputs)
   {
-    struct stat info{};
-    if (::lstat(path.c_str(), &info) != 0)
+    struct stat link{}, target{};
+    if (::lstat(path.c_str(), &link) != 0)
     {
       continue; // a new file: it can replace nothing
     }
-    struct stat target{};
     const bool reaches = ::stat(path.c_str(), &target) == 0;
-    if (S_ISLNK(info.st_mode))
-    {
-      // Written through (the link kept) only when whoever made the link could write what it
-      // points to: our own link, or a link whose owner owns its target. A link another user
-      // planted at a system file is not followed, even by root.
-      const bool ours = info.st_uid == ::geteuid();
-      const bool ownersTarget = reaches && target.st_uid == info.st_uid;
-      if (!ours && !ownersTarget)
-      {
-        throw InputError(parameter, "'" + path + "' is a symbolic link made by another user to a file that is not theirs: "
-          "not written through");
-      }
-    }
+    RefusePlantedLink(parameter, path, link, reaches ? &target : nullptr);
     if (!reaches)
     {
-      continue; // a new file (or a link to one): it can replace nothing
+      continue; // a link to a new file: it can replace nothing
     }
     const Identity id{ target.st_dev, target.st_ino };
     for (const NamedInput& in : inputs)

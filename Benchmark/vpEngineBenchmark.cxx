@@ -94,6 +94,7 @@ BenchJson RunBenchmark(const BenchmarkRequest& request)
       vtkSmartPointer<vtkScalpelModel> tool = request.BreachScalpel ? request.BreachScalpel : MakeDefaultScalpel();
       LiveBenchSettings live = request.Live;
       live.TipOnlyBeside = true;
+      live.EngineBeside = &request.ZBufferSettings;
       report["live"] = BenchLive(request.Vessels, tool, BreachPoses(request.Vessels, tool, request.Breach), live);
       report["live"]["poses"] = "the breach's";
     }

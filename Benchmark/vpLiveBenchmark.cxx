@@ -3,6 +3,7 @@
 #include "vpClock.h"
 #include "vpIgtlLink.h"
 #include "vpIgtlMessages.h"
+#include "vpInputError.h"
 #include "vpLivePoseSource.h"
 #include "vpLiveResults.h"
 #include "vpQuantile.h"
@@ -12,6 +13,7 @@
 
 #include <igtlClientSocket.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdio>
@@ -90,10 +92,13 @@ Json Phase(vtkVesselProximityLogic* logic, const std::vector<TrackedPose>& poses
   frameMs.reserve(latencyMs.capacity());
   const double startMs = NowMs();
   double residentAt5s = 0.0;
+  std::size_t penetrating = 0;
   session.Run(source, [&](const TrackedFrame& frame) {
     link.Send(PackLiveFrame(frame));
     latencyMs.push_back(NowMs() - source.GetLastArrivalMs());
     frameMs.push_back(frame.FrameMs);
+    penetrating += std::any_of(frame.Penetrations.begin(), frame.Penetrations.end(),
+      [](const Penetration& p) { return p.VolumeMm3 > 0.0 || p.DepthMm > 0.0; });
     if (residentAt5s == 0.0 && NowMs() - startMs >= 5000.0)
     {
       residentAt5s = ResidentMb();
@@ -108,6 +113,7 @@ Json Phase(vtkVesselProximityLogic* logic, const std::vector<TrackedPose>& poses
   out["poses_sent"] = sent.load();
   out["poses_received"] = counts.Poses;
   out["frames"] = latencyMs.size();
+  out["penetrating_frames"] = penetrating;
   out["poses_dropped"] = counts.Dropped;
   out["rejected"] = counts.RejectedTotal();
   out["latency_ms"] = Quantiles(latencyMs);
@@ -115,6 +121,27 @@ Json Phase(vtkVesselProximityLogic* logic, const std::vector<TrackedPose>& poses
   out["resident_mb_after_5s"] = residentAt5s > 0.0 ? Json(residentAt5s) : Json(nullptr);
   out["resident_mb_end"] = ResidentMb();
   out["resident_growth_percent"] = residentAt5s > 0.0 ? Json(100.0 * (ResidentMb() - residentAt5s) / residentAt5s) : Json(nullptr);
+  return out;
+}
+/// The same stream through another engine (the z-buffer), whole instrument and penetration as
+/// in the first phase; a device that cannot be opened is said in the report.
+Json EngineBesidePhase(SceneRequest request, const DistanceEngineSettings& engine, const std::vector<TrackedPose>& poses,
+  const LiveBenchSettings& settings)
+{
+  std::fprintf(stderr, "bench: live through the %s engine at %g Hz for %g s\n", engine.Method.c_str(), settings.RateHz,
+    settings.Seconds);
+  request.Engine = engine;
+  vtkSmartPointer<vtkVesselProximityLogic> logic = vtkSmartPointer<vtkVesselProximityLogic>::New();
+  try
+  {
+    logic->OpenScene(request);
+  }
+  catch (const DeviceError& e)
+  {
+    return { { "unavailable", e.what() } };
+  }
+  Json out = Phase(logic, poses, settings.RateHz, settings.Seconds);
+  out["device"] = logic->GetDistanceEngine()->GetDeviceDescription();
   return out;
 }
 } // namespace
@@ -133,10 +160,14 @@ BenchJson BenchLive(const std::vector<NamedMesh>& vessels, vtkScalpelModel* scal
   out["engine"] = "exact, tip and whole instrument";
   std::fprintf(stderr, "bench: live at %g Hz for %g s\n", settings.RateHz, settings.Seconds);
   out["latency"] = Phase(logic, poses, settings.RateHz, settings.Seconds);
+  request.Scalpel = logic->GetScalpel();
+  if (settings.EngineBeside)
+  {
+    out[settings.EngineBeside->Method] = EngineBesidePhase(request, *settings.EngineBeside, poses, settings);
+  }
   if (settings.TipOnlyBeside)
   {
     std::fprintf(stderr, "bench: live, the tip alone, at %g Hz for %g s\n", settings.RateHz, settings.Seconds);
-    request.Scalpel = logic->GetScalpel();
     request.ComputeSurfaceDistance = false;
     request.ComputePenetration = false;
     vtkSmartPointer<vtkVesselProximityLogic> tipOnly = vtkSmartPointer<vtkVesselProximityLogic>::New();

@@ -2,6 +2,7 @@
 #define vpLiveBenchmark_h
 
 #include "vpBenchmarkSupport.h"
+#include "vpDistanceEngineSettings.h"
 #include "vpPoseFile.h"
 #include "vpVesselMeshSet.h"
 
@@ -22,6 +23,9 @@ struct LiveBenchSettings
   /// Also the same stream at RateHz with the tip alone (no whole instrument, no penetration):
   /// what `live --no-surface` computes, the anchor for the breach.
   bool TipOnlyBeside = false;
+  /// Also the same stream at RateHz through this engine (the z-buffer: what `live --engine
+  /// zbuffer` computes); null: none. A device that cannot be opened is reported, not fatal.
+  const DistanceEngineSettings* EngineBeside = nullptr;
 };
 
 /// The live path as a clinician's tracker drives it: the module's logic (exact engine, tip and

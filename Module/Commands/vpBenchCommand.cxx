@@ -84,9 +84,13 @@ void PrintLiveTable(const Json& live)
   std::printf("\nlive over OpenIGTLink (loopback), %s, %d classes:\n", live["engine"].get<std::string>().c_str(), live["classes"].get<int>());
   std::printf("  %-10s %8s %8s %8s %9s  %-26s %-26s %s\n", "phase", "rate Hz", "frames", "dropped", "rejected",
     "latency ms median/p95/max", "frame ms median/p95/max", "resident MB 5 s -> end");
-  for (const char* phase : { "latency", "tip_only", "sustained" })
+  for (const char* phase : { "latency", "tip_only", "zbuffer", "sustained" })
   {
-    if (!live.contains(phase))
+    if (live.contains(phase) && live[phase].contains("unavailable"))
+    {
+      std::printf("  %-10s unavailable: %s\n", phase, live[phase]["unavailable"].get<std::string>().c_str());
+    }
+    if (!live.contains(phase) || live[phase].contains("unavailable"))
     {
       continue;
     }
@@ -563,7 +567,9 @@ cli::ModuleDescription DescribeBenchCommand()
     "live: the same logic (exact, tip and whole instrument) on a live OpenIGTLink stream over loopback: a tracker "
     "thread streams the replay's poses at --live-rate-hz for --live-seconds, then at --sustained-rate-hz for "
     "--sustained-seconds, and reads the results back; per frame the latency from a pose's arrival to its results "
-    "sent, beside the frame's own compute time, the poses dropped, and the resident memory after 5 s and at the end. "
+    "sent, beside the frame's own compute time, the poses dropped, and the resident memory after 5 s and at the end; "
+    "with breach among the engines the breach's poses instead, and beside them the same stream with the tip alone and "
+    "through the z-buffer engine. "
     "penetration: a closed cylinder tool (radius 1.5 mm) pushed 0.2 to 10 mm into a sphere vessel (radius 10 mm) "
     "of three classes, --penetration-poses steps: the full frame (tip, whole instrument, penetration) through the logic, "
     "exact and (with a Vulkan device) z-buffer, median and p95 per depth band, the penetration depth and volume against "

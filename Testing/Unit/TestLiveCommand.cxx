@@ -518,6 +518,31 @@ TEST_F(LiveCommand, TheBenchMeasuresLatencyBesideTheFramesOwnTime)
   EXPECT_FALSE(live.contains("sustained"));
 }
 
+// With the breach, the live bench streams the breach's poses three times: the exact engine, the
+// tip alone, and the z-buffer engine, whose frames go through the same penetrations.
+TEST_F(LiveCommand, TheBreachIsStreamedThroughBothEnginesAndTheTipAlone)
+{
+  const ToolRun bench = vp::test::RunTool(this->Dir, "bench --engines live,breach --breach-points 3 --vessels " + this->Vessels +
+      " --live-rate-hz 100 --live-seconds 1 --sustained-seconds 0 --json");
+  ASSERT_EQ(bench.ExitCode, 0) << bench.Err;
+  const nlohmann::json live = nlohmann::json::parse(bench.Out).at("live");
+  const nlohmann::json& exact = live.at("latency");
+  const nlohmann::json& tipOnly = live.at("tip_only");
+  ASSERT_TRUE(live.contains("zbuffer")) << live.dump();
+  const nlohmann::json& zbuffer = live.at("zbuffer");
+  ASSERT_FALSE(zbuffer.contains("unavailable")) << zbuffer.dump();
+  EXPECT_FALSE(zbuffer.at("device").get<std::string>().empty());
+  for (const nlohmann::json* phase : { &exact, &tipOnly, &zbuffer })
+  {
+    EXPECT_GE(phase->at("frames").get<int>(), 90);
+    EXPECT_EQ(phase->at("poses_dropped").get<int>(), 0);
+  }
+  // Nine poses in the cycle, six of them in the sphere: about two thirds of the frames.
+  EXPECT_GT(exact.at("penetrating_frames").get<int>(), exact.at("frames").get<int>() / 2);
+  EXPECT_LE(std::abs(zbuffer.at("penetrating_frames").get<int>() - exact.at("penetrating_frames").get<int>()), 3);
+  EXPECT_EQ(tipOnly.at("penetrating_frames").get<int>(), 0) << "the tip alone measures no penetration";
+}
+
 // PLUS's own recording served over OpenIGTLink at its own times (ten times faster), as
 // PlusServer's saved-data source would: live computes the same frames as track on the recording.
 TEST_F(LiveCommand, APlusRecordingServedAtItsOwnTimesGivesTracksFrames)

@@ -8,7 +8,13 @@
 #  - commands take their logic and overlays from the module class, as Slicer's widgets do;
 #  - Logic's folders are layers (issue 30): a folder includes only folders of lower layers, never
 #    one beside it or above it, and every folder has its layer;
-#  - the front ends (Module/, Widgets/) include only Logic's public headers (Logic/PublicHeaders.txt).
+#  - the front ends (Module/, Widgets/) include only Logic's public headers (Logic/PublicHeaders.txt);
+#    the phantom generators (Phantom/) too, and nothing of Module/, Widgets/ or Benchmark/; the
+#    benchmarks (Benchmark/) Logic's public headers and the internals they measure
+#    (Benchmark/MeasuredHeaders.txt), nothing of Module/ or Widgets/ (issue 51);
+#  - no two classes use each other: where A's files include B's header, B's files do not include
+#    A's (issue 51), but for a header that builds on another class's types for that class's own
+#    implementation (a pimpl's Internals, a parser's value helpers: B.h includes A.h, A.cxx B.h).
 # Prints each breach as file:line and exits 1 when there is one.
 set -u
 root="${1:?usage: CheckLayering.sh SOURCE_DIR}"
@@ -61,10 +67,10 @@ while IFS= read -r folder; do
   [ "$(layer_of "$folder")" = -1 ] && unplaced+="Logic/$folder"$'\n'
 done < <(find Logic -type f \( -name '*.h' -o -name '*.cxx' \) -printf '%h\n' | sort -u)
 while IFS=: read -r file line text; do
-  included=$(sed -E 's/.*#include "([^"]+)".*/\1/' <<<"$text")
+  included=${text#*#include \"}; included=${included%%\"*}
   target=${header_folder[$(basename "$included")]:-}
   [ -n "$target" ] || continue
-  source=$(dirname "${file#Logic/}")
+  source=${file#Logic/}; [[ "$source" == */* ]] && source=${source%/*} || source=.
   [ "$source" = "$target" ] && continue
   from=$(layer_of "$source"); to=$(layer_of "$target")
   if [ "$from" -le "$to" ]; then
@@ -87,7 +93,7 @@ breach "a command makes its own logic or overlays (take them from the module: Mo
 public=" $(grep -vE '^\s*(#|$)' Logic/PublicHeaders.txt | tr '\n' ' ') "
 private_use=""
 while IFS=: read -r file line text; do
-  included=$(basename "$(sed -E 's/.*#include "([^"]+)".*/\1/' <<<"$text")")
+  included=${text#*#include \"}; included=${included%%\"*}; included=${included##*/}
   [ -n "${header_folder[$included]:-}" ] || continue
   [[ "$public" == *" $included "* ]] || private_use+="$file:$line: $included"$'\n'
 done < <(grep -rnE --include='*.h' --include='*.cxx' '^#include "' Module Widgets)
@@ -97,5 +103,43 @@ for listed in $public; do
   [ -n "${header_folder[$listed]:-}" ] || stale+="Logic/PublicHeaders.txt: $listed"$'\n'
 done
 breach "a public header that is not in Logic/" "${stale%$'\n'}"
+for part in Phantom Benchmark; do
+  allowed="$public"
+  [ "$part" = Benchmark ] && allowed+=" $(grep -vE '^\s*(#|$)' Benchmark/MeasuredHeaders.txt | tr '\n' ' ') "
+  reach=""
+  while IFS=: read -r file line text; do
+    included=${text#*#include \"}; included=${included%%\"*}; included=${included##*/}
+    [ -n "${header_folder[$included]:-}" ] || continue
+    [[ "$allowed" == *" $included "* ]] || reach+="$file:$line: $included"$'\n'
+  done < <(grep -rnE --include='*.h' --include='*.cxx' '^#include "' "$part")
+  breach "$part/ includes a Logic header that is neither public nor listed for it" "${reach%$'\n'}"
+done
+headers_of() { find "$@" -name '*.h' -printf '%f|' | sed -e 's/|$//' -e 's/\./\\./g'; }
+breach "Benchmark/ includes a header of a front end" \
+  "$(grep -rnE --include='*.h' --include='*.cxx' "^#include \"($(headers_of Module Widgets))\"" Benchmark)"
+breach "Phantom/ includes a header of a front end or a benchmark" \
+  "$(grep -rnE --include='*.h' --include='*.cxx' "^#include \"($(headers_of Module Widgets Benchmark))\"" Phantom)"
+breach "Logic/ includes a benchmark header" \
+  "$(grep -rnE --include='*.h' --include='*.cxx' "^#include \"($(headers_of Benchmark))\"" Logic)"
+# Which class's files include which class's header: "A>B" is A's header or implementation
+# including B's header; a header's own inclusion is noted apart (A.h includes B.h).
+declare -A uses=() header_uses=()
+while IFS=: read -r file line text; do
+  included=${text#*#include \"}; included=${included%%\"*}; included=${included##*/}
+  a=${file##*/}; a=${a%.*}; b=${included%.h}
+  [ "$a" = "$b" ] && continue
+  uses["$a>$b"]="$file:$line"
+  [[ "$file" == *.h ]] && header_uses["$a>$b"]=1
+done < <(grep -rnE --include='*.h' --include='*.cxx' '^#include "[^"]+\.h"' Logic Widgets Module Benchmark Phantom)
+mutual=""
+for key in "${!uses[@]}"; do
+  a=${key%>*}; b=${key#*>}
+  [[ "$a" < "$b" ]] && [ -n "${uses[$b>$a]:-}" ] || continue
+  # B.h builds on A's types for A's implementation (or the other way): one direction per side.
+  [ -n "${header_uses[$b>$a]:-}" ] && [ -z "${header_uses[$a>$b]:-}" ] && continue
+  [ -n "${header_uses[$a>$b]:-}" ] && [ -z "${header_uses[$b>$a]:-}" ] && continue
+  mutual+="${uses[$key]} and ${uses[$b>$a]}: $a and $b include each other"$'\n'
+done
+breach "two classes include each other (give one an interface the other implements)" "${mutual%$'\n'}"
 [ "$failed" = 0 ] && echo "layering: every rule holds"
 exit "$failed"

@@ -1,6 +1,7 @@
 #ifndef vpIgtlLink_h
 #define vpIgtlLink_h
 
+#include "vpIgtlMessages.h"
 #include "vpPoseFile.h"
 #include "vpPoseReading.h"
 
@@ -17,9 +18,6 @@
 
 namespace vp
 {
-/// The most bytes of a device name (and of a TDATA, QTDATA or POINT element's name) on the wire.
-constexpr std::size_t IgtlDeviceNameBytes = 20;
-
 /// Where the link meets its peers and what it takes from them.
 struct IgtlLinkSettings
 {

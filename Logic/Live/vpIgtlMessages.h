@@ -1,7 +1,7 @@
 #ifndef vpIgtlMessages_h
 #define vpIgtlMessages_h
 
-#include "vpIgtlLink.h"
+#include "vpPoseReading.h"
 #include "vpPoseFile.h"
 #include "vpTrackedFrame.h"
 
@@ -15,6 +15,8 @@ namespace vp
 {
 /// The bytes of an OpenIGTLink header (version 1, as OpenIGTLink 2 and PLUS send it).
 constexpr std::size_t IgtlHeaderBytes = 58;
+/// The most bytes of a device name (and of a TDATA, QTDATA or POINT element's name) on the wire.
+constexpr std::size_t IgtlDeviceNameBytes = 20;
 
 /// An OpenIGTLink header as its bytes say, before anything is trusted: the body's size is the
 /// sender's word for it (64 bits, big-endian), checked by whoever reads that many bytes.

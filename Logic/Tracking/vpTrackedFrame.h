@@ -2,7 +2,7 @@
 #define vpTrackedFrame_h
 
 #include "vpDangerLevels.h"
-#include "vpHapticForce.h"
+#include "vpHaptics.h"
 #include "vpProximityResult.h"
 #include "vpTumourProximity.h"
 

@@ -2,7 +2,7 @@
 #define vpTrackingSettings_h
 
 #include "vpDangerLevels.h"
-#include "vpHapticForce.h"
+#include "vpHaptics.h"
 #include "vpMarginLevels.h"
 
 namespace vp

@@ -2,6 +2,7 @@
 #define vtkScalpelTrackingLogic_h
 
 #include "vpDangerLevels.h"
+#include "vpHapticForce.h"
 #include "vpTrackedFrame.h"
 #include "vpTrackingSettings.h"
 #include "vpPoseFile.h"

@@ -1,8 +1,6 @@
 #include "vtkScalpelKeyboardMouseStyle.h"
 
-#include "vtkScalpelModel.h"
-#include "vtkVesselProximityLogic.h"
-#include "vtkVesselProximityView.h"
+#include "vpScalpelControls.h"
 
 #include <vtkCamera.h>
 #include <vtkMath.h>
@@ -76,7 +74,7 @@ bool vtkScalpelKeyboardMouseStyle::HandleKey(const std::string& key, bool shift)
   }
   else if (key == "x")
   {
-    std::cout << "saved " << this->View->SaveScreenshot() << std::endl;
+    std::cout << "saved " << this->View->SaveScreenshot(std::string()) << std::endl;
   }
   else if (key == "c")
   {
@@ -84,7 +82,7 @@ bool vtkScalpelKeyboardMouseStyle::HandleKey(const std::string& key, bool shift)
   }
   else if (key == "h")
   {
-    std::cout << vtkVesselProximityView::KeyHelp();
+    std::cout << KeyHelp();
   }
   else
   {
@@ -147,7 +145,7 @@ void vtkScalpelKeyboardMouseStyle::OnMouseMove()
   // the mouse exactly.
   vtkRenderer* renderer = this->View->GetRenderer();
   double tip[3];
-  this->View->GetLogic()->GetScalpel()->GetTipInWorld(tip);
+  this->View->GetTipInWorld(tip);
   double display[3];
   vtkInteractorObserver::ComputeWorldToDisplay(renderer, tip[0], tip[1], tip[2], display);
   int now[2];
@@ -160,6 +158,14 @@ void vtkScalpelKeyboardMouseStyle::OnMouseMove()
   this->LastPositionPx[1] = now[1];
   this->View->MoveScalpelBy(delta);
   this->View->Render();
+}
+
+const char* vtkScalpelKeyboardMouseStyle::KeyHelp()
+{
+  return "keys: arrows move the scalpel 1 mm in the view plane (Shift: 5 mm), PageUp/PageDown towards/away\n"
+         "      from you, i/o advance/retract along its axis; Ctrl+left drag moves it with the mouse;\n"
+         "      space plays/pauses the poses, n/b step; x saves a screenshot; c frames the vessels;\n"
+         "      r resets the camera, w/s wireframe/surface, q quits; h shows this\n";
 }
 
 void vtkScalpelKeyboardMouseStyle::PrintSelf(ostream& os, vtkIndent indent)

@@ -5,7 +5,10 @@
 
 #include <string>
 
-class vtkVesselProximityView;
+namespace vp
+{
+class ScalpelControls;
+}
 
 /// Trackball camera, plus the scalpel under the user's hands:
 /// - arrow keys move the scalpel 1 mm in the view plane (with Shift 5 mm), PageUp/PageDown
@@ -21,7 +24,8 @@ public:
   vtkTypeMacro(vtkScalpelKeyboardMouseStyle, vtkInteractorStyleTrackballCamera);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  void SetView(vtkVesselProximityView* view) { this->View = view; }
+  /// What the keys and the mouse act on (the view; not owned: the view owns this style).
+  void SetView(vp::ScalpelControls* view) { this->View = view; }
   /// Step of one key press, mm (default 1; Shift multiplies by 5).
   vtkSetClampMacro(StepMm, double, 0.01, 100.0);
   vtkGetMacro(StepMm, double);
@@ -29,6 +33,8 @@ public:
   /// Acts on one key (a VTK key sym); returns whether it was ours. The keyboard and
   /// vtkVesselProximityView::PressKeys both come here.
   bool HandleKey(const std::string& keySym, bool shift);
+  /// The keys, as the viewer prints them.
+  static const char* KeyHelp();
 
   void OnKeyPress() override;
   void OnChar() override;
@@ -40,7 +46,7 @@ protected:
   vtkScalpelKeyboardMouseStyle();
   ~vtkScalpelKeyboardMouseStyle() override;
 
-  vtkVesselProximityView* View = nullptr; // not owned: the view owns this style
+  vp::ScalpelControls* View = nullptr;
   double StepMm = 1.0;
   bool Dragging = false;
   int LastPositionPx[2] = { 0, 0 };

@@ -542,10 +542,12 @@ void vtkVesselProximityView::PressKeys(const std::vector<std::string>& keys)
 
 const char* vtkVesselProximityView::KeyHelp()
 {
-  return "keys: arrows move the scalpel 1 mm in the view plane (Shift: 5 mm), PageUp/PageDown towards/away\n"
-         "      from you, i/o advance/retract along its axis; Ctrl+left drag moves it with the mouse;\n"
-         "      space plays/pauses the poses, n/b step; x saves a screenshot; c frames the vessels;\n"
-         "      r resets the camera, w/s wireframe/surface, q quits; h shows this\n";
+  return vtkScalpelKeyboardMouseStyle::KeyHelp();
+}
+
+void vtkVesselProximityView::GetTipInWorld(double tipMm[3]) const
+{
+  this->GetLogic()->GetScalpel()->GetTipInWorld(tipMm);
 }
 
 void vtkVesselProximityView::PrintSelf(ostream& os, vtkIndent indent)

@@ -2,6 +2,7 @@
 #define vtkVesselProximityView_h
 
 #include "vpPoseFile.h"
+#include "vpScalpelControls.h"
 #include "vpTipOcclusion.h"
 
 #include <vtkImageData.h>
@@ -33,7 +34,7 @@ class LivePoseSource;
 /// The camera starts looking from anterior with superior up, as Slicer's 3D view does, framed on
 /// the vessels. Off-screen rendering (SetOffScreen) serves screenshots and tests; it still needs
 /// an X display on Debian's VTK (Xvfb will do).
-class vtkVesselProximityView : public vtkObject
+class vtkVesselProximityView : public vtkObject, public vp::ScalpelControls
 {
 public:
   static vtkVesselProximityView* New();
@@ -49,7 +50,8 @@ public:
   /// set is handed on to them.
   void SetOverlays(vtkVesselProximityOverlays* overlays);
   vtkVesselProximityOverlays* GetOverlays() const;
-  vtkRenderer* GetRenderer() const;
+  vtkRenderer* GetRenderer() const override;
+  void GetTipInWorld(double tipMm[3]) const override;
   vtkRenderWindow* GetRenderWindow() const;
 
   /// Window size in pixels (default 1280 x 800).
@@ -58,20 +60,20 @@ public:
 
   /// Recorded poses for replay (n, b, space); the first is shown by ShowPose(0).
   void SetPoses(const std::vector<vp::TrackedPose>& poses);
-  int GetNumberOfPoses() const { return static_cast<int>(this->Poses.size()); }
+  int GetNumberOfPoses() const override { return static_cast<int>(this->Poses.size()); }
   /// Shows recorded pose i: the logic computes its frame, the overlays follow; a pose the tracker
   /// lost (TrackedPose::Lost) shows "tracking lost" instead.
-  void ShowPose(int i);
-  int GetCurrentPose() const { return this->CurrentPose; }
+  void ShowPose(int i) override;
+  int GetCurrentPose() const override { return this->CurrentPose; }
   /// Moves the scalpel from where it is by a world displacement (mm) and computes the frame.
-  void MoveScalpelBy(const double deltaMm[3]);
+  void MoveScalpelBy(const double deltaMm[3]) override;
   /// Moves the scalpel along its own axis (positive: the tip advances).
-  void AdvanceScalpelBy(double mm);
+  void AdvanceScalpelBy(double mm) override;
   /// Sets the scalpel's pose directly (model-to-world, row-major).
   void SetScalpelPose(const std::array<double, 16>& modelToWorld);
   /// Replay: steps to the next pose on every timer tick while playing.
-  void SetPlaying(bool playing);
-  bool GetPlaying() const { return this->Playing; }
+  void SetPlaying(bool playing) override;
+  bool GetPlaying() const override { return this->Playing; }
 
   /// Follows a live stream (vp::LivePoseSource, which must outlive the view): each pose it gives
   /// is shown as it comes, a loss as "tracking lost" (vtkVesselProximityOverlays::ShowTrackingLost:
@@ -106,12 +108,12 @@ public:
   void SetCameraPreset(CameraPreset preset);
   CameraPreset GetCameraPreset() const { return this->Preset; }
   /// Frames the vessels from the preset's direction.
-  void ResetCamera();
-  void Render();
+  void ResetCamera() override;
+  void Render() override;
   /// Renders and writes the window as a PNG (whole or not at all). Throws vp::InputError
   /// naming the file when it cannot be written. Screenshots are numbered when file is empty:
   /// <ScreenshotPrefix>NNN.png.
-  std::string SaveScreenshot(const std::string& file = std::string());
+  std::string SaveScreenshot(const std::string& file = std::string()) override;
   /// The picture the last SaveScreenshot wrote (RGB), or null: what a caller checks without
   /// reading the file back.
   vtkImageData* GetLastScreenshot() const { return this->LastScreenshot; }
@@ -122,7 +124,7 @@ public:
   /// Sends key presses through the same handler as the keyboard (names as VTK's key syms:
   /// "Left", "Up", "Prior", "i", "x", "space", ...): scripted sessions and tests.
   void PressKeys(const std::vector<std::string>& keys);
-  /// The key help the viewer prints.
+  /// The key help the viewer prints (vtkScalpelKeyboardMouseStyle's keys).
   static const char* KeyHelp();
 
 protected:

@@ -5,7 +5,7 @@
 #include "vpIgtlMessages.h"
 #include "vpInputError.h"
 #include "vpLivePoseSource.h"
-#include "vpLiveResults.h"
+#include "vpLiveResultsOutput.h"
 #include "vpQuantile.h"
 #include "vpSceneRequest.h"
 #include "vpTrackingSession.h"
@@ -93,8 +93,9 @@ Json Phase(vtkVesselProximityLogic* logic, const std::vector<TrackedPose>& poses
   const double startMs = NowMs();
   double residentAt5s = 0.0;
   std::size_t penetrating = 0;
+  LiveResultsOutput results(link, &source);
+  session.AddOutput(&results);
   session.Run(source, [&](const TrackedFrame& frame) {
-    link.Send(PackLiveFrame(frame));
     latencyMs.push_back(NowMs() - source.GetLastArrivalMs());
     frameMs.push_back(frame.FrameMs);
     penetrating += std::any_of(frame.Penetrations.begin(), frame.Penetrations.end(),

@@ -13,9 +13,6 @@
 #include "vtkVesselProximityLogic.h"
 #include "vtkVesselProximityParameters.h"
 
-#include <vtkCallbackCommand.h>
-#include <vtkNew.h>
-
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
@@ -38,39 +35,6 @@ void TrackingRecorder::SetProgress(std::function<void(std::size_t, std::size_t)>
 
 namespace
 {
-/// The tracking logic's level changes (the vessels' and the margin's) into a summary, for as
-/// long as this lives.
-class LevelChangesInto
-{
-public:
-  LevelChangesInto(vtkScalpelTrackingLogic* tracking, TrackingSummary& summary)
-    : Tracking(tracking)
-  {
-    this->OnChange->SetClientData(&summary);
-    this->OnChange->SetCallback([](vtkObject*, unsigned long, void* client, void* call) {
-      static_cast<TrackingSummary*>(client)->AddChange(*static_cast<DangerLevelChange*>(call));
-    });
-    this->OnMarginChange->SetClientData(&summary);
-    this->OnMarginChange->SetCallback([](vtkObject*, unsigned long, void* client, void* call) {
-      static_cast<TrackingSummary*>(client)->AddMarginChange(*static_cast<MarginLevelChange*>(call));
-    });
-    this->Tags[0] = tracking->AddObserver(vtkScalpelTrackingLogic::DangerLevelChangedEvent, this->OnChange);
-    this->Tags[1] = tracking->AddObserver(vtkScalpelTrackingLogic::MarginLevelChangedEvent, this->OnMarginChange);
-  }
-  ~LevelChangesInto()
-  {
-    this->Tracking->RemoveObserver(this->Tags[0]);
-    this->Tracking->RemoveObserver(this->Tags[1]);
-  }
-  LevelChangesInto(const LevelChangesInto&) = delete;
-  LevelChangesInto& operator=(const LevelChangesInto&) = delete;
-
-private:
-  vtkScalpelTrackingLogic* Tracking;
-  vtkNew<vtkCallbackCommand> OnChange, OnMarginChange;
-  unsigned long Tags[2] = { 0, 0 };
-};
-
 /// frames.csv as a run streams it into its staging folder: every write checked (one line naming
 /// the file when one fails), flushed at least every second, so that a live run that dies loses
 /// at most its last second of rows.
@@ -163,6 +127,63 @@ std::vector<std::string> SessionFiles(const RunFolder& run)
   return files;
 }
 
+/// The report's own part of the run, as the pipeline's first output: each change of level and
+/// each frame into the summary, the trajectory's check, the plot, frames.csv and the comparison
+/// with the exact engine; a gap in the plot where the tracker lost the tool.
+class RunRecord : public FrameOutput
+{
+public:
+  RunRecord(vtkVesselProximityLogic* logic, TrackingSummary& summary, std::optional<ExactComparison>& comparison,
+    TrajectoryCheck& check, FramesCsvFile& framesCsv)
+    : Logic(logic)
+    , Surface(logic->GetComputeSurfaceDistance())
+    , Summary(summary)
+    , Comparison(comparison)
+    , Check(check)
+    , FramesCsv(framesCsv)
+  {
+  }
+  void OnLevelChange(const DangerLevelChange& change) override { this->Summary.AddChange(change); }
+  void OnMarginChange(const MarginLevelChange& change) override { this->Summary.AddMarginChange(change); }
+  void OnFrame(const TrackedFrame& frame) override
+  {
+    this->Summary.Add(frame);
+    this->Check.Add(frame);
+    if (!this->Plot)
+    {
+      const double marginMm = this->Logic->GetTrackingLogic()->GetMarginSettings().MarginMm;
+      this->Plot = PlotFor(frame, this->Summary.GetClassNames(), this->Surface, marginMm);
+      this->FramesCsv.Write(
+        FramesCsvHeader(this->Summary.GetClassNames(), this->Surface, frame.Haptic.has_value(), frame.Tumour.has_value()));
+    }
+    this->Plot->Add(frame);
+    this->FramesCsv.Write(FramesCsvRow(frame, this->Surface));
+    if (this->Comparison)
+    {
+      vtkVesselDistanceEngine* engine = this->Logic->GetDistanceEngine();
+      this->Comparison->Add(frame.Proximity, this->Logic->GetLastExactProximity(), engine->GetRangeMm(), engine->GetErrorBoundMm());
+    }
+  }
+  void OnLost(const TrackedPose& lost) override
+  {
+    if (this->Plot)
+    {
+      this->Plot->AddLost(lost.TimeS);
+    }
+  }
+  /// Null until the first frame.
+  DistancePlotRecorder* GetPlot() const { return this->Plot.get(); }
+
+private:
+  vtkVesselProximityLogic* Logic;
+  bool Surface;
+  TrackingSummary& Summary;
+  std::optional<ExactComparison>& Comparison;
+  TrajectoryCheck& Check;
+  FramesCsvFile& FramesCsv;
+  std::unique_ptr<DistancePlotRecorder> Plot;
+};
+
 double PeakResidentMb()
 {
   struct rusage usage = {};
@@ -180,7 +201,6 @@ bool TrackingRecorder::Run(PoseSource& poses, RunFolder& run)
   this->Summary = TrackingSummary();
   this->Comparison = compare ? std::optional<ExactComparison>(ExactComparison()) : std::nullopt;
   vtkScalpelTrackingLogic* tracking = proximity->GetTrackingLogic();
-  const LevelChangesInto changes(tracking, this->Summary);
 
   // The frames stream into frames.csv in the run's staging folder as they are computed, and the
   // summary and the plot keep what they need in memory that does not grow with the run.
@@ -192,45 +212,23 @@ bool TrackingRecorder::Run(PoseSource& poses, RunFolder& run)
   CheckFramesCsvColumns(classes, proximity->GetParameters()->GetNumberOfTumours() > 0); // before anything is written
   run.Begin();
   FramesCsvFile framesCsv(run);
-  std::unique_ptr<DistancePlotRecorder> plot;
   double bounds[6] = { 0, 0, 0, 0, 0, 0 };
   proximity->GetVesselBounds(bounds);
   TrajectoryCheck check(bounds, engine->GetRangeMm());
+  RunRecord record(proximity, this->Summary, this->Comparison, check, framesCsv);
   TrackingSession session(proximity);
   session.SetProgress(this->Progress);
-  const bool ended = session.Run(poses, [&](const TrackedFrame& frame) {
-    this->Summary.Add(frame);
-    check.Add(frame);
-    if (!plot)
-    {
-      plot = PlotFor(frame, this->Summary.GetClassNames(), surface, tracking->GetMarginSettings().MarginMm);
-      framesCsv.Write(FramesCsvHeader(this->Summary.GetClassNames(), surface, frame.Haptic.has_value(), frame.Tumour.has_value()));
-    }
-    plot->Add(frame);
-    framesCsv.Write(FramesCsvRow(frame, surface));
-    if (compare)
-    {
-      this->Comparison->Add(frame.Proximity, proximity->GetLastExactProximity(), engine->GetRangeMm(), engine->GetErrorBoundMm());
-    }
-    if (this->FrameObserver)
-    {
-      this->FrameObserver(frame);
-    }
-  },
-    [&](const TrackedPose& lost) {
-      if (plot)
-      {
-        plot->AddLost(lost.TimeS); // a gap in the plot where the tracker lost the tool
-      }
-      if (this->LostObserver)
-      {
-        this->LostObserver(lost);
-      }
-    });
+  session.AddOutput(&record); // first: the other outputs hear of a frame once the report has it
+  for (FrameOutput* output : this->Outputs)
+  {
+    session.AddOutput(output);
+  }
+  const bool ended = session.Run(poses);
   if (!ended)
   {
     return false;
   }
+  DistancePlotRecorder* plot = record.GetPlot();
   if (!plot)
   {
     throw InputError(poses.GetName(), "no poses");

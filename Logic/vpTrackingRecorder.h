@@ -5,6 +5,7 @@
 #include "vpPoseFile.h"
 #include "vpTrackingSummary.h"
 #include "vpTrajectoryCheck.h"
+#include "vpFrameOutput.h"
 #include "vpVesselMeshSet.h"
 
 #include <nlohmann/json.hpp>
@@ -36,10 +37,10 @@ public:
   void SetProgress(std::function<void(std::size_t done, std::size_t expected)> progress);
   /// Added to summary.json's timing_ms as load_and_build (the caller's time before Run()).
   void SetLoadAndBuildMs(double ms) { this->LoadAndBuildMs = ms; }
-  /// Called with each frame once it is recorded, and with each lost pose: a live front end sends
-  /// them on. (May be empty.)
-  void SetFrameObserver(std::function<void(const TrackedFrame&)> observer) { this->FrameObserver = std::move(observer); }
-  void SetLostObserver(std::function<void(const TrackedPose&)> observer) { this->LostObserver = std::move(observer); }
+  /// An output of the run's frames beside the report (not owned; it outlives Run): told of each
+  /// frame once the report has it, of each change of level, lost pose and the end
+  /// (vp::FrameOutput): the live results, the key frames.
+  void AddOutput(FrameOutput* output) { this->Outputs.push_back(output); }
   /// Called with summary.json before it is written, for the front end's own sections (a live
   /// run's latency and link counts).
   void SetReportAddition(std::function<void(nlohmann::ordered_json&)> addition) { this->ReportAddition = std::move(addition); }
@@ -72,8 +73,7 @@ private:
   nlohmann::ordered_json Report;
   double LoadAndBuildMs = 0.0;
   double PeakMemoryMb = 0.0;
-  std::function<void(const TrackedFrame&)> FrameObserver;
-  std::function<void(const TrackedPose&)> LostObserver;
+  std::vector<FrameOutput*> Outputs;
   std::function<void(nlohmann::ordered_json&)> ReportAddition;
 };
 } // namespace vp

@@ -1,6 +1,7 @@
 #ifndef vpKeyFrames_h
 #define vpKeyFrames_h
 
+#include "vpFrameOutput.h"
 #include "vpTrackedFrame.h"
 
 #include <cstddef>
@@ -30,7 +31,9 @@ struct KeyFrame
 /// MinimumSpacingS apart at the same levels are one picture, its reasons joined: at the closest or
 /// deepest frame where one of them is such (two such at different poses stay two pictures, each
 /// caption's number its own frame's), else at the contact, else at the earlier.
-class KeyFrameFinder
+///
+/// An output of the frame pipeline (vp::FrameOutput): a run adds it to find its key frames.
+class KeyFrameFinder : public FrameOutput
 {
 public:
   static constexpr std::size_t MaximumLevelChanges = 12;
@@ -38,6 +41,8 @@ public:
 
   void AddFrame(const TrackedFrame& frame);
   void AddLost();
+  void OnFrame(const TrackedFrame& frame) override { this->AddFrame(frame); }
+  void OnLost(const TrackedPose&) override { this->AddLost(); }
   /// The key frames in pose order; a pose that is key for several reasons once, its names joined.
   std::vector<KeyFrame> GetKeyFrames() const;
   /// Level changes (danger and margin) left out beyond MaximumLevelChanges.

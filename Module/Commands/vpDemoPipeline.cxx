@@ -12,8 +12,8 @@
 #include "vpIgtlLink.h"
 #include "vpIgtlPoseStreamer.h"
 #include "vpLivePoseSource.h"
+#include "vpLiveResultsOutput.h"
 #include "vpLiveResults.h"
-#include "vpRunningQuantiles.h"
 #include "vpTrackingRecorder.h"
 #include "vpTrackingSession.h"
 #include "vpVesselModelSet.h"
@@ -199,13 +199,10 @@ void TrackDemo(const ModuleServices& module, DemoReport& report, double frameBud
   LivePoseSource poses(link, "the demo's tracker on 127.0.0.1:" + std::to_string(tracker.GetPort()), 200.0);
   // The stream ends a moment after the tracker's last pose (its messages still on their way).
   poses.SetEndCondition([&] { return doneMs > 0.0 && NowMs() - doneMs > 200.0; });
-  RunningQuantiles latency;
-  recorder.SetFrameObserver([&](const TrackedFrame& frame) {
-    link.Send(PackLiveFrame(frame));
-    latency.Add(NowMs() - poses.GetLastArrivalMs());
-  });
+  LiveResultsOutput results(link, &poses);
+  recorder.AddOutput(&results);
   recorder.SetReportAddition([&](nlohmann::ordered_json& doc) {
-    doc["latency_ms"] = LiveLatencyJson(latency);
+    doc["latency_ms"] = LiveLatencyJson(results.GetLatencyMs());
     doc["link"] = LiveLinkJson(link.GetCounts());
   });
   const bool ran = recorder.Run(poses, run);

@@ -11,6 +11,7 @@
 #include "vpLivePoseSource.h"
 #include "vpLiveOptions.h"
 #include "vpLiveResults.h"
+#include "vpLiveResultsOutput.h"
 #include "vpPoseFile.h"
 #include "vpRunFolder.h"
 #include "vpRunningQuantiles.h"
@@ -21,15 +22,14 @@
 #include "vtkScalpelTrackingLogic.h"
 #include "vtkVesselProximityLogic.h"
 
-#include <vtkCallbackCommand.h>
-#include <vtkNew.h>
-
 #include <nlohmann/json.hpp>
 
 #include <cstdio>
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <tuple>
+#include <utility>
 
 namespace vp
 {
@@ -84,143 +84,91 @@ cli::ModuleDescription DescribeLiveCommand()
     });
 }
 
-int RunLiveCommand(const cli::ParsedArguments& args, const ModuleServices& module)
+namespace
 {
-  // Ctrl-C is the session's end, not its interruption: held from here, answered at the end.
-  SignalHold hold;
-  const IgtlLinkSettings link = ParseLiveStream(args);
-  const double staleMs = ParseStaleMs(args);
-  const double durationS = ParseDurationS(args);
-
-  const double start = NowMs();
-  SceneRequest request = ParseSceneRequest(args);
-  request.RepairVessels = args.GetBoolean("repair");
-  std::vector<std::string> classes;
+/// The run's folder for -o, its inputs noted; null without -o.
+std::unique_ptr<RunFolder> LiveRunFolder(const cli::ParsedArguments& args, const SceneRequest& request)
+{
+  const std::string outDir = args.GetString("output");
+  if (outDir.empty())
+  {
+    return nullptr;
+  }
+  auto run = std::make_unique<RunFolder>(outDir, "summary.json");
+  run->KeepIfKilled(); // a crash keeps the rows flushed so far (interrupted-*/ after the next run)
+  std::vector<std::string> inputs = { request.ScalpelFile };
   for (const NamedMesh& vessel : request.Vessels)
   {
-    classes.push_back(vessel.ClassName);
+    inputs.push_back(vessel.FileName);
   }
-  CheckFramesCsvColumns(classes, !request.Tumours.empty());
-  std::unique_ptr<RunFolder> run;
-  const std::string outDir = args.GetString("output");
-  if (!outDir.empty())
+  if (args.IsSet("registration"))
   {
-    run = std::make_unique<RunFolder>(outDir, "summary.json");
-    run->KeepIfKilled(); // a crash keeps the rows flushed so far (interrupted-*/ after the next run)
-    std::vector<std::string> inputs = { request.ScalpelFile };
-    for (const NamedMesh& vessel : request.Vessels)
-    {
-      inputs.push_back(vessel.FileName);
-    }
-    if (args.IsSet("registration"))
-    {
-      inputs.push_back(args.GetString("registration"));
-    }
-    run->SetInputs(inputs);
+    inputs.push_back(args.GetString("registration"));
   }
-  vtkSmartPointer<vtkVesselProximityLogic> proximity = module.CreateLogic();
-  OpenedScene scene;
-  {
-    StageProgress progress("live", proximity); // a window or a stream waits on these: say what they are
-    scene = proximity->OpenScene(request);
-  }
-  ReportOpenedScene("live", proximity, scene, request.ScalpelFile);
+  run->SetInputs(inputs);
+  return run;
+}
 
-  // The scene is built before the stream is opened: no pose waits on a build.
-  IgtlLink stream(link);
-  const std::string name = link.ConnectPort > 0 ? link.ConnectHost + ":" + std::to_string(link.ConnectPort)
-                                                : "port " + std::to_string(stream.GetListenPort());
-  if (stream.GetListenPort() >= 0)
+/// The stream opened once the scene is built (no pose waits on a build), and said.
+std::unique_ptr<IgtlLink> OpenLiveStream(const IgtlLinkSettings& link)
+{
+  auto stream = std::make_unique<IgtlLink>(link);
+  if (stream->GetListenPort() >= 0)
   {
-    std::cerr << "live: listening on port " << stream.GetListenPort() << "\n";
+    std::cerr << "live: listening on port " << stream->GetListenPort() << "\n";
   }
   if (link.ConnectPort > 0)
   {
     std::cerr << "live: connecting to " << link.ConnectHost << ":" << link.ConnectPort << "\n";
   }
   std::cerr << "live: waiting for " << link.ToolName << "; Ctrl-C ends the session\n";
-  LivePoseSource poses(stream, name, staleMs, durationS);
-  poses.SetIdleCallback([&stream] { PrintLinkEvents("live", stream); });
+  return stream;
+}
 
-  // Each change of level goes to the peers when it happens, as the logic announces it.
-  vtkNew<vtkCallbackCommand> onChange;
-  onChange->SetClientData(&stream);
-  onChange->SetCallback([](vtkObject*, unsigned long, void* client, void* call) {
-    static_cast<IgtlLink*>(client)->Send(PackLiveLevelChange(*static_cast<DangerLevelChange*>(call)));
-  });
-  vtkScalpelTrackingLogic* tracking = proximity->GetTrackingLogic();
-  const unsigned long observer = tracking->AddObserver(vtkScalpelTrackingLogic::DangerLevelChangedEvent, onChange);
-
-  RunningQuantiles latency;
-  TrackingSummary summary; // without -o; the recorder keeps its own
-  double lastStatusMs = NowMs();
-  const auto onFrame = [&](const TrackedFrame& frame) {
-    stream.Send(PackLiveFrame(frame));
-    latency.Add(NowMs() - poses.GetLastArrivalMs()); // pose in -> results out
-    if (!run)
+/// What the terminal shows as the stream runs: the link's events, a status line a second, each
+/// loss of tracking.
+class LiveStatus : public FrameOutput
+{
+public:
+  LiveStatus(IgtlLink& stream, const LiveResultsOutput& results, double staleMs)
+    : Stream(stream)
+    , Results(results)
+    , StaleMs(staleMs)
+  {
+  }
+  void OnFrame(const TrackedFrame& frame) override
+  {
+    PrintLinkEvents("live", this->Stream);
+    if (NowMs() - this->LastStatusMs > 1000.0)
     {
-      summary.Add(frame);
-    }
-    PrintLinkEvents("live", stream);
-    if (NowMs() - lastStatusMs > 1000.0)
-    {
-      lastStatusMs = NowMs();
+      this->LastStatusMs = NowMs();
       std::fprintf(stderr, "live: frame %d, %s, latency p95 %.3f ms, %zu peer(s)\n", frame.Frame, FrameHeadline(frame).c_str(),
-        latency.Quantile(0.95), stream.GetNumberOfPeers());
+        this->Results.GetLatencyMs().Quantile(0.95), this->Stream.GetNumberOfPeers());
     }
-  };
-  const auto onLost = [&](const TrackedPose& lost) {
-    const double sinceMs = NowMs() - poses.GetLastArrivalMs() + poses.GetStaleMs();
-    stream.Send(PackLiveLost(lost.TimeS, sinceMs));
-    std::cerr << "live: tracking lost: no pose of " << link.ToolName << " for " << static_cast<int>(staleMs) << " ms\n";
-  };
-  nlohmann::ordered_json report;
-  std::size_t frames = 0;
-  std::size_t lostPoses = 0;
-  if (run)
-  {
-    TrackingRecorder recorder(proximity, scene.Vessels);
-    recorder.SetLoadAndBuildMs(NowMs() - start);
-    recorder.SetFrameObserver(onFrame);
-    recorder.SetLostObserver(onLost);
-    recorder.SetReportAddition([&](nlohmann::ordered_json& doc) {
-      doc["latency_ms"] = LiveLatencyJson(latency);
-      doc["stale_ms"] = staleMs;
-      doc["link"] = LiveLinkJson(stream.GetCounts());
-    });
-    try
-    {
-      recorder.Run(poses, *run);
-    }
-    catch (const InputError&)
-    {
-      ThrowWhenNoPoseCame(stream);
-      throw;
-    }
-    run->Commit();
-    report = recorder.GetReport();
-    frames = static_cast<std::size_t>(recorder.GetSummary().GetNumberOfFrames());
-    lostPoses = report.value("poses_lost", std::size_t(0));
   }
-  else
+  void OnLost(const TrackedPose&) override
   {
-    TrackingSession session(proximity);
-    session.Run(poses, onFrame, onLost);
-    if (session.GetNumberOfFrames() == 0)
-    {
-      ThrowWhenNoPoseCame(stream);
-    }
-    frames = session.GetNumberOfFrames();
-    lostPoses = session.GetNumberOfLostPoses();
+    std::cerr << "live: tracking lost: no pose of " << this->Stream.GetSettings().ToolName << " for "
+              << static_cast<int>(this->StaleMs) << " ms\n";
   }
-  tracking->RemoveObserver(observer);
+
+private:
+  IgtlLink& Stream;
+  const LiveResultsOutput& Results;
+  double StaleMs;
+  double LastStatusMs = NowMs();
+};
+
+/// The session's closing lines on stdout (outDir: the run's folder as given, empty without -o).
+void PrintLiveEnd(IgtlLink& stream, std::size_t frames, std::size_t lostPoses, const RunningQuantiles& latency, const std::string& outDir)
+{
   PrintLinkEvents("live", stream);
   const IgtlLinkCounts counts = stream.GetCounts();
   const int signal = SignalHold::Answer(); // the session ended as asked: the signal is not raised again
   std::printf("%zu frames; %zu message(s), %zu pose(s) of %s, %zu dropped (a newer one came first), %zu rejected, "
               "%zu tracking loss(es)%s\n",
-    frames, counts.Messages, counts.Poses, link.ToolName.c_str(), counts.Dropped, counts.RejectedTotal(), lostPoses,
-    signal ? " (ended by a signal)" : "");
+    frames, counts.Messages, counts.Poses, stream.GetSettings().ToolName.c_str(), counts.Dropped, counts.RejectedTotal(),
+    lostPoses, signal ? " (ended by a signal)" : "");
   for (const auto& [reason, count] : counts.Rejected)
   {
     std::printf("  rejected %zu: %s\n", count, reason.c_str());
@@ -230,10 +178,95 @@ int RunLiveCommand(const cli::ParsedArguments& args, const ModuleServices& modul
     std::printf("  latency pose in -> results out: median %.4f ms, p95 %.4f ms, max %.4f ms\n", latency.Quantile(0.5),
       latency.Quantile(0.95), latency.Quantile(1.0));
   }
-  if (run)
+  if (!outDir.empty())
   {
     std::printf("wrote %s/frames.csv, summary.json, distance.png\n", outDir.c_str());
   }
+}
+
+/// The run recorded into its folder (frames.csv, summary.json with the latency and the link's
+/// counts, distance.png): frames and lost poses.
+std::pair<std::size_t, std::size_t> RecordLive(vtkVesselProximityLogic* proximity, const OpenedScene& scene, double loadMs,
+  LivePoseSource& poses, IgtlLink& stream, const std::vector<FrameOutput*>& outputs, const LiveResultsOutput& results,
+  RunFolder& run)
+{
+  TrackingRecorder recorder(proximity, scene.Vessels);
+  recorder.SetLoadAndBuildMs(loadMs);
+  for (FrameOutput* output : outputs)
+  {
+    recorder.AddOutput(output);
+  }
+  recorder.SetReportAddition([&](nlohmann::ordered_json& doc) {
+    doc["latency_ms"] = LiveLatencyJson(results.GetLatencyMs());
+    doc["stale_ms"] = poses.GetStaleMs();
+    doc["link"] = LiveLinkJson(stream.GetCounts());
+  });
+  try
+  {
+    recorder.Run(poses, run);
+  }
+  catch (const InputError&)
+  {
+    ThrowWhenNoPoseCame(stream);
+    throw;
+  }
+  run.Commit();
+  return { static_cast<std::size_t>(recorder.GetSummary().GetNumberOfFrames()),
+    recorder.GetReport().value("poses_lost", std::size_t(0)) };
+}
+} // namespace
+
+int RunLiveCommand(const cli::ParsedArguments& args, const ModuleServices& module)
+{
+  // Ctrl-C is the session's end, not its interruption: held from here, answered at the end.
+  SignalHold hold;
+  const IgtlLinkSettings link = ParseLiveStream(args);
+  const double staleMs = ParseStaleMs(args);
+  const double durationS = ParseDurationS(args);
+  const double start = NowMs();
+  SceneRequest request = ParseSceneRequest(args);
+  request.RepairVessels = args.GetBoolean("repair");
+  std::vector<std::string> classes;
+  for (const NamedMesh& vessel : request.Vessels)
+  {
+    classes.push_back(vessel.ClassName);
+  }
+  CheckFramesCsvColumns(classes, !request.Tumours.empty());
+  std::unique_ptr<RunFolder> run = LiveRunFolder(args, request);
+  vtkSmartPointer<vtkVesselProximityLogic> proximity = module.CreateLogic();
+  OpenedScene scene;
+  {
+    StageProgress progress("live", proximity); // a window or a stream waits on these: say what they are
+    scene = proximity->OpenScene(request);
+  }
+  ReportOpenedScene("live", proximity, scene, request.ScalpelFile);
+
+  std::unique_ptr<IgtlLink> stream = OpenLiveStream(link);
+  const std::string name = link.ConnectPort > 0 ? link.ConnectHost + ":" + std::to_string(link.ConnectPort)
+                                                : "port " + std::to_string(stream->GetListenPort());
+  LivePoseSource poses(*stream, name, staleMs, durationS);
+  poses.SetIdleCallback([&stream] { PrintLinkEvents("live", *stream); });
+  LiveResultsOutput results(*stream, &poses);
+  LiveStatus status(*stream, results, staleMs);
+  std::size_t frames = 0, lostPoses = 0;
+  if (run)
+  {
+    std::tie(frames, lostPoses) = RecordLive(proximity, scene, NowMs() - start, poses, *stream, { &results, &status }, results, *run);
+  }
+  else
+  {
+    TrackingSession session(proximity);
+    session.AddOutput(&results);
+    session.AddOutput(&status);
+    session.Run(poses);
+    if (session.GetNumberOfFrames() == 0)
+    {
+      ThrowWhenNoPoseCame(*stream);
+    }
+    frames = session.GetNumberOfFrames();
+    lostPoses = session.GetNumberOfLostPoses();
+  }
+  PrintLiveEnd(*stream, frames, lostPoses, results.GetLatencyMs(), run ? args.GetString("output") : std::string());
   return 0;
 }
 } // namespace vp

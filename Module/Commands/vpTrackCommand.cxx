@@ -208,8 +208,7 @@ int RunTrackCommand(const cli::ParsedArguments& args, const ModuleServices& modu
   KeyFrameFinder keys;
   if (screenshots)
   {
-    session.SetFrameObserver([&keys](const TrackedFrame& f) { keys.AddFrame(f); });
-    session.SetLostObserver([&keys](const TrackedPose&) { keys.AddLost(); });
+    session.AddOutput(&keys);
   }
   PoseStream poses(posesFile, poseCount, reading);
   if (!session.Run(poses, run))

@@ -14,6 +14,7 @@
 
 #include <gtest/gtest.h>
 
+#include <vtkCallbackCommand.h>
 #include <vtkNew.h>
 #include <vtkPolyData.h>
 
@@ -222,5 +223,86 @@ TEST(TrackingSession, ASourceAndSinglePosesGiveTheSameFramesAndARestartBeginsAtF
   }
   EXPECT_EQ(run.front().Level, vp::DangerLevel::Safe);
   EXPECT_EQ(run.back().Level, vp::DangerLevel::Breach);
+}
+/// An output that writes down what it hears, in order, as "name:event:frame".
+class Log : public vp::FrameOutput
+{
+public:
+  Log(std::string name, std::vector<std::string>& lines)
+    : Name(std::move(name))
+    , Lines(lines)
+  {
+  }
+  void OnLevelChange(const vp::DangerLevelChange& c) override
+  {
+    this->Lines.push_back(this->Name + ":change:" + std::to_string(c.Frame) + ":" + vp::DangerLevelName(c.To));
+  }
+  void OnFrame(const vp::TrackedFrame& f) override { this->Lines.push_back(this->Name + ":frame:" + std::to_string(f.Frame)); }
+  void OnLost(const vp::TrackedPose&) override { this->Lines.push_back(this->Name + ":lost"); }
+  void OnEnd() override { this->Lines.push_back(this->Name + ":end"); }
+
+private:
+  std::string Name;
+  std::vector<std::string>& Lines;
+};
+
+// The frame pipeline: every output hears, in the order added, each change of level before the
+// frame that made it (once, as the logic's own observers do), each lost pose and the end once.
+TEST(TrackingSession, OutputsHearEachChangeBeforeItsFrameEachLossAndTheEnd)
+{
+  vp::SceneRequest request;
+  request.Vessels = { { "portal_vein", "in memory", vp::MakeSphere(Origin, 10.0, 30, 60), std::nullopt } };
+  request.ComputeSurfaceDistance = false;
+  vtkNew<vtkVesselProximityLogic> logic;
+  logic->OpenScene(request);
+  std::vector<vp::TrackedPose> poses;
+  for (int i = 0; i < 40; ++i)
+  {
+    poses.push_back(TipAt(0.02 * i, 30.0 - 0.6 * i));
+  }
+  vp::TrackedPose lost;
+  lost.Lost = true;
+  poses.insert(poses.begin() + 20, lost);
+  std::vector<vp::DangerLevelChange> observed; // what the logic's own observers hear
+  vtkNew<vtkCallbackCommand> onChange;
+  onChange->SetClientData(&observed);
+  onChange->SetCallback([](vtkObject*, unsigned long, void* client, void* call) {
+    static_cast<std::vector<vp::DangerLevelChange>*>(client)->push_back(*static_cast<vp::DangerLevelChange*>(call));
+  });
+  logic->GetTrackingLogic()->AddObserver(vtkScalpelTrackingLogic::DangerLevelChangedEvent, onChange);
+  std::vector<std::string> lines;
+  Log first("a", lines), second("b", lines);
+  vp::TrackingSession session(logic);
+  session.AddOutput(&first);
+  session.AddOutput(&second);
+  vp::PoseListSource source(poses, "the test's poses");
+  ASSERT_TRUE(session.Run(source));
+  ASSERT_GE(observed.size(), 3u) << "safe to breach passes the levels between";
+  std::vector<std::string> expected;
+  std::size_t change = 0;
+  for (int f = 0; f < 40; ++f)
+  {
+    if (f == 20)
+    {
+      expected.insert(expected.end(), { "a:lost", "b:lost" });
+    }
+    std::vector<std::string> changes;
+    for (; change < observed.size() && observed[change].Frame == f; ++change)
+    {
+      changes.push_back(std::to_string(f) + ":" + vp::DangerLevelName(observed[change].To));
+    }
+    for (const char* name : { "a", "b" })
+    {
+      for (const std::string& c : changes)
+      {
+        expected.push_back(std::string(name) + ":change:" + c);
+      }
+      expected.push_back(std::string(name) + ":frame:" + std::to_string(f));
+    }
+  }
+  expected.insert(expected.end(), { "a:end", "b:end" });
+  EXPECT_EQ(change, observed.size());
+  EXPECT_EQ(lines, expected);
+  EXPECT_EQ(session.GetNumberOfLostPoses(), 1u);
 }
 } // namespace

@@ -1,0 +1,36 @@
+#include "vpLiveResultsOutput.h"
+
+#include "vpClock.h"
+#include "vpIgtlLink.h"
+#include "vpLivePoseSource.h"
+#include "vpLiveResults.h"
+
+namespace vp
+{
+LiveResultsOutput::LiveResultsOutput(IgtlLink& link, const LivePoseSource* poses)
+  : Link(link)
+  , Poses(poses)
+{
+}
+
+void LiveResultsOutput::OnLevelChange(const DangerLevelChange& change)
+{
+  this->Link.Send(PackLiveLevelChange(change));
+}
+
+void LiveResultsOutput::OnFrame(const TrackedFrame& frame)
+{
+  this->Link.Send(PackLiveFrame(frame));
+  if (this->Poses)
+  {
+    this->LatencyMs.Add(NowMs() - this->Poses->GetLastArrivalMs());
+  }
+}
+
+void LiveResultsOutput::OnLost(const TrackedPose& lost)
+{
+  // The loss is declared StaleMs after the last pose came: that much before it was declared.
+  const double sinceMs = this->Poses ? NowMs() - this->Poses->GetLastArrivalMs() + this->Poses->GetStaleMs() : 0.0;
+  this->Link.Send(PackLiveLost(lost.TimeS, sinceMs));
+}
+} // namespace vp

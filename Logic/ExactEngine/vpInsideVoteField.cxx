@@ -237,32 +237,35 @@ void InsideVoteField::MarkShadows(const VesselSurface& surface, const std::vecto
   }
 }
 
-void InsideVoteField::VoteRegions(const RayVote& vote)
+namespace
 {
-  // The clear cells' runs along x, joined to the runs they touch in the rows below (y - 1) and
-  // behind (z - 1): the regions are the union's sets.
-  struct Run
-  {
-    int X0, X1; // [X0, X1)
-    std::size_t Row;
-  };
-  const int nx = this->Dims[0];
-  const std::size_t rows = static_cast<std::size_t>(this->Dims[1]) * this->Dims[2];
-  std::vector<Run> runs;
-  std::vector<std::size_t> rowStart(rows + 1);
+/// A run of cells along x, [X0, X1), in one row (y, z) of the grid.
+struct CellRun
+{
+  int X0, X1;
+  std::size_t Row;
+};
+
+/// The runs of cells in a given state, row by row; rowStart[row] is the row's first run (rows + 1
+/// entries, the last the count).
+std::vector<CellRun> RunsOf(const std::vector<std::uint8_t>& state, std::uint8_t wanted, int nx, std::size_t rows,
+  std::vector<std::size_t>& rowStart)
+{
+  std::vector<CellRun> runs;
+  rowStart.assign(rows + 1, 0);
   for (std::size_t row = 0; row < rows; ++row)
   {
     rowStart[row] = runs.size();
-    const std::uint8_t* s = this->State.data() + row * nx;
+    const std::uint8_t* s = state.data() + row * nx;
     for (int x = 0; x < nx;)
     {
-      if (s[x] != Clear)
+      if (s[x] != wanted)
       {
         ++x;
         continue;
       }
       const int x0 = x;
-      while (x < nx && s[x] == Clear)
+      while (x < nx && s[x] == wanted)
       {
         ++x;
       }
@@ -270,6 +273,13 @@ void InsideVoteField::VoteRegions(const RayVote& vote)
     }
   }
   rowStart[rows] = runs.size();
+  return runs;
+}
+
+/// Each run's region: the runs joined to those they touch in the rows below (y - 1) and behind
+/// (z - 1), the union's sets; every run's entry is its region's root (a run of its own).
+std::vector<std::uint32_t> JoinIntoRegions(const std::vector<CellRun>& runs, const std::vector<std::size_t>& rowStart, std::size_t ny)
+{
   std::vector<std::uint32_t> parent(runs.size());
   std::iota(parent.begin(), parent.end(), 0u);
   auto join = [&](std::size_t row, std::size_t other) {
@@ -283,7 +293,7 @@ void InsideVoteField::VoteRegions(const RayVote& vote)
       (runs[i].X1 < runs[j].X1 ? i : j)++;
     }
   };
-  const std::size_t ny = static_cast<std::size_t>(this->Dims[1]);
+  const std::size_t rows = rowStart.size() - 1;
   for (std::size_t row = 0; row < rows; ++row)
   {
     if (row % ny != 0)
@@ -295,41 +305,62 @@ void InsideVoteField::VoteRegions(const RayVote& vote)
       join(row, row - ny);
     }
   }
+  for (std::size_t r = 0; r < runs.size(); ++r)
+  {
+    parent[r] = FindRoot(parent, static_cast<std::uint32_t>(r));
+  }
+  return parent;
+}
+
+/// Per region (indexed by its root): three runs far apart in it, its first, a middle one and its
+/// last.
+std::vector<std::array<std::uint32_t, 3>> SampledRuns(const std::vector<std::uint32_t>& region)
+{
+  constexpr std::uint32_t None = std::numeric_limits<std::uint32_t>::max();
+  std::vector<std::array<std::uint32_t, 3>> sampled(region.size(), { None, None, None });
+  std::vector<std::uint32_t> count(region.size(), 0), seen(region.size(), 0);
+  for (std::size_t r = 0; r < region.size(); ++r)
+  {
+    std::array<std::uint32_t, 3>& s = sampled[region[r]];
+    s[0] = s[0] == None ? static_cast<std::uint32_t>(r) : s[0];
+    s[2] = static_cast<std::uint32_t>(r);
+    ++count[region[r]];
+  }
+  for (std::size_t r = 0; r < region.size(); ++r)
+  {
+    const std::uint32_t root = region[r];
+    sampled[root][1] = seen[root]++ == count[root] / 2 ? static_cast<std::uint32_t>(r) : sampled[root][1];
+  }
+  return sampled;
+}
+} // namespace
+
+void InsideVoteField::VoteRegions(const RayVote& vote)
+{
+  const int nx = this->Dims[0];
+  const std::size_t ny = static_cast<std::size_t>(this->Dims[1]);
+  std::vector<std::size_t> rowStart;
+  const std::vector<CellRun> runs = RunsOf(this->State, Clear, nx, ny * this->Dims[2], rowStart);
+  const std::vector<std::uint32_t> region = JoinIntoRegions(runs, rowStart, ny);
   // Each region's vote: the majority of three points far apart in it (its first cell, a middle
   // run's middle, its last cell; a band behind a fold, see the class comment, is thin, so that
   // two of them rarely fall in bands); no majority leaves it to the rays.
-  constexpr std::uint32_t None = std::numeric_limits<std::uint32_t>::max();
-  std::vector<std::uint32_t> first(runs.size(), None), middle(runs.size(), None), last(runs.size()), count(runs.size(), 0);
-  for (std::size_t r = 0; r < runs.size(); ++r)
-  {
-    const std::uint32_t root = FindRoot(parent, static_cast<std::uint32_t>(r));
-    parent[r] = root; // from here on every run's parent is its root
-    first[root] = first[root] == None ? static_cast<std::uint32_t>(r) : first[root];
-    last[root] = static_cast<std::uint32_t>(r);
-    ++count[root];
-  }
-  std::vector<std::uint32_t> seen(runs.size(), 0);
-  for (std::size_t r = 0; r < runs.size(); ++r)
-  {
-    const std::uint32_t root = parent[r];
-    middle[root] = seen[root]++ == count[root] / 2 ? static_cast<std::uint32_t>(r) : middle[root];
-  }
+  const std::vector<std::array<std::uint32_t, 3>> sampled = SampledRuns(region);
   const double h = this->EdgeMm;
   std::vector<std::uint8_t> value(runs.size(), Clear);
   for (std::size_t root = 0; root < runs.size(); ++root)
   {
-    if (parent[root] != root)
+    if (region[root] != root)
     {
       continue;
     }
     // Within their cells, a little off the centre: the samples stay apart when the region is one
     // cell, and off the grid's planes.
     static constexpr double Offsets[3][3] = { { 0.0, 0.0, 0.0 }, { 0.3, 0.2, -0.1 }, { -0.2, -0.3, 0.2 } };
-    const Run* sampled[3] = { &runs[first[root]], &runs[middle[root]], &runs[last[root]] };
     std::uint8_t votes[3];
     for (int k = 0; k < 3; ++k)
     {
-      const Run& run = *sampled[k];
+      const CellRun& run = runs[sampled[root][static_cast<std::size_t>(k)]];
       const int x = k == 0 ? run.X0 : k == 1 ? (run.X0 + run.X1) / 2 : run.X1 - 1;
       const double p[3] = { this->OriginMm[0] + (x + 0.5 + Offsets[k][0]) * h,
         this->OriginMm[1] + (static_cast<double>(run.Row % ny) + 0.5 + Offsets[k][1]) * h,
@@ -345,7 +376,7 @@ void InsideVoteField::VoteRegions(const RayVote& vote)
   }
   for (std::size_t r = 0; r < runs.size(); ++r)
   {
-    const std::uint8_t v = value[parent[r]];
+    const std::uint8_t v = value[region[r]];
     std::uint8_t* cells = this->State.data() + runs[r].Row * nx;
     std::fill(cells + runs[r].X0, cells + runs[r].X1, v);
     this->Voted += v == Marked ? 0 : static_cast<std::size_t>(runs[r].X1 - runs[r].X0);

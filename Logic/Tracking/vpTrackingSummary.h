@@ -1,6 +1,7 @@
 #ifndef vpTrackingSummary_h
 #define vpTrackingSummary_h
 
+#include "vpFrameOutput.h"
 #include "vpRunningQuantiles.h"
 #include "vtkScalpelTrackingLogic.h"
 
@@ -56,13 +57,16 @@ struct TumourMarginSummary
 /// What a surgeon or researcher reads after a run: per class the closest approach of the tip
 /// (and of the whole surface when computed), the time spent at each danger level, and the
 /// level changes. Frames are added in order; nothing grows with their number but the level
-/// changes.
-class TrackingSummary
+/// changes. An output of the frame pipeline (vp::FrameOutput) that keeps all of it.
+class TrackingSummary : public FrameOutput
 {
 public:
   void Add(const TrackedFrame& frame);
   void AddChange(const DangerLevelChange& change) { this->Changes.push_back(change); }
   void AddMarginChange(const MarginLevelChange& change) { this->MarginChanges.push_back(change); }
+  void OnFrame(const TrackedFrame& frame) override { this->Add(frame); }
+  void OnLevelChange(const DangerLevelChange& change) override { this->AddChange(change); }
+  void OnMarginChange(const MarginLevelChange& change) override { this->AddMarginChange(change); }
 
   int GetNumberOfFrames() const { return this->Frames; }
   double GetDurationS() const { return this->Frames > 0 ? this->LastTimeS - this->FirstTimeS : 0.0; }

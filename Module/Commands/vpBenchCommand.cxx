@@ -252,7 +252,8 @@ void PrintTwoSides(const Json& z, const char* key, const char* title, const std:
   }
 }
 
-void PrintZBufferQueries(const Json& z)
+/// The cached tip's query, with its axis, on the host and on the device.
+void PrintZBufferQueryTimes(const Json& z)
 {
   std::printf("%10s | %14s %14s | %14s %14s %14s %14s\n", "tris/class", "query med ms", "on device med",
     "axis med ms", "axis p95 ms", "on device med", "on device p95");
@@ -263,6 +264,11 @@ void PrintZBufferQueries(const Json& z)
       s["cached_with_axis"]["median_ms"].get<double>(), s["cached_with_axis"]["p95_ms"].get<double>(),
       s["cached_with_axis_device"]["median_ms"].get<double>(), s["cached_with_axis_device"]["p95_ms"].get<double>());
   }
+}
+
+/// Batches: time, tips per second beside the exact engine's, and where the time went.
+void PrintZBufferBatches(const Json& z)
+{
   std::printf("%10s | %14s %14s %16s | %14s\n", "tris/class", "batch med ms", "batch p95 ms", "z-buffer tips/s",
     "exact tips/s");
   for (const Json& s : z["sizes"])
@@ -284,6 +290,11 @@ void PrintZBufferQueries(const Json& z)
       p["votes"]["median_ms"].get<double>(), p["ceilings"]["median_ms"].get<double>(), p["read"]["median_ms"].get<double>(),
       p["order"]["median_ms"].get<double>(), p["submissions_in_last_call"].get<std::size_t>());
   }
+}
+
+/// The answer ceilings off and on, for random and tracked tips.
+void PrintZBufferCeilings(const Json& z)
+{
   std::printf("%10s | %-8s %22s %22s %22s %12s\n", "tris/class", "ceilings", "off med / p95 ms", "on med / p95 ms",
     "device off / on med", "tiles (med)");
   for (const Json& s : z["sizes"])
@@ -301,6 +312,11 @@ void PrintZBufferQueries(const Json& z)
       s["triangles_per_class"].get<std::size_t>(), c["batched_off"]["tips_per_second"].get<double>(),
       c["batched_on"]["tips_per_second"].get<double>(), c["build_ms"].get<double>(), c["answers_differing"].get<int>());
   }
+}
+
+/// Tiles listed by the host off and on, and single tips listed by the device.
+void PrintZBufferTileListing(const Json& z)
+{
   std::printf("%10s | %-12s %16s %16s %22s %22s %10s\n", "tris/class", "tile listing", "batch tips/s", "tiles per tip",
     "single med / p95 ms", "device med / p95 ms", "differing");
   for (const Json& s : z["sizes"])
@@ -324,6 +340,11 @@ void PrintZBufferQueries(const Json& z)
       on["single_device_listed"]["p95_ms"].get<double>(), on["single_device_listed_device"]["median_ms"].get<double>(),
       on["single_device_listed_device"]["p95_ms"].get<double>());
   }
+}
+
+/// A single tip's time by part, random and tracked.
+void PrintZBufferSingleTipParts(const Json& z)
+{
   std::printf("%10s | single tip, median / p95 ms: %-s\n", "tris/class",
     "call, device, host wait, votes, ceilings, host listing, answers read");
   for (const Json& s : z["sizes"])
@@ -341,6 +362,11 @@ void PrintZBufferQueries(const Json& z)
       std::printf("\n");
     }
   }
+}
+
+/// The batch's passes: per tile or per pixel, one invocation per tip or not.
+void PrintZBufferBatchPasses(const Json& z)
+{
   std::printf("%10s | %-31s %10s %10s %10s %14s %12s %12s %10s %10s\n", "tris/class", "batch pass", "med ms", "p95 ms",
     "tips/s", "device tips/s", "listing ms", "visiting ms", "tiles/tip", "differing");
   for (const Json& s : z["sizes"])
@@ -357,15 +383,15 @@ void PrintZBufferQueries(const Json& z)
         w["tiles_listed_per_tip"].get<double>(), w["answers_differing_from_per_tile"].get<int>());
     }
   }
-  // The batch with one submission in flight and with two (the host's work beside the device's),
-  // and with its tips as given and in space order (neighbours side by side).
-  PrintTwoSides(z, "batch_in_flight", "in flight", { "one", "two" }, "submit_wait", "host wait ms");
-  PrintTwoSides(z, "batch_order", "batch order", { "as_given", "spatial" }, "order", "ordering ms");
+}
+
+/// The inside votes of a batch on open surfaces: from the vote field and from the rays.
+void PrintZBufferBatchVotes(const Json& z)
+{
   for (const Json& s : z["sizes"])
   {
     if (s.contains("batch_votes"))
     {
-      // The inside votes of a batch on open surfaces, from the vote field and from the rays.
       const Json& v = s["batch_votes"];
       std::printf("%10zu | batch votes, median / p95 ms: field %.2f / %.2f (batch %.2f / %.2f), rays %.2f / %.2f (batch "
                   "%.2f / %.2f); votes differing %d, distances %d\n",
@@ -376,6 +402,22 @@ void PrintZBufferQueries(const Json& z)
         v["rays"]["p95_ms"].get<double>(), v["votes_differing"].get<int>(), v["distances_differing"].get<int>());
     }
   }
+}
+
+/// The z-buffer's query tables, one after another.
+void PrintZBufferQueries(const Json& z)
+{
+  PrintZBufferQueryTimes(z);
+  PrintZBufferBatches(z);
+  PrintZBufferCeilings(z);
+  PrintZBufferTileListing(z);
+  PrintZBufferSingleTipParts(z);
+  PrintZBufferBatchPasses(z);
+  // The batch with one submission in flight and with two (the host's work beside the device's),
+  // and with its tips as given and in space order (neighbours side by side).
+  PrintTwoSides(z, "batch_in_flight", "in flight", { "one", "two" }, "submit_wait", "host wait ms");
+  PrintTwoSides(z, "batch_order", "batch order", { "as_given", "spatial" }, "order", "ordering ms");
+  PrintZBufferBatchVotes(z);
 }
 
 void PrintReplayTable(const Json& r)

@@ -20,7 +20,6 @@
 #include "vtkVesselProximityLogic.h"
 #include "vtkVesselProximityView.h"
 
-#include <vtkCallbackCommand.h>
 #include <vtkNew.h>
 #include <vtkPolyData.h>
 
@@ -98,7 +97,99 @@ void PrintScreenshotLine(const std::string& screenshot, vtkVesselProximityLogic*
             << FrameHeadline(f) << " (" << logic->GetTrackingLogic()->GetDistanceEngine()->GetMethodName() << " engine"
             << (f.Proximity.ErrorBoundMm > 0.0 ? ", within " + FixedText(f.Proximity.ErrorBoundMm, "%.2f") + " mm" : "") << ")\n";
 }
+/// What view reads, and refuses, before a window opens.
+struct ViewInputs
+{
+  std::vector<TrackedPose> Poses;
+  int FirstPose = 0;
+  std::optional<IgtlLinkSettings> Stream;
+  double StaleMs = 0.0;
+  double DurationS = 0.0;
+  std::pair<int, int> SizePx;
+  std::vector<std::string> Keys;
+  std::string Screenshot;
+  vtkVesselProximityView::CameraPreset Camera = vtkVesselProximityView::CameraPreset::Anterior;
+};
+
+ViewInputs ReadViewInputs(const cli::ParsedArguments& args)
+{
+  ViewInputs in;
+  in.SizePx = ParseSize(args.GetString("size"));
+  in.Keys = SplitKeys(args.GetString("keys"));
+  in.Screenshot = args.GetString("screenshot");
+  vtkVesselProximityView::ParseCameraPreset(args.GetString("view"), in.Camera); // an enumeration: checked by the parser
+  if (args.IsSet("poses"))
+  {
+    in.Poses = ReadPoseFile(args.GetString("poses"), ParsePoseReading(args));
+  }
+  if (WantsLiveStream(args))
+  {
+    if (args.IsSet("poses"))
+    {
+      throw InputError("--poses/--igtl", "give recorded poses or a live stream, not both");
+    }
+    in.Stream = ParseLiveStream(args);
+    in.StaleMs = ParseStaleMs(args);
+    in.DurationS = ParseDurationS(args);
+    if (!in.Screenshot.empty() && in.DurationS <= 0.0)
+    {
+      throw InputError("--duration-s", "say how long to follow the stream before the screenshot");
+    }
+  }
+  in.FirstPose = args.IsSet("pose") ? args.GetInteger("pose") : 0;
+  if (args.IsSet("pose") && in.FirstPose >= static_cast<int>(in.Poses.size()))
+  {
+    throw InputError("--pose", "no pose " + std::to_string(in.FirstPose) + " (the pose file has " + std::to_string(in.Poses.size()) + ")");
+  }
+  return in;
+}
+
+/// The window on the logic, at its first pose (the plot showing the way there) or at the
+/// starting pose, the keys pressed; every frame it computes goes to frames.
+void SetUpView(vtkVesselProximityView* view, const ModuleServices& module, vtkVesselProximityLogic* logic,
+  const OpenedScene& scene, const ViewInputs& in, FrameOutput* frames)
+{
+  view->SetOverlays(module.CreateWidgetRepresentation());
+  view->SetOffScreen(!in.Screenshot.empty());
+  view->SetSizePx(in.SizePx.first, in.SizePx.second);
+  view->SetLogic(logic);
+  view->AddOutput(frames);
+  view->SetCameraPreset(in.Camera);
+  if (scene.Liver)
+  {
+    view->SetLiverSurface(scene.Liver);
+  }
+  view->SetPoses(in.Poses);
+  for (int i = 0; i <= in.FirstPose && !in.Poses.empty(); ++i)
+  {
+    view->ShowPose(i);
+  }
+  if (in.Poses.empty())
+  {
+    view->SetScalpelPose(StartingPose(logic));
+  }
+  view->PressKeys(in.Keys);
+}
+
+/// The stream followed for its duration, then the screenshot and what it shows.
+void ShootLiveView(vtkVesselProximityView* view, vtkVesselProximityLogic* logic, const ViewInputs& in)
+{
+  view->FollowLiveFor(in.DurationS);
+  SignalHold::Answer();
+  view->SaveScreenshot(in.Screenshot);
+  if (view->GetTrackingLost())
+  {
+    std::cout << "wrote " << in.Screenshot << ": tracking lost at the end (the last frame, " << logic->GetLastFrame().TimeS
+              << " s, is not shown as current)\n";
+  }
+  else
+  {
+    PrintScreenshotLine(in.Screenshot, logic);
+  }
+  std::cout << (view->GetTrackingLost() ? "tracking lost: no distance shown as current\n" : "tracking\n");
+}
 } // namespace
+
 
 cli::ModuleDescription DescribeViewCommand()
 {
@@ -163,37 +254,7 @@ int RunViewCommand(const cli::ParsedArguments& args, const ModuleServices& modul
   }
   SceneRequest request = ParseSceneRequest(args);
   request.LiverFile = args.GetString("liver");
-  const auto size = ParseSize(args.GetString("size"));
-  const std::vector<std::string> keys = SplitKeys(args.GetString("keys"));
-  const std::string screenshot = args.GetString("screenshot");
-  // Everything that can be refused is read before a window opens.
-  std::vector<TrackedPose> poses;
-  if (args.IsSet("poses"))
-  {
-    poses = ReadPoseFile(args.GetString("poses"), ParsePoseReading(args));
-  }
-  const bool live = WantsLiveStream(args);
-  std::optional<IgtlLinkSettings> stream;
-  double staleMs = 0.0, durationS = 0.0;
-  if (live)
-  {
-    if (args.IsSet("poses"))
-    {
-      throw InputError("--poses/--igtl", "give recorded poses or a live stream, not both");
-    }
-    stream = ParseLiveStream(args);
-    staleMs = ParseStaleMs(args);
-    durationS = ParseDurationS(args);
-    if (!screenshot.empty() && durationS <= 0.0)
-    {
-      throw InputError("--duration-s", "say how long to follow the stream before the screenshot");
-    }
-  }
-  const int first = args.IsSet("pose") ? args.GetInteger("pose") : 0;
-  if (args.IsSet("pose") && first >= static_cast<int>(poses.size()))
-  {
-    throw InputError("--pose", "no pose " + std::to_string(first) + " (the pose file has " + std::to_string(poses.size()) + ")");
-  }
+  const ViewInputs in = ReadViewInputs(args); // everything that can be refused, before a window opens
   vtkSmartPointer<vtkVesselProximityLogic> logic = module.CreateLogic();
   OpenedScene scene;
   {
@@ -201,46 +262,19 @@ int RunViewCommand(const cli::ParsedArguments& args, const ModuleServices& modul
     scene = logic->OpenScene(request);
   }
   ReportEngineNote(scene.EngineNote);
-  // Every frame the window shows, for the frame times said when it closes.
-  TrackingSummary frames;
-  vtkNew<vtkCallbackCommand> onFrame;
-  onFrame->SetClientData(&frames);
-  onFrame->SetCallback([](vtkObject*, unsigned long, void* client, void* call) {
-    static_cast<TrackingSummary*>(client)->Add(*static_cast<const TrackedFrame*>(call));
-  });
-  logic->GetTrackingLogic()->AddObserver(vtkScalpelTrackingLogic::FrameProcessedEvent, onFrame);
+  TrackingSummary frames; // every frame the window shows, for the frame times said when it closes
   const double budgetMs = logic->GetTrackingLogic()->GetFrameBudgetMs();
   VirtualDisplay display;
-  RequireDisplay(screenshot, display);
+  RequireDisplay(in.Screenshot, display);
   vtkNew<vtkVesselProximityView> view;
-  view->SetOverlays(module.CreateWidgetRepresentation());
-  view->SetOffScreen(!screenshot.empty());
-  view->SetSizePx(size.first, size.second);
-  view->SetLogic(logic);
-  vtkVesselProximityView::CameraPreset preset = vtkVesselProximityView::CameraPreset::Anterior;
-  vtkVesselProximityView::ParseCameraPreset(args.GetString("view"), preset); // an enumeration: checked by the parser
-  view->SetCameraPreset(preset);
-  if (scene.Liver)
-  {
-    view->SetLiverSurface(scene.Liver);
-  }
-  view->SetPoses(poses);
-  for (int i = 0; i <= first && !poses.empty(); ++i)
-  {
-    view->ShowPose(i); // the plot shows the way there
-  }
-  if (poses.empty())
-  {
-    view->SetScalpelPose(StartingPose(logic));
-  }
-  view->PressKeys(keys);
+  SetUpView(view, module, logic, scene, in, &frames);
   // The stream opens once the window is ready: no pose waits on a build.
   std::unique_ptr<IgtlLink> link;
   std::unique_ptr<LivePoseSource> source;
-  if (stream)
+  if (in.Stream)
   {
-    link = std::make_unique<IgtlLink>(*stream);
-    source = std::make_unique<LivePoseSource>(*link, stream->ToolName, staleMs, durationS);
+    link = std::make_unique<IgtlLink>(*in.Stream);
+    source = std::make_unique<LivePoseSource>(*link, in.Stream->ToolName, in.StaleMs, in.DurationS);
     source->SetIdleCallback([&link] { PrintLinkEvents("view", *link); });
     view->SetLiveSource(source.get());
     if (link->GetListenPort() >= 0)
@@ -248,34 +282,21 @@ int RunViewCommand(const cli::ParsedArguments& args, const ModuleServices& modul
       std::cerr << "view: listening on port " << link->GetListenPort() << "\n";
     }
   }
-  if (!screenshot.empty() && source)
+  if (!in.Screenshot.empty() && source)
   {
-    view->FollowLiveFor(durationS);
-    SignalHold::Answer();
-    view->SaveScreenshot(screenshot);
-    if (view->GetTrackingLost())
-    {
-      std::cout << "wrote " << screenshot << ": tracking lost at the end (the last frame, " << logic->GetLastFrame().TimeS
-                << " s, is not shown as current)\n";
-    }
-    else
-    {
-      PrintScreenshotLine(screenshot, logic);
-    }
-    std::cout << (view->GetTrackingLost() ? "tracking lost: no distance shown as current\n" : "tracking\n");
-    std::cout << FrameTimesText(frames, budgetMs) << "\n";
-    return 0;
+    ShootLiveView(view, logic, in);
   }
-  if (!screenshot.empty())
+  else if (!in.Screenshot.empty())
   {
-    view->SaveScreenshot(screenshot);
-    PrintScreenshotLine(screenshot, logic);
-    std::cout << FrameTimesText(frames, budgetMs) << "\n";
-    return 0;
+    view->SaveScreenshot(in.Screenshot);
+    PrintScreenshotLine(in.Screenshot, logic);
   }
-  std::cout << vtkVesselProximityView::KeyHelp();
-  view->Start();
-  SignalHold::Answer(); // a live session's Ctrl-C ended it
+  else
+  {
+    std::cout << vtkVesselProximityView::KeyHelp();
+    view->Start();
+    SignalHold::Answer(); // a live session's Ctrl-C ended it
+  }
   std::cout << FrameTimesText(frames, budgetMs) << "\n";
   return 0;
 }

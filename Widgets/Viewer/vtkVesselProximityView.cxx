@@ -156,6 +156,10 @@ void vtkVesselProximityView::Process(const std::array<double, 16>& modelToWorld,
   {
     const bool hadFrames = logic->GetTrackingLogic()->GetNumberOfFrames() > 0;
     this->Session = std::make_unique<vp::TrackingSession>(logic);
+    for (vp::FrameOutput* output : this->Outputs)
+    {
+      this->Session->AddOutput(output);
+    }
     if (hadFrames)
     {
       this->Overlays->GetPlot()->ClearHistory();

@@ -23,6 +23,7 @@ class vtkVesselProximityLogic;
 class vtkVesselProximityOverlays;
 namespace vp
 {
+class FrameOutput;
 class TrackingSession;
 class LivePoseSource;
 }
@@ -74,6 +75,10 @@ public:
   /// Replay: steps to the next pose on every timer tick while playing.
   void SetPlaying(bool playing) override;
   bool GetPlaying() const override { return this->Playing; }
+
+  /// An output told of every frame the view computes, from any session it starts (not owned:
+  /// it outlives the view's frames): vp::FrameOutput.
+  void AddOutput(vp::FrameOutput* output) { this->Outputs.push_back(output); }
 
   /// Follows a live stream (vp::LivePoseSource, which must outlive the view): each pose it gives
   /// is shown as it comes, a loss as "tracking lost" (vtkVesselProximityOverlays::ShowTrackingLost:
@@ -141,6 +146,7 @@ protected:
   double TimeS = 0.0; ///< time stamped on poses made by moving the scalpel by hand
   /// The poses shown so far, through the logic's frame loop; a new one when time jumps back.
   std::unique_ptr<vp::TrackingSession> Session;
+  std::vector<vp::FrameOutput*> Outputs;
   bool Playing = false;
   int TimerId = -1;
   vp::LivePoseSource* Live = nullptr;

@@ -166,6 +166,26 @@ vp::cli::ModuleDescription Describe()
   return d;
 }
 
+/// Every asked-for model, found before any is written: a run is whole or writes nothing.
+std::vector<std::pair<const ModelOutput*, const vp::VesselClassModel*>> FindWantedModels(
+  const vp::VesselModelSet& set, const std::vector<const ModelOutput*>& wanted, const std::string& input, const std::string& classes)
+{
+  std::vector<std::pair<const ModelOutput*, const vp::VesselClassModel*>> writes;
+  for (const ModelOutput* out : wanted)
+  {
+    const auto found = std::find_if(set.Models.begin(), set.Models.end(),
+      [&](const vp::VesselClassModel& m) { return m.ClassName == out->ClassName; });
+    if (found == set.Models.end())
+    {
+      throw vp::InputError(input, std::string("no ") + out->ClassName + " structure in the labelmap (asked for by --" +
+          out->Parameter + "); it has " + (classes.empty() ? std::string("none") : classes) +
+          ": leave that output unset, or name the structure in the colour or label table");
+    }
+    writes.emplace_back(out, &*found);
+  }
+  return writes;
+}
+
 void Run(const vp::cli::ParsedArguments& args, vp::cli::ReturnValues& results)
 {
   std::vector<const ModelOutput*> wanted;
@@ -193,26 +213,12 @@ void Run(const vp::cli::ParsedArguments& args, vp::cli::ReturnValues& results)
     std::cout << "models: " << line << "\n";
     progress.Stage("Building the surfaces", done * 0.95);
   });
-  // Every asked-for model is found before any is written: a run is whole or writes nothing.
-  std::vector<std::pair<const ModelOutput*, const vp::VesselClassModel*>> writes;
   std::string classes;
   for (const vp::VesselClassModel& m : set.Models)
   {
     classes += (classes.empty() ? "" : ",") + m.ClassName;
   }
-  for (const ModelOutput* out : wanted)
-  {
-    const auto found = std::find_if(set.Models.begin(), set.Models.end(),
-      [&](const vp::VesselClassModel& m) { return m.ClassName == out->ClassName; });
-    if (found == set.Models.end())
-    {
-      throw vp::InputError(input, std::string("no ") + out->ClassName + " structure in the labelmap (asked for by --" +
-          out->Parameter + "); it has " + (classes.empty() ? std::string("none") : classes) +
-          ": leave that output unset, or name the structure in the colour or label table");
-    }
-    writes.emplace_back(out, &*found);
-  }
-  for (const auto& [out, model] : writes)
+  for (const auto& [out, model] : FindWantedModels(set, wanted, input, classes))
   {
     vtkNew<vtkVesselMeshWriter> writer;
     writer->SetFileName(args.GetString(out->Parameter));

@@ -225,10 +225,9 @@ void PlaceOutput(const std::string& from, const std::string& to)
   vp::WriteFileAtomically(to, bytes.str());
 }
 
-void Run(const vp::cli::ParsedArguments& args, vp::cli::ReturnValues& results)
+/// The scene Slicer's parameters ask for.
+vp::SceneRequest SceneFromParameters(const vp::cli::ParsedArguments& args)
 {
-  const double start = vp::NowMs();
-  vp::cli::FilterProgress progress("VesselProximityTrack");
   vp::SceneRequest request;
   for (const auto& [className, file] : vp::cli::GivenVesselModels(args))
   {
@@ -247,64 +246,71 @@ void Run(const vp::cli::ParsedArguments& args, vp::cli::ReturnValues& results)
   request.Tracking.Margin.MarginMm = args.GetNumber("marginMm");
   request.Tracking.Margin.NearBandMm = request.Tracking.Margin.MarginMm; // "up to as much again beyond it is near"
   request.Tracking.Margin.Validate("--marginMm");
+  return request;
+}
 
-  vp::PoseReading reading;
-  reading.ToolName = args.GetString("toolName");
-  if (args.IsSet("registration"))
+/// The run's folder (the given output directory, else a private one removed at the end), its
+/// inputs noted: what the run reads is never written over.
+class TrackRunFolder
+{
+public:
+  TrackRunFolder(const vp::cli::ParsedArguments& args, const std::string& posesFile, const vp::SceneRequest& request)
+    : Keep(args.IsSet("outputDirectory"))
+    , Where(this->Keep ? args.GetString("outputDirectory")
+                       : StagingFolder(args.IsSet("framesTable") ? args.GetString("framesTable") : posesFile))
+    , Removal{ this->Keep ? std::string() : this->Where }
+    , Run(this->Where, "summary.json")
   {
-    reading.Registration = vp::ReadTrackerRegistration(args.GetString("registration"));
+    std::vector<std::string> inputs = { posesFile, request.ScalpelFile };
+    for (const std::vector<vp::NamedMesh>* meshes : { &request.Vessels, &request.Tumours })
+    {
+      for (const vp::NamedMesh& mesh : *meshes)
+      {
+        inputs.push_back(mesh.FileName);
+      }
+    }
+    this->Run.SetInputs(inputs);
   }
-  const std::string posesFile = args.GetString("poses");
-  const std::size_t poseCount = vp::PoseStream::CountPoses(posesFile, reading);
+  TrackRunFolder(const TrackRunFolder&) = delete;
+  TrackRunFolder& operator=(const TrackRunFolder&) = delete;
+  /// Commits the run and puts each output Slicer asked for in place.
+  void Place(const vp::cli::ParsedArguments& args)
+  {
+    this->Run.Commit();
+    for (const auto& [parameter, file] : { std::pair<const char*, const char*>{ "framesTable", "frames.csv" },
+           { "summary", "summary.json" }, { "plot", "distance.png" } })
+    {
+      if (args.IsSet(parameter))
+      {
+        PlaceOutput((fs::path(this->Where) / file).string(), args.GetString(parameter));
+      }
+    }
+  }
+  vp::RunFolder& GetRun() { return this->Run; }
 
-  const bool keep = args.IsSet("outputDirectory");
-  const std::string where = keep ? args.GetString("outputDirectory")
-                                 : StagingFolder(args.IsSet("framesTable") ? args.GetString("framesTable") : posesFile);
-  struct Cleanup
+private:
+  /// Removes a private folder once the run (declared after it, so destroyed before) is done.
+  struct Remover
   {
     std::string Folder;
-    ~Cleanup()
+    ~Remover()
     {
       std::error_code ec;
-      fs::remove_all(this->Folder, ec);
+      if (!this->Folder.empty())
+      {
+        fs::remove_all(this->Folder, ec);
+      }
     }
-  } cleanup{ keep ? std::string() : where };
-  vp::RunFolder run(where, "summary.json");
-  std::vector<std::string> inputs = { posesFile, request.ScalpelFile };
-  for (const std::vector<vp::NamedMesh>* meshes : { &request.Vessels, &request.Tumours })
-  {
-    for (const vp::NamedMesh& mesh : *meshes)
-    {
-      inputs.push_back(mesh.FileName);
-    }
-  }
-  run.SetInputs(inputs);
+  };
+  bool Keep;
+  std::string Where;
+  Remover Removal;
+  vp::RunFolder Run;
+};
 
-  vtkNew<vtkVesselProximityLogic> proximity;
-  const vp::OpenedScene scene = proximity->OpenScene(request);
-  progress.Stage("Replaying the poses", 0.1); // the poses, models and scalpel read and checked
-  vp::TrackingRecorder session(proximity, scene.Vessels);
-  session.SetLoadAndBuildMs(vp::NowMs() - start);
-  session.SetProgress([&](std::size_t done, std::size_t expected) {
-    progress.Stage("Replaying the poses", 0.1 + 0.85 * static_cast<double>(done) / static_cast<double>(expected));
-  });
-  vp::PoseStream poses(posesFile, poseCount, reading);
-  if (!session.Run(poses, run))
-  {
-    throw vp::InputError(posesFile, "the replay was interrupted");
-  }
-  progress.Stage("Writing the outputs", 0.97);
-  run.Commit();
-  for (const auto& [parameter, file] : { std::pair<const char*, const char*>{ "framesTable", "frames.csv" },
-         { "summary", "summary.json" }, { "plot", "distance.png" } })
-  {
-    if (args.IsSet(parameter))
-    {
-      PlaceOutput((fs::path(where) / file).string(), args.GetString(parameter));
-    }
-  }
-
-  const vp::TrackingSummary& summary = session.GetSummary();
+/// What Slicer shows of the run: frames, the worst levels and each class's nearest tip.
+void SetResults(const vp::TrackingSummary& summary, vp::cli::ReturnValues& results)
+{
   results.Set("frames", summary.GetNumberOfFrames());
   results.Set("worstLevel", std::string(vp::DangerLevelName(summary.GetWorstLevel())));
   if (!summary.GetTumours().empty())
@@ -323,6 +329,39 @@ void Run(const vp::cli::ParsedArguments& args, vp::cli::ReturnValues& results)
       }
     }
   }
+}
+
+void Run(const vp::cli::ParsedArguments& args, vp::cli::ReturnValues& results)
+{
+  const double start = vp::NowMs();
+  vp::cli::FilterProgress progress("VesselProximityTrack");
+  const vp::SceneRequest request = SceneFromParameters(args);
+  vp::PoseReading reading;
+  reading.ToolName = args.GetString("toolName");
+  if (args.IsSet("registration"))
+  {
+    reading.Registration = vp::ReadTrackerRegistration(args.GetString("registration"));
+  }
+  const std::string posesFile = args.GetString("poses");
+  const std::size_t poseCount = vp::PoseStream::CountPoses(posesFile, reading);
+  TrackRunFolder folder(args, posesFile, request);
+
+  vtkNew<vtkVesselProximityLogic> proximity;
+  const vp::OpenedScene scene = proximity->OpenScene(request);
+  progress.Stage("Replaying the poses", 0.1); // the poses, models and scalpel read and checked
+  vp::TrackingRecorder session(proximity, scene.Vessels);
+  session.SetLoadAndBuildMs(vp::NowMs() - start);
+  session.SetProgress([&](std::size_t done, std::size_t expected) {
+    progress.Stage("Replaying the poses", 0.1 + 0.85 * static_cast<double>(done) / static_cast<double>(expected));
+  });
+  vp::PoseStream poses(posesFile, poseCount, reading);
+  if (!session.Run(poses, folder.GetRun()))
+  {
+    throw vp::InputError(posesFile, "the replay was interrupted");
+  }
+  progress.Stage("Writing the outputs", 0.97);
+  folder.Place(args);
+  SetResults(session.GetSummary(), results);
   progress.Finish();
 }
 } // namespace

@@ -568,31 +568,10 @@ void PrintBenchReport(Json& report)
   }
 }
 
-} // namespace
-
-cli::ModuleDescription DescribeBenchCommand()
+/// What each part of the bench measures: the command's long help.
+std::string BenchHelp()
 {
-  using cli::ParameterType;
-  auto count = [](const char* flag, const char* def, const char* description) {
-    return Option(ParameterType::Integer, flag, description).SetPlaceholder("N").SetDefault(def).SetRange(1, 100000000, 1);
-  };
-  std::vector<cli::Parameter> replay = {
-    Option(ParameterType::File, "scalpel", "The replay's instrument (default: a 120 mm shaft of 1.5 mm radius).").SetChannel(cli::Channel::Input),
-    Option(ParameterType::File, "poses", "A pose file to replay (the demo's poses.csv, say) instead of the generated path.")
-      .SetChannel(cli::Channel::Input),
-  };
-  for (const cli::Parameter& p : ScalpelTipOptions())
-  {
-    replay.push_back(p);
-  }
-  for (const cli::Parameter& p : PoseReadingOptions())
-  {
-    replay.push_back(p);
-  }
-  cli::ParameterGroup engine = EngineOptions({});
-  engine.Parameters.push_back(Option(ParameterType::Double, "fine-cell", "z-buffer: also the smallest size at this cell, beside the set one.").SetPlaceholder("MM"));
-  return cli::ModuleDescription::Subcommand("vesselproximity bench", "engines side by side with the brute-force reference, JSON with --json",
-    "Grows each vessel mesh to each size (longest-edge bisection: same surface, more triangles) and measures in one run:\n"
+  return "Grows each vessel mesh to each size (longest-edge bisection: same surface, more triangles) and measures in one run:\n"
     "exact: per class, the exact engine (Embree BVH) on random tips and on a tracked tip (0.5 mm steps, the previous "
     "answer bounding the search), VTK's vtkStaticCellLocator, and the paper's brute-force CPU algorithm; the speed-up "
     "and the largest disagreement.\n"
@@ -625,7 +604,41 @@ cli::ModuleDescription DescribeBenchCommand()
     "models: BuildVesselModels (read, each class's surface) on --models-input (a folder of DICOM label series, "
     "IRCADb's MASKS_DICOM) as given and with each series laid end to end --models-copies times (a longer scan of "
     "the same patient), --models-runs each; the stacked classes must hold the copies' voxels.\n"
-    "Progress goes to stderr.",
+    "Progress goes to stderr.";
+}
+
+/// The replay's instrument and poses, and how they are read.
+std::vector<cli::Parameter> ReplayOptions()
+{
+  using cli::ParameterType;
+  std::vector<cli::Parameter> replay = {
+    Option(ParameterType::File, "scalpel", "The replay's instrument (default: a 120 mm shaft of 1.5 mm radius).").SetChannel(cli::Channel::Input),
+    Option(ParameterType::File, "poses", "A pose file to replay (the demo's poses.csv, say) instead of the generated path.")
+      .SetChannel(cli::Channel::Input),
+  };
+  for (const cli::Parameter& p : ScalpelTipOptions())
+  {
+    replay.push_back(p);
+  }
+  for (const cli::Parameter& p : PoseReadingOptions())
+  {
+    replay.push_back(p);
+  }
+  return replay;
+}
+
+} // namespace
+
+cli::ModuleDescription DescribeBenchCommand()
+{
+  using cli::ParameterType;
+  auto count = [](const char* flag, const char* def, const char* description) {
+    return Option(ParameterType::Integer, flag, description).SetPlaceholder("N").SetDefault(def).SetRange(1, 100000000, 1);
+  };
+  cli::ParameterGroup engine = EngineOptions({});
+  engine.Parameters.push_back(Option(ParameterType::Double, "fine-cell", "z-buffer: also the smallest size at this cell, beside the set one.").SetPlaceholder("MM"));
+  return cli::ModuleDescription::Subcommand("vesselproximity bench", "engines side by side with the brute-force reference, JSON with --json",
+    BenchHelp(),
     {
       { "Workload", "",
         { VesselsOption().SetDescription("The vessels (default: the built-in analytic vessels)."),
@@ -636,7 +649,7 @@ cli::ModuleDescription DescribeBenchCommand()
           Option(ParameterType::String, "engines", "Which parts to run: a list of exact, zbuffer, replay, live, penetration, breach and models.")
             .SetPlaceholder("exact,zbuffer,replay,live,penetration,breach,models")
             .SetDefault("exact,zbuffer") } },
-      { "Replay", "", replay },
+      { "Replay", "", ReplayOptions() },
       { "Live", "",
         { Option(ParameterType::Double, "live-rate-hz", "The tracker's rate for the latency.").SetPlaceholder("HZ").SetDefault("60").SetRange(1, 10000, 1),
           Option(ParameterType::Double, "live-seconds", "How long at that rate.").SetPlaceholder("S").SetDefault("10").SetRange(1, 3600, 1),
@@ -670,6 +683,33 @@ cli::ModuleDescription DescribeBenchCommand()
     });
 }
 
+namespace
+{
+/// The breach's and the models' parts of the request.
+void ParseBreachAndModels(const cli::ParsedArguments& args, BenchmarkRequest& request)
+{
+  request.Breach.PointsPerClass = args.GetInteger("breachPoints");
+  request.Breach.MaxPushMm = args.GetNumber("breachPushMm");
+  request.Breach.Seed = static_cast<unsigned>(args.GetInteger("seed"));
+  request.Breach.QueryBudget = args.GetInteger("penetrationBudget");
+  if (request.Parts.count("breach") && args.IsSet("scalpel"))
+  {
+    request.BreachScalpel = ReplayScalpel(args);
+  }
+  if (request.Parts.count("models"))
+  {
+    if (!args.IsSet("modelsInput"))
+    {
+      throw InputError("--models-input", "the models part needs a folder of DICOM label series");
+    }
+    request.Models.Input = args.GetString("modelsInput");
+    request.Models.Copies = args.GetInteger("modelsCopies");
+    request.Models.Runs = args.GetInteger("modelsRuns");
+  }
+}
+
+} // namespace
+
 int RunBenchCommand(const cli::ParsedArguments& args, const ModuleServices&)
 {
   // Everything is read and checked before any work: a bad value must not surface after minutes.
@@ -697,24 +737,7 @@ int RunBenchCommand(const cli::ParsedArguments& args, const ModuleServices&)
   }
   request.Queries = args.GetInteger("queries");
   request.PenetrationPoses = args.GetInteger("penetrationPoses");
-  request.Breach.PointsPerClass = args.GetInteger("breachPoints");
-  request.Breach.MaxPushMm = args.GetNumber("breachPushMm");
-  request.Breach.Seed = static_cast<unsigned>(args.GetInteger("seed"));
-  request.Breach.QueryBudget = args.GetInteger("penetrationBudget");
-  if (request.Parts.count("breach") && args.IsSet("scalpel"))
-  {
-    request.BreachScalpel = ReplayScalpel(args);
-  }
-  if (request.Parts.count("models"))
-  {
-    if (!args.IsSet("modelsInput"))
-    {
-      throw InputError("--models-input", "the models part needs a folder of DICOM label series");
-    }
-    request.Models.Input = args.GetString("modelsInput");
-    request.Models.Copies = args.GetInteger("modelsCopies");
-    request.Models.Runs = args.GetInteger("modelsRuns");
-  }
+  ParseBreachAndModels(args, request);
   request.BruteQueries = std::min(request.Queries, args.GetInteger("bruteQueries"));
   request.Seed = static_cast<unsigned>(args.GetInteger("seed"));
   request.Vessels = args.IsSet("vessels") ? LoadVesselMeshes(ParsePairs(args.GetString("vessels"), "--vessels")) : BuiltInVessels();

@@ -224,14 +224,7 @@ int RunLiveCommand(const cli::ParsedArguments& args, const ModuleServices& modul
   const double staleMs = ParseStaleMs(args);
   const double durationS = ParseDurationS(args);
   const double start = NowMs();
-  SceneRequest request = ParseSceneRequest(args);
-  request.RepairVessels = args.GetBoolean("repair");
-  std::vector<std::string> classes;
-  for (const NamedMesh& vessel : request.Vessels)
-  {
-    classes.push_back(vessel.ClassName);
-  }
-  CheckFramesCsvColumns(classes, !request.Tumours.empty());
+  const SceneRequest request = ParseRecordedSceneRequest(args);
   std::unique_ptr<RunFolder> run = LiveRunFolder(args, request);
   vtkSmartPointer<vtkVesselProximityLogic> proximity = module.CreateLogic();
   OpenedScene scene;

@@ -20,6 +20,7 @@
 
 #include <cstdio>
 #include <iostream>
+#include <optional>
 
 namespace vp
 {
@@ -62,7 +63,8 @@ void ReportTrajectoryWarnings(const std::vector<TrajectoryWarning>& warnings, bo
   }
 }
 
-void PrintSummary(const TrackingRecorder& session, vtkVesselProximityLogic* proximity, const std::string& outDir)
+void PrintSummary(
+  const TrackingRecorder& session, vtkVesselProximityLogic* proximity, const std::string& outDir, std::optional<std::size_t> shots)
 {
   const TrackingSummary& summary = session.GetSummary();
   vtkVesselDistanceEngine* engine = proximity->GetDistanceEngine();
@@ -117,6 +119,62 @@ void PrintSummary(const TrackingRecorder& session, vtkVesselProximityLogic* prox
       check->MaxAbsDifferenceMm, check->OutsideBound);
   }
   std::printf("wrote %s/frames.csv, summary.json, distance.png\n", outDir.c_str());
+  if (shots)
+  {
+    std::printf("wrote %zu key frame(s) in %s/screenshots/ and their contact sheet %s/keyframes.png\n", *shots, outDir.c_str(),
+      outDir.c_str());
+  }
+}
+/// A display for the pictures (the run's own Xvfb when there is none), or the run refused.
+void RequireDisplayFor(bool screenshots, VirtualDisplay& display)
+{
+  if (screenshots && !display.Ensure())
+  {
+    throw InputError("--screenshots", display.GetProblem());
+  }
+}
+
+/// What the run reads is never removed or written over, even in its own output folder.
+void NoteTrackInputs(RunFolder& run, const std::string& posesFile, const SceneRequest& request)
+{
+  std::vector<std::string> inputs = { posesFile, request.ScalpelFile, ScalpelDefinitionFileFor(request.ScalpelFile), request.LiverFile };
+  for (const NamedMesh& vessel : request.Vessels)
+  {
+    inputs.push_back(vessel.FileName);
+  }
+  run.SetInputs(inputs);
+}
+
+/// The key frames' pictures and their contact sheet in the run; how many.
+std::size_t RenderTrackKeyFrames(const ModuleServices& module, vtkVesselProximityLogic* proximity, const OpenedScene& scene,
+  const KeyFrameFinder& keys, std::vector<TrackedPose> poses, const std::string& camera, RunFolder& run)
+{
+  KeyFrameShotRequest pictures;
+  pictures.Logic = proximity;
+  pictures.Poses = std::move(poses);
+  pictures.Keys = keys.GetKeyFrames();
+  pictures.Liver = scene.Liver;
+  vtkVesselProximityView::ParseCameraPreset(camera, pictures.Camera); // an enumeration: checked
+  pictures.Folder = run.Folder("screenshots");
+  pictures.ContactSheetFile = run.File("keyframes.png");
+  const std::size_t shots = RenderKeyFrameShots(module, pictures).size();
+  if (keys.GetLevelChangesLeftOut() > 0)
+  {
+    std::fprintf(stderr, "track: %zu more level change(s) not pictured (the first %zu are)\n", keys.GetLevelChangesLeftOut(),
+      KeyFrameFinder::MaximumLevelChanges);
+  }
+  return shots;
+}
+
+/// The z-buffer's answers outside its bound, when the run compared them with the exact engine.
+void WarnOutsideBound(const TrackingRecorder& session, vtkVesselProximityLogic* proximity)
+{
+  if (session.GetComparison() && session.GetComparison()->OutsideBound > 0)
+  {
+    std::cerr << "vesselproximity: warning: " << session.GetComparison()->OutsideBound
+              << " answer(s) of the z-buffer engine outside its error bound of "
+              << proximity->GetDistanceEngine()->GetErrorBoundMm() << " mm\n";
+  }
 }
 } // namespace
 
@@ -169,29 +227,13 @@ int RunTrackCommand(const cli::ParsedArguments& args, const ModuleServices& modu
   const std::string posesFile = args.GetString("poses");
   const PoseReading reading = ParsePoseReading(args);
   const std::size_t poseCount = PoseStream::CountPoses(posesFile, reading);
-  SceneRequest request = ParseSceneRequest(args);
-  request.RepairVessels = args.GetBoolean("repair");
+  SceneRequest request = ParseRecordedSceneRequest(args);
   request.LiverFile = args.GetString("liver");
-  std::vector<std::string> classes;
-  for (const NamedMesh& vessel : request.Vessels)
-  {
-    classes.push_back(vessel.ClassName);
-  }
-  CheckFramesCsvColumns(classes, !request.Tumours.empty()); // before anything is read or said
   // Pictures need a display: one that cannot be had refuses the run before it computes anything.
   const bool screenshots = args.GetBoolean("screenshots");
   VirtualDisplay display;
-  if (screenshots && !display.Ensure())
-  {
-    throw InputError("--screenshots", display.GetProblem());
-  }
-  // What the run reads is never removed or written over, even in its own output folder.
-  std::vector<std::string> inputs = { posesFile, request.ScalpelFile, ScalpelDefinitionFileFor(request.ScalpelFile), request.LiverFile };
-  for (const NamedMesh& vessel : request.Vessels)
-  {
-    inputs.push_back(vessel.FileName);
-  }
-  run.SetInputs(inputs);
+  RequireDisplayFor(screenshots, display);
+  NoteTrackInputs(run, posesFile, request);
   vtkSmartPointer<vtkVesselProximityLogic> proximity = module.CreateLogic();
   StageProgress progress("track", proximity);
   const OpenedScene scene = proximity->OpenScene(request);
@@ -220,21 +262,8 @@ int RunTrackCommand(const cli::ParsedArguments& args, const ModuleServices& modu
   if (screenshots)
   {
     progress.Stage("rendering the key frames");
-    KeyFrameShotRequest pictures;
-    pictures.Logic = proximity;
-    pictures.Poses = ReadPoseFile(posesFile, reading);
-    pictures.Keys = keys.GetKeyFrames();
-    pictures.Liver = scene.Liver;
-    vtkVesselProximityView::ParseCameraPreset(args.GetString("view"), pictures.Camera); // an enumeration: checked
-    pictures.Folder = run.Folder("screenshots");
-    pictures.ContactSheetFile = run.File("keyframes.png");
-    shots = RenderKeyFrameShots(module, pictures).size();
+    shots = RenderTrackKeyFrames(module, proximity, scene, keys, ReadPoseFile(posesFile, reading), args.GetString("view"), run);
     progress.Finish();
-    if (keys.GetLevelChangesLeftOut() > 0)
-    {
-      std::fprintf(stderr, "track: %zu more level change(s) not pictured (the first %zu are)\n", keys.GetLevelChangesLeftOut(),
-        KeyFrameFinder::MaximumLevelChanges);
-    }
   }
   ReportTrajectoryWarnings(session.GetWarnings(), strict, posesFile);
   if (strict)
@@ -242,18 +271,8 @@ int RunTrackCommand(const cli::ParsedArguments& args, const ModuleServices& modu
     ReportOpenedScene("track", proximity, scene, request.ScalpelFile);
   }
   run.Commit(); // the folder holds this run whole, or the previous one as it was
-  if (session.GetComparison() && session.GetComparison()->OutsideBound > 0)
-  {
-    std::cerr << "vesselproximity: warning: " << session.GetComparison()->OutsideBound
-              << " answer(s) of the z-buffer engine outside its error bound of "
-              << proximity->GetDistanceEngine()->GetErrorBoundMm() << " mm\n";
-  }
-  PrintSummary(session, proximity, outDir);
-  if (screenshots)
-  {
-    std::printf("wrote %zu key frame(s) in %s/screenshots/ and their contact sheet %s/keyframes.png\n", shots, outDir.c_str(),
-      outDir.c_str());
-  }
+  WarnOutsideBound(session, proximity);
+  PrintSummary(session, proximity, outDir, screenshots ? std::optional<std::size_t>(shots) : std::nullopt);
   return 0;
 }
 } // namespace vp

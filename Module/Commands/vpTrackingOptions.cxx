@@ -2,6 +2,7 @@
 
 #include "vpArguments.h"
 #include "vpEngineOptions.h"
+#include "vpFramesCsv.h"
 #include "vpInputError.h"
 #include "vpPointCsv.h"
 #include "vpRegistrationFile.h"
@@ -272,6 +273,19 @@ SceneRequest ParseSceneRequest(const cli::ParsedArguments& args)
     request.Tumours = TumourEntries(SplitList(args.GetString("tumour"), ','), "--tumour");
   }
   request.Tracking.Margin = ParseMarginSettings(args, !request.Tumours.empty());
+  return request;
+}
+
+SceneRequest ParseRecordedSceneRequest(const cli::ParsedArguments& args)
+{
+  SceneRequest request = ParseSceneRequest(args);
+  request.RepairVessels = args.GetBoolean("repair");
+  std::vector<std::string> classes;
+  for (const NamedMesh& vessel : request.Vessels)
+  {
+    classes.push_back(vessel.ClassName);
+  }
+  CheckFramesCsvColumns(classes, !request.Tumours.empty());
   return request;
 }
 } // namespace vp

@@ -54,6 +54,9 @@ std::string FrameTimesText(const TrackingSummary& summary, double budgetMs);
 /// tumours and their margin (--tumour, --margin-mm, --near-band-mm) and --no-surface. Nothing is read or opened here: vtkVesselProximityLogic::OpenScene does it.
 /// Throws InputError naming the option.
 SceneRequest ParseSceneRequest(const cli::ParsedArguments& args);
+/// The scene of a command that records its frames (track, live): ParseSceneRequest with
+/// --repair, its classes checked against frames.csv's columns before anything is read or said.
+SceneRequest ParseRecordedSceneRequest(const cli::ParsedArguments& args);
 } // namespace vp
 
 #endif

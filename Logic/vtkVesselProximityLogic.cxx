@@ -2,12 +2,10 @@
 
 #include "vpDefaultScalpel.h"
 #include "vpDistanceEngineFactory.h"
+#include "vpInstrumentDistanceFactory.h"
 #include "vtkExactVesselDistance.h"
 #include "vtkVesselMeshReader.h"
 #include "vtkScalpelModel.h"
-#include "vtkFclSurfaceDistance.h"
-#include "vtkZBufferSurfaceDistance.h"
-#include "vtkZBufferVesselDistance.h"
 #include "vtkScalpelPenetration.h"
 #include "vtkTumourMarginDistance.h"
 #include "vtkVesselDistanceEngine.h"
@@ -76,7 +74,7 @@ vp::OpenedScene vtkVesselProximityLogic::OpenScene(const vp::SceneRequest& reque
   }
   p->SetScalpel(scalpel);
   p->SetDistanceEngine(engine);
-  p->SetCompareWithExact(request.CompareWithExact && !vtkExactVesselDistance::SafeDownCast(engine));
+  p->SetCompareWithExact(request.CompareWithExact && !engine->IsExact());
   p->SetComputeSurfaceDistance(request.ComputeSurfaceDistance);
   p->SetInstrumentMethod(request.Instrument);
   p->SetInstrumentRangeMm(request.InstrumentRangeMm);
@@ -232,12 +230,7 @@ void vtkVesselProximityLogic::Build()
   // The exact engine serves the comparison and the whole surface; a second one, beside an
   // approximate engine, is built only when one of them is wanted.
   const bool surface = this->WantsSurfaceDistance();
-  this->Exact = vtkExactVesselDistance::SafeDownCast(engine);
-  if (!this->Exact && (compareWithExact || surface))
-  {
-    this->Exact = vtkSmartPointer<vtkExactVesselDistance>::New();
-    this->Exact->SetRangeMm(engine->GetRangeMm());
-  }
+  this->Exact = vtkExactVesselDistance::ServingBeside(engine, compareWithExact || surface);
   std::vector<vtkVesselDistanceEngine*> engines{ engine };
   if (this->Exact && this->Exact != engine)
   {
@@ -253,10 +246,7 @@ void vtkVesselProximityLogic::Build()
     }
     e->Build();
   }
-  if (auto* layers = vtkZBufferVesselDistance::SafeDownCast(engine))
-  {
-    layers->BuildQueryCeilings(); // once: not in the second frame's time
-  }
+  engine->PrepareForTracking(); // once: not in the first frames' time
   this->Tracking->SetDistanceEngine(engine);
   if (surface)
   {
@@ -279,41 +269,13 @@ void vtkVesselProximityLogic::BuildInstrument(vtkVesselDistanceEngine* engine)
 {
   vtkVesselProximityParameters* p = this->Parameters;
   vtkPolyData* tool = this->GetScalpel()->GetModel();
-  // The z-buffer answers the whole instrument from its own layers (a distance field of them,
-  // within a stated bound) when they stay put; otherwise FCL answers it exactly.
-  auto* layers = vtkZBufferVesselDistance::SafeDownCast(engine);
-  if (p->GetInstrumentMethod() == vp::InstrumentMethod::Automatic && layers &&
-    layers->GetBoxMode() == vtkZBufferVesselDistance::FixedAroundVessels)
-  {
-    auto zbuffer = vtkSmartPointer<vtkZBufferSurfaceDistance>::New();
-    zbuffer->SetZBuffer(layers);
-    zbuffer->SetToolSurface(tool);
-    zbuffer->SetRangeMm(p->GetInstrumentRangeMm());
-    zbuffer->Build(); // the samples and the field, once: not in the first frame's time
-    this->Surface = zbuffer;
-  }
-  else if (p->GetInstrumentMethod() == vp::InstrumentMethod::BoundingSpheres)
-  {
-    this->Surface = vtkSmartPointer<vtkScalpelSurfaceDistance>::New();
-    this->Surface->SetVesselDistance(this->Exact);
-    this->Surface->SetToolSurface(tool);
-    this->Surface->SetRangeMm(p->GetInstrumentRangeMm());
-  }
-  else
-  {
-    auto fcl = vtkSmartPointer<vtkFclSurfaceDistance>::New();
-    fcl->SetVesselDistance(this->Exact);
-    fcl->SetToolSurface(tool);
-    fcl->SetRangeMm(p->GetInstrumentRangeMm());
-    fcl->Build(); // the trees, once: not in the first frame's time
-    this->Surface = fcl;
-  }
+  this->Surface = vp::MakeInstrumentDistance(p->GetInstrumentMethod(), engine, this->Exact, tool, p->GetInstrumentRangeMm());
   this->Penetration = nullptr;
   if (p->GetComputePenetration())
   {
     this->Penetration = vtkSmartPointer<vtkScalpelPenetration>::New();
     this->Penetration->SetVesselDistance(this->Exact);
-    this->Penetration->SetZBufferSurface(vtkZBufferSurfaceDistance::SafeDownCast(this->Surface));
+    this->Penetration->SetInstrumentDistance(this->Surface);
     this->Penetration->SetToolSurface(tool);
     this->Penetration->SetQueryBudget(p->GetPenetrationQueryBudget());
     this->Penetration->Build();

@@ -73,6 +73,13 @@ public:
 
   /// Short name used on the command line and in reports ("exact", "brute", ...).
   virtual const char* GetMethodName() const = 0;
+  /// Whether every answer is exact (GetErrorBoundMm() 0 whatever the settings), so that nothing
+  /// is gained by checking it against the exact engine. Default false: a new engine is checked.
+  virtual bool IsExact() const { return false; }
+
+  /// Builds now, after Build(), what the engine would otherwise build at its first frames (the
+  /// z-buffer's query ceilings): a tracker's frames then never pay for it. Default: nothing.
+  virtual void PrepareForTracking() {}
 
 protected:
   vtkVesselDistanceEngine();

@@ -18,6 +18,7 @@ public:
     const vp::ProximityResult* previous = nullptr) const override;
   std::string GetDeviceDescription() override { return "cpu (every triangle, one thread)"; }
   const char* GetMethodName() const override { return "brute"; }
+  bool IsExact() const override { return true; }
 
 protected:
   vtkBruteForceVesselDistance();

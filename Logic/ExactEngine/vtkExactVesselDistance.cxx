@@ -17,6 +17,17 @@
 
 vtkStandardNewMacro(vtkExactVesselDistance);
 
+vtkSmartPointer<vtkExactVesselDistance> vtkExactVesselDistance::ServingBeside(vtkVesselDistanceEngine* engine, bool needed)
+{
+  vtkSmartPointer<vtkExactVesselDistance> exact = vtkExactVesselDistance::SafeDownCast(engine);
+  if (!exact && needed)
+  {
+    exact = vtkSmartPointer<vtkExactVesselDistance>::New();
+    exact->SetRangeMm(engine->GetRangeMm());
+  }
+  return exact;
+}
+
 namespace
 {
 struct DeviceDeleter

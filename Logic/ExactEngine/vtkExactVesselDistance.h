@@ -33,12 +33,16 @@ class vtkExactVesselDistance : public vtkVesselDistanceEngine
 {
 public:
   static vtkExactVesselDistance* New();
+  /// The exact engine that serves beside engine (the whole instrument, the comparison): engine
+  /// itself when it is an exact one; else, when needed, a new one with engine's range; else null.
+  static vtkSmartPointer<vtkExactVesselDistance> ServingBeside(vtkVesselDistanceEngine* engine, bool needed);
   vtkTypeMacro(vtkExactVesselDistance, vtkVesselDistanceEngine);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   void ComputeProximity(const double tip[3], const double* axis, vp::ProximityResult& result,
     const vp::ProximityResult* previous = nullptr) const override;
   const char* GetMethodName() const override { return "exact"; }
+  bool IsExact() const override { return true; }
   /// Whether inside is decided on a surface that is not closed, by the vote of rays (default
   /// on). Off: it stays empty there, as before the vote, for callers that need only distances
   /// and for the bench's measure of what the vote costs.

@@ -329,6 +329,11 @@ void vtkScalpelPenetration::SetZBufferSurface(vtkZBufferSurfaceDistance* surface
   }
 }
 
+void vtkScalpelPenetration::SetInstrumentDistance(vtkScalpelSurfaceDistance* surface)
+{
+  this->SetZBufferSurface(vtkZBufferSurfaceDistance::SafeDownCast(surface));
+}
+
 vtkZBufferSurfaceDistance* vtkScalpelPenetration::GetZBufferSurface() const
 {
   return this->ZBufferSurface;

@@ -13,6 +13,7 @@
 #include <vector>
 
 class vtkPolyData;
+class vtkScalpelSurfaceDistance;
 class vtkZBufferSurfaceDistance;
 namespace vp
 {
@@ -68,6 +69,9 @@ public:
   /// DepthBoundMm the lattice's half diagonal plus the field's interval. Default: none.
   void SetZBufferSurface(vtkZBufferSurfaceDistance* surface);
   vtkZBufferSurfaceDistance* GetZBufferSurface() const;
+  /// The frame's instrument distance: when it answers from the z-buffer's layers, the walk reads
+  /// them too (SetZBufferSurface), else the exact engine alone.
+  void SetInstrumentDistance(vtkScalpelSurfaceDistance* surface);
   /// The instrument surface in model coordinates (closed, for an inside).
   void SetToolSurface(vtkPolyData* model);
   /// Edge of a lattice cell (mm). Default 0.4 mm: a depth bound of 0.35 mm, as the z-buffer's

@@ -174,6 +174,8 @@ public:
   /// on), where a query would at the rendering's second submission: for a tracker, so that no
   /// frame pays the tens to hundreds of milliseconds they take.
   void BuildQueryCeilings();
+  /// BuildQueryCeilings().
+  void PrepareForTracking() override { this->BuildQueryCeilings(); }
   /// The cell edge of the inside vote field (vp::InsideVoteField) each surface that is not
   /// closed gets (default 1 mm; 0: none). Where the centre ray's parity is no answer (an opening
   /// it passes through turns it), each answer in range takes the exact engine's vote of five rays

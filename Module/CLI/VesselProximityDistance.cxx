@@ -100,11 +100,9 @@ vp::cli::ParameterGroup EngineGroup()
                                 .SetLongFlag("method")
                                 .SetLogicName("Method")
                                 .SetLabel("Method")
-                                .SetDescription("exact: BVH, exact. zbuffer: Vulkan depth layers, within the error "
-                                                "bound. both: z-buffer checked against exact. auto: z-buffer when a "
-                                                "Vulkan device opens, else exact.")
+                                .SetDescription(vp::EngineMethodHelp(vp::EngineMethodNames(vp::OfferedToSlicerTips), ". ") + ".")
                                 .SetDefault(vp::DistanceEngineSettings().Method)
-                                .SetElements({ "exact", "zbuffer", "both", "auto" }));
+                                .SetElements(vp::EngineMethodNames(vp::OfferedToSlicerTips)));
   engine.Parameters.push_back(Parameter(ParameterType::Float, "rangeMm")
                                 .SetLongFlag("rangeMm")
                                 .SetLogicName("RangeMm")

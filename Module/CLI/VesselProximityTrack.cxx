@@ -8,6 +8,7 @@
 #include "vpCliVessels.h"
 #include "vpClock.h"
 #include "vpDangerLevels.h"
+#include "vpDistanceEngineFactory.h"
 #include "vpInputError.h"
 #include "vpOutputFile.h"
 #include "vpPoseFile.h"
@@ -75,10 +76,9 @@ vp::cli::ParameterGroup SettingsGroup()
                                   .SetLongFlag("method")
                                   .SetLogicName("Method")
                                   .SetLabel("Method")
-                                  .SetDescription("exact: BVH, exact. zbuffer: Vulkan depth layers, within the error "
-                                                  "bound. both: z-buffer checked against exact every frame.")
-                                  .SetDefault("exact")
-                                  .SetElements({ "exact", "zbuffer", "both" }));
+                                  .SetDescription(vp::EngineMethodHelp(vp::EngineMethodNames(vp::OfferedForTracking), ". ") + ".")
+                                  .SetDefault(vp::DistanceEngineSettings().Method)
+                                  .SetElements(vp::EngineMethodNames(vp::OfferedForTracking)));
   auto threshold = [&](const char* name, const char* label, double value, const char* text) {
     settings.Parameters.push_back(Parameter(ParameterType::Float, name)
                                     .SetLongFlag(name)

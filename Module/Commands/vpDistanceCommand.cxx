@@ -182,7 +182,7 @@ cli::ModuleDescription DescribeDistanceCommand()
             .SetChannel(cli::Channel::Input)
             .SetPlaceholder("R.json|T.h5"),
         } },
-      EngineOptions({ "exact", "zbuffer", "both", "brute", "auto" }),
+      EngineOptions(EngineMethodNames(OfferedForTips)),
       { "Output", "", { Switch("json", "Print the answer as JSON instead of a table.") } },
     });
 }

@@ -8,29 +8,6 @@
 
 namespace vp
 {
-namespace
-{
-/// What --method's help says of each method.
-const char* MethodHelp(const std::string& method)
-{
-  static const std::pair<const char*, const char*> all[] = {
-    { "exact", "exact: Embree BVH, exact" },
-    { "zbuffer", "zbuffer: Vulkan depth layers, within the error bound" },
-    { "both", "both: the z-buffer, checked against exact" },
-    { "brute", "brute: the paper's CPU algorithm" },
-    { "auto", "auto: the z-buffer when a Vulkan device opens, else exact" },
-  };
-  for (const auto& [name, help] : all)
-  {
-    if (method == name)
-    {
-      return help;
-    }
-  }
-  return "";
-}
-} // namespace
-
 cli::ParameterGroup EngineOptions(const std::vector<std::string>& methods)
 {
   using cli::ParameterType;
@@ -38,11 +15,7 @@ cli::ParameterGroup EngineOptions(const std::vector<std::string>& methods)
   cli::ParameterGroup group{ "Distance engine", "", {} };
   if (!methods.empty())
   {
-    std::string help;
-    for (const std::string& method : methods)
-    {
-      help += std::string(help.empty() ? "" : "; ") + MethodHelp(method);
-    }
+    const std::string help = EngineMethodHelp(methods, "; ");
     group.Parameters.push_back(
       Option(ParameterType::StringEnumeration, "method", help + ".").SetElements(methods).SetDefault(defaults.Method).SetLogicName("Method"));
   }

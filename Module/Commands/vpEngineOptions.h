@@ -15,8 +15,9 @@
 namespace vp
 {
 /// The options every command that computes distances shares: --method (one of methods, default
-/// exact; left out when methods is empty), --range and the z-buffer's settings, each named for
-/// the logic setting it gives, so the logic's refusals name the flag.
+/// exact; left out when methods is empty: EngineMethodNames gives a front end's), --range and
+/// the z-buffer's settings, each named for the logic setting it gives, so the logic's refusals
+/// name the flag.
 cli::ParameterGroup EngineOptions(const std::vector<std::string>& methods);
 
 /// The engine settings the options give (--range and the z-buffer's), for the given method.

@@ -79,7 +79,7 @@ cli::ModuleDescription DescribeLiveCommand()
       { "Inputs", "", { VesselsOption().SetRequired(), RepairSwitch() } },
       { "Stream", "", stream },
       { "Scalpel", "", ScalpelOptions() },
-      EngineOptions({ "exact", "zbuffer", "both" }),
+      EngineOptions(EngineMethodNames(OfferedForTracking)),
       TrackingOptions(),
     });
 }

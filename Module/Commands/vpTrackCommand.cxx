@@ -196,7 +196,7 @@ cli::ModuleDescription DescribeTrackCommand()
           OutputFolderOption("The run's folder: frames.csv, summary.json, distance.png.").SetRequired() } },
       { "Poses", "", PoseReadingOptionsWithStrict() },
       { "Scalpel", "", ScalpelOptions() },
-      EngineOptions({ "exact", "zbuffer", "both" }),
+      EngineOptions(EngineMethodNames(OfferedForTracking)),
       TrackingOptions(),
       { "Pictures", "",
         { Switch("screenshots",

@@ -239,7 +239,7 @@ cli::ModuleDescription DescribeViewCommand()
             .SetPlaceholder("FILE.png"),
         } },
       { "Live stream", "", LiveStreamOptions(false, false) },
-      EngineOptions({ "exact", "zbuffer" }),
+      EngineOptions(EngineMethodNames(OfferedInView)),
       TrackingOptions(),
     });
 }

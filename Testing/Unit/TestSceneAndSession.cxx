@@ -2,6 +2,7 @@
 // for every loop. Against analytic shapes: a sphere of radius 10 mm at the origin, a capped
 // cylinder for a scalpel whose tip is its lower end.
 #include "vpAnalyticShapes.h"
+#include "vpDistanceEngineFactory.h"
 #include "vpInputError.h"
 #include "vpSceneRequest.h"
 #include "vpTestSupport.h"
@@ -304,5 +305,58 @@ TEST(TrackingSession, OutputsHearEachChangeBeforeItsFrameEachLossAndTheEnd)
   EXPECT_EQ(change, observed.size());
   EXPECT_EQ(lines, expected);
   EXPECT_EQ(session.GetNumberOfLostPoses(), 1u);
+}
+// The engine registry is the one list of methods: each makes the engine it names (both and auto
+// the z-buffer, or exact without a device), the front ends' lists are its subsets, and a name it
+// lacks is refused with the list.
+TEST(EngineRegistry, EachMethodMakesItsEngineAndTheFrontEndsOfferItsSubsets)
+{
+  std::vector<std::string> all;
+  for (const vp::EngineMethod& m : vp::EngineMethods())
+  {
+    all.emplace_back(m.Name);
+    vp::DistanceEngineSettings settings;
+    settings.Method = m.Name;
+    std::string note;
+    vtkSmartPointer<vtkVesselDistanceEngine> engine;
+    try
+    {
+      engine = vp::MakeDistanceEngine(settings, &note);
+    }
+    catch (const vp::DeviceError&)
+    {
+      EXPECT_TRUE(settings.Method == "zbuffer" || settings.Method == "both") << "only the z-buffer needs a device";
+      continue;
+    }
+    ASSERT_TRUE(engine) << m.Name;
+    const std::string made = engine->GetMethodName();
+    if (settings.Method == "both" || settings.Method == "auto")
+    {
+      EXPECT_TRUE(made == "zbuffer" || (settings.Method == "auto" && made == "exact" && !note.empty())) << m.Name << " made " << made;
+    }
+    else
+    {
+      EXPECT_EQ(made, settings.Method);
+    }
+    EXPECT_EQ(engine->IsExact(), made == "exact" || made == "brute") << made;
+    EXPECT_NE(std::string(m.Help).find(std::string(m.Name) + ": "), std::string::npos) << "the help names its method";
+  }
+  EXPECT_EQ(all, (std::vector<std::string>{ "exact", "zbuffer", "both", "brute", "auto" }));
+  EXPECT_EQ(vp::EngineMethodNames(vp::OfferedForTips), all);
+  EXPECT_EQ(vp::EngineMethodNames(vp::OfferedForTracking), (std::vector<std::string>{ "exact", "zbuffer", "both" }));
+  EXPECT_EQ(vp::EngineMethodNames(vp::OfferedInView), (std::vector<std::string>{ "exact", "zbuffer" }));
+  EXPECT_EQ(vp::EngineMethodNames(vp::OfferedToSlicerTips), (std::vector<std::string>{ "exact", "zbuffer", "both", "auto" }));
+  EXPECT_EQ(vp::EngineMethodHelp({ "exact", "brute" }, "; "), "exact: Embree BVH, exact; brute: the paper's CPU algorithm");
+  vp::DistanceEngineSettings unknown;
+  unknown.Method = "fast";
+  try
+  {
+    vp::MakeDistanceEngine(unknown);
+    ADD_FAILURE() << "an unknown method was taken";
+  }
+  catch (const vp::ParameterError& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("unknown method 'fast' (exact, zbuffer, both, brute, auto)"), std::string::npos) << e.what();
+  }
 }
 } // namespace

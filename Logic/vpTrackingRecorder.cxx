@@ -161,7 +161,7 @@ public:
     if (this->Comparison)
     {
       vtkVesselDistanceEngine* engine = this->Logic->GetDistanceEngine();
-      this->Comparison->Add(frame.Proximity, this->Logic->GetLastExactProximity(), engine->GetRangeMm(), engine->GetErrorBoundMm());
+      this->Comparison->Add(frame.Proximity, frame.Exact ? *frame.Exact : frame.Proximity, engine->GetRangeMm(), engine->GetErrorBoundMm());
     }
   }
   void OnLost(const TrackedPose& lost) override

@@ -248,6 +248,7 @@ void vtkVesselProximityLogic::Build()
   }
   engine->PrepareForTracking(); // once: not in the first frames' time
   this->Tracking->SetDistanceEngine(engine);
+  this->Tracking->SetReferenceEngine(compareWithExact ? this->Exact.GetPointer() : nullptr);
   if (surface)
   {
     this->StartStage("sampling the instrument");
@@ -314,17 +315,6 @@ const vp::TrackedFrame& vtkVesselProximityLogic::ProcessPose(const vp::TrackedPo
     this->SceneChanged = true;
   }
   this->Build();
-  // The exact answer first, so that whoever hears of the frame (the overlays) can show it beside
-  // the approximate one; the frame's own time counts the engine's query alone.
-  if (this->GetCompareWithExact() && this->Exact != this->GetDistanceEngine() && !pose.Lost)
-  {
-    vtkScalpelModel* scalpel = this->Tracking->GetScalpel();
-    scalpel->SetModelToWorld(pose.ModelToWorld);
-    double tip[3], axis[3];
-    scalpel->GetTipInWorld(tip);
-    scalpel->GetAxisInWorld(axis);
-    this->Exact->ComputeProximity(tip, axis, this->LastExact);
-  }
   return this->Tracking->ProcessPose(pose);
 }
 
@@ -352,12 +342,6 @@ bool vtkVesselProximityLogic::GetVesselBounds(double bounds[6]) const
 const vp::TrackedFrame& vtkVesselProximityLogic::GetLastFrame() const
 {
   return this->Tracking->GetLastFrame();
-}
-
-const vp::ProximityResult& vtkVesselProximityLogic::GetLastExactProximity() const
-{
-  return this->Exact == this->GetDistanceEngine() || !this->GetCompareWithExact() ? this->Tracking->GetLastFrame().Proximity
-                                                                                 : this->LastExact;
 }
 
 void vtkVesselProximityLogic::ResetTracking()

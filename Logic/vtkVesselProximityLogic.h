@@ -82,8 +82,8 @@ public:
   void SetDistanceEngine(vtkVesselDistanceEngine* engine);
   vtkVesselDistanceEngine* GetDistanceEngine() const;
 
-  /// Whether every frame is also answered by the exact engine, for GetLastExactProximity() and
-  /// the accuracy check (default false; pointless when the engine is the exact one).
+  /// Whether every frame is also answered by the exact engine (TrackedFrame::Exact), for the
+  /// accuracy check (default false; pointless when the engine is the exact one).
   void SetCompareWithExact(bool compare);
   bool GetCompareWithExact() const;
   /// Whether the whole instrument surface is measured beside the tip (default true), with the
@@ -103,9 +103,6 @@ public:
   /// are told. The reference is valid until the next call.
   const vp::TrackedFrame& ProcessPose(const vp::TrackedPose& pose);
   const vp::TrackedFrame& GetLastFrame() const;
-  /// The exact engine's answer for the last frame (CompareWithExact on), or that frame's own
-  /// answer when the engine is the exact one.
-  const vp::ProximityResult& GetLastExactProximity() const;
   /// Starts a new tracking session: the next pose is frame 0, from the safe level.
   void ResetTracking();
 
@@ -130,7 +127,6 @@ protected:
   vtkSmartPointer<vtkScalpelTrackingLogic> Tracking;
   bool SceneChanged = true;
   int NumberOfBuilds = 0;
-  vp::ProximityResult LastExact;
 
 private:
   vtkVesselProximityLogic(const vtkVesselProximityLogic&) = delete;

@@ -21,6 +21,9 @@ struct TrackedFrame
   double TipMm[3] = { 0, 0, 0 };   ///< world
   double AxisWorld[3] = { 0, 0, 1 };
   ProximityResult Proximity;       ///< per class: distance, closest point, inside, directional
+  /// The exact engine's answer for the same tip, when the tracking logic checks its engine
+  /// against one (vtkScalpelTrackingLogic::SetReferenceEngine); outside FrameMs.
+  std::optional<ProximityResult> Exact;
   std::vector<DangerLevel> ClassLevels; ///< per class, the tip's level
   /// Per class, the whole instrument's level (vp::ClassifyInstrumentWithHysteresis); empty when
   /// the instrument is not measured.

@@ -45,6 +45,15 @@ void vtkScalpelTrackingLogic::SetSurfaceDistance(vtkScalpelSurfaceDistance* surf
   }
 }
 
+void vtkScalpelTrackingLogic::SetReferenceEngine(vtkVesselDistanceEngine* reference)
+{
+  if (this->Reference != reference)
+  {
+    this->Reference = reference;
+    this->Modified();
+  }
+}
+
 void vtkScalpelTrackingLogic::SetPenetration(vtkScalpelPenetration* penetration)
 {
   if (this->Penetration != penetration)
@@ -261,6 +270,11 @@ const vp::TrackedFrame& vtkScalpelTrackingLogic::ProcessPose(const vp::TrackedPo
 
   this->Measure(pose, hasPrevious, frame);
   frame.OverBudget = this->Settings.FrameBudgetMs > 0.0 && frame.FrameMs > this->Settings.FrameBudgetMs;
+  if (this->Reference && this->Reference != this->Engine)
+  {
+    frame.Exact.emplace();
+    this->Reference->ComputeProximity(frame.TipMm, frame.AxisWorld, *frame.Exact);
+  }
 
   this->ClassifyDanger(frame, hasPrevious);
   if (frame.Tumour)

@@ -64,6 +64,11 @@ public:
   void SetPenetration(vtkScalpelPenetration* penetration);
   vtkScalpelPenetration* GetPenetration() const { return this->Penetration; }
 
+  /// Optional: an exact engine every frame's tip is also answered by, into TrackedFrame::Exact,
+  /// outside the frame's time (null, the default: none): the check of an approximate engine.
+  void SetReferenceEngine(vtkVesselDistanceEngine* reference);
+  vtkVesselDistanceEngine* GetReferenceEngine() const { return this->Reference; }
+
   /// Optional: the tip and the whole instrument against the tumours to be resected, each frame's
   /// TrackedFrame::Tumour (null, the default: no tumour). Its time counts in the frame's.
   void SetTumourMargin(vtkTumourMarginDistance* margin);
@@ -116,6 +121,7 @@ protected:
   vtkSmartPointer<vtkScalpelModel> Scalpel;
   vtkSmartPointer<vtkScalpelSurfaceDistance> SurfaceDistance;
   vtkSmartPointer<vtkScalpelPenetration> Penetration;
+  vtkSmartPointer<vtkVesselDistanceEngine> Reference;
   vtkSmartPointer<vtkTumourMarginDistance> TumourMargin;
   vp::TrackingSettings Settings;
   vp::TrackedFrame Last;

@@ -7,6 +7,7 @@
 #include "vpSceneRequest.h"
 #include "vpTestSupport.h"
 #include "vpTrackingSession.h"
+#include "vtkExactVesselDistance.h"
 #include "vtkScalpelModel.h"
 #include "vtkScalpelTrackingLogic.h"
 #include "vtkVesselMeshWriter.h"
@@ -357,6 +358,41 @@ TEST(EngineRegistry, EachMethodMakesItsEngineAndTheFrontEndsOfferItsSubsets)
   catch (const vp::ParameterError& e)
   {
     EXPECT_NE(std::string(e.what()).find("unknown method 'fast' (exact, zbuffer, both, brute, auto)"), std::string::npos) << e.what();
+  }
+}
+// The exact answer beside an approximate engine's is the frame's own (TrackedFrame::Exact), from
+// the one pose applied once: equal to the exact engine's for that tip; absent without the check.
+TEST(TrackingSession, TheExactAnswerBesideTheZBufferIsInTheFrame)
+{
+  for (const bool compare : { true, false })
+  {
+    vp::SceneRequest request;
+    request.Vessels = { { "portal_vein", "in memory", vp::MakeSphere(Origin, 10.0, 30, 60), std::nullopt } };
+    request.ComputeSurfaceDistance = false;
+    request.Engine.Method = "zbuffer";
+    request.CompareWithExact = compare;
+    vtkNew<vtkVesselProximityLogic> logic;
+    try
+    {
+      logic->OpenScene(request);
+    }
+    catch (const vp::DeviceError& e)
+    {
+      GTEST_SKIP() << "no Vulkan device for the z-buffer: " << e.what();
+    }
+    vp::TrackingSession session(logic);
+    const vp::TrackedFrame& frame = session.Process(TipAt(0.0, 14.5));
+    ASSERT_EQ(frame.Exact.has_value(), compare);
+    if (compare)
+    {
+      vtkNew<vtkExactVesselDistance> exact;
+      exact->AddVessel("portal_vein", vp::MakeSphere(Origin, 10.0, 30, 60));
+      vp::ProximityResult expected;
+      exact->ComputeProximity(frame.TipMm, frame.AxisWorld, expected);
+      EXPECT_EQ(frame.Exact->Classes[0].DistanceMm, expected.Classes[0].DistanceMm);
+      EXPECT_NEAR(frame.Exact->Classes[0].DistanceMm, 4.5, 0.1) << "the tip 14.5 mm from the centre of a 10 mm sphere";
+      EXPECT_LE(std::abs(frame.Proximity.Classes[0].DistanceMm - frame.Exact->Classes[0].DistanceMm), frame.Proximity.ErrorBoundMm);
+    }
   }
 }
 } // namespace

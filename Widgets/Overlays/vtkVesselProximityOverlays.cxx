@@ -160,8 +160,7 @@ void vtkVesselProximityOverlays::ShowFrame(const vp::TrackedFrame& frame)
     this->ClosestLine->Hide();
   }
   // The exact answer beside an approximate one when the logic computed both for this pose.
-  const bool both = this->Logic && this->Logic->GetCompareWithExact() && frame.Proximity.ErrorBoundMm > 0;
-  this->Readout->ShowFrame(frame, vp::FrameHeadline(frame), both ? &this->Logic->GetLastExactProximity() : nullptr);
+  this->Readout->ShowFrame(frame, vp::FrameHeadline(frame), frame.Exact ? &*frame.Exact : nullptr);
   this->Readout->ShowMargin(frame.Tumour ? &*frame.Tumour : nullptr,
     this->Logic ? this->Logic->GetTrackingLogic()->GetMarginSettings().MarginMm : vp::MarginSettings().MarginMm);
   this->Readout->ShowFrameTime(frame.FrameMs, frame.OverBudget,

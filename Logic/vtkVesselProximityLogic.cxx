@@ -115,7 +115,6 @@ void vtkVesselProximityLogic::SetParameters(vtkVesselProximityParameters* parame
   this->ParametersObserver =
     parameters->AddObserver(vtkCommand::ModifiedEvent, this, &vtkVesselProximityLogic::ApplyParameters);
   this->AppliedSceneMTime = 0;
-  this->AppliedSettingsMTime = 0;
   this->ApplyParameters();
 }
 
@@ -128,15 +127,8 @@ void vtkVesselProximityLogic::ApplyParameters()
     this->Tracking->SetScalpel(p->GetScalpel());
     this->SceneChanged = true;
   }
-  if (p->GetSettingsMTime() > this->AppliedSettingsMTime)
-  {
-    this->AppliedSettingsMTime = p->GetSettingsMTime();
-    this->Tracking->SetDangerThresholds(p->GetDangerThresholds());
-    this->Tracking->SetHysteresisMm(p->GetHysteresisMm());
-    this->Tracking->SetFrameBudgetMs(p->GetFrameBudgetMs());
-    this->Tracking->SetHapticSettings(p->GetHapticSettings());
-    this->Tracking->SetMarginSettings(p->GetMarginSettings());
-  }
+  // The tracking settings are the parameter set's alone, read each frame where they lie.
+  this->Tracking->ReadSettingsFrom(&p->GetTrackingSettings());
   this->Modified();
 }
 

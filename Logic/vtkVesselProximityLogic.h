@@ -119,7 +119,6 @@ protected:
   vtkSmartPointer<vtkVesselProximityParameters> Parameters;
   unsigned long ParametersObserver = 0;
   vtkMTimeType AppliedSceneMTime = 0;
-  vtkMTimeType AppliedSettingsMTime = 0;
   vtkSmartPointer<vtkExactVesselDistance> Exact;
   vtkSmartPointer<vtkScalpelSurfaceDistance> Surface;
   vtkSmartPointer<vtkScalpelPenetration> Penetration;

@@ -18,6 +18,7 @@ public:
   /// Forgets the previous frame (a new session, a lost tracking).
   void Reset();
   HapticSample Update(const TrackedFrame& frame);
+  const HapticSettings& GetSettings() const { return this->Settings; }
 
 private:
   HapticSettings Settings;

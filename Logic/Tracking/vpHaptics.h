@@ -22,6 +22,11 @@ struct HapticSettings
   double MaxRateMmPerS = 200.0;
 
   bool Enabled() const { return this->StiffnessNPerMm > 0.0 || this->DampingNsPerMm > 0.0; }
+  bool operator==(const HapticSettings& o) const
+  {
+    return this->StiffnessNPerMm == o.StiffnessNPerMm && this->DampingNsPerMm == o.DampingNsPerMm &&
+      this->RateTimeConstantS == o.RateTimeConstantS && this->MaxRateMmPerS == o.MaxRateMmPerS;
+  }
   /// Throws ParameterError("HapticStiffnessNPerMm", "HapticDampingNsPerMm") for a negative or
   /// non-finite value.
   void Validate() const;

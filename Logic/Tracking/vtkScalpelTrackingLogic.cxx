@@ -63,15 +63,34 @@ void vtkScalpelTrackingLogic::SetPenetration(vtkScalpelPenetration* penetration)
   }
 }
 
+void vtkScalpelTrackingLogic::ReadSettingsFrom(const vp::TrackingSettings* settings)
+{
+  const vp::TrackingSettings* now = settings ? settings : &this->OwnSettings;
+  if (this->Settings != now)
+  {
+    this->Settings = now;
+    this->Modified();
+  }
+}
+
+vp::TrackingSettings& vtkScalpelTrackingLogic::OwnSettingsToSet()
+{
+  if (this->Settings != &this->OwnSettings)
+  {
+    throw std::logic_error("vtkScalpelTrackingLogic: its settings are the parameter set's; set them there");
+  }
+  return this->OwnSettings;
+}
+
 void vtkScalpelTrackingLogic::SetHysteresisMm(double hysteresisMm)
 {
   if (!(hysteresisMm >= 0.0) || !std::isfinite(hysteresisMm))
   {
     throw vp::InputError("hysteresis", "expected a distance in mm, 0 or more, got " + vp::NumberText(hysteresisMm));
   }
-  if (this->Settings.HysteresisMm != hysteresisMm)
+  if (this->Settings->HysteresisMm != hysteresisMm)
   {
-    this->Settings.HysteresisMm = hysteresisMm;
+    this->OwnSettingsToSet().HysteresisMm = hysteresisMm;
     this->Modified();
   }
 }
@@ -82,21 +101,21 @@ void vtkScalpelTrackingLogic::ValidateSettings() const
   {
     throw std::logic_error("vtkScalpelTrackingLogic: set the distance engine first");
   }
-  this->Settings.Thresholds.Validate("danger thresholds");
+  this->Settings->Thresholds.Validate("danger thresholds");
   // An engine with a bound reports a class out of range when its estimate is beyond the range,
   // where the truth may lie the bound nearer: the range must reach the threshold by that much.
   const double boundMm = this->Engine->GetErrorBoundMm();
-  if (this->Engine->GetRangeMm() < this->Settings.Thresholds.CautionMm + boundMm)
+  if (this->Engine->GetRangeMm() < this->Settings->Thresholds.CautionMm + boundMm)
   {
     throw vp::ParameterError("RangeMm", "the range (" + vp::NumberText(this->Engine->GetRangeMm()) +
-        " mm) must reach the caution threshold (" + vp::NumberText(this->Settings.Thresholds.CautionMm) + " mm)" +
+        " mm) must reach the caution threshold (" + vp::NumberText(this->Settings->Thresholds.CautionMm) + " mm)" +
         (boundMm > 0.0 ? " plus the engine's error bound (" + vp::NumberText(boundMm) + " mm)" : std::string()) +
         ", or a class beyond it would look safe");
   }
-  if (this->Engine->GetErrorBoundMm() >= this->Settings.Thresholds.DangerMm)
+  if (this->Engine->GetErrorBoundMm() >= this->Settings->Thresholds.DangerMm)
   {
     throw vp::InputError("cell size", "the engine's error bound (" + vp::NumberText(this->Engine->GetErrorBoundMm()) +
-        " mm) must be below the danger threshold (" + vp::NumberText(this->Settings.Thresholds.DangerMm) +
+        " mm) must be below the danger threshold (" + vp::NumberText(this->Settings->Thresholds.DangerMm) +
         " mm), or it cannot tell danger from safety: use smaller cells");
   }
 }
@@ -126,7 +145,7 @@ void vtkScalpelTrackingLogic::SetTumourMargin(vtkTumourMarginDistance* margin)
 void vtkScalpelTrackingLogic::SetMarginSettings(const vp::MarginSettings& margin)
 {
   margin.Validate("MarginMm");
-  this->Settings.Margin = margin;
+  this->OwnSettingsToSet().Margin = margin;
 }
 
 void vtkScalpelTrackingLogic::ClassifyMargins(vp::TumourMargin& margin, bool hasPrevious) const
@@ -137,7 +156,7 @@ void vtkScalpelTrackingLogic::ClassifyMargins(vp::TumourMargin& margin, bool has
     vp::TumourProximity& p = margin.Tumours[t];
     const vp::MarginLevel previous =
       before && t < before->Tumours.size() ? before->Tumours[t].Level : vp::MarginLevel::Clear;
-    p.Level = vp::ClassifyMargin(p.SignedMm, p.InsideUncertain, this->Settings.Margin, previous, this->Settings.HysteresisMm);
+    p.Level = vp::ClassifyMargin(p.SignedMm, p.InsideUncertain, this->Settings->Margin, previous, this->Settings->HysteresisMm);
     const bool worse = margin.Worst < 0 || p.Level > margin.Level ||
       (p.Level == margin.Level && p.SignedMm < margin.Tumours[margin.Worst].SignedMm);
     if (worse)
@@ -151,8 +170,7 @@ void vtkScalpelTrackingLogic::ClassifyMargins(vp::TumourMargin& margin, bool has
 void vtkScalpelTrackingLogic::SetHapticSettings(const vp::HapticSettings& haptic)
 {
   haptic.Validate();
-  this->Settings.Haptic = haptic;
-  this->Haptic = vp::HapticForce(haptic);
+  this->OwnSettingsToSet().Haptic = haptic;
 }
 
 void vtkScalpelTrackingLogic::Measure(const vp::TrackedPose& pose, bool hasPrevious, vp::TrackedFrame& frame)
@@ -181,7 +199,7 @@ void vtkScalpelTrackingLogic::Measure(const vp::TrackedPose& pose, bool hasPrevi
   {
     frame.Tumour.emplace();
     // The instrument is measured where a tumour is more than clear: within the margin and its band.
-    const vp::MarginSettings& m = this->Settings.Margin;
+    const vp::MarginSettings& m = this->Settings->Margin;
     this->TumourMargin->SetInstrumentRangeMm(std::max(m.MarginMm + m.NearBandMm, MinimumInstrumentRangeMm));
     this->TumourMargin->ComputeMargin(
       frame.TipMm, pose.ModelToWorld, *frame.Tumour, hasPrevious && this->Last.Tumour ? &*this->Last.Tumour : nullptr);
@@ -219,7 +237,7 @@ void vtkScalpelTrackingLogic::ClassifyDanger(vp::TrackedFrame& frame, bool hasPr
   {
     const vp::DangerLevel before = hasPrevious && c < last.ClassLevels.size() ? last.ClassLevels[c] : vp::DangerLevel::Safe;
     frame.ClassLevels[c] = vp::ClassifyDangerWithHysteresis(
-      classes[c], frame.Proximity.ErrorBoundMm, this->Settings.Thresholds, before, this->Settings.HysteresisMm);
+      classes[c], frame.Proximity.ErrorBoundMm, this->Settings->Thresholds, before, this->Settings->HysteresisMm);
   }
   std::tie(frame.TipLevel, frame.TipLevelClass) = WorstOf(frame.ClassLevels, [&](std::size_t c) { return classes[c].DistanceMm; });
   frame.InstrumentClassLevels.resize(frame.Surface.size());
@@ -228,8 +246,8 @@ void vtkScalpelTrackingLogic::ClassifyDanger(vp::TrackedFrame& frame, bool hasPr
     const vp::DangerLevel before =
       hasPrevious && c < last.InstrumentClassLevels.size() ? last.InstrumentClassLevels[c] : vp::DangerLevel::Safe;
     frame.InstrumentClassLevels[c] = vp::ClassifyInstrumentWithHysteresis(frame.Surface[c],
-      c < frame.Penetrations.size() ? &frame.Penetrations[c] : nullptr, this->Settings.Thresholds, before,
-      this->Settings.HysteresisMm);
+      c < frame.Penetrations.size() ? &frame.Penetrations[c] : nullptr, this->Settings->Thresholds, before,
+      this->Settings->HysteresisMm);
     // The tip is the instrument's: a tip inside is an instrument inside, even one whose walls are
     // all beyond the range (where its surface distance and penetration are not searched).
     if (c < frame.ClassLevels.size() && frame.ClassLevels[c] == vp::DangerLevel::Breach)
@@ -269,7 +287,7 @@ const vp::TrackedFrame& vtkScalpelTrackingLogic::ProcessPose(const vp::TrackedPo
   this->Scalpel->GetAxisInWorld(frame.AxisWorld);
 
   this->Measure(pose, hasPrevious, frame);
-  frame.OverBudget = this->Settings.FrameBudgetMs > 0.0 && frame.FrameMs > this->Settings.FrameBudgetMs;
+  frame.OverBudget = this->Settings->FrameBudgetMs > 0.0 && frame.FrameMs > this->Settings->FrameBudgetMs;
   if (this->Reference && this->Reference != this->Engine)
   {
     frame.Exact.emplace();
@@ -281,8 +299,12 @@ const vp::TrackedFrame& vtkScalpelTrackingLogic::ProcessPose(const vp::TrackedPo
   {
     this->ClassifyMargins(*frame.Tumour, hasPrevious);
   }
-  if (this->Settings.Haptic.Enabled())
+  if (this->Settings->Haptic.Enabled())
   {
+    if (!(this->Haptic.GetSettings() == this->Settings->Haptic))
+    {
+      this->Haptic = vp::HapticForce(this->Settings->Haptic); // a new contact model: no rate carried over
+    }
     frame.Haptic = this->Haptic.Update(frame);
   }
   this->Last = std::move(frame);
@@ -330,13 +352,13 @@ void vtkScalpelTrackingLogic::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SurfaceDistance: " << (this->SurfaceDistance ? this->SurfaceDistance->GetMethodName() : "off") << "\n";
   os << indent << "Penetration: " << (this->Penetration ? "on" : "off") << "\n";
   os << indent << "Tumours: " << (this->TumourMargin ? this->TumourMargin->GetNumberOfTumours() : 0) << "\n";
-  os << indent << "MarginMm: " << this->Settings.Margin.MarginMm << " (near band " << this->Settings.Margin.NearBandMm
+  os << indent << "MarginMm: " << this->Settings->Margin.MarginMm << " (near band " << this->Settings->Margin.NearBandMm
      << ")\n";
-  os << indent << "DangerThresholds (caution, warning, danger): " << this->Settings.Thresholds.CautionMm << ", "
-     << this->Settings.Thresholds.WarningMm << ", " << this->Settings.Thresholds.DangerMm << " mm\n";
-  os << indent << "HysteresisMm: " << this->Settings.HysteresisMm << "\n";
-  os << indent << "HapticStiffnessNPerMm: " << this->Settings.Haptic.StiffnessNPerMm << "\n";
-  os << indent << "HapticDampingNsPerMm: " << this->Settings.Haptic.DampingNsPerMm << "\n";
-  os << indent << "FrameBudgetMs: " << this->Settings.FrameBudgetMs << (this->Settings.FrameBudgetMs > 0 ? "" : " (off)") << "\n";
+  os << indent << "DangerThresholds (caution, warning, danger): " << this->Settings->Thresholds.CautionMm << ", "
+     << this->Settings->Thresholds.WarningMm << ", " << this->Settings->Thresholds.DangerMm << " mm\n";
+  os << indent << "HysteresisMm: " << this->Settings->HysteresisMm << "\n";
+  os << indent << "HapticStiffnessNPerMm: " << this->Settings->Haptic.StiffnessNPerMm << "\n";
+  os << indent << "HapticDampingNsPerMm: " << this->Settings->Haptic.DampingNsPerMm << "\n";
+  os << indent << "FrameBudgetMs: " << this->Settings->FrameBudgetMs << (this->Settings->FrameBudgetMs > 0 ? "" : " (off)") << "\n";
   os << indent << "FramesProcessed: " << this->FramesProcessed << "\n";
 }

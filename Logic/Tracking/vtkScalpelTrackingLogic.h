@@ -73,32 +73,38 @@ public:
   /// TrackedFrame::Tumour (null, the default: no tumour). Its time counts in the frame's.
   void SetTumourMargin(vtkTumourMarginDistance* margin);
   vtkTumourMarginDistance* GetTumourMargin() const { return this->TumourMargin; }
+  /// Where the settings below are read, each frame: the module's parameter set
+  /// (vtkVesselProximityParameters::GetTrackingSettings, outliving this), which alone holds
+  /// them and checks them as they are set; the setters below then refuse (std::logic_error).
+  /// Null (the default): this logic's own, set by the setters, for use on its own.
+  void ReadSettingsFrom(const vp::TrackingSettings* settings);
+
   /// The resection margin and its near band (vp::MarginSettings: 5 and 5 mm); the levels take the
   /// hysteresis of the danger levels. Throws as MarginSettings::Validate.
   void SetMarginSettings(const vp::MarginSettings& margin);
-  const vp::MarginSettings& GetMarginSettings() const { return this->Settings.Margin; }
+  const vp::MarginSettings& GetMarginSettings() const { return this->Settings->Margin; }
 
   /// The time a frame may take, in ms (default vp::TrackingSettings: 16.7, one refresh at 60 Hz; the paper's 40 ms is
   /// where a navigator's animation freezes). A frame that takes longer is marked OverBudget; 0
   /// switches the check off.
-  void SetFrameBudgetMs(double budgetMs) { this->Settings.FrameBudgetMs = budgetMs; }
-  double GetFrameBudgetMs() const { return this->Settings.FrameBudgetMs; }
+  void SetFrameBudgetMs(double budgetMs) { this->OwnSettingsToSet().FrameBudgetMs = budgetMs; }
+  double GetFrameBudgetMs() const { return this->Settings->FrameBudgetMs; }
 
   /// Hysteresis on the way out of a level, in mm (default 0.3): entering a more dangerous level is
   /// immediate, leaving one needs the distance to exceed its threshold by this much (see
   /// vp::ClassifyDangerWithHysteresis); 0 switches it off. Tracking noise of a tenth of a
   /// millimetre at a threshold would otherwise flicker the level.
   void SetHysteresisMm(double hysteresisMm);
-  double GetHysteresisMm() const { return this->Settings.HysteresisMm; }
+  double GetHysteresisMm() const { return this->Settings->HysteresisMm; }
 
   /// The contact force for a haptic device (vp::HapticSettings; off by default): each frame's
   /// TrackedFrame::Haptic when on. Validated with the other settings.
   void SetHapticSettings(const vp::HapticSettings& haptic);
-  const vp::HapticSettings& GetHapticSettings() const { return this->Settings.Haptic; }
+  const vp::HapticSettings& GetHapticSettings() const { return this->Settings->Haptic; }
 
   /// Danger thresholds (defaults 10, 5, 2 mm). Validated when the first pose is processed.
-  void SetDangerThresholds(const vp::DangerThresholds& thresholds) { this->Settings.Thresholds = thresholds; }
-  const vp::DangerThresholds& GetDangerThresholds() const { return this->Settings.Thresholds; }
+  void SetDangerThresholds(const vp::DangerThresholds& thresholds) { this->OwnSettingsToSet().Thresholds = thresholds; }
+  const vp::DangerThresholds& GetDangerThresholds() const { return this->Settings->Thresholds; }
 
   /// Throws vp::InputError when the engine's range is shorter than the caution threshold plus
   /// its error bound (a far class would look safe when it is not), or its error bound is not
@@ -123,7 +129,10 @@ protected:
   vtkSmartPointer<vtkScalpelPenetration> Penetration;
   vtkSmartPointer<vtkVesselDistanceEngine> Reference;
   vtkSmartPointer<vtkTumourMarginDistance> TumourMargin;
-  vp::TrackingSettings Settings;
+  vp::TrackingSettings OwnSettings;
+  const vp::TrackingSettings* Settings = &OwnSettings;
+  /// The settings the setters change: this logic's own (throws when they are read elsewhere).
+  vp::TrackingSettings& OwnSettingsToSet();
   vp::TrackedFrame Last;
   int FramesProcessed = 0;
   vp::HapticForce Haptic;

@@ -395,4 +395,27 @@ TEST(TrackingSession, TheExactAnswerBesideTheZBufferIsInTheFrame)
     }
   }
 }
+// The tracking settings are held once, in the parameter set: the tracking logic reads them
+// there (a change is seen by the next frame, no copy to go stale), and refuses its own setters.
+TEST(TrackingSession, TheTrackingLogicReadsTheParameterSetsSettings)
+{
+  vp::SceneRequest request;
+  request.Vessels = { { "portal_vein", "in memory", vp::MakeSphere(Origin, 10.0, 30, 60), std::nullopt } };
+  request.ComputeSurfaceDistance = false;
+  vtkNew<vtkVesselProximityLogic> logic;
+  logic->OpenScene(request);
+  vtkScalpelTrackingLogic* tracking = logic->GetTrackingLogic();
+  EXPECT_EQ(&tracking->GetDangerThresholds(), &logic->GetParameters()->GetTrackingSettings().Thresholds);
+  logic->GetParameters()->SetHysteresisMm(1.25);
+  EXPECT_EQ(tracking->GetHysteresisMm(), 1.25);
+  EXPECT_THROW(tracking->SetHysteresisMm(0.5), std::logic_error);
+  vp::HapticSettings haptic;
+  haptic.StiffnessNPerMm = 0.2;
+  logic->GetParameters()->SetHapticSettings(haptic);
+  vp::TrackingSession session(logic);
+  const vp::TrackedFrame& inside = session.Process(TipAt(0.0, 7.0)); // 3 mm inside the sphere
+  ASSERT_TRUE(inside.Haptic.has_value());
+  EXPECT_NEAR(inside.Haptic->ForceN, 0.2 * inside.Haptic->DepthMm, 1e-9);
+  EXPECT_GT(inside.Haptic->DepthMm, 2.5);
+}
 } // namespace

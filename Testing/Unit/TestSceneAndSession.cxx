@@ -44,6 +44,26 @@ vp::TrackedPose TipAt(double timeS, double x)
   return { timeS, { 1, 0, 0, x, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 } };
 }
 
+/// The sphere (radius 10 mm at the origin) as the one vessel class, the tip alone measured.
+vp::SceneRequest SphereTipOnly()
+{
+  vp::SceneRequest request;
+  request.Vessels = { { "portal_vein", "in memory", vp::MakeSphere(Origin, 10.0, 30, 60), std::nullopt } };
+  request.ComputeSurfaceDistance = false;
+  return request;
+}
+
+/// 40 poses in from 30 mm to 6.6 mm from the sphere's centre: every level on the way.
+std::vector<vp::TrackedPose> InFromOutside()
+{
+  std::vector<vp::TrackedPose> poses;
+  for (int i = 0; i < 40; ++i)
+  {
+    poses.push_back(TipAt(0.02 * i, 30.0 - 0.6 * i));
+  }
+  return poses;
+}
+
 class SceneRequest : public ::testing::Test
 {
 protected:
@@ -199,16 +219,9 @@ TEST_F(SceneRequest, TheInstrumentMethodsAgreeAndTheRangeAndPenetrationAreHonour
 
 TEST(TrackingSession, ASourceAndSinglePosesGiveTheSameFramesAndARestartBeginsAtFrameZero)
 {
-  vp::SceneRequest request;
-  request.Vessels = { { "portal_vein", "in memory", vp::MakeSphere(Origin, 10.0, 30, 60), std::nullopt } };
-  request.ComputeSurfaceDistance = false;
   vtkNew<vtkVesselProximityLogic> logic;
-  logic->OpenScene(request);
-  std::vector<vp::TrackedPose> poses;
-  for (int i = 0; i < 40; ++i)
-  {
-    poses.push_back(TipAt(0.02 * i, 30.0 - 0.6 * i)); // in from 30 mm to 6.6 mm: every level on the way
-  }
+  logic->OpenScene(SphereTipOnly());
+  std::vector<vp::TrackedPose> poses = InFromOutside();
   vp::TrackingSession session(logic);
   vp::PoseListSource source(poses, "the test's poses");
   std::vector<vp::TrackedFrame> run;
@@ -252,16 +265,9 @@ private:
 // frame that made it (once, as the logic's own observers do), each lost pose and the end once.
 TEST(TrackingSession, OutputsHearEachChangeBeforeItsFrameEachLossAndTheEnd)
 {
-  vp::SceneRequest request;
-  request.Vessels = { { "portal_vein", "in memory", vp::MakeSphere(Origin, 10.0, 30, 60), std::nullopt } };
-  request.ComputeSurfaceDistance = false;
   vtkNew<vtkVesselProximityLogic> logic;
-  logic->OpenScene(request);
-  std::vector<vp::TrackedPose> poses;
-  for (int i = 0; i < 40; ++i)
-  {
-    poses.push_back(TipAt(0.02 * i, 30.0 - 0.6 * i));
-  }
+  logic->OpenScene(SphereTipOnly());
+  std::vector<vp::TrackedPose> poses = InFromOutside();
   vp::TrackedPose lost;
   lost.Lost = true;
   poses.insert(poses.begin() + 20, lost);
@@ -366,9 +372,7 @@ TEST(TrackingSession, TheExactAnswerBesideTheZBufferIsInTheFrame)
 {
   for (const bool compare : { true, false })
   {
-    vp::SceneRequest request;
-    request.Vessels = { { "portal_vein", "in memory", vp::MakeSphere(Origin, 10.0, 30, 60), std::nullopt } };
-    request.ComputeSurfaceDistance = false;
+    vp::SceneRequest request = SphereTipOnly();
     request.Engine.Method = "zbuffer";
     request.CompareWithExact = compare;
     vtkNew<vtkVesselProximityLogic> logic;
@@ -399,11 +403,8 @@ TEST(TrackingSession, TheExactAnswerBesideTheZBufferIsInTheFrame)
 // there (a change is seen by the next frame, no copy to go stale), and refuses its own setters.
 TEST(TrackingSession, TheTrackingLogicReadsTheParameterSetsSettings)
 {
-  vp::SceneRequest request;
-  request.Vessels = { { "portal_vein", "in memory", vp::MakeSphere(Origin, 10.0, 30, 60), std::nullopt } };
-  request.ComputeSurfaceDistance = false;
   vtkNew<vtkVesselProximityLogic> logic;
-  logic->OpenScene(request);
+  logic->OpenScene(SphereTipOnly());
   vtkScalpelTrackingLogic* tracking = logic->GetTrackingLogic();
   EXPECT_EQ(&tracking->GetDangerThresholds(), &logic->GetParameters()->GetTrackingSettings().Thresholds);
   logic->GetParameters()->SetHysteresisMm(1.25);

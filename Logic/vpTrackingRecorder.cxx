@@ -218,11 +218,13 @@ bool TrackingRecorder::Run(PoseSource& poses, RunFolder& run)
   RunRecord record(proximity, this->Summary, this->Comparison, check, framesCsv);
   TrackingSession session(proximity);
   session.SetProgress(this->Progress);
-  session.AddOutput(&record); // first: the other outputs hear of a frame once the report has it
+  // The caller's outputs first: a peer hears of a change of level before the frame is recorded
+  // (and even when recording it fails).
   for (FrameOutput* output : this->Outputs)
   {
     session.AddOutput(output);
   }
+  session.AddOutput(&record);
   const bool ended = session.Run(poses);
   if (!ended)
   {

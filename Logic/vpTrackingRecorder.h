@@ -38,8 +38,8 @@ public:
   /// Added to summary.json's timing_ms as load_and_build (the caller's time before Run()).
   void SetLoadAndBuildMs(double ms) { this->LoadAndBuildMs = ms; }
   /// An output of the run's frames beside the report (not owned; it outlives Run): told of each
-  /// frame once the report has it, of each change of level, lost pose and the end
-  /// (vp::FrameOutput): the live results, the key frames.
+  /// change of level, frame, lost pose and the end (vp::FrameOutput) before the report records
+  /// them, so that a peer hears of danger first: the live results, the key frames.
   void AddOutput(FrameOutput* output) { this->Outputs.push_back(output); }
   /// Called with summary.json before it is written, for the front end's own sections (a live
   /// run's latency and link counts).

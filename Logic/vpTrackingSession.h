@@ -6,6 +6,7 @@
 #include "vpTrackedFrame.h"
 
 #include <vtkNew.h>
+#include <vtkSmartPointer.h>
 
 #include <cstddef>
 #include <functional>
@@ -60,12 +61,12 @@ public:
   /// Poses of Run's sources the tracker had lost, and the time of the first (s).
   std::size_t GetNumberOfLostPoses() const { return this->Lost; }
   double GetFirstLostTimeS() const { return this->FirstLostTimeS; }
-  vtkVesselProximityLogic* GetLogic() const { return this->Logic; }
+  vtkVesselProximityLogic* GetLogic() const { return this->Logic.GetPointer(); }
 
 private:
   void Deliver(const TrackedFrame& frame);
 
-  vtkVesselProximityLogic* Logic;
+  vtkSmartPointer<vtkVesselProximityLogic> Logic; // held: the session observes its tracking logic
   std::vector<FrameOutput*> Outputs;
   /// The tracking logic's changes of level during the frame being computed, handed to the
   /// outputs once it is (the logic announces them inside its ProcessPose).

@@ -30,6 +30,7 @@ vtkVesselProximityLogic::vtkVesselProximityLogic()
 vtkVesselProximityLogic::~vtkVesselProximityLogic()
 {
   this->Parameters->RemoveObserver(this->ParametersObserver);
+  this->Tracking->ReadSettingsFrom(nullptr); // whoever still holds the tracking logic reads its own
 }
 
 vp::OpenedScene vtkVesselProximityLogic::OpenScene(const vp::SceneRequest& request)

@@ -307,6 +307,10 @@ const vp::TrackedFrame& vtkScalpelTrackingLogic::ProcessPose(const vp::TrackedPo
     }
     frame.Haptic = this->Haptic.Update(frame);
   }
+  else
+  {
+    this->Haptic.Reset(); // switched on again later: no rate carried over the gap
+  }
   this->Last = std::move(frame);
   ++this->FramesProcessed;
 

@@ -157,13 +157,7 @@ std::size_t RenderTrackKeyFrames(const ModuleServices& module, vtkVesselProximit
   vtkVesselProximityView::ParseCameraPreset(camera, pictures.Camera); // an enumeration: checked
   pictures.Folder = run.Folder("screenshots");
   pictures.ContactSheetFile = run.File("keyframes.png");
-  const std::size_t shots = RenderKeyFrameShots(module, pictures).size();
-  if (keys.GetLevelChangesLeftOut() > 0)
-  {
-    std::fprintf(stderr, "track: %zu more level change(s) not pictured (the first %zu are)\n", keys.GetLevelChangesLeftOut(),
-      KeyFrameFinder::MaximumLevelChanges);
-  }
-  return shots;
+  return RenderKeyFrameShots(module, pictures).size();
 }
 
 /// The z-buffer's answers outside its bound, when the run compared them with the exact engine.
@@ -264,6 +258,11 @@ int RunTrackCommand(const cli::ParsedArguments& args, const ModuleServices& modu
     progress.Stage("rendering the key frames");
     shots = RenderTrackKeyFrames(module, proximity, scene, keys, ReadPoseFile(posesFile, reading), args.GetString("view"), run);
     progress.Finish();
+    if (keys.GetLevelChangesLeftOut() > 0)
+    {
+      std::fprintf(stderr, "track: %zu more level change(s) not pictured (the first %zu are)\n", keys.GetLevelChangesLeftOut(),
+        KeyFrameFinder::MaximumLevelChanges);
+    }
   }
   ReportTrajectoryWarnings(session.GetWarnings(), strict, posesFile);
   if (strict)

@@ -175,6 +175,15 @@ void vtkVesselProximityView::Process(const std::array<double, 16>& modelToWorld,
   this->FollowScalpel();
 }
 
+void vtkVesselProximityView::AddOutput(vp::FrameOutput* output)
+{
+  this->Outputs.push_back(output);
+  if (this->Session)
+  {
+    this->Session->AddOutput(output);
+  }
+}
+
 void vtkVesselProximityView::ShowPose(int i)
 {
   if (i < 0 || i >= static_cast<int>(this->Poses.size()))

@@ -78,7 +78,7 @@ public:
 
   /// An output told of every frame the view computes, from any session it starts (not owned:
   /// it outlives the view's frames): vp::FrameOutput.
-  void AddOutput(vp::FrameOutput* output) { this->Outputs.push_back(output); }
+  void AddOutput(vp::FrameOutput* output);
 
   /// Follows a live stream (vp::LivePoseSource, which must outlive the view): each pose it gives
   /// is shown as it comes, a loss as "tracking lost" (vtkVesselProximityOverlays::ShowTrackingLost:

@@ -127,13 +127,13 @@ std::vector<std::string> SessionFiles(const RunFolder& run)
   return files;
 }
 
-/// The report's own part of the run, as the pipeline's first output: each change of level and
-/// each frame into the summary, the trajectory's check, the plot, frames.csv and the comparison
-/// with the exact engine; a gap in the plot where the tracker lost the tool.
+/// The report's own part of the run beside the summary (an output of its own, told of each frame
+/// first): each frame into the trajectory's check, the plot, frames.csv and the comparison with
+/// the exact engine; a gap in the plot where the tracker lost the tool.
 class RunRecord : public FrameOutput
 {
 public:
-  RunRecord(vtkVesselProximityLogic* logic, TrackingSummary& summary, std::optional<ExactComparison>& comparison,
+  RunRecord(vtkVesselProximityLogic* logic, const TrackingSummary& summary, std::optional<ExactComparison>& comparison,
     TrajectoryCheck& check, FramesCsvFile& framesCsv)
     : Logic(logic)
     , Surface(logic->GetComputeSurfaceDistance())
@@ -143,11 +143,8 @@ public:
     , FramesCsv(framesCsv)
   {
   }
-  void OnLevelChange(const DangerLevelChange& change) override { this->Summary.AddChange(change); }
-  void OnMarginChange(const MarginLevelChange& change) override { this->Summary.AddMarginChange(change); }
   void OnFrame(const TrackedFrame& frame) override
   {
-    this->Summary.Add(frame);
     this->Check.Add(frame);
     if (!this->Plot)
     {
@@ -177,7 +174,7 @@ public:
 private:
   vtkVesselProximityLogic* Logic;
   bool Surface;
-  TrackingSummary& Summary;
+  const TrackingSummary& Summary;
   std::optional<ExactComparison>& Comparison;
   TrajectoryCheck& Check;
   FramesCsvFile& FramesCsv;
@@ -224,6 +221,7 @@ bool TrackingRecorder::Run(PoseSource& poses, RunFolder& run)
   {
     session.AddOutput(output);
   }
+  session.AddOutput(&this->Summary); // before the record: the plot and frames.csv take its class names
   session.AddOutput(&record);
   const bool ended = session.Run(poses);
   if (!ended)

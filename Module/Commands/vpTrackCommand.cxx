@@ -145,10 +145,12 @@ void NoteTrackInputs(RunFolder& run, const std::string& posesFile, const SceneRe
   run.SetInputs(inputs);
 }
 
-/// The key frames' pictures and their contact sheet in the run; how many.
+/// The key frames' pictures and their contact sheet in the run, as a stage of progress (the
+/// level changes left out said once it is cleared); how many.
 std::size_t RenderTrackKeyFrames(const ModuleServices& module, vtkVesselProximityLogic* proximity, const OpenedScene& scene,
-  const KeyFrameFinder& keys, std::vector<TrackedPose> poses, const std::string& camera, RunFolder& run)
+  const KeyFrameFinder& keys, std::vector<TrackedPose> poses, const std::string& camera, RunFolder& run, StageProgress& progress)
 {
+  progress.Stage("rendering the key frames");
   KeyFrameShotRequest pictures;
   pictures.Logic = proximity;
   pictures.Poses = std::move(poses);
@@ -157,7 +159,14 @@ std::size_t RenderTrackKeyFrames(const ModuleServices& module, vtkVesselProximit
   vtkVesselProximityView::ParseCameraPreset(camera, pictures.Camera); // an enumeration: checked
   pictures.Folder = run.Folder("screenshots");
   pictures.ContactSheetFile = run.File("keyframes.png");
-  return RenderKeyFrameShots(module, pictures).size();
+  const std::size_t shots = RenderKeyFrameShots(module, pictures).size();
+  progress.Finish();
+  if (keys.GetLevelChangesLeftOut() > 0)
+  {
+    std::fprintf(stderr, "track: %zu more level change(s) not pictured (the first %zu are)\n", keys.GetLevelChangesLeftOut(),
+      KeyFrameFinder::MaximumLevelChanges);
+  }
+  return shots;
 }
 
 /// The z-buffer's answers outside its bound, when the run compared them with the exact engine.
@@ -255,14 +264,7 @@ int RunTrackCommand(const cli::ParsedArguments& args, const ModuleServices& modu
   std::size_t shots = 0;
   if (screenshots)
   {
-    progress.Stage("rendering the key frames");
-    shots = RenderTrackKeyFrames(module, proximity, scene, keys, ReadPoseFile(posesFile, reading), args.GetString("view"), run);
-    progress.Finish();
-    if (keys.GetLevelChangesLeftOut() > 0)
-    {
-      std::fprintf(stderr, "track: %zu more level change(s) not pictured (the first %zu are)\n", keys.GetLevelChangesLeftOut(),
-        KeyFrameFinder::MaximumLevelChanges);
-    }
+    shots = RenderTrackKeyFrames(module, proximity, scene, keys, ReadPoseFile(posesFile, reading), args.GetString("view"), run, progress);
   }
   ReportTrajectoryWarnings(session.GetWarnings(), strict, posesFile);
   if (strict)

@@ -63,6 +63,15 @@ const TrackedFrame& TrackingSession::Process(const TrackedPose& pose)
   return frame;
 }
 
+void TrackingSession::ProcessLost(const TrackedPose& pose)
+{
+  this->FirstLostTimeS = this->Lost++ == 0 ? pose.TimeS : this->FirstLostTimeS;
+  for (FrameOutput* output : this->Outputs)
+  {
+    output->OnLost(pose);
+  }
+}
+
 void TrackingSession::Deliver(const TrackedFrame& frame)
 {
   for (FrameOutput* output : this->Outputs)
@@ -98,11 +107,7 @@ bool TrackingSession::Run(PoseSource& poses, const std::function<void(const Trac
     }
     if (pose.Lost)
     {
-      this->FirstLostTimeS = this->Lost++ == 0 ? pose.TimeS : this->FirstLostTimeS;
-      for (FrameOutput* output : this->Outputs)
-      {
-        output->OnLost(pose);
-      }
+      this->ProcessLost(pose);
       if (onLost)
       {
         onLost(pose);

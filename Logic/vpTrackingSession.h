@@ -38,6 +38,9 @@ public:
 
   /// One pose: its frame, valid until the next pose; the outputs have been told of it.
   const TrackedFrame& Process(const TrackedPose& pose);
+  /// A pose the tracker lost (TrackedPose::Lost): counted and told to the outputs, never
+  /// computed (no distance comes from where the tool was before).
+  void ProcessLost(const TrackedPose& pose);
 
   /// Every pose of the source in turn; each frame goes to the outputs, then to onFrame (may be
   /// empty), outside the frame's own time. A lost pose (the tracker did not see the tool) is
@@ -58,7 +61,7 @@ public:
 
   /// Frames computed since the session started (or restarted).
   std::size_t GetNumberOfFrames() const { return this->Frames; }
-  /// Poses of Run's sources the tracker had lost, and the time of the first (s).
+  /// Poses the tracker had lost (from Run or ProcessLost), and the time of the first (s).
   std::size_t GetNumberOfLostPoses() const { return this->Lost; }
   double GetFirstLostTimeS() const { return this->FirstLostTimeS; }
   vtkVesselProximityLogic* GetLogic() const { return this->Logic.GetPointer(); }

@@ -12,6 +12,8 @@
 #    the phantom generators (Phantom/) too, and nothing of Module/, Widgets/ or Benchmark/; the
 #    benchmarks (Benchmark/) Logic's public headers and the internals they measure
 #    (Benchmark/MeasuredHeaders.txt), nothing of Module/ or Widgets/ (issue 51);
+#  - the VesselProximity module includes nothing of Phantom/ or Benchmark/: the demo module
+#    (Module/Demo) alone does (issue 51);
 #  - no two classes use each other: where A's files include B's header, B's files do not include
 #    A's (issue 51), but for a header that builds on another class's types for that class's own
 #    implementation (a pimpl's Internals, a parser's value helpers: B.h includes A.h, A.cxx B.h).
@@ -83,13 +85,14 @@ breach "Logic/ includes a widget, module or phantom header" \
   "$(grep -rnE --include='*.h' --include='*.cxx' '#include "(vtkVesselProximityView|vtkVesselProximityOverlays|vpCommand|vpCli|vpLiverPhantom|vpDemoTrajectory|vpAnalyticShapes|vpBuiltInPhantom|vpCusaHandpiece|vpMeshRefinement)' Logic)"
 breach "Run...Command called outside the command table" \
   "$(grep -rnE --include='*.h' --include='*.cxx' '\bRun[A-Z][A-Za-z]*Command\(' Module Widgets Logic Phantom |
-     grep -vE '^Module/Commands/vpCommandTable\.cxx:|^Module/Commands/vpCommands\.h:|^Module/Commands/vp[A-Za-z]+Command\.cxx:[0-9]+:int Run')"
+     grep -vE '^Module/Commands/vpCommandTable\.cxx:|^Module/Commands/vpCommands\.h:|^Module/Demo/vpDemoCommandTable\.cxx:|^Module/Demo/vpDemoCommands\.h:|^Module/(Commands|Demo)/vp[A-Za-z]+Command\.cxx:[0-9]+:int Run')"
 breach "stdout captured outside the CLI harness" \
   "$(grep -rn --include='*.h' --include='*.cxx' 'cout.rdbuf\|cout\.rdbuf(' Module Widgets Logic Phantom | grep -v '^Module/CLI/vpCliProgram\.cxx:')"
 breach "a command's usage or options written by hand (declare them in its description: vpCliDescription.h)" \
-  "$(grep -rnE --include='*.h' --include='*.cxx' 'const char\* *Usage|std::set<std::string> options|Arguments args\(' Module/Commands)"
+  "$(grep -rnE --include='*.h' --include='*.cxx' 'const char\* *Usage|std::set<std::string> options|Arguments args\(' Module/Commands Module/Demo)"
 breach "a command makes its own logic or overlays (take them from the module: ModuleServices)" \
-  "$(grep -rnE --include='*.h' --include='*.cxx' 'vtkVesselProximity(Logic|Overlays)>::New|vtkNew<vtkVesselProximity(Logic|Overlays)>' Module/Commands)"
+  "$(grep -rnE --include='*.h' --include='*.cxx' 'vtkVesselProximity(Logic|Overlays)>::New|vtkNew<vtkVesselProximity(Logic|Overlays)>' Module/Commands Module/Demo |
+     grep -v '^Module/Demo/vpVesselProximityDemoModule\.cxx:')"
 public=" $(grep -vE '^\s*(#|$)' Logic/PublicHeaders.txt | tr '\n' ' ') "
 private_use=""
 while IFS=: read -r file line text; do
@@ -119,6 +122,8 @@ breach "Benchmark/ includes a header of a front end" \
   "$(grep -rnE --include='*.h' --include='*.cxx' "^#include \"($(headers_of Module Widgets))\"" Benchmark)"
 breach "Phantom/ includes a header of a front end or a benchmark" \
   "$(grep -rnE --include='*.h' --include='*.cxx' "^#include \"($(headers_of Module Widgets Benchmark))\"" Phantom)"
+breach "the VesselProximity module (Module/ but its Demo/ module) includes a phantom or benchmark header" \
+  "$(grep -rnE --include='*.h' --include='*.cxx' "^#include \"($(headers_of Phantom Benchmark))\"" Module --exclude-dir=Demo)"
 breach "Logic/ includes a benchmark header" \
   "$(grep -rnE --include='*.h' --include='*.cxx' "^#include \"($(headers_of Benchmark))\"" Logic)"
 # Which class's files include which class's header: "A>B" is A's header or implementation

@@ -12,9 +12,7 @@ namespace vp
 const std::vector<CommandEntry>& CommandTable()
 {
   static const std::vector<CommandEntry> table{
-    { "demo", DescribeDemoCommand, RunDemoCommand },
     { "view", DescribeViewCommand, RunViewCommand },
-    { "selftest", DescribeSelfTestCommand, RunSelfTestCommand },
     { "models", DescribeModelsCommand, RunModelsCommand },
     { "distance", DescribeDistanceCommand, RunDistanceCommand },
     { "track", DescribeTrackCommand, RunTrackCommand },
@@ -22,8 +20,6 @@ const std::vector<CommandEntry>& CommandTable()
     { "live", DescribeLiveCommand, RunLiveCommand },
     { "serve", DescribeServeCommand, RunServeCommand },
     { "register", DescribeRegisterCommand, RunRegisterCommand },
-    { "bench", DescribeBenchCommand, RunBenchCommand },
-    { "phantom", DescribePhantomCommand, RunPhantomCommand },
   };
   return table;
 }

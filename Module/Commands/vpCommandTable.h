@@ -18,7 +18,8 @@ struct CommandEntry
   int (*Run)(const cli::ParsedArguments& args, const ModuleServices& module);
 };
 
-/// Every command of the VesselProximity module, in the order --help lists them.
+/// Every command of the VesselProximity module, in the order --help lists them (the demo
+/// module's are DemoCommandTable(), in Module/Demo).
 const std::vector<CommandEntry>& CommandTable();
 
 /// Runs a command in its module: --help from its description, else its command line parsed

@@ -6,16 +6,13 @@
 
 namespace vp
 {
-/// Each subcommand declares its parameters once (Describe…), and the command table parses its
-/// command line with them (and answers --help from them). Run… takes the parsed arguments, writes
+/// Each subcommand of the VesselProximity module (the demo module's are in vpDemoCommands.h)
+/// declares its parameters once (Describe…), and the command table parses its command line with
+/// them (and answers --help from them). Run… takes the parsed arguments, writes
 /// its result to stdout (or files), and returns the process exit code. Bad input throws
 /// InputError, caught by the table.
 cli::ModuleDescription DescribeDistanceCommand();
 int RunDistanceCommand(const cli::ParsedArguments& args, const ModuleServices& module);
-cli::ModuleDescription DescribeBenchCommand();
-int RunBenchCommand(const cli::ParsedArguments& args, const ModuleServices& module);
-cli::ModuleDescription DescribePhantomCommand();
-int RunPhantomCommand(const cli::ParsedArguments& args, const ModuleServices& module);
 cli::ModuleDescription DescribeBatchCommand();
 int RunBatchCommand(const cli::ParsedArguments& args, const ModuleServices& module);
 cli::ModuleDescription DescribeModelsCommand();
@@ -28,12 +25,8 @@ cli::ModuleDescription DescribeServeCommand();
 int RunServeCommand(const cli::ParsedArguments& args, const ModuleServices& module);
 cli::ModuleDescription DescribeRegisterCommand();
 int RunRegisterCommand(const cli::ParsedArguments& args, const ModuleServices& module);
-cli::ModuleDescription DescribeDemoCommand();
-int RunDemoCommand(const cli::ParsedArguments& args, const ModuleServices& module);
 cli::ModuleDescription DescribeViewCommand();
 int RunViewCommand(const cli::ParsedArguments& args, const ModuleServices& module);
-cli::ModuleDescription DescribeSelfTestCommand();
-int RunSelfTestCommand(const cli::ParsedArguments& args, const ModuleServices& module);
 } // namespace vp
 
 #endif

@@ -15,7 +15,7 @@
 
 namespace vp
 {
-std::vector<std::string> RenderKeyFrameShots(const ModuleServices& module, const KeyFrameShotRequest& request)
+std::vector<KeyFrameScreenshots::Shot> RenderKeyFrameShots(const ModuleServices& module, const KeyFrameShotRequest& request)
 {
   vtkNew<vtkVesselProximityView> view;
   view->SetOverlays(module.CreateWidgetRepresentation());
@@ -38,25 +38,25 @@ std::vector<std::string> RenderKeyFrameShots(const ModuleServices& module, const
     view->GetRenderer()->ResetCameraClippingRange();
   }
   view->SetPoses(request.Poses);
-  std::vector<std::string> files;
-  std::vector<ContactSheetEntry> sheet;
-  std::size_t next = 0;
-  for (std::size_t i = 0; i < request.Poses.size() && next < request.Keys.size(); ++i)
+  // The poses run through the view's session up to the last key, every one of them so that the
+  // plot shows the way there; the screenshots are an output of that run.
+  KeyFrameScreenshots shots(view, request.Keys, request.Folder);
+  view->AddOutput(&shots);
+  if (!request.Keys.empty())
   {
-    view->ShowPose(static_cast<int>(i)); // every pose, so that the plot shows the way there
-    if (i != request.Keys[next].PoseIndex)
-    {
-      continue;
-    }
-    char name[160];
-    std::snprintf(name, sizeof(name), "/frame%04zu_%s.png", i, request.Keys[next].Name.c_str());
-    files.push_back(view->SaveScreenshot(request.Folder + name));
-    char caption[400];
-    std::snprintf(caption, sizeof(caption), "%.2f s: %s", request.Poses[i].TimeS, request.Keys[next].Caption.c_str());
-    sheet.push_back({ view->GetLastScreenshot(), caption });
-    ++next;
+    view->ReplayTo(static_cast<int>(shots.GetLastKeyPose()));
   }
-  WritePngAtomically(MakeContactSheet(sheet), request.ContactSheetFile);
-  return files;
+  if (!request.ContactSheetFile.empty())
+  {
+    std::vector<ContactSheetEntry> sheet;
+    for (const KeyFrameScreenshots::Shot& shot : shots.GetShots())
+    {
+      char caption[400];
+      std::snprintf(caption, sizeof(caption), "%.2f s: %s", shot.TimeS, shot.Key.Caption.c_str());
+      sheet.push_back({ shot.Picture, caption });
+    }
+    WritePngAtomically(MakeContactSheet(sheet), request.ContactSheetFile);
+  }
+  return shots.GetShots();
 }
 } // namespace vp

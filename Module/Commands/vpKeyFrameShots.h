@@ -1,6 +1,7 @@
 #ifndef vpKeyFrameShots_h
 #define vpKeyFrameShots_h
 
+#include "vpKeyFrameScreenshots.h"
 #include "vpKeyFrames.h"
 #include "vpPoseFile.h"
 #include "vtkVesselProximityView.h"
@@ -17,8 +18,8 @@ class ModuleServices;
 
 /// Pictures of a run's key frames (vp::KeyFrameFinder): the poses replayed through an off-screen
 /// view of the logic with the module's overlays, a screenshot at each key frame
-/// (folder/frameNNNN_<name>.png) and a contact sheet of them all, captioned with frame, time and
-/// reason. Needs a display (a virtual one is started when there is none; the caller asks first).
+/// (vp::KeyFrameScreenshots: folder/frameNNNN_<name>.png) and, when asked, a contact sheet of
+/// them all, captioned with time and reason. Needs a display (the caller makes sure of one).
 struct KeyFrameShotRequest
 {
   vtkVesselProximityLogic* Logic = nullptr; ///< its scene open
@@ -27,11 +28,11 @@ struct KeyFrameShotRequest
   std::vector<KeyFrame> Keys;
   vtkVesselProximityView::CameraPreset Camera = vtkVesselProximityView::CameraPreset::Anterior;
   std::string Folder;            ///< where the screenshots go
-  std::string ContactSheetFile;  ///< the contact sheet (keyframes.png)
+  std::string ContactSheetFile;  ///< the contact sheet (keyframes.png); empty: none
 };
 
-/// The screenshots written, in pose order.
-std::vector<std::string> RenderKeyFrameShots(const ModuleServices& module, const KeyFrameShotRequest& request);
+/// The screenshots taken, in pose order.
+std::vector<KeyFrameScreenshots::Shot> RenderKeyFrameShots(const ModuleServices& module, const KeyFrameShotRequest& request);
 } // namespace vp
 
 #endif

@@ -160,11 +160,11 @@ void SetUpView(vtkVesselProximityView* view, const ModuleServices& module, vtkVe
     view->SetLiverSurface(scene.Liver);
   }
   view->SetPoses(in.Poses);
-  for (int i = 0; i <= in.FirstPose && !in.Poses.empty(); ++i)
+  if (!in.Poses.empty())
   {
-    view->ShowPose(i);
+    view->ReplayTo(in.FirstPose);
   }
-  if (in.Poses.empty())
+  else
   {
     view->SetScalpelPose(StartingPose(logic));
   }

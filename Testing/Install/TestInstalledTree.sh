@@ -19,6 +19,7 @@ slicer=$(ls -d "$moved"/lib/Slicer-*)
 cli="$slicer/cli-modules"
 for f in "$cli/VesselProximityModels" "$cli/VesselProximityDistance" "$cli/VesselProximityTrack" \
   "$slicer/qt-loadable-modules/libVesselProximityModule.so" "$slicer/qt-loadable-modules/libVesselProximityLogic.so" \
+  "$slicer/qt-loadable-modules/libVesselProximityDemoModule.so" "$slicer/qt-loadable-modules/libVesselProximityCommands.so" \
   "$slicer/qt-loadable-modules/libVesselProximityWidgets.so" "$slicer/qt-loadable-modules/libVesselProximityPhantom.so" \
   "$moved/bin/vesselproximity" "$moved/include/VesselProximity/vtkVesselProximityLogic.h" \
   "$moved/lib/cmake/VesselProximity/VesselProximityConfig.cmake" "$moved/share/doc/VesselProximity/README.md" \

@@ -1,4 +1,4 @@
-// The overlays driven by the logic, and their pictures: the module's widget representation on
+// The overlays as an output of the logic's frames, and their pictures: the module's widget representation on
 // the built-in phantom (torus portal vein, cylinder artery, sphere hepatic vein) with the
 // built-in CUSA handpiece, at poses whose answers are known analytically.
 #include "vpBuiltInPhantom.h"
@@ -24,6 +24,7 @@
 #include "vtkVesselProximityView.h"
 #include "vpClearViewCamera.h"
 #include "vpTipOcclusion.h"
+#include "vpTrackingSession.h"
 #include "vtkZBufferVesselDistance.h"
 #include "vpVulkanContext.h"
 #include "vpVesselLabelTable.h"
@@ -103,6 +104,8 @@ TEST(Overlays, FollowTheLogicAndRecolourOnlyOnLevelChanges)
   vtkNew<vtkVesselProximityOverlays> overlays;
   overlays->SetRenderer(renderer);
   overlays->SetLogic(logic);
+  vp::TrackingSession session(logic); // the overlays are an output of its frames
+  session.AddOutput(overlays);
 
   // Vessel actors in the label table's colours, the same as the plot's lines (one colour per class).
   const vp::VesselLabelTable table = vp::VesselLabelTable::Default();
@@ -126,7 +129,7 @@ TEST(Overlays, FollowTheLogicAndRecolourOnlyOnLevelChanges)
   for (int i = 0; i <= 40; ++i)
   {
     const double z = 21.0 - 0.5 * i; // 21 mm down to 1 mm: inside the tube below z = 6
-    const vp::TrackedFrame& f = logic->ProcessPose(Pose(0.02 * i, TipDownAt(z)));
+    const vp::TrackedFrame& f = session.Process(Pose(0.02 * i, TipDownAt(z)));
     changes += f.Level != previous ? 1 : 0;
     previous = f.Level;
     // The scalpel wears the colour of the frame's level.
@@ -171,10 +174,12 @@ TEST(Overlays, ConfigurableColoursAndThresholds)
   logic->SetDangerThresholds({ 20.0, 12.0, 8.0 });
   vtkNew<vtkVesselProximityOverlays> overlays;
   overlays->SetLogic(logic);
+  vp::TrackingSession session(logic); // the overlays are an output of its frames
+  session.AddOutput(overlays);
   overlays->GetScalpel()->SetLevelColour(vp::DangerLevel::Warning, { 255, 200, 0 });
   // 10 mm from the tube: a warning with these thresholds (caution with the defaults), drawn in
   // the colour set for it.
-  const vp::TrackedFrame& f = logic->ProcessPose(Pose(0.0, TipDownAt(16.0)));
+  const vp::TrackedFrame& f = session.Process(Pose(0.0, TipDownAt(16.0)));
   EXPECT_EQ(f.Level, vp::DangerLevel::Warning);
   const double* rgb = overlays->GetScalpel()->GetActor()->GetProperty()->GetColor();
   EXPECT_NEAR(rgb[0], 1.0, 1e-12);
@@ -191,17 +196,19 @@ TEST(Overlays, AFrameOverItsBudgetIsShownAndCleared)
   auto logic = MakePhantomLogic(tmp);
   vtkNew<vtkVesselProximityOverlays> overlays;
   overlays->SetLogic(logic);
+  vp::TrackingSession session(logic); // the overlays are an output of its frames
+  session.AddOutput(overlays);
   vtkProximityReadoutRepresentation* readout = overlays->GetReadout();
   const int last = readout->GetNumberOfLines() - 1;
-  logic->ProcessPose(Pose(0.0, TipDownAt(16.0)));
+  session.Process(Pose(0.0, TipDownAt(16.0)));
   EXPECT_EQ(readout->GetLineText(last), "") << "budget off: nothing to say";
   logic->GetParameters()->SetFrameBudgetMs(1e-9);
-  const vp::TrackedFrame& late = logic->ProcessPose(Pose(0.02, TipDownAt(15.5)));
+  const vp::TrackedFrame& late = session.Process(Pose(0.02, TipDownAt(15.5)));
   ASSERT_TRUE(late.OverBudget);
   EXPECT_NE(readout->GetLineText(last).find("over the 0.0 ms budget"), std::string::npos) << readout->GetLineText(last);
   EXPECT_EQ(readout->GetLineText(last).find("frame "), 0u) << readout->GetLineText(last);
   logic->GetParameters()->SetFrameBudgetMs(60000.0);
-  EXPECT_FALSE(logic->ProcessPose(Pose(0.04, TipDownAt(15.0))).OverBudget);
+  EXPECT_FALSE(session.Process(Pose(0.04, TipDownAt(15.0))).OverBudget);
   EXPECT_EQ(readout->GetLineText(last), "");
   std::filesystem::remove_all(tmp);
 }
@@ -227,7 +234,7 @@ TEST(Overlays, ThePlotIsDrawnOnlyWhenARenderShowsIt)
   const int before = plot->GetNumberOfRedraws();
   for (int i = 0; i < 30; ++i)
   {
-    logic->ProcessPose(Pose(0.02 * i, TipDownAt(20.0 - 0.5 * i)));
+    view->SetScalpelPose(TipDownAt(20.0 - 0.5 * i));
   }
   EXPECT_EQ(plot->GetNumberOfSamples(), 30);
   EXPECT_EQ(plot->GetNumberOfRedraws(), before) << "no render, no drawing";
@@ -236,7 +243,7 @@ TEST(Overlays, ThePlotIsDrawnOnlyWhenARenderShowsIt)
   view->GetRenderer()->GetActiveCamera()->Azimuth(10);
   view->Render();
   EXPECT_EQ(plot->GetNumberOfRedraws(), before + 1) << "only the camera moved";
-  logic->ProcessPose(Pose(0.6, TipDownAt(5.0)));
+  view->SetScalpelPose(TipDownAt(5.0));
   ASSERT_NE(plot->GetImage(), nullptr); // asking for the picture draws it
   EXPECT_EQ(plot->GetNumberOfRedraws(), before + 2);
   std::filesystem::remove_all(tmp);
@@ -265,7 +272,7 @@ TEST(Overlays, AViewTakesTheModulesOverlays)
   EXPECT_EQ(view->GetOverlays(), given.GetPointer());
   EXPECT_EQ(given->GetLogic(), logic.GetPointer()) << "the logic already shown is handed on";
   EXPECT_EQ(first->GetRenderer(), nullptr) << "the overlays it had leave the renderer";
-  logic->ProcessPose(Pose(0.0, TipDownAt(5.0)));
+  view->SetScalpelPose(TipDownAt(5.0));
   view->Render();
   EXPECT_EQ(view->GetRenderer()->GetViewProps()->GetNumberOfItems(), propsWithOne) << "one set of overlays drawn";
   EXPECT_EQ(given->GetPlot()->GetNumberOfSamples(), 1) << "the given overlays follow the logic";
@@ -312,6 +319,8 @@ TEST(Overlays, ATumourIsShownInItsColourAndItsMarginRead)
   vtkNew<vtkVesselProximityOverlays> overlays;
   overlays->SetRenderer(renderer);
   overlays->SetLogic(logic);
+  vp::TrackingSession session(logic); // the overlays are an output of its frames
+  session.AddOutput(overlays);
   vtkActor* tumour = overlays->GetVessels()->GetTumourActor("lesion");
   ASSERT_NE(tumour, nullptr);
   EXPECT_TRUE(renderer->GetActors()->IsItemPresent(tumour));
@@ -323,12 +332,12 @@ TEST(Overlays, ATumourIsShownInItsColourAndItsMarginRead)
   vtkProximityReadoutRepresentation* readout = overlays->GetReadout();
   const int margin = readout->GetNumberOfLines() - 2;
   EXPECT_EQ(readout->GetLineText(margin), "") << "no pose yet";
-  logic->ProcessPose(Pose(0.0, TipDownAt(21.0)));
+  session.Process(Pose(0.0, TipDownAt(21.0)));
   EXPECT_NE(readout->GetLineText(margin).find("tumour lesion"), std::string::npos) << readout->GetLineText(margin);
   EXPECT_NE(readout->GetLineText(margin).find("14.0 mm  CLEAR  (margin 5 mm)"), std::string::npos) << readout->GetLineText(margin);
-  logic->ProcessPose(Pose(0.1, TipDownAt(32.0)));
+  session.Process(Pose(0.1, TipDownAt(32.0)));
   EXPECT_NE(readout->GetLineText(margin).find("3.0 mm  VIOLATED"), std::string::npos) << readout->GetLineText(margin);
-  logic->ProcessPose(Pose(0.2, TipDownAt(37.0)));
+  session.Process(Pose(0.2, TipDownAt(37.0)));
   EXPECT_NE(readout->GetLineText(margin).find("2.0 mm inside  INSIDE"), std::string::npos) << readout->GetLineText(margin);
   overlays->ShowTrackingLost(250.0);
   EXPECT_EQ(readout->GetLineText(margin), "tumour                -") << "no distance read as current";
@@ -490,11 +499,13 @@ TEST(Overlays, ZBufferLayersAreNotRebuiltWhenTheScalpelMoves)
   logic->SetDistanceEngine(zbuffer);
   vtkNew<vtkVesselProximityOverlays> overlays;
   overlays->SetLogic(logic);
-  logic->ProcessPose(Pose(0.0, TipDownAt(20.0)));
+  vp::TrackingSession session(logic); // the overlays are an output of its frames
+  session.AddOutput(overlays);
+  session.Process(Pose(0.0, TipDownAt(20.0)));
   const int renders = zbuffer->GetNumberOfRenders();
   for (int i = 1; i <= 20; ++i)
   {
-    logic->ProcessPose(Pose(0.02 * i, TipDownAt(20.0 - 0.5 * i)));
+    session.Process(Pose(0.02 * i, TipDownAt(20.0 - 0.5 * i)));
   }
   EXPECT_EQ(zbuffer->GetNumberOfRenders(), renders);
   EXPECT_EQ(logic->GetNumberOfBuilds(), 1);

@@ -33,6 +33,33 @@ TEST(ModuleHost, HelpListsTheLoadedModuleWithItsMetadataAndCommands)
   std::filesystem::remove_all(tmp);
 }
 
+// The module a host embeds links neither the phantom generators nor the benchmarks (issue 51):
+// those are the demo module's, listed beside it.
+TEST(ModuleHost, TheDemoModuleAloneLinksThePhantomAndTheBenchmarks)
+{
+  const std::string tmp = vp::test::MakeTempDir("host_demo_module");
+  const auto help = vp::test::RunTool(tmp, "--help");
+  ASSERT_EQ(help.ExitCode, 0) << help.Err;
+  EXPECT_NE(help.Out.find("module VesselProximityDemo,"), std::string::npos) << help.Out;
+  const std::string lib = std::filesystem::path(VP_EXECUTABLE).parent_path().parent_path().string() + "/lib";
+  // What the library needs (readelf's NEEDED lines) and what it defines (nm).
+  const auto linked = [&](const std::string& library) {
+    const std::string out = tmp + "/linked.txt";
+    EXPECT_EQ(std::system(("readelf -d " + library + " >" + out + " && nm -DC --defined-only " + library + " >>" + out).c_str()), 0);
+    return vp::test::Slurp(out);
+  };
+  for (const std::string& library : { lib + "/vesselproximity-modules/libVesselProximityModule.so", lib + "/libVesselProximityCommands.so" })
+  {
+    const std::string text = linked(library);
+    ASSERT_NE(text.find("NEEDED"), std::string::npos) << library << ": " << text.substr(0, 300);
+    EXPECT_EQ(text.find("libVesselProximityPhantom"), std::string::npos) << library;
+    EXPECT_EQ(text.find("Benchmark"), std::string::npos) << library;
+  }
+  const std::string demo = linked(lib + "/vesselproximity-modules/libVesselProximityDemoModule.so");
+  EXPECT_NE(demo.find("libVesselProximityPhantom"), std::string::npos);
+  std::filesystem::remove_all(tmp);
+}
+
 TEST(ModuleHost, ModulePathFromTheFlagAndTheEnvironment)
 {
   const std::string tmp = vp::test::MakeTempDir("host_path");

@@ -13,9 +13,10 @@
 #include "vtkVesselProximityLogic.h"
 #include "vtkVesselProximityParameters.h"
 
-#include <vtkCallbackCommand.h>
 #include <vtkObjectFactory.h>
 #include <vtkRenderer.h>
+
+#include <algorithm>
 
 vtkStandardNewMacro(vtkVesselProximityOverlays);
 
@@ -25,32 +26,10 @@ vtkVesselProximityOverlays::vtkVesselProximityOverlays()
   , ClosestLine(vtkSmartPointer<vtkClosestPointLineRepresentation>::New())
   , Readout(vtkSmartPointer<vtkProximityReadoutRepresentation>::New())
   , Plot(vtkSmartPointer<vtkDistancePlotRepresentation>::New())
-  , FrameObserver(vtkSmartPointer<vtkCallbackCommand>::New())
-  , LevelObserver(vtkSmartPointer<vtkCallbackCommand>::New())
 {
-  this->FrameObserver->SetClientData(this);
-  this->FrameObserver->SetCallback([](vtkObject*, unsigned long, void* self, void* frame) {
-    static_cast<vtkVesselProximityOverlays*>(self)->ShowFrame(*static_cast<const vp::TrackedFrame*>(frame));
-  });
-  this->LevelObserver->SetClientData(this);
-  this->LevelObserver->SetCallback([](vtkObject*, unsigned long, void* self, void* change) {
-    static_cast<vtkVesselProximityOverlays*>(self)->Scalpel->SetDangerLevel(static_cast<const vp::DangerLevelChange*>(change)->To);
-  });
 }
 
-vtkVesselProximityOverlays::~vtkVesselProximityOverlays()
-{
-  this->StopObserving();
-}
-
-void vtkVesselProximityOverlays::StopObserving()
-{
-  if (this->Logic)
-  {
-    this->Logic->GetTrackingLogic()->RemoveObserver(this->FrameTag);
-    this->Logic->GetTrackingLogic()->RemoveObserver(this->LevelTag);
-  }
-}
+vtkVesselProximityOverlays::~vtkVesselProximityOverlays() = default;
 
 void vtkVesselProximityOverlays::SetLogic(vtkVesselProximityLogic* logic)
 {
@@ -58,15 +37,8 @@ void vtkVesselProximityOverlays::SetLogic(vtkVesselProximityLogic* logic)
   {
     return;
   }
-  this->StopObserving();
   this->Logic = logic;
-  if (logic)
-  {
-    vtkScalpelTrackingLogic* tracking = logic->GetTrackingLogic();
-    this->LevelTag = tracking->AddObserver(vtkScalpelTrackingLogic::DangerLevelChangedEvent, this->LevelObserver);
-    this->FrameTag = tracking->AddObserver(vtkScalpelTrackingLogic::FrameProcessedEvent, this->FrameObserver);
-    this->UpdateFromScene();
-  }
+  this->UpdateFromScene();
   this->Modified();
 }
 
@@ -136,8 +108,19 @@ void vtkVesselProximityOverlays::SetRenderer(vtkRenderer* renderer)
   this->Modified();
 }
 
+void vtkVesselProximityOverlays::OnLevelChange(const vp::DangerLevelChange& change)
+{
+  this->Scalpel->SetDangerLevel(change.To);
+}
+
+void vtkVesselProximityOverlays::OnLost(const vp::TrackedPose& pose)
+{
+  this->ShowTrackingLost(1000.0 * std::max(0.0, pose.TimeS - this->LastFrameTimeS));
+}
+
 void vtkVesselProximityOverlays::ShowFrame(const vp::TrackedFrame& frame)
 {
+  this->LastFrameTimeS = frame.TimeS;
   if (this->Logic && this->Logic->GetScalpel())
   {
     this->Scalpel->SetModelToWorld(this->Logic->GetScalpel()->GetModelToWorld());

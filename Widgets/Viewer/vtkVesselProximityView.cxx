@@ -34,12 +34,43 @@
 
 vtkStandardNewMacro(vtkVesselProximityView);
 
+/// What the view shows of each frame: the overlays, then the camera that follows the scalpel.
+/// The session's first output, ahead of those added with AddOutput (a screenshot taken by one of
+/// them shows the frame), and unchanged when the overlays are swapped.
+class vtkVesselProximityView::Display : public vp::FrameOutput
+{
+public:
+  explicit Display(vtkVesselProximityView* view)
+    : View(view)
+  {
+  }
+  void OnLevelChange(const vp::DangerLevelChange& change) override { this->View->Overlays->OnLevelChange(change); }
+  void OnMarginChange(const vp::MarginLevelChange& change) override { this->View->Overlays->OnMarginChange(change); }
+  void OnFrame(const vp::TrackedFrame& frame) override
+  {
+    this->View->TimeS = frame.TimeS;
+    this->View->TrackingLost = false;
+    this->View->Overlays->OnFrame(frame);
+    ++this->View->FramesShown;
+    this->View->FollowScalpel();
+  }
+  void OnLost(const vp::TrackedPose& pose) override
+  {
+    this->View->TrackingLost = true;
+    this->View->Overlays->OnLost(pose);
+  }
+
+private:
+  vtkVesselProximityView* View;
+};
+
 vtkVesselProximityView::vtkVesselProximityView()
   : Overlays(vtkSmartPointer<vtkVesselProximityOverlays>::New())
   , Renderer(vtkSmartPointer<vtkRenderer>::New())
   , Window(vtkSmartPointer<vtkRenderWindow>::New())
   , Interactor(vtkSmartPointer<vtkRenderWindowInteractor>::New())
   , Style(vtkSmartPointer<vtkScalpelKeyboardMouseStyle>::New())
+  , Shown(std::make_unique<Display>(this))
 {
   // Slicer's 3D view background: a vertical gradient, here darker so the white and gray levels
   // of the scalpel stand out.
@@ -142,37 +173,50 @@ void vtkVesselProximityView::SetPoses(const std::vector<vp::TrackedPose>& poses)
   this->CurrentPose = -1;
 }
 
-void vtkVesselProximityView::Process(const std::array<double, 16>& modelToWorld, double timeS)
+vp::TrackingSession* vtkVesselProximityView::SessionFor(double timeS)
 {
   vtkVesselProximityLogic* logic = this->GetLogic();
   if (!logic || !logic->GetScalpel())
   {
-    return;
+    return nullptr;
   }
   // Poses must move forward in time; a jump back (replay restarted) starts a new session, as
-  // does a logic of its own. A session starts safe, its plot empty.
+  // does a logic of its own.
   const bool jumpedBack = this->Session && this->Session->GetNumberOfFrames() > 0 && timeS <= logic->GetLastFrame().TimeS;
   if (!this->Session || this->Session->GetLogic() != logic || jumpedBack)
   {
-    const bool hadFrames = logic->GetTrackingLogic()->GetNumberOfFrames() > 0;
-    this->Session = std::make_unique<vp::TrackingSession>(logic);
-    for (vp::FrameOutput* output : this->Outputs)
-    {
-      this->Session->AddOutput(output);
-    }
-    if (hadFrames)
-    {
-      this->Overlays->GetPlot()->ClearHistory();
-      this->Overlays->GetScalpel()->SetDangerLevel(vp::DangerLevel::Safe);
-    }
+    this->StartSession();
   }
-  this->TimeS = timeS;
-  vp::TrackedPose pose;
-  pose.TimeS = timeS;
-  pose.ModelToWorld = modelToWorld;
-  this->Session->Process(pose);
-  ++this->FramesShown;
-  this->FollowScalpel();
+  return this->Session.get();
+}
+
+void vtkVesselProximityView::StartSession()
+{
+  // A session starts safe, its plot empty.
+  vtkVesselProximityLogic* logic = this->GetLogic();
+  const bool hadFrames = logic->GetTrackingLogic()->GetNumberOfFrames() > 0;
+  this->Session = std::make_unique<vp::TrackingSession>(logic);
+  this->Session->AddOutput(this->Shown.get());
+  for (vp::FrameOutput* output : this->Outputs)
+  {
+    this->Session->AddOutput(output);
+  }
+  if (hadFrames)
+  {
+    this->Overlays->GetPlot()->ClearHistory();
+    this->Overlays->GetScalpel()->SetDangerLevel(vp::DangerLevel::Safe);
+  }
+}
+
+void vtkVesselProximityView::Process(const std::array<double, 16>& modelToWorld, double timeS)
+{
+  if (vp::TrackingSession* session = this->SessionFor(timeS))
+  {
+    vp::TrackedPose pose;
+    pose.TimeS = timeS;
+    pose.ModelToWorld = modelToWorld;
+    session->Process(pose);
+  }
 }
 
 void vtkVesselProximityView::AddOutput(vp::FrameOutput* output)
@@ -191,17 +235,29 @@ void vtkVesselProximityView::ShowPose(int i)
     return;
   }
   this->CurrentPose = i;
-  if (this->Poses[i].Lost)
+  if (!this->Poses[i].Lost)
+  {
+    this->Process(this->Poses[i].ModelToWorld, this->Poses[i].TimeS);
+  }
+  else if (vp::TrackingSession* session = this->SessionFor(this->Poses[i].TimeS))
   {
     // A pose the tracker lost is no pose: the overlays say so and show no distance as current.
-    vtkVesselProximityLogic* logic = this->GetLogic();
-    const double lastS = logic && logic->GetTrackingLogic()->GetNumberOfFrames() > 0 ? logic->GetLastFrame().TimeS : this->Poses[i].TimeS;
-    this->Overlays->ShowTrackingLost(1000.0 * std::max(0.0, this->Poses[i].TimeS - lastS));
-    this->TrackingLost = true;
-    return;
+    session->ProcessLost(this->Poses[i]);
   }
-  this->TrackingLost = false;
-  this->Process(this->Poses[i].ModelToWorld, this->Poses[i].TimeS);
+}
+
+bool vtkVesselProximityView::ReplayTo(int last)
+{
+  last = std::min(last, static_cast<int>(this->Poses.size()) - 1);
+  if (last < 0 || !this->GetLogic() || !this->GetLogic()->GetScalpel())
+  {
+    return true;
+  }
+  this->StartSession();
+  this->CurrentPose = last;
+  const std::vector<vp::TrackedPose> shown(this->Poses.begin(), this->Poses.begin() + last + 1);
+  vp::PoseListSource poses(shown, "the view's poses"); // it holds the list, not a copy
+  return this->Session->Run(poses);
 }
 
 void vtkVesselProximityView::SetScalpelPose(const std::array<double, 16>& modelToWorld)
@@ -271,14 +327,16 @@ bool vtkVesselProximityView::FollowLive(double waitMs, bool& ended)
     const vp::LivePoseSource::Step step = this->Live->Poll(pose, wait);
     if (step == vp::LivePoseSource::Step::Pose)
     {
-      this->TrackingLost = false;
       this->Process(pose.ModelToWorld, pose.TimeS);
       changed = true;
     }
     else if (step == vp::LivePoseSource::Step::Lost)
     {
-      this->TrackingLost = true;
-      this->Overlays->ShowTrackingLost(vp::NowMs() - this->Live->GetLastArrivalMs() + this->Live->GetStaleMs());
+      // The loss is dated when it was declared: the overlays count it from the last frame.
+      if (vp::TrackingSession* session = this->SessionFor(pose.TimeS))
+      {
+        session->ProcessLost(pose);
+      }
       changed = true;
     }
     else

@@ -31,7 +31,8 @@ class LivePoseSource;
 /// A 3D view of the module: the overlays of a vtkVesselProximityLogic in a render window, with
 /// the scalpel moved by keys and mouse (vtkScalpelKeyboardMouseStyle) or replayed from poses.
 ///
-/// Every move becomes a pose given to the logic; the overlays follow through the logic's events.
+/// Every move becomes a pose of the view's tracking session (vp::TrackingSession); the overlays
+/// are its first output, then the outputs added with AddOutput.
 /// The camera starts looking from anterior with superior up, as Slicer's 3D view does, framed on
 /// the vessels. Off-screen rendering (SetOffScreen) serves screenshots and tests; it still needs
 /// an X display on Debian's VTK (Xvfb will do).
@@ -66,6 +67,11 @@ public:
   /// lost (TrackedPose::Lost) shows "tracking lost" instead.
   void ShowPose(int i) override;
   int GetCurrentPose() const override { return this->CurrentPose; }
+  /// Shows recorded poses 0 to last in one fresh session (the plot showing the way there), its
+  /// outputs told of each and of the replay's end, and leaves pose last current: poses shown
+  /// afterwards continue that session. Returns false when a held signal stopped the replay
+  /// (vp::TrackingSession::Run).
+  bool ReplayTo(int last);
   /// Moves the scalpel from where it is by a world displacement (mm) and computes the frame.
   void MoveScalpelBy(const double deltaMm[3]) override;
   /// Moves the scalpel along its own axis (positive: the tip advances).
@@ -172,6 +178,12 @@ protected:
 private:
   vtkVesselProximityView(const vtkVesselProximityView&) = delete;
   void operator=(const vtkVesselProximityView&) = delete;
+  class Display;
+  std::unique_ptr<Display> Shown; ///< the session's first output: overlays, then camera
+  /// The session a pose at timeS belongs to (a new one when time jumped back or the logic
+  /// changed), or null when there is no scene to track in.
+  vp::TrackingSession* SessionFor(double timeS);
+  void StartSession();
   void Process(const std::array<double, 16>& modelToWorld, double timeS);
   /// The tool and follow presets: the camera put where the scalpel now asks.
   void FollowScalpel();

@@ -6,6 +6,7 @@
 #include "vpDefaultScalpel.h"
 #include "vpDemoTrajectory.h"
 #include "vpInputError.h"
+#include "vpKeyFrameShots.h"
 #include "vpKeyFrames.h"
 #include "vpLiverPhantom.h"
 #include "vpPoseFile.h"
@@ -21,13 +22,10 @@
 #include "vtkScalpelModel.h"
 #include "vtkScalpelTrackingLogic.h"
 #include "vtkVesselProximityLogic.h"
-#include "vtkVesselProximityView.h"
 
 #include <vtkCallbackCommand.h>
-#include <vtkCamera.h>
 #include <vtkNew.h>
 #include <vtkPolyData.h>
-#include <vtkRenderer.h>
 
 #include <nlohmann/json.hpp>
 
@@ -71,7 +69,8 @@ std::vector<KeyFrame> DemoKeyFrames(vtkVesselProximityLogic* logic, const std::v
   KeyFrameFinder finder;
   TrackingSession session(logic);
   PoseListSource source(poses, "the demo trajectory");
-  session.Run(source, [&](const TrackedFrame& f) { finder.AddFrame(f); });
+  session.AddOutput(&finder);
+  session.Run(source);
   return finder.GetKeyFrames();
 }
 
@@ -88,44 +87,19 @@ void RenderKeyFrames(const ModuleServices& module, DemoReport& report, const std
   // instrument): the pictures say what the run found, and which engine set each level.
   vtkSmartPointer<vtkVesselProximityLogic> logic = module.CreateLogic();
   logic->OpenScene(DemoSceneRequest(report, 0.0));
-  vtkNew<vtkVesselProximityView> view;
-  view->SetOverlays(module.CreateWidgetRepresentation());
-  view->SetOffScreen(true);
-  view->SetSizePx(1280, 800);
-  view->SetLogic(logic);
-  if (report.Surfaces.count("liver"))
+  KeyFrameShotRequest request;
+  request.Logic = logic;
+  request.Liver = report.Surfaces.count("liver") ? report.Surfaces.at("liver").GetPointer() : nullptr;
+  request.Poses = poses;
+  request.Keys = DemoKeyFrames(logic, poses);
+  request.Folder = folder;
+  for (const KeyFrameScreenshots::Shot& shot : RenderKeyFrameShots(module, request))
   {
-    view->SetLiverSurface(report.Surfaces.at("liver"));
-  }
-  // From anterior, turned a little to the patient's right and down from above: the scalpel
-  // comes in at an angle, not end-on.
-  vtkCamera* camera = view->GetRenderer()->GetActiveCamera();
-  camera->Azimuth(-35);
-  camera->Elevation(25);
-  camera->OrthogonalizeViewUp();
-  view->GetRenderer()->ResetCameraClippingRange();
-  view->SetPoses(poses);
-
-  std::size_t next = 0;
-  const std::vector<KeyFrame> keys = DemoKeyFrames(logic, poses);
-  view->ShowPose(0); // back to the start: a new session, the plot cleared
-  for (int i = 0; i < static_cast<int>(poses.size()) && next < keys.size(); ++i)
-  {
-    if (i > 0)
-    {
-      view->ShowPose(i);
-    }
-    if (static_cast<std::size_t>(i) == keys[next].PoseIndex)
-    {
-      char name[200];
-      std::snprintf(name, sizeof(name), "/frame%04d_%s.png", i, keys[next].Name.c_str());
-      view->SaveScreenshot(folder + name);
-      double range[2];
-      view->GetLastScreenshot()->GetScalarRange(range);
-      report.ScreenshotContrast.push_back(range[1] - range[0]);
-      report.Screenshots.push_back(report.OutDir + "/screenshots" + name); // where the run puts it
-      ++next;
-    }
+    double range[2];
+    shot.Picture->GetScalarRange(range);
+    report.ScreenshotContrast.push_back(range[1] - range[0]);
+    // Where the run puts it.
+    report.Screenshots.push_back(report.OutDir + "/screenshots" + shot.File.substr(shot.File.rfind('/')));
   }
 }
 

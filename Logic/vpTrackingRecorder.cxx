@@ -248,6 +248,15 @@ bool TrackingRecorder::Run(PoseSource& poses, RunFolder& run)
   doc["files"] = SessionFiles(run);
   this->PeakMemoryMb = PeakResidentMb();
   doc["peak_memory_mb"] = this->PeakMemoryMb;
+  nlohmann::ordered_json outputs = nlohmann::ordered_json::object();
+  for (const FrameOutput* output : this->Outputs)
+  {
+    output->Report(outputs);
+  }
+  if (!outputs.empty())
+  {
+    doc["outputs"] = std::move(outputs);
+  }
   if (this->ReportAddition)
   {
     this->ReportAddition(doc);

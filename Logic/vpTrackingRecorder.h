@@ -39,8 +39,15 @@ public:
   void SetLoadAndBuildMs(double ms) { this->LoadAndBuildMs = ms; }
   /// An output of the run's frames beside the report (not owned; it outlives Run): told of each
   /// change of level, frame, lost pose and the end (vp::FrameOutput) before the report records
-  /// them, so that a peer hears of danger first: the live results, the key frames.
-  void AddOutput(FrameOutput* output) { this->Outputs.push_back(output); }
+  /// them, so that a peer hears of danger first: the live results, the key frames (null: none).
+  /// What each has to say goes into summary.json's "outputs" (FrameOutput::Report).
+  void AddOutput(FrameOutput* output)
+  {
+    if (output)
+    {
+      this->Outputs.push_back(output);
+    }
+  }
   /// Called with summary.json before it is written, for the front end's own sections (a live
   /// run's latency and link counts).
   void SetReportAddition(std::function<void(nlohmann::ordered_json&)> addition) { this->ReportAddition = std::move(addition); }

@@ -42,7 +42,7 @@ layers=(
   "Instrument"
   "Tumour"
   "Tracking"
-  "Reports"
+  "Reports Audio"
   "Live"
   "."
   "Cohort"

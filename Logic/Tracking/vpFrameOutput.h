@@ -4,6 +4,10 @@
 #include "vpPoseFile.h"
 #include "vpTrackedFrame.h"
 
+#include <nlohmann/json_fwd.hpp>
+
+#include <string>
+
 namespace vp
 {
 /// One output of the frame pipeline (vp::TrackingSession::AddOutput): the run's report, the live
@@ -29,6 +33,13 @@ public:
   virtual void OnLost(const TrackedPose&) {}
   /// The source ended (or a held signal ended the run): nothing more comes.
   virtual void OnEnd() {}
+
+  /// What the output has to say in the run's summary.json: its entry added to the "outputs"
+  /// object under its name (nothing by default); and a line for the front end to say when
+  /// something went wrong (messages not sent, a device lost; empty when all went well). Asked
+  /// after OnEnd.
+  virtual void Report(nlohmann::ordered_json& outputs) const { (void)outputs; }
+  virtual std::string Problems() const { return std::string(); }
 
 protected:
   FrameOutput() = default;

@@ -10,6 +10,7 @@
 #include "vpInputError.h"
 #include "vpLivePoseSource.h"
 #include "vpLiveOptions.h"
+#include "vpOutputOptions.h"
 #include "vpLiveResults.h"
 #include "vpLiveResultsOutput.h"
 #include "vpPoseFile.h"
@@ -81,6 +82,7 @@ cli::ModuleDescription DescribeLiveCommand()
       { "Scalpel", "", ScalpelOptions() },
       EngineOptions(EngineMethodNames(OfferedForTracking)),
       TrackingOptions(),
+      OutputOptions(OutputForLive),
     });
 }
 
@@ -225,6 +227,7 @@ int RunLiveCommand(const cli::ParsedArguments& args, const ModuleServices& modul
   const double durationS = ParseDurationS(args);
   const double start = NowMs();
   const SceneRequest request = ParseRecordedSceneRequest(args);
+  ChosenOutputs chosen(args, OutputForLive, "live");
   std::unique_ptr<RunFolder> run = LiveRunFolder(args, request);
   vtkSmartPointer<vtkVesselProximityLogic> proximity = module.CreateLogic();
   OpenedScene scene;
@@ -241,16 +244,20 @@ int RunLiveCommand(const cli::ParsedArguments& args, const ModuleServices& modul
   poses.SetIdleCallback([&stream] { PrintLinkEvents("live", *stream); });
   LiveResultsOutput results(*stream, &poses);
   LiveStatus status(*stream, results, staleMs);
+  std::vector<FrameOutput*> outputs = { &results, &status };
+  outputs.insert(outputs.end(), chosen.Get().begin(), chosen.Get().end());
   std::size_t frames = 0, lostPoses = 0;
   if (run)
   {
-    std::tie(frames, lostPoses) = RecordLive(proximity, scene, NowMs() - start, poses, *stream, { &results, &status }, results, *run);
+    std::tie(frames, lostPoses) = RecordLive(proximity, scene, NowMs() - start, poses, *stream, outputs, results, *run);
   }
   else
   {
     TrackingSession session(proximity);
-    session.AddOutput(&results);
-    session.AddOutput(&status);
+    for (FrameOutput* output : outputs)
+    {
+      session.AddOutput(output);
+    }
     session.Run(poses);
     if (session.GetNumberOfFrames() == 0)
     {
@@ -259,6 +266,7 @@ int RunLiveCommand(const cli::ParsedArguments& args, const ModuleServices& modul
     frames = session.GetNumberOfFrames();
     lostPoses = session.GetNumberOfLostPoses();
   }
+  chosen.SayProblems();
   PrintLiveEnd(*stream, frames, lostPoses, results.GetLatencyMs(), run ? args.GetString("output") : std::string());
   return 0;
 }

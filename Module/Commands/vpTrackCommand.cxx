@@ -12,6 +12,7 @@
 #include "vpKeyFrames.h"
 #include "vpPoseFile.h"
 #include "vpScalpelLoader.h"
+#include "vpOutputOptions.h"
 #include "vpTrackingOptions.h"
 #include "vpTrackingRecorder.h"
 #include "vtkScalpelTrackingLogic.h"
@@ -201,6 +202,7 @@ cli::ModuleDescription DescribeTrackCommand()
       { "Scalpel", "", ScalpelOptions() },
       EngineOptions(EngineMethodNames(OfferedForTracking)),
       TrackingOptions(),
+      OutputOptions(OutputForTrack),
       { "Pictures", "",
         { Switch("screenshots",
             "Also OUTDIR/screenshots/ of the key frames (the first and last, each change of the danger level and of the "
@@ -232,6 +234,7 @@ int RunTrackCommand(const cli::ParsedArguments& args, const ModuleServices& modu
   const std::size_t poseCount = PoseStream::CountPoses(posesFile, reading);
   SceneRequest request = ParseRecordedSceneRequest(args);
   request.LiverFile = args.GetString("liver");
+  const ChosenOutputs chosen(args, OutputForTrack, "track");
   // Pictures need a display: one that cannot be had refuses the run before it computes anything.
   const bool screenshots = args.GetBoolean("screenshots");
   VirtualDisplay display;
@@ -251,16 +254,18 @@ int RunTrackCommand(const cli::ParsedArguments& args, const ModuleServices& modu
   session.SetLoadAndBuildMs(NowMs() - start);
   session.SetProgress([&progress](std::size_t done, std::size_t expected) { progress.FramesDone(done, expected); });
   KeyFrameFinder keys;
-  if (screenshots)
+  for (FrameOutput* output : chosen.Get())
   {
-    session.AddOutput(&keys);
+    session.AddOutput(output);
   }
+  session.AddOutput(screenshots ? &keys : nullptr);
   PoseStream poses(posesFile, poseCount, reading);
   if (!session.Run(poses, run))
   {
     return 1; // the RunFolder removes what was written, then the signal acts
   }
   progress.Finish();
+  chosen.SayProblems();
   std::size_t shots = 0;
   if (screenshots)
   {

@@ -9,6 +9,7 @@
 #include "vpIgtlLink.h"
 #include "vpInputError.h"
 #include "vpLiveOptions.h"
+#include "vpOutputOptions.h"
 #include "vpLivePoseSource.h"
 #include "vpPointCsv.h"
 #include "vpPoseFile.h"
@@ -145,15 +146,18 @@ ViewInputs ReadViewInputs(const cli::ParsedArguments& args)
 }
 
 /// The window on the logic, at its first pose (the plot showing the way there) or at the
-/// starting pose, the keys pressed; every frame it computes goes to frames.
+/// starting pose, the keys pressed; every frame it computes goes to the outputs.
 void SetUpView(vtkVesselProximityView* view, const ModuleServices& module, vtkVesselProximityLogic* logic,
-  const OpenedScene& scene, const ViewInputs& in, FrameOutput* frames)
+  const OpenedScene& scene, const ViewInputs& in, const std::vector<FrameOutput*>& outputs)
 {
   view->SetOverlays(module.CreateWidgetRepresentation());
   view->SetOffScreen(!in.Screenshot.empty());
   view->SetSizePx(in.SizePx.first, in.SizePx.second);
   view->SetLogic(logic);
-  view->AddOutput(frames);
+  for (FrameOutput* output : outputs)
+  {
+    view->AddOutput(output);
+  }
   view->SetCameraPreset(in.Camera);
   if (scene.Liver)
   {
@@ -169,6 +173,25 @@ void SetUpView(vtkVesselProximityView* view, const ModuleServices& module, vtkVe
     view->SetScalpelPose(StartingPose(logic));
   }
   view->PressKeys(in.Keys);
+}
+
+/// The live stream the inputs ask for, followed by the view (none without one).
+void OpenViewStream(vtkVesselProximityView* view, const ViewInputs& in, std::unique_ptr<IgtlLink>& link,
+  std::unique_ptr<LivePoseSource>& source)
+{
+  if (!in.Stream)
+  {
+    return;
+  }
+  link = std::make_unique<IgtlLink>(*in.Stream);
+  source = std::make_unique<LivePoseSource>(*link, in.Stream->ToolName, in.StaleMs, in.DurationS);
+  IgtlLink* events = link.get();
+  source->SetIdleCallback([events] { PrintLinkEvents("view", *events); });
+  view->SetLiveSource(source.get());
+  if (link->GetListenPort() >= 0)
+  {
+    std::cerr << "view: listening on port " << link->GetListenPort() << "\n";
+  }
 }
 
 /// The stream followed for its duration, then the screenshot and what it shows.
@@ -241,6 +264,7 @@ cli::ModuleDescription DescribeViewCommand()
       { "Live stream", "", LiveStreamOptions(false, false) },
       EngineOptions(EngineMethodNames(OfferedInView)),
       TrackingOptions(),
+      OutputOptions(OutputForView),
     });
 }
 
@@ -255,6 +279,7 @@ int RunViewCommand(const cli::ParsedArguments& args, const ModuleServices& modul
   SceneRequest request = ParseSceneRequest(args);
   request.LiverFile = args.GetString("liver");
   const ViewInputs in = ReadViewInputs(args); // everything that can be refused, before a window opens
+  const ChosenOutputs chosen(args, OutputForView, "view");
   vtkSmartPointer<vtkVesselProximityLogic> logic = module.CreateLogic();
   OpenedScene scene;
   {
@@ -267,21 +292,13 @@ int RunViewCommand(const cli::ParsedArguments& args, const ModuleServices& modul
   VirtualDisplay display;
   RequireDisplay(in.Screenshot, display);
   vtkNew<vtkVesselProximityView> view;
-  SetUpView(view, module, logic, scene, in, &frames);
+  std::vector<FrameOutput*> outputs = { &frames };
+  outputs.insert(outputs.end(), chosen.Get().begin(), chosen.Get().end());
+  SetUpView(view, module, logic, scene, in, outputs);
   // The stream opens once the window is ready: no pose waits on a build.
   std::unique_ptr<IgtlLink> link;
   std::unique_ptr<LivePoseSource> source;
-  if (in.Stream)
-  {
-    link = std::make_unique<IgtlLink>(*in.Stream);
-    source = std::make_unique<LivePoseSource>(*link, in.Stream->ToolName, in.StaleMs, in.DurationS);
-    source->SetIdleCallback([&link] { PrintLinkEvents("view", *link); });
-    view->SetLiveSource(source.get());
-    if (link->GetListenPort() >= 0)
-    {
-      std::cerr << "view: listening on port " << link->GetListenPort() << "\n";
-    }
-  }
+  OpenViewStream(view, in, link, source);
   if (!in.Screenshot.empty() && source)
   {
     ShootLiveView(view, logic, in);
@@ -298,6 +315,7 @@ int RunViewCommand(const cli::ParsedArguments& args, const ModuleServices& modul
     SignalHold::Answer(); // a live session's Ctrl-C ended it
   }
   std::cout << FrameTimesText(frames, budgetMs) << "\n";
+  chosen.SayProblems();
   return 0;
 }
 } // namespace vp

@@ -2,6 +2,7 @@
 #include "vpArguments.h"
 #include "vpCommands.h"
 #include "vpDemoPipeline.h"
+#include "vpOutputOptions.h"
 #include "vpInputError.h"
 #include "vpTrackingOptions.h"
 #include "vpJsonFile.h"
@@ -88,13 +89,16 @@ cli::ModuleDescription DescribeDemoCommand()
         Switch("no-screenshots", "Skip the screenshots."), FrameBudgetOption(),
         Switch("live",
           "Track live: a tracker server on loopback streams the trajectory over OpenIGTLink at its own times, through the "
-          "live path and back (summary.json adds the latency).") } } });
+          "live path and back (summary.json adds the latency).") } },
+      OutputOptions(OutputForDemo) });
 }
 
 int RunDemoCommand(const cli::ParsedArguments& args, const ModuleServices& module)
 {
-  const DemoReport report =
-    RunDemoPipeline(module, args.GetString("output"), !args.GetBoolean("noScreenshots"), ParseFrameBudgetMs(args), args.GetBoolean("live"));
+  const ChosenOutputs chosen(args, OutputForDemo, "demo");
+  const DemoReport report = RunDemoPipeline(module, args.GetString("output"), !args.GetBoolean("noScreenshots"),
+    ParseFrameBudgetMs(args), args.GetBoolean("live"), chosen.Get());
+  chosen.SayProblems();
   PrintDemoTable(report);
   return 0;
 }

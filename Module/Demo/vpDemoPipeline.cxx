@@ -23,7 +23,6 @@
 #include "vtkScalpelTrackingLogic.h"
 #include "vtkVesselProximityLogic.h"
 
-#include <vtkCallbackCommand.h>
 #include <vtkNew.h>
 #include <vtkPolyData.h>
 
@@ -62,6 +61,20 @@ private:
 };
 
 SceneRequest DemoSceneRequest(const DemoReport& report, double frameBudgetMs);
+
+/// Each frame's level, for the self-test's comparison with the exact engine.
+class LevelRecord : public FrameOutput
+{
+public:
+  explicit LevelRecord(std::vector<DangerLevel>& levels)
+    : Levels(levels)
+  {
+  }
+  void OnFrame(const TrackedFrame& frame) override { this->Levels.push_back(frame.Level); }
+
+private:
+  std::vector<DangerLevel>& Levels;
+};
 
 /// The frames worth a picture (vp::KeyFrameFinder), as the demo's tracking logic sees them.
 std::vector<KeyFrame> DemoKeyFrames(vtkVesselProximityLogic* logic, const std::vector<TrackedPose>& poses)
@@ -128,7 +141,8 @@ SceneRequest DemoSceneRequest(const DemoReport& report, double frameBudgetMs)
 
 /// Both engines on every frame: the z-buffer engine answers, the exact engine checks; the exact
 /// engine alone without a Vulkan device.
-void TrackDemo(const ModuleServices& module, DemoReport& report, double frameBudgetMs, bool live, RunFolder& run)
+void TrackDemo(const ModuleServices& module, DemoReport& report, double frameBudgetMs, bool live, RunFolder& run,
+  const std::vector<FrameOutput*>& outputs)
 {
   vtkSmartPointer<vtkVesselProximityLogic> logic = module.CreateLogic();
   const OpenedScene scene = logic->OpenScene(DemoSceneRequest(report, frameBudgetMs));
@@ -138,13 +152,13 @@ void TrackDemo(const ModuleServices& module, DemoReport& report, double frameBud
     report.MethodNote = "no Vulkan device, exact engine only: " + scene.EngineNote;
     std::cerr << "demo: " << report.MethodNote << "\n";
   }
-  vtkNew<vtkCallbackCommand> onFrame;
-  onFrame->SetClientData(&report.FrameLevels);
-  onFrame->SetCallback([](vtkObject*, unsigned long, void* levels, void* frame) {
-    static_cast<std::vector<DangerLevel>*>(levels)->push_back(static_cast<const TrackedFrame*>(frame)->Level);
-  });
-  logic->GetTrackingLogic()->AddObserver(vtkScalpelTrackingLogic::FrameProcessedEvent, onFrame);
+  LevelRecord levels(report.FrameLevels);
   TrackingRecorder recorder(logic, scene.Vessels);
+  recorder.AddOutput(&levels);
+  for (FrameOutput* output : outputs)
+  {
+    recorder.AddOutput(output);
+  }
   if (!live)
   {
     PoseListSource poses(report.Trajectory.Poses, report.PosesFile);
@@ -229,7 +243,8 @@ void BuildDemoModels(DemoReport& report, RunFolder& run)
   }
 }
 
-DemoReport RunDemoPipeline(const ModuleServices& module, const std::string& outDir, bool screenshots, double frameBudgetMs, bool live)
+DemoReport RunDemoPipeline(const ModuleServices& module, const std::string& outDir, bool screenshots, double frameBudgetMs, bool live,
+  const std::vector<FrameOutput*>& outputs)
 {
   DemoReport report;
   report.OutDir = outDir;
@@ -255,7 +270,7 @@ DemoReport RunDemoPipeline(const ModuleServices& module, const std::string& outD
       } },
     { live ? "track live: the trajectory over OpenIGTLink (loopback) through the live path and back"
            : "track: every frame through the z-buffer engine, checked by the exact engine",
-      [&] { TrackDemo(module, report, frameBudgetMs, live, run); } },
+      [&] { TrackDemo(module, report, frameBudgetMs, live, run, outputs); } },
     { "screenshots of the key frames",
       screenshots ? std::function<void()>([&] { RenderKeyFrames(module, report, report.Trajectory.Poses, shots); }) : nullptr },
   };

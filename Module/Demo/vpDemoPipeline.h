@@ -2,6 +2,7 @@
 #define vpDemoPipeline_h
 
 #include "vpDangerLevels.h"
+#include "vpFrameOutput.h"
 #include "vpModuleServices.h"
 #include "vpDemoTrajectory.h"
 
@@ -52,7 +53,7 @@ struct DemoReport
 /// sends the results back (its summary adds the latency). The module creates the logic of every
 /// stage and the overlays of the screenshots.
 DemoReport RunDemoPipeline(const ModuleServices& module, const std::string& outDir, bool screenshots,
-  double frameBudgetMs = TrackingSettings().FrameBudgetMs, bool live = false);
+  double frameBudgetMs = TrackingSettings().FrameBudgetMs, bool live = false, const std::vector<FrameOutput*>& outputs = {});
 
 /// The module's logic over the demo's built vessel models and scalpel, with the exact engine and
 /// the tip only (the whole surface off): the levels the self-test checks against the design's.

@@ -117,6 +117,24 @@ inline std::string Slurp(const std::string& path)
 
 /// Records names (files, and folders as "name/") in folder as the entries of a run of ours, as
 /// vp::RunFolder's marker does: for a test that lays out an earlier run by hand.
+/// The cells of one CSV line (no quoting: our tables have none), a trailing empty cell kept.
+inline std::vector<std::string> SplitCsvLine(const std::string& line)
+{
+  std::vector<std::string> cells(1);
+  for (char c : line)
+  {
+    if (c == ',')
+    {
+      cells.emplace_back();
+    }
+    else
+    {
+      cells.back() += c;
+    }
+  }
+  return cells;
+}
+
 inline void RecordAsRun(const std::string& folder, const std::vector<std::string>& names)
 {
   std::string json = "{\"entries\": [";

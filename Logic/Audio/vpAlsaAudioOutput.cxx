@@ -54,11 +54,7 @@ void AlsaAudioOutput::Hand(const SoundState& state)
 
 void AlsaAudioOutput::OnEnd()
 {
-  this->Stopping = true;
-  if (this->Player.joinable())
-  {
-    this->Player.join();
-  }
+  this->Hand(SoundState()); // silence; a view that goes on after a replay is heard again
 }
 
 void AlsaAudioOutput::Play()
@@ -132,9 +128,4 @@ void AlsaAudioOutput::Report(nlohmann::ordered_json& outputs) const
     { "underruns", this->Underruns.load() }, { "failures", this->Failures.load() }, { "problem", this->Failure } };
 }
 
-std::string AlsaAudioOutput::Problems() const
-{
-  std::lock_guard<std::mutex> hold(this->Lock);
-  return this->Failure.empty() ? std::string() : "audio: " + this->Failure;
-}
 } // namespace vp

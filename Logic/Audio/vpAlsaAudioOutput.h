@@ -29,11 +29,11 @@ public:
 
   void OnFrame(const TrackedFrame& frame) override { this->Hand(this->Sound.ForFrame(frame)); }
   void OnLost(const TrackedPose&) override { this->Hand(this->Sound.ForLostPose()); }
-  /// Falls silent and lets the device go.
+  /// Falls silent (the device is let go when the output is).
   void OnEnd() override;
 
+  /// Its problems are said as they happen (say), so Problems() has nothing to add.
   void Report(nlohmann::ordered_json& outputs) const override;
-  std::string Problems() const override;
 
   /// Whether the device was opened (false until the thread has tried, and when it failed).
   bool IsPlaying() const { return this->Opened.load(); }

@@ -82,20 +82,6 @@ TEST(Sonification, TheDefaultTableAndAFileOverIt)
   std::filesystem::remove_all(tmp);
 }
 
-/// A UDP port free on loopback now.
-int FreeUdpPort()
-{
-  const int s = socket(AF_INET, SOCK_DGRAM, 0);
-  sockaddr_in a{};
-  a.sin_family = AF_INET;
-  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  bind(s, reinterpret_cast<sockaddr*>(&a), sizeof a);
-  socklen_t n = sizeof a;
-  getsockname(s, reinterpret_cast<sockaddr*>(&a), &n);
-  close(s);
-  return ntohs(a.sin_port);
-}
-
 /// The samples of a 16-bit mono PCM WAV, in [-1, 1], and its rate.
 std::vector<double> ReadWav(const std::string& file, int& rateHz)
 {
@@ -315,7 +301,7 @@ TEST_F(AudioOutputs, TheRecordingsSoundFollowsItsLevelsAndItsTrackingGap)
 // lost and found again.
 TEST_F(AudioOutputs, OscdumpReceivesTheFramesValues)
 {
-  const int port = FreeUdpPort();
+  const int port = vp::test::FreePort(SOCK_DGRAM);
   const std::string dump = this->Dir + "/oscdump.txt";
   const pid_t oscdump = vp::test::StartProgram("/usr/bin/oscdump", { "-L", std::to_string(port) }, dump);
   ASSERT_GT(oscdump, 0);
@@ -401,6 +387,177 @@ TEST_F(AudioOutputs, OscdumpReceivesTheFramesValues)
   const std::string received = Slurp(dump);
   EXPECT_EQ(summary["outputs"]["osc"]["sent"].get<std::size_t>(), static_cast<std::size_t>(std::count(received.begin(), received.end(), '\n')))
     << "every message sent was received";
+}
+
+// The shipped PureData patch, run headless, receives the voices the module sends as its table has
+// them for each level, and plays the last one: the danger beeps, 8 a second.
+TEST_F(AudioOutputs, TheShippedPureDataPatchPlaysWhatTheModuleSends)
+{
+  // Safe, caution, warning, then danger until the end: the patch keeps playing the danger voice.
+  std::string text;
+  int frame = 0;
+  for (const double x : { 25.0, 17.0, 13.5, 11.0 })
+  {
+    for (int i = 0; i < 10; ++i, ++frame)
+    {
+      char line[300];
+      std::snprintf(line, sizeof line,
+        "Seq_Frame%04d_ToolToTrackerTransform = 0 0 -1 %g  0 1 0 0  1 0 0 0  0 0 0 1\n"
+        "Seq_Frame%04d_ToolToTrackerTransformStatus = OK\nSeq_Frame%04d_Timestamp = %g\n",
+        frame, x, frame, frame, 0.05 * frame);
+      text += line;
+    }
+  }
+  this->Poses = this->Dir + "/levels.igs.mha";
+  std::ofstream(this->Poses) << "ObjectType = Image\nNDims = 3\nDimSize = 0 0 " << frame
+                             << "\nDefaultFrameTransformName = ToolToTrackerTransform\n" << text << "ElementDataFile = LOCAL\n";
+  std::filesystem::copy_file(std::string(VP_SOURCE_DIR) + "/Testing/Audio/PrintVoices.pd", this->Dir + "/PrintVoices.pd");
+  const int port = vp::test::FreePort(SOCK_DGRAM);
+  const std::string patches = std::string(VP_SOURCE_DIR) + "/Resources/Audio";
+  const pid_t pd = vp::test::StartProgram("/usr/bin/pd",
+    { "-nogui", "-nosound", "-noprefs", "-stderr", "-path", patches, "-open", patches + "/VesselProximity.pd", "-open",
+      this->Dir + "/PrintVoices.pd", "-send", "vp-port " + std::to_string(port) },
+    "/dev/null", this->Dir + "/pd.txt");
+  ASSERT_GT(pd, 0);
+  usleep(700000); // the patch opens its port
+  const auto run = RunTool(this->Dir, this->Track("--osc 127.0.0.1:" + std::to_string(port)));
+  int status = 0;
+  waitpid(pd, &status, 0); // the listener quits after 8 s
+  ASSERT_EQ(run.ExitCode, 0) << run.Err;
+
+  // What the patch printed, each change once, against the table for the levels frames.csv has.
+  const vp::Sonification table = vp::Sonification::Default();
+  std::vector<std::vector<double>> expected;
+  for (const auto& [timeS, level] : this->FrameLevels())
+  {
+    vp::DangerLevel l = vp::DangerLevel::Safe;
+    for (int k = 0; k < vp::NumberOfDangerLevels; ++k)
+    {
+      l = level == vp::DangerLevelName(static_cast<vp::DangerLevel>(k)) ? static_cast<vp::DangerLevel>(k) : l;
+    }
+    const vp::Voice& v = table.ForLevel(l);
+    const std::vector<double> voice = { v.PitchHz, v.AltPitchHz, v.BeepsPerSecond, v.Duty, double(static_cast<int>(v.Wave)),
+      v.Silent() ? 0.0 : v.Gain };
+    if (expected.empty() || expected.back() != voice)
+    {
+      expected.push_back(voice);
+    }
+  }
+  std::vector<std::vector<double>> printed;
+  std::istringstream lines(Slurp(this->Dir + "/pd.txt"));
+  for (std::string line; std::getline(lines, line);)
+  {
+    if (line.rfind("vessel: ", 0) != 0)
+    {
+      continue;
+    }
+    std::istringstream values(line.substr(8));
+    std::vector<double> voice;
+    for (double v; values >> v;)
+    {
+      voice.push_back(v);
+    }
+    if (printed.empty() || printed.back() != voice)
+    {
+      printed.push_back(voice);
+    }
+  }
+  ASSERT_EQ(printed.size(), expected.size()) << Slurp(this->Dir + "/pd.txt");
+  for (std::size_t i = 0; i < printed.size(); ++i)
+  {
+    ASSERT_EQ(printed[i].size(), 6u);
+    for (std::size_t k = 0; k < 6; ++k)
+    {
+      EXPECT_NEAR(printed[i][k], expected[i][k], 1e-4) << "voice " << i << " value " << k;
+    }
+  }
+  // What it played: silence before the first message, then beeps; its last second the danger
+  // voice's 8 beeps a second.
+  int rate = 0;
+  const std::vector<double> samples = ReadWav(this->Dir + "/pd-recording.wav", rate);
+  ASSERT_EQ(rate, 44100) << Slurp(this->Dir + "/pd.txt");
+  const double lengthS = samples.size() / 44100.0;
+  ASSERT_GT(lengthS, 7.0);
+  const auto start = Envelope(samples, rate, 0.0, 0.3);
+  EXPECT_LT(*std::max_element(start.begin(), start.end()), 1e-3) << "silence before anything was sent";
+  EXPECT_NEAR(OnsetsPerSecond(samples, rate, lengthS - 2.0, lengthS - 0.01), 8.0, 1.0);
+}
+
+// live --audio through ALSA: a sound device defined by the user's asoundrc (a file plugin over the
+// null device) hears the served recording's danger as 8 beeps a second; with no device there,
+// the run says so once and tracks on in silence.
+TEST_F(AudioOutputs, LiveAudioPlaysOnTheSoundDeviceAndGoesOnWithoutOne)
+{
+  // Two seconds safe, then two in danger.
+  std::string text;
+  int frame = 0;
+  for (const double x : { 25.0, 11.0 })
+  {
+    for (int i = 0; i < 40; ++i, ++frame)
+    {
+      char line[300];
+      std::snprintf(line, sizeof line,
+        "Seq_Frame%04d_ToolToTrackerTransform = 0 0 -1 %g  0 1 0 0  1 0 0 0  0 0 0 1\n"
+        "Seq_Frame%04d_ToolToTrackerTransformStatus = OK\nSeq_Frame%04d_Timestamp = %g\n",
+        frame, x, frame, frame, 0.05 * frame);
+      text += line;
+    }
+  }
+  const std::string recording = this->Dir + "/served.igs.mha";
+  std::ofstream(recording) << "ObjectType = Image\nNDims = 3\nDimSize = 0 0 " << frame
+                           << "\nDefaultFrameTransformName = ToolToTrackerTransform\n" << text << "ElementDataFile = LOCAL\n";
+  const std::string raw = this->Dir + "/device.raw";
+  std::ofstream(this->Dir + "/.asoundrc") << "pcm.!default { type file slave.pcm \"null\" file \"" << raw << "\" format \"raw\" }\n";
+  std::filesystem::create_directories(this->Dir + "/nodevice");
+  std::ofstream(this->Dir + "/nodevice/.asoundrc") << "pcm.!default { type hw card 29 }\n";
+  for (const bool device : { true, false })
+  {
+    const int port = vp::test::FreePort();
+    const std::string out = this->Dir + (device ? "/with" : "/without");
+    const pid_t server = vp::test::StartProgram(VP_EXECUTABLE,
+      { "serve", "--poses", recording, "--igtl-listen", std::to_string(port), "--device", "ToolToTracker" }, "/dev/null", out + ".serve");
+    ASSERT_TRUE(vp::test::WaitForText(out + ".serve", "waiting for a client")) << Slurp(out + ".serve");
+    const auto live = RunTool(this->Dir,
+      "live --vessels portal_vein=" + this->Vessel + " --scalpel " + this->Tool + " --no-surface --tool-name ToolToTracker --igtl 127.0.0.1:" +
+        std::to_string(port) + " --duration-s 4.5 --audio -o " + out,
+      "HOME=" + this->Dir + (device ? "" : "/nodevice"));
+    vp::test::WaitFor(server, 10.0);
+    ASSERT_EQ(live.ExitCode, 0) << live.Err;
+    const nlohmann::json summary = nlohmann::json::parse(Slurp(out + "/summary.json"));
+    const nlohmann::json audio = summary.at("outputs").at("audio");
+    if (!device)
+    {
+      const std::string said = "no sound device";
+      EXPECT_EQ(live.Err.find(said), live.Err.rfind(said)) << "said once: " << live.Err;
+      EXPECT_NE(live.Err.find("live: audio: no sound device 'default' ("), std::string::npos) << live.Err;
+      EXPECT_NE(live.Err.find("): tracking goes on without sound"), std::string::npos) << live.Err;
+      EXPECT_EQ(summary.at("frames").get<int>(), 80) << "tracking went on";
+      EXPECT_NE(audio.at("problem").get<std::string>().find("no sound device"), std::string::npos);
+      EXPECT_EQ(audio.at("played_s").get<double>(), 0.0);
+      continue;
+    }
+    EXPECT_EQ(audio.at("problem"), "") << live.Err;
+    EXPECT_GT(audio.at("played_s").get<double>(), 3.0);
+    // The device's samples (32-bit float): silence first, then the danger voice's beeps.
+    const std::string bytes = Slurp(raw);
+    std::vector<double> samples(bytes.size() / 4);
+    for (std::size_t i = 0; i < samples.size(); ++i)
+    {
+      float v = 0.0f;
+      std::memcpy(&v, bytes.data() + 4 * i, 4);
+      samples[i] = v;
+    }
+    const double lengthS = samples.size() / 44100.0;
+    ASSERT_GT(lengthS, 3.0);
+    const auto start = Envelope(samples, 44100, 0.0, 0.5);
+    EXPECT_LT(*std::max_element(start.begin(), start.end()), 1e-3) << "silence while safe";
+    double best = 0.0; // the danger's second, wherever the stream's start put it
+    for (double from = 1.5; from + 1.0 < lengthS; from += 0.25)
+    {
+      best = std::max(best, OnsetsPerSecond(samples, 44100, from, from + 1.0));
+    }
+    EXPECT_NEAR(best, 8.0, 1.0);
+  }
 }
 
 // The outputs' options are refused in one line naming the option, before anything is computed.

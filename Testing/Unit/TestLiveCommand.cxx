@@ -32,61 +32,9 @@ namespace
 using vp::test::Slurp;
 using vp::test::ToolRun;
 
-/// A port free now on loopback (the kernel's choice), for a peer that must be told one.
-int FreePort()
-{
-  const int s = socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in address{};
-  address.sin_family = AF_INET;
-  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  address.sin_port = 0;
-  bind(s, reinterpret_cast<sockaddr*>(&address), sizeof address);
-  socklen_t length = sizeof address;
-  getsockname(s, reinterpret_cast<sockaddr*>(&address), &length);
-  close(s);
-  return ntohs(address.sin_port);
-}
-
-/// Waits (10 s at most) for text to appear in a file a child writes.
-/// Waits until file holds text at least times times (seconds at most).
-bool WaitForText(const std::string& file, const std::string& text, double seconds = 10.0, int times = 1)
-{
-  const auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds(static_cast<int>(1000 * seconds));
-  while (std::chrono::steady_clock::now() < until)
-  {
-    const std::string content = Slurp(file);
-    int found = 0;
-    for (std::size_t at = content.find(text); at != std::string::npos; at = content.find(text, at + 1))
-    {
-      ++found;
-    }
-    if (found >= times)
-    {
-      return true;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  return false;
-}
-
-/// Waits for a child to end (seconds at most, then kills it): its exit code, -signal when a
-/// signal ended it, -999 when it had to be killed.
-int WaitFor(pid_t child, double seconds)
-{
-  const auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds(static_cast<int>(1000 * seconds));
-  int status = 0;
-  while (std::chrono::steady_clock::now() < until)
-  {
-    if (waitpid(child, &status, WNOHANG) == child)
-    {
-      return WIFEXITED(status) ? WEXITSTATUS(status) : -WTERMSIG(status);
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  kill(child, SIGKILL);
-  waitpid(child, &status, 0);
-  return -999;
-}
+using vp::test::FreePort;
+using vp::test::WaitFor;
+using vp::test::WaitForText;
 
 std::vector<std::vector<std::string>> Rows(const std::string& csv)
 {

@@ -11,6 +11,11 @@
 #include <vector>
 #include <string>
 #include <sys/stat.h>
+#include <sys/socket.h>
+#include <netinet/in.h>
+#include <signal.h>
+#include <chrono>
+#include <thread>
 
 // VP_UNDER_ASAN: AddressSanitizer's shadow and quarantine make a process's memory say nothing of
 // the program's own, so memory bounds are not compared under it.
@@ -117,6 +122,62 @@ inline std::string Slurp(const std::string& path)
 
 /// Records names (files, and folders as "name/") in folder as the entries of a run of ours, as
 /// vp::RunFolder's marker does: for a test that lays out an earlier run by hand.
+/// A port free now on loopback (the kernel's choice), for a peer that must be told one: TCP, or
+/// UDP with SOCK_DGRAM.
+inline int FreePort(int type = SOCK_STREAM)
+{
+  const int s = socket(AF_INET, type, 0);
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  address.sin_port = 0;
+  bind(s, reinterpret_cast<sockaddr*>(&address), sizeof address);
+  socklen_t length = sizeof address;
+  getsockname(s, reinterpret_cast<sockaddr*>(&address), &length);
+  close(s);
+  return ntohs(address.sin_port);
+}
+
+/// Waits until a file a child writes holds text at least times times (seconds at most).
+inline bool WaitForText(const std::string& file, const std::string& text, double seconds = 10.0, int times = 1)
+{
+  const auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds(static_cast<int>(1000 * seconds));
+  while (std::chrono::steady_clock::now() < until)
+  {
+    const std::string content = Slurp(file);
+    int found = 0;
+    for (std::size_t at = content.find(text); at != std::string::npos; at = content.find(text, at + 1))
+    {
+      ++found;
+    }
+    if (found >= times)
+    {
+      return true;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return false;
+}
+
+/// Waits for a child to end (seconds at most, then kills it): its exit code, -signal when a
+/// signal ended it, -999 when it had to be killed.
+inline int WaitFor(pid_t child, double seconds)
+{
+  const auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds(static_cast<int>(1000 * seconds));
+  int status = 0;
+  while (std::chrono::steady_clock::now() < until)
+  {
+    if (waitpid(child, &status, WNOHANG) == child)
+    {
+      return WIFEXITED(status) ? WEXITSTATUS(status) : -WTERMSIG(status);
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  kill(child, SIGKILL);
+  waitpid(child, &status, 0);
+  return -999;
+}
+
 /// The cells of one CSV line (no quoting: our tables have none), a trailing empty cell kept.
 inline std::vector<std::string> SplitCsvLine(const std::string& line)
 {

@@ -12,13 +12,17 @@
 #include "vpTrackingSession.h"
 #include "vtkVesselProximityLogic.h"
 
+#include "vpOscOutput.h"
+
 #include <igtlClientSocket.h>
+#include <lo/lo.h>
 
 #include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <mutex>
 #include <thread>
 #include <unistd.h>
 
@@ -44,6 +48,85 @@ Json Quantiles(const std::vector<double>& values)
   }
   return { { "median", Quantile(values, 0.5) }, { "p95", Quantile(values, 0.95) }, { "max", Quantile(values, 1.0) } };
 }
+
+/// The frame's distance as the OSC output sends it: the nearest class's, negative inside.
+float OscDistance(const TrackedFrame& frame)
+{
+  const int nearest = frame.Proximity.NearestIndex();
+  const ClassProximity* p = nearest >= 0 ? &frame.Proximity.Classes[nearest] : nullptr;
+  return p ? static_cast<float>(p->Inside && *p->Inside ? -p->DistanceMm : p->DistanceMm) : 0.0f;
+}
+
+/// An OSC peer on loopback, liblo's own server thread: when each distance message arrived.
+class OscListener
+{
+public:
+  OscListener()
+    : Server(lo_server_thread_new(nullptr, nullptr))
+  {
+    lo_server_thread_add_method(this->Server, "/vesselproximity/distance", nullptr, &OscListener::Heard, this);
+    lo_server_thread_start(this->Server);
+  }
+  ~OscListener() { lo_server_thread_free(this->Server); }
+  OscListener(const OscListener&) = delete;
+  OscListener& operator=(const OscListener&) = delete;
+  int GetPort() const { return lo_server_thread_get_port(this->Server); }
+  /// Each message's distance and when it arrived (vp::NowMs), in order.
+  std::vector<std::pair<float, double>> Taken()
+  {
+    std::lock_guard<std::mutex> hold(this->Lock);
+    return this->Arrived;
+  }
+
+private:
+  static int Heard(const char*, const char* types, lo_arg** argv, int argc, lo_message, void* self)
+  {
+    if (argc >= 2 && types[1] == 'f')
+    {
+      auto* listener = static_cast<OscListener*>(self);
+      std::lock_guard<std::mutex> hold(listener->Lock);
+      listener->Arrived.emplace_back(argv[1]->f, NowMs());
+    }
+    return 0;
+  }
+  lo_server_thread Server;
+  std::mutex Lock;
+  std::vector<std::pair<float, double>> Arrived;
+};
+
+/// Each frame's distance and when its pose arrived, as the OSC output is told of it.
+class PoseArrivals : public FrameOutput
+{
+public:
+  explicit PoseArrivals(const LivePoseSource& source)
+    : Source(source)
+  {
+  }
+  void OnFrame(const TrackedFrame& frame) override { this->Frames.emplace_back(OscDistance(frame), this->Source.GetLastArrivalMs()); }
+  /// Pose arrival to OSC message received, for each message: matched in order to the frame whose
+  /// distance it carries (a frame a newer one replaced before it was sent has no message).
+  std::vector<double> LatenciesMs(const std::vector<std::pair<float, double>>& received) const
+  {
+    std::vector<double> latencies;
+    std::size_t f = 0;
+    for (const auto& [distance, atMs] : received)
+    {
+      while (f < this->Frames.size() && this->Frames[f].first != distance)
+      {
+        ++f;
+      }
+      if (f < this->Frames.size())
+      {
+        latencies.push_back(atMs - this->Frames[f++].second);
+      }
+    }
+    return latencies;
+  }
+
+private:
+  const LivePoseSource& Source;
+  std::vector<std::pair<float, double>> Frames;
+};
 
 /// One phase: the stream at rateHz for seconds, through a fresh session on the logic.
 Json Phase(vtkVesselProximityLogic* logic, const std::vector<TrackedPose>& poses, double rateHz, double seconds)
@@ -95,6 +178,12 @@ Json Phase(vtkVesselProximityLogic* logic, const std::vector<TrackedPose>& poses
   std::size_t penetrating = 0;
   LiveResultsOutput results(link, &source);
   session.AddOutput(&results);
+  // The frames also go out as OSC, to a peer here: pose to OSC beside pose to OpenIGTLink.
+  OscListener listener;
+  OscOutput osc("the bench's OSC peer", "127.0.0.1", listener.GetPort(), Sonification::Default());
+  PoseArrivals arrivals(source);
+  session.AddOutput(&arrivals);
+  session.AddOutput(&osc);
   session.Run(source, [&](const TrackedFrame& frame) {
     frameMs.push_back(frame.FrameMs);
     penetrating += std::any_of(frame.Penetrations.begin(), frame.Penetrations.end(),
@@ -118,6 +207,11 @@ Json Phase(vtkVesselProximityLogic* logic, const std::vector<TrackedPose>& poses
   out["rejected"] = counts.RejectedTotal();
   // What `live` reports, measured by the same output (vp::RunningQuantiles: at most 0.1% above).
   out["latency_ms"] = LiveLatencyJson(results.GetLatencyMs());
+  std::this_thread::sleep_for(std::chrono::milliseconds(50)); // the last messages on their way
+  const std::vector<double> oscMs = arrivals.LatenciesMs(listener.Taken());
+  out["osc_latency_ms"] = Quantiles(oscMs); // pose arrival to the OSC peer's receipt
+  out["osc_messages"] = oscMs.size();
+  out["osc_failed"] = osc.GetCounts().Failed;
   out["frame_ms"] = Quantiles(frameMs); // the anchor: the same frames' compute, without the network
   out["resident_mb_after_5s"] = residentAt5s > 0.0 ? Json(residentAt5s) : Json(nullptr);
   out["resident_mb_end"] = ResidentMb();

@@ -163,7 +163,11 @@ Sonification Sonification::Default()
 
 Sonification Sonification::Read(const std::string& fileName)
 {
-  const nlohmann::json root = ReadJsonFile(fileName, "a sonification (JSON)");
+  return FromJson(ReadJsonFile(fileName, "a sonification (JSON)"), fileName);
+}
+
+Sonification Sonification::FromJson(const nlohmann::json& root, const std::string& fileName)
+{
   if (!root.is_object())
   {
     throw InputError(fileName, "not a JSON object of levels, margin and lost");

@@ -6,6 +6,8 @@
 #include "vpPoseFile.h"
 #include "vpTrackedFrame.h"
 
+#include <nlohmann/json_fwd.hpp>
+
 #include <array>
 #include <string>
 
@@ -78,6 +80,8 @@ public:
   /// entry for an unknown name, a wrong type or a value out of range (pitch 0 or 20 to 20000 Hz,
   /// 0 to 50 beeps/s, duty above 0 to 1, gain 0 to 1).
   static Sonification Read(const std::string& fileName);
+  /// The same from JSON already parsed; fileName names it in errors.
+  static Sonification FromJson(const nlohmann::json& root, const std::string& fileName);
 
   const Voice& ForLevel(DangerLevel level) const { return this->Levels[static_cast<int>(level)]; }
   const Voice& ForMargin(MarginLevel level) const { return this->Margins[static_cast<int>(level)]; }

@@ -10,9 +10,7 @@
 #include "vpTrackingSession.h"
 #include "vtkVesselProximityLogic.h"
 
-#include <vtkCallbackCommand.h>
 #include <vtkCellArray.h>
-#include <vtkNew.h>
 #include <vtkImageData.h>
 #include <vtkPolyData.h>
 
@@ -69,22 +67,27 @@ std::string Text(double value)
   return FixedText(value, "%.3f");
 }
 
+/// Each frame's level and each change of it, as a run's output hears them.
+class LevelRecord : public FrameOutput
+{
+public:
+  std::vector<DangerLevel> Levels, Changes;
+  void OnLevelChange(const DangerLevelChange& change) override { this->Changes.push_back(change.To); }
+  void OnFrame(const TrackedFrame& frame) override { this->Levels.push_back(frame.Level); }
+};
+
 /// The exact engine's level at every frame and its changes, computed here, independently of the
 /// track command's run.
 std::vector<DangerLevel> ExactLevels(const ModuleServices& module, const DemoReport& report, std::vector<DangerLevel>& changes)
 {
   vtkSmartPointer<vtkVesselProximityLogic> logic = MakeDemoTipLogic(module, report);
-  vtkNew<vtkCallbackCommand> onChange;
-  onChange->SetClientData(&changes);
-  onChange->SetCallback([](vtkObject*, unsigned long, void* list, void* change) {
-    static_cast<std::vector<DangerLevel>*>(list)->push_back(static_cast<DangerLevelChange*>(change)->To);
-  });
-  logic->GetTrackingLogic()->AddObserver(vtkScalpelTrackingLogic::DangerLevelChangedEvent, onChange);
-  std::vector<DangerLevel> levels;
+  LevelRecord record;
   TrackingSession session(logic);
+  session.AddOutput(&record);
   PoseListSource poses(report.Trajectory.Poses, report.PosesFile); // the poses the track stage ran
-  session.Run(poses, [&](const TrackedFrame& frame) { levels.push_back(frame.Level); });
-  return levels;
+  session.Run(poses);
+  changes = record.Changes;
+  return record.Levels;
 }
 
 std::string Names(const std::vector<DangerLevel>& levels)

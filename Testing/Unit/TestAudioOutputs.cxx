@@ -306,7 +306,10 @@ TEST_F(AudioOutputs, OscdumpReceivesTheFramesValues)
   const pid_t oscdump = vp::test::StartProgram("/usr/bin/oscdump", { "-L", std::to_string(port) }, dump);
   ASSERT_GT(oscdump, 0);
   usleep(300000); // oscdump binds its port
-  const auto run = RunTool(this->Dir, this->Track("--osc 127.0.0.1:" + std::to_string(port)));
+  // A tumour beside the path: its margin goes out too.
+  const double lesion[3] = { 20.0, 9.0, 0.0 };
+  const std::string tumour = vp::test::WriteMeshFile(this->Dir, "lesion.stl", vp::MakeSphere(lesion, 3.0, 24, 48));
+  const auto run = RunTool(this->Dir, this->Track("--tumour " + tumour + " --osc 127.0.0.1:" + std::to_string(port)));
   usleep(200000);
   kill(oscdump, SIGTERM);
   waitpid(oscdump, nullptr, 0);
@@ -314,6 +317,7 @@ TEST_F(AudioOutputs, OscdumpReceivesTheFramesValues)
 
   std::vector<std::string> levelNames, states;
   std::vector<std::pair<std::string, double>> distances;
+  std::vector<std::pair<double, double>> margins; // level, signed mm
   std::istringstream lines(Slurp(dump));
   for (std::string line; std::getline(lines, line);)
   {
@@ -337,6 +341,13 @@ TEST_F(AudioOutputs, OscdumpReceivesTheFramesValues)
         levelNames.push_back(name);
       }
     }
+    else if (address == "/vesselproximity/margin")
+    {
+      double level = 0.0, mm = 0.0;
+      std::string id;
+      words >> level >> id >> mm;
+      margins.emplace_back(level, mm);
+    }
     else if (address == "/vesselproximity/state")
     {
       std::string state;
@@ -355,9 +366,11 @@ TEST_F(AudioOutputs, OscdumpReceivesTheFramesValues)
   const auto column = [&](const std::string& name) { return std::find(header.begin(), header.end(), name) - header.begin(); };
   std::vector<double> signedMm;
   std::vector<std::string> frameLevels;
+  std::vector<std::pair<std::string, double>> frameMargins;
   while (std::getline(csv, line))
   {
     const std::vector<std::string> cells = vp::test::SplitCsvLine(line);
+    frameMargins.emplace_back(cells[column("margin_level")], std::stod(cells[column("tumour_mm")]));
     signedMm.push_back(std::stod(cells[column("nearest_mm")]) * (cells[column("portal_vein_inside")] == "1" ? -1.0 : 1.0));
     if (frameLevels.empty() || frameLevels.back() != cells[column("danger_level")])
     {
@@ -374,6 +387,18 @@ TEST_F(AudioOutputs, OscdumpReceivesTheFramesValues)
       ++row; // a frame whose distance a newer one replaced before it was sent
     }
     ASSERT_LT(row, signedMm.size()) << "a distance no frame had, or out of order: " << mm;
+  }
+  // Each margin message is a frame's: its level's number and the tip's signed distance.
+  ASSERT_FALSE(margins.empty());
+  std::size_t m = 0;
+  for (const auto& [level, mm] : margins)
+  {
+    while (m < frameMargins.size() && !(std::fabs(frameMargins[m].second - mm) < 1e-3 &&
+             frameMargins[m].first == vp::MarginLevelName(static_cast<vp::MarginLevel>(static_cast<int>(level)))))
+    {
+      ++m;
+    }
+    ASSERT_LT(m, frameMargins.size()) << "a margin no frame had: " << level << " " << mm;
   }
   for (std::string& name : levelNames)
   {

@@ -213,6 +213,21 @@ private:
   std::size_t Used = 0;
   std::vector<unsigned char> Chunk = std::vector<unsigned char>(1u << 16);
 };
+
+/// Each message of a run of version-1 messages (as the packers make them) rewritten as version 2,
+/// with no metadata: for a peer that speaks version 2.
+std::string ToIgtlVersion2Stream(const std::string& messages)
+{
+  std::string out;
+  for (std::size_t at = 0; at + IgtlHeaderBytes <= messages.size();)
+  {
+    const IgtlHeader h = ParseIgtlHeader(reinterpret_cast<const unsigned char*>(messages.data() + at));
+    const std::size_t size = IgtlHeaderBytes + static_cast<std::size_t>(h.BodyBytes);
+    out += ToIgtlVersion2(messages.substr(at, size), {}, 0);
+    at += size;
+  }
+  return out;
+}
 } // namespace
 
 struct IgtlLink::Peer
@@ -232,6 +247,8 @@ struct IgtlLink::Peer
   /// still read (a tracker server that never reads is still a tracker).
   std::atomic<bool> Deaf{ false };
   std::mutex SocketMutex;             ///< a send and the close never overlap
+  /// The header version it speaks: 1 until it sends a version-2 message, then answered in 2.
+  std::atomic<unsigned> Version{ 1 };
 };
 
 std::size_t IgtlLinkCounts::RejectedTotal() const
@@ -561,6 +578,11 @@ void IgtlLink::ServePeer(Peer& peer)
       this->Count(&IgtlLinkCounts::Rejected, "a body size beyond the limit", peer.Name);
       break;
     }
+    if (h.Version >= 2 && peer.Version.exchange(2) < 2)
+    {
+      std::lock_guard<std::mutex> lock(this->Mutex);
+      ++this->Counts.Version2Peers;
+    }
     body.resize(static_cast<std::size_t>(h.BodyBytes));
     r = body.empty() ? ReadResult::Ok : reader.Read(body.data(), body.size());
     if (r != ReadResult::Ok)
@@ -605,6 +627,7 @@ void IgtlLink::Take(Peer& peer, const unsigned char* header, const std::vector<u
     if (steers)
     {
       ++this->Counts.Poses;
+      this->Counts.NotSeen += m.Pose.Lost ? 1 : 0;
       if (this->Fresh)
       {
         ++this->Counts.Dropped; // the one waiting was never computed: the newer one replaces it
@@ -675,14 +698,20 @@ void IgtlLink::Send(const std::string& packed)
       }
     }
   }
+  std::string inVersion2; // made once, for the peers that speak it
   for (const auto& peer : peers)
   {
+    if (peer->Version >= 2 && inVersion2.empty())
+    {
+      inVersion2 = ToIgtlVersion2Stream(packed);
+    }
+    const std::string& bytes = peer->Version >= 2 ? inVersion2 : packed;
     std::unique_lock<std::mutex> socketLock(peer->SocketMutex);
     if (peer->Done)
     {
       continue;
     }
-    const bool sent = peer->Socket->Send(packed.data(), static_cast<int>(packed.size())) == 1;
+    const bool sent = peer->Socket->Send(bytes.data(), static_cast<int>(bytes.size())) == 1;
     socketLock.unlock();
     if (!sent)
     {

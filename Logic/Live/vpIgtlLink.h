@@ -62,6 +62,8 @@ struct IgtlLinkCounts
 {
   std::size_t Messages = 0; ///< whole messages read
   std::size_t Poses = 0;    ///< the tool's poses taken from them
+  std::size_t NotSeen = 0;  ///< of those, the tracker said it did not see the tool (a status not OK): lost poses
+  std::size_t Version2Peers = 0; ///< peers that spoke header version 2, answered in it
   std::size_t Dropped = 0;  ///< poses replaced by a newer one before they were computed
   std::map<std::string, std::size_t> Rejected; ///< malformed or implausible, by reason
   std::map<std::string, std::size_t> Ignored;  ///< other types and tools, by which
@@ -71,7 +73,8 @@ struct IgtlLinkCounts
   std::size_t RejectedTotal() const;
 };
 
-/// OpenIGTLink (Debian's library) both ways, as PLUS and 3D Slicer speak it: the tool's poses
+/// OpenIGTLink (Debian's library, header versions 1 and 2) both ways, as PLUS and 3D Slicer speak
+/// it; a peer that sends version 2 is answered in version 2 from then on, as PlusServer does: the tool's poses
 /// in from a server it connects to and from the clients it serves, results out to all of them.
 /// Each connection is read by a thread of its own; the newest pose waits in a mailbox of one
 /// (WaitForPose), so a sender faster than the frames loses its older poses (counted), never

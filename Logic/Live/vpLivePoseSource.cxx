@@ -51,12 +51,13 @@ LivePoseSource::Step LivePoseSource::Poll(TrackedPose& pose, double waitMs)
   if (this->Link.WaitForPose(waitMs, pose, arrivalMs))
   {
     this->SeenAny = true;
-    this->Lost = false;
+    // A pose the tracker says it did not see (a status not OK) is a loss as it comes.
+    this->Lost = pose.Lost;
     this->LastPoseMs = arrivalMs;
     this->LastPoseTimeS = pose.TimeS;
     this->LastArrivalMs = arrivalMs;
     ++this->Read;
-    return Step::Pose;
+    return pose.Lost ? Step::Lost : Step::Pose;
   }
   if (this->Idle)
   {

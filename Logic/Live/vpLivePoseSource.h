@@ -24,7 +24,8 @@ public:
   bool Next(TrackedPose& pose) override;
 
   /// One step of Next() that waits at most waitMs, for a front end with a loop of its own (the
-  /// viewer's timer): a pose, a loss (once per loss), nothing yet, or the end.
+  /// viewer's timer): a pose, a loss (a pose the tracker said it did not see, each; a stream gone
+  /// stale, once), nothing yet, or the end.
   enum class Step
   {
     Pose,

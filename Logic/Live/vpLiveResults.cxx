@@ -99,14 +99,14 @@ std::string LiveFrameJson(const TrackedFrame& frame)
 std::string PackLiveFrame(const TrackedFrame& frame)
 {
   std::vector<IgtlPoint> points;
-  points.push_back({ "tip", "scalpel", Rgba(frame.Level), Ras(frame.TipMm) });
+  points.push_back({ "tip", "scalpel", Rgba(frame.Level), Ras(frame.TipMm), 1.0, "" });
   for (std::size_t c = 0; c < frame.Proximity.Classes.size(); ++c)
   {
     const ClassProximity& p = frame.Proximity.Classes[c];
     if (p.InRange)
     {
       points.push_back({ p.ClassName, "closest", Rgba(c < frame.ClassLevels.size() ? frame.ClassLevels[c] : DangerLevel::Safe),
-        Ras(p.ClosestPoint) });
+        Ras(p.ClosestPoint), 1.0, "" });
     }
   }
   if (frame.Tumour && frame.Tumour->Worst >= 0)
@@ -116,7 +116,7 @@ std::string PackLiveFrame(const TrackedFrame& frame)
     points.push_back({ t.Id, "tumour", Rgba(frame.Tumour->Level >= MarginLevel::Violated ? DangerLevel::Danger
                                               : frame.Tumour->Level == MarginLevel::Near ? DangerLevel::Caution
                                                                                           : DangerLevel::Safe),
-      Ras(t.ClosestPoint) });
+      Ras(t.ClosestPoint), 1.0, "" });
   }
   std::string packed = PackIgtlString(live::FrameDevice, LiveFrameJson(frame)) + PackIgtlPoints(live::PointsDevice, points);
   if (frame.Haptic)
@@ -155,12 +155,14 @@ Json LiveLinkJson(const IgtlLinkCounts& counts)
   Json out;
   out["messages"] = counts.Messages;
   out["poses"] = counts.Poses;
+  out["poses_not_seen_by_the_tracker"] = counts.NotSeen;
   out["poses_dropped"] = counts.Dropped;
   out["rejected"] = counts.Rejected;
   out["ignored"] = counts.Ignored;
   out["connections"] = counts.Connections;
   out["connections_lost"] = counts.ConnectionsLost;
   out["send_failures"] = counts.SendFailures;
+  out["version_2_peers"] = counts.Version2Peers;
   return out;
 }
 } // namespace vp

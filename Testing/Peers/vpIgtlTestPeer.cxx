@@ -10,6 +10,11 @@
 //   vp_igtl_peer hostile PORT DEVICE
 //     Serves on PORT, and to its first client sends, between good poses, one message of each
 //     malformed kind, then a size field that lies; to its second client, five good poses.
+//   vp_igtl_peer replay PORT RATE_HZ REPLIES.txt FILE[*COUNT]...
+//     Serves on PORT, waits for one client, sends the bytes of each FILE (a whole message as it
+//     goes on the wire) COUNT times (default 1) at RATE_HZ, reads what the client sends back,
+//     writing "VERSION TYPE DEVICE" for each message to REPLIES.txt, and exits half a second after
+//     the last: a peer that speaks as 3D Slicer or PlusServer do, from their own messages.
 #include <igtlOSUtil.h>
 #include <igtlQuaternionTrackingDataMessage.h>
 #include <igtlServerSocket.h>
@@ -17,7 +22,10 @@
 #include <igtlTrackingDataMessage.h>
 #include <igtlTransformMessage.h>
 
+#include <atomic>
 #include <chrono>
+#include <cstdint>
+#include <iterator>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -205,6 +213,56 @@ int Hostile(int port, const std::string& device)
   socket->CloseSocket();
   return 0;
 }
+int Replay(int port, double rateHz, const std::string& repliesFile, const std::vector<std::string>& files)
+{
+  std::vector<std::string> messages;
+  for (const std::string& spec : files)
+  {
+    const std::size_t star = spec.find('*');
+    std::ifstream in(spec.substr(0, star), std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const int count = star == std::string::npos ? 1 : std::atoi(spec.c_str() + star + 1);
+    messages.insert(messages.end(), static_cast<std::size_t>(count), bytes);
+  }
+  auto server = Serve(port);
+  igtl::Socket::Pointer socket = Accept(server);
+  socket->SetReceiveTimeout(100);
+  std::atomic<bool> stop{ false };
+  std::thread reader([&] {
+    std::ofstream replies(repliesFile);
+    unsigned char header[58];
+    while (!stop)
+    {
+      if (socket->Receive(header, 58) != 58)
+      {
+        continue;
+      }
+      std::uint64_t body = 0;
+      for (int i = 42; i < 50; ++i)
+      {
+        body = (body << 8) | header[i];
+      }
+      std::vector<char> rest(static_cast<std::size_t>(body));
+      if (body > 0 && socket->Receive(rest.data(), static_cast<int>(body)) != static_cast<int>(body))
+      {
+        break;
+      }
+      replies << ((header[0] << 8) | header[1]) << " " << std::string(reinterpret_cast<char*>(header) + 2, 12).c_str() << " "
+              << std::string(reinterpret_cast<char*>(header) + 14, 20).c_str() << std::endl;
+    }
+  });
+  const auto start = Clock::now();
+  for (std::size_t i = 0; i < messages.size(); ++i)
+  {
+    std::this_thread::sleep_until(start + std::chrono::microseconds(static_cast<long long>(1e6 * static_cast<double>(i) / rateHz)));
+    Send(socket, messages[i]);
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  stop = true;
+  reader.join();
+  socket->CloseSocket();
+  return 0;
+}
 } // namespace
 
 int main(int argc, char* argv[])
@@ -219,6 +277,11 @@ int main(int argc, char* argv[])
   {
     return Hostile(std::atoi(argv[2]), argv[3]);
   }
-  std::cerr << "usage: vp_igtl_peer serve PORT POSES.csv RATE_HZ DEVICE SENT.csv [PAUSE_AFTER PAUSE_MS] | hostile PORT DEVICE\n";
+  if (mode == "replay" && argc >= 6)
+  {
+    return Replay(std::atoi(argv[2]), std::atof(argv[3]), argv[4], std::vector<std::string>(argv + 5, argv + argc));
+  }
+  std::cerr << "usage: vp_igtl_peer serve PORT POSES.csv RATE_HZ DEVICE SENT.csv [PAUSE_AFTER PAUSE_MS] | hostile PORT DEVICE"
+               " | replay PORT RATE_HZ REPLIES.txt FILE[*COUNT]...\n";
   return 2;
 }

@@ -1,7 +1,9 @@
 // OpenIGTLink header versions 1 and 2 (issue 53): every message of ../shared/data/igtl (written
 // by the OpenIGTLink 3 library itself) read with the values its manifest gives, the ones we write
 // written byte for byte as the library wrote them, and a pose whose status is not OK taken as lost.
+#include "vpAnalyticShapes.h"
 #include "vpIgtlMessages.h"
+#include "vpModelTestSupport.h"
 #include "vpPoseReading.h"
 #include "vpTestSupport.h"
 
@@ -10,6 +12,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <sstream>
 #include <tuple>
 
 namespace
@@ -304,5 +307,47 @@ TEST_F(IgtlVersion2, APoseTheTrackerDoesNotSeeIsLost)
     vp::IgtlBody split;
     EXPECT_EQ(vp::SplitIgtlBody(lying.Header(), lying.Body(), split), expected) << offset;
   }
+}
+
+// A peer configured as 3D Slicer and PlusServer are by default: its version-2 STATUS on connect,
+// then version-2 TRANSFORMs with their status (PLUS's MISSING for a tool it does not see, with
+// the identity): every OK pose is a frame, every MISSING one a lost pose, and the peer is answered
+// in version 2 from its first message on.
+TEST_F(IgtlVersion2, ASlicerConfiguredPeersStreamIsTrackedAndAnsweredInVersion2)
+{
+  const std::string dir = vp::test::MakeTempDir("igtl_v2_live");
+  const double centre[3] = { 10.5, -20.25, 50.0 };
+  const std::string vessel = vp::test::WriteMeshFile(dir, "portal_vein.stl", vp::MakeSphere(centre, 10.0, 24, 48));
+  const int port = vp::test::FreePort();
+  const pid_t peer = vp::test::StartProgram(VP_IGTL_PEER,
+    { "replay", std::to_string(port), "50", dir + "/replies.txt", this->Folder + "status_v2_connect.bin",
+      this->Folder + "transform_v2_slicer.bin*20", this->Folder + "transform_v2_plus_missing.bin*10",
+      this->Folder + "transform_v2_plus_ok.bin*20" },
+    dir + "/peer.out", dir + "/peer.err");
+  ASSERT_TRUE(vp::test::WaitForText(dir + "/peer.out", "port ")) << vp::test::Slurp(dir + "/peer.err");
+  const auto live = vp::test::RunTool(dir, "live --vessels portal_vein=" + vessel + " --scalpel " + std::string(VP_SOURCE_DIR) +
+      "/Resources/CusaHandpiece.stl --no-surface --tool-name StylusToTracker --igtl 127.0.0.1:" + std::to_string(port) +
+      " --duration-s 2.5 -o " + dir + "/out");
+  EXPECT_EQ(vp::test::WaitFor(peer, 10.0), 0) << vp::test::Slurp(dir + "/peer.err");
+  ASSERT_EQ(live.ExitCode, 0) << live.Err;
+  const nlohmann::json summary = nlohmann::json::parse(Slurp(dir + "/out/summary.json"));
+  EXPECT_EQ(summary["frames"], 40) << summary.dump();
+  EXPECT_EQ(summary["poses_lost"], 11) << "ten MISSING, and the stream gone quiet once it ended";
+  EXPECT_EQ(summary["link"]["poses_not_seen_by_the_tracker"], 10);
+  EXPECT_EQ(summary["link"]["version_2_peers"], 1);
+  EXPECT_EQ(summary["link"]["rejected"].size(), 0u) << summary["link"].dump();
+  // Its replies: the start requests sent on connecting, before it spoke, in version 1; every
+  // result after in version 2.
+  std::istringstream replies(Slurp(dir + "/replies.txt"));
+  int version2 = 0, version1 = 0;
+  for (std::string line; std::getline(replies, line);)
+  {
+    const bool start = line.find("STT_") != std::string::npos;
+    EXPECT_EQ(line[0], start ? '1' : '2') << line;
+    (line[0] == '2' ? version2 : version1) += 1;
+  }
+  EXPECT_EQ(version1, 2);
+  EXPECT_GT(version2, 40);
+  std::filesystem::remove_all(dir);
 }
 } // namespace

@@ -134,6 +134,7 @@ Json Phase(vtkVesselProximityLogic* logic, const std::vector<TrackedPose>& poses
   IgtlLinkSettings settings;
   settings.ListenPort = 0;
   settings.ToolName = "Scalpel";
+  settings.ResultsTo = IgtlResultsTo::All; // the tracker here reads them back: the reply is measured
   IgtlLink link(settings);
   std::atomic<bool> stop{ false };
   std::atomic<std::size_t> sent{ 0 };

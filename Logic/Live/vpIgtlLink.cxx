@@ -249,7 +249,24 @@ struct IgtlLink::Peer
   std::mutex SocketMutex;             ///< a send and the close never overlap
   /// The header version it speaks: 1 until it sends a version-2 message, then answered in 2.
   std::atomic<unsigned> Version{ 1 };
+  std::atomic<std::size_t> Messages{ 0 }; ///< whole messages read from it
 };
+
+void IgtlLink::AskWhenSilent(Peer& peer)
+{
+  const double until = peer.ConnectedMs + this->Settings.StartRequestAfterMs;
+  while (!this->Stop && !peer.Done && peer.Messages == 0 && NowMs() < until)
+  {
+    std::this_thread::sleep_for(std::chrono::milliseconds(PollMs));
+  }
+  std::lock_guard<std::mutex> lock(peer.SocketMutex);
+  if (this->Stop || peer.Done || peer.Messages > 0)
+  {
+    return;
+  }
+  const std::string start = PackIgtlStartTracking(10);
+  peer.Socket->Send(start.data(), static_cast<int>(start.size()));
+}
 
 std::size_t IgtlLinkCounts::RejectedTotal() const
 {
@@ -370,10 +387,6 @@ void IgtlLink::ConnectLoop()
     }
     auto socket = AdoptedSocket::New();
     socket->Adopt(descriptor);
-    // A tracking-data server streams once asked (PLUS and the library's examples do so); asked
-    // before the peer is listed, so that no frame's results are sent in the middle of the request.
-    const std::string start = PackIgtlStartTracking(10);
-    socket->Send(start.data(), static_cast<int>(start.size()));
     auto peer = std::make_shared<Peer>();
     peer->Socket = socket.GetPointer();
     peer->Descriptor = descriptor;
@@ -391,7 +404,9 @@ void IgtlLink::ConnectLoop()
       this->Note("connected to " + name);
     }
     const std::size_t messagesBefore = this->GetCounts().Messages;
+    std::thread asker([this, peer] { this->AskWhenSilent(*peer); });
     this->ServePeer(*peer);
+    asker.join();
     {
       std::lock_guard<std::mutex> lock(this->Mutex);
       this->Peers.erase(std::remove(this->Peers.begin(), this->Peers.end(), peer), this->Peers.end());
@@ -590,6 +605,7 @@ void IgtlLink::ServePeer(Peer& peer)
       break;
     }
     reader.MessageDone();
+    ++peer.Messages;
     this->Take(peer, header, body);
   }
   if (r == ReadResult::Stalled)
@@ -690,9 +706,11 @@ void IgtlLink::Send(const std::string& packed)
   std::vector<std::shared_ptr<Peer>> peers;
   {
     std::lock_guard<std::mutex> lock(this->Mutex);
+    const IgtlResultsTo to = this->Settings.ResultsTo;
     for (const auto& peer : this->Peers)
     {
-      if (!peer->Done && !peer->Deaf)
+      const bool asked = peer->IsServer ? to != IgtlResultsTo::Listeners : to != IgtlResultsTo::Tracker;
+      if (asked && !peer->Done && !peer->Deaf)
       {
         peers.push_back(peer);
       }

@@ -18,15 +18,28 @@
 
 namespace vp
 {
+/// Which peers the results go to.
+enum class IgtlResultsTo
+{
+  Listeners, ///< the clients that connected to ListenPort (3D Slicer): never the tracker
+  Tracker,   ///< the server connected to alone
+  All,       ///< both
+};
+
 /// Where the link meets its peers and what it takes from them.
 struct IgtlLinkSettings
 {
   /// ConnectHost and ConnectPort: a server to connect to (a tracker's, PlusServer), as Slicer
-  /// connects to PLUS; reconnected with a growing pause (0.1 s to 2 s) whenever it is lost. On
-  /// connecting, the link asks it for tracking data (STT_TDATA, STT_QTDATA, every 10 ms).
-  /// ConnectPort 0: none.
+  /// connects to PLUS; reconnected with a growing pause (0.1 s to 2 s) whenever it is lost. A
+  /// server that sends nothing within StartRequestAfterMs of the connection is a tracking-data
+  /// server waiting to be asked (the library's examples): it is asked then (STT_TDATA, STT_QTDATA,
+  /// every 10 ms); one that streams at once (PlusServer) is never asked. ConnectPort 0: none.
   std::string ConnectHost = "127.0.0.1";
   int ConnectPort = 0;
+  double StartRequestAfterMs = 500.0;
+  /// Which peers the results go to: by default the clients of ListenPort, never the tracker (a
+  /// PlusServer logs a warning for each message type it does not know).
+  IgtlResultsTo ResultsTo = IgtlResultsTo::Listeners;
   /// ListenPort: a port to serve on, for clients (Slicer, a tracker client) to connect to;
   /// -1: none; 0: any free port (GetListenPort()). ListenHost: the address served on, this
   /// machine's loopback by default (only its own programs reach it); the operating room's network
@@ -117,6 +130,8 @@ private:
   /// Reads the peer's messages until it closes, stalls, sends what cannot be followed or the link
   /// stops.
   void ServePeer(Peer& peer);
+  /// Asks a server that has sent nothing within StartRequestAfterMs for tracking data.
+  void AskWhenSilent(Peer& peer);
   /// One whole message of the peer: the tool's pose taken when the peer steers, else counted.
   void Take(Peer& peer, const unsigned char* header, const std::vector<unsigned char>& body);
   /// Whether the peer's poses steer the scalpel (see IgtlLinkSettings::PoseFromHost); under Mutex.

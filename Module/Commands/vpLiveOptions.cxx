@@ -53,6 +53,13 @@ std::vector<cli::Parameter> LiveStreamOptions(bool toolRequired, bool withReadin
       .SetPlaceholder("HOST")
       .SetLogicName("PoseFromHost"),
     tool,
+    Option(ParameterType::StringEnumeration, "results-to",
+      "Which peers the results go to: listen (the clients of --igtl-listen, 3D Slicer), tracker (the --igtl server) or "
+      "all. A PlusServer logs a warning for each message type it does not know, so the tracker is sent nothing unless "
+      "asked.")
+      .SetDefault("listen")
+      .SetElements({ "listen", "tracker", "all" })
+      .SetLogicName("ResultsTo"),
     Option(ParameterType::Double, "stale-ms", "No pose for this long is tracking lost: said, sent to the peers and recorded.")
       .SetPlaceholder("MS")
       .SetDefault("200")
@@ -104,6 +111,8 @@ IgtlLinkSettings ParseLiveStream(const cli::ParsedArguments& args)
     throw InputError("--tool-name", "'" + link.ToolName + "' is " + std::to_string(link.ToolName.size()) +
       " bytes; an OpenIGTLink device or element name holds " + std::to_string(IgtlDeviceNameBytes) + ", so no message could carry it");
   }
+  const std::string to = args.GetString("resultsTo"); // an enumeration: checked
+  link.ResultsTo = to == "all" ? IgtlResultsTo::All : to == "tracker" ? IgtlResultsTo::Tracker : IgtlResultsTo::Listeners;
   const PoseReading reading = ParsePoseFrame(args);
   link.Reading = SettlePoseReading(reading);
   return link;

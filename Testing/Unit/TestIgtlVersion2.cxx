@@ -327,7 +327,7 @@ TEST_F(IgtlVersion2, ASlicerConfiguredPeersStreamIsTrackedAndAnsweredInVersion2)
   ASSERT_TRUE(vp::test::WaitForText(dir + "/peer.out", "port ")) << vp::test::Slurp(dir + "/peer.err");
   const auto live = vp::test::RunTool(dir, "live --vessels portal_vein=" + vessel + " --scalpel " + std::string(VP_SOURCE_DIR) +
       "/Resources/CusaHandpiece.stl --no-surface --tool-name StylusToTracker --igtl 127.0.0.1:" + std::to_string(port) +
-      " --duration-s 2.5 -o " + dir + "/out");
+      " --results-to tracker --duration-s 2.5 -o " + dir + "/out");
   EXPECT_EQ(vp::test::WaitFor(peer, 10.0), 0) << vp::test::Slurp(dir + "/peer.err");
   ASSERT_EQ(live.ExitCode, 0) << live.Err;
   const nlohmann::json summary = nlohmann::json::parse(Slurp(dir + "/out/summary.json"));
@@ -336,18 +336,31 @@ TEST_F(IgtlVersion2, ASlicerConfiguredPeersStreamIsTrackedAndAnsweredInVersion2)
   EXPECT_EQ(summary["link"]["poses_not_seen_by_the_tracker"], 10);
   EXPECT_EQ(summary["link"]["version_2_peers"], 1);
   EXPECT_EQ(summary["link"]["rejected"].size(), 0u) << summary["link"].dump();
-  // Its replies: the start requests sent on connecting, before it spoke, in version 1; every
-  // result after in version 2.
+  // Its replies (asked for with --results-to tracker): every result in version 2, and no request
+  // to start streaming (STT_TDATA), since it streamed at once as PlusServer does.
   std::istringstream replies(Slurp(dir + "/replies.txt"));
-  int version2 = 0, version1 = 0;
+  int version2 = 0;
   for (std::string line; std::getline(replies, line);)
   {
-    const bool start = line.find("STT_") != std::string::npos;
-    EXPECT_EQ(line[0], start ? '1' : '2') << line;
-    (line[0] == '2' ? version2 : version1) += 1;
+    EXPECT_EQ(line[0], '2') << line;
+    EXPECT_EQ(line.find("STT_"), std::string::npos) << line;
+    version2 += line[0] == '2' ? 1 : 0;
   }
-  EXPECT_EQ(version1, 2);
   EXPECT_GT(version2, 40);
+
+  // By default the tracker is sent nothing at all (a PlusServer would log each unknown type).
+  const int again = vp::test::FreePort();
+  const pid_t quiet = vp::test::StartProgram(VP_IGTL_PEER,
+    { "replay", std::to_string(again), "50", dir + "/quiet.txt", this->Folder + "transform_v2_slicer.bin*20" }, dir + "/quiet.out",
+    "/dev/null");
+  ASSERT_TRUE(vp::test::WaitForText(dir + "/quiet.out", "port "));
+  const auto byDefault = vp::test::RunTool(dir, "live --vessels portal_vein=" + vessel + " --scalpel " + std::string(VP_SOURCE_DIR) +
+      "/Resources/CusaHandpiece.stl --no-surface --tool-name StylusToTracker --igtl 127.0.0.1:" + std::to_string(again) +
+      " --duration-s 1.2");
+  EXPECT_EQ(vp::test::WaitFor(quiet, 10.0), 0);
+  ASSERT_EQ(byDefault.ExitCode, 0) << byDefault.Err;
+  EXPECT_NE(byDefault.Out.find("20 frames"), std::string::npos) << byDefault.Out;
+  EXPECT_EQ(Slurp(dir + "/quiet.txt"), "") << "the tracker was sent results";
   std::filesystem::remove_all(dir);
 }
 } // namespace

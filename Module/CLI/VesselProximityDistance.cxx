@@ -3,6 +3,7 @@
 // program returns the distance to each vessel class through the return-parameter file and,
 // when asked, writes the distance command's JSON report.
 #include "vpCliDescription.h"
+#include "vpCliTableSchema.h"
 #include "vpCliVessels.h"
 #include "vpOutputFile.h"
 #include "vpClock.h"
@@ -299,7 +300,7 @@ std::vector<vp::MarkupsPoint> ClosestPoints(const vp::ProximityResult& r, const 
   return points;
 }
 
-/// The results as a table node (CSV) with its schema beside it (name.schema.tsv), which Slicer
+/// The results as a table node (CSV) with its schema beside it (name.schema.csv), which Slicer
 /// reads to type the columns: without it every column is text and none can be plotted or sorted.
 void WriteResultsTable(const std::string& fileName, const vp::ProximityResult& r, const std::string& method)
 {
@@ -318,17 +319,16 @@ void WriteResultsTable(const std::string& fileName, const vp::ProximityResult& r
     csv << "," << (c.DirectionalMm ? vp::cli::FormatNumber(*c.DirectionalMm) : "nan") << ","
         << vp::cli::FormatNumber(r.ErrorBoundMm) << "," << method << "\n";
   }
-  std::string schema = "columnName\ttype\tunit\n";
+  std::vector<vp::cli::TableColumn> columns;
   for (const char* column : { "class", "distance_mm", "inside", "in_range", "closest_x_lps", "closest_y_lps",
          "closest_z_lps", "directional_mm", "error_bound_mm", "engine" })
   {
     const std::string name = column;
-    const bool text = name == "class" || name == "engine";
-    const bool flag = name == "inside" || name == "in_range";
-    schema += name + "\t" + (text ? "string" : flag ? "bit" : "double") + "\t" + (text || flag ? "" : "mm") + "\n";
+    // true/false (empty when unknown) stay text: Slicer's bit columns read them as 0.
+    const bool text = name == "class" || name == "engine" || name == "inside" || name == "in_range";
+    columns.push_back({ name, text ? "string" : "double", text ? "" : "mm" });
   }
-  const fs::path table(fileName);
-  vp::WriteFileAtomically((table.parent_path() / (table.stem().string() + ".schema.tsv")).string(), schema);
+  vp::cli::WriteTableSchema(fileName, columns);
   vp::WriteFileAtomically(fileName, csv.str());
 }
 

@@ -4,6 +4,7 @@
 // tracker-to-patient registration (a linear transform node); the program writes the frames table
 // (shown as a table node), the summary and the plot, and returns the run's closest approaches.
 #include "vpCliDescription.h"
+#include "vpCliTableSchema.h"
 #include "vpCliProgress.h"
 #include "vpCliVessels.h"
 #include "vpClock.h"
@@ -284,6 +285,14 @@ public:
       {
         PlaceOutput((fs::path(this->Where) / file).string(), args.GetString(parameter));
       }
+    }
+    if (args.IsSet("framesTable"))
+    {
+      // Typed for Slicer: the table's columns by their names.
+      std::ifstream frames(args.GetString("framesTable"));
+      std::string header;
+      std::getline(frames, header);
+      vp::cli::WriteTableSchema(args.GetString("framesTable"), vp::cli::FramesTableColumns(header));
     }
   }
   vp::RunFolder& GetRun() { return this->Run; }

@@ -1060,9 +1060,13 @@ TEST_F(SlicerCli, DistanceTakesTheToolTransformAndReturnsPointsAndATable)
   EXPECT_EQ(table->GetValueByName(portal, "inside").ToString(), "false");
   EXPECT_NEAR(table->GetValueByName(portal, "closest_z_lps").ToDouble(), 6.0, 1e-6);
   EXPECT_EQ(table->GetValueByName(portal, "engine").ToString(), "exact");
-  const std::string schema = Slurp(this->Temporary("vtkMRMLTableNodeB.schema.tsv"));
-  EXPECT_NE(schema.find("columnName\ttype"), std::string::npos) << schema;
-  EXPECT_NE(schema.find("distance_mm\tdouble\tmm"), std::string::npos) << schema;
+  // Slicer's storage node looks for table.schema.csv beside table.csv (vtkMRMLTableStorageNode::
+  // GenerateSchemaFileName), comma-separated as the table is.
+  const std::string schema = Slurp(this->Temporary("vtkMRMLTableNodeB.schema.csv"));
+  EXPECT_EQ(schema.rfind("columnName,type,unitLabel,nullValue\n", 0), 0u) << schema;
+  EXPECT_NE(schema.find("\ndistance_mm,double,mm,nan\n"), std::string::npos) << schema;
+  EXPECT_NE(schema.find("\nclass,string,,\n"), std::string::npos) << schema;
+  EXPECT_EQ(std::count(schema.begin(), schema.end(), '\n'), 11) << "a row for each of the 10 columns";
 
   // A z-buffer answer is labelled with the interval its truth lies in, the exact 4 mm inside it.
   auto zbuffer = values;
@@ -1144,6 +1148,15 @@ TEST_F(SlicerCli, TrackRunsAsSlicerRunsIt)
 
   const auto frames = ReadCsvTable(values.at("framesTable"));
   EXPECT_EQ(frames->GetNumberOfRows(), 3);
+  // Typed for Slicer: a schema row for every column of the table, each with its type and unit.
+  const std::string framesSchema = Slurp(this->Temporary("vtkMRMLTableNodeC.schema.csv"));
+  EXPECT_EQ(std::count(framesSchema.begin(), framesSchema.end(), '\n'), frames->GetNumberOfColumns() + 1) << framesSchema;
+  for (const char* row : { "\nframe,int,,\n", "\ntime,double,s,nan\n", "\nnearest_mm,double,mm,nan\n", "\ndanger_level,string,,\n",
+         "\nportal_vein_inside,string,,\n", "\nportal_vein_penetration_volume_mm3,double,mm3,nan\n", "\nframe_ms,double,ms,nan\n",
+         "\naxis_x,double,,nan\n" })
+  {
+    EXPECT_NE(framesSchema.find(row), std::string::npos) << row << framesSchema;
+  }
   // The same poses through `vesselproximity track` (the same built-in handpiece and meshes, copied
   // to a folder whose name --vessels' list can hold): the same levels and distances, frame by frame.
   const std::string plain = vp::test::MakeTempDir("cli_track");

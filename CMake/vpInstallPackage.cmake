@@ -5,17 +5,19 @@ include(CMakePackageConfigHelpers)
 
 # Each program finds our library beside itself or one folder over; the system's libraries by the
 # linker's own search, HDF5's serial folder through CMAKE_INSTALL_RPATH_USE_LINK_PATH.
-set_target_properties(VesselProximityModule VesselProximityDemoModule VesselProximityCommands VesselProximityWidgets
-  VesselProximityPhantom PROPERTIES INSTALL_RPATH "$ORIGIN")
+set_target_properties(VesselProximityCommands VesselProximityWidgets VesselProximityPhantom PROPERTIES INSTALL_RPATH "$ORIGIN")
+set_target_properties(VesselProximityModule VesselProximityDemoModule PROPERTIES INSTALL_RPATH "$ORIGIN/../qt-loadable-modules")
 set_target_properties(VesselProximityModels VesselProximityDistance VesselProximityTrack PROPERTIES
   INSTALL_RPATH "$ORIGIN/../qt-loadable-modules")
 
 install(TARGETS VesselProximityLogic EXPORT VesselProximityTargets
-  LIBRARY DESTINATION ${VP_INSTALL_MODULE_DIR}
+  LIBRARY DESTINATION ${VP_INSTALL_LIBRARY_DIR}
   INCLUDES DESTINATION ${VP_INSTALL_INCLUDE_DIR})
 # The module with the libraries it links beside it, as Slicer keeps a module's logic and widgets.
-install(TARGETS VesselProximityModule VesselProximityDemoModule VesselProximityCommands VesselProximityWidgets
-  VesselProximityPhantom LIBRARY DESTINATION ${VP_INSTALL_MODULE_DIR})
+install(TARGETS VesselProximityCommands VesselProximityWidgets VesselProximityPhantom LIBRARY DESTINATION ${VP_INSTALL_LIBRARY_DIR})
+install(TARGETS VesselProximityModule VesselProximityDemoModule LIBRARY DESTINATION ${VP_INSTALL_MODULE_DIR})
+# The extension's description, as Slicer's extension index reads it.
+install(FILES ${PROJECT_SOURCE_DIR}/Resources/VesselProximity.s4ext DESTINATION ${VP_INSTALL_SLICER_DIR})
 install(TARGETS VesselProximityModels VesselProximityDistance VesselProximityTrack RUNTIME DESTINATION ${VP_INSTALL_CLI_DIR})
 install(TARGETS vesselproximity RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 

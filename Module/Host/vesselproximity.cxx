@@ -13,7 +13,7 @@ namespace
 const char* Usage = "usage: vesselproximity [--module-path DIR[:DIR...]] COMMAND [options]   (COMMAND --help for its options)\n";
 const char* ExitCodes =
   "module path: --module-path, else VP_MODULE_PATH, else lib/vesselproximity-modules (installed:\n"
-  "             lib/Slicer-X.Y/qt-loadable-modules) beside the program's folder\n"
+  "             lib/Slicer-X.Y/vesselproximity-modules) beside the program's folder\n"
   "exit codes: 0 success, 1 bad input (one line on stderr names the file and the problem),\n"
   "            2 bad usage, 3 internal error, 4 no usable Vulkan device (z-buffer engine),\n"
   "            5 no usable module on the module path\n";

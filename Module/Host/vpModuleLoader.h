@@ -38,7 +38,8 @@ class ModuleLoader
 public:
   /// The module path: explicitPath ("DIR[:DIR...]", from --module-path) when given, else
   /// VP_MODULE_PATH, else the folder beside the program: <exe>/../lib/vesselproximity-modules in
-  /// the build tree, <exe>/../lib/Slicer-X.Y/qt-loadable-modules in an installed one.
+  /// the build tree, <exe>/../lib/Slicer-X.Y/vesselproximity-modules in an installed one (not
+  /// qt-loadable-modules, where Slicer would load a *Module library as its Qt plugin).
   static std::vector<std::string> SearchPath(const std::string& explicitPath);
 
   /// Loads every module in the folders. Throws ModuleLoadError for a missing folder, a library

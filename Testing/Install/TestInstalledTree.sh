@@ -18,8 +18,9 @@ mv "$work/prefix" "$moved"
 slicer=$(ls -d "$moved"/lib/Slicer-*)
 cli="$slicer/cli-modules"
 for f in "$cli/VesselProximityModels" "$cli/VesselProximityDistance" "$cli/VesselProximityTrack" \
-  "$slicer/qt-loadable-modules/libVesselProximityModule.so" "$slicer/qt-loadable-modules/libVesselProximityLogic.so" \
-  "$slicer/qt-loadable-modules/libVesselProximityDemoModule.so" "$slicer/qt-loadable-modules/libVesselProximityCommands.so" \
+  "$slicer/vesselproximity-modules/libVesselProximityModule.so" "$slicer/qt-loadable-modules/libVesselProximityLogic.so" \
+  "$slicer/vesselproximity-modules/libVesselProximityDemoModule.so" "$slicer/qt-loadable-modules/libVesselProximityCommands.so" \
+  "$slicer/VesselProximity.s4ext" \
   "$slicer/qt-loadable-modules/libVesselProximityWidgets.so" "$slicer/qt-loadable-modules/libVesselProximityPhantom.so" \
   "$moved/bin/vesselproximity" "$moved/include/VesselProximity/vtkVesselProximityLogic.h" \
   "$moved/lib/cmake/VesselProximity/VesselProximityConfig.cmake" "$moved/share/doc/VesselProximity/README.md" \
@@ -29,7 +30,11 @@ for f in "$cli/VesselProximityModels" "$cli/VesselProximityDistance" "$cli/Vesse
 done
 
 # Every RUNPATH of ours is $ORIGIN-relative or a system folder, never the build tree.
-for f in "$cli"/* "$slicer"/qt-loadable-modules/*.so "$moved/bin/vesselproximity"; do
+# Slicer loads every *Module library of qt-loadable-modules as a Qt plugin: ours are not, so none is there.
+if ls "$slicer"/qt-loadable-modules/*Module.so > /dev/null 2>&1; then
+  fail "a module library in qt-loadable-modules, where Slicer would load it as a Qt plugin: $(ls "$slicer"/qt-loadable-modules/*Module.so)"
+fi
+for f in "$cli"/* "$slicer"/qt-loadable-modules/*.so "$slicer"/vesselproximity-modules/*.so "$moved/bin/vesselproximity"; do
   runpath=$(readelf -d "$f" | sed -n 's/.*(RUNPATH).*\[\(.*\)\]/\1/p')
   case "${runpath//$work/}" in *"$build"*) fail "${f#$moved/} has the build tree in its RUNPATH: $runpath" ;; esac
 done

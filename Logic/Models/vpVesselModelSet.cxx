@@ -15,6 +15,7 @@
 #include <vtkMassProperties.h>
 #include <vtkNew.h>
 
+#include <algorithm>
 #include <map>
 
 namespace vp
@@ -184,16 +185,25 @@ VesselModelSet BuildVesselModels(
   {
     throw InputError(inputs.front(), NothingMappedText(set.Unmapped, !colorNames.empty()));
   }
+  const auto asked = [&](const std::string& cls) {
+    return parameters.Classes.empty() || std::find(parameters.Classes.begin(), parameters.Classes.end(), cls) != parameters.Classes.end();
+  };
+  const auto toBuild = std::count_if(byClass.begin(), byClass.end(), [&](const auto& c) { return asked(c.first); });
   for (const std::string& cls : table.Classes())
   {
     const auto it = byClass.find(cls);
-    if (it != byClass.end())
+    if (it == byClass.end())
+    {
+      continue;
+    }
+    set.ClassesFound.push_back(cls);
+    if (asked(cls))
     {
       set.Models.push_back(BuildClassModel(it->second, parameters));
       const VesselClassModel& m = set.Models.back();
       progress(cls + ": " + std::to_string(m.Voxels) + " voxels -> " + std::to_string(m.Surface->GetNumberOfPolys()) +
         " triangles in " + FixedText(m.BuildMs, "%.0f") + " ms",
-        readShare + (1.0 - readShare) * static_cast<double>(set.Models.size()) / static_cast<double>(byClass.size()));
+        readShare + (1.0 - readShare) * static_cast<double>(set.Models.size()) / static_cast<double>(std::max<long>(1, toBuild)));
     }
   }
   set.TotalMs = NowMs() - start;

@@ -31,6 +31,9 @@ struct VesselModelParameters
   /// Whether inputs of different patients or frames of reference may be built into one set of
   /// models (default false: refused, ParameterError("AllowMixedPatients")).
   bool AllowMixedPatients = false;
+  /// The classes to build (a Slicer CLI asked for one model needs no other); empty: every class
+  /// the inputs hold.
+  std::vector<std::string> Classes;
   /// Throws ParameterError naming the first setting out of its range.
   void Validate() const;
 };
@@ -59,6 +62,7 @@ struct VesselModelSet
   VesselModelParameters Parameters;
   std::vector<LabelStructures> Imports; ///< per input
   std::vector<VesselClassModel> Models;
+  std::vector<std::string> ClassesFound; ///< every class the inputs hold, built or not (Parameters.Classes)
   std::vector<const LabelStructure*> Unmapped; ///< structures the table has no class for
   double ReadMs = 0.0, TotalMs = 0.0;
 };

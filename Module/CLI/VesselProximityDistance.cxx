@@ -3,6 +3,7 @@
 // program returns the distance to each vessel class through the return-parameter file and,
 // when asked, writes the distance command's JSON report.
 #include "vpCliDescription.h"
+#include "vpCliProgress.h"
 #include "vpCliTableSchema.h"
 #include "vpCliVessels.h"
 #include "vpOutputFile.h"
@@ -336,10 +337,15 @@ void Run(const vp::cli::ParsedArguments& args, vp::cli::ReturnValues& results)
 {
   const std::vector<std::pair<std::string, std::string>> models = vp::cli::GivenVesselModels(args);
   vp::TipDistanceRequest request = ParseRequest(args);
+  // Slicer's progress bar: reading the models is most of the run, then the engine's build and query.
+  vp::cli::FilterProgress progress("VesselProximityDistance");
+  progress.Stage("Reading the vessel models", 0.0);
   const double loadStart = vp::NowMs();
   request.Vessels = vp::LoadVesselMeshes(models);
   const double loadMs = vp::NowMs() - loadStart;
+  progress.Stage("Building the engine and measuring", 0.6);
   const vp::TipDistanceAnswer answer = vp::ComputeTipDistances(request);
+  progress.Stage("Writing the results", 0.95);
   if (args.IsSet("report"))
   {
     vp::WriteFileAtomically(args.GetString("report"), vp::TipDistanceReportJson(request, answer, false, loadMs).dump(2) + "\n");
@@ -356,6 +362,7 @@ void Run(const vp::cli::ParsedArguments& args, vp::cli::ReturnValues& results)
   }
   SetResults(result, request.Engine->GetRangeMm(), results);
   results.Set("methodUsed", method);
+  progress.Finish();
 }
 } // namespace
 

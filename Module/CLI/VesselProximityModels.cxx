@@ -208,17 +208,28 @@ void Run(const vp::cli::ParsedArguments& args, vp::cli::ReturnValues& results)
   parameters.FileSpace = args.GetString("space") == "RAS" ? vp::MeshSpace::RAS : vp::MeshSpace::LPS;
   parameters.LabelTableFile = args.IsSet("labelTable") ? args.GetString("labelTable") : std::string();
   parameters.ColorTableFile = args.IsSet("colorTable") ? args.GetString("colorTable") : std::string();
+  if (!args.IsSet("outputDirectory"))
+  {
+    for (const ModelOutput* out : wanted)
+    {
+      parameters.Classes.push_back(out->ClassName); // only the models asked for are built
+    }
+  }
   const std::string input = args.GetString("inputVolume");
   const vp::VesselModelSet set = vp::BuildVesselModels({ input }, parameters, [&](const std::string& line, double done) {
     std::cout << "models: " << line << "\n";
     progress.Stage("Building the surfaces", done * 0.95);
   });
-  std::string classes;
+  std::string classes, found;
   for (const vp::VesselClassModel& m : set.Models)
   {
     classes += (classes.empty() ? "" : ",") + m.ClassName;
   }
-  for (const auto& [out, model] : FindWantedModels(set, wanted, input, classes))
+  for (const std::string& c : set.ClassesFound)
+  {
+    found += (found.empty() ? "" : ",") + c;
+  }
+  for (const auto& [out, model] : FindWantedModels(set, wanted, input, found))
   {
     vtkNew<vtkVesselMeshWriter> writer;
     writer->SetFileName(args.GetString(out->Parameter));

@@ -4,6 +4,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cctype>
+#include <chrono>
+
 namespace vp
 {
 namespace
@@ -45,7 +48,56 @@ std::array<unsigned char, 4> Rgba(DangerLevel level)
   const auto c = DangerLevelColour(level);
   return { c[0], c[1], c[2], 255 };
 }
+
+/// Stamped now (UTC, OpenIGTLink's seconds and 2^-32 fractions): the reply's time.
+IgtlPacking Now()
+{
+  const auto since = std::chrono::system_clock::now().time_since_epoch();
+  const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(since).count();
+  IgtlPacking packing;
+  packing.TimeSeconds = static_cast<std::uint32_t>(ns / 1000000000);
+  packing.TimeFraction = static_cast<std::uint32_t>((static_cast<std::uint64_t>(ns % 1000000000) << 32) / 1000000000);
+  return packing;
+}
+
+/// Each class in range: its closest point as a TRANSFORM's translation and as a one-point POINT.
+std::string PackClassMessages(const TrackedFrame& frame, const IgtlPacking& packing)
+{
+  std::string packed;
+  for (std::size_t c = 0; c < frame.Proximity.Classes.size(); ++c)
+  {
+    const ClassProximity& p = frame.Proximity.Classes[c];
+    if (!p.InRange)
+    {
+      continue;
+    }
+    const std::array<double, 3> ras = Ras(p.ClosestPoint);
+    const std::array<double, 16> placed = { 1, 0, 0, ras[0], 0, 1, 0, ras[1], 0, 0, 1, ras[2], 0, 0, 0, 1 };
+    packed += PackIgtlTransform(LiveClassDevice(p.ClassName, live::ClosestSuffix), placed, packing);
+    const DangerLevel level = c < frame.ClassLevels.size() ? frame.ClassLevels[c] : DangerLevel::Safe;
+    packed += PackIgtlPoints(LiveClassDevice(p.ClassName, live::PointSuffix), { { p.ClassName, "closest", Rgba(level), ras, 1.0, "" } }, packing);
+  }
+  return packed;
+}
 } // namespace
+
+std::string LiveClassDevice(const std::string& className, const char* suffix)
+{
+  std::string camel;
+  bool upper = true;
+  for (char ch : className)
+  {
+    if (ch == '_' || ch == ' ' || ch == '-')
+    {
+      upper = true;
+      continue;
+    }
+    camel += upper ? static_cast<char>(std::toupper(static_cast<unsigned char>(ch))) : ch;
+    upper = false;
+  }
+  const std::size_t room = IgtlDeviceNameBytes - std::char_traits<char>::length(suffix);
+  return camel.substr(0, room) + suffix;
+}
 
 std::string LiveFrameJson(const TrackedFrame& frame)
 {
@@ -118,10 +170,12 @@ std::string PackLiveFrame(const TrackedFrame& frame)
                                                                                           : DangerLevel::Safe),
       Ras(t.ClosestPoint), 1.0, "" });
   }
-  std::string packed = PackIgtlString(live::FrameDevice, LiveFrameJson(frame)) + PackIgtlPoints(live::PointsDevice, points);
+  const IgtlPacking packing = Now();
+  std::string packed = PackIgtlString(live::FrameDevice, LiveFrameJson(frame), 3, packing) +
+    PackIgtlPoints(live::PointsDevice, points, packing) + PackClassMessages(frame, packing);
   if (frame.Haptic)
   {
-    packed += PackIgtlString(live::HapticDevice, HapticJson(*frame.Haptic).dump());
+    packed += PackIgtlString(live::HapticDevice, HapticJson(*frame.Haptic).dump(), 3, packing);
   }
   return packed;
 }
@@ -129,7 +183,16 @@ std::string PackLiveFrame(const TrackedFrame& frame)
 std::string PackLiveLost(double timeS, double sincePoseMs)
 {
   const Json out = { { "state", "lost" }, { "time", timeS }, { "since_pose_ms", sincePoseMs } };
-  return PackIgtlString(live::FrameDevice, out.dump());
+  return PackIgtlString(live::FrameDevice, out.dump(), 3, Now());
+}
+
+std::string PackLiveStatus(bool tracking)
+{
+  IgtlStatus status;
+  status.Code = tracking ? 1 : 16; // OpenIGTLink's STATUS_OK, STATUS_NOT_PRESENT
+  status.ErrorName = tracking ? "" : "TrackingLost";
+  status.Text = tracking ? "Tracking" : "Tracking lost: no pose of the tool";
+  return PackIgtlStatus(live::StatusDevice, status, Now());
 }
 
 std::string PackLiveLevelChange(const DangerLevelChange& change)
@@ -137,7 +200,7 @@ std::string PackLiveLevelChange(const DangerLevelChange& change)
   const Json out = { { "frame", change.Frame }, { "time", change.TimeS }, { "from", DangerLevelName(change.From) },
     { "to", DangerLevelName(change.To) }, { "class", change.ClassName.empty() ? Json(nullptr) : Json(change.ClassName) },
     { "distance_mm", change.DistanceMm } };
-  return PackIgtlString(live::LevelDevice, out.dump());
+  return PackIgtlString(live::LevelDevice, out.dump(), 3, Now());
 }
 
 Json LiveLatencyJson(const RunningQuantiles& latencyMs)

@@ -28,6 +28,17 @@ constexpr const char* HapticDevice = "VesselProximityForce";
 /// the margin's level (named for the tumour, group "tumour"), coloured as the danger level of a
 /// vessel that near: danger when the margin is violated or the tip inside, caution when near.
 constexpr const char* PointsDevice = "VesselProximityPoint";
+/// STATUS: the tracking state when it changes: code 1 (OK, "Tracking") from the first frame and
+/// after a loss, code 16 (not present, "TrackingLost") when tracking is lost.
+constexpr const char* StatusDevice = "VesselProximity";
+/// Per class in range, as SlicerIGT scenes are built: a TRANSFORM "<Class>Closest" whose
+/// translation places the class's closest point (RAS, mm; no rotation), to attach a marker or a
+/// model to, and a POINT "<Class>Point" of that point alone, coloured by the class's level (Slicer
+/// colours a point list by its first point). <Class> is the class's name in CamelCase, cut to fit
+/// 20 bytes with the suffix: PortalVeinClosest, HepaticArteryClosest, HepaticVeinClosest,
+/// PortalVeinPoint, HepaticArteryPoint, HepaticVeinPoint (LiveClassDevice).
+constexpr const char* ClosestSuffix = "Closest";
+constexpr const char* PointSuffix = "Point";
 // OpenIGTLink gives a device name 20 bytes: a longer one reaches the peer cut.
 static_assert(std::char_traits<char>::length(FrameDevice) <= IgtlDeviceNameBytes);
 static_assert(std::char_traits<char>::length(LevelDevice) <= IgtlDeviceNameBytes);
@@ -44,10 +55,16 @@ static_assert(std::char_traits<char>::length(PointsDevice) <= IgtlDeviceNameByte
 /// "level", "point", "surface_mm"}}}: points in RAS (what Slicer shows), null
 /// where a class is out of range or a quantity was not computed.
 std::string LiveFrameJson(const TrackedFrame& frame);
-/// The frame's messages, packed: the STRING, the POINT list, and with haptics on the force.
+/// A class's device name with a suffix (live::ClosestSuffix, live::PointSuffix), within 20 bytes.
+std::string LiveClassDevice(const std::string& className, const char* suffix);
+/// The frame's messages, packed: the STRING, the POINT list, each class's TRANSFORM and POINT,
+/// and with haptics on the force. Every message is stamped with the time it is packed (the
+/// reply's time, UTC).
 std::string PackLiveFrame(const TrackedFrame& frame);
 /// Tracking lost: {"state": "lost", "time", "since_pose_ms"}.
 std::string PackLiveLost(double timeS, double sincePoseMs);
+/// The tracking state as a STATUS (live::StatusDevice).
+std::string PackLiveStatus(bool tracking);
 /// A level change: {"frame", "time", "from", "to", "class", "distance_mm"}.
 std::string PackLiveLevelChange(const DangerLevelChange& change);
 

@@ -20,7 +20,9 @@ void LiveResultsOutput::OnLevelChange(const DangerLevelChange& change)
 
 void LiveResultsOutput::OnFrame(const TrackedFrame& frame)
 {
-  this->Link.Send(PackLiveFrame(frame));
+  // The state said when it changes: tracking from the first frame and after each loss.
+  this->Link.Send(this->Tracking.value_or(false) ? PackLiveFrame(frame) : PackLiveStatus(true) + PackLiveFrame(frame));
+  this->Tracking = true;
   if (this->Poses)
   {
     this->LatencyMs.Add(NowMs() - this->Poses->GetLastArrivalMs());
@@ -31,6 +33,7 @@ void LiveResultsOutput::OnLost(const TrackedPose& lost)
 {
   // The loss is declared StaleMs after the last pose came: that much before it was declared.
   const double sinceMs = this->Poses ? NowMs() - this->Poses->GetLastArrivalMs() + this->Poses->GetStaleMs() : 0.0;
-  this->Link.Send(PackLiveLost(lost.TimeS, sinceMs));
+  this->Link.Send(this->Tracking.value_or(true) ? PackLiveStatus(false) + PackLiveLost(lost.TimeS, sinceMs) : PackLiveLost(lost.TimeS, sinceMs));
+  this->Tracking = false;
 }
 } // namespace vp

@@ -4,6 +4,8 @@
 #include "vpFrameOutput.h"
 #include "vpRunningQuantiles.h"
 
+#include <optional>
+
 namespace vp
 {
 class IgtlLink;
@@ -31,6 +33,7 @@ private:
   IgtlLink& Link;
   const LivePoseSource* Poses;
   RunningQuantiles LatencyMs;
+  std::optional<bool> Tracking; ///< the state last said (STATUS); none said yet
 };
 } // namespace vp
 

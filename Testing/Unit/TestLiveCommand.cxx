@@ -19,6 +19,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <ctime>
 #include <cmath>
 #include <csignal>
 #include <filesystem>
@@ -181,16 +182,49 @@ TEST(LiveResults, EachMessageCarriesItsDocumentedDeviceNameWhole)
 {
   vp::TrackedFrame frame;
   frame.Haptic.emplace();
-  const std::string packed = vp::PackLiveFrame(frame) + vp::PackLiveLevelChange(vp::DangerLevelChange{});
+  for (const char* name : { "portal_vein", "hepatic_artery", "hepatic_vein" })
+  {
+    vp::ClassProximity c;
+    c.ClassName = name;
+    c.InRange = true;
+    c.ClosestPoint[0] = 10.0;
+    frame.Proximity.Classes.push_back(c);
+    frame.ClassLevels.push_back(vp::DangerLevel::Warning);
+  }
+  const std::string packed = vp::PackLiveStatus(true) + vp::PackLiveFrame(frame) + vp::PackLiveLevelChange(vp::DangerLevelChange{});
   std::vector<std::string> devices;
+  const double nowS = static_cast<double>(std::time(nullptr));
   for (std::size_t at = 0; at + vp::IgtlHeaderBytes <= packed.size();)
   {
     const vp::IgtlHeader h = vp::ParseIgtlHeader(reinterpret_cast<const unsigned char*>(packed.data() + at));
-    devices.push_back(h.Device);
+    devices.push_back(h.Type + " " + h.Device);
+    EXPECT_NEAR(h.TimeSeconds, nowS, 5.0) << "stamped with the reply's time";
+    if (h.Type == "TRANSFORM")
+    {
+      std::array<double, 16> placed{};
+      ASSERT_EQ(vp::DecodeIgtlTransform(reinterpret_cast<const unsigned char*>(packed.data() + at),
+                  std::vector<unsigned char>(packed.begin() + static_cast<std::ptrdiff_t>(at + vp::IgtlHeaderBytes),
+                    packed.begin() + static_cast<std::ptrdiff_t>(at + vp::IgtlHeaderBytes + h.BodyBytes)),
+                  placed),
+        "");
+      EXPECT_EQ(placed[3], -10.0) << "the closest point, in RAS";
+    }
     at += vp::IgtlHeaderBytes + h.BodyBytes;
   }
-  EXPECT_EQ(devices, std::vector<std::string>({ "VesselProximity", "VesselProximityPoint", "VesselProximityForce",
-                       "VesselProximityLevel" }));
+  EXPECT_EQ(devices, std::vector<std::string>({ "STATUS VesselProximity", "STRING VesselProximity", "POINT VesselProximityPoint",
+                       "TRANSFORM PortalVeinClosest", "POINT PortalVeinPoint", "TRANSFORM HepaticArteryClosest",
+                       "POINT HepaticArteryPoint", "TRANSFORM HepaticVeinClosest", "POINT HepaticVeinPoint",
+                       "STRING VesselProximityForce", "STRING VesselProximityLevel" }));
+  // A longer class name is cut to fit the wire's 20 bytes with its suffix.
+  EXPECT_EQ(vp::LiveClassDevice("left_hepatic_vein_branch", vp::live::ClosestSuffix), "LeftHepaticVeClosest");
+  // The tracking state: OK while tracking, "not present" when lost.
+  vp::IgtlStatus status;
+  const std::string lost = vp::PackLiveStatus(false);
+  ASSERT_EQ(vp::DecodeIgtlStatus(reinterpret_cast<const unsigned char*>(lost.data()),
+              std::vector<unsigned char>(lost.begin() + vp::IgtlHeaderBytes, lost.end()), status),
+    "");
+  EXPECT_EQ(status.Code, 16);
+  EXPECT_EQ(status.ErrorName, "TrackingLost");
   EXPECT_THROW(vp::PackIgtlString("VesselProximityPoints", "{}"), std::invalid_argument);
   EXPECT_NO_THROW(vp::PackIgtlString("VesselProximityPoint", "{}"));
 }

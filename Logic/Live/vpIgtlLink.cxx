@@ -252,6 +252,26 @@ struct IgtlLink::Peer
   std::atomic<std::size_t> Messages{ 0 }; ///< whole messages read from it
 };
 
+void IgtlLink::SayVersion2(Peer& peer)
+{
+  // What 3D Slicer sends on connecting "to tell the server we can support v2 messages": a
+  // version-2 STATUS (code 0, metadata dummy=dummy). PlusServer then speaks version 2 to us, and
+  // marks a tool it does not see (TransformStatus) instead of sending its identity as a pose. Sent
+  // once the server has spoken: a version-1 server waiting to be asked (the library's examples)
+  // would lose its stream on a version-2 message.
+  IgtlPacking packing;
+  packing.Version = 2;
+  packing.Metadata = { { "dummy", "dummy", 3 } };
+  IgtlStatus hello;
+  hello.Code = 0;
+  const std::string message = PackIgtlStatus("", hello, packing);
+  std::lock_guard<std::mutex> lock(peer.SocketMutex);
+  if (!peer.Done)
+  {
+    peer.Socket->Send(message.data(), static_cast<int>(message.size()));
+  }
+}
+
 void IgtlLink::AskWhenSilent(Peer& peer)
 {
   const double until = peer.ConnectedMs + this->Settings.StartRequestAfterMs;
@@ -605,7 +625,10 @@ void IgtlLink::ServePeer(Peer& peer)
       break;
     }
     reader.MessageDone();
-    ++peer.Messages;
+    if (++peer.Messages == 1 && peer.IsServer && h.Version < 2)
+    {
+      this->SayVersion2(peer);
+    }
     this->Take(peer, header, body);
   }
   if (r == ReadResult::Stalled)

@@ -132,6 +132,8 @@ private:
   void ServePeer(Peer& peer);
   /// Asks a server that has sent nothing within StartRequestAfterMs for tracking data.
   void AskWhenSilent(Peer& peer);
+  /// Tells a server that spoke version 1 that we speak version 2, as 3D Slicer does.
+  void SayVersion2(Peer& peer);
   /// One whole message of the peer: the tool's pose taken when the peer steers, else counted.
   void Take(Peer& peer, const unsigned char* header, const std::vector<unsigned char>& body);
   /// Whether the peer's poses steer the scalpel (see IgtlLinkSettings::PoseFromHost); under Mutex.

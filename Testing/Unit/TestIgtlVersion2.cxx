@@ -360,7 +360,20 @@ TEST_F(IgtlVersion2, ASlicerConfiguredPeersStreamIsTrackedAndAnsweredInVersion2)
   EXPECT_EQ(vp::test::WaitFor(quiet, 10.0), 0);
   ASSERT_EQ(byDefault.ExitCode, 0) << byDefault.Err;
   EXPECT_NE(byDefault.Out.find("20 frames"), std::string::npos) << byDefault.Out;
-  EXPECT_EQ(Slurp(dir + "/quiet.txt"), "") << "the tracker was sent results";
+  EXPECT_EQ(Slurp(dir + "/quiet.txt"), "") << "the tracker was sent results (or a hello it did not need: it spoke version 2)";
+
+  // A tracker that speaks version 1 (PlusServer to a new client) is told once, as Slicer tells it,
+  // that we speak version 2: a version-2 STATUS, and nothing else.
+  const int third = vp::test::FreePort();
+  const pid_t v1 = vp::test::StartProgram(VP_IGTL_PEER,
+    { "replay", std::to_string(third), "50", dir + "/hello.txt", this->Folder + "transform_v1.bin*10" }, dir + "/hello.out", "/dev/null");
+  ASSERT_TRUE(vp::test::WaitForText(dir + "/hello.out", "port "));
+  const auto hello = vp::test::RunTool(dir, "live --vessels portal_vein=" + vessel + " --scalpel " + std::string(VP_SOURCE_DIR) +
+      "/Resources/CusaHandpiece.stl --no-surface --tool-name StylusToTracker --igtl 127.0.0.1:" + std::to_string(third) +
+      " --duration-s 0.8");
+  EXPECT_EQ(vp::test::WaitFor(v1, 10.0), 0);
+  ASSERT_EQ(hello.ExitCode, 0) << hello.Err;
+  EXPECT_EQ(Slurp(dir + "/hello.txt"), "2 STATUS \n");
   std::filesystem::remove_all(dir);
 }
 } // namespace

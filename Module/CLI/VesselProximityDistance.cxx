@@ -337,13 +337,13 @@ void Run(const vp::cli::ParsedArguments& args, vp::cli::ReturnValues& results)
 {
   const std::vector<std::pair<std::string, std::string>> models = vp::cli::GivenVesselModels(args);
   vp::TipDistanceRequest request = ParseRequest(args);
-  // Slicer's progress bar: reading the models is most of the run, then the engine's build and query.
-  vp::cli::FilterProgress progress("VesselProximityDistance");
-  progress.Stage("Reading the vessel models", 0.0);
   const double loadStart = vp::NowMs();
   request.Vessels = vp::LoadVesselMeshes(models);
   const double loadMs = vp::NowMs() - loadStart;
-  progress.Stage("Building the engine and measuring", 0.6);
+  // Slicer's progress bar, from the models read (a refused input writes nothing, not even this):
+  // the engine's build and the query, then the outputs.
+  vp::cli::FilterProgress progress("VesselProximityDistance");
+  progress.Stage("Building the engine and measuring", 0.5);
   const vp::TipDistanceAnswer answer = vp::ComputeTipDistances(request);
   progress.Stage("Writing the results", 0.95);
   if (args.IsSet("report"))

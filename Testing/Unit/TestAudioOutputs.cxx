@@ -179,12 +179,10 @@ protected:
   }
   void TearDown() override { std::filesystem::remove_all(this->Dir); }
 
-  /// A PLUS recording at 20 Hz: the tip (pointing down -x) held 15 mm off a sphere's wall (safe),
-  /// then 7 (caution), 3.5 (warning), 1 (danger), 5 mm inside it (breach), the tool lost by the
-  /// tracker for a second, then back at 15 mm.
-  std::string WriteApproach()
+  /// A PLUS recording in the folder at 20 Hz, the tool pointing down -x, its tip held at each
+  /// phase's x for its count of frames (x 0: the tracker lost the tool, status MISSING).
+  std::string WriteSequence(const std::string& name, const std::vector<std::pair<double, int>>& phases)
   {
-    const std::pair<double, int> phases[] = { { 25.0, 30 }, { 17.0, 40 }, { 13.5, 40 }, { 11.0, 40 }, { 5.0, 30 }, { 0.0, 20 }, { 25.0, 20 } };
     std::string text;
     int frame = 0;
     for (const auto& [x, count] : phases)
@@ -199,13 +197,20 @@ protected:
         text += line;
       }
     }
-    this->LostFromS = 0.05 * 180;
-    this->LostToS = 0.05 * 200;
-    const std::string file = this->Dir + "/approach.igs.mha";
+    const std::string file = this->Dir + "/" + name;
     std::ofstream(file) << "ObjectType = Image\nNDims = 3\nDimSize = 0 0 " << frame
                         << "\nDefaultFrameTransformName = ToolToTrackerTransform\n"
                         << text << "ElementDataFile = LOCAL\n";
     return file;
+  }
+
+  /// The tip 15 mm off a sphere's wall (safe), then 7 (caution), 3.5 (warning), 1 (danger), 5 mm
+  /// inside it (breach), the tool lost by the tracker for a second, then back at 15 mm.
+  std::string WriteApproach()
+  {
+    this->LostFromS = 0.05 * 180;
+    this->LostToS = 0.05 * 200;
+    return this->WriteSequence("approach.igs.mha", { { 25.0, 30 }, { 17.0, 40 }, { 13.5, 40 }, { 11.0, 40 }, { 5.0, 30 }, { 0.0, 20 }, { 25.0, 20 } });
   }
 
   std::string Track(const std::string& extra)
@@ -419,23 +424,7 @@ TEST_F(AudioOutputs, OscdumpReceivesTheFramesValues)
 TEST_F(AudioOutputs, TheShippedPureDataPatchPlaysWhatTheModuleSends)
 {
   // Safe, caution, warning, then danger until the end: the patch keeps playing the danger voice.
-  std::string text;
-  int frame = 0;
-  for (const double x : { 25.0, 17.0, 13.5, 11.0 })
-  {
-    for (int i = 0; i < 10; ++i, ++frame)
-    {
-      char line[300];
-      std::snprintf(line, sizeof line,
-        "Seq_Frame%04d_ToolToTrackerTransform = 0 0 -1 %g  0 1 0 0  1 0 0 0  0 0 0 1\n"
-        "Seq_Frame%04d_ToolToTrackerTransformStatus = OK\nSeq_Frame%04d_Timestamp = %g\n",
-        frame, x, frame, frame, 0.05 * frame);
-      text += line;
-    }
-  }
-  this->Poses = this->Dir + "/levels.igs.mha";
-  std::ofstream(this->Poses) << "ObjectType = Image\nNDims = 3\nDimSize = 0 0 " << frame
-                             << "\nDefaultFrameTransformName = ToolToTrackerTransform\n" << text << "ElementDataFile = LOCAL\n";
+  this->Poses = this->WriteSequence("levels.igs.mha", { { 25.0, 10 }, { 17.0, 10 }, { 13.5, 10 }, { 11.0, 10 } });
   std::filesystem::copy_file(std::string(VP_SOURCE_DIR) + "/Testing/Audio/PrintVoices.pd", this->Dir + "/PrintVoices.pd");
   const int port = vp::test::FreePort(SOCK_DGRAM);
   const std::string patches = std::string(VP_SOURCE_DIR) + "/Resources/Audio";
@@ -514,23 +503,7 @@ TEST_F(AudioOutputs, TheShippedPureDataPatchPlaysWhatTheModuleSends)
 TEST_F(AudioOutputs, LiveAudioPlaysOnTheSoundDeviceAndGoesOnWithoutOne)
 {
   // Two seconds safe, then two in danger.
-  std::string text;
-  int frame = 0;
-  for (const double x : { 25.0, 11.0 })
-  {
-    for (int i = 0; i < 40; ++i, ++frame)
-    {
-      char line[300];
-      std::snprintf(line, sizeof line,
-        "Seq_Frame%04d_ToolToTrackerTransform = 0 0 -1 %g  0 1 0 0  1 0 0 0  0 0 0 1\n"
-        "Seq_Frame%04d_ToolToTrackerTransformStatus = OK\nSeq_Frame%04d_Timestamp = %g\n",
-        frame, x, frame, frame, 0.05 * frame);
-      text += line;
-    }
-  }
-  const std::string recording = this->Dir + "/served.igs.mha";
-  std::ofstream(recording) << "ObjectType = Image\nNDims = 3\nDimSize = 0 0 " << frame
-                           << "\nDefaultFrameTransformName = ToolToTrackerTransform\n" << text << "ElementDataFile = LOCAL\n";
+  const std::string recording = this->WriteSequence("served.igs.mha", { { 25.0, 40 }, { 11.0, 40 } });
   const std::string raw = this->Dir + "/device.raw";
   std::ofstream(this->Dir + "/.asoundrc") << "pcm.!default { type file slave.pcm \"null\" file \"" << raw << "\" format \"raw\" }\n";
   std::filesystem::create_directories(this->Dir + "/nodevice");

@@ -21,6 +21,7 @@
 #include <atomic>
 #include <chrono>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <mutex>
 #include <thread>
@@ -83,9 +84,12 @@ private:
   {
     if (argc >= 2 && types[1] == 'f')
     {
+      // liblo's argument may lie at any address (lo_arg is a union with 8-byte members): copied.
+      float distance = 0.0f;
+      std::memcpy(&distance, argv[1], sizeof distance);
       auto* listener = static_cast<OscListener*>(self);
       std::lock_guard<std::mutex> hold(listener->Lock);
-      listener->Arrived.emplace_back(argv[1]->f, NowMs());
+      listener->Arrived.emplace_back(distance, NowMs());
     }
     return 0;
   }

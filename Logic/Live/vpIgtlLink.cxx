@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
+#include <cstdio>
 #include <cstring>
 #include <functional>
 
@@ -214,16 +215,20 @@ private:
   std::vector<unsigned char> Chunk = std::vector<unsigned char>(1u << 16);
 };
 
-/// Each message of a run of version-1 messages (as the packers make them) rewritten as version 2,
-/// with no metadata: for a peer that speaks version 2.
+/// Each message of a run of version-1 messages (as the packers make them) rewritten as version 2
+/// for a peer that speaks it, with the time it is sent in its metadata (ReplyTime, UTC seconds):
+/// the header carries the pose's own time stamp where the source gave one.
 std::string ToIgtlVersion2Stream(const std::string& messages)
 {
+  char now[32];
+  std::snprintf(now, sizeof now, "%.6f", IgtlWallClockS());
+  const std::vector<IgtlMetadata> metadata = { { "ReplyTime", now, 3 } };
   std::string out;
   for (std::size_t at = 0; at + IgtlHeaderBytes <= messages.size();)
   {
     const IgtlHeader h = ParseIgtlHeader(reinterpret_cast<const unsigned char*>(messages.data() + at));
     const std::size_t size = IgtlHeaderBytes + static_cast<std::size_t>(h.BodyBytes);
-    out += ToIgtlVersion2(messages.substr(at, size), {}, 0);
+    out += ToIgtlVersion2(messages.substr(at, size), metadata, 0);
     at += size;
   }
   return out;

@@ -15,6 +15,7 @@
 #include <igtl_util.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
@@ -208,6 +209,20 @@ std::string Packed(igtl::MessageBase* message, const IgtlPacking& packing = {})
 }
 } // namespace
 
+double IgtlWallClockS()
+{
+  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+}
+
+IgtlPacking IgtlStampedAt(double clockS)
+{
+  IgtlPacking packing;
+  const double seconds = std::floor(clockS);
+  packing.TimeSeconds = static_cast<std::uint32_t>(seconds);
+  packing.TimeFraction = static_cast<std::uint32_t>(std::min(4294967295.0, std::floor((clockS - seconds) * 4294967296.0)));
+  return packing;
+}
+
 const std::string* IgtlBody::Find(const std::string& key) const
 {
   const auto it = std::find_if(this->Metadata.begin(), this->Metadata.end(), [&](const IgtlMetadata& m) { return m.Key == key; });
@@ -377,9 +392,9 @@ IgtlPoseMessage ToolPose(const unsigned char* header, const IgtlBody& split, con
   }
   return Ignored("no element " + toolName);
 }
-} // namespace
 
-IgtlPoseMessage DecodeIgtlPose(const unsigned char* header, const std::vector<unsigned char>& body, const std::string& toolName,
+/// What one message says about the tool, before its time stamp is taken.
+IgtlPoseMessage DecodePose(const unsigned char* header, const std::vector<unsigned char>& body, const std::string& toolName,
   const SettledReading& reading)
 {
   const IgtlHeader h = ParseIgtlHeader(header);
@@ -426,6 +441,16 @@ IgtlPoseMessage DecodeIgtlPose(const unsigned char* header, const std::vector<un
   igtl::Matrix4x4 matrix;
   message->GetMatrix(matrix);
   return PoseOfMatrix(matrix, reading);
+}
+} // namespace
+
+IgtlPoseMessage DecodeIgtlPose(const unsigned char* header, const std::vector<unsigned char>& body, const std::string& toolName,
+  const SettledReading& reading)
+{
+  IgtlPoseMessage m = DecodePose(header, body, toolName, reading);
+  const IgtlHeader h = ParseIgtlHeader(header);
+  m.Pose.SourceClockS = h.TimeSeconds + h.TimeFraction / 4294967296.0;
+  return m;
 }
 
 std::string DecodeIgtlTransform(const unsigned char* header, const std::vector<unsigned char>& body, std::array<double, 16>& matrix)

@@ -70,6 +70,10 @@ struct IgtlPacking
   std::vector<IgtlMetadata> Metadata; ///< version 2 only
   std::uint32_t MessageId = 0;        ///< version 2 only
 };
+/// Now, in seconds since 1970 (UTC), and a packing stamped with such a time (OpenIGTLink's whole
+/// seconds and 2^-32 fractions): a tracker server stamps its poses, a reply its results.
+double IgtlWallClockS();
+IgtlPacking IgtlStampedAt(double clockS);
 /// A version-1 message (header and body) rewritten as version 2 with the metadata and message id:
 /// what a peer that speaks version 2 is answered in.
 std::string ToIgtlVersion2(const std::string& message, const std::vector<IgtlMetadata>& metadata, std::uint32_t messageId);

@@ -57,7 +57,8 @@ std::size_t IgtlPoseStreamer::Stream(PoseSource& poses, double speed, double wai
     {
       continue; // a tracker that does not see its tool sends nothing
     }
-    this->Link.Send(PackIgtlTransform(this->DeviceName, pose.ModelToWorld));
+    // Stamped when sent, as PlusServer stamps its poses.
+    this->Link.Send(PackIgtlTransform(this->DeviceName, pose.ModelToWorld, IgtlStampedAt(IgtlWallClockS())));
     ++sent;
     if (progress && NowMs() - lastProgressMs > 1000.0)
     {

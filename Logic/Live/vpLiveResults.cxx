@@ -5,7 +5,6 @@
 #include <nlohmann/json.hpp>
 
 #include <cctype>
-#include <chrono>
 
 namespace vp
 {
@@ -49,15 +48,10 @@ std::array<unsigned char, 4> Rgba(DangerLevel level)
   return { c[0], c[1], c[2], 255 };
 }
 
-/// Stamped now (UTC, OpenIGTLink's seconds and 2^-32 fractions): the reply's time.
+/// Stamped now: the reply's time.
 IgtlPacking Now()
 {
-  const auto since = std::chrono::system_clock::now().time_since_epoch();
-  const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(since).count();
-  IgtlPacking packing;
-  packing.TimeSeconds = static_cast<std::uint32_t>(ns / 1000000000);
-  packing.TimeFraction = static_cast<std::uint32_t>((static_cast<std::uint64_t>(ns % 1000000000) << 32) / 1000000000);
-  return packing;
+  return IgtlStampedAt(IgtlWallClockS());
 }
 
 /// Each class in range: its closest point as a TRANSFORM's translation and as a one-point POINT.
@@ -170,7 +164,8 @@ std::string PackLiveFrame(const TrackedFrame& frame)
                                                                                           : DangerLevel::Safe),
       Ras(t.ClosestPoint), 1.0, "" });
   }
-  const IgtlPacking packing = Now();
+  // The pose's own time stamp when its source gave one (PLUS does), else the reply's.
+  const IgtlPacking packing = frame.SourceClockS > 0.0 ? IgtlStampedAt(frame.SourceClockS) : Now();
   std::string packed = PackIgtlString(live::FrameDevice, LiveFrameJson(frame), 3, packing) +
     PackIgtlPoints(live::PointsDevice, points, packing) + PackClassMessages(frame, packing);
   if (frame.Haptic)

@@ -20,6 +20,9 @@ struct TrackedPose
   /// The tracker did not see the tool at this time (a sequence's status not OK): no pose, and no
   /// distance may be computed from an earlier one.
   bool Lost = false;
+  /// The time stamp the pose's source gave it (an OpenIGTLink header's: seconds since 1970, UTC),
+  /// 0 when it gave none (3D Slicer sends 0): what the results are stamped with.
+  double SourceClockS = 0.0;
 };
 
 /// Reads a pose stream.

@@ -18,6 +18,7 @@ struct TrackedFrame
 {
   int Frame = 0;
   double TimeS = 0.0;
+  double SourceClockS = 0.0; ///< the pose's own time stamp (TrackedPose::SourceClockS), 0: none
   double TipMm[3] = { 0, 0, 0 };   ///< world
   double AxisWorld[3] = { 0, 0, 1 };
   ProximityResult Proximity;       ///< per class: distance, closest point, inside, directional

@@ -282,6 +282,7 @@ const vp::TrackedFrame& vtkScalpelTrackingLogic::ProcessPose(const vp::TrackedPo
   vp::TrackedFrame frame;
   frame.Frame = this->FramesProcessed;
   frame.TimeS = pose.TimeS;
+  frame.SourceClockS = pose.SourceClockS;
   this->Scalpel->SetModelToWorld(pose.ModelToWorld);
   this->Scalpel->GetTipInWorld(frame.TipMm);
   this->Scalpel->GetAxisInWorld(frame.AxisWorld);

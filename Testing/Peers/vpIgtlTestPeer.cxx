@@ -13,7 +13,8 @@
 //   vp_igtl_peer replay PORT RATE_HZ REPLIES.txt FILE[*COUNT]...
 //     Serves on PORT, waits for one client, sends the bytes of each FILE (a whole message as it
 //     goes on the wire) COUNT times (default 1) at RATE_HZ, reads what the client sends back,
-//     writing "VERSION TYPE DEVICE" for each message to REPLIES.txt, and exits half a second after
+//     writing "VERSION TYPE DEVICE" for each message to REPLIES.txt (and its bytes to
+//     REPLIES.txt.bin), and exits half a second after
 //     the last: a peer that speaks as 3D Slicer or PlusServer do, from their own messages.
 #include <igtlOSUtil.h>
 #include <igtlQuaternionTrackingDataMessage.h>
@@ -230,6 +231,7 @@ int Replay(int port, double rateHz, const std::string& repliesFile, const std::v
   std::atomic<bool> stop{ false };
   std::thread reader([&] {
     std::ofstream replies(repliesFile);
+    std::ofstream raw(repliesFile + ".bin", std::ios::binary);
     unsigned char header[58];
     while (!stop)
     {
@@ -247,6 +249,9 @@ int Replay(int port, double rateHz, const std::string& repliesFile, const std::v
       {
         break;
       }
+      raw.write(reinterpret_cast<char*>(header), 58);
+      raw.write(rest.data(), static_cast<std::streamsize>(rest.size()));
+      raw.flush();
       replies << ((header[0] << 8) | header[1]) << " " << std::string(reinterpret_cast<char*>(header) + 2, 12).c_str() << " "
               << std::string(reinterpret_cast<char*>(header) + 14, 20).c_str() << std::endl;
     }

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <ctime>
 #include <filesystem>
 #include <sstream>
 #include <tuple>
@@ -282,6 +283,7 @@ TEST_F(IgtlVersion2, APoseTheTrackerDoesNotSeeIsLost)
     EXPECT_FALSE(p.Pose.Lost) << file;
     EXPECT_NEAR(p.Pose.ModelToWorld[3], 10.5, 1e-6) << file;
     EXPECT_NEAR(p.Pose.ModelToWorld[7], -20.25, 1e-6) << file;
+    EXPECT_EQ(p.Pose.SourceClockS, 1700000000.5) << file << ": the header's time stamp";
   }
   const vp::IgtlPoseMessage missing = decode("transform_v2_plus_missing.bin", "StylusToTracker");
   ASSERT_EQ(missing.What, vp::IgtlPoseMessage::Verdict::Pose);
@@ -347,6 +349,30 @@ TEST_F(IgtlVersion2, ASlicerConfiguredPeersStreamIsTrackedAndAnsweredInVersion2)
     version2 += line[0] == '2' ? 1 : 0;
   }
   EXPECT_GT(version2, 40);
+  // Each reply's header carries the pose's own time stamp (the peer's messages: 1700000000.5 s),
+  // its metadata the time it was sent.
+  const std::string raw = Slurp(dir + "/replies.txt.bin");
+  int stamped = 0;
+  for (std::size_t at = 0; at + vp::IgtlHeaderBytes <= raw.size();)
+  {
+    const auto* header = reinterpret_cast<const unsigned char*>(raw.data() + at);
+    const vp::IgtlHeader h = vp::ParseIgtlHeader(header);
+    const std::vector<unsigned char> body(raw.begin() + static_cast<std::ptrdiff_t>(at + vp::IgtlHeaderBytes),
+      raw.begin() + static_cast<std::ptrdiff_t>(at + vp::IgtlHeaderBytes + h.BodyBytes));
+    vp::IgtlBody split;
+    ASSERT_EQ(vp::SplitIgtlBody(header, body, split), "");
+    const std::string* sent = split.Find("ReplyTime");
+    ASSERT_NE(sent, nullptr) << h.Type << " " << h.Device;
+    EXPECT_NEAR(std::stod(*sent), static_cast<double>(std::time(nullptr)), 30.0);
+    if (h.Type == "TRANSFORM")
+    {
+      EXPECT_EQ(h.TimeSeconds, 1700000000u);
+      EXPECT_EQ(h.TimeFraction, 0x80000000u);
+      ++stamped;
+    }
+    at += vp::IgtlHeaderBytes + h.BodyBytes;
+  }
+  EXPECT_GT(stamped, 0) << "the closest points' transforms";
 
   // By default the tracker is sent nothing at all (a PlusServer would log each unknown type).
   const int again = vp::test::FreePort();

@@ -60,7 +60,13 @@ void AlsaAudioOutput::OnEnd()
 void AlsaAudioOutput::Play()
 {
   Pcm pcm;
-  int status = snd_pcm_open(&pcm.Handle, this->Device.c_str(), SND_PCM_STREAM_PLAYBACK, 0);
+  // Opened without waiting (a device another program holds would block the open, and the run's
+  // end with it), then written to with waiting, which paces the thread.
+  int status = snd_pcm_open(&pcm.Handle, this->Device.c_str(), SND_PCM_STREAM_PLAYBACK, SND_PCM_NONBLOCK);
+  if (status >= 0)
+  {
+    status = snd_pcm_nonblock(pcm.Handle, 0);
+  }
   if (status >= 0)
   {
     status = snd_pcm_set_params(pcm.Handle, SND_PCM_FORMAT_FLOAT, SND_PCM_ACCESS_RW_INTERLEAVED, 1,

@@ -173,7 +173,7 @@ void OscOutput::OnEnd()
 {
   // What was queued goes out before the run's summary counts it.
   std::unique_lock<std::mutex> hold(this->Lock);
-  this->Wake.wait_for(hold, std::chrono::seconds(2), [this] { return this->Pending.empty(); });
+  this->Wake.wait_for(hold, std::chrono::seconds(2), [this] { return this->Pending.empty() && !this->Sending; });
 }
 
 void OscOutput::Send()
@@ -190,6 +190,7 @@ void OscOutput::Send()
       }
       message = std::move(this->Pending.front());
       this->Pending.pop_front();
+      this->Sending = true;
     }
     lo_message m = lo_message_new();
     std::size_t f = 0, s = 0;
@@ -206,6 +207,7 @@ void OscOutput::Send()
       std::lock_guard<std::mutex> hold(this->Lock);
       ++(sent < 0 ? this->Count.Failed : this->Count.Sent);
       this->LastSentMs = NowMs();
+      this->Sending = false;
     }
     this->Wake.notify_all();
   }

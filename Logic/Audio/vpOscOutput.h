@@ -79,6 +79,7 @@ private:
   std::condition_variable Wake;
   std::deque<Message> Pending;
   bool Stopping = false;
+  bool Sending = false; ///< a message taken from the queue is on its way
   Counts Count;
   double LastSentMs = 0.0;
   std::thread Sender;

@@ -116,6 +116,13 @@ std::vector<float> WavAudioOutput::Render(double sampleRateHz) const
 
 void WavAudioOutput::OnEnd()
 {
+  // A 16-bit WAV holds at most 4 GB: 13.5 h of 44.1 kHz mono. Said, not attempted.
+  const double spanS = this->Changes.empty() ? 0.0 : this->LastTimeS - this->Changes.front().first;
+  if (!(spanS <= MaximumSeconds))
+  {
+    throw InputError(this->FileName, "the recording spans " + std::to_string(spanS / 3600.0) + " h; a WAV holds at most " +
+        std::to_string(static_cast<int>(MaximumSeconds / 3600.0)) + " h");
+  }
   const std::vector<float> samples = this->Render(ToneSynth::DefaultSampleRateHz);
   try
   {

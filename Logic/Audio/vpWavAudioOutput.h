@@ -18,6 +18,8 @@ namespace vp
 class WavAudioOutput : public FrameOutput
 {
 public:
+  /// The longest recording written: 12 h (a WAV's 4 GB hold 13.5 h of 44.1 kHz 16-bit mono).
+  static constexpr double MaximumSeconds = 12.0 * 3600.0;
   WavAudioOutput(std::string fileName, Sonification sound);
 
   void OnFrame(const TrackedFrame& frame) override { this->Note(frame.TimeS, this->Sound.ForFrame(frame)); }

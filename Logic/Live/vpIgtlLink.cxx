@@ -269,12 +269,24 @@ void IgtlLink::SayVersion2(Peer& peer)
   packing.Metadata = { { "dummy", "dummy", 3 } };
   IgtlStatus hello;
   hello.Code = 0;
-  const std::string message = PackIgtlStatus("", hello, packing);
-  std::lock_guard<std::mutex> lock(peer.SocketMutex);
-  if (!peer.Done)
+  this->SendAside(peer, PackIgtlStatus("", hello, packing));
+}
+
+void IgtlLink::SendAside(Peer& peer, const std::string& message)
+{
+  std::unique_lock<std::mutex> lock(peer.SocketMutex);
+  if (peer.Done || peer.Deaf || peer.Socket->Send(message.data(), static_cast<int>(message.size())) == 1)
   {
-    peer.Socket->Send(message.data(), static_cast<int>(message.size()));
+    return;
   }
+  // Part of a message may have gone: nothing more can be placed after it.
+  peer.Deaf = true;
+  lock.unlock();
+  {
+    std::lock_guard<std::mutex> counts(this->Mutex);
+    ++this->Counts.SendFailures;
+  }
+  this->Note(peer.Name + " took no more messages: none are sent to it from now on (its poses are still read)");
 }
 
 void IgtlLink::AskWhenSilent(Peer& peer)
@@ -284,13 +296,11 @@ void IgtlLink::AskWhenSilent(Peer& peer)
   {
     std::this_thread::sleep_for(std::chrono::milliseconds(PollMs));
   }
-  std::lock_guard<std::mutex> lock(peer.SocketMutex);
   if (this->Stop || peer.Done || peer.Messages > 0)
   {
     return;
   }
-  const std::string start = PackIgtlStartTracking(10);
-  peer.Socket->Send(start.data(), static_cast<int>(start.size()));
+  this->SendAside(peer, PackIgtlStartTracking(10));
 }
 
 std::size_t IgtlLinkCounts::RejectedTotal() const
@@ -747,11 +757,12 @@ void IgtlLink::Send(const std::string& packed)
   std::string inVersion2; // made once, for the peers that speak it
   for (const auto& peer : peers)
   {
-    if (peer->Version >= 2 && inVersion2.empty())
+    const bool version2 = peer->Version >= 2; // read once: its reader may raise it meanwhile
+    if (version2 && inVersion2.empty())
     {
       inVersion2 = ToIgtlVersion2Stream(packed);
     }
-    const std::string& bytes = peer->Version >= 2 ? inVersion2 : packed;
+    const std::string& bytes = version2 ? inVersion2 : packed;
     std::unique_lock<std::mutex> socketLock(peer->SocketMutex);
     if (peer->Done)
     {

@@ -134,6 +134,9 @@ private:
   void AskWhenSilent(Peer& peer);
   /// Tells a server that spoke version 1 that we speak version 2, as 3D Slicer does.
   void SayVersion2(Peer& peer);
+  /// A message to one peer outside the results (a request, the version): a send that fails
+  /// leaves it deaf, counted and said, as for the results.
+  void SendAside(Peer& peer, const std::string& message);
   /// One whole message of the peer: the tool's pose taken when the peer steers, else counted.
   void Take(Peer& peer, const unsigned char* header, const std::vector<unsigned char>& body);
   /// Whether the peer's poses steer the scalpel (see IgtlLinkSettings::PoseFromHost); under Mutex.

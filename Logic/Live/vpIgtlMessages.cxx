@@ -102,6 +102,14 @@ bool Unpack(Message* message, const unsigned char* header, const std::vector<uns
   return (message->Unpack(1) & igtl::MessageHeader::UNPACK_BODY) != 0;
 }
 
+std::size_t ElementBytes(igtl::TrackingDataMessage*)
+{
+  return IGTL_TDATA_ELEMENT_SIZE;
+}
+std::size_t ElementBytes(igtl::QuaternionTrackingDataMessage*)
+{
+  return IGTL_QTDATA_ELEMENT_SIZE;
+}
 int ElementCount(igtl::TrackingDataMessage* m)
 {
   return m->GetNumberOfTrackingDataElements();
@@ -154,11 +162,14 @@ bool UnpackTools(const unsigned char* header, const std::vector<unsigned char>& 
   {
     return false;
   }
+  // Each element begins with its name, 20 bytes: read from the content itself, since the library
+  // loses a name that fills all 20 (its copy has no room for the end of the string).
+  const std::size_t elementBytes = ElementBytes(message.GetPointer());
   for (int i = 0; i < ElementCount(message.GetPointer()); ++i)
   {
     IgtlTool tool;
     auto element = Element(message.GetPointer(), i);
-    tool.Name = element->GetName();
+    tool.Name = NameField(content.data() + static_cast<std::size_t>(i) * elementBytes, IgtlDeviceNameBytes);
     tool.Type = element->GetType();
     ReadTool(element.GetPointer(), tool);
     tools.push_back(tool);
@@ -216,10 +227,12 @@ double IgtlWallClockS()
 
 IgtlPacking IgtlStampedAt(double clockS)
 {
+  // The header's range: whole seconds below 2^32, a fraction below one.
+  const double clamped = std::isfinite(clockS) ? std::min(std::max(clockS, 0.0), 4294967295.0) : 0.0;
   IgtlPacking packing;
-  const double seconds = std::floor(clockS);
+  const double seconds = std::floor(clamped);
   packing.TimeSeconds = static_cast<std::uint32_t>(seconds);
-  packing.TimeFraction = static_cast<std::uint32_t>(std::min(4294967295.0, std::floor((clockS - seconds) * 4294967296.0)));
+  packing.TimeFraction = static_cast<std::uint32_t>(std::min(4294967295.0, std::floor((clamped - seconds) * 4294967296.0)));
   return packing;
 }
 
@@ -486,7 +499,9 @@ std::string DecodeIgtlStatus(const unsigned char* header, const std::vector<unsi
   IgtlBody split;
   std::string problem = SplitIgtlBody(header, body, split);
   auto message = igtl::StatusMessage::New();
-  if (problem.empty() && (split.Content.size() < StatusFieldsBytes || !Unpack(message.GetPointer(), header, split.Content)))
+  // The text after the fixed fields ends with its NUL, which the library's strlen relies on.
+  if (problem.empty() && (split.Content.size() <= StatusFieldsBytes || split.Content.back() != 0 ||
+                           !Unpack(message.GetPointer(), header, split.Content)))
   {
     problem = "a STATUS body that cannot be read";
   }
@@ -505,7 +520,9 @@ std::string DecodeIgtlString(const unsigned char* header, const std::vector<unsi
   IgtlBody split;
   std::string problem = SplitIgtlBody(header, body, split);
   auto message = igtl::StringMessage::New();
-  if (problem.empty() && (split.Content.size() < 4 || !Unpack(message.GetPointer(), header, split.Content)))
+  // Encoding (2 bytes), length (2), then that many bytes: the library copies what the length says.
+  if (problem.empty() && (split.Content.size() < 4 || 4 + BigEndian(split.Content.data() + 2, 2) > split.Content.size() ||
+                           !Unpack(message.GetPointer(), header, split.Content)))
   {
     problem = "a STRING body that cannot be read";
   }
@@ -531,14 +548,17 @@ std::string DecodeIgtlPoints(const unsigned char* header, const std::vector<unsi
     igtl::PointElement::Pointer element;
     message->GetPointElement(i, element);
     IgtlPoint p;
-    p.Name = element->GetName();
-    p.Group = element->GetGroupName();
+    // Names from the content itself (a name filling its field comes back empty from the library):
+    // name 64 bytes, group 32, then colour, position, radius, and the owner's 20 at the end.
+    const unsigned char* raw = split.Content.data() + static_cast<std::size_t>(i) * IGTL_POINT_ELEMENT_SIZE;
+    p.Name = NameField(raw, 64);
+    p.Group = NameField(raw + 64, 32);
     element->GetRGBA(p.Rgba.data());
     igtlFloat32 position[3];
     element->GetPosition(position);
     p.PositionMm = { position[0], position[1], position[2] };
     p.RadiusMm = element->GetRadius();
-    p.Owner = element->GetOwner();
+    p.Owner = NameField(raw + IGTL_POINT_ELEMENT_SIZE - 20, 20);
     points.push_back(p);
   }
   return problem;

@@ -34,7 +34,7 @@ private:
   template <std::size_t Index>
   static int RunCommand(int argc, const char* const* argv)
   {
-    const std::vector<std::string> args(argv + 1, argv + argc);
+    const std::vector<std::string> args(argc > 1 ? argv + 1 : argv, argc > 1 ? argv + argc : argv);
     return RunCommandReportingErrors(Table()[Index], args, Record().Module);
   }
 

@@ -6,6 +6,7 @@
 #include "vpInputError.h"
 #include "vpModelTestSupport.h"
 #include "vpSonification.h"
+#include "vpWavAudioOutput.h"
 #include "vpTestSupport.h"
 
 #include <gtest/gtest.h>
@@ -80,6 +81,26 @@ TEST(Sonification, TheDefaultTableAndAFileOverIt)
     }
   }
   std::filesystem::remove_all(tmp);
+}
+
+// A recording longer than a WAV can hold is refused in one line naming the file, not attempted.
+TEST(WavAudioOutput, ARecordingLongerThanAWavHoldsIsRefused)
+{
+  vp::WavAudioOutput wav("/tmp/never-written.wav", vp::Sonification::Default());
+  vp::TrackedFrame frame;
+  wav.OnFrame(frame);
+  frame.TimeS = 2.0 * vp::WavAudioOutput::MaximumSeconds;
+  wav.OnFrame(frame);
+  try
+  {
+    wav.OnEnd();
+    ADD_FAILURE() << "a 24 h WAV was attempted";
+  }
+  catch (const vp::InputError& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("/tmp/never-written.wav: the recording spans 24"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(vp::test::FileExists("/tmp/never-written.wav"));
 }
 
 /// The samples of a 16-bit mono PCM WAV, in [-1, 1], and its rate.

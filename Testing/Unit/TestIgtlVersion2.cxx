@@ -311,6 +311,37 @@ TEST_F(IgtlVersion2, APoseTheTrackerDoesNotSeeIsLost)
   }
 }
 
+// Content that lies about itself is refused, never read past: a STRING whose length field
+// exceeds its bytes, a STATUS whose text has no end; and a tool name that fills its 20 bytes
+// (which the library's element loses) is read whole and tracked.
+TEST_F(IgtlVersion2, LyingContentIsRefusedAndAWholeNameIsRead)
+{
+  Message text = this->Read("string_v1_ascii.bin");
+  text.Bytes[58 + 2] = static_cast<char>(0xff); // the length field: 65,280 bytes and more
+  Restamp(text.Bytes);
+  unsigned encoding = 0;
+  std::string read;
+  EXPECT_EQ(vp::DecodeIgtlString(text.Header(), text.Body(), encoding, read), "a STRING body that cannot be read");
+
+  Message status = this->Read("status_v1_full.bin");
+  status.Bytes.back() = 'x'; // the text's end gone
+  Restamp(status.Bytes);
+  vp::IgtlStatus fields;
+  EXPECT_EQ(vp::DecodeIgtlStatus(status.Header(), status.Body(), fields), "a STATUS body that cannot be read");
+
+  Message tools = this->Read("tdata_v1.bin");
+  const std::string name = "StylusToTrackerTool1"; // 20 bytes, no room for an end
+  ASSERT_EQ(name.size(), vp::IgtlDeviceNameBytes);
+  std::copy(name.begin(), name.end(), tools.Bytes.begin() + 58);
+  Restamp(tools.Bytes);
+  std::vector<vp::IgtlTool> read2;
+  ASSERT_EQ(vp::DecodeIgtlTools(tools.Header(), tools.Body(), read2), "");
+  EXPECT_EQ(read2.at(0).Name, name);
+  const vp::IgtlPoseMessage pose =
+    vp::DecodeIgtlPose(tools.Header(), tools.Body(), name, vp::SettlePoseReading(vp::PoseReading()));
+  EXPECT_EQ(pose.What, vp::IgtlPoseMessage::Verdict::Pose) << pose.Reason;
+}
+
 // A peer configured as 3D Slicer and PlusServer are by default: its version-2 STATUS on connect,
 // then version-2 TRANSFORMs with their status (PLUS's MISSING for a tool it does not see, with
 // the identity): every OK pose is a frame, every MISSING one a lost pose, and the peer is answered

@@ -3,6 +3,7 @@
 #include "vpAlsaAudioOutput.h"
 #include "vpInputError.h"
 #include "vpOscOutput.h"
+#include "vpRegularFile.h"
 #include "vpSonification.h"
 #include "vpWavAudioOutput.h"
 
@@ -41,6 +42,13 @@ std::unique_ptr<FrameOutput> MakeWav(const OutputRequest& request)
   if (request.Value.empty())
   {
     throw InputError(request.Source, "a file name is required");
+  }
+  const std::string input = FileItWouldReplace(request.Value, request.Inputs);
+  if (!input.empty())
+  {
+    throw InputError(request.Source, "'" + request.Value + "' would replace " +
+        (input == request.Value ? std::string("an input of this run") : "the run's input '" + input + "'") +
+        ": write the sound to another file");
   }
   return std::make_unique<WavAudioOutput>(request.Value, SoundOf(request));
 }

@@ -27,6 +27,8 @@ struct OutputRequest
   std::string Source;  ///< how the front end names the option (its flag), for errors
   std::string Value;   ///< its value (empty for a switch)
   const Sonification* Sound = nullptr; ///< the sonification (the default, or the user's file)
+  /// What the run reads: an output written to a file refuses to replace one of them.
+  std::vector<std::string> Inputs;
   /// A line for the user (a device that cannot be opened), from any thread.
   std::function<void(const std::string&)> Say;
 };

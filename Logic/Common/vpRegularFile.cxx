@@ -4,6 +4,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <sys/stat.h>
@@ -44,5 +45,27 @@ std::string ReadSmallFile(const std::string& fileName, const std::string& what, 
   std::ostringstream text;
   text << in.rdbuf();
   return text.str();
+}
+
+std::string FileItWouldReplace(const std::string& fileName, const std::vector<std::string>& files)
+{
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path target = fs::weakly_canonical(fs::absolute(fileName, ec), ec);
+  for (const std::string& file : files)
+  {
+    if (file.empty())
+    {
+      continue;
+    }
+    std::error_code fileEc;
+    const fs::path other = fs::weakly_canonical(fs::absolute(file, fileEc), fileEc);
+    std::error_code sameEc;
+    if ((!ec && !fileEc && target == other) || fs::equivalent(fileName, file, sameEc))
+    {
+      return file;
+    }
+  }
+  return std::string();
 }
 } // namespace vp

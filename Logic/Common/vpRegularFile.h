@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace vp
 {
@@ -17,6 +18,11 @@ std::uint64_t RegularFileSize(const std::string& fileName, const std::string& if
 /// device, pipe or socket), not a WHAT") of at most maxBytes ("is N bytes: not a WHAT (at most
 /// M MB)"). Throws InputError(fileName, ...).
 std::string ReadSmallFile(const std::string& fileName, const std::string& what, std::uint64_t maxBytes);
+
+/// The one of files that writing fileName would replace (the same path once links and ".." are
+/// resolved, or the same file by another name: a hard link); empty when none. An output is
+/// checked against its run's inputs with it before anything is written.
+std::string FileItWouldReplace(const std::string& fileName, const std::vector<std::string>& files);
 } // namespace vp
 
 #endif

@@ -88,6 +88,14 @@ cli::ModuleDescription DescribeLiveCommand()
 
 namespace
 {
+/// What the run reads: never written over, by its folder or its outputs.
+std::vector<std::string> LiveInputs(const cli::ParsedArguments& args, const SceneRequest& request)
+{
+  std::vector<std::string> inputs = SceneInputFiles(request);
+  inputs.push_back(args.GetString("registration"));
+  return inputs;
+}
+
 /// The run's folder for -o, its inputs noted; null without -o.
 std::unique_ptr<RunFolder> LiveRunFolder(const cli::ParsedArguments& args, const SceneRequest& request)
 {
@@ -98,16 +106,7 @@ std::unique_ptr<RunFolder> LiveRunFolder(const cli::ParsedArguments& args, const
   }
   auto run = std::make_unique<RunFolder>(outDir, "summary.json");
   run->KeepIfKilled(); // a crash keeps the rows flushed so far (interrupted-*/ after the next run)
-  std::vector<std::string> inputs = { request.ScalpelFile };
-  for (const NamedMesh& vessel : request.Vessels)
-  {
-    inputs.push_back(vessel.FileName);
-  }
-  if (args.IsSet("registration"))
-  {
-    inputs.push_back(args.GetString("registration"));
-  }
-  run->SetInputs(inputs);
+  run->SetInputs(LiveInputs(args, request));
   return run;
 }
 
@@ -227,7 +226,7 @@ int RunLiveCommand(const cli::ParsedArguments& args, const ModuleServices& modul
   const double durationS = ParseDurationS(args);
   const double start = NowMs();
   const SceneRequest request = ParseRecordedSceneRequest(args);
-  ChosenOutputs chosen(args, OutputForLive, "live");
+  ChosenOutputs chosen(args, OutputForLive, "live", LiveInputs(args, request));
   std::unique_ptr<RunFolder> run = LiveRunFolder(args, request);
   vtkSmartPointer<vtkVesselProximityLogic> proximity = module.CreateLogic();
   OpenedScene scene;

@@ -31,10 +31,12 @@ cli::ParameterGroup OutputOptions(OutputOffer offer)
   return group;
 }
 
-ChosenOutputs::ChosenOutputs(const cli::ParsedArguments& args, OutputOffer offer, std::string command)
+ChosenOutputs::ChosenOutputs(
+  const cli::ParsedArguments& args, OutputOffer offer, std::string command, std::vector<std::string> inputs)
   : Command(std::move(command))
   , Sound(args.IsSet("sonification") ? Sonification::Read(args.GetString("sonification")) : Sonification::Default())
 {
+  inputs.push_back(args.GetString("sonification"));
   for (const OutputMethod& method : FrameOutputMethods())
   {
     const std::string name = OutputOption(method).GetName();
@@ -46,6 +48,7 @@ ChosenOutputs::ChosenOutputs(const cli::ParsedArguments& args, OutputOffer offer
     request.Source = std::string("--") + method.Name;
     request.Value = method.ValueName ? args.GetString(name) : std::string();
     request.Sound = &this->Sound;
+    request.Inputs = inputs;
     const std::string said = this->Command;
     request.Say = [said](const std::string& line) { std::cerr << said + ": " + line + "\n"; };
     this->Made.push_back(method.Make(request));

@@ -18,13 +18,16 @@ namespace vp
 /// sonification file its sound outputs share.
 cli::ParameterGroup OutputOptions(OutputOffer offer);
 
-/// The outputs the command line asks for, made before any frame (a bad value throws InputError
-/// naming the option); they live as long as this.
+/// The outputs the command line asks for, made before any frame (a bad value, or a file output
+/// that would replace one of the run's inputs, throws InputError naming the option); they live
+/// as long as this.
 class ChosenOutputs
 {
 public:
-  /// command: what the lines said start with ("live").
-  ChosenOutputs(const cli::ParsedArguments& args, OutputOffer offer, std::string command);
+  /// command: what the lines said start with ("live"); inputs: the files the run reads (the
+  /// sonification file is added).
+  ChosenOutputs(
+    const cli::ParsedArguments& args, OutputOffer offer, std::string command, std::vector<std::string> inputs = {});
   ChosenOutputs(const ChosenOutputs&) = delete;
   ChosenOutputs& operator=(const ChosenOutputs&) = delete;
 

@@ -135,15 +135,12 @@ void RequireDisplayFor(bool screenshots, VirtualDisplay& display)
   }
 }
 
-/// What the run reads is never removed or written over, even in its own output folder.
-void NoteTrackInputs(RunFolder& run, const std::string& posesFile, const SceneRequest& request)
+/// What the run reads: never removed or written over, even in its own output folder.
+std::vector<std::string> TrackInputs(const std::string& posesFile, const SceneRequest& request)
 {
-  std::vector<std::string> inputs = { posesFile, request.ScalpelFile, ScalpelDefinitionFileFor(request.ScalpelFile), request.LiverFile };
-  for (const NamedMesh& vessel : request.Vessels)
-  {
-    inputs.push_back(vessel.FileName);
-  }
-  run.SetInputs(inputs);
+  std::vector<std::string> inputs = SceneInputFiles(request);
+  inputs.push_back(posesFile);
+  return inputs;
 }
 
 /// The key frames' pictures and their contact sheet in the run, as a stage of progress (the
@@ -234,12 +231,13 @@ int RunTrackCommand(const cli::ParsedArguments& args, const ModuleServices& modu
   const std::size_t poseCount = PoseStream::CountPoses(posesFile, reading);
   SceneRequest request = ParseRecordedSceneRequest(args);
   request.LiverFile = args.GetString("liver");
-  const ChosenOutputs chosen(args, OutputForTrack, "track");
+  const std::vector<std::string> inputs = TrackInputs(posesFile, request);
+  const ChosenOutputs chosen(args, OutputForTrack, "track", inputs);
   // Pictures need a display: one that cannot be had refuses the run before it computes anything.
   const bool screenshots = args.GetBoolean("screenshots");
   VirtualDisplay display;
   RequireDisplayFor(screenshots, display);
-  NoteTrackInputs(run, posesFile, request);
+  run.SetInputs(inputs);
   vtkSmartPointer<vtkVesselProximityLogic> proximity = module.CreateLogic();
   StageProgress progress("track", proximity);
   const OpenedScene scene = proximity->OpenScene(request);

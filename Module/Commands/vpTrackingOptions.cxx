@@ -6,6 +6,7 @@
 #include "vpInputError.h"
 #include "vpPointCsv.h"
 #include "vpRegistrationFile.h"
+#include "vpScalpelLoader.h"
 
 #include <cstdio>
 
@@ -287,5 +288,22 @@ SceneRequest ParseRecordedSceneRequest(const cli::ParsedArguments& args)
   }
   CheckFramesCsvColumns(classes, !request.Tumours.empty());
   return request;
+}
+
+std::vector<std::string> SceneInputFiles(const SceneRequest& request)
+{
+  std::vector<std::string> inputs = { request.ScalpelFile, request.LiverFile };
+  if (!request.ScalpelFile.empty())
+  {
+    inputs.push_back(ScalpelDefinitionFileFor(request.ScalpelFile));
+  }
+  for (const std::vector<NamedMesh>* meshes : { &request.Vessels, &request.Tumours })
+  {
+    for (const NamedMesh& mesh : *meshes)
+    {
+      inputs.push_back(mesh.FileName);
+    }
+  }
+  return inputs;
 }
 } // namespace vp

@@ -57,6 +57,9 @@ SceneRequest ParseSceneRequest(const cli::ParsedArguments& args);
 /// The scene of a command that records its frames (track, live): ParseSceneRequest with
 /// --repair, its classes checked against frames.csv's columns before anything is read or said.
 SceneRequest ParseRecordedSceneRequest(const cli::ParsedArguments& args);
+/// The files the scene reads (its vessels, tumours, liver, scalpel and the scalpel's definition
+/// beside it): what a run's folder and its file outputs must never write over.
+std::vector<std::string> SceneInputFiles(const SceneRequest& request);
 } // namespace vp
 
 #endif

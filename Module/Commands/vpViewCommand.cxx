@@ -279,7 +279,9 @@ int RunViewCommand(const cli::ParsedArguments& args, const ModuleServices& modul
   SceneRequest request = ParseSceneRequest(args);
   request.LiverFile = args.GetString("liver");
   const ViewInputs in = ReadViewInputs(args); // everything that can be refused, before a window opens
-  const ChosenOutputs chosen(args, OutputForView, "view");
+  std::vector<std::string> inputs = SceneInputFiles(request);
+  inputs.push_back(args.GetString("poses"));
+  const ChosenOutputs chosen(args, OutputForView, "view", inputs);
   vtkSmartPointer<vtkVesselProximityLogic> logic = module.CreateLogic();
   OpenedScene scene;
   {

@@ -597,4 +597,36 @@ TEST_F(AudioOutputs, BadOutputOptionsAreRefusedInOneLine)
     EXPECT_FALSE(vp::test::FileExists(this->Dir + "/run/summary.json")) << option;
   }
 }
+
+// The sound is written after the frames: a WAV named as one of the run's inputs (by its own
+// name, by another path to it, by a hard link) would have replaced it with sound.
+TEST_F(AudioOutputs, AWavNeverReplacesTheRunsInputs)
+{
+  std::filesystem::create_directory(this->Dir + "/sub");
+  std::filesystem::create_hard_link(this->Poses, this->Dir + "/poses-link.csv");
+  const std::string sonification = this->Dir + "/sound.json";
+  std::ofstream(sonification) << R"({"levels": {"danger": {"gain": 0.5}}})";
+  const std::string posesBefore = Slurp(this->Poses);
+  const std::pair<std::string, std::string> inputs[] = {
+    { this->Poses, "an input of this run" },
+    { this->Dir + "/sub/../" + std::filesystem::path(this->Poses).filename().string(), "the run's input '" + this->Poses + "'" },
+    { this->Dir + "/poses-link.csv", "the run's input '" + this->Poses + "'" },
+    { this->Vessel, "an input of this run" },
+    { this->Dir + "/Tool.json", "an input of this run" },
+    { sonification, "an input of this run" },
+  };
+  for (const auto& [wav, replaced] : inputs)
+  {
+    const auto run = RunTool(this->Dir, this->Track("--sonification " + sonification + " --audio-wav " + wav));
+    EXPECT_EQ(run.ExitCode, 1) << wav;
+    EXPECT_EQ(std::count(run.Err.begin(), run.Err.end(), '\n'), 1) << run.Err;
+    EXPECT_NE(run.Err.find("--audio-wav: '" + wav + "' would replace " + replaced), std::string::npos) << run.Err;
+    EXPECT_FALSE(vp::test::FileExists(this->Dir + "/run/summary.json")) << wav;
+  }
+  EXPECT_EQ(Slurp(this->Poses), posesBefore);
+  // Beside the inputs, the sound is written as asked.
+  const auto run = RunTool(this->Dir, this->Track("--audio-wav " + this->Dir + "/sub/run.wav"));
+  EXPECT_EQ(run.ExitCode, 0) << run.Err;
+  EXPECT_TRUE(vp::test::FileExists(this->Dir + "/sub/run.wav"));
+}
 } // namespace

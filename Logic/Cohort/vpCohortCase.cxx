@@ -189,7 +189,13 @@ Json CohortCaseInputsJson(const CohortCase& c)
     entry["id"] = tumour.ClassName;
     plan.push_back(entry);
   }
+  const PoseReading& r = c.Reading;
+  const Json reading = { { "pose_space", r.Space ? Json(PoseSpaceName(*r.Space)) : Json(nullptr) },
+    { "mm_per_unit", r.MillimetresPerUnit ? Json(*r.MillimetresPerUnit) : Json(nullptr) },
+    { "s_per_unit", r.SecondsPerUnit ? Json(*r.SecondsPerUnit) : Json(nullptr) }, { "tool", r.ToolName },
+    { "reference", r.ReferenceName } };
   return { { "segmentation", InputJson(c.Segmentation) }, { "poses", c.Poses.empty() ? Json(nullptr) : InputJson(c.Poses) },
+    { "pose_reading", reading },
     { "tips", c.Tips.empty() ? Json(nullptr) : InputJson(c.Tips) }, { "plan", plan },
     { "scalpel", c.Scalpel.empty() ? Json(nullptr) : InputJson(c.Scalpel) } };
 }
@@ -208,7 +214,7 @@ void TrackCohortCase(const CohortCase& c, const std::vector<NamedMesh>& vessels,
   vtkSmartPointer<vtkVesselProximityLogic> logic = makeLogic ? makeLogic() : vtkSmartPointer<vtkVesselProximityLogic>::New();
   const OpenedScene scene = logic->OpenScene(request);
   TrackingRecorder recorder(logic, scene.Vessels);
-  PoseStream poses(c.Poses, PoseStream::CountPoses(c.Poses, {}), {});
+  PoseStream poses(c.Poses, PoseStream::CountPoses(c.Poses, c.Reading), c.Reading);
   if (!recorder.Run(poses, run))
   {
     throw Interrupted();
@@ -240,6 +246,7 @@ void TrackCohortCase(const CohortCase& c, const std::vector<NamedMesh>& vessels,
   for (const TumourMarginSummary& t : s.GetTumours())
   {
     Lower(result.MarginMinMm, t.MarginMinMm);
+    result.Tumours.push_back({ t.Id, t.MarginMinMm, t.SurfaceSeen ? std::optional<double>(t.SurfaceMinMm) : std::nullopt });
   }
 }
 
@@ -275,7 +282,12 @@ Json CaseRecord(const CohortCase& c, const CohortCaseResult& result, RunFolder& 
       { "surface_min_mm", OptionalJson(row.SurfaceMinMm) }, { "penetration_max_mm3", OptionalJson(row.PenetrationMaxMm3) },
       { "breach_frames", row.BreachFrames }, { "penetration_depth_max_mm", OptionalJson(row.PenetrationDepthMaxMm) } });
   }
-  return { { "case", c.Name }, { "inputs", CohortCaseInputsJson(c) }, { "classes", classes },
+  Json tumours = Json::array();
+  for (const CohortTumourRow& t : result.Tumours)
+  {
+    tumours.push_back({ { "id", t.Id }, { "margin_min_mm", OptionalJson(t.MarginMinMm) }, { "surface_min_mm", OptionalJson(t.SurfaceMinMm) } });
+  }
+  return { { "case", c.Name }, { "inputs", CohortCaseInputsJson(c) }, { "classes", classes }, { "tumours", tumours },
     { "margin_min_mm", OptionalJson(result.MarginMinMm) }, { "frames", result.Frames }, { "tips", result.Tips },
     { "files", run.GetEntries() }, { "outputs", OutputsJson(run) }, { "timing_ms", timing } };
 }
@@ -296,7 +308,7 @@ CohortCaseResult RunCohortCase(const CohortCase& c, const std::string& folder, c
   };
   try
   {
-    const std::vector<NamedMesh> tumours = TumourEntries(c.Plan, c.Name + " plan");
+    std::vector<NamedMesh> tumours = TumourEntries(c.Plan, c.Name + " plan");
     RunFolder run(folder, "case.json");
     std::vector<std::string> inputs = { c.Segmentation };
     for (const std::string& path : { c.Poses, c.Tips, c.Scalpel })
@@ -319,12 +331,17 @@ CohortCaseResult RunCohortCase(const CohortCase& c, const std::string& folder, c
     const VesselModelSet models = BuildVesselModels({ c.Segmentation }, settings.Models, [](const std::string&, double) {});
     WriteVesselModelFiles(models, run.Folder("models"));
     std::vector<NamedMesh> vessels;
+    const bool planned = !tumours.empty();
     for (const VesselClassModel& m : models.Models)
     {
-      if (m.ClassName != "liver") // shown beside the vessels, never measured
+      if (m.Role == ModelRole::Vessel) // the liver is shown beside the vessels, never measured
       {
         vessels.push_back({ m.ClassName, c.Segmentation, m.Surface, std::nullopt });
         RowOf(result.Classes, m.ClassName);
+      }
+      else if (m.Role == ModelRole::Tumour && !planned) // no plan: the segmentation's own tumours
+      {
+        tumours.push_back({ m.Name, c.Segmentation, m.Surface, std::nullopt });
       }
     }
     if (vessels.empty())
@@ -422,6 +439,10 @@ std::optional<CohortCaseResult> CompletedCohortCase(const CohortCase& c, const s
         OptionalOf(row.at("penetration_depth_max_mm")) });
     }
     result.MarginMinMm = OptionalOf(record.at("margin_min_mm"));
+    for (const auto& t : record.at("tumours"))
+    {
+      result.Tumours.push_back({ t.at("id").get<std::string>(), OptionalOf(t.at("margin_min_mm")), OptionalOf(t.at("surface_min_mm")) });
+    }
     result.Frames = record.at("frames").get<int>();
     result.Tips = record.at("tips").get<int>();
     return result;

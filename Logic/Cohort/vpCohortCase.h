@@ -33,12 +33,22 @@ struct CohortClassRow
   std::optional<double> PenetrationDepthMaxMm = {};
 };
 
+/// One tumour of a case (the plan's, else the segmentation's): the resection margin its poses
+/// kept and the instrument's closest approach to it.
+struct CohortTumourRow
+{
+  std::string Id; ///< "tumour_03", or the plan's id
+  std::optional<double> MarginMinMm;
+  std::optional<double> SurfaceMinMm;
+};
+
 /// One case's outcome: its rows, or the one-line error that stopped it.
 struct CohortCaseResult
 {
   std::string Case;
   std::vector<CohortClassRow> Classes;
-  std::optional<double> MarginMinMm; ///< the smallest resection margin over the plan's tumours
+  std::optional<double> MarginMinMm; ///< the smallest resection margin over the case's tumours
+  std::vector<CohortTumourRow> Tumours;
   std::string Error;                 ///< empty: the case's folder is whole
   bool Resumed = false;              ///< taken from a whole folder of an earlier run
   int Frames = 0;

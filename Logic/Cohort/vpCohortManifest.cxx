@@ -69,7 +69,8 @@ bool IsCohortFileName(const std::string& name)
 
 const std::vector<std::string>& CohortManifestColumns()
 {
-  static const std::vector<std::string> columns = { "case", "segmentation", "poses", "tips", "plan", "scalpel" };
+  static const std::vector<std::string> columns = { "case", "segmentation", "poses", "tips", "plan", "scalpel", "pose_space",
+    "pose_units", "time_units", "tool", "reference" };
   return columns;
 }
 
@@ -143,7 +144,9 @@ std::vector<int> HeaderColumns(const std::vector<std::string>& cells, const std:
     const auto it = std::find(known.begin(), known.end(), name);
     if (it == known.end())
     {
-      throw InputError(at, "unknown column '" + Printable(cell) + "' (the header names case,segmentation[,poses][,tips][,plan][,scalpel])");
+      throw InputError(at, "unknown column '" + Printable(cell) +
+          "' (the header names case,segmentation[,poses][,tips][,plan][,scalpel][,pose_space][,pose_units][,time_units]"
+          "[,tool][,reference])");
     }
     const int index = static_cast<int>(it - known.begin());
     if (!seen.insert(index).second)
@@ -179,6 +182,25 @@ std::vector<std::string> PlanEntries(const std::string& cell, const std::string&
   return plan;
 }
 
+/// A cell saying how the case's poses are read (column 6 to 10), as track's option of its name
+/// does; empty: as the file declares.
+void ReadingCell(int column, const std::string& value, const std::string& at, PoseReading& reading)
+{
+  if (value.empty())
+  {
+    return;
+  }
+  static const char* const declared[] = { "pose-space", "pose-units", "time-units" };
+  if (column <= 8)
+  {
+    ApplyPoseDeclaration(std::string(declared[column - 6]) + ": " + value, at, reading);
+  }
+  else
+  {
+    (column == 9 ? reading.ToolName : reading.ReferenceName) = value;
+  }
+}
+
 /// One case's row, checked: its name a folder's, its segmentation given, a plan only with poses.
 CohortCase CaseOf(const std::vector<std::string>& cells, const std::vector<int>& columnOf, const std::string& folder,
   const std::string& at)
@@ -208,13 +230,21 @@ CohortCase CaseOf(const std::vector<std::string>& cells, const std::vector<int>&
       case 4:
         c.Plan = PlanEntries(v, folder, at);
         break;
-      default:
+      case 5:
         c.Scalpel = Resolved(v, folder);
+        break;
+      default:
+        ReadingCell(columnOf[k], v, at, c.Reading);
     }
   }
   if (c.Name.empty() || c.Segmentation.empty())
   {
     throw InputError(at, "a case needs its name and its segmentation");
+  }
+  if (c.Poses.empty() && (c.Reading.Space || c.Reading.MillimetresPerUnit || c.Reading.SecondsPerUnit ||
+                           !c.Reading.ToolName.empty() || !c.Reading.ReferenceName.empty()))
+  {
+    throw InputError(at, "case '" + Printable(c.Name) + "' says how to read poses but gives none");
   }
   if (!c.Plan.empty() && c.Poses.empty())
   {

@@ -1,6 +1,8 @@
 #ifndef vpCohortManifest_h
 #define vpCohortManifest_h
 
+#include "vpPoseReading.h"
+
 #include <string>
 #include <vector>
 
@@ -18,6 +20,10 @@ struct CohortCase
   /// ';' between them in the cell; empty: none.
   std::vector<std::string> Plan;
   std::string Scalpel; ///< the instrument's model; empty: the built-in CUSA handpiece
+  /// How the poses are read (columns pose_space, pose_units, time_units, tool, reference, as
+  /// track's --pose-space, --pose-units, --time-units, --tool, --reference); an empty cell: as
+  /// the pose file declares, else LPS, mm, s.
+  PoseReading Reading;
   int Line = 0;        ///< the manifest's line, for messages
 };
 

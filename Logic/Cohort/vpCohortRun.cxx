@@ -200,15 +200,16 @@ void CohortRequest::Validate() const
 
 namespace
 {
-/// The vessel classes a cohort reports on: the label table's (but the liver, which no tip is
-/// measured against), then any other class a case had, in the order met.
+/// The vessel classes a cohort reports on: the label table's (not the liver, which no tip is
+/// measured against, nor the tumours, each a row of its own), then any other class a case had,
+/// in the order met.
 std::vector<std::string> CohortClasses(const std::vector<CohortCaseResult>& results)
 {
   std::vector<std::string> classes;
   const VesselLabelTable table = VesselLabelTable::Default();
   for (const std::string& c : table.Classes())
   {
-    if (c != "liver")
+    if (table.RoleOf(c) == ModelRole::Vessel)
     {
       classes.push_back(c);
     }
@@ -255,6 +256,11 @@ std::string CohortCsv(const std::vector<CohortCaseResult>& results)
       }
       csv += r.Case + "," + row->ClassName + "," + Number(row->TipMinMm) + "," + Number(row->SurfaceMinMm) + "," +
         Number(row->PenetrationMaxMm3) + "," + std::to_string(row->BreachFrames) + "," + Number(r.MarginMinMm) + ",\n";
+    }
+    // Then each tumour, its own margin: the case's smallest above hides which tumour it was.
+    for (const CohortTumourRow& t : r.Tumours)
+    {
+      csv += r.Case + "," + t.Id + ",," + Number(t.SurfaceMinMm) + ",,," + Number(t.MarginMinMm) + ",\n";
     }
   }
   return csv;

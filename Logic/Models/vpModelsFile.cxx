@@ -101,20 +101,6 @@ ModelStructure ParseStructure(const Json& s, const std::string& file, const fs::
 }
 } // namespace
 
-const char* ModelRoleName(ModelRole role)
-{
-  switch (role)
-  {
-    case ModelRole::Liver:
-      return "liver";
-    case ModelRole::Tumour:
-      return "tumour";
-    case ModelRole::Vessel:
-      break;
-  }
-  return "vessel";
-}
-
 std::vector<ModelStructure> ModelsFile::WithRole(ModelRole role) const
 {
   std::vector<ModelStructure> out;

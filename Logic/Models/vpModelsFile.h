@@ -1,6 +1,8 @@
 #ifndef vpModelsFile_h
 #define vpModelsFile_h
 
+#include "vpModelRole.h"
+
 #include <array>
 #include <optional>
 #include <string>
@@ -8,18 +10,6 @@
 
 namespace vp
 {
-/// What a model is for: measured against (a vessel class), shown beside them (the liver), or a
-/// tumour whose resection margin is kept.
-enum class ModelRole
-{
-  Vessel,
-  Liver,
-  Tumour,
-};
-
-/// "vessel", "liver", "tumour": models.json's "role".
-const char* ModelRoleName(ModelRole role);
-
 /// One surface of a models folder, as its models.json lists it.
 struct ModelStructure
 {

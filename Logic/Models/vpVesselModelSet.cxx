@@ -4,6 +4,7 @@
 #include "vpClock.h"
 #include "vpColorTableFile.h"
 #include "vpInputError.h"
+#include "vpLabelComponents.h"
 #include "vpRunFolder.h"
 #include "vpSegmentationImport.h"
 #include "vpSurfaceJson.h"
@@ -12,6 +13,7 @@
 #include "vtkVesselMeshWriter.h"
 #include "vtkVesselModelBuilder.h"
 
+#include <vtkCellArray.h>
 #include <vtkMassProperties.h>
 #include <vtkNew.h>
 
@@ -38,6 +40,45 @@ void VesselModelParameters::Validate() const
 
 namespace
 {
+/// The centroid of the volume a closed, outward-facing triangle surface encloses: the tetrahedra
+/// from a point inside its box to each triangle, weighted by their signed volumes (the surface's
+/// points' mean would lean toward its finely meshed parts).
+std::array<double, 3> VolumeCentroid(vtkPolyData* surface)
+{
+  double bounds[6];
+  surface->GetBounds(bounds);
+  const double o[3] = { 0.5 * (bounds[0] + bounds[1]), 0.5 * (bounds[2] + bounds[3]), 0.5 * (bounds[4] + bounds[5]) };
+  double sum[3] = { 0, 0, 0 }, volume = 0.0;
+  vtkIdType n = 0;
+  const vtkIdType* ids = nullptr;
+  vtkCellArray* polys = surface->GetPolys();
+  for (polys->InitTraversal(); polys->GetNextCell(n, ids);)
+  {
+    for (vtkIdType k = 1; k + 1 < n; ++k)
+    {
+      double a[3], b[3], c[3];
+      surface->GetPoint(ids[0], a);
+      surface->GetPoint(ids[k], b);
+      surface->GetPoint(ids[k + 1], c);
+      for (int i = 0; i < 3; ++i)
+      {
+        a[i] -= o[i], b[i] -= o[i], c[i] -= o[i];
+      }
+      const double v = (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0])) / 6.0;
+      volume += v;
+      for (int i = 0; i < 3; ++i)
+      {
+        sum[i] += v * (a[i] + b[i] + c[i]) / 4.0;
+      }
+    }
+  }
+  if (volume == 0.0)
+  {
+    return { o[0], o[1], o[2] };
+  }
+  return { o[0] + sum[0] / volume, o[1] + sum[1] / volume, o[2] + sum[2] / volume };
+}
+
 VesselClassModel BuildClassModel(VesselClassModel model, const VesselModelParameters& p)
 {
   const double t0 = NowMs();
@@ -53,13 +94,21 @@ VesselClassModel BuildClassModel(VesselClassModel model, const VesselModelParame
   mass->Update();
   model.VolumeMm3 = mass->GetVolume();
   model.AreaMm2 = mass->GetSurfaceArea();
+  model.Surface->GetBounds(model.BoundsMm.data());
+  model.CentroidMm = VolumeCentroid(model.Surface);
   model.BuildMs = NowMs() - t0;
   return model;
 }
 
 nlohmann::json StructureJson(const LabelStructure& s)
 {
-  return { { "name", s.Name }, { "source", s.Source }, { "label", s.LabelValue } };
+  nlohmann::json j = { { "name", s.Name }, { "source", s.Source }, { "label", s.LabelValue } };
+  if (s.Piece > 0)
+  {
+    j["piece"] = s.Piece;
+    j["pieces"] = s.PieceCount;
+  }
+  return j;
 }
 /// Every structure read is of one patient, study and frame of reference, as far as the inputs say
 /// (NRRD and NIfTI say nothing): two patients' vessels in one model is a model of no one.
@@ -131,6 +180,50 @@ std::string NothingMappedText(const std::vector<const LabelStructure*>& unmapped
   return "no vessel or liver structure found (" + std::to_string(unmapped.size()) + " structure(s): " + values +
     "; none in the label table); name them in a label table of your own";
 }
+
+/// "portal_vein" as it is said: "portal vein".
+std::string Spoken(std::string name)
+{
+  std::replace(name.begin(), name.end(), '_', ' ');
+  return name;
+}
+
+/// Where a tumour came from: "livertumor03", "livertumor, piece 2 of 3".
+std::string SourceText(const LabelStructure& s)
+{
+  return s.PieceCount > 1 ? s.Name + ", piece " + std::to_string(s.Piece) + " of " + std::to_string(s.PieceCount) : s.Name;
+}
+
+/// The models a class makes: a vessel class (or the liver) one, of all its structures; a tumour
+/// class one per structure, or per connected piece of one (each a target with its own margin),
+/// numbered in the order the inputs list them: tumour_01, tumour_02, ...
+std::vector<VesselClassModel> ModelsOfClass(const VesselClassModel& cls, std::vector<std::unique_ptr<LabelStructure>>& pieces)
+{
+  if (cls.Role != ModelRole::Tumour)
+  {
+    VesselClassModel model = cls;
+    model.Name = cls.ClassName;
+    model.DisplayName = Spoken(cls.ClassName);
+    return { model };
+  }
+  std::vector<VesselClassModel> models;
+  for (const LabelStructure* structure : cls.Structures)
+  {
+    for (LabelStructure& piece : SplitIntoComponents(*structure))
+    {
+      pieces.push_back(std::make_unique<LabelStructure>(std::move(piece)));
+      VesselClassModel model;
+      model.ClassName = cls.ClassName;
+      model.Role = cls.Role;
+      const std::string number = FixedText(static_cast<double>(models.size() + 1), "%02.0f");
+      model.Name = cls.ClassName + "_" + number;
+      model.DisplayName = Spoken(cls.ClassName) + " " + number + " (" + SourceText(*pieces.back()) + ")";
+      model.Structures = { pieces.back().get() };
+      models.push_back(std::move(model));
+    }
+  }
+  return models;
+}
 } // namespace
 
 VesselModelSet BuildVesselModels(
@@ -174,6 +267,7 @@ VesselModelSet BuildVesselModels(
         continue;
       }
       byClass[cls].ClassName = cls;
+      byClass[cls].Role = table.RoleOf(cls);
       byClass[cls].Structures.push_back(&s);
     }
   }
@@ -189,6 +283,7 @@ VesselModelSet BuildVesselModels(
     return parameters.Classes.empty() || std::find(parameters.Classes.begin(), parameters.Classes.end(), cls) != parameters.Classes.end();
   };
   const auto toBuild = std::count_if(byClass.begin(), byClass.end(), [&](const auto& c) { return asked(c.first); });
+  std::size_t classesBuilt = 0;
   for (const std::string& cls : table.Classes())
   {
     const auto it = byClass.find(cls);
@@ -197,13 +292,17 @@ VesselModelSet BuildVesselModels(
       continue;
     }
     set.ClassesFound.push_back(cls);
-    if (asked(cls))
+    if (!asked(cls))
     {
-      set.Models.push_back(BuildClassModel(it->second, parameters));
+      continue;
+    }
+    const double done = readShare + (1.0 - readShare) * static_cast<double>(++classesBuilt) / static_cast<double>(std::max<long>(1, toBuild));
+    for (VesselClassModel& model : ModelsOfClass(it->second, set.Pieces))
+    {
+      set.Models.push_back(BuildClassModel(std::move(model), parameters));
       const VesselClassModel& m = set.Models.back();
-      progress(cls + ": " + std::to_string(m.Voxels) + " voxels -> " + std::to_string(m.Surface->GetNumberOfPolys()) +
-        " triangles in " + FixedText(m.BuildMs, "%.0f") + " ms",
-        readShare + (1.0 - readShare) * static_cast<double>(set.Models.size()) / static_cast<double>(std::max<long>(1, toBuild)));
+      progress(m.Name + ": " + std::to_string(m.Voxels) + " voxels -> " + std::to_string(m.Surface->GetNumberOfPolys()) +
+          " triangles in " + FixedText(m.BuildMs, "%.0f") + " ms", done);
     }
   }
   set.TotalMs = NowMs() - start;
@@ -229,11 +328,12 @@ nlohmann::json VesselModelsJson(const VesselModelSet& set)
       name += (name.empty() ? "" : "+") + s->Name;
       sources.push_back(StructureJson(*s));
     }
-    doc["structures"].push_back({ { "name", name }, { "class", m.ClassName }, { "label", m.Structures.front()->LabelValue },
-      { "voxels", m.Voxels }, { "triangles", m.Surface->GetNumberOfPolys() }, { "volume_mm3", m.VolumeMm3 },
-      { "voxel_volume_mm3", m.VoxelVolumeMm3 }, { "area_mm2", m.AreaMm2 }, { "file", m.ClassName + ".stl" },
-      { "surface", SurfaceJson(VesselSurface(m.ClassName, m.Surface)) }, { "sources", sources }, { "build_ms", m.BuildMs } });
-    doc["files"].push_back(m.ClassName + ".stl");
+    doc["structures"].push_back({ { "id", m.Name }, { "name", name }, { "class", m.ClassName }, { "role", ModelRoleName(m.Role) },
+      { "display_name", m.DisplayName }, { "label", m.Structures.front()->LabelValue }, { "voxels", m.Voxels },
+      { "triangles", m.Surface->GetNumberOfPolys() }, { "volume_mm3", m.VolumeMm3 }, { "voxel_volume_mm3", m.VoxelVolumeMm3 },
+      { "area_mm2", m.AreaMm2 }, { "bounds_mm", m.BoundsMm }, { "centroid_mm", m.CentroidMm }, { "file", m.Name + ".stl" },
+      { "surface", SurfaceJson(VesselSurface(m.Name, m.Surface)) }, { "sources", sources }, { "build_ms", m.BuildMs } });
+    doc["files"].push_back(m.Name + ".stl");
   }
   doc["files"].push_back("models.json");
   doc["unmapped"] = nlohmann::json::array();
@@ -253,7 +353,7 @@ void WriteModelFiles(const VesselModelSet& set, const std::function<std::string(
   for (const VesselClassModel& m : set.Models)
   {
     vtkNew<vtkVesselMeshWriter> writer;
-    writer->SetFileName(pathOf(m.ClassName + ".stl"));
+    writer->SetFileName(pathOf(m.Name + ".stl"));
     writer->SetInputData(m.Surface);
     writer->SetFileSpace(set.Parameters.FileSpace);
     writer->Write();

@@ -2,6 +2,7 @@
 #define vpVesselModelSet_h
 
 #include "vpLabelStructure.h"
+#include "vpModelRole.h"
 #include "vpStlFormat.h"
 
 #include <vtkPolyData.h>
@@ -9,7 +10,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include <array>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -38,14 +41,24 @@ struct VesselModelParameters
   void Validate() const;
 };
 
-/// One vessel class's model, built from every structure the label table puts in the class.
+/// One model: a vessel class's (or the liver's), built from every structure the label table puts
+/// in the class, or one tumour's, built from one structure or one connected piece of one.
 struct VesselClassModel
 {
   std::string ClassName;
-  std::vector<const LabelStructure*> Structures; ///< into VesselModelSet::Imports
+  /// The file's stem and the id in columns and JSON: the class for a vessel, "tumour_03" for the
+  /// third tumour.
+  std::string Name;
+  /// What the user reads: "portal vein", "tumour 03 (livertumor03)", "tumour 02 (livertumor,
+  /// piece 2 of 3)".
+  std::string DisplayName;
+  ModelRole Role = ModelRole::Vessel;
+  std::vector<const LabelStructure*> Structures; ///< into VesselModelSet::Imports or ::Pieces
   vtkSmartPointer<vtkPolyData> Surface;
   vtkIdType Voxels = 0;
   double VoxelVolumeMm3 = 0.0, VolumeMm3 = 0.0, AreaMm2 = 0.0, BuildMs = 0.0;
+  std::array<double, 6> BoundsMm{};   ///< of the surface: xmin, xmax, ymin, ymax, zmin, zmax (LPS)
+  std::array<double, 3> CentroidMm{}; ///< of the volume the surface encloses (LPS)
 };
 
 /// The models of one run of segmentations, in the label table's class order, with what was read
@@ -61,6 +74,8 @@ struct VesselModelSet
   std::vector<std::string> Inputs;
   VesselModelParameters Parameters;
   std::vector<LabelStructures> Imports; ///< per input
+  /// The connected pieces of tumour structures that hold several (SplitIntoComponents).
+  std::vector<std::unique_ptr<LabelStructure>> Pieces;
   std::vector<VesselClassModel> Models;
   std::vector<std::string> ClassesFound; ///< every class the inputs hold, built or not (Parameters.Classes)
   std::vector<const LabelStructure*> Unmapped; ///< structures the table has no class for
@@ -74,18 +89,19 @@ using ProgressReporter = std::function<void(const std::string& line, double frac
 
 /// Reads each input (a folder of DICOM label series, a DICOM SEG, NRRD, .seg.nrrd or NIfTI
 /// labelmap), maps its structures to classes through the label table, and builds one closed
-/// surface per class (vtkVesselModelBuilder) with its volume and area. Nothing is written.
+/// surface per vessel class and one per tumour structure or connected piece of one
+/// (vtkVesselModelBuilder) with its volume, area, bounds and centroid. Nothing is written.
 /// Throws InputError naming the input when nothing in it is a vessel or the liver, and
 /// ParameterError for a setting out of range.
 VesselModelSet BuildVesselModels(
   const std::vector<std::string>& inputs, const VesselModelParameters& parameters, const ProgressReporter& progress);
 
-/// models.json: the space, inputs, parameters, per structure its class, sources, voxels,
-/// triangles, volume, area, file and surface check, every file of the run, the unmapped
-/// structures and the times.
+/// models.json: the space, inputs, parameters, per model its id, class, role, display name,
+/// sources, voxels, triangles, volume, area, bounds, centroid, file and surface check, every file
+/// of the run, the unmapped structures and the times.
 nlohmann::json VesselModelsJson(const VesselModelSet& set);
 
-/// Writes <class>.stl for each model and models.json through the run's folder, which holds this
+/// Writes <id>.stl for each model and models.json through the run's folder, which holds this
 /// run whole afterwards (or the previous one as it was, when this throws).
 void WriteVesselModels(const VesselModelSet& set, RunFolder& run);
 /// The same files into a folder that a larger run puts in place (the demo's models/).

@@ -71,6 +71,10 @@ struct LabelStructure
   CodedConcept Category; ///< DICOM SEG coded anatomy; empty for other formats
   CodedConcept Type;
   LabelGrid Grid; ///< Grid.Labels is null for a structure listed but not read (not wanted)
+  /// Which connected piece of its source structure this is (SplitIntoComponents: 1 the largest,
+  /// of PieceCount); 0 for a structure whole.
+  int Piece = 0;
+  int PieceCount = 0;
 
   /// The source gave it no name of its own: "label N" of a multi-value labelmap, or the only value
   /// of one named after its file. Only its value (or a colour table's name for it) says what it is.

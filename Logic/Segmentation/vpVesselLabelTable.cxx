@@ -37,6 +37,34 @@ std::string Normalized(const std::string& name)
   }
   return out;
 }
+
+// "liver tumor 03" holds "tumor": words are matched with the blanks left out.
+std::string Squeezed(const std::string& normalized)
+{
+  std::string out;
+  for (char c : normalized)
+  {
+    if (c != ' ')
+    {
+      out.push_back(c);
+    }
+  }
+  return out;
+}
+
+ModelRole ParseRole(const nlohmann::json& entry, const std::string& name, const std::string& source)
+{
+  const std::string fallback = name == "liver" ? "liver" : name == "tumour" ? "tumour" : "vessel";
+  const std::string role = entry.value("role", fallback);
+  for (ModelRole r : { ModelRole::Vessel, ModelRole::Liver, ModelRole::Tumour })
+  {
+    if (role == ModelRoleName(r))
+    {
+      return r;
+    }
+  }
+  throw InputError(source, "class \"" + name + "\": role \"" + Printable(role) + "\" is not vessel, liver or tumour");
+}
 } // namespace
 
 VesselLabelTable VesselLabelTable::Default()
@@ -91,6 +119,17 @@ VesselLabelTable VesselLabelTable::Parse(const std::string& json, const std::str
       }
       table.ClassNames.push_back(name);
       table.Colors[name] = entry.value("color", std::array<double, 3>{ 0.8, 0.8, 0.8 });
+      table.Roles[name] = ParseRole(entry, name, source);
+      for (const auto& word : entry.value("name_contains", std::vector<std::string>{}))
+      {
+        const std::string part = Squeezed(Normalized(word));
+        if (part.size() < 3)
+        {
+          throw InputError(source, "class \"" + name + "\": name_contains word \"" + Printable(word) +
+              "\" is under 3 letters (it would match names of other structures)");
+        }
+        table.ByNamePart.emplace_back(part, name);
+      }
       auto claim = [&](auto& map, const auto& key, const std::string& what) {
         if (map.count(key) && map.at(key) != name)
         {
@@ -124,8 +163,27 @@ VesselLabelTable VesselLabelTable::Parse(const std::string& json, const std::str
 
 std::string VesselLabelTable::ClassOfName(const std::string& name) const
 {
-  const auto it = this->ByName.find(Normalized(name));
-  return it == this->ByName.end() ? std::string() : it->second;
+  const std::string normalized = Normalized(name);
+  const auto it = this->ByName.find(normalized);
+  if (it != this->ByName.end())
+  {
+    return it->second;
+  }
+  const std::string squeezed = Squeezed(normalized);
+  for (const auto& [part, cls] : this->ByNamePart)
+  {
+    if (squeezed.find(part) != std::string::npos)
+    {
+      return cls;
+    }
+  }
+  return std::string();
+}
+
+ModelRole VesselLabelTable::RoleOf(const std::string& className) const
+{
+  const auto it = this->Roles.find(className);
+  return it == this->Roles.end() ? ModelRole::Vessel : it->second;
 }
 
 std::string VesselLabelTable::ClassOf(const LabelStructure& structure) const

@@ -2,6 +2,7 @@
 #define vpVesselLabelTable_h
 
 #include "vpLabelStructure.h"
+#include "vpModelRole.h"
 
 #include <array>
 #include <map>
@@ -16,7 +17,10 @@ namespace vp
 /// artery, liver), SNOMED codes as DICOM SEG and Slicer carry them, and TotalSegmentator's label
 /// ids. A structure matches by coded type first, then by name (case, '_' and '-' ignored), then,
 /// only when the labelmap had no names ("label N") or held one value under its file's name (a
-/// mask, a temporary file Slicer wrote), by value.
+/// mask, a temporary file Slicer wrote), by value. A name the table does not list matches a class
+/// whose name_contains words one of its words is in (IRCADb's "livertumor03", a colour table's
+/// "Tumor 2"). Each class has a role: a vessel class is one model, measured against; a tumour
+/// class one model per structure and connected piece; the liver is shown.
 class VesselLabelTable
 {
 public:
@@ -31,6 +35,10 @@ public:
   /// The class a name maps to, or "": decides which structures are worth reading.
   std::string ClassOfName(const std::string& name) const;
 
+  /// A class's role ("role" in the table; default vessel, liver for the class "liver" and tumour
+  /// for "tumour"); Vessel for a class the table does not have.
+  ModelRole RoleOf(const std::string& className) const;
+
   /// Classes in table order.
   const std::vector<std::string>& Classes() const { return this->ClassNames; }
   /// Display colour (RGB, 0..1) of a class; grey for an unknown one.
@@ -41,6 +49,8 @@ private:
   std::map<std::string, std::string> ByName, ByCode;
   std::map<int, std::string> ByValue;
   std::map<std::string, std::array<double, 3>> Colors;
+  std::map<std::string, ModelRole> Roles;
+  std::vector<std::pair<std::string, std::string>> ByNamePart; ///< (word, class), in table order
 };
 } // namespace vp
 

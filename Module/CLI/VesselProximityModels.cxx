@@ -223,7 +223,7 @@ void Run(const vp::cli::ParsedArguments& args, vp::cli::ReturnValues& results)
   std::string classes, found;
   for (const vp::VesselClassModel& m : set.Models)
   {
-    classes += (classes.empty() ? "" : ",") + m.ClassName;
+    classes += (classes.empty() ? "" : ",") + m.Name;
   }
   for (const std::string& c : set.ClassesFound)
   {

@@ -6,6 +6,7 @@
 #include "vpInputError.h"
 #include "vpVesselModelSet.h"
 
+#include <cstdio>
 #include <iomanip>
 #include <iostream>
 
@@ -15,13 +16,17 @@ namespace
 {
 void PrintModels(const VesselModelSet& set, const std::string& outDir)
 {
-  std::cout << std::left << std::setw(16) << "class" << std::right << std::setw(10) << "voxels" << std::setw(12)
-            << "triangles" << std::setw(14) << "volume_mm3" << std::setw(12) << "area_mm2" << "  file\n";
+  std::cout << std::left << std::setw(16) << "model" << std::right << std::setw(10) << "voxels" << std::setw(12)
+            << "triangles" << std::setw(14) << "volume_mm3" << std::setw(12) << "area_mm2" << "  centroid_mm (LPS)"
+            << std::setw(12) << "" << "file\n";
   for (const VesselClassModel& m : set.Models)
   {
-    std::cout << std::left << std::setw(16) << m.ClassName << std::right << std::setw(10) << m.Voxels << std::setw(12)
+    char centroid[96];
+    std::snprintf(centroid, sizeof centroid, "%.1f,%.1f,%.1f", m.CentroidMm[0], m.CentroidMm[1], m.CentroidMm[2]);
+    std::cout << std::left << std::setw(16) << m.Name << std::right << std::setw(10) << m.Voxels << std::setw(12)
               << m.Surface->GetNumberOfPolys() << std::setw(14) << std::fixed << std::setprecision(0) << m.VolumeMm3
-              << std::setw(12) << m.AreaMm2 << "  " << outDir << "/" << m.ClassName << ".stl\n";
+              << std::setw(12) << m.AreaMm2 << "  " << std::left << std::setw(29) << centroid << outDir << "/" << m.Name
+              << ".stl" << (m.Role == ModelRole::Tumour ? "  " + m.DisplayName : std::string()) << "\n";
   }
 }
 } // namespace
@@ -32,10 +37,12 @@ cli::ModuleDescription DescribeModelsCommand()
   using cli::ParameterType;
   const VesselModelParameters defaults;
   return cli::ModuleDescription::Subcommand("vesselproximity models",
-    "segmented labelmaps (DICOM series, DICOM SEG, NRRD, .seg.nrrd, NIfTI) to vessel surface models",
+    "segmented labelmaps (DICOM series, DICOM SEG, NRRD, .seg.nrrd, NIfTI) to vessel and tumour surface models",
     "Writes OUTDIR/<class>.stl for each vessel class found (portal_vein, hepatic_vein, hepatic_artery; liver too "
-    "when present) and OUTDIR/models.json. Structures map to classes through the label table; structures it does "
-    "not know are listed on stderr and in models.json, not modelled.",
+    "when present), OUTDIR/tumour_01.stl, tumour_02.stl, ... for each tumour structure (IRCADb's livertumor01, a "
+    "segment or colour-table name holding tumor, tumour, lesion or metastasis) and each connected piece of one, and "
+    "OUTDIR/models.json (per model its bounds, centroid, volume and voxels). Structures map to classes through the "
+    "label table; structures it does not know are listed on stderr and in models.json, not modelled.",
     {
       { "Inputs", "",
         {

@@ -232,7 +232,7 @@ void BuildDemoModels(DemoReport& report, RunFolder& run)
   WriteVesselModelFiles(set, run.Folder("models"));
   for (const VesselClassModel& m : set.Models)
   {
-    report.Surfaces[m.ClassName] = m.Surface;
+    report.Surfaces[m.Name] = m.Surface;
   }
   for (const char* c : VesselClasses)
   {

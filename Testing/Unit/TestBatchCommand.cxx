@@ -113,9 +113,12 @@ TEST_F(BatchCommand, EachCaseIsComputedWholeAndItsRowsAreItsRecords)
   EXPECT_NE(r.Out.find("3 case(s): 2 computed, 0 whole already, 1 failed"), std::string::npos) << r.Out;
   EXPECT_NE(r.Err.find("missing failed: " + this->Dir + "/p9/MASKS_DICOM: "), std::string::npos) << r.Err;
   const auto rows = Cells(Slurp(out + "/cohort.csv"));
-  // Each case a row per vessel class, the artery's saying that there is none; the failed case one.
-  ASSERT_EQ(rows.size(), 1u + 3 + 3 + 1) << Slurp(out + "/cohort.csv");
+  // Each case a row per vessel class, the artery's saying that there is none, then one per
+  // tumour with its own margin; the failed case one.
+  ASSERT_EQ(rows.size(), 1u + 3 + 1 + 3 + 1) << Slurp(out + "/cohort.csv");
   EXPECT_EQ(rows[3], std::vector<std::string>({ "into", "hepatic_artery", "", "", "", "", "", "no hepatic_artery in this case's segmentation" }));
+  EXPECT_EQ(rows[4][1], "lesion");
+  EXPECT_EQ(rows[4][6], rows[1][6]) << "the case's one tumour holds its smallest margin";
   EXPECT_EQ(rows[0], std::vector<std::string>({ "case", "class", "tip_min_mm", "surface_min_mm", "penetration_max_mm3",
                        "breach_frames", "margin_min_mm", "error" }));
   // The picture shows the margin kept around the "into" case's lesion, in the tumour's colour.
@@ -151,7 +154,7 @@ TEST_F(BatchCommand, EachCaseIsComputedWholeAndItsRowsAreItsRecords)
     const auto frames = Cells(Slurp(folder + "/frames.csv"));
     for (const auto& row : rows)
     {
-      if (row[0] != name || row[1] == "hepatic_artery")
+      if (row[0] != name || row[1] == "hepatic_artery" || row[1] == "lesion")
       {
         continue;
       }
@@ -422,7 +425,7 @@ TEST_F(BatchCommand, AnInterruptedCohortKeepsItsWholeCasesAndNoPart)
   const ToolRun again = RunTool(this->Dir, "batch " + this->Manifest + " -o " + out);
   EXPECT_EQ(again.ExitCode, 1) << again.Err;
   EXPECT_TRUE(fs::exists(out + "/cohort.csv"));
-  EXPECT_EQ(Cells(Slurp(out + "/cohort.csv")).size(), 8u);
+  EXPECT_EQ(Cells(Slurp(out + "/cohort.csv")).size(), 9u);
 }
 
 // The cohort on a real one-node Slurm cluster (Debian's slurm-wlm, started here in a folder of its
@@ -460,5 +463,5 @@ TEST_F(BatchCommand, ASlurmArrayJobMergesToTheCohortOfOneRun)
   const ToolRun here = RunTool(this->Dir, "batch " + manifest + " -o " + this->Dir + "/here");
   ASSERT_EQ(here.ExitCode, 0) << here.Err;
   EXPECT_EQ(Slurp(this->Dir + "/onslurm/cohort.csv"), Slurp(this->Dir + "/here/cohort.csv"));
-  EXPECT_EQ(Cells(Slurp(this->Dir + "/here/cohort.csv")).size(), 7u);
+  EXPECT_EQ(Cells(Slurp(this->Dir + "/here/cohort.csv")).size(), 8u);
 }

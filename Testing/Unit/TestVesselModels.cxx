@@ -6,6 +6,7 @@
 #include "vpSegmentationImport.h"
 #include "vpTestSupport.h"
 #include "vpVesselLabelTable.h"
+#include "vpVesselModelSet.h"
 #include "vtkVesselMeshReader.h"
 #include "vtkVesselModelBuilder.h"
 
@@ -17,6 +18,7 @@
 
 #include <zlib.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -253,6 +255,101 @@ TEST_P(IrcadbModels, EveryClassFoundAndCloseToTheDataSetsMeshes)
 }
 
 INSTANTIATE_TEST_SUITE_P(Patients, IrcadbModels, ::testing::Values("3Dircadb1.1", "3Dircadb1.4"));
+
+TEST(VesselModels, LabelTableFindsTumoursByTheirNamesAndCodes)
+{
+  const auto table = vp::VesselLabelTable::Default();
+  for (const char* name : { "livertumor01", "livertumor", "Tumor 2", "liver_tumour_3", "metastasis-1", "Lesion", "HCC" })
+  {
+    EXPECT_EQ(table.ClassOfName(name), "tumour") << name;
+  }
+  EXPECT_EQ(table.ClassOfName("liverkyst"), ""); // a cyst is not resected with a margin
+  EXPECT_EQ(table.RoleOf("tumour"), vp::ModelRole::Tumour);
+  EXPECT_EQ(table.RoleOf("portal_vein"), vp::ModelRole::Vessel);
+  EXPECT_EQ(table.RoleOf("liver"), vp::ModelRole::Liver);
+  vp::LabelStructure coded;
+  coded.Name = "Segment_4";
+  coded.Type = { "SCT", "108369006", "Neoplasm" };
+  EXPECT_EQ(table.ClassOf(coded), "tumour");
+  // A table of the user's own: a role by name, and words too short to mean anything refused.
+  const auto own = vp::VesselLabelTable::Parse(
+    R"({"classes": [{"class": "lesion", "role": "tumour", "name_contains": ["nodule"]}, {"class": "pv", "names": ["pv"]}]})", "own.json");
+  EXPECT_EQ(own.ClassOfName("Nodule 3"), "lesion");
+  EXPECT_EQ(own.RoleOf("lesion"), vp::ModelRole::Tumour);
+  EXPECT_EQ(own.RoleOf("pv"), vp::ModelRole::Vessel);
+  EXPECT_THROW(vp::VesselLabelTable::Parse(R"({"classes": [{"class": "t", "name_contains": ["tu"]}]})", "t.json"), vp::InputError);
+  EXPECT_THROW(vp::VesselLabelTable::Parse(R"({"classes": [{"class": "t", "role": "organ"}]})", "t.json"), vp::InputError);
+}
+
+// Patient 1's tumours are seven masks (livertumor01..07): one closed model each, named after
+// its mask, on the data set's own mesh of it within a voxel; patient 4's are one mask of eight
+// separate tumours: one model per piece, largest first.
+TEST(VesselModels, IrcadbTumoursBecomeOneClosedModelEachCloseToTheDataSetsMeshes)
+{
+  const std::string root = vp::test::ExtractedDataDir() + "/ircadb/";
+  if (vp::test::ExtractedDataDir().empty() || !vp::test::FileExists(root + "3Dircadb1.1/MASKS_DICOM/.extracted"))
+  {
+    GTEST_SKIP() << "IRCADb masks not extracted (set VP_TEST_DATA to ../shared/data and re-run cmake)";
+  }
+  vp::VesselModelParameters parameters;
+  parameters.Classes = { "tumour" };
+  const vp::VesselModelSet p1 = vp::BuildVesselModels({ root + "3Dircadb1.1/MASKS_DICOM" }, parameters, [](const std::string&, double) {});
+  ASSERT_EQ(p1.Models.size(), 7u);
+  for (std::size_t i = 0; i < p1.Models.size(); ++i)
+  {
+    const vp::VesselClassModel& m = p1.Models[i];
+    char mask[32];
+    std::snprintf(mask, sizeof mask, "livertumor%02zu", i + 1);
+    char id[32];
+    std::snprintf(id, sizeof id, "tumour_%02zu", i + 1);
+    EXPECT_EQ(m.Name, id);
+    EXPECT_EQ(m.DisplayName, std::string("tumour ") + (id + 7) + " (" + mask + ")");
+    EXPECT_EQ(m.Role, vp::ModelRole::Tumour);
+    EXPECT_EQ(vp::test::OpenEdges(m.Surface), 0) << id << ": closed";
+    vtkNew<vtkVesselMeshReader> reader;
+    reader->SetFileName(root + "3Dircadb1.1/MESHES_VTK/" + mask + ".vtk");
+    reader->Read();
+    const vp::LabelGrid& grid = m.Structures.front()->Grid;
+    vtkNew<vtkTransform> shift; // the data set's voxel-corner frame, as for the vessels
+    shift->Translate(-0.5 * grid.SpacingMm(0), -0.5 * grid.SpacingMm(1), -0.5 * grid.SpacingMm(2));
+    vtkNew<vtkTransformPolyDataFilter> shifted;
+    shifted->SetInputData(reader->GetOutput());
+    shifted->SetTransform(shift);
+    shifted->Update();
+    const auto distances = vp::test::SymmetricSurfaceDistances(m.Surface, shifted->GetOutput(), [](const double*) { return true; });
+    const double voxel = std::max({ grid.SpacingMm(0), grid.SpacingMm(1), grid.SpacingMm(2) });
+    const double p95 = vp::test::Percentile(distances, 0.95);
+    std::cout << id << " (" << mask << "): mean surface distance " << vp::test::Mean(distances) << " mm, 95th percentile "
+              << p95 << " mm, largest " << *std::max_element(distances.begin(), distances.end()) << " mm (voxel " << voxel
+              << " mm), volume " << m.VolumeMm3 << " mm3 of " << m.Voxels << " voxels\n";
+    const double diagonal = std::hypot(grid.SpacingMm(0), grid.SpacingMm(1), grid.SpacingMm(2));
+    EXPECT_LE(p95, voxel) << id;
+    EXPECT_LE(*std::max_element(distances.begin(), distances.end()), diagonal) << id << ": every point within a voxel";
+    for (int k = 0; k < 3; ++k)
+    {
+      EXPECT_GT(m.CentroidMm[k], m.BoundsMm[2 * k]) << id;
+      EXPECT_LT(m.CentroidMm[k], m.BoundsMm[2 * k + 1]) << id;
+    }
+  }
+  const vp::VesselModelSet p4 = vp::BuildVesselModels({ root + "3Dircadb1.4/MASKS_DICOM" }, parameters, [](const std::string&, double) {});
+  ASSERT_EQ(p4.Models.size(), 8u);
+  for (std::size_t i = 0; i < p4.Models.size(); ++i)
+  {
+    EXPECT_EQ(p4.Models[i].DisplayName.substr(10), "(livertumor, piece " + std::to_string(i + 1) + " of 8)");
+    EXPECT_EQ(vp::test::OpenEdges(p4.Models[i].Surface), 0);
+    if (i > 0)
+    {
+      EXPECT_LE(p4.Models[i].Voxels, p4.Models[i - 1].Voxels) << "largest first";
+    }
+  }
+  const nlohmann::json doc = vp::VesselModelsJson(p4);
+  EXPECT_EQ(doc["structures"][2]["id"], "tumour_03");
+  EXPECT_EQ(doc["structures"][2]["role"], "tumour");
+  EXPECT_EQ(doc["structures"][2]["file"], "tumour_03.stl");
+  EXPECT_EQ(doc["structures"][2]["bounds_mm"].size(), 6u);
+  EXPECT_EQ(doc["structures"][2]["centroid_mm"].size(), 3u);
+  EXPECT_EQ(doc["structures"][2]["voxels"], p4.Models[2].Voxels);
+}
 
 // The geometry a NRRD header states, read without ITK.
 std::array<double, 16> NrrdHeaderGeometry(const std::string& file, int sizes[3])

@@ -7,6 +7,8 @@
 #include "vpSurfaceReport.h"
 #include "vpClock.h"
 #include "vtkExactVesselDistance.h"
+#include "vtkTumourMarginDistance.h"
+#include "vpClassName.h"
 
 #include <algorithm>
 #include <cmath>
@@ -43,6 +45,32 @@ Json ClassJson(const ClassProximity& c, const ClassProximity* exact, bool within
     entry["within_bound"] = within;
   }
   return entry;
+}
+/// The tumours' exact distance, built once for every chunk; null without tumours.
+vtkSmartPointer<vtkTumourMarginDistance> TumourDistanceOf(const std::vector<NamedMesh>& tumours)
+{
+  if (tumours.empty())
+  {
+    return nullptr;
+  }
+  auto distance = vtkSmartPointer<vtkTumourMarginDistance>::New();
+  for (const NamedMesh& t : tumours)
+  {
+    distance->AddTumour(t.ClassName, t.Mesh);
+  }
+  distance->Build();
+  return distance;
+}
+
+/// Each tip (the patient's) against every tumour: the tip alone, no instrument.
+void MeasureTumours(vtkTumourMarginDistance* tumours, const std::vector<std::array<double, 3>>& tips, std::vector<TumourMargin>& out)
+{
+  static const std::array<double, 16> identity = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
+  out.resize(tips.size());
+  for (std::size_t i = 0; i < tips.size(); ++i)
+  {
+    tumours->ComputeMargin(tips[i].data(), identity, out[i], i > 0 ? &out[i - 1] : nullptr);
+  }
 }
 } // namespace
 
@@ -97,6 +125,7 @@ TipDistanceTotals ComputeTipDistancesInChunks(const TipDistanceRequest& request,
   {
     reference->Build();
   }
+  vtkSmartPointer<vtkTumourMarginDistance> tumours = TumourDistanceOf(request.Tumours);
 
   TipDistanceTotals totals;
   totals.Compared = static_cast<bool>(reference);
@@ -128,6 +157,10 @@ TipDistanceTotals ComputeTipDistancesInChunks(const TipDistanceRequest& request,
           &answer.WithinBound[i]);
       }
     }
+    if (tumours)
+    {
+      MeasureTumours(tumours, tips, answer.Tumours);
+    }
     totals.BatchMs += answer.BatchMs;
     totals.Tips += n;
     visit(answer, first);
@@ -154,6 +187,16 @@ Json TipDistanceHeaderJson(const TipDistanceRequest& request, bool ras)
   out["range_mm"] = engine->GetRangeMm();
   out["error_bound_mm"] = engine->GetErrorBoundMm();
   out["surfaces"] = SurfacesJson(engine, request.Vessels);
+  if (!request.Tumours.empty())
+  {
+    Json tumours = Json::array();
+    for (const NamedMesh& t : request.Tumours)
+    {
+      tumours.push_back({ { "id", t.ClassName }, { "name", t.DisplayName.empty() ? TumourSpoken(t.ClassName) : t.DisplayName },
+        { "file", t.FileName } });
+    }
+    out["tumours"] = tumours;
+  }
   out["registration"] = request.Registration
     ? Json{ { "file", request.Registration->FileName }, { "kind", request.Registration->Kind } }
     : Json(nullptr);
@@ -181,7 +224,30 @@ Json TipResultJson(const TipDistanceAnswer& answer, std::size_t i, bool ras)
       compared && answer.WithinBound[i][k] != 0, ras);
   }
   item["classes"] = classes;
+  if (!answer.Tumours.empty())
+  {
+    item["tumours"] = TipTumoursJson(answer, i, ras);
+  }
   return item;
+}
+
+Json TipTumoursJson(const TipDistanceAnswer& answer, std::size_t i, bool ras)
+{
+  if (answer.Tumours.empty())
+  {
+    return nullptr;
+  }
+  Json tumours = Json::object();
+  for (const TumourProximity& t : answer.Tumours[i].Tumours)
+  {
+    tumours[t.Id] = { { "signed_mm", t.SignedMm }, { "inside", t.SignedMm < 0.0 || t.InsideUncertain },
+      { "point", PointJson(t.ClosestPoint, ras) } };
+    if (t.InsideUncertain)
+    {
+      tumours[t.Id]["inside_uncertain"] = true;
+    }
+  }
+  return tumours;
 }
 
 Json TipDistanceTrailerJson(const TipDistanceRequest& request, const TipDistanceTotals& totals, double loadMs)

@@ -4,6 +4,7 @@
 #include "vpExactComparison.h"
 #include "vpProximityResult.h"
 #include "vpRegistrationFile.h"
+#include "vpTumourProximity.h"
 #include "vpVesselMeshSet.h"
 #include "vtkVesselDistanceEngine.h"
 
@@ -38,11 +39,16 @@ struct TipDistanceRequest
   /// Registration: the tips and the axis are the tracker's (in the LPS convention), taken into
   /// the patient by it; the answers, tips included, are the patient's. Unset: they are the patient's.
   std::optional<TrackerRegistration> Registration;
+  /// Tumours (closed, LPS) each tip is also measured against: its signed distance, exact, negative
+  /// inside, however far (what track's tumour_mm is; vtkTumourMarginDistance). Empty: none.
+  std::vector<NamedMesh> Tumours;
 };
 
 struct TipDistanceAnswer
 {
   std::vector<ProximityResult> Results;
+  /// With tumours: per tip, each tumour's signed distance and closest point, in request order.
+  std::vector<TumourMargin> Tumours;
   /// With CompareWithExact: the exact engine's answers, and per tip and class whether the
   /// engine's answer keeps the accuracy contract.
   std::vector<ProximityResult> Exact;
@@ -81,6 +87,8 @@ nlohmann::ordered_json TipDistanceReportJson(
 /// "results", one tip's entry (answer.Results[i]), and the members after.
 nlohmann::ordered_json TipDistanceHeaderJson(const TipDistanceRequest& request, bool ras);
 nlohmann::ordered_json TipResultJson(const TipDistanceAnswer& answer, std::size_t i, bool ras);
+/// A tip's "tumours" entry: per tumour {"signed_mm", "inside", "point"}; null without tumours.
+nlohmann::ordered_json TipTumoursJson(const TipDistanceAnswer& answer, std::size_t i, bool ras);
 nlohmann::ordered_json TipDistanceTrailerJson(const TipDistanceRequest& request, const TipDistanceTotals& totals, double loadMs);
 /// One entry of "results" as the report's dump(2) writes it (four spaces in).
 std::string IndentedItem(const nlohmann::ordered_json& item);

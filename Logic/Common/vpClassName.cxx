@@ -80,4 +80,17 @@ std::string NearMissOf(const std::string& name, const std::vector<std::string>& 
   }
   return nearest;
 }
+
+std::string TumourSpoken(const std::string& id)
+{
+  std::string lower = id;
+  std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (lower.rfind("tumour", 0) != 0 && lower.rfind("tumor", 0) != 0)
+  {
+    return "tumour " + id;
+  }
+  std::string spoken = id;
+  std::replace_if(spoken.begin(), spoken.end(), [](char c) { return c == '_' || c == '-'; }, ' ');
+  return spoken;
+}
 } // namespace vp

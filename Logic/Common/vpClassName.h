@@ -16,6 +16,10 @@ std::string ClassNameProblem(const std::string& name);
 /// swapped: "portal_vien"), or "" when name is known or far from every known class: a near miss
 /// is a typing error, never a new class.
 std::string NearMissOf(const std::string& name, const std::vector<std::string>& known);
+
+/// A tumour's id as a person reads it: "tumour_03" and "Tumour-3" as "tumour 03", "tumour 3";
+/// any other id after the word: "lesion" as "tumour lesion" (never "tumour tumour_03").
+std::string TumourSpoken(const std::string& id);
 } // namespace vp
 
 #endif

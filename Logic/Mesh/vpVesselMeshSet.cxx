@@ -3,6 +3,7 @@
 #include "vpClassName.h"
 
 #include "vpInputError.h"
+#include "vpModelsFile.h"
 #include "vtkVesselMeshReader.h"
 
 #include <vtkNew.h>
@@ -95,6 +96,30 @@ std::string TumourIdOfFile(const std::string& file)
   }
   return name.empty() || !std::isalpha(static_cast<unsigned char>(name[0])) ? "tumour_" + name : name.substr(0, 64);
 }
+
+/// Every tumour of a models folder or models.json, under its id and display name.
+void AddModelsTumours(const std::string& entry, std::set<std::string>& ids, std::vector<NamedMesh>& tumours)
+{
+  const ModelsFile models = ReadModelsFile(entry);
+  const std::vector<ModelStructure> found = models.WithRole(ModelRole::Tumour);
+  if (found.empty())
+  {
+    std::string names;
+    for (const ModelStructure& s : models.Structures)
+    {
+      names += (names.empty() ? "" : ", ") + s.Name;
+    }
+    throw InputError(models.FileName, "lists no tumour (it has " + names + "): build the models from a segmentation "
+      "with tumour structures, or give the tumour's surface file");
+  }
+  for (const ModelStructure& s : found)
+  {
+    ids.insert(s.Name);
+    NamedMesh tumour{ s.Name, s.File, nullptr, std::nullopt };
+    tumour.DisplayName = s.Label;
+    tumours.push_back(std::move(tumour));
+  }
+}
 } // namespace
 
 std::vector<NamedMesh> TumourEntries(const std::vector<std::string>& entries, const std::string& source)
@@ -103,6 +128,11 @@ std::vector<NamedMesh> TumourEntries(const std::vector<std::string>& entries, co
   std::set<std::string> ids;
   for (const std::string& entry : entries)
   {
+    if (entry.find('=') == std::string::npos && IsModelsPath(entry))
+    {
+      AddModelsTumours(entry, ids, tumours);
+      continue;
+    }
     const std::size_t equals = entry.find('=');
     std::string id = equals == std::string::npos ? TumourIdOfFile(entry) : entry.substr(0, equals);
     const std::string file = equals == std::string::npos ? entry : entry.substr(equals + 1);

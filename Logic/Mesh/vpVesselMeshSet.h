@@ -22,6 +22,8 @@ struct NamedMesh
   vtkSmartPointer<vtkPolyData> Mesh;
   /// What RepairVesselMeshes did to it (absent when it was not repaired).
   std::optional<SurfaceRepairReport> Repair;
+  /// What the user reads ("tumour 03 (livertumor03)", from a models.json); empty: ClassName.
+  std::string DisplayName = {};
 };
 
 /// Each vessel with its surface: the one given (Mesh), else read from its FileName. Throws
@@ -38,8 +40,10 @@ std::vector<NamedMesh> LoadTumourMeshes(std::vector<NamedMesh> tumours);
 
 /// The tumours of a list of entries, each FILE (its id: the file's name without its extension,
 /// what a class name may not hold made '_', "tumour_" before one that does not start with a
-/// letter; made unique by "_2", "_3") or ID=FILE (the id as given). Nothing is read. Throws
-/// InputError(source, ...) for an entry without a file.
+/// letter; made unique by "_2", "_3"), ID=FILE (the id as given), or a models folder or its
+/// models.json (every tumour it lists, under its id and display name). Nothing but a models.json
+/// is read. Throws InputError(source, ...) for an entry without a file, and InputError naming the
+/// models.json for one that is not one or lists no tumour.
 std::vector<NamedMesh> TumourEntries(const std::vector<std::string>& entries, const std::string& source);
 
 /// Each mesh replaced by what vtkVesselSurfaceRepair makes of it, its report kept.

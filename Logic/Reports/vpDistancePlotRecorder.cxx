@@ -1,5 +1,6 @@
 #include "vpDistancePlotRecorder.h"
 
+#include "vpClassName.h"
 #include "vpDangerBands.h"
 #include "vpDistancePlot.h"
 #include "vpPlotValues.h"
@@ -118,7 +119,7 @@ void DistancePlotRecorder::Samples(std::vector<double>& times, std::vector<PlotS
   }
   for (const std::string& id : this->Tumours)
   {
-    series.push_back({ "tumour " + id + " (tip)", TumourDisplayColour, {} });
+    series.push_back({ TumourSpoken(id) + " (tip)", TumourDisplayColour, {} });
   }
   for (const Bucket& b : this->Buckets)
   {

@@ -1,5 +1,6 @@
 #include "vpSurfaceReport.h"
 
+#include "vpClassName.h"
 #include "vpVesselSurface.h"
 #include "vtkVesselDistanceEngine.h"
 
@@ -65,7 +66,7 @@ std::vector<std::string> DescribeTumourDefects(const std::vector<NamedMesh>& tum
     const VesselSurface surface(t.ClassName, t.Mesh);
     if (!surface.IsClosed())
     {
-      lines.push_back("tumour " + t.ClassName + " (" + t.FileName + "): the surface is not closed (" +
+      lines.push_back(TumourSpoken(t.ClassName) + " (" + t.FileName + "): the surface is not closed (" +
         surface.Defects().Describe() + "): inside is the majority of five rays' crossing parities, and a tip where they " +
         "disagree is inside");
     }

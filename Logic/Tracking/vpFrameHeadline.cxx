@@ -1,5 +1,6 @@
 #include "vpFrameHeadline.h"
 
+#include "vpClassName.h"
 #include "vpInputError.h"
 
 #include <algorithm>
@@ -99,11 +100,11 @@ std::string DescribeMargin(const TrackedFrame& frame)
   switch (frame.Tumour->Level)
   {
     case MarginLevel::Inside:
-      return "INSIDE TUMOUR: tumour " + t.Id + ", " + Millimetres(std::abs(t.SignedMm)) + " in";
+      return "INSIDE TUMOUR: " + TumourSpoken(t.Id) + ", " + Millimetres(std::abs(t.SignedMm)) + " in";
     case MarginLevel::Violated:
-      return "MARGIN VIOLATED: tumour " + t.Id + ", " + Millimetres(t.SignedMm);
+      return "MARGIN VIOLATED: " + TumourSpoken(t.Id) + ", " + Millimetres(t.SignedMm);
     case MarginLevel::Near:
-      return "MARGIN NEAR: tumour " + t.Id + ", " + Millimetres(t.SignedMm);
+      return "MARGIN NEAR: " + TumourSpoken(t.Id) + ", " + Millimetres(t.SignedMm);
     case MarginLevel::Clear:
       return "MARGIN CLEAR";
   }

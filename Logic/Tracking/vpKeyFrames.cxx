@@ -1,5 +1,6 @@
 #include "vpKeyFrames.h"
 
+#include "vpClassName.h"
 #include "vpFrameHeadline.h"
 #include "vpInputError.h"
 
@@ -111,7 +112,7 @@ void KeyFrameFinder::AddExtremes(const TrackedFrame& frame, std::size_t pose)
   {
     for (const TumourProximity& t : frame.Tumour->Tumours)
     {
-      lower("closest_tumour_" + t.Id, t.SignedMm, "tip closest to tumour " + t.Id + ", " + Millimetres(t.SignedMm));
+      lower("closest_tumour_" + t.Id, t.SignedMm, "tip closest to " + TumourSpoken(t.Id) + ", " + Millimetres(t.SignedMm));
     }
   }
 }

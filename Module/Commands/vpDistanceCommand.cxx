@@ -111,6 +111,28 @@ private:
   std::FILE* File;
 };
 
+/// A tip's rows for the tumours: the signed distance (negative inside), exact, however far.
+std::string TumourRows(const TipDistanceAnswer& answer, std::size_t i, bool ras)
+{
+  if (answer.Tumours.empty())
+  {
+    return std::string();
+  }
+  char line[512];
+  std::snprintf(line, sizeof(line), "  %-16s %12s  %-28s %-7s\n", "tumour", "signed mm", "closest point", "inside");
+  std::string rows = line;
+  for (const TumourProximity& t : answer.Tumours[i].Tumours)
+  {
+    const auto q = ConvertSpace({ t.ClosestPoint[0], t.ClosestPoint[1], t.ClosestPoint[2] }, ras);
+    char point[64];
+    std::snprintf(point, sizeof(point), "(%.2f, %.2f, %.2f)", q[0], q[1], q[2]);
+    std::snprintf(line, sizeof(line), "  %-16s %12.3f  %-28s %-7s\n", t.Id.c_str(), t.SignedMm, point,
+      t.InsideUncertain ? "unsure" : t.SignedMm < 0.0 ? "yes" : "no");
+    rows += line;
+  }
+  return rows;
+}
+
 /// The table's rows for one tip.
 std::string TableRows(const TipDistanceAnswer& answer, std::size_t i, bool ras)
 {
@@ -129,7 +151,7 @@ std::string TableRows(const TipDistanceAnswer& answer, std::size_t i, bool ras)
   {
     rows += ClassRow(r.Classes[k], compared ? &answer.Exact[i].Classes[k] : nullptr, compared && answer.WithinBound[i][k], ras);
   }
-  return rows;
+  return rows + TumourRows(answer, i, ras);
 }
 /// The table: what answered and how, the held rows, then the times and the comparison.
 void PrintDistanceTable(const TipDistanceRequest& request, const TipDistanceTotals& totals, HeldOutput& held, bool ras, double loadMs)
@@ -158,7 +180,8 @@ cli::ModuleDescription DescribeDistanceCommand()
   return cli::ModuleDescription::Subcommand("vesselproximity distance",
     "distance from scalpel tip(s) to each vessel class (exact, zbuffer, both, brute, auto)",
     "Distance from each tip to the nearest surface point of every vessel class: the distance, the closest point, "
-    "whether the tip is inside, and the directional distance along --axis. Give exactly one of --tip and --tips.",
+    "whether the tip is inside, and the directional distance along --axis; with --tumour, each tumour's signed "
+    "distance beside them. Give exactly one of --tip and --tips.",
     {
       { "Inputs", "", { VesselsOption().SetRequired(), RepairSwitch() } },
       { "Tips", "",
@@ -169,6 +192,11 @@ cli::ModuleDescription DescribeDistanceCommand()
             "the query times are then the batch's time per tip.")
             .SetChannel(cli::Channel::Input)
             .SetPlaceholder("FILE.csv"),
+          Option(ParameterType::String, "tumour",
+            "Tumours each tip is also measured against (signed, exact, negative inside, as track's tumour_mm): "
+            "FILE[,FILE...], ID=FILE, or a models folder or models.json (all its tumours).")
+            .SetChannel(cli::Channel::Input)
+            .SetPlaceholder("FILE|DIR"),
           Option(ParameterType::String, "axis", "The scalpel's axis (unit or not), for the directional distance along it.")
             .SetPlaceholder("X,Y,Z")
             .SetLogicName("Axis"),
@@ -207,6 +235,10 @@ int RunDistanceCommand(const cli::ParsedArguments& args, const ModuleServices&)
   if (args.GetBoolean("repair"))
   {
     RepairVesselMeshes(request.Vessels);
+  }
+  if (args.IsSet("tumour"))
+  {
+    request.Tumours = LoadTumourMeshes(TumourEntries(SplitList(args.GetString("tumour"), ','), "--tumour"));
   }
   const double loadMs = NowMs() - loadStart;
   // The tips are answered a chunk at a time and their report held in a temporary file: memory

@@ -3,6 +3,7 @@
 #include "vpArguments.h"
 #include "vpCommandSupport.h"
 #include "vpRunFolder.h"
+#include "vpClassName.h"
 #include "vpCommands.h"
 #include "vpDangerLevels.h"
 #include "vpEngineOptions.h"
@@ -64,8 +65,22 @@ void ReportTrajectoryWarnings(const std::vector<TrajectoryWarning>& warnings, bo
   }
 }
 
-void PrintSummary(
-  const TrackingRecorder& session, vtkVesselProximityLogic* proximity, const std::string& outDir, std::optional<std::size_t> shots)
+/// A tumour as the user named it: its models.json display name ("tumour 03 (livertumor03)"),
+/// else its id spoken.
+std::string TumourNameOf(const std::string& id, const std::vector<NamedMesh>& tumours)
+{
+  for (const NamedMesh& t : tumours)
+  {
+    if (t.ClassName == id && !t.DisplayName.empty())
+    {
+      return t.DisplayName;
+    }
+  }
+  return TumourSpoken(id);
+}
+
+void PrintSummary(const TrackingRecorder& session, vtkVesselProximityLogic* proximity, const std::vector<NamedMesh>& tumours,
+  const std::string& outDir, std::optional<std::size_t> shots)
 {
   const TrackingSummary& summary = session.GetSummary();
   vtkVesselDistanceEngine* engine = proximity->GetDistanceEngine();
@@ -100,7 +115,8 @@ void PrintSummary(
     summary.GetInstrumentMeasured() ? DangerLevelName(summary.GetWorstInstrumentLevel()) : "not measured");
   for (const TumourMarginSummary& t : summary.GetTumours())
   {
-    std::printf("  tumour %s: smallest margin %.3f mm%s; time", t.Id.c_str(), t.MarginMinMm, t.MarginMinMm < 0.0 ? " (inside)" : "");
+    std::printf("  %s: smallest margin %.3f mm%s; time", TumourNameOf(t.Id, tumours).c_str(), t.MarginMinMm,
+      t.MarginMinMm < 0.0 ? " (inside)" : "");
     for (int l = 0; l < NumberOfMarginLevels; ++l)
     {
       std::printf(" %s %.2f s", MarginLevelName(static_cast<MarginLevel>(l)), t.TimeInLevelS[l]);
@@ -276,7 +292,7 @@ int RunTrackCommand(const cli::ParsedArguments& args, const ModuleServices& modu
   }
   run.Commit(); // the folder holds this run whole, or the previous one as it was
   WarnOutsideBound(session, proximity);
-  PrintSummary(session, proximity, outDir, screenshots ? std::optional<std::size_t>(shots) : std::nullopt);
+  PrintSummary(session, proximity, request.Tumours, outDir, screenshots ? std::optional<std::size_t>(shots) : std::nullopt);
   return 0;
 }
 } // namespace vp

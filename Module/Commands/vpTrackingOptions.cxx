@@ -91,7 +91,7 @@ cli::ParameterGroup TrackingOptions()
         "Tumours to be resected (surface models, LPS mm, closed): the tip's signed distance to each (frames.csv "
         "tumour_mm, negative inside, with tumour_id, the closest point, margin_level clear|near|violated|inside and "
         "tumour_surface_mm for the whole instrument; summary.json \"tumour\"). Each entry FILE (its id: the file's "
-        "name) or ID=FILE.")
+        "name), ID=FILE, or a models folder or its models.json (every tumour `models` found: tumour_01, ...).")
         .SetPlaceholder("FILE[,FILE...]")
         .SetLogicName("Tumours"),
       Option(cli::ParameterType::Double, "margin-mm",

@@ -15,6 +15,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
+#include <random>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -554,4 +556,107 @@ TEST_F(DistanceCommand, PhantomWritesClosedVesselsThatAreFound)
   EXPECT_EQ(j["results"][0]["nearest"]["class"], "portal_vein");
   EXPECT_NEAR(j["results"][0]["nearest"]["distance_mm"].get<double>(), 4.0, 1e-5);
   EXPECT_EQ(j["results"][0]["classes"]["hepatic_artery"]["inside"], false);
+}
+
+namespace
+{
+/// Each tip's signed distance to a tumour, from `distance --json --tumour`.
+std::vector<double> TumourSignedMm(const nlohmann::json& report, const std::string& id)
+{
+  std::vector<double> out;
+  for (const auto& r : report["results"])
+  {
+    out.push_back(r["tumours"][id]["signed_mm"].get<double>());
+  }
+  return out;
+}
+
+/// The brute force's signed distance to a surface taken as a vessel: every triangle, inside by
+/// the engine's own test.
+std::vector<double> BruteSignedMm(const std::string& dir, const std::string& surface, const std::string& tips)
+{
+  const ToolRun brute = RunTool(dir, "distance --vessels t=" + surface + " --tips " + tips + " --json --method brute --range 500");
+  EXPECT_EQ(brute.ExitCode, 0) << brute.Err;
+  std::vector<double> out;
+  const nlohmann::json report = nlohmann::json::parse(brute.Out);
+  for (const auto& r : report["results"])
+  {
+    const auto& c = r["classes"]["t"];
+    out.push_back(c["inside"].get<bool>() ? -c["distance_mm"].get<double>() : c["distance_mm"].get<double>());
+  }
+  return out;
+}
+
+std::string TipsAround(const std::string& dir, const std::array<double, 3>& centre, double spreadMm, int count)
+{
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> offset(-spreadMm, spreadMm);
+  std::ostringstream csv;
+  csv << "x,y,z\n";
+  for (int i = 0; i < count; ++i)
+  {
+    csv << centre[0] + offset(random) << "," << centre[1] + offset(random) << "," << centre[2] + offset(random) << "\n";
+  }
+  return WriteBytes(dir, "tumour-tips.csv", csv.str());
+}
+} // namespace
+
+// distance --tumour: each tip's signed distance to each tumour beside the vessels', equal to the
+// brute force over the tumour's triangles; the tumours of a models folder by their ids.
+TEST_F(DistanceCommand, TumoursAreMeasuredSignedAsTheBruteForceMeasuresThem)
+{
+  const double c[3] = { 0, 30, 0 };
+  const std::string lesion = this->Write("lesion.stl", vp::MakeSphere(c, 6.0, 24, 48));
+  const std::string tips = TipsAround(this->Dir, { 0, 30, 0 }, 10.0, 40);
+  const ToolRun r = RunTool(this->Dir, "distance --vessels portal_vein=" + this->Sphere + " --tumour " + lesion + " --tips " + tips + " --json");
+  ASSERT_EQ(r.ExitCode, 0) << r.Err;
+  const auto report = nlohmann::json::parse(r.Out);
+  EXPECT_EQ(report["tumours"][0]["id"], "lesion");
+  const std::vector<double> ours = TumourSignedMm(report, "lesion"), brute = BruteSignedMm(this->Dir, lesion, tips);
+  ASSERT_EQ(ours.size(), brute.size());
+  int inside = 0;
+  for (std::size_t i = 0; i < ours.size(); ++i)
+  {
+    EXPECT_NEAR(ours[i], brute[i], 1e-9) << "tip " << i;
+    inside += ours[i] < 0.0;
+  }
+  EXPECT_GT(inside, 0) << "some tips inside the tumour";
+  EXPECT_LT(inside, 40) << "and some outside";
+  const ToolRun table = RunTool(this->Dir, "distance --vessels portal_vein=" + this->Sphere + " --tumour lesion=" + lesion + " --tip 0,30,0");
+  ASSERT_EQ(table.ExitCode, 0) << table.Err;
+  EXPECT_NE(table.Out.find("  lesion                 -5.9"), std::string::npos) << table.Out; // the centre, 6 mm in (less at a facet)
+
+  // Patient 1 of IRCADb: its seven tumours from its own masks, through the models folder.
+  const std::string root = vp::test::ExtractedDataDir() + "/ircadb/3Dircadb1.1/MASKS_DICOM";
+  if (vp::test::ExtractedDataDir().empty() || !vp::test::FileExists(root + "/.extracted"))
+  {
+    GTEST_SKIP() << "IRCADb masks not extracted (set VP_TEST_DATA to ../shared/data and re-run cmake): the real tumours not measured";
+  }
+  const ToolRun models = RunTool(this->Dir, "models " + root + " -o " + this->Dir + "/p1");
+  ASSERT_EQ(models.ExitCode, 0) << models.Err;
+  const auto json = nlohmann::json::parse(Slurp(this->Dir + "/p1/models.json"));
+  std::array<double, 3> centroid{};
+  for (const auto& s : json["structures"])
+  {
+    if (s["id"] == "tumour_03")
+    {
+      centroid = s["centroid_mm"].get<std::array<double, 3>>();
+    }
+  }
+  const std::string near = TipsAround(this->Dir, centroid, 15.0, 30);
+  const ToolRun p1 = RunTool(this->Dir, "distance --vessels portal_vein=" + this->Dir + "/p1/portal_vein.stl --tumour " +
+      this->Dir + "/p1 --tips " + near + " --json");
+  ASSERT_EQ(p1.ExitCode, 0) << p1.Err;
+  const auto answer = nlohmann::json::parse(p1.Out);
+  ASSERT_EQ(answer["tumours"].size(), 7u);
+  EXPECT_EQ(answer["tumours"][2]["name"], "tumour 03 (livertumor03)");
+  for (const char* id : { "tumour_03", "tumour_07" })
+  {
+    const std::vector<double> got = TumourSignedMm(answer, id), expected = BruteSignedMm(this->Dir, this->Dir + "/p1/" + id + ".stl", near);
+    ASSERT_EQ(got.size(), expected.size());
+    for (std::size_t i = 0; i < got.size(); ++i)
+    {
+      EXPECT_NEAR(got[i], expected[i], 1e-6) << id << " tip " << i;
+    }
+  }
 }

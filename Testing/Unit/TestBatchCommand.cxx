@@ -326,6 +326,10 @@ TEST_F(BatchCommand, EachBadManifestOrOptionGetsItsOneLineAndWritesNothing)
     { "case,segmentation,plan\nx,a,b;;c\n", "line 2: an empty entry in the plan" },
     { "case,case,segmentation\n", "line 1: column 'case' is named twice" },
     { "case,segmentation,plan\nx,a,t.stl\n", "line 2: case 'x' has a plan but no poses" },
+    { "case,segmentation,poses,pose_units\nx,a,p.csv,cm\n", "line 2: declares pose-units 'cm'; expected mm or m" },
+    { "case,segmentation,poses,pose_space\nx,a,p.csv,XYZ\n", "line 2: declares pose-space 'XYZ'; expected LPS or RAS" },
+    { "case,segmentation,poses,time_units\nx,a,p.csv,h\n", "line 2: declares time-units 'h'; expected s or ms" },
+    { "case,segmentation,tool\nx,a,Stylus\n", "line 2: case 'x' says how to read poses but gives none" },
   };
   for (const auto& [text, problem] : manifests)
   {
@@ -464,4 +468,105 @@ TEST_F(BatchCommand, ASlurmArrayJobMergesToTheCohortOfOneRun)
   ASSERT_EQ(here.ExitCode, 0) << here.Err;
   EXPECT_EQ(Slurp(this->Dir + "/onslurm/cohort.csv"), Slurp(this->Dir + "/here/cohort.csv"));
   EXPECT_EQ(Cells(Slurp(this->Dir + "/here/cohort.csv")).size(), 8u);
+}
+
+// The manifest says how each case's poses are read, as track's options do: the same poses in
+// metres and milliseconds, so declared, give the rows of the file in millimetres and seconds, and
+// a changed declaration is a changed input (the case is computed again).
+TEST_F(BatchCommand, ManifestColumnsSayHowTheCasesPosesAreRead)
+{
+  std::ostringstream metres;
+  metres << "time,x,y,z,qw,qx,qy,qz\n";
+  for (int i = 0; i <= 30; ++i)
+  {
+    metres << i * 50 << "," << (-48 + 0.8 * i) / 1000.0 << ",0.040,-0.080,1,0,0,0\n";
+  }
+  std::ofstream(this->Dir + "/p1/in-m.csv") << metres.str();
+  const std::string manifest = this->WriteManifest("units.csv",
+    "case,segmentation,poses,scalpel,pose_units,time_units,pose_space\n"
+    "mm,p1/MASKS_DICOM,p1/in.csv,tool.stl,,,\n"
+    "metres,p1/MASKS_DICOM,p1/in-m.csv,tool.stl,m,ms,LPS\n");
+  const ToolRun r = RunTool(this->Dir, "batch " + manifest + " -o " + this->Dir + "/units");
+  ASSERT_EQ(r.ExitCode, 0) << r.Err;
+  const auto rows = Cells(Slurp(this->Dir + "/units/cohort.csv"));
+  ASSERT_EQ(rows.size(), 1u + 3 + 3);
+  for (std::size_t k = 1; k <= 3; ++k)
+  {
+    auto mm = rows[k], m = rows[k + 3];
+    EXPECT_EQ(mm[0], "mm");
+    EXPECT_EQ(m[0], "metres");
+    mm.erase(mm.begin());
+    m.erase(m.begin());
+    EXPECT_EQ(mm, m) << "the same poses, read as declared";
+  }
+  const auto frames = Cells(Slurp(this->Dir + "/units/metres/frames.csv"));
+  EXPECT_EQ(frames[2][1], "0.050000") << "50 ms is 0.05 s";
+  const auto record = nlohmann::json::parse(Slurp(this->Dir + "/units/metres/case.json"));
+  EXPECT_EQ(record["inputs"]["pose_reading"]["mm_per_unit"], 1000.0);
+  // Declared otherwise, the case is not the one computed.
+  this->WriteManifest("units.csv", "case,segmentation,poses,scalpel,pose_units,time_units,pose_space\n"
+                                   "metres,p1/MASKS_DICOM,p1/in-m.csv,tool.stl,m,s,LPS\n");
+  const ToolRun again = RunTool(this->Dir, "batch " + manifest + " -o " + this->Dir + "/units");
+  EXPECT_NE(again.Out.find("1 computed, 0 whole already"), std::string::npos) << again.Out;
+}
+
+// IRCADb patients 1 and 4 with no plan: each tumour of their own segmentations is a row with the
+// margin the case's poses kept from it, the same as the case's summary says; the tip driven
+// through patient 1's third tumour is inside it.
+TEST(BatchCommandIrcadb, ACohortWithoutAPlanReportsEachTumoursMarginFromTheSegmentation)
+{
+  const std::string data = vp::test::ExtractedDataDir() + "/ircadb/";
+  if (vp::test::ExtractedDataDir().empty() || !vp::test::FileExists(data + "3Dircadb1.4/MASKS_DICOM/.extracted"))
+  {
+    GTEST_SKIP() << "IRCADb masks not extracted (set VP_TEST_DATA to ../shared/data and re-run cmake)";
+  }
+  const std::string dir = vp::test::MakeTempDir("cohort-tumours");
+  std::string manifest = "case,segmentation,poses\n";
+  for (const char* patient : { "1", "4" })
+  {
+    const std::string masks = data + "3Dircadb1." + patient + "/MASKS_DICOM";
+    const ToolRun models = RunTool(dir, "models " + masks + " -o " + dir + "/models" + patient);
+    ASSERT_EQ(models.ExitCode, 0) << models.Err;
+    const auto json = nlohmann::json::parse(Slurp(dir + "/models" + patient + "/models.json"));
+    std::array<double, 3> c{};
+    for (const auto& s : json["structures"])
+    {
+      c = s["id"] == "tumour_03" ? s["centroid_mm"].get<std::array<double, 3>>() : c;
+    }
+    // The tip along -z down onto the tumour's centroid and 1 mm past it: the tool points down.
+    std::ostringstream poses;
+    poses << "time,x,y,z,qw,qx,qy,qz\n";
+    for (int i = 0; i <= 20; ++i)
+    {
+      poses << 0.1 * i << "," << c[0] << "," << c[1] << "," << c[2] - 20 + i * 1.05 << ",0,1,0,0\n";
+    }
+    std::ofstream(dir + "/poses" + patient + ".csv") << poses.str();
+    manifest += std::string("p") + patient + "," + masks + "," + dir + "/poses" + patient + ".csv\n";
+  }
+  std::ofstream(dir + "/manifest.csv") << manifest;
+  const ToolRun r = RunTool(dir, "batch " + dir + "/manifest.csv -o " + dir + "/cohort -j 2");
+  ASSERT_EQ(r.ExitCode, 0) << r.Err;
+  const auto rows = Cells(Slurp(dir + "/cohort/cohort.csv"));
+  std::map<std::string, std::map<std::string, std::string>> margin;
+  for (const auto& row : rows)
+  {
+    if (row[1].rfind("tumour_", 0) == 0)
+    {
+      margin[row[0]][row[1]] = row[6];
+    }
+  }
+  ASSERT_EQ(margin["p1"].size(), 7u) << Slurp(dir + "/cohort/cohort.csv");
+  ASSERT_EQ(margin["p4"].size(), 8u);
+  for (const char* patient : { "p1", "p4" })
+  {
+    const auto summary = nlohmann::json::parse(Slurp(dir + "/cohort/" + patient + "/summary.json"));
+    ASSERT_EQ(summary["tumour"]["tumours"].size(), margin[patient].size()) << summary["tumour"].dump();
+    for (const auto& t : summary["tumour"]["tumours"])
+    {
+      EXPECT_NEAR(std::stod(margin[patient][t["id"].get<std::string>()]), t["margin_min_mm"].get<double>(), 1e-4)
+        << patient << " " << t["id"];
+    }
+    EXPECT_LT(std::stod(margin[patient]["tumour_03"]), 0.0) << patient << ": the tip went into its third tumour";
+  }
+  fs::remove_all(dir);
 }

@@ -140,9 +140,14 @@ ModelsFile ReadModelsFile(const std::string& folderOrJson)
 {
   std::error_code ec;
   const bool folder = fs::is_directory(folderOrJson, ec);
+  const std::string fileName = folder ? (fs::path(folderOrJson) / "models.json").string() : folderOrJson;
+  return ParseModelsFile(ReadJsonFile(fileName, "a models.json"), fileName);
+}
+
+ModelsFile ParseModelsFile(const Json& doc, const std::string& fileName)
+{
   ModelsFile models;
-  models.FileName = folder ? (fs::path(folderOrJson) / "models.json").string() : folderOrJson;
-  const Json doc = ReadJsonFile(models.FileName, "a models.json");
+  models.FileName = fileName;
   if (!doc.is_object() || !doc.contains("structures") || !doc.at("structures").is_array())
   {
     throw InputError(models.FileName, "not a models.json (no \"structures\" list): write it with vesselproximity models");

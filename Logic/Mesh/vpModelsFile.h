@@ -3,6 +3,8 @@
 
 #include "vpModelRole.h"
 
+#include <nlohmann/json.hpp>
+
 #include <array>
 #include <optional>
 #include <string>
@@ -44,6 +46,8 @@ bool IsModelsPath(const std::string& path);
 /// not a models.json (no "structures", a structure without a name, class or file, a name that
 /// could not be a class's, a file outside the folder, a number that is not one).
 ModelsFile ReadModelsFile(const std::string& folderOrJson);
+/// The same from a models.json already parsed; fileName names it in errors and places its files.
+ModelsFile ParseModelsFile(const nlohmann::json& doc, const std::string& fileName);
 } // namespace vp
 
 #endif

@@ -9,6 +9,7 @@
 #include <vtkNew.h>
 
 #include <cctype>
+#include <filesystem>
 #include <set>
 
 namespace vp
@@ -132,6 +133,12 @@ std::vector<NamedMesh> TumourEntries(const std::vector<std::string>& entries, co
     {
       AddModelsTumours(entry, ids, tumours);
       continue;
+    }
+    std::error_code ec;
+    if (std::filesystem::is_directory(entry.substr(entry.find('=') + 1), ec))
+    {
+      throw InputError(entry.substr(entry.find('=') + 1), "is a folder without a models.json: give a tumour's surface, or "
+        "a models folder (`vesselproximity models SEGMENTATION -o DIR` builds one surface per tumour)");
     }
     const std::size_t equals = entry.find('=');
     std::string id = equals == std::string::npos ? TumourIdOfFile(entry) : entry.substr(0, equals);

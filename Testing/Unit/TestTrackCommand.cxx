@@ -388,7 +388,7 @@ TEST_F(TrackCommand, MeasuresTheResectionMarginOfEachTumour)
   const ToolRun r = RunTool(this->Dir, "track --vessels " + this->Vessels + " --scalpel " + this->Tool + " --poses " + poses +
       " --tumour " + tumour + ",b=" + other + " -o " + out);
   ASSERT_EQ(r.ExitCode, 0) << r.Err;
-  EXPECT_NE(r.Out.find("tumour tumour_a: smallest margin -7.7"), std::string::npos) << r.Out;
+  EXPECT_NE(r.Out.find("  tumour a: smallest margin -7.7"), std::string::npos) << r.Out;
   const auto rows = ReadCsvCells(out + "/frames.csv");
   ASSERT_EQ(rows.size(), xs.size() + 1);
   auto column = [&](const std::string& name) {
@@ -459,6 +459,51 @@ TEST_F(TrackCommand, MeasuresTheResectionMarginOfEachTumour)
     EXPECT_NE(bad.Err.find(message), std::string::npos) << bad.Err;
     EXPECT_EQ(std::count(bad.Err.begin(), bad.Err.end(), '\n'), 1) << bad.Err;
     EXPECT_FALSE(std::filesystem::exists(this->Dir + "/bad")) << options;
+  }
+}
+
+// --tumour takes a models folder (or its models.json) whole: every tumour it lists, under its id,
+// said by its display name; a folder of masks is refused with what to give instead.
+TEST_F(TrackCommand, TumoursComeFromAModelsFolder)
+{
+  const double centre[3] = { -40.2, 0.3, 0.2 }, beside[3] = { -40.2, 40.3, 0.2 };
+  std::filesystem::create_directories(this->Dir + "/models");
+  vp::test::WriteMeshFile(this->Dir + "/models", "tumour_01.stl", vp::MakeSphere(centre, 8.0, 48, 96));
+  vp::test::WriteMeshFile(this->Dir + "/models", "tumour_02.stl", vp::MakeSphere(beside, 4.0, 24, 48));
+  std::ofstream(this->Dir + "/models/models.json") << R"json({"space": "LPS", "structures": [
+    {"id": "portal_vein", "class": "portal_vein", "role": "vessel", "file": "portal_vein.stl"},
+    {"id": "tumour_01", "class": "tumour", "role": "tumour", "display_name": "tumour 01 (livertumor01)", "file": "tumour_01.stl"},
+    {"id": "tumour_02", "class": "tumour", "role": "tumour", "display_name": "tumour 02 (livertumor02)", "file": "tumour_02.stl"}]})json";
+  std::vector<double> xs;
+  const std::string poses = this->TipAlongX("margin.csv", -20.0, -45.0, xs);
+  for (const std::string& given : { this->Dir + "/models", this->Dir + "/models/models.json" })
+  {
+    const std::string out = this->Dir + "/from-models";
+    std::filesystem::remove_all(out);
+    const ToolRun r = RunTool(this->Dir, "track --vessels " + this->Vessels + " --scalpel " + this->Tool + " --poses " + poses +
+        " --tumour " + given + " -o " + out);
+    ASSERT_EQ(r.ExitCode, 0) << r.Err;
+    EXPECT_NE(r.Out.find("  tumour 01 (livertumor01): smallest margin -7.7"), std::string::npos) << r.Out;
+    EXPECT_NE(r.Out.find("  tumour 02 (livertumor02): smallest margin 36.0"), std::string::npos) << r.Out;
+    const nlohmann::json s = nlohmann::json::parse(Slurp(out + "/summary.json"));
+    ASSERT_EQ(s["tumour"]["tumours"].size(), 2u);
+    EXPECT_EQ(s["tumour"]["tumours"][0]["id"], "tumour_01");
+    EXPECT_EQ(ReadCsvCells(out + "/frames.csv")[1].size(), ReadCsvCells(out + "/frames.csv")[0].size());
+  }
+  std::filesystem::create_directories(this->Dir + "/masks/livertumor01");
+  std::ofstream(this->Dir + "/nontumour.json") << R"({"structures": [{"id": "pv", "class": "pv", "file": "pv.stl"}]})";
+  std::filesystem::create_directories(this->Dir + "/vessels-only");
+  std::filesystem::copy_file(this->Dir + "/nontumour.json", this->Dir + "/vessels-only/models.json");
+  for (const auto& [entry, message] : std::vector<std::pair<std::string, std::string>>{
+         { this->Dir + "/masks/livertumor01", this->Dir + "/masks/livertumor01: is a folder without a models.json" },
+         { this->Dir + "/vessels-only", this->Dir + "/vessels-only/models.json: lists no tumour (it has pv)" } })
+  {
+    const ToolRun bad = RunTool(this->Dir, "track --vessels " + this->Vessels + " --scalpel " + this->Tool + " --poses " + poses +
+        " --tumour " + entry + " -o " + this->Dir + "/bad");
+    EXPECT_EQ(bad.ExitCode, 1) << entry;
+    EXPECT_NE(bad.Err.find(message), std::string::npos) << bad.Err;
+    EXPECT_EQ(std::count(bad.Err.begin(), bad.Err.end(), '\n'), 1) << bad.Err;
+    EXPECT_FALSE(std::filesystem::exists(this->Dir + "/bad")) << entry;
   }
 }
 

@@ -250,12 +250,14 @@ void TrackCohortCase(const CohortCase& c, const std::vector<NamedMesh>& vessels,
   }
 }
 
-/// The tips stage: distance.json as `distance --json` writes it, and the rows' closest tips.
-void TipsOfCohortCase(const CohortCase& c, const std::vector<NamedMesh>& vessels, RunFolder& run, CohortCaseResult& result)
+/// The tips stage: distance.json as `distance --json --tumour` writes it, and the rows' closest tips.
+void TipsOfCohortCase(const CohortCase& c, const std::vector<NamedMesh>& vessels, const std::vector<NamedMesh>& tumours,
+  RunFolder& run, CohortCaseResult& result)
 {
   TipDistanceRequest request;
   request.Engine = MakeDistanceEngine(DistanceEngineSettings());
   request.Vessels = vessels;
+  request.Tumours = LoadTumourMeshes(tumours); // as `distance --tumour`: each tip's signed distance beside the vessels
   request.TipsMm = ReadPointCsv(c.Tips);
   const TipDistanceAnswer answer = ComputeTipDistances(request);
   WriteFileAtomically(run.File("distance.json"), TipDistanceReportJson(request, answer, false, 0.0).dump(2) + "\n");
@@ -360,7 +362,7 @@ CohortCaseResult RunCohortCase(const CohortCase& c, const std::string& folder, c
     {
       stage("tips");
       t0 = NowMs();
-      TipsOfCohortCase(c, vessels, run, result);
+      TipsOfCohortCase(c, vessels, tumours, run, result);
       timing["tips"] = NowMs() - t0;
     }
     CheckSignal();

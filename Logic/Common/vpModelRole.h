@@ -1,6 +1,8 @@
 #ifndef vpModelRole_h
 #define vpModelRole_h
 
+#include <string>
+
 namespace vp
 {
 /// What a model is for: measured against (a vessel class), shown beside them (the liver), or a
@@ -25,6 +27,20 @@ inline const char* ModelRoleName(ModelRole role)
       break;
   }
   return "vessel";
+}
+
+/// The role a name says ("vessel", "liver", "tumour"); false, with role unchanged, for any other.
+inline bool ModelRoleFromName(const std::string& name, ModelRole& role)
+{
+  for (ModelRole r : { ModelRole::Vessel, ModelRole::Liver, ModelRole::Tumour })
+  {
+    if (name == ModelRoleName(r))
+    {
+      role = r;
+      return true;
+    }
+  }
+  return false;
 }
 } // namespace vp
 

@@ -54,14 +54,12 @@ std::optional<std::array<double, N>> OptionalNumbers(const Json& s, const char* 
 ModelRole RoleOf(const Json& s, const std::string& className, const std::string& file, std::size_t index)
 {
   const std::string role = s.contains("role") && s.at("role").is_string() ? s.at("role").get<std::string>() : std::string();
-  for (ModelRole r : { ModelRole::Vessel, ModelRole::Liver, ModelRole::Tumour })
+  ModelRole r = ModelRole::Vessel;
+  if (ModelRoleFromName(role, r))
   {
-    if (role == ModelRoleName(r))
-    {
-      return r;
-    }
+    return r;
   }
-  if (!role.empty() || s.contains("role"))
+  if (s.contains("role"))
   {
     throw InputError(file, StructureText(index) + ": role '" + Printable(role) + "' is not vessel, liver or tumour");
   }

@@ -56,12 +56,10 @@ ModelRole ParseRole(const nlohmann::json& entry, const std::string& name, const 
 {
   const std::string fallback = name == "liver" ? "liver" : name == "tumour" ? "tumour" : "vessel";
   const std::string role = entry.value("role", fallback);
-  for (ModelRole r : { ModelRole::Vessel, ModelRole::Liver, ModelRole::Tumour })
+  ModelRole r = ModelRole::Vessel;
+  if (ModelRoleFromName(role, r))
   {
-    if (role == ModelRoleName(r))
-    {
-      return r;
-    }
+    return r;
   }
   throw InputError(source, "class \"" + name + "\": role \"" + Printable(role) + "\" is not vessel, liver or tumour");
 }

@@ -50,14 +50,6 @@ Json Quantiles(const std::vector<double>& values)
   return { { "median", Quantile(values, 0.5) }, { "p95", Quantile(values, 0.95) }, { "max", Quantile(values, 1.0) } };
 }
 
-/// The frame's distance as the OSC output sends it: the nearest class's, negative inside.
-float OscDistance(const TrackedFrame& frame)
-{
-  const int nearest = frame.Proximity.NearestIndex();
-  const ClassProximity* p = nearest >= 0 ? &frame.Proximity.Classes[nearest] : nullptr;
-  return p ? static_cast<float>(p->Inside && *p->Inside ? -p->DistanceMm : p->DistanceMm) : 0.0f;
-}
-
 /// An OSC peer on loopback, liblo's own server thread: when each distance message arrived.
 class OscListener
 {
@@ -106,7 +98,7 @@ public:
     : Source(source)
   {
   }
-  void OnFrame(const TrackedFrame& frame) override { this->Frames.emplace_back(OscDistance(frame), this->Source.GetLastArrivalMs()); }
+  void OnFrame(const TrackedFrame& frame) override { this->Frames.emplace_back(OscOutput::SignedDistanceOf(frame), this->Source.GetLastArrivalMs()); }
   /// Pose arrival to OSC message received, for each message: matched in order to the frame whose
   /// distance it carries (a frame a newer one replaced before it was sent has no message).
   std::vector<double> LatenciesMs(const std::vector<std::pair<float, double>>& received) const

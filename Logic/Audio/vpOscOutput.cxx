@@ -101,9 +101,15 @@ void OscOutput::Queue(Message message)
   this->Wake.notify_one();
 }
 
+bool OscOutput::RepeatDue(double timeS) const
+{
+  // A time that went back is a recording replayed again: the patch may have started since.
+  return timeS - this->LastRepeatS >= RepeatEveryS || timeS < this->LastRepeatS;
+}
+
 void OscOutput::QueueState(double timeS, bool lost, const SoundState& sound, bool force)
 {
-  const bool repeat = force || timeS - this->LastRepeatS >= RepeatEveryS || timeS < this->LastRepeatS;
+  const bool repeat = force || this->RepeatDue(timeS);
   if (repeat || !this->LastLost || *this->LastLost != lost)
   {
     Message state;
@@ -125,9 +131,16 @@ void OscOutput::QueueState(double timeS, bool lost, const SoundState& sound, boo
   this->LastRepeatS = repeat ? timeS : this->LastRepeatS;
 }
 
+float OscOutput::SignedDistanceOf(const TrackedFrame& frame)
+{
+  const int nearest = frame.Proximity.NearestIndex();
+  const ClassProximity* p = nearest >= 0 ? &frame.Proximity.Classes[nearest] : nullptr;
+  return p ? static_cast<float>(p->Inside && *p->Inside ? -p->DistanceMm : p->DistanceMm) : 0.0f;
+}
+
 void OscOutput::OnFrame(const TrackedFrame& frame)
 {
-  const bool repeat = frame.TimeS - this->LastRepeatS >= RepeatEveryS || frame.TimeS < this->LastRepeatS;
+  const bool repeat = this->RepeatDue(frame.TimeS);
   if (repeat || frame.Level != this->LastLevel || !this->LastLost)
   {
     this->Queue(LevelMessage(frame));
@@ -143,7 +156,7 @@ void OscOutput::OnFrame(const TrackedFrame& frame)
     distance.Replaceable = true;
     distance.Types = "sf";
     distance.Strings = { p.ClassName };
-    distance.Floats = { static_cast<float>(p.Inside && *p.Inside ? -p.DistanceMm : p.DistanceMm) };
+    distance.Floats = { SignedDistanceOf(frame) };
     if (frame.Surface.size() > static_cast<std::size_t>(nearest) && frame.Surface[nearest].InRange)
     {
       distance.Types += "f";

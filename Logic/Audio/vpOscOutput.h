@@ -39,6 +39,10 @@ public:
   OscOutput(const OscOutput&) = delete;
   OscOutput& operator=(const OscOutput&) = delete;
 
+  /// The tip's distance /vesselproximity/distance sends for a frame: the nearest class's, negative
+  /// inside (0 when no class is in range).
+  static float SignedDistanceOf(const TrackedFrame& frame);
+
   void OnFrame(const TrackedFrame& frame) override;
   void OnLost(const TrackedPose& pose) override;
   void OnEnd() override;
@@ -68,6 +72,8 @@ public:
 
 private:
   void Queue(Message message);
+  /// Whether the state is due again (once a second, for a patch started late).
+  bool RepeatDue(double timeS) const;
   void QueueState(double timeS, bool lost, const SoundState& sound, bool force);
   void Send();
 

@@ -1,5 +1,7 @@
 #include "vpLiveResults.h"
 
+#include "vpText.h"
+
 #include "vpIgtlMessages.h"
 
 #include <nlohmann/json.hpp>
@@ -77,18 +79,7 @@ std::string PackClassMessages(const TrackedFrame& frame, const IgtlPacking& pack
 
 std::string LiveClassDevice(const std::string& className, const char* suffix)
 {
-  std::string camel;
-  bool upper = true;
-  for (char ch : className)
-  {
-    if (ch == '_' || ch == ' ' || ch == '-')
-    {
-      upper = true;
-      continue;
-    }
-    camel += upper ? static_cast<char>(std::toupper(static_cast<unsigned char>(ch))) : ch;
-    upper = false;
-  }
+  const std::string camel = CamelCase(className, true);
   const std::size_t room = IgtlDeviceNameBytes - std::char_traits<char>::length(suffix);
   return camel.substr(0, room) + suffix;
 }

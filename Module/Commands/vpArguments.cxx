@@ -1,5 +1,7 @@
 #include "vpArguments.h"
 
+#include "vpText.h"
+
 #include "vpInputError.h"
 #include "vpNumericCsv.h"
 
@@ -7,30 +9,9 @@
 
 namespace vp
 {
-namespace
-{
-/// "frame-budget-ms" -> "frameBudgetMs": a parameter name (a C identifier) for a dashed flag.
-std::string CamelCase(const std::string& flag)
-{
-  std::string name;
-  bool upper = false;
-  for (char c : flag)
-  {
-    if (c == '-')
-    {
-      upper = true;
-      continue;
-    }
-    name += upper ? static_cast<char>(std::toupper(static_cast<unsigned char>(c))) : c;
-    upper = false;
-  }
-  return name;
-}
-} // namespace
-
 cli::Parameter Option(cli::ParameterType type, const std::string& longFlag, const std::string& description)
 {
-  return cli::Parameter(type, CamelCase(longFlag)).SetLongFlag(longFlag).SetDescription(description);
+  return cli::Parameter(type, CamelCase(longFlag, false)).SetLongFlag(longFlag).SetDescription(description);
 }
 
 cli::Parameter Switch(const std::string& longFlag, const std::string& description)

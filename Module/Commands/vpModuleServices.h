@@ -6,6 +6,9 @@
 
 #include <vtkSmartPointer.h>
 
+#include <string>
+#include <vector>
+
 namespace vp
 {
 /// What a command asks of the module it runs in, as a Slicer module's widget asks its module:
@@ -18,6 +21,18 @@ public:
   virtual ~ModuleServices() = default;
   virtual vtkSmartPointer<vtkVesselProximityLogic> CreateLogic() const = 0;
   virtual vtkSmartPointer<vtkVesselProximityOverlays> CreateWidgetRepresentation() const = 0;
+};
+
+/// What the VesselProximity module and its demo module share: they run on one logic and one
+/// widget representation, by the same people, at the same version. Each adds its name, title,
+/// categories, help and acknowledgement.
+class VesselProximityServices : public ModuleServices
+{
+public:
+  std::vector<std::string> Contributors() const;
+  std::string Version() const;
+  vtkSmartPointer<vtkVesselProximityLogic> CreateLogic() const override;
+  vtkSmartPointer<vtkVesselProximityOverlays> CreateWidgetRepresentation() const override;
 };
 } // namespace vp
 

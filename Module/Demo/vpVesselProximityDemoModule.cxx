@@ -3,13 +3,6 @@
 #include "vpLoadableModuleApi.h"
 #include "vpModuleEntryPoint.h"
 #include "vpDemoCommands.h"
-#include "vtkVesselProximityLogic.h"
-#include "vtkVesselProximityOverlays.h"
-
-std::vector<std::string> vpVesselProximityDemoModule::Contributors() const
-{
-  return { "VesselProximity developers (liver surgery navigation)" };
-}
 
 std::string vpVesselProximityDemoModule::HelpText() const
 {
@@ -23,21 +16,6 @@ std::string vpVesselProximityDemoModule::AcknowledgementText() const
 {
   return "Benchmarks measured beside VTK's vtkStaticCellLocator and FCL (the Flexible Collision Library); "
          "the live benchmark's tracker speaks OpenIGTLink through its library.";
-}
-
-std::string vpVesselProximityDemoModule::Version() const
-{
-  return VP_VERSION;
-}
-
-vtkSmartPointer<vtkVesselProximityLogic> vpVesselProximityDemoModule::CreateLogic() const
-{
-  return vtkSmartPointer<vtkVesselProximityLogic>::New();
-}
-
-vtkSmartPointer<vtkVesselProximityOverlays> vpVesselProximityDemoModule::CreateWidgetRepresentation() const
-{
-  return vtkSmartPointer<vtkVesselProximityOverlays>::New();
 }
 
 // The demo module's C entry point, as the VesselProximity module's (vpVesselProximityModulePlugin.cxx).

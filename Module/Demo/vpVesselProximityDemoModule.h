@@ -14,19 +14,14 @@
 /// so that the VesselProximity module a host embeds links neither the phantom generators nor the
 /// measurements. It runs on the VesselProximity module's logic and overlays, as a Slicer module
 /// uses the logic of a module it depends on.
-class vpVesselProximityDemoModule : public vp::ModuleServices
+class vpVesselProximityDemoModule : public vp::VesselProximityServices
 {
 public:
   std::string Name() const { return "VesselProximityDemo"; }
   std::string Title() const { return "Vessel Proximity Demo"; }
   std::vector<std::string> Categories() const { return { "IGT", "Developer Tools" }; }
-  std::vector<std::string> Contributors() const;
   std::string HelpText() const;
   std::string AcknowledgementText() const;
-  std::string Version() const;
-
-  vtkSmartPointer<vtkVesselProximityLogic> CreateLogic() const override;
-  vtkSmartPointer<vtkVesselProximityOverlays> CreateWidgetRepresentation() const override;
 };
 
 #endif

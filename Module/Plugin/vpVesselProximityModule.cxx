@@ -1,13 +1,5 @@
 #include "vpVesselProximityModule.h"
 
-#include "vtkVesselProximityLogic.h"
-#include "vtkVesselProximityOverlays.h"
-
-std::vector<std::string> vpVesselProximityModule::Contributors() const
-{
-  return { "VesselProximity developers (liver surgery navigation)" };
-}
-
 std::string vpVesselProximityModule::HelpText() const
 {
   return "Distance from the tip (and the whole surface) of a tracked CUSA scalpel to the portal vein, the hepatic "
@@ -32,17 +24,3 @@ std::string vpVesselProximityModule::AcknowledgementText() const
          "and of SlicerIGT's BreachWarning module.";
 }
 
-std::string vpVesselProximityModule::Version() const
-{
-  return VP_VERSION;
-}
-
-vtkSmartPointer<vtkVesselProximityLogic> vpVesselProximityModule::CreateLogic() const
-{
-  return vtkSmartPointer<vtkVesselProximityLogic>::New();
-}
-
-vtkSmartPointer<vtkVesselProximityOverlays> vpVesselProximityModule::CreateWidgetRepresentation() const
-{
-  return vtkSmartPointer<vtkVesselProximityOverlays>::New();
-}

@@ -14,19 +14,14 @@
 /// commands take their logic and overlays from it. The computation lives in the logic (Logic/), the drawing in the overlays (Widgets/),
 /// the commands in Module/Commands; the C entry point (vpVesselProximityModulePlugin.cxx) hands
 /// all of it to the host.
-class vpVesselProximityModule : public vp::ModuleServices
+class vpVesselProximityModule : public vp::VesselProximityServices
 {
 public:
   std::string Name() const { return "VesselProximity"; }
   std::string Title() const { return "Vessel Proximity"; }
   std::vector<std::string> Categories() const { return { "IGT" }; }
-  std::vector<std::string> Contributors() const;
   std::string HelpText() const;
   std::string AcknowledgementText() const;
-  std::string Version() const;
-
-  vtkSmartPointer<vtkVesselProximityLogic> CreateLogic() const override;
-  vtkSmartPointer<vtkVesselProximityOverlays> CreateWidgetRepresentation() const override;
 };
 
 #endif

@@ -18,6 +18,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <stdexcept>
 
 namespace vp
@@ -407,10 +408,9 @@ IgtlPoseMessage ToolPose(const unsigned char* header, const IgtlBody& split, con
 }
 
 /// What one message says about the tool, before its time stamp is taken.
-IgtlPoseMessage DecodePose(const unsigned char* header, const std::vector<unsigned char>& body, const std::string& toolName,
-  const SettledReading& reading)
+IgtlPoseMessage DecodePose(const unsigned char* header, const IgtlHeader& h, const std::vector<unsigned char>& body,
+  const std::string& toolName, const SettledReading& reading)
 {
-  const IgtlHeader h = ParseIgtlHeader(header);
   if (h.Type != "TRANSFORM" && h.Type != "QTDATA" && h.Type != "TDATA")
   {
     return Ignored("type " + h.Type);
@@ -460,25 +460,43 @@ IgtlPoseMessage DecodePose(const unsigned char* header, const std::vector<unsign
 IgtlPoseMessage DecodeIgtlPose(const unsigned char* header, const std::vector<unsigned char>& body, const std::string& toolName,
   const SettledReading& reading)
 {
-  IgtlPoseMessage m = DecodePose(header, body, toolName, reading);
   const IgtlHeader h = ParseIgtlHeader(header);
+  IgtlPoseMessage m = DecodePose(header, h, body, toolName, reading);
   m.Pose.SourceClockS = h.TimeSeconds + h.TimeFraction / 4294967296.0;
   return m;
 }
 
+namespace
+{
+/// A message's content split from its body (version 2's extended header and metadata off),
+/// checked before the library reads it (fits: its size and whatever the library would trust; the
+/// content is hostile) and unpacked into message: the problem, or "" (sizeProblem when the
+/// content does not fit, unpackProblem when the library refuses it).
+template <typename Message>
+std::string UnpackContent(const unsigned char* header, const std::vector<unsigned char>& body, Message* message,
+  const std::function<bool(const std::vector<unsigned char>&)>& fits, const std::string& sizeProblem,
+  const std::string& unpackProblem, IgtlBody& split)
+{
+  std::string problem = SplitIgtlBody(header, body, split);
+  if (!problem.empty())
+  {
+    return problem;
+  }
+  if (!fits(split.Content))
+  {
+    return sizeProblem;
+  }
+  return Unpack(message, header, split.Content) ? std::string() : unpackProblem;
+}
+} // namespace
+
 std::string DecodeIgtlTransform(const unsigned char* header, const std::vector<unsigned char>& body, std::array<double, 16>& matrix)
 {
   IgtlBody split;
-  std::string problem = SplitIgtlBody(header, body, split);
-  if (problem.empty() && split.Content.size() != IGTL_TRANSFORM_SIZE)
-  {
-    problem = ContentSizeProblem("TRANSFORM");
-  }
   auto message = igtl::TransformMessage::New();
-  if (problem.empty() && !Unpack(message.GetPointer(), header, split.Content))
-  {
-    problem = "bad CRC";
-  }
+  const std::string problem = UnpackContent(header, body, message.GetPointer(),
+    [](const std::vector<unsigned char>& c) { return c.size() == IGTL_TRANSFORM_SIZE; }, ContentSizeProblem("TRANSFORM"),
+    "bad CRC", split);
   if (problem.empty())
   {
     igtl::Matrix4x4 m;
@@ -497,14 +515,12 @@ std::string DecodeIgtlTransform(const unsigned char* header, const std::vector<u
 std::string DecodeIgtlStatus(const unsigned char* header, const std::vector<unsigned char>& body, IgtlStatus& status)
 {
   IgtlBody split;
-  std::string problem = SplitIgtlBody(header, body, split);
   auto message = igtl::StatusMessage::New();
+  const std::string unreadable = "a STATUS body that cannot be read";
   // The text after the fixed fields ends with its NUL, which the library's strlen relies on.
-  if (problem.empty() && (split.Content.size() <= StatusFieldsBytes || split.Content.back() != 0 ||
-                           !Unpack(message.GetPointer(), header, split.Content)))
-  {
-    problem = "a STATUS body that cannot be read";
-  }
+  const std::string problem = UnpackContent(header, body, message.GetPointer(),
+    [](const std::vector<unsigned char>& c) { return c.size() > StatusFieldsBytes && c.back() == 0; }, unreadable, unreadable,
+    split);
   if (problem.empty())
   {
     status.Code = message->GetCode();
@@ -518,14 +534,12 @@ std::string DecodeIgtlStatus(const unsigned char* header, const std::vector<unsi
 std::string DecodeIgtlString(const unsigned char* header, const std::vector<unsigned char>& body, unsigned& encoding, std::string& text)
 {
   IgtlBody split;
-  std::string problem = SplitIgtlBody(header, body, split);
   auto message = igtl::StringMessage::New();
+  const std::string unreadable = "a STRING body that cannot be read";
   // Encoding (2 bytes), length (2), then that many bytes: the library copies what the length says.
-  if (problem.empty() && (split.Content.size() < 4 || 4 + BigEndian(split.Content.data() + 2, 2) > split.Content.size() ||
-                           !Unpack(message.GetPointer(), header, split.Content)))
-  {
-    problem = "a STRING body that cannot be read";
-  }
+  const std::string problem = UnpackContent(header, body, message.GetPointer(),
+    [](const std::vector<unsigned char>& c) { return c.size() >= 4 && 4 + BigEndian(c.data() + 2, 2) <= c.size(); }, unreadable,
+    unreadable, split);
   if (problem.empty())
   {
     encoding = message->GetEncoding();
@@ -537,12 +551,10 @@ std::string DecodeIgtlString(const unsigned char* header, const std::vector<unsi
 std::string DecodeIgtlPoints(const unsigned char* header, const std::vector<unsigned char>& body, std::vector<IgtlPoint>& points)
 {
   IgtlBody split;
-  std::string problem = SplitIgtlBody(header, body, split);
   auto message = igtl::PointMessage::New();
-  if (problem.empty() && (split.Content.size() % IGTL_POINT_ELEMENT_SIZE != 0 || !Unpack(message.GetPointer(), header, split.Content)))
-  {
-    problem = "a POINT body not a whole number of points";
-  }
+  const std::string unreadable = "a POINT body not a whole number of points";
+  const std::string problem = UnpackContent(header, body, message.GetPointer(),
+    [](const std::vector<unsigned char>& c) { return c.size() % IGTL_POINT_ELEMENT_SIZE == 0; }, unreadable, unreadable, split);
   for (int i = 0; problem.empty() && i < message->GetNumberOfPointElement(); ++i)
   {
     igtl::PointElement::Pointer element;

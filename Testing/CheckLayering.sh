@@ -90,9 +90,9 @@ breach "stdout captured outside the CLI harness" \
   "$(grep -rn --include='*.h' --include='*.cxx' 'cout.rdbuf\|cout\.rdbuf(' Module Widgets Logic Phantom | grep -v '^Module/CLI/vpCliProgram\.cxx:')"
 breach "a command's usage or options written by hand (declare them in its description: vpCliDescription.h)" \
   "$(grep -rnE --include='*.h' --include='*.cxx' 'const char\* *Usage|std::set<std::string> options|Arguments args\(' Module/Commands Module/Demo)"
-breach "a command makes its own logic or overlays (take them from the module: ModuleServices)" \
+breach "a command makes its own logic or overlays (take them from the module: ModuleServices; vpModuleServices.cxx is where the modules make them)" \
   "$(grep -rnE --include='*.h' --include='*.cxx' 'vtkVesselProximity(Logic|Overlays)>::New|vtkNew<vtkVesselProximity(Logic|Overlays)>' Module/Commands Module/Demo |
-     grep -v '^Module/Demo/vpVesselProximityDemoModule\.cxx:')"
+     grep -v '^Module/Commands/vpModuleServices\.cxx:')"
 public=" $(grep -vE '^\s*(#|$)' Logic/PublicHeaders.txt | tr '\n' ' ') "
 private_use=""
 while IFS=: read -r file line text; do

@@ -259,3 +259,49 @@ TEST_F(Plan, BadRequestsAreRefusedInOneLineWithNothingWritten)
   ExpectOneLineRefusal(misses, "--from-direction: the line along it through the centre of 'ring_01' misses the target", out);
 }
 } // namespace
+
+namespace
+{
+// IRCADb patient 1: its vessels modelled by `vesselproximity models`, its first tumour (IRCADb's own
+// mesh) the target, approached from the front with a search; track replaying plan.csv finds each
+// class's minimum the plan reported.
+TEST_F(Plan, RealDataPatient1TrackAgrees)
+{
+  const std::string extracted = vp::test::ExtractedDataDir();
+  const std::string masks = extracted + "/ircadb/3Dircadb1.1/MASKS_DICOM";
+  const std::string tumour = extracted + "/ircadb/3Dircadb1.1/MESHES_VTK/livertumor01.vtk";
+  if (extracted.empty() || !fs::exists(masks) || !fs::exists(tumour))
+  {
+    GTEST_SKIP() << "VP_TEST_DATA not set: the IRCADb masks and meshes are in ../shared/data";
+  }
+  const std::string models = this->Dir + "/p1";
+  const ToolRun built = RunTool(this->Dir, "models " + masks + " -o " + models);
+  ASSERT_EQ(built.ExitCode, 0) << built.Err;
+  fs::copy_file(tumour, models + "/tumour_01.vtk");
+  nlohmann::json doc = nlohmann::json::parse(Slurp(models + "/models.json"));
+  doc["structures"].push_back({ { "id", "tumour_01" }, { "class", "tumour" }, { "role", "tumour" }, { "file", "tumour_01.vtk" } });
+  std::ofstream(models + "/models.json") << doc.dump(2);
+  const std::string out = this->Dir + "/p1plan";
+  const ToolRun plan = RunTool(this->Dir,
+    "plan --models " + models + " --target tumour_01 --from-direction 0,1,0 --stand-off-mm 40 --search-deg 10 --no-picture -o " + out);
+  ASSERT_EQ(plan.ExitCode, 0) << plan.Err;
+  const nlohmann::json json = nlohmann::json::parse(Slurp(out + "/plan.json"));
+  std::string vessels;
+  for (const char* c : { "portal_vein", "hepatic_vein", "hepatic_artery" })
+  {
+    vessels += (vessels.empty() ? "" : ",") + std::string(c) + "=" + models + "/" + c + ".stl";
+  }
+  const ToolRun track = RunTool(this->Dir, "track --method exact --vessels " + vessels + " --scalpel " + out +
+      "/scalpel/CusaHandpiece.stl --poses " + out + "/plan.csv -o " + this->Dir + "/p1track");
+  ASSERT_EQ(track.ExitCode, 0) << track.Err;
+  const auto frames = ReadRows(this->Dir + "/p1track/frames.csv");
+  EXPECT_EQ(frames.size(), json.at("poses").get<std::size_t>() + 1);
+  for (const char* c : { "portal_vein", "hepatic_vein", "hepatic_artery" })
+  {
+    const nlohmann::json& planned = json.at("classes").at(c);
+    ASSERT_FALSE(planned.at("closest_mm").is_null()) << c << " within range";
+    EXPECT_NEAR(ColumnMinimum(frames, std::string(c) + "_surface_mm"), planned.at("closest_mm").get<double>(), 0.01) << c;
+  }
+  EXPECT_GE(json.at("search").at("safest").at("clearance_mm").get<double>(), json.at("clearance_mm").get<double>());
+}
+} // namespace

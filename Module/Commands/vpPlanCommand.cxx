@@ -59,6 +59,10 @@ SceneRequest PlanSceneRequest(const ModelsFile& models, const ModelStructure& ta
       request.LiverFile = s.File;
     }
   }
+  if (request.Vessels.empty())
+  {
+    throw InputError(models.FileName, "lists no vessel besides the target: there is nothing to keep the instrument away from");
+  }
   request.Tumours.push_back({ target.Name, target.File, nullptr, std::nullopt });
   request.ScalpelFile = args.GetString("scalpel");
   request.Tip = ParseTipDefinition(args);

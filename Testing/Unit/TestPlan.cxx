@@ -257,6 +257,12 @@ TEST_F(Plan, BadRequestsAreRefusedInOneLineWithNothingWritten)
   ExpectOneLineRefusal(this->PlanRun("--entry -80,0,0 --search-deg 90" + scalpel, out), "--search-deg", out);
   const ToolRun misses = RunTool(this->Dir, "plan --models " + this->Models + " --target ring_01 --from-direction 0,0,1 -o " + out + scalpel);
   ExpectOneLineRefusal(misses, "--from-direction: the line along it through the centre of 'ring_01' misses the target", out);
+  const std::string lonely = this->Dir + "/lonely";
+  fs::create_directories(lonely);
+  fs::copy_file(this->Models + "/tumour_01.stl", lonely + "/tumour_01.stl");
+  std::ofstream(lonely + "/models.json") << R"({"structures": [{"id": "tumour_01", "class": "tumour", "file": "tumour_01.stl"}]})";
+  const ToolRun noVessel = RunTool(this->Dir, "plan --models " + lonely + " --target tumour_01 --entry -80,0,0 -o " + out + scalpel);
+  ExpectOneLineRefusal(noVessel, "lists no vessel besides the target", out);
 }
 } // namespace
 

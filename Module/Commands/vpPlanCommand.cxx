@@ -105,11 +105,11 @@ std::string PointText(const std::array<double, 3>& p, const char* format = "%.2f
 
 void PrintApproach(const PlannedApproach& a)
 {
-  std::printf("  %-16s %12s %8s  %s\n", "class", "closest mm", "at pose", "vessel point (LPS mm)");
+  std::printf("  %-16s %12s %8s %12s  %s\n", "class", "closest mm", "at pose", "inside mm", "vessel point (LPS mm)");
   for (const ClassApproach& c : a.Classes)
   {
-    std::printf("  %-16s %12s %8s  %s\n", c.ClassName.c_str(), c.InRange ? FixedText(c.ClosestMm, "%.3f").c_str() : "out of range",
-      c.InRange ? std::to_string(c.Step).c_str() : "",
+    std::printf("  %-16s %12s %8s %12s  %s\n", c.ClassName.c_str(), c.InRange ? FixedText(c.ClosestMm, "%.3f").c_str() : "out of range",
+      c.InRange ? std::to_string(c.Step).c_str() : "", c.PenetrationDepthMm > 0.0 ? FixedText(c.PenetrationDepthMm, "%.3f").c_str() : "",
       c.InRange ? PointText({ c.PointMm[0], c.PointMm[1], c.PointMm[2] }).c_str() : "");
   }
 }

@@ -44,6 +44,10 @@ void ApproachPlanner::CheckSettings(const ApproachPlanRequest& request)
   CheckWithin("SearchDeg", request.SearchDeg, 0.0, true, ApproachPlanRequest::MaximumSearchDeg, "an angle in degrees");
   CheckWithin("SearchStepDeg", request.SearchStepDeg, 0.0, false, ApproachPlanRequest::MaximumSearchDeg, "an angle in degrees");
   CheckWithin("TimeStepS", request.TimeStepS, 0.0, false, 3600.0, "a time in s");
+  if (request.StandOffMm && request.EntryMm)
+  {
+    throw ParameterError("StandOffMm", "goes with a direction: an entry already says where the approach starts");
+  }
   if (request.StandOffMm)
   {
     CheckWithin("StandOffMm", *request.StandOffMm, 0.0, false, 2000.0, "a distance in mm");

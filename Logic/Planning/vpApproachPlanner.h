@@ -39,7 +39,8 @@ public:
   void SetProgress(std::function<void(std::size_t done, std::size_t expected)> progress);
 
   /// Checks every setting of request but its target (a step, margin, stand-off or search out of
-  /// range, neither or both of EntryMm and DirectionLps, a direction of zero length): throws
+  /// range, neither or both of EntryMm and DirectionLps, a direction of zero length, a stand-off
+  /// with an entry): throws
   /// vp::ParameterError naming it. What a front end calls before it opens anything.
   static void CheckSettings(const ApproachPlanRequest& request);
 

@@ -146,16 +146,23 @@ void PrintPlan(const ApproachPlan& plan, const std::string& outDir, bool picture
     picture ? ", plan.png" : "", replay.c_str());
 }
 
-/// The track command that replays the plan, as the user would type it.
-std::string ReplayCommand(const SceneRequest& request, const std::string& outDir, const std::string& scalpelFile)
+/// The track command that replays the plan, as the user would type it: the same vessels, scalpel,
+/// tip and range, the target as its tumour.
+std::string ReplayCommand(
+  const SceneRequest& request, const cli::ParsedArguments& args, const std::string& outDir, const std::string& scalpelFile)
 {
   std::string vessels;
   for (const NamedMesh& v : request.Vessels)
   {
     vessels += (vessels.empty() ? "" : ",") + v.ClassName + "=" + v.FileName;
   }
-  return "vesselproximity track --vessels " + vessels + " --scalpel " + scalpelFile + " --poses " + outDir + "/plan.csv --tumour " +
-    request.Tumours.front().ClassName + "=" + request.Tumours.front().FileName + " -o " + outDir + "/track";
+  std::string same;
+  for (const char* option : { "tip", "axis", "range" })
+  {
+    same += args.IsSet(option) ? std::string(" --") + option + " " + args.GetString(option) : "";
+  }
+  return "vesselproximity track --vessels " + vessels + " --scalpel " + scalpelFile + same + " --poses " + outDir +
+    "/plan.csv --tumour " + request.Tumours.front().ClassName + "=" + request.Tumours.front().FileName + " -o " + outDir + "/track";
 }
 
 /// The files the plan reads: never removed or written over.
@@ -310,7 +317,7 @@ int RunPlanCommand(const cli::ParsedArguments& args, const ModuleServices& modul
   json["scalpel_tip_source"] = proximity->GetScalpel()->GetTipSource();
   WriteFileAtomically(run.File("plan.json"), json.dump(2) + "\n");
   run.Commit(); // the folder holds this plan whole, or the previous one as it was
-  PrintPlan(plan, outDir, picture, ReplayCommand(request, outDir, scalpelFile));
+  PrintPlan(plan, outDir, picture, ReplayCommand(request, args, outDir, scalpelFile));
   return 0;
 }
 } // namespace vp

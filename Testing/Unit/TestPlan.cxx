@@ -255,6 +255,7 @@ TEST_F(Plan, BadRequestsAreRefusedInOneLineWithNothingWritten)
   ExpectOneLineRefusal(this->PlanRun("--entry -80,0,0 --step-mm 0" + scalpel, out), "--step-mm", out);
   ExpectOneLineRefusal(this->PlanRun("--entry -80,0,0 --margin-mm 60" + scalpel, out), "--margin-mm", out);
   ExpectOneLineRefusal(this->PlanRun("--entry -80,0,0 --search-deg 90" + scalpel, out), "--search-deg", out);
+  ExpectOneLineRefusal(this->PlanRun("--entry -80,0,0 --stand-off-mm 30" + scalpel, out), "--stand-off-mm: goes with a direction", out);
   const ToolRun misses = RunTool(this->Dir, "plan --models " + this->Models + " --target ring_01 --from-direction 0,0,1 -o " + out + scalpel);
   ExpectOneLineRefusal(misses, "--from-direction: the line along it through the centre of 'ring_01' misses the target", out);
   const std::string lonely = this->Dir + "/lonely";

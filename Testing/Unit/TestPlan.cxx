@@ -2,7 +2,9 @@
 // geometry, the same numbers from `track` replaying plan.csv, the cone search finding a safer
 // direction, and the one-line refusals that leave nothing behind.
 #include "vpAnalyticShapes.h"
+#include "vpApproachGeometry.h"
 #include "vpModelTestSupport.h"
+#include "vpPoseFile.h"
 #include "vpTestSupport.h"
 
 #include <gtest/gtest.h>
@@ -234,6 +236,67 @@ TEST_F(Plan, ConeSearchFindsASaferDirection)
   ASSERT_EQ(track.ExitCode, 0) << track.Err;
   EXPECT_NEAR(ColumnMinimum(ReadRows(this->Dir + "/track/frames.csv"), "portal_vein_surface_mm"),
     safest.at("classes").at("portal_vein").at("closest_mm").get<double>(), 0.01);
+}
+
+// An instrument whose tip is not at its model's origin and whose axis is not +z is still advanced
+// tip first along the approach: track's tip and axis columns follow the planned line, from the
+// entry to the margin past the target's surface, whatever the direction.
+TEST_F(Plan, TipAndAxisOfTheScalpelDefinitionLieOnTheApproach)
+{
+  const double axisX[3] = { 1, 0, 0 }, axisY[3] = { 0, 1, 0 };
+  const double vesselCentre[3] = { -30.0, 16.0, 0.0 };
+  vp::test::WriteMeshFile(this->Models, "portal_vein.stl", vp::MakeCappedCylinder(vesselCentre, axisX, 2.0, 60.0, 32));
+  this->WriteModelsJson({ "portal_vein" });
+  const double shaft[3] = { 5.0, -35.0, 7.0 }; // the tip at (5, 5, 7), the shaft behind it along -y
+  const std::string tool = vp::test::WriteMeshFile(this->Dir, "Offset.stl", vp::MakeCappedCylinder(shaft, axisY, 1.0, 80.0, 32));
+  std::ofstream(this->Dir + "/Offset.json") << R"({"tip_mm": [5, 5, 7], "axis": [0, 1, 0]})";
+  const std::string out = this->Dir + "/plan";
+  const ToolRun plan = this->PlanRun("--from-direction -1,2,-2 --stand-off-mm 30 --margin-mm 3 --no-picture --scalpel " + tool, out);
+  ASSERT_EQ(plan.ExitCode, 0) << plan.Err;
+  const nlohmann::json json = nlohmann::json::parse(Slurp(out + "/plan.json"));
+  const ToolRun track = this->Track("portal_vein=" + this->Models + "/portal_vein.stl", out + "/plan.csv", tool, this->Dir + "/track");
+  ASSERT_EQ(track.ExitCode, 0) << track.Err;
+  const auto frames = ReadRows(this->Dir + "/track/frames.csv");
+  const double direction[3] = { -1.0 / 3.0, 2.0 / 3.0, -2.0 / 3.0 };
+  for (int a = 0; a < 3; ++a)
+  {
+    const std::string axis(1, "xyz"[a]);
+    EXPECT_NEAR(std::stod(frames[1][Column(frames.front(), "tip_" + axis)]), json.at("entry")[a].get<double>(), 1e-3);
+    EXPECT_NEAR(std::stod(frames.back()[Column(frames.front(), "tip_" + axis)]), json.at("end")[a].get<double>(), 1e-3);
+    EXPECT_NEAR(json.at("end")[a].get<double>(), -7.0 * direction[a], 0.03); // 3 mm inside the sphere of radius 10
+    EXPECT_NEAR(std::stod(frames.back()[Column(frames.front(), "axis_" + axis)]), direction[a], 1e-5);
+  }
+  EXPECT_NEAR(std::stod(frames.back()[Column(frames.front(), "tumour_mm")]), -3.0, 0.03);
+}
+
+// The geometry the planner builds on: the turn of the tool's axis onto the approach (opposite
+// vectors too), the cone's rings, the centre of an enclosed volume, the way out of a box.
+TEST(PlanGeometry, TurnsConeCentreAndBox)
+{
+  const vp::Vector3 z{ 0, 0, 1 };
+  for (const vp::Vector3& to : { vp::Vector3{ 1, 0, 0 }, vp::Vector3{ 0, 0, -1 }, vp::Normalized({ -1, 2, -2 }), z })
+  {
+    const std::array<double, 4> q = vp::QuaternionTurning(z, to);
+    const std::array<double, 16> m = vp::PoseFromQuaternion({ 0, 0, 0 }, q);
+    for (int a = 0; a < 3; ++a)
+    {
+      EXPECT_NEAR(m[4 * a + 2], to[a], 1e-12); // the third column: where +z goes
+    }
+  }
+  const std::vector<vp::ConeDirection> cone = vp::ConeDirections(z, 15.0, 5.0);
+  EXPECT_EQ(cone.size(), 7u + 13u + 19u); // about 5 degrees apart around rings of 5, 10 and 15 degrees
+  for (const vp::ConeDirection& d : cone)
+  {
+    EXPECT_NEAR(std::acos(d.Direction[2]) * 180.0 / 3.14159265358979323846, d.AngleDeg, 1e-9);
+  }
+  const double centre[3] = { 3, -4, 12 };
+  const vp::Vector3 found = vp::EnclosedVolumeCentre(vp::MakeSphere(centre, 5.0, 24, 48));
+  for (int a = 0; a < 3; ++a)
+  {
+    EXPECT_NEAR(found[a], centre[a], 1e-9);
+  }
+  EXPECT_NEAR(vp::DistanceOutOfBox({ 0, 0, 0 }, { 0, -1, 0 }, { -10, 10, -20, 30, -5, 5 }), 20.0, 1e-12);
+  EXPECT_EQ(vp::DistanceOutOfBox({ 0, 40, 0 }, { 0, -1, 0 }, { -10, 10, -20, 30, -5, 5 }), 0.0);
 }
 
 // Every bad request: one line naming the option, exit 1, no output folder.

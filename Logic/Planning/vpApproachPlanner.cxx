@@ -12,6 +12,7 @@
 #include <vtkOBBTree.h>
 #include <vtkPolyData.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 
@@ -70,6 +71,24 @@ double AngleDeg(const Vector3& a, const Vector3& b)
 {
   const double c = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
   return std::acos(std::max(-1.0, std::min(1.0, c))) * 180.0 / 3.14159265358979323846;
+}
+
+double DeepestPenetrationMm(const PlannedApproach& approach)
+{
+  double deepestMm = 0.0;
+  for (const ClassApproach& c : approach.Classes)
+  {
+    deepestMm = std::max(deepestMm, c.PenetrationDepthMm);
+  }
+  return deepestMm;
+}
+
+/// Whether a keeps further from the vessels than b: the larger clearance; between approaches that
+/// both touch a vessel (or keep the same), the shallower penetration. Equals are not safer, so
+/// that of two the one found first, nearer the asked direction, stays.
+bool Safer(const PlannedApproach& a, const PlannedApproach& b)
+{
+  return a.ClearanceMm > b.ClearanceMm || (a.ClearanceMm == b.ClearanceMm && DeepestPenetrationMm(a) < DeepestPenetrationMm(b));
 }
 
 /// The poses along approach, as plan.csv holds them and a pose file's reader makes them from it.
@@ -244,18 +263,6 @@ void ApproachPlanner::Run(PlannedApproach& approach, const ApproachPlanRequest& 
 void ApproachPlanner::Search(const ApproachPlanRequest& request, ApproachPlan& plan)
 {
   const double standOffMm = Distance(plan.Asked.EntryMm, plan.Asked.SurfacePointMm);
-  const auto safer = [](const PlannedApproach& a, const PlannedApproach& b) {
-    double deepestA = 0.0, deepestB = 0.0;
-    for (const ClassApproach& c : a.Classes)
-    {
-      deepestA = std::max(deepestA, c.PenetrationDepthMm);
-    }
-    for (const ClassApproach& c : b.Classes)
-    {
-      deepestB = std::max(deepestB, c.PenetrationDepthMm);
-    }
-    return a.ClearanceMm > b.ClearanceMm || (a.ClearanceMm == b.ClearanceMm && deepestA < deepestB);
-  };
   plan.Safest = plan.Asked;
   for (const ConeDirection& d : ConeDirections(plan.Asked.Direction, request.SearchDeg, request.SearchStepDeg))
   {
@@ -269,7 +276,7 @@ void ApproachPlanner::Search(const ApproachPlanRequest& request, ApproachPlan& p
     }
     candidate.EntryMm = Along(candidate.SurfacePointMm, candidate.Direction, -standOffMm);
     this->Run(candidate, request, plan);
-    if (safer(candidate, *plan.Safest))
+    if (Safer(candidate, *plan.Safest))
     {
       plan.Safest = std::move(candidate);
     }

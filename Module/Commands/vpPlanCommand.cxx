@@ -45,6 +45,15 @@ const ModelStructure& FindTarget(const ModelsFile& models, const std::string& na
 
 /// The scene of the plan: every vessel of the folder (the target aside), the target as the tumour
 /// whose depth the tip reaches, the liver to be shown, the scalpel; the exact engine.
+/// A vessel class or tumour of the scene, to be read from its file.
+NamedMesh MeshOf(const std::string& name, const std::string& file)
+{
+  NamedMesh mesh;
+  mesh.ClassName = name;
+  mesh.FileName = file;
+  return mesh;
+}
+
 SceneRequest PlanSceneRequest(const ModelsFile& models, const ModelStructure& target, const cli::ParsedArguments& args)
 {
   SceneRequest request;
@@ -52,7 +61,7 @@ SceneRequest PlanSceneRequest(const ModelsFile& models, const ModelStructure& ta
   {
     if (s.Role == ModelRole::Vessel && s.Name != target.Name)
     {
-      request.Vessels.push_back({ s.ClassName, s.File, nullptr, std::nullopt });
+      request.Vessels.push_back(MeshOf(s.ClassName, s.File));
     }
     if (s.Role == ModelRole::Liver && request.LiverFile.empty() && s.Name != target.Name)
     {
@@ -63,7 +72,7 @@ SceneRequest PlanSceneRequest(const ModelsFile& models, const ModelStructure& ta
   {
     throw InputError(models.FileName, "lists no vessel besides the target: there is nothing to keep the instrument away from");
   }
-  request.Tumours.push_back({ target.Name, target.File, nullptr, std::nullopt });
+  request.Tumours.push_back(MeshOf(target.Name, target.File));
   request.ScalpelFile = args.GetString("scalpel");
   request.Tip = ParseTipDefinition(args);
   request.Engine.Method = "exact";

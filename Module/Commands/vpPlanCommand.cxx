@@ -21,6 +21,7 @@
 #include "vtkScalpelModel.h"
 #include "vtkVesselProximityLogic.h"
 
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 
@@ -130,6 +131,10 @@ void PrintPlan(const ApproachPlan& plan, const std::string& outDir, bool picture
     plan.TargetName.c_str(), PointText(a.EntryMm).c_str(), PointText(a.Direction, "%.4f").c_str(), a.Poses.size(), plan.StepMm,
     plan.MarginMm, PointText(a.SurfacePointMm).c_str());
   PrintApproach(a);
+  if (a.TipTargetSignedMm)
+  {
+    std::printf("  the tip ends %.3f mm %s the target's surface\n", std::abs(*a.TipTargetSignedMm), *a.TipTargetSignedMm < 0.0 ? "inside" : "outside");
+  }
   std::printf("  clearance %s\n", a.ClearanceClass.empty() ? ("over " + FixedText(plan.RangeMm, "%g") + " mm (no vessel in range)").c_str()
                                                            : (FixedText(a.ClearanceMm, "%.3f") + " mm to " + a.ClearanceClass).c_str());
   if (plan.Safest)

@@ -267,8 +267,8 @@ cli::ModuleDescription DescribePlanCommand()
         { Option(ParameterType::Double, "range", "Vessels further than this from the instrument are out of range (as track's --range).")
             .SetPlaceholder("MM")
             .SetDefault(FormatNumber(vtkVesselDistanceEngine::DefaultRangeMm))
-            .SetLogicName("RangeMm"),
-          Switch("no-picture", "Skip plan.png (it needs a display, or Xvfb, which is started when there is none).") } },
+            .SetLogicName("RangeMm") } },
+      { "Picture", "", { Switch("no-picture", "Skip plan.png (it needs a display, or Xvfb, which is started when there is none).") } },
     });
 }
 

@@ -45,7 +45,7 @@ layers=(
   "Reports Audio"
   "Live"
   "."
-  "Cohort"
+  "Cohort Planning"
 )
 layer_of() {
   local rank=0 line folder

@@ -20,6 +20,7 @@ const std::vector<CommandEntry>& CommandTable()
     { "live", DescribeLiveCommand, RunLiveCommand },
     { "serve", DescribeServeCommand, RunServeCommand },
     { "register", DescribeRegisterCommand, RunRegisterCommand },
+    { "plan", DescribePlanCommand, RunPlanCommand },
   };
   return table;
 }

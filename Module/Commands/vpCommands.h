@@ -27,6 +27,8 @@ cli::ModuleDescription DescribeRegisterCommand();
 int RunRegisterCommand(const cli::ParsedArguments& args, const ModuleServices& module);
 cli::ModuleDescription DescribeViewCommand();
 int RunViewCommand(const cli::ParsedArguments& args, const ModuleServices& module);
+cli::ModuleDescription DescribePlanCommand();
+int RunPlanCommand(const cli::ParsedArguments& args, const ModuleServices& module);
 } // namespace vp
 
 #endif

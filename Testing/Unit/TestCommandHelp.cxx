@@ -57,7 +57,7 @@ TEST(CommandHelp, ListsExactlyWhatTheParserTakes)
 {
   const std::string dir = vp::test::MakeTempDir("command_help");
   const std::vector<std::string> commands = ListedCommands(dir);
-  ASSERT_EQ(commands.size(), 12u);
+  ASSERT_EQ(commands.size(), 13u);
   for (const std::string& command : commands)
   {
     const vp::test::ToolRun help = vp::test::RunTool(dir, command + " --help");

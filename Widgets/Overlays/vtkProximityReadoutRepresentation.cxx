@@ -1,5 +1,7 @@
 #include "vtkProximityReadoutRepresentation.h"
 
+#include "vpClassName.h"
+
 #include "vpDangerBands.h"
 #include "vpFrameHeadline.h"
 #include "vpPlotValues.h"
@@ -269,7 +271,7 @@ void vtkProximityReadoutRepresentation::ShowMargin(const vp::TumourMargin* margi
   }
   const vp::TumourProximity& t = margin->Tumours[static_cast<std::size_t>(margin->Worst)];
   char text[160];
-  std::snprintf(text, sizeof(text), "tumour %-8s %6.1f mm%s  %s  (margin %g mm)", t.Id.c_str(), std::abs(t.SignedMm),
+  std::snprintf(text, sizeof(text), "%-15s %6.1f mm%s  %s  (margin %g mm)", vp::TumourSpoken(t.Id).c_str(), std::abs(t.SignedMm),
     t.SignedMm < 0.0 ? " inside" : "", Upper(vp::MarginLevelName(margin->Level)).c_str(), marginMm);
   this->SetLine(line, text);
 }

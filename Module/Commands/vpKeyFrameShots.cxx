@@ -15,17 +15,23 @@
 
 namespace vp
 {
-std::vector<KeyFrameScreenshots::Shot> RenderKeyFrameShots(const ModuleServices& module, const KeyFrameShotRequest& request)
+vtkSmartPointer<vtkVesselProximityView> OffScreenView(const ModuleServices& module, vtkVesselProximityLogic* logic, vtkPolyData* liver)
 {
-  vtkNew<vtkVesselProximityView> view;
+  auto view = vtkSmartPointer<vtkVesselProximityView>::New();
   view->SetOverlays(module.CreateWidgetRepresentation());
   view->SetOffScreen(true);
   view->SetSizePx(1280, 800);
-  view->SetLogic(request.Logic);
-  if (request.Liver)
+  view->SetLogic(logic);
+  if (liver)
   {
-    view->SetLiverSurface(request.Liver);
+    view->SetLiverSurface(liver);
   }
+  return view;
+}
+
+std::vector<KeyFrameScreenshots::Shot> RenderKeyFrameShots(const ModuleServices& module, const KeyFrameShotRequest& request)
+{
+  vtkSmartPointer<vtkVesselProximityView> view = OffScreenView(module, request.Logic, request.Liver);
   view->SetCameraPreset(request.Camera);
   if (request.Camera == vtkVesselProximityView::CameraPreset::Anterior)
   {

@@ -6,6 +6,8 @@
 #include "vpPoseFile.h"
 #include "vtkVesselProximityView.h"
 
+#include <vtkSmartPointer.h>
+
 #include <string>
 #include <vector>
 
@@ -30,6 +32,10 @@ struct KeyFrameShotRequest
   std::string Folder;            ///< where the screenshots go
   std::string ContactSheetFile;  ///< the contact sheet (keyframes.png); empty: none
 };
+
+/// An off-screen view of the logic (its scene open) with the module's overlays, 1280 x 800, the
+/// liver (may be null) translucent: where a command's pictures are taken.
+vtkSmartPointer<vtkVesselProximityView> OffScreenView(const ModuleServices& module, vtkVesselProximityLogic* logic, vtkPolyData* liver);
 
 /// The screenshots taken, in pose order.
 std::vector<KeyFrameScreenshots::Shot> RenderKeyFrameShots(const ModuleServices& module, const KeyFrameShotRequest& request);

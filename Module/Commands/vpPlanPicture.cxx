@@ -1,6 +1,7 @@
 #include "vpPlanPicture.h"
 
 #include "vpDangerLevels.h"
+#include "vpKeyFrameShots.h"
 #include "vpModuleServices.h"
 #include "vtkVesselProximityLogic.h"
 #include "vtkVesselProximityOverlays.h"
@@ -132,15 +133,7 @@ std::string Caption(const ApproachPlan& plan)
 void RenderPlanPicture(const ModuleServices& module, const PlanPictureRequest& request)
 {
   const ApproachPlan& plan = *request.Plan;
-  vtkNew<vtkVesselProximityView> view;
-  view->SetOverlays(module.CreateWidgetRepresentation());
-  view->SetOffScreen(true);
-  view->SetSizePx(1280, 800);
-  view->SetLogic(request.Logic);
-  if (request.Liver)
-  {
-    view->SetLiverSurface(request.Liver);
-  }
+  vtkSmartPointer<vtkVesselProximityView> view = OffScreenView(module, request.Logic, request.Liver);
   // The instrument at the entry, its path ahead of it in sight (at a later pose its shaft would
   // hide the path behind the tip).
   view->SetPoses(plan.Asked.Poses);

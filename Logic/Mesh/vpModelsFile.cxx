@@ -92,8 +92,9 @@ ModelStructure ParseStructure(const Json& s, const std::string& file, const fs::
     throw InputError(file, StructureText(index) + ": file '" + Printable(relative.string()) + "' is not beside models.json");
   }
   m.File = (folder / relative).string();
-  m.BoundsMm = OptionalNumbers<6>(s, "bounds_mm", file, index);
-  m.CentroidMm = OptionalNumbers<3>(s, "centroid_mm", file, index);
+  // "bounds" and "centroid" as the command line's specification names them, in mm.
+  m.BoundsMm = OptionalNumbers<6>(s, s.contains("bounds_mm") ? "bounds_mm" : "bounds", file, index);
+  m.CentroidMm = OptionalNumbers<3>(s, s.contains("centroid_mm") ? "centroid_mm" : "centroid", file, index);
   m.VolumeMm3 = s.contains("volume_mm3") && s.at("volume_mm3").is_number() ? s.at("volume_mm3").get<double>() : 0.0;
   return m;
 }

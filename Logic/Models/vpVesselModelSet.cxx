@@ -331,7 +331,7 @@ nlohmann::json VesselModelsJson(const VesselModelSet& set)
     doc["structures"].push_back({ { "id", m.Name }, { "name", name }, { "class", m.ClassName }, { "role", ModelRoleName(m.Role) },
       { "display_name", m.DisplayName }, { "label", m.Structures.front()->LabelValue }, { "voxels", m.Voxels },
       { "triangles", m.Surface->GetNumberOfPolys() }, { "volume_mm3", m.VolumeMm3 }, { "voxel_volume_mm3", m.VoxelVolumeMm3 },
-      { "area_mm2", m.AreaMm2 }, { "bounds_mm", m.BoundsMm }, { "centroid_mm", m.CentroidMm }, { "file", m.Name + ".stl" },
+      { "area_mm2", m.AreaMm2 }, { "bounds", m.BoundsMm }, { "centroid", m.CentroidMm }, { "bounds_mm", m.BoundsMm }, { "centroid_mm", m.CentroidMm }, { "file", m.Name + ".stl" },
       { "surface", SurfaceJson(VesselSurface(m.Name, m.Surface)) }, { "sources", sources }, { "build_ms", m.BuildMs } });
     doc["files"].push_back(m.Name + ".stl");
   }

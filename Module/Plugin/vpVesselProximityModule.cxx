@@ -20,7 +20,8 @@ std::string vpVesselProximityModule::AcknowledgementText() const
          "4.0), the DICOM SEG examples of dcmqi (QIICR, BSD 3-clause), highdicom and dcmjs (MIT), TotalSegmentator "
          "example labelmaps (Wasserthal et al., Apache 2.0), the PLUS toolkit model catalogue instruments (BSD) "
          "and the Straizys et al. scalpel holder (MIT). Built on VTK, ITK, DCMTK, "
-         "Embree, Vulkan (Mesa lavapipe), glslang and GLM. Follows the structure of 3D Slicer loadable modules "
+         "Embree, FCL (the whole instrument's reference), Vulkan (Mesa lavapipe), glslang, OpenIGTLink (live tracking), "
+         "liblo and libsndfile (sound) and ALSA. Follows the structure of 3D Slicer loadable modules "
          "and of SlicerIGT's BreachWarning module.";
 }
 

@@ -348,6 +348,8 @@ TEST(VesselModels, IrcadbTumoursBecomeOneClosedModelEachCloseToTheDataSetsMeshes
   EXPECT_EQ(doc["structures"][2]["file"], "tumour_03.stl");
   EXPECT_EQ(doc["structures"][2]["bounds_mm"].size(), 6u);
   EXPECT_EQ(doc["structures"][2]["centroid_mm"].size(), 3u);
+  EXPECT_EQ(doc["structures"][2]["centroid"], doc["structures"][2]["centroid_mm"]) << "the design's name too";
+  EXPECT_EQ(doc["structures"][2]["bounds"], doc["structures"][2]["bounds_mm"]);
   EXPECT_EQ(doc["structures"][2]["voxels"], p4.Models[2].Voxels);
 }
 

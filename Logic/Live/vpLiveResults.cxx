@@ -2,6 +2,7 @@
 
 #include "vpText.h"
 
+#include "vpFrameHeadline.h"
 #include "vpIgtlMessages.h"
 
 #include <nlohmann/json.hpp>
@@ -96,6 +97,7 @@ std::string LiveFrameJson(const TrackedFrame& frame)
   out["level"] = DangerLevelName(frame.Level);
   out["level_class"] = frame.LevelClass >= 0 ? Json(r.Classes[static_cast<std::size_t>(frame.LevelClass)].ClassName) : Json(nullptr);
   out["level_cause"] = frame.LevelClass >= 0 ? Json(DangerCauseName(frame.LevelCause)) : Json(nullptr);
+  out["headline"] = FrameHeadline(frame); // the worse of the vessel level and the margin level, said
   out["tip_level"] = DangerLevelName(frame.TipLevel);
   out["instrument_level"] = frame.InstrumentClassLevels.empty() ? Json(nullptr) : Json(DangerLevelName(frame.InstrumentLevel));
   out["error_bound_mm"] = r.ErrorBoundMm;
@@ -183,10 +185,41 @@ std::string PackLiveStatus(bool tracking)
 
 std::string PackLiveLevelChange(const DangerLevelChange& change)
 {
-  const Json out = { { "frame", change.Frame }, { "time", change.TimeS }, { "from", DangerLevelName(change.From) },
-    { "to", DangerLevelName(change.To) }, { "class", change.ClassName.empty() ? Json(nullptr) : Json(change.ClassName) },
+  const Json out = { { "kind", "vessel" }, { "frame", change.Frame }, { "time", change.TimeS },
+    { "from", DangerLevelName(change.From) }, { "to", DangerLevelName(change.To) },
+    { "class", change.ClassName.empty() ? Json(nullptr) : Json(change.ClassName) },
+    { "cause", change.ClassName.empty() ? Json(nullptr) : Json(DangerCauseName(change.Cause)) },
     { "distance_mm", change.DistanceMm } };
   return PackIgtlString(live::LevelDevice, out.dump(), 3, Now());
+}
+
+std::string PackLiveMarginChange(const MarginLevelChange& change)
+{
+  const Json out = { { "kind", "margin" }, { "frame", change.Frame }, { "time", change.TimeS },
+    { "from", MarginLevelName(change.From) }, { "to", MarginLevelName(change.To) },
+    { "tumour", change.TumourId.empty() ? Json(nullptr) : Json(change.TumourId) }, { "tumour_mm", change.SignedMm } };
+  return PackIgtlString(live::LevelDevice, out.dump(), 3, Now());
+}
+
+std::string LiveDeviceNameClash(const std::vector<std::string>& classNames)
+{
+  for (const char* suffix : { live::ClosestSuffix, live::PointSuffix })
+  {
+    for (std::size_t i = 0; i < classNames.size(); ++i)
+    {
+      for (std::size_t j = i + 1; j < classNames.size(); ++j)
+      {
+        if (LiveClassDevice(classNames[i], suffix) == LiveClassDevice(classNames[j], suffix))
+        {
+          return "classes '" + classNames[i] + "' and '" + classNames[j] + "' would both be sent as " +
+            LiveClassDevice(classNames[i], suffix) + " (an OpenIGTLink device name is at most 20 bytes): one's closest "
+            "point would overwrite the other's in Slicer; name them apart in their first " +
+            std::to_string(IgtlDeviceNameBytes - std::char_traits<char>::length(suffix)) + " letters";
+        }
+      }
+    }
+  }
+  return std::string();
 }
 
 Json LiveLatencyJson(const RunningQuantiles& latencyMs)

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include <string>
+#include <vector>
 
 namespace vp
 {
@@ -67,6 +68,12 @@ std::string PackLiveLost(double timeS, double sincePoseMs);
 std::string PackLiveStatus(bool tracking);
 /// A level change: {"frame", "time", "from", "to", "class", "distance_mm"}.
 std::string PackLiveLevelChange(const DangerLevelChange& change);
+/// A change of the resection margin's level, on the same device: {"kind": "margin", "frame",
+/// "time", "from", "to", "tumour", "tumour_mm"} (a vessel level's change says "kind": "vessel").
+std::string PackLiveMarginChange(const MarginLevelChange& change);
+/// Why two of these classes cannot be sent apart (their device names, cut to 20 bytes, are the
+/// same), or "" when every class has its own.
+std::string LiveDeviceNameClash(const std::vector<std::string>& classNames);
 
 /// What a live run adds to summary.json: "latency_ms", pose in -> results out, {median, p95, max,
 /// frames} (null without a frame), and "link", the link's counts {messages, poses,

@@ -18,6 +18,11 @@ void LiveResultsOutput::OnLevelChange(const DangerLevelChange& change)
   this->Link.Send(PackLiveLevelChange(change));
 }
 
+void LiveResultsOutput::OnMarginChange(const MarginLevelChange& change)
+{
+  this->Link.Send(PackLiveMarginChange(change));
+}
+
 void LiveResultsOutput::OnFrame(const TrackedFrame& frame)
 {
   // The state said when it changes: tracking from the first frame and after each loss.

@@ -23,6 +23,7 @@ public:
   explicit LiveResultsOutput(IgtlLink& link, const LivePoseSource* poses = nullptr);
 
   void OnLevelChange(const DangerLevelChange& change) override;
+  void OnMarginChange(const MarginLevelChange& change) override;
   void OnFrame(const TrackedFrame& frame) override;
   void OnLost(const TrackedPose& lost) override;
 

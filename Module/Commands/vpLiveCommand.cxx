@@ -96,6 +96,21 @@ std::vector<std::string> LiveInputs(const cli::ParsedArguments& args, const Scen
   return inputs;
 }
 
+/// Each class sent to Slicer under a device name of its own, or the run refused before it starts.
+void RefuseDeviceNameClash(const SceneRequest& request)
+{
+  std::vector<std::string> classes;
+  for (const NamedMesh& vessel : request.Vessels)
+  {
+    classes.push_back(vessel.ClassName);
+  }
+  const std::string clash = LiveDeviceNameClash(classes);
+  if (!clash.empty())
+  {
+    throw InputError("--vessels", clash);
+  }
+}
+
 /// The run's folder for -o, its inputs noted; null without -o.
 std::unique_ptr<RunFolder> LiveRunFolder(const cli::ParsedArguments& args, const SceneRequest& request)
 {
@@ -226,6 +241,7 @@ int RunLiveCommand(const cli::ParsedArguments& args, const ModuleServices& modul
   const double durationS = ParseDurationS(args);
   const double start = NowMs();
   const SceneRequest request = ParseRecordedSceneRequest(args);
+  RefuseDeviceNameClash(request);
   ChosenOutputs chosen(args, OutputForLive, "live", LiveInputs(args, request));
   std::unique_ptr<RunFolder> run = LiveRunFolder(args, request);
   vtkSmartPointer<vtkVesselProximityLogic> proximity = module.CreateLogic();

@@ -5,6 +5,7 @@
 // them, and each malformed message for being skipped and counted.
 #include "vpAnalyticShapes.h"
 #include "vpIgtlMessages.h"
+#include "vpFrameHeadline.h"
 #include "vpLiveResults.h"
 #include "vpModelTestSupport.h"
 #include "vpTestSupport.h"
@@ -242,6 +243,60 @@ TEST_F(LiveCommand, AToolNameTheWireCannotCarryIsRefused)
   EXPECT_EQ(std::count(live.Err.begin(), live.Err.end(), '\n'), 1) << live.Err;
   EXPECT_NE(live.Err.find("--tool-name: 'ScalpelTipToTrackerRef' is 22 bytes"), std::string::npos) << live.Err;
   EXPECT_FALSE(std::filesystem::exists(this->Dir + "/out"));
+}
+
+// Two classes whose device names, cut to the wire's 20 bytes, are one: in Slicer one's closest
+// point would overwrite the other's, so the session is refused before it starts.
+TEST_F(LiveCommand, TwoClassesTheWireCannotTellApartAreRefused)
+{
+  EXPECT_EQ(vp::LiveDeviceNameClash({ "portal_vein", "hepatic_vein", "hepatic_artery" }), "");
+  EXPECT_NE(vp::LiveDeviceNameClash({ "portal_vein_branch_1", "portal_vein_branch_2" }).find(
+              "classes 'portal_vein_branch_1' and 'portal_vein_branch_2' would both be sent as PortalVeinBraClosest"),
+    std::string::npos);
+  const std::string file = this->Vessels.substr(this->Vessels.find('=') + 1);
+  const ToolRun live = vp::test::RunTool(this->Dir, "live --vessels portal_vein_branch_1=" + file + ",portal_vein_branch_2=" + file +
+    " --scalpel " + this->Scalpel + " --igtl-listen 0 --tool-name Stylus --duration-s 1 -o " + this->Dir + "/out");
+  EXPECT_EQ(live.ExitCode, 1) << live.Err;
+  EXPECT_EQ(std::count(live.Err.begin(), live.Err.end(), '\n'), 1) << live.Err;
+  EXPECT_NE(live.Err.find("--vessels: classes 'portal_vein_branch_1' and 'portal_vein_branch_2'"), std::string::npos) << live.Err;
+  EXPECT_FALSE(std::filesystem::exists(this->Dir + "/out"));
+}
+
+// A level change says its cause and its kind; the margin's changes go out on the same device; the
+// frame says its headline, the worse of the vessel level and the margin level.
+TEST(LiveResults, LevelChangesSayTheirCauseAndTheMarginsToo)
+{
+  vp::DangerLevelChange vessel;
+  vessel.To = vp::DangerLevel::Breach;
+  vessel.ClassName = "hepatic_vein";
+  vessel.Cause = vp::DangerCause::Instrument;
+  const auto body = [](const std::string& packed) {
+    const vp::IgtlHeader h = vp::ParseIgtlHeader(reinterpret_cast<const unsigned char*>(packed.data()));
+    EXPECT_EQ(h.Device, "VesselProximityLevel");
+    unsigned encoding = 0;
+    std::string text;
+    EXPECT_EQ(vp::DecodeIgtlString(reinterpret_cast<const unsigned char*>(packed.data()),
+                std::vector<unsigned char>(packed.begin() + vp::IgtlHeaderBytes, packed.end()), encoding, text),
+      "");
+    return nlohmann::json::parse(text);
+  };
+  const nlohmann::json v = body(vp::PackLiveLevelChange(vessel));
+  EXPECT_EQ(v["kind"], "vessel");
+  EXPECT_EQ(v["cause"], vp::DangerCauseName(vp::DangerCause::Instrument));
+  EXPECT_EQ(v["to"], "breach");
+  vp::MarginLevelChange margin;
+  margin.From = vp::MarginLevel::Near;
+  margin.To = vp::MarginLevel::Violated;
+  margin.TumourId = "tumour_03";
+  margin.SignedMm = 3.5;
+  const nlohmann::json m = body(vp::PackLiveMarginChange(margin));
+  EXPECT_EQ(m["kind"], "margin");
+  EXPECT_EQ(m["tumour"], "tumour_03");
+  EXPECT_EQ(m["to"], "violated");
+  EXPECT_EQ(m["tumour_mm"], 3.5);
+  vp::TrackedFrame frame;
+  const nlohmann::json f = nlohmann::json::parse(vp::LiveFrameJson(frame));
+  EXPECT_EQ(f["headline"], vp::FrameHeadline(frame));
 }
 
 // Ctrl-C before any pose came: the session ends as a signal ends it (130), but says why first,

@@ -91,6 +91,13 @@ vp::cli::ParameterGroup SettingsGroup()
   threshold("cautionMm", "Caution (mm)", defaults.CautionMm, "Caution below this distance.");
   threshold("warningMm", "Warning (mm)", defaults.WarningMm, "Warning below this distance.");
   threshold("dangerMm", "Danger (mm)", defaults.DangerMm, "Danger below this distance (breach: inside a vessel).");
+  settings.Parameters.push_back(Parameter(ParameterType::Boolean, "strict")
+                                  .SetLongFlag("strict")
+                                  .SetLabel("Refuse a doubtful recording")
+                                  .SetDescription("Refuse the run, writing nothing, when the poses look misread (none "
+                                                  "near the vessels, metres read as millimetres, a mirrored frame, "
+                                                  "milliseconds read as seconds) instead of reporting it in Warnings.")
+                                  .SetDefault("false"));
   return settings;
 }
 
@@ -164,6 +171,17 @@ vp::cli::ParameterGroup ResultsGroup()
                              .SetLabel("Worst level")
                              .SetDescription("The worst danger level reached, of the tip or the whole instrument: safe, "
                                              "caution, warning, danger or breach."));
+  out.Parameters.push_back(Parameter(ParameterType::String, "worstLevelCause")
+                             .SetChannel(Channel::Output)
+                             .SetLabel("Worst level's cause")
+                             .SetDescription("What set the worst level: tip, instrument (the whole instrument's surface "
+                                             "came closer than the tip), or none when safe all along."));
+  out.Parameters.push_back(Parameter(ParameterType::String, "warnings")
+                             .SetChannel(Channel::Output)
+                             .SetLabel("Warnings")
+                             .SetDescription("Why the poses may be misread (none near the vessels, units, a mirrored "
+                                             "frame), one per line; empty when none. Strict refuses the run instead.")
+                             .SetDefault(""));
   out.Parameters.push_back(Parameter(ParameterType::String, "worstMarginLevel")
                              .SetChannel(Channel::Output)
                              .SetLabel("Worst margin level")
@@ -183,6 +201,13 @@ vp::cli::ParameterGroup ResultsGroup()
                                .SetLabel(std::string(v.Label) + " closest (mm)")
                                .SetDescription(std::string("The tip's smallest signed distance to the ") + v.ClassName +
                                  " over the run, negative inside (minus the penetration depth); no value when never "
+                                 "within range.")
+                               .SetDefault(""));
+    out.Parameters.push_back(Parameter(ParameterType::String, std::string(v.Parameter) + "InstrumentMinimumMm")
+                               .SetChannel(Channel::Output)
+                               .SetLabel(std::string(v.Label) + " instrument closest (mm)")
+                               .SetDescription(std::string("The whole instrument's closest approach to the ") + v.ClassName +
+                                 " over the run, negative inside (minus its deepest penetration); no value when never "
                                  "within range.")
                                .SetDefault(""));
   }
@@ -317,27 +342,76 @@ private:
   vp::RunFolder Run;
 };
 
-/// What Slicer shows of the run: frames, the worst levels and each class's nearest tip.
+/// What set the run's worst level: the tip, the whole instrument (worse than the tip), or none.
+std::string WorstLevelCause(const vp::TrackingSummary& summary)
+{
+  if (summary.GetWorstLevel() == vp::DangerLevel::Safe)
+  {
+    return "none";
+  }
+  return summary.GetInstrumentMeasured() && summary.GetWorstInstrumentLevel() > summary.GetWorstTipLevel() ? "instrument" : "tip";
+}
+
+/// Each class's closest approach, the tip's and the whole instrument's (negative inside: the
+/// deepest penetration), as Slicer shows them.
+void SetClassResults(const vp::TrackingSummary& summary, vp::cli::ReturnValues& results)
+{
+  for (const vp::cli::VesselClassParameter& v : vp::cli::VesselClassParameters())
+  {
+    for (std::size_t c = 0; c < summary.GetClassNames().size(); ++c)
+    {
+      if (summary.GetClassNames()[c] != v.ClassName)
+      {
+        continue;
+      }
+      const vp::ClassMinimum& m = summary.GetTipMinimum()[c];
+      if (m.Seen)
+      {
+        results.Set(std::string(v.Parameter) + "MinimumMm", m.Inside ? -m.DistanceMm : m.DistanceMm);
+      }
+      const bool deep = c < summary.GetPenetrationMaximum().size() && summary.GetPenetrationMaximum()[c].Known &&
+        summary.GetPenetrationMaximum()[c].DepthFrame >= 0;
+      if (deep)
+      {
+        results.Set(std::string(v.Parameter) + "InstrumentMinimumMm", -summary.GetPenetrationMaximum()[c].DepthMm);
+      }
+      else if (c < summary.GetSurfaceMinimum().size() && summary.GetSurfaceMinimum()[c].Seen)
+      {
+        results.Set(std::string(v.Parameter) + "InstrumentMinimumMm", summary.GetSurfaceMinimum()[c].DistanceMm);
+      }
+    }
+  }
+}
+
+/// What Slicer shows of the run: frames, the worst levels and their cause, each class's closest
+/// approaches.
 void SetResults(const vp::TrackingSummary& summary, vp::cli::ReturnValues& results)
 {
   results.Set("frames", summary.GetNumberOfFrames());
   results.Set("worstLevel", std::string(vp::DangerLevelName(summary.GetWorstLevel())));
+  results.Set("worstLevelCause", WorstLevelCause(summary));
   if (!summary.GetTumours().empty())
   {
     results.Set("worstMarginLevel", std::string(vp::MarginLevelName(summary.GetWorstMarginLevel())));
     results.Set("tumourMinimumMm", summary.GetTumours()[0].MarginMinMm);
   }
-  for (const vp::cli::VesselClassParameter& v : vp::cli::VesselClassParameters())
+  SetClassResults(summary, results);
+}
+
+/// The run's warnings about its poses, one a line; under strict, the first refuses the run
+/// before anything is placed (nothing on stderr: a Slicer CLI's success is silent).
+std::string CheckedWarnings(const std::vector<vp::TrajectoryWarning>& warnings, bool strict, const std::string& posesFile)
+{
+  if (strict && !warnings.empty())
   {
-    for (std::size_t c = 0; c < summary.GetClassNames().size(); ++c)
-    {
-      const vp::ClassMinimum& m = summary.GetTipMinimum()[c];
-      if (summary.GetClassNames()[c] == v.ClassName && m.Seen)
-      {
-        results.Set(std::string(v.Parameter) + "MinimumMm", m.Inside ? -m.DistanceMm : m.DistanceMm);
-      }
-    }
+    throw vp::InputError(posesFile, warnings.front().Text + "; strict refuses the run");
   }
+  std::string text;
+  for (const vp::TrajectoryWarning& w : warnings)
+  {
+    text += (text.empty() ? "" : "\n") + w.Text;
+  }
+  return text;
 }
 
 void Run(const vp::cli::ParsedArguments& args, vp::cli::ReturnValues& results)
@@ -368,9 +442,11 @@ void Run(const vp::cli::ParsedArguments& args, vp::cli::ReturnValues& results)
   {
     throw vp::InputError(posesFile, "the replay was interrupted");
   }
+  const std::string warnings = CheckedWarnings(session.GetWarnings(), args.GetBoolean("strict"), posesFile);
   progress.Stage("Writing the outputs", 0.97);
   folder.Place(args);
   SetResults(session.GetSummary(), results);
+  results.Set("warnings", warnings);
   progress.Finish();
 }
 } // namespace

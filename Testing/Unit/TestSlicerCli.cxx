@@ -1149,6 +1149,13 @@ TEST_F(SlicerCli, TrackRunsAsSlicerRunsIt)
   // lowest (30, 0, 10) sqrt(15^2 + 30^2 + 20^2) - 10 = 29.05 mm from it.
   EXPECT_NEAR(Number(v, "tumourMinimumMm"), std::sqrt(15.0 * 15 + 30 * 30 + 20 * 20) - 10.0, 0.05);
   EXPECT_EQ(v.at("worstMarginLevel"), "clear");
+  EXPECT_TRUE(v.at("worstLevelCause") == "tip" || v.at("worstLevelCause") == "instrument") << v.at("worstLevelCause");
+  EXPECT_EQ(v.at("warnings"), "") << "poses among the vessels, in mm: nothing to doubt";
+  const auto summaryJson = nlohmann::json::parse(Slurp(values.at("summary")));
+  const auto& portal = summaryJson["classes"]["portal_vein"];
+  const bool entered = portal["penetration_maximum"].is_object() && portal["penetration_maximum"]["depth_frame"].get<int>() >= 0;
+  EXPECT_NEAR(Number(v, "portalVeinInstrumentMinimumMm"),
+    entered ? -portal["penetration_maximum"]["depth_mm"].get<double>() : portal["surface_minimum"]["distance_mm"].get<double>(), 1e-4);
 
   const auto frames = ReadCsvTable(values.at("framesTable"));
   EXPECT_EQ(frames->GetNumberOfRows(), 3);
@@ -1194,6 +1201,41 @@ TEST_F(SlicerCli, TrackRunsAsSlicerRunsIt)
   {
     EXPECT_EQ(entry.path().filename().string().rfind(".vesselproximity-track-", 0), std::string::npos)
       << "the working folder is gone: " << entry.path();
+  }
+}
+
+// A recording that looks misread (here: no pose near any vessel, as metres read as millimetres
+// would be) is said in Warnings, with nothing on stderr; with strict it is refused in one line
+// and nothing is written.
+TEST_F(SlicerCli, TrackSaysADoubtfulRecordingAndStrictRefusesIt)
+{
+  const SemModule m = this->Xml(TrackProgram);
+  const std::string poses = this->Dir + "/far.csv";
+  std::ofstream(poses) << "time,x,y,z,qw,qx,qy,qz\n0,900,900,900,1,0,0,0\n0.1,901,900,900,1,0,0,0\n";
+  for (const bool strict : { false, true })
+  {
+    const std::string params = this->Dir + "/far" + std::to_string(strict) + ".params";
+    std::map<std::string, std::string> values = { { "portalVein", this->Phantom("portal_vein") }, { "poses", poses },
+      { "framesTable", this->Temporary(strict ? "vtkMRMLTableNodeS.csv" : "vtkMRMLTableNodeF.csv") } };
+    if (strict)
+    {
+      values["strict"] = "true";
+    }
+    const ToolRun r = RunCli(this->Dir, TrackProgram, SlicerCommandLine(m, values, params));
+    if (!strict)
+    {
+      ASSERT_EQ(r.ExitCode, 0) << r.Err;
+      EXPECT_EQ(r.Err, "");
+      EXPECT_NE(ReadReturnFile(params).at("warnings"), "");
+      EXPECT_EQ(ReadReturnFile(params).at("worstLevelCause"), "none");
+      continue;
+    }
+    EXPECT_EQ(r.ExitCode, 1) << r.Err;
+    EXPECT_EQ(std::count(r.Err.begin(), r.Err.end(), '\n'), 1) << r.Err;
+    EXPECT_NE(r.Err.find(poses + ": "), std::string::npos) << r.Err;
+    EXPECT_NE(r.Err.find("strict refuses the run"), std::string::npos) << r.Err;
+    EXPECT_FALSE(fs::exists(values.at("framesTable")));
+    EXPECT_FALSE(fs::exists(params));
   }
 }
 

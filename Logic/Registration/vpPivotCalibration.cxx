@@ -84,6 +84,7 @@ PivotCalibration CalibratePivot(const std::vector<std::array<double, 16>>& poses
     const Point3 tip = TransformPoint(m, result.TipInToolMm);
     const double dx = tip[0] - x[3], dy = tip[1] - x[4], dz = tip[2] - x[5];
     sum += dx * dx + dy * dy + dz * dz;
+    result.PoseErrorsMm.push_back(std::sqrt(dx * dx + dy * dy + dz * dz));
   }
   result.RmseMm = std::sqrt(sum / static_cast<double>(poses.size()));
   return result;

@@ -15,6 +15,7 @@ struct PivotCalibration
   Point3 PivotInWorldMm{}; ///< the fixed point the tip rested on
   double RmseMm = 0.0;     ///< RMS over poses of |pose(tip) - pivot|
   double RotationSpreadDeg = 0.0; ///< the largest rotation between the first pose and any other
+  std::vector<double> PoseErrorsMm; ///< each pose's |pose(tip) - pivot|, in their order
 };
 
 /// Pivot calibration as SlicerIGT does it: the tool is tracked while its tip rests on one point

@@ -20,6 +20,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -133,16 +134,23 @@ Json RunIcp(const cli::ParsedArguments& args, std::string& said)
       SurfaceRegistration::MaximumMedianResidualMm, 100.0 * SurfaceRegistration::MaximumFarFraction);
     throw InputError(args.GetString("points"), why);
   }
-  Say(said, "icp: %zu points from %s, best of %d starts, %d iterations, mean residual %.3f mm (median %.3f, p95 %.3f)\n",
-    points.size(), start.c_str(), r.Starts, r.Iterations, r.MeanResidualMm, r.MedianResidualMm, r.P95ResidualMm);
-  return { { "method", "icp" }, { "model_to_world", MatrixJson(r.ModelToWorld) }, { "mean_residual_mm", r.MeanResidualMm },
+  double squares = 0.0;
+  for (double e : r.ResidualsMm)
+  {
+    squares += e * e;
+  }
+  const double fre = std::sqrt(squares / static_cast<double>(std::max<std::size_t>(1, r.ResidualsMm.size())));
+  Say(said, "icp: %zu points from %s, best of %d starts, %d iterations, FRE (RMS) %.3f mm, mean residual %.3f mm (median %.3f, "
+    "p95 %.3f)\n", points.size(), start.c_str(), r.Starts, r.Iterations, fre, r.MeanResidualMm, r.MedianResidualMm, r.P95ResidualMm);
+  return { { "method", "icp" }, { "model_to_world", MatrixJson(r.ModelToWorld) }, { "fre_mm", fre },
+    { "point_errors_mm", r.ResidualsMm }, { "mean_residual_mm", r.MeanResidualMm },
     { "median_residual_mm", r.MedianResidualMm }, { "p95_residual_mm", r.P95ResidualMm }, { "far_fraction", r.FarFraction },
     { "iterations", r.Iterations }, { "starts", r.Starts }, { "points", points.size() }, { "initial", start } };
 }
 
 Json RunPivot(const cli::ParsedArguments& args, std::string& said)
 {
-  const auto poses = ReadPoseFile(args.GetString("poses"), ParsePoseReading(args));
+  const auto poses = ReadPoseFile(args.GetString(args.IsSet("sequence") ? "sequence" : "poses"), ParsePoseReading(args));
   std::vector<std::array<double, 16>> matrices;
   for (const auto& p : poses)
   {
@@ -155,7 +163,10 @@ Json RunPivot(const cli::ParsedArguments& args, std::string& said)
   // A translation to the tip: placing the model by it puts its origin at the tip.
   std::array<double, 16> tipToTool{ 1, 0, 0, r.TipInToolMm[0], 0, 1, 0, r.TipInToolMm[1], 0, 0, 1, r.TipInToolMm[2], 0, 0, 0,
     1 };
-  return { { "method", "pivot" }, { "tip_mm", PointJson(r.TipInToolMm) }, { "pivot_mm", PointJson(r.PivotInWorldMm) },
+  // model_to_world: the tip's frame in the tool's, which is the calibration's world; fre_mm: the
+  // poses' RMS miss of the pivot, as landmarks' FRE is the points' RMS miss.
+  return { { "method", "pivot" }, { "model_to_world", MatrixJson(tipToTool) }, { "fre_mm", r.RmseMm },
+    { "point_errors_mm", r.PoseErrorsMm }, { "tip_mm", PointJson(r.TipInToolMm) }, { "pivot_mm", PointJson(r.PivotInWorldMm) },
     { "rmse_mm", r.RmseMm }, { "rotation_spread_deg", r.RotationSpreadDeg }, { "poses", poses.size() },
     { "tip_to_tool", MatrixJson(tipToTool) } };
 }
@@ -176,10 +187,12 @@ cli::ModuleDescription DescribeRegisterCommand()
     "to neighbouring minima (2 and 4 degrees, 1.5 and 3 mm) while the fit improves; reports the residuals, and "
     "refuses a fit whose median residual exceeds 1 mm or that leaves more than 3.75% of the points farther than 4 "
     "times it (not noise: a wrong minimum, or points of another instrument).\n"
-    "pivot (needs --poses): the tip offset in tool coordinates from tool-to-world poses pivoting about the tip "
-    "(pose file as for track); reports the RMSE. The result, with \"tip_mm\", serves as the scalpel's tip "
+    "pivot (needs --poses, or --sequence: a PLUS recording with --tool and --reference): the tip offset in tool "
+    "coordinates from tool-to-world poses pivoting about the tip (pose file as for track); reports each pose's miss "
+    "of the pivot and their RMS (fre_mm). The result, with \"tip_mm\", serves as the scalpel's tip "
     "definition (FILE.json beside the model, or read by --tip's caller).\n"
-    "RESULT.json: {\"method\", \"model_to_world\": [16, row-major], error fields, ...}.",
+    "RESULT.json: {\"method\", \"model_to_world\": [16, row-major] (pivot: the tip in tool coordinates), \"fre_mm\", "
+    "\"point_errors_mm\" (each point's, or pose's, error), ...}.",
     {
       { "Registration", "",
         {
@@ -195,7 +208,7 @@ cli::ModuleDescription DescribeRegisterCommand()
         { input("model-points", "M.csv", "Points in model coordinates."),
           input("world-points", "W.csv", "The same points in world coordinates."),
           input("sequence", "REC.igs.mha",
-            "Instead of --world-points: a recording (PLUS sequence or pose file, --tool and --reference as for track) "
+            "Instead of --world-points (pivot: instead of --poses, the pivoting itself): a recording (PLUS sequence or pose file, --tool and --reference as for track) "
             "of a stylus resting about a second on each landmark in turn, pivoting on it; the rests are matched to "
             "--model-points in order."),
           input("tip-transform", "T.txt", "With --sequence: the stylus tip in tool coordinates, a 4x4 matrix (16 numbers, row-major).") } },
@@ -245,7 +258,10 @@ int RunRegisterCommand(const cli::ParsedArguments& args, const ModuleServices&)
   }
   else // pivot: the parser accepts only the three
   {
-    require({ { "poses", "--poses" } });
+    if (args.IsSet("poses") == args.IsSet("sequence"))
+    {
+      throw InputError("--poses/--sequence", "register pivot takes its poses from one of --poses FILE and --sequence REC.igs.mha");
+    }
     result = RunPivot(args, said);
   }
   WriteFileAtomically(args.GetString("output"), result.dump(2) + "\n");

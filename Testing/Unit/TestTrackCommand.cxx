@@ -695,8 +695,9 @@ TEST_F(TrackCommand, RegisterWritesTheTransformAndTheError)
   EXPECT_EQ(j["point_errors_mm"].size(), 4u);
 
   // Pivot: the tool swings about a tip at (0, 0, -120) in tool coordinates resting on (10, 20, 30).
-  std::ostringstream poses;
+  std::ostringstream poses, sequence;
   poses.precision(17);
+  sequence.precision(17);
   int frame = 0;
   for (double a : { -30.0, -15.0, 0.0, 15.0, 30.0 })
   {
@@ -708,13 +709,18 @@ TEST_F(TrackCommand, RegisterWritesTheTransformAndTheError)
         { std::sin(ax) * std::sin(bx), std::cos(ax), -std::sin(ax) * std::cos(bx) },
         { -std::cos(ax) * std::sin(bx), std::sin(ax), std::cos(ax) * std::cos(bx) } };
       const double tip[3] = { 0, 0, -120 }, pivot[3] = { 10, 20, 30 };
-      poses << frame++;
+      poses << frame;
+      sequence << "Seq_Frame" << frame << "_StylusToTrackerTransform =";
       for (int row = 0; row < 3; ++row)
       {
         const double t = pivot[row] - (R[row][0] * tip[0] + R[row][1] * tip[1] + R[row][2] * tip[2]);
         poses << "," << R[row][0] << "," << R[row][1] << "," << R[row][2] << "," << t;
+        sequence << " " << R[row][0] << " " << R[row][1] << " " << R[row][2] << " " << t;
       }
       poses << ",0,0,0,1\n";
+      sequence << " 0 0 0 1\nSeq_Frame" << frame << "_StylusToTrackerTransformStatus = OK\nSeq_Frame" << frame
+               << "_Timestamp = " << frame << "\n";
+      ++frame;
     }
   }
   const std::string posesFile = this->WriteText("pivot.csv", poses.str());
@@ -725,6 +731,23 @@ TEST_F(TrackCommand, RegisterWritesTheTransformAndTheError)
   EXPECT_NEAR(pj["tip_mm"][2].get<double>(), -120.0, 0.01);
   EXPECT_NEAR(pj["pivot_mm"][0].get<double>(), 10.0, 0.01);
   EXPECT_LT(pj["rmse_mm"].get<double>(), 0.01);
+  EXPECT_EQ(pj["fre_mm"], pj["rmse_mm"]);
+  EXPECT_EQ(pj["point_errors_mm"].size(), 10u) << "each pose's miss of the pivot";
+  EXPECT_EQ(pj["model_to_world"], pj["tip_to_tool"]);
+  // The same pivoting recorded by PLUS: the sequence's StylusToTracker, the same tip.
+  const std::string recording = this->WriteText("pivot.igs.mha", "ObjectType = Image\nNDims = 3\nDimSize = 0 0 " +
+      std::to_string(frame) + "\n" + sequence.str() + "ElementDataFile = LOCAL\n");
+  const ToolRun plus = RunTool(this->Dir, "register pivot --sequence " + recording + " --tool Stylus -o " + this->Dir + "/pivot-plus.json");
+  ASSERT_EQ(plus.ExitCode, 0) << plus.Err;
+  std::ifstream plusIn(this->Dir + "/pivot-plus.json");
+  const nlohmann::json pp = nlohmann::json::parse(plusIn);
+  for (int k = 0; k < 3; ++k)
+  {
+    EXPECT_NEAR(pp["tip_mm"][k].get<double>(), pj["tip_mm"][k].get<double>(), 1e-6) << k;
+  }
+  const ToolRun both = RunTool(this->Dir, "register pivot --poses " + posesFile + " --sequence " + recording + " -o " + this->Dir + "/b.json");
+  EXPECT_EQ(both.ExitCode, 1);
+  EXPECT_NE(both.Err.find("--poses/--sequence: register pivot takes its poses from one of"), std::string::npos) << both.Err;
 
   const ToolRun bad = RunTool(this->Dir, "register landmarks --model-points " + model + " --world-points " +
       this->WriteText("three.csv", "0,0,0\n1,0,0\n2,0,0\n") + " -o " + this->Dir + "/x.json");
@@ -1074,6 +1097,8 @@ TEST_F(TrackCommand, RegisterIcpFitsFromNearAndRefusesAFitThatDoesNotExplainTheP
   EXPECT_LT(result["mean_residual_mm"].get<double>(), 0.1);
   EXPECT_LE(result["far_fraction"].get<double>(), 0.0375);
   EXPECT_NEAR(result["model_to_world"][7].get<double>(), 30.0, 0.1) << "the tip's y";
+  EXPECT_GE(result["fre_mm"].get<double>(), result["mean_residual_mm"].get<double>()) << "the RMS is at least the mean";
+  EXPECT_EQ(result["point_errors_mm"].size(), result["points"].get<std::size_t>());
 
   const std::string other = measure(120.0, "other.csv");
   const std::string refused = this->Dir + "/refused.json";

@@ -176,7 +176,8 @@ private:
 };
 
 /// The session's closing lines on stdout (outDir: the run's folder as given, empty without -o).
-void PrintLiveEnd(IgtlLink& stream, std::size_t frames, std::size_t lostPoses, const RunningQuantiles& latency, const std::string& outDir)
+void PrintLiveEnd(IgtlLink& stream, std::size_t frames, std::size_t lostPoses, const RunningQuantiles& latency,
+  const std::string& frameTimes, const std::string& outDir)
 {
   PrintLinkEvents("live", stream);
   const IgtlLinkCounts counts = stream.GetCounts();
@@ -193,6 +194,10 @@ void PrintLiveEnd(IgtlLink& stream, std::size_t frames, std::size_t lostPoses, c
   {
     std::printf("  latency pose in -> results out: median %.4f ms, p95 %.4f ms, max %.4f ms\n", latency.Quantile(0.5),
       latency.Quantile(0.95), latency.Quantile(1.0));
+  }
+  if (frames > 0)
+  {
+    std::printf("  %s\n", frameTimes.c_str());
   }
   if (!outDir.empty())
   {
@@ -259,7 +264,8 @@ int RunLiveCommand(const cli::ParsedArguments& args, const ModuleServices& modul
   poses.SetIdleCallback([&stream] { PrintLinkEvents("live", *stream); });
   LiveResultsOutput results(*stream, &poses);
   LiveStatus status(*stream, results, staleMs);
-  std::vector<FrameOutput*> outputs = { &results, &status };
+  TrackingSummary frameTimes; // the frames' own times and those over the budget, said at the end
+  std::vector<FrameOutput*> outputs = { &results, &status, &frameTimes };
   outputs.insert(outputs.end(), chosen.Get().begin(), chosen.Get().end());
   std::size_t frames = 0, lostPoses = 0;
   if (run)
@@ -282,7 +288,8 @@ int RunLiveCommand(const cli::ParsedArguments& args, const ModuleServices& modul
     lostPoses = session.GetNumberOfLostPoses();
   }
   chosen.SayProblems();
-  PrintLiveEnd(*stream, frames, lostPoses, results.GetLatencyMs(), run ? args.GetString("output") : std::string());
+  PrintLiveEnd(*stream, frames, lostPoses, results.GetLatencyMs(),
+    FrameTimesText(frameTimes, proximity->GetTrackingLogic()->GetFrameBudgetMs()), run ? args.GetString("output") : std::string());
   return 0;
 }
 } // namespace vp

@@ -332,6 +332,8 @@ TEST_F(LiveCommand, At50HzEveryFrameEqualsTrackOnTheSamePoses)
   EXPECT_GT(summary.at("latency_ms").at("p95").get<double>(), 0.0);
   EXPECT_EQ(summary.at("latency_ms").at("frames").get<std::size_t>(), frames);
   EXPECT_NE(Slurp(this->Dir + "/live.out").find("latency pose in -> results out: median"), std::string::npos);
+  EXPECT_NE(Slurp(this->Dir + "/live.out").find("  frame median "), std::string::npos) << "the frames' own times, and the budget";
+  EXPECT_NE(Slurp(this->Dir + "/live.out").find(" frames over the 16.7 ms budget"), std::string::npos);
   EXPECT_GT(summary.at("haptic").at("max_force_n").get<double>(), 1.0) << "the tip ends 5 mm inside";
   // The tip passes 11.5 mm from the tumour's centre (y 0.5 against 12): 6.5 mm from its surface,
   // near its 5 mm margin.

@@ -2,6 +2,7 @@
 #define vpApproachPlan_h
 
 #include "vpDangerLevels.h"
+#include "vpMarginLevels.h"
 #include "vpPoseFile.h"
 
 #include <vtkPolyData.h>
@@ -38,7 +39,7 @@ struct ApproachPlanRequest
   std::optional<double> StandOffMm;
   std::optional<std::array<double, 6>> LiverBoundsMm;
   double StepMm = 1.0;
-  double MarginMm = 5.0;
+  double MarginMm = MarginSettings().MarginMm; ///< the resection margin's default: the tip ends as deep as track's margin
   /// The cone searched for a safer approach: directions within SearchDeg of the asked one, on rings
   /// SearchStepDeg apart (and as far apart around each ring), every one aimed at the target's centre
   /// from as far back as the asked one. 0: no search.
@@ -48,7 +49,7 @@ struct ApproachPlanRequest
   double TimeStepS = 0.1;
 
   static constexpr double DefaultStandOffMm = 60.0;
-  static constexpr double MaximumMarginMm = 50.0;
+  static constexpr double MaximumMarginMm = MarginSettings::MaximumMm;
   static constexpr double MaximumSearchDeg = 60.0;
   static constexpr int MaximumSteps = 100000;
 };
@@ -97,7 +98,7 @@ struct ApproachPlan
   std::string TargetName;
   std::array<double, 3> TargetCentreMm{};
   double StepMm = 1.0;
-  double MarginMm = 5.0;
+  double MarginMm = MarginSettings().MarginMm;
   double TimeStepS = 0.1;
   double RangeMm = 0.0; ///< the engine's range: classes further are out of range
   PlannedApproach Asked;

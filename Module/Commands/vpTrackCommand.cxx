@@ -115,8 +115,8 @@ void PrintSummary(const TrackingRecorder& session, vtkVesselProximityLogic* prox
     summary.GetInstrumentMeasured() ? DangerLevelName(summary.GetWorstInstrumentLevel()) : "not measured");
   for (const TumourMarginSummary& t : summary.GetTumours())
   {
-    std::printf("  %s: smallest margin %.3f mm%s; time", TumourNameOf(t.Id, tumours).c_str(), t.MarginMinMm,
-      t.MarginMinMm < 0.0 ? " (inside)" : "");
+    const char* inside = t.MarginMinMm < 0.0 ? " (inside)" : "";
+    std::printf("  %s: smallest margin %.3f mm%s; time", TumourNameOf(t.Id, tumours).c_str(), t.MarginMinMm, inside);
     for (int l = 0; l < NumberOfMarginLevels; ++l)
     {
       std::printf(" %s %.2f s", MarginLevelName(static_cast<MarginLevel>(l)), t.TimeInLevelS[l]);
@@ -247,13 +247,12 @@ int RunTrackCommand(const cli::ParsedArguments& args, const ModuleServices& modu
   const std::size_t poseCount = PoseStream::CountPoses(posesFile, reading);
   SceneRequest request = ParseRecordedSceneRequest(args);
   request.LiverFile = args.GetString("liver");
-  const std::vector<std::string> inputs = TrackInputs(posesFile, request);
-  const ChosenOutputs chosen(args, OutputForTrack, "track", inputs);
+  const ChosenOutputs chosen(args, OutputForTrack, "track", TrackInputs(posesFile, request));
   // Pictures need a display: one that cannot be had refuses the run before it computes anything.
   const bool screenshots = args.GetBoolean("screenshots");
   VirtualDisplay display;
   RequireDisplayFor(screenshots, display);
-  run.SetInputs(inputs);
+  run.SetInputs(TrackInputs(posesFile, request));
   vtkSmartPointer<vtkVesselProximityLogic> proximity = module.CreateLogic();
   StageProgress progress("track", proximity);
   const OpenedScene scene = proximity->OpenScene(request);

@@ -260,7 +260,7 @@ std::string CohortCsv(const std::vector<CohortCaseResult>& results)
     // Then each tumour, its own margin: the case's smallest above hides which tumour it was.
     for (const CohortTumourRow& t : r.Tumours)
     {
-      csv += r.Case + "," + t.Id + ",," + Number(t.SurfaceMinMm) + ",,," + Number(t.MarginMinMm) + ",\n";
+      csv += r.Case + "," + CsvCell(t.Id) + ",," + Number(t.SurfaceMinMm) + ",,," + Number(t.MarginMinMm) + ",\n";
     }
   }
   return csv;

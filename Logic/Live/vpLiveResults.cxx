@@ -205,6 +205,18 @@ std::string LiveDeviceNameClash(const std::vector<std::string>& classNames)
 {
   for (const char* suffix : { live::ClosestSuffix, live::PointSuffix })
   {
+    for (const std::string& className : classNames)
+    {
+      const std::string device = LiveClassDevice(className, suffix);
+      for (const char* fixed : { live::FrameDevice, live::LevelDevice, live::HapticDevice, live::PointsDevice, live::StatusDevice })
+      {
+        if (device == fixed)
+        {
+          return "class '" + className + "' would be sent as " + device + ", the name of the session's own " +
+            "messages: name the class otherwise";
+        }
+      }
+    }
     for (std::size_t i = 0; i < classNames.size(); ++i)
     {
       for (std::size_t j = i + 1; j < classNames.size(); ++j)

@@ -135,6 +135,11 @@ std::vector<NamedMesh> TumourEntries(const std::vector<std::string>& entries, co
       continue;
     }
     std::error_code ec;
+    if (entry.find('=') != std::string::npos && IsModelsPath(entry.substr(entry.find('=') + 1)))
+    {
+      throw InputError(source, "'" + Printable(entry) + "': a models folder takes no ID= (its tumours keep their own ids: "
+        "tumour_01, ...); give the folder alone, or ID=FILE for one tumour's surface");
+    }
     if (std::filesystem::is_directory(entry.substr(entry.find('=') + 1), ec))
     {
       throw InputError(entry.substr(entry.find('=') + 1), "is a folder without a models.json: give a tumour's surface, or "

@@ -118,6 +118,10 @@ VesselLabelTable VesselLabelTable::Parse(const std::string& json, const std::str
       table.ClassNames.push_back(name);
       table.Colors[name] = entry.value("color", std::array<double, 3>{ 0.8, 0.8, 0.8 });
       table.Roles[name] = ParseRole(entry, name, source);
+      for (const auto& word : entry.value("name_excludes", std::vector<std::string>{}))
+      {
+        table.Excludes[name].push_back(Squeezed(Normalized(word)));
+      }
       for (const auto& word : entry.value("name_contains", std::vector<std::string>{}))
       {
         const std::string part = Squeezed(Normalized(word));
@@ -159,18 +163,34 @@ VesselLabelTable VesselLabelTable::Parse(const std::string& json, const std::str
   return table;
 }
 
+bool VesselLabelTable::Excluded(const std::string& squeezed, const std::string& className) const
+{
+  const auto it = this->Excludes.find(className);
+  return it != this->Excludes.end() &&
+    std::any_of(it->second.begin(), it->second.end(), [&](const std::string& w) { return squeezed.find(w) != std::string::npos; });
+}
+
 std::string VesselLabelTable::ClassOfName(const std::string& name) const
 {
   const std::string normalized = Normalized(name);
-  const auto it = this->ByName.find(normalized);
-  if (it != this->ByName.end())
-  {
-    return it->second;
-  }
   const std::string squeezed = Squeezed(normalized);
+  // The name as listed, then without a number after it ("Tumor 2", "lesion_3").
+  std::string unnumbered = normalized;
+  while (!unnumbered.empty() && (std::isdigit(static_cast<unsigned char>(unnumbered.back())) || unnumbered.back() == ' '))
+  {
+    unnumbered.pop_back();
+  }
+  for (const std::string* candidate : std::initializer_list<const std::string*>{ &normalized, &unnumbered })
+  {
+    const auto it = this->ByName.find(*candidate);
+    if (it != this->ByName.end() && !this->Excluded(squeezed, it->second))
+    {
+      return it->second;
+    }
+  }
   for (const auto& [part, cls] : this->ByNamePart)
   {
-    if (squeezed.find(part) != std::string::npos)
+    if (squeezed.find(part) != std::string::npos && !this->Excluded(squeezed, cls))
     {
       return cls;
     }

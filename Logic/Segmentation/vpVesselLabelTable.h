@@ -17,9 +17,11 @@ namespace vp
 /// artery, liver), SNOMED codes as DICOM SEG and Slicer carry them, and TotalSegmentator's label
 /// ids. A structure matches by coded type first, then by name (case, '_' and '-' ignored), then,
 /// only when the labelmap had no names ("label N") or held one value under its file's name (a
-/// mask, a temporary file Slicer wrote), by value. A name the table does not list matches a class
-/// whose name_contains words one of its words is in (IRCADb's "livertumor03", a colour table's
-/// "Tumor 2"). Each class has a role: a vessel class is one model, measured against; a tumour
+/// mask, a temporary file Slicer wrote), by value. A name matches a listed name with or without a
+/// number after it ("Tumor 2", "lesion_3"); a name the table does not list matches a class one of
+/// whose name_contains words it holds (IRCADb's "livertumor03"); a name holding one of a class's
+/// name_excludes words (an adrenal "leftsurretumor", a "metastasectomie") is never that class by
+/// name. Each class has a role: a vessel class is one model, measured against; a tumour
 /// class one model per structure and connected piece; the liver is shown.
 class VesselLabelTable
 {
@@ -51,6 +53,9 @@ private:
   std::map<std::string, std::array<double, 3>> Colors;
   std::map<std::string, ModelRole> Roles;
   std::vector<std::pair<std::string, std::string>> ByNamePart; ///< (word, class), in table order
+  std::map<std::string, std::vector<std::string>> Excludes;    ///< per class, words that keep a name out of it
+  /// Whether a name (normalized, blanks out) holds one of the class's name_excludes words.
+  bool Excluded(const std::string& squeezed, const std::string& className) const;
 };
 } // namespace vp
 

@@ -163,9 +163,10 @@ Json RunPivot(const cli::ParsedArguments& args, std::string& said)
   // A translation to the tip: placing the model by it puts its origin at the tip.
   std::array<double, 16> tipToTool{ 1, 0, 0, r.TipInToolMm[0], 0, 1, 0, r.TipInToolMm[1], 0, 0, 1, r.TipInToolMm[2], 0, 0, 0,
     1 };
-  // model_to_world: the tip's frame in the tool's, which is the calibration's world; fre_mm: the
-  // poses' RMS miss of the pivot, as landmarks' FRE is the points' RMS miss.
-  return { { "method", "pivot" }, { "model_to_world", MatrixJson(tipToTool) }, { "fre_mm", r.RmseMm },
+  // No model_to_world: a calibration places no model in the world, and a registration reader
+  // would take it for one (every tip moved by the tip's offset). fre_mm: the poses' RMS miss of
+  // the pivot, as landmarks' FRE is the points' RMS miss.
+  return { { "method", "pivot" }, { "fre_mm", r.RmseMm },
     { "point_errors_mm", r.PoseErrorsMm }, { "tip_mm", PointJson(r.TipInToolMm) }, { "pivot_mm", PointJson(r.PivotInWorldMm) },
     { "rmse_mm", r.RmseMm }, { "rotation_spread_deg", r.RotationSpreadDeg }, { "poses", poses.size() },
     { "tip_to_tool", MatrixJson(tipToTool) } };
@@ -191,7 +192,7 @@ cli::ModuleDescription DescribeRegisterCommand()
     "coordinates from tool-to-world poses pivoting about the tip (pose file as for track); reports each pose's miss "
     "of the pivot and their RMS (fre_mm). The result, with \"tip_mm\", serves as the scalpel's tip "
     "definition (FILE.json beside the model, or read by --tip's caller).\n"
-    "RESULT.json: {\"method\", \"model_to_world\": [16, row-major] (pivot: the tip in tool coordinates), \"fre_mm\", "
+    "RESULT.json: {\"method\", \"model_to_world\": [16, row-major] (not pivot's: a calibration, its tip_to_tool), \"fre_mm\", "
     "\"point_errors_mm\" (each point's, or pose's, error), ...}.",
     {
       { "Registration", "",

@@ -250,6 +250,7 @@ TEST_F(LiveCommand, AToolNameTheWireCannotCarryIsRefused)
 TEST_F(LiveCommand, TwoClassesTheWireCannotTellApartAreRefused)
 {
   EXPECT_EQ(vp::LiveDeviceNameClash({ "portal_vein", "hepatic_vein", "hepatic_artery" }), "");
+  EXPECT_NE(vp::LiveDeviceNameClash({ "vessel_proximity" }).find("would be sent as VesselProximityPoint"), std::string::npos);
   EXPECT_NE(vp::LiveDeviceNameClash({ "portal_vein_branch_1", "portal_vein_branch_2" }).find(
               "classes 'portal_vein_branch_1' and 'portal_vein_branch_2' would both be sent as PortalVeinBraClosest"),
     std::string::npos);

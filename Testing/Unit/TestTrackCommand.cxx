@@ -496,7 +496,8 @@ TEST_F(TrackCommand, TumoursComeFromAModelsFolder)
   std::filesystem::copy_file(this->Dir + "/nontumour.json", this->Dir + "/vessels-only/models.json");
   for (const auto& [entry, message] : std::vector<std::pair<std::string, std::string>>{
          { this->Dir + "/masks/livertumor01", this->Dir + "/masks/livertumor01: is a folder without a models.json" },
-         { this->Dir + "/vessels-only", this->Dir + "/vessels-only/models.json: lists no tumour (it has pv)" } })
+         { this->Dir + "/vessels-only", this->Dir + "/vessels-only/models.json: lists no tumour (it has pv)" },
+         { "t=" + this->Dir + "/models", "--tumour: 't=" + this->Dir + "/models': a models folder takes no ID=" } })
   {
     const ToolRun bad = RunTool(this->Dir, "track --vessels " + this->Vessels + " --scalpel " + this->Tool + " --poses " + poses +
         " --tumour " + entry + " -o " + this->Dir + "/bad");
@@ -733,7 +734,12 @@ TEST_F(TrackCommand, RegisterWritesTheTransformAndTheError)
   EXPECT_LT(pj["rmse_mm"].get<double>(), 0.01);
   EXPECT_EQ(pj["fre_mm"], pj["rmse_mm"]);
   EXPECT_EQ(pj["point_errors_mm"].size(), 10u) << "each pose's miss of the pivot";
-  EXPECT_EQ(pj["model_to_world"], pj["tip_to_tool"]);
+  EXPECT_FALSE(pj.contains("model_to_world")) << "a calibration, never read as a registration";
+  const ToolRun asRegistration = RunTool(this->Dir, "distance --vessels " + this->Vessels + " --tip 0,0,0 --registration " +
+      this->Dir + "/pivot.json");
+  EXPECT_EQ(asRegistration.ExitCode, 1);
+  EXPECT_NE(asRegistration.Err.find("pivot.json: is a pivot calibration (the tip in the tool's coordinates), not a registration"),
+    std::string::npos) << asRegistration.Err;
   // The same pivoting recorded by PLUS: the sequence's StylusToTracker, the same tip.
   const std::string recording = this->WriteText("pivot.igs.mha", "ObjectType = Image\nNDims = 3\nDimSize = 0 0 " +
       std::to_string(frame) + "\n" + sequence.str() + "ElementDataFile = LOCAL\n");

@@ -259,11 +259,18 @@ INSTANTIATE_TEST_SUITE_P(Patients, IrcadbModels, ::testing::Values("3Dircadb1.1"
 TEST(VesselModels, LabelTableFindsTumoursByTheirNamesAndCodes)
 {
   const auto table = vp::VesselLabelTable::Default();
-  for (const char* name : { "livertumor01", "livertumor", "Tumor 2", "liver_tumour_3", "metastasis-1", "Lesion", "HCC" })
+  for (const char* name : { "livertumor01", "livertumor", "Tumor 2", "liver_tumour_3", "metastasis-1", "Lesion", "HCC",
+         "Liver metastases 4" })
   {
     EXPECT_EQ(table.ClassOfName(name), "tumour") << name;
   }
-  EXPECT_EQ(table.ClassOfName("liverkyst"), ""); // a cyst is not resected with a margin
+  // Not the liver's tumours: a cyst (not resected with a margin), IRCADb's adrenal tumours (its
+  // patient 5's leftsurretumor), a resection cavity (patient 14's metastasectomie), a thrombus.
+  for (const char* name : { "liverkyst", "leftsurretumor", "rightsurretumor", "metastasectomie", "portal vein tumor thrombus" })
+  {
+    EXPECT_EQ(table.ClassOfName(name), "") << name;
+  }
+  EXPECT_EQ(table.ClassOfName("portal vein 2"), "portal_vein") << "a numbered name";
   EXPECT_EQ(table.RoleOf("tumour"), vp::ModelRole::Tumour);
   EXPECT_EQ(table.RoleOf("portal_vein"), vp::ModelRole::Vessel);
   EXPECT_EQ(table.RoleOf("liver"), vp::ModelRole::Liver);

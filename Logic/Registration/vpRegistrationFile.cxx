@@ -16,7 +16,7 @@ Matrix4 ReadModelToWorld(const std::string& fileName, const std::string& what)
   if (root.is_object() && root.contains("method") && root.at("method") == "pivot")
   {
     throw InputError(fileName, "is a pivot calibration (the tip in the tool's coordinates), not " + what +
-        ": give it as the scalpel's tip definition (beside its model, or --tip)");
+        ": give it as the scalpel's tip definition (the JSON beside its model)");
   }
   if (!root.is_object() || !root.contains("model_to_world") || !root.at("model_to_world").is_array() ||
     root.at("model_to_world").size() != 16)
